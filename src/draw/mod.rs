@@ -1,0 +1,406 @@
+//! The neutral drawing: a flat list of absolute primitives in model units, grouped on
+//! named layers. Figures (in `crate::figure`) build a [`Drawing`]; the writers translate
+//! it and know nothing about mechanisms:
+//! [`dxf`] (R12 DXF for any CAD program), [`svg`] (SVG, y axis up as in CAD),
+//! [`raster`] (SVG to PNG with resvg and the bundled font), [`viewer`] (the HTML viewer).
+//!
+//! Coordinates are model coordinates (the scene's units), y up. Angles are radians,
+//! counter-clockwise from +x. Text heights, widths and arrow sizes are model lengths too,
+//! so a drawing prints at any scale.
+
+pub mod dxf;
+pub mod parts;
+pub mod raster;
+pub mod svg;
+pub mod viewer;
+
+use crate::geom::{Point, Vector};
+
+/// An AutoCAD Color Index (ACI) colour: 1 red, 2 yellow, 3 green, 4 cyan, 5 blue,
+/// 6 magenta, 7 black on a white sheet (white on black), 8 dark grey, 9 light grey,
+/// 10–249 the ACI wheel, 250–255 greys.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Aci(pub u8);
+
+impl Aci {
+    /// ACI 1.
+    pub const RED: Aci = Aci(1);
+    /// ACI 2.
+    pub const YELLOW: Aci = Aci(2);
+    /// ACI 3.
+    pub const GREEN: Aci = Aci(3);
+    /// ACI 4.
+    pub const CYAN: Aci = Aci(4);
+    /// ACI 5.
+    pub const BLUE: Aci = Aci(5);
+    /// ACI 6.
+    pub const MAGENTA: Aci = Aci(6);
+    /// ACI 7: black on paper, white on a dark screen.
+    pub const BLACK: Aci = Aci(7);
+    /// ACI 8.
+    pub const DARK_GREY: Aci = Aci(8);
+    /// ACI 9.
+    pub const LIGHT_GREY: Aci = Aci(9);
+    /// ACI 30: orange.
+    pub const ORANGE: Aci = Aci(30);
+
+    /// sRGB of this colour as drawn on a white sheet (ACI 7 is black there).
+    pub fn rgb(self) -> (u8, u8, u8) {
+        match self.0 {
+            1 => (255, 0, 0),
+            2 => (200, 170, 0), // pure yellow is unreadable on white
+            3 => (0, 160, 0),
+            4 => (0, 160, 200),
+            5 => (0, 0, 255),
+            6 => (200, 0, 200),
+            7 | 0 => (0, 0, 0),
+            8 => (128, 128, 128),
+            9 => (192, 192, 192),
+            30 => (255, 127, 0),
+            250..=255 => {
+                let g = [51, 91, 132, 173, 214, 255][(self.0 - 250) as usize];
+                (g, g, g)
+            }
+            n => aci_wheel(n),
+        }
+    }
+}
+
+/// The ACI colour wheel (10–249): hue in steps of 15°, five lightness/saturation rows.
+fn aci_wheel(n: u8) -> (u8, u8, u8) {
+    let hue = ((n as u32 - 10) / 10) as f64 * 15.0;
+    let row = (n as u32 - 10) % 10;
+    let value = [1.0, 1.0, 0.8, 0.8, 0.6, 0.6, 0.5, 0.5, 0.3, 0.3][row as usize];
+    let sat = if row % 2 == 0 { 1.0 } else { 0.5 };
+    let c = value * sat;
+    let x = c * (1.0 - ((hue / 60.0) % 2.0 - 1.0).abs());
+    let m = value - c;
+    let (r, g, b) = match (hue / 60.0) as u32 {
+        0 => (c, x, 0.0),
+        1 => (x, c, 0.0),
+        2 => (0.0, c, x),
+        3 => (0.0, x, c),
+        4 => (x, 0.0, c),
+        _ => (c, 0.0, x),
+    };
+    let to = |v: f64| ((v + m) * 255.0).round() as u8;
+    (to(r), to(g), to(b))
+}
+
+/// Line pattern.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Default)]
+pub enum LineType {
+    /// Solid line.
+    #[default]
+    Continuous,
+    /// Dashes; the DXF writer defines the DASHED pattern in the LTYPE table.
+    Dashed,
+}
+
+/// A named layer with its default colour and line type.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layer {
+    /// Layer name as written to DXF (A–Z, 0–9, `_`, `-`; the writers do not rename).
+    pub name: String,
+    /// Colour of entities on the layer that have none of their own.
+    pub color: Aci,
+    /// Line type of entities on the layer that have none of their own.
+    pub linetype: LineType,
+}
+
+/// Horizontal text alignment relative to the insertion point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum HAlign {
+    /// Text starts at the point.
+    #[default]
+    Left,
+    /// Text is centred on the point.
+    Center,
+    /// Text ends at the point.
+    Right,
+}
+
+/// Vertical text alignment relative to the insertion point.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum VAlign {
+    /// The baseline passes through the point.
+    #[default]
+    Baseline,
+    /// The middle of capital letters is at the point.
+    Middle,
+    /// The top of capital letters is at the point.
+    Top,
+}
+
+/// One drawing primitive, in model coordinates.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Shape {
+    /// A full circle.
+    Circle {
+        /// Centre.
+        center: Point,
+        /// Radius (> 0).
+        radius: f64,
+    },
+    /// A circular arc from `start` to `end`, counter-clockwise (radians).
+    Arc {
+        /// Centre.
+        center: Point,
+        /// Radius (> 0).
+        radius: f64,
+        /// Start angle, radians from +x.
+        start: f64,
+        /// End angle, radians from +x; the arc runs counter-clockwise from `start`.
+        end: f64,
+    },
+    /// A straight segment.
+    Line {
+        /// Start point.
+        from: Point,
+        /// End point.
+        to: Point,
+    },
+    /// A polyline (AutoCAD `PLINE`), optionally closed, with a constant width
+    /// (0 = thinnest line the reader draws).
+    Polyline {
+        /// Vertices, at least two.
+        points: Vec<Point>,
+        /// Whether the last vertex joins the first.
+        closed: bool,
+        /// Constant width in model units (AutoCAD `PLINE … W w w`).
+        width: f64,
+    },
+    /// A filled polygon (DXF SOLID for three or four vertices): arrowheads, hatch marks.
+    Filled {
+        /// Three or four vertices, in order around the outline.
+        points: Vec<Point>,
+    },
+    /// A vector drawn as a line with a filled arrowhead at `to` (the seeds' `Sageti`).
+    Arrow {
+        /// Tail.
+        from: Point,
+        /// Tip, where the arrowhead is.
+        to: Point,
+        /// Arrowhead length (model units); the head is shortened on short vectors.
+        head: f64,
+    },
+    /// A single line of text.
+    Text {
+        /// Insertion point, interpreted with `halign` and `valign`.
+        at: Point,
+        /// Cap height in model units.
+        height: f64,
+        /// The text (plain; `°`, `φ`, `ω`, `ε`, `π`, `'` are fine).
+        value: String,
+        /// Horizontal alignment.
+        halign: HAlign,
+        /// Vertical alignment.
+        valign: VAlign,
+        /// Rotation, radians counter-clockwise.
+        rotation: f64,
+    },
+    /// An angular dimension (AutoCAD `DIMANGULAR`, 3-point form): the angle swept
+    /// counter-clockwise from the ray `vertex→first` to the ray `vertex→second`, drawn as an
+    /// arc of radius `radius` about `vertex` with arrowheads and `text` at its middle.
+    AngularDimension {
+        /// Vertex of the angle.
+        vertex: Point,
+        /// A point on the first ray.
+        first: Point,
+        /// A point on the second ray.
+        second: Point,
+        /// Radius of the dimension arc.
+        radius: f64,
+        /// The text shown (e.g. `φ1 = 75.77°`).
+        text: String,
+    },
+    /// A linear dimension (AutoCAD `DIMLINEAR`/rotated): the distance between `p1` and
+    /// `p2` measured along direction `angle`, with the dimension line through `line_at`.
+    LinearDimension {
+        /// First definition point (start of the first extension line).
+        p1: Point,
+        /// Second definition point.
+        p2: Point,
+        /// A point the dimension line passes through.
+        line_at: Point,
+        /// Direction of measurement, radians (0 = horizontal dimension).
+        angle: f64,
+        /// The text shown (e.g. `25 ±0.1`).
+        text: String,
+    },
+}
+
+/// A shape on a layer, with optional colour and line type overrides.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Entity {
+    /// Index into [`Drawing::layers`].
+    pub layer: usize,
+    /// Own colour; `None` draws in the layer's colour.
+    pub color: Option<Aci>,
+    /// Own line type; `None` uses the layer's.
+    pub linetype: Option<LineType>,
+    /// The geometry.
+    pub shape: Shape,
+}
+
+/// Sizes of dimension text and arrowheads (DXF `$DIMTXT`, `$DIMASZ`), model units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DimStyle {
+    /// Text height of dimension text.
+    pub text_height: f64,
+    /// Arrowhead length of dimensions.
+    pub arrow_size: f64,
+}
+
+/// The neutral drawing: layers and entities in model units, in drawing order.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Drawing {
+    /// Layers in creation order; layer 0 is always `"0"`.
+    pub layers: Vec<Layer>,
+    /// Entities in drawing order (later ones on top in SVG).
+    pub entities: Vec<Entity>,
+    /// Dimension text and arrow sizes.
+    pub dim_style: DimStyle,
+}
+
+/// Axis-aligned bounding box in model units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Bounds {
+    /// Lower-left corner.
+    pub min: Point,
+    /// Upper-right corner.
+    pub max: Point,
+}
+
+impl Bounds {
+    fn of_point(p: Point) -> Bounds {
+        Bounds { min: p, max: p }
+    }
+    fn add(&mut self, p: Point) {
+        self.min = Point::new(self.min.x.min(p.x), self.min.y.min(p.y));
+        self.max = Point::new(self.max.x.max(p.x), self.max.y.max(p.y));
+    }
+    /// Width (x extent).
+    pub fn width(&self) -> f64 {
+        self.max.x - self.min.x
+    }
+    /// Height (y extent).
+    pub fn height(&self) -> f64 {
+        self.max.y - self.min.y
+    }
+}
+
+impl Drawing {
+    /// An empty drawing with layer `"0"` and the given dimension style.
+    pub fn new(dim_style: DimStyle) -> Drawing {
+        Drawing {
+            layers: vec![Layer { name: "0".into(), color: Aci::BLACK, linetype: LineType::Continuous }],
+            entities: Vec::new(),
+            dim_style,
+        }
+    }
+
+    /// Index of the layer `name`, created with `color` and `linetype` if it is new
+    /// (an existing layer keeps its settings).
+    pub fn layer(&mut self, name: &str, color: Aci, linetype: LineType) -> usize {
+        if let Some(i) = self.layers.iter().position(|l| l.name == name) {
+            return i;
+        }
+        self.layers.push(Layer { name: name.to_string(), color, linetype });
+        self.layers.len() - 1
+    }
+
+    /// Adds `shape` on `layer` in the layer's colour and line type.
+    pub fn add(&mut self, layer: usize, shape: Shape) {
+        self.entities.push(Entity { layer, color: None, linetype: None, shape });
+    }
+
+    /// Adds `shape` on `layer` with its own colour.
+    pub fn add_colored(&mut self, layer: usize, color: Aci, shape: Shape) {
+        self.entities.push(Entity { layer, color: Some(color), linetype: None, shape });
+    }
+
+    /// Adds an entity as given.
+    pub fn push(&mut self, entity: Entity) {
+        self.entities.push(entity);
+    }
+
+    /// Convenience: a left/baseline text without rotation.
+    pub fn text(&mut self, layer: usize, at: Point, height: f64, value: impl Into<String>) {
+        self.add(
+            layer,
+            Shape::Text {
+                at,
+                height,
+                value: value.into(),
+                halign: HAlign::Left,
+                valign: VAlign::Baseline,
+                rotation: 0.0,
+            },
+        );
+    }
+
+    /// Colour an entity is drawn in (its own, else its layer's).
+    pub fn color_of(&self, e: &Entity) -> Aci {
+        e.color.unwrap_or(self.layers[e.layer].color)
+    }
+
+    /// Line type an entity is drawn with (its own, else its layer's).
+    pub fn linetype_of(&self, e: &Entity) -> LineType {
+        e.linetype.unwrap_or(self.layers[e.layer].linetype)
+    }
+
+    /// Bounding box of everything drawn (text approximated by its insertion box),
+    /// or `None` for an empty drawing.
+    pub fn bounds(&self) -> Option<Bounds> {
+        self.bounds_of(self.entities.iter())
+    }
+
+    /// Bounding box of the given entities.
+    pub fn bounds_of<'a>(&self, entities: impl Iterator<Item = &'a Entity>) -> Option<Bounds> {
+        let mut b: Option<Bounds> = None;
+        let mut add = |p: Point| match b.as_mut() {
+            None => b = Some(Bounds::of_point(p)),
+            Some(b) => b.add(p),
+        };
+        for e in entities {
+            shape_extent_points(&e.shape, &mut add);
+        }
+        b
+    }
+}
+
+/// Calls `add` with points whose bounding box covers the shape.
+fn shape_extent_points(shape: &Shape, add: &mut impl FnMut(Point)) {
+    match shape {
+        Shape::Circle { center, radius } | Shape::Arc { center, radius, .. } => {
+            add(center + Vector::new(-radius, -radius));
+            add(center + Vector::new(*radius, *radius));
+        }
+        Shape::Line { from, to } | Shape::Arrow { from, to, .. } => {
+            add(*from);
+            add(*to);
+        }
+        Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
+        Shape::Text { at, height, value, halign, .. } => {
+            // Rough width: 0.7 cap heights a character.
+            let w = 0.7 * height * value.chars().count() as f64;
+            let x0 = match halign {
+                HAlign::Left => at.x,
+                HAlign::Center => at.x - w / 2.0,
+                HAlign::Right => at.x - w,
+            };
+            add(Point::new(x0, at.y - 0.3 * height));
+            add(Point::new(x0 + w, at.y + height));
+        }
+        Shape::AngularDimension { vertex, radius, .. } => {
+            add(vertex + Vector::new(-radius, -radius));
+            add(vertex + Vector::new(*radius, *radius));
+        }
+        Shape::LinearDimension { p1, p2, line_at, .. } => {
+            add(*p1);
+            add(*p2);
+            add(*line_at);
+        }
+    }
+}

@@ -1,0 +1,290 @@
+//! SVG writer: the same content as the DXF, for browsers and golden images.
+//!
+//! The model's y axis points up (as in CAD); SVG's points down. The flip happens in one
+//! place, [`Frame::pt`]. The viewBox is fitted to the drawing's bounds with a margin.
+//! Line widths, dash lengths and font sizes follow the model units, so the SVG is to scale.
+
+use std::io::Write;
+
+use svg::Document;
+use svg::Node as _;
+use svg::node::element::{Circle, Group, Line, Path, Polygon, Polyline, Rectangle, Text};
+
+use super::parts::{arrow, explode_dimension};
+use super::{Aci, Bounds, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::geom::{Point, polar};
+
+/// Font family written into SVG text; the bundled DejaVu Sans (assets/fonts) renders it in
+/// golden images, browsers fall back to any sans-serif.
+pub const FONT_FAMILY: &str = "DejaVu Sans, sans-serif";
+
+/// How the SVG is framed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SvgOptions {
+    /// Width attribute in pixels; the height follows the aspect ratio.
+    pub width_px: u32,
+    /// Margin around the content, as a fraction of the larger extent.
+    pub margin: f64,
+    /// Thinnest stroke, as a fraction of the larger extent (a 0-width polyline draws this).
+    pub hairline: f64,
+    /// Fixed model-space window (lower-left, upper-right) instead of the drawing's bounds:
+    /// frames of an animation share one window so the picture doesn't jump.
+    pub window: Option<Bounds>,
+}
+
+impl Default for SvgOptions {
+    fn default() -> Self {
+        SvgOptions { width_px: 1000, margin: 0.05, hairline: 0.0015, window: None }
+    }
+}
+
+/// Maps model coordinates to SVG user units (y flipped) and fixes number formatting.
+struct Frame {
+    /// Stroke width of a hairline, model units.
+    hairline: f64,
+}
+
+impl Frame {
+    /// The single y flip of the writer.
+    fn pt(&self, p: Point) -> (f64, f64) {
+        (p.x, -p.y)
+    }
+}
+
+/// Fixed, deterministic number formatting: 6 significant decimals trimmed.
+pub fn num(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" { "0".to_string() } else { s.to_string() }
+}
+
+fn rgb(c: Aci) -> String {
+    let (r, g, b) = c.rgb();
+    format!("#{r:02x}{g:02x}{b:02x}")
+}
+
+/// Renders `drawing` as an SVG document string.
+pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
+    let bounds = opts
+        .window
+        .or_else(|| drawing.bounds())
+        .unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
+    let extent = bounds.width().max(bounds.height()).max(f64::MIN_POSITIVE);
+    let margin = opts.margin * extent;
+    let frame = Frame { hairline: opts.hairline * extent };
+    let (x0, y0) = (bounds.min.x - margin, -(bounds.max.y + margin));
+    let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
+    let w = w.max(extent * 1e-3);
+    let h = h.max(extent * 1e-3);
+    let height_px = ((opts.width_px as f64) * h / w).round().max(1.0) as u32;
+
+    let mut doc = Document::new()
+        .set("viewBox", format!("{} {} {} {}", num(x0), num(y0), num(w), num(h)))
+        .set("width", opts.width_px)
+        .set("height", height_px)
+        .set("font-family", FONT_FAMILY)
+        .add(
+            Rectangle::new()
+                .set("x", num(x0))
+                .set("y", num(y0))
+                .set("width", num(w))
+                .set("height", num(h))
+                .set("fill", "#ffffff"),
+        );
+
+    // One group per layer, in layer order, with the layer name as id (like a CAD layer).
+    let mut groups: Vec<Option<Group>> = vec![None; drawing.layers.len()];
+    for e in &drawing.entities {
+        let g = groups[e.layer].get_or_insert_with(|| {
+            Group::new()
+                .set("id", format!("layer-{}", drawing.layers[e.layer].name))
+                .set("fill", "none")
+                .set("stroke-linecap", "round")
+                .set("stroke-linejoin", "round")
+        });
+        for node in entity_nodes(drawing, e, &frame) {
+            *g = std::mem::take(g).add(node);
+        }
+    }
+    for g in groups.into_iter().flatten() {
+        doc = doc.add(g);
+    }
+    doc.to_string()
+}
+
+/// Writes `drawing` as SVG to `out`.
+pub fn write(drawing: &Drawing, opts: &SvgOptions, mut out: impl Write) -> std::io::Result<()> {
+    out.write_all(to_string(drawing, opts).as_bytes())
+}
+
+fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::Node>> {
+    let color = rgb(drawing.color_of(e));
+    let dashed = drawing.linetype_of(e) == LineType::Dashed;
+    let mut nodes: Vec<Box<dyn svg::Node>> = Vec::new();
+    let stroke = |w: f64| -> (String, String) { (color.clone(), num(w.max(f.hairline))) };
+    let dash = num(6.0 * f.hairline * 2.0);
+    let styled = |mut el: svg::node::element::Element, w: f64| {
+        let (c, sw) = stroke(w);
+        el.assign("stroke", c);
+        el.assign("stroke-width", sw);
+        if dashed {
+            el.assign("stroke-dasharray", format!("{dash} {}", num(6.0 * f.hairline)));
+        }
+        el
+    };
+    match &e.shape {
+        Shape::Circle { center, radius } => {
+            let (x, y) = f.pt(*center);
+            let el: svg::node::element::Element =
+                Circle::new().set("cx", num(x)).set("cy", num(y)).set("r", num(*radius)).into();
+            nodes.push(Box::new(styled(el, 0.0)));
+        }
+        Shape::Arc { center, radius, start, end } => {
+            let el: svg::node::element::Element =
+                Path::new().set("d", arc_path(f, *center, *radius, *start, *end)).into();
+            nodes.push(Box::new(styled(el, 0.0)));
+        }
+        Shape::Line { from, to } => {
+            let (x1, y1) = f.pt(*from);
+            let (x2, y2) = f.pt(*to);
+            let el: svg::node::element::Element =
+                Line::new().set("x1", num(x1)).set("y1", num(y1)).set("x2", num(x2)).set("y2", num(y2)).into();
+            nodes.push(Box::new(styled(el, 0.0)));
+        }
+        Shape::Polyline { points, closed, width } => {
+            let pts = points.iter().map(|p| {
+                let (x, y) = f.pt(*p);
+                format!("{},{}", num(x), num(y))
+            });
+            let pts = pts.collect::<Vec<_>>().join(" ");
+            let el: svg::node::element::Element = if *closed {
+                Polygon::new().set("points", pts).into()
+            } else {
+                Polyline::new().set("points", pts).into()
+            };
+            nodes.push(Box::new(styled(el, *width)));
+        }
+        Shape::Filled { points } => {
+            let pts = points.iter().map(|p| {
+                let (x, y) = f.pt(*p);
+                format!("{},{}", num(x), num(y))
+            });
+            nodes.push(Box::new(
+                Polygon::new()
+                    .set("points", pts.collect::<Vec<_>>().join(" "))
+                    .set("fill", color.clone())
+                    .set("stroke", "none"),
+            ));
+        }
+        Shape::Arrow { from, to, head } => {
+            if let Some((base, tri)) = arrow(*from, *to, *head) {
+                let (x1, y1) = f.pt(*from);
+                let (x2, y2) = f.pt(base);
+                let el: svg::node::element::Element =
+                    Line::new().set("x1", num(x1)).set("y1", num(y1)).set("x2", num(x2)).set("y2", num(y2)).into();
+                nodes.push(Box::new(styled(el, 0.0)));
+                let pts: Vec<String> = tri
+                    .iter()
+                    .map(|p| {
+                        let (x, y) = f.pt(*p);
+                        format!("{},{}", num(x), num(y))
+                    })
+                    .collect();
+                nodes.push(Box::new(
+                    Polygon::new().set("points", pts.join(" ")).set("fill", color.clone()).set("stroke", "none"),
+                ));
+            }
+        }
+        Shape::Text { at, height, value, halign, valign, rotation } => {
+            nodes.push(Box::new(text_node(f, *at, *height, value, *halign, *valign, *rotation, &color)));
+        }
+        dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+            for part in explode_dimension(dim, &drawing.dim_style) {
+                let sub = Entity { layer: e.layer, color: e.color, linetype: Some(LineType::Continuous), shape: part };
+                nodes.extend(entity_nodes(drawing, &sub, f));
+            }
+        }
+    }
+    nodes
+}
+
+#[allow(clippy::too_many_arguments)]
+fn text_node(
+    f: &Frame,
+    at: Point,
+    height: f64,
+    value: &str,
+    halign: HAlign,
+    valign: VAlign,
+    rotation: f64,
+    color: &str,
+) -> Text {
+    let (x, y) = f.pt(at);
+    let anchor = match halign {
+        HAlign::Left => "start",
+        HAlign::Center => "middle",
+        HAlign::Right => "end",
+    };
+    // Cap height ≈ 0.73 em for DejaVu Sans: font-size = height / 0.73. Vertical alignment is
+    // done with an explicit shift (dominant-baseline is not rendered alike everywhere).
+    let size = height / 0.73;
+    let dy = match valign {
+        VAlign::Baseline => 0.0,
+        VAlign::Middle => 0.5 * height,
+        VAlign::Top => height,
+    };
+    let mut t = Text::new(value)
+        .set("x", num(x))
+        .set("y", num(y))
+        .set("font-size", num(size))
+        .set("text-anchor", anchor)
+        .set("fill", color)
+        .set("stroke", "none");
+    if dy != 0.0 {
+        t = t.set("dy", num(dy));
+    }
+    if rotation != 0.0 {
+        // SVG rotates clockwise in its y-down frame: negate.
+        t = t.set("transform", format!("rotate({} {} {})", num(-rotation.to_degrees()), num(x), num(y)));
+    }
+    t
+}
+
+fn arc_path(f: &Frame, center: Point, radius: f64, start: f64, end: f64) -> String {
+    let sweep = end - start;
+    // SVG arcs cannot draw a full circle in one command: split into two halves.
+    let n = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
+    let mut d = String::new();
+    let (sx, sy) = f.pt(polar(center, radius, start));
+    d.push_str(&format!("M{},{}", num(sx), num(sy)));
+    for i in 1..=n {
+        let a = start + sweep * i as f64 / n as f64;
+        let (x, y) = f.pt(polar(center, radius, a));
+        // Counter-clockwise in the model = sweep-flag 0 in SVG's flipped frame.
+        d.push_str(&format!(" A{},{} 0 0 0 {},{}", num(radius), num(radius), num(x), num(y)));
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::draw::DimStyle;
+
+    #[test]
+    fn y_is_flipped_once_and_viewbox_fits_content() {
+        let mut d = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        d.add(0, Shape::Line { from: Point::new(0.0, 0.0), to: Point::new(10.0, 20.0) });
+        let s = to_string(&d, &SvgOptions { margin: 0.0, ..Default::default() });
+        assert!(s.contains(r#"y2="-20""#), "{s}");
+        assert!(s.contains(r#"viewBox="0 -20 10 20""#), "{s}");
+    }
+
+    #[test]
+    fn numbers_are_fixed_format() {
+        assert_eq!(num(1.0), "1");
+        assert_eq!(num(-0.0000001), "0");
+        assert_eq!(num(2.5), "2.5");
+        assert_eq!(num(1.0 / 3.0), "0.333333");
+    }
+}

@@ -1,0 +1,1 @@
+//! Figure: chain. (Placeholder: filled in by its issue.)

@@ -1,0 +1,1 @@
+//! Figure: forces. (Placeholder: filled in by its issue.)

@@ -1,0 +1,1 @@
+//! Figure: fourbar. (Placeholder: filled in by its issue.)

@@ -1,0 +1,1 @@
+//! Figure: linkage. (Placeholder: filled in by its issue.)

@@ -1,0 +1,10 @@
+//! Results to drawings: what the engineer draws for each mechanism. One file per
+//! mechanism, plus [`plot`] for diagrams. Figures build a neutral
+//! [`crate::draw::Drawing`]; they never write files.
+
+pub mod chain;
+pub mod forces;
+pub mod fourbar;
+pub mod linkage;
+pub mod plot;
+pub mod triad;

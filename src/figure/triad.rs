@@ -1,0 +1,1 @@
+//! Figure: triad. (Placeholder: filled in by its issue.)

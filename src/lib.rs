@@ -1,0 +1,28 @@
+//! # mechdraw
+//!
+//! Planar mechanisms (triads, four-bars, general linkages with revolute and prismatic
+//! joints) and dimensional chains: solved to machine precision and written as drawings
+//! (DXF for any CAD program, SVG frames, an HTML viewer), diagrams, CSV and a JSON summary.
+//!
+//! The pipeline, one module per arrow:
+//!
+//! ```text
+//! scene (TOML) ─► scene::Scene ─► solve ─► figure ─► draw::Drawing ─► draw::{dxf, svg, viewer}
+//!                                    └──────────────► report (JSON, CSV)
+//! ```
+//!
+//! Angles are radians inside and degrees (`_deg`) in scene files and reports, measured
+//! from +x, counter-clockwise positive.
+#![forbid(unsafe_code)]
+#![warn(missing_docs)]
+
+pub mod draw;
+mod error;
+pub mod figure;
+pub mod geom;
+pub mod report;
+pub mod run;
+pub mod scene;
+pub mod solve;
+
+pub use error::Error;

@@ -1,0 +1,121 @@
+//! The `mechdraw` command line: parses arguments, calls the library, prints errors.
+
+use std::io::IsTerminal;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+use mechdraw::run::RunOptions;
+use mechdraw::scene::{self, Override};
+
+/// Planar mechanisms and dimensional chains, solved and drawn: DXF, SVG, diagrams, CSV, JSON.
+#[derive(Debug, Parser)]
+#[command(name = "mechdraw", version, about, long_about = None)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Solve a scene and write its drawings and data into a directory.
+    Run {
+        /// The scene file (TOML; see templates/).
+        scene: PathBuf,
+        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, and per kind frames/,
+        /// <name>.html, diagrams, <name>.csv, <name>.json.
+        #[arg(short, long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Override a scene field, checked like the file: `l12=55`, `pattern.tol=1e-7`,
+        /// `r[2]=84` (repeatable).
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// Print the JSON summary on stdout.
+        #[arg(long)]
+        json: bool,
+        /// Also write PNG copies of the diagrams.
+        #[arg(long)]
+        png: bool,
+        /// Do not write per-position SVG frames and the HTML viewer.
+        #[arg(long)]
+        no_frames: bool,
+        /// Linkage scenes: move BODY.POINT as close as the constraints allow to (x, y) and
+        /// write that configuration, e.g. `--drag crank.A=10,20`.
+        #[arg(long, value_name = "BODY.POINT=X,Y")]
+        drag: Vec<String>,
+        /// No progress bar and no report on stderr.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Validate a scene file (and overrides) without solving.
+    Check {
+        /// The scene file.
+        scene: PathBuf,
+        /// Override a scene field (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+    },
+    /// Time every solving method against its accuracy and write a chart, CSV and table.
+    Bench {
+        /// Output directory for the chart, CSV and Markdown table.
+        #[arg(short, long, value_name = "DIR", default_value = "bench-out")]
+        out: PathBuf,
+        /// Fewer repetitions (a smoke run).
+        #[arg(long)]
+        quick: bool,
+    },
+}
+
+fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
+    set.iter().map(|s| s.parse::<Override>().map_err(mechdraw::Error::from)).collect()
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    match run(cli) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            // Library errors carry their context in their own message; print it once.
+            eprintln!("error: {e}");
+            let code = e.downcast_ref::<mechdraw::Error>().map_or(1, mechdraw::Error::exit_code);
+            ExitCode::from(code as u8)
+        }
+    }
+}
+
+fn run(cli: Cli) -> anyhow::Result<()> {
+    match cli.command {
+        Command::Run { scene, out, set, json, png, no_frames, drag, quiet } => {
+            let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            let opts = RunOptions {
+                out_dir: Some(out),
+                png,
+                no_frames,
+                progress: !quiet && std::io::stderr().is_terminal(),
+                drag,
+            };
+            let outcome = mechdraw::run::run(&loaded, &opts)?;
+            if json {
+                println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
+            }
+            if !quiet {
+                for w in &outcome.warnings {
+                    eprintln!("warning: {w}");
+                }
+                if !outcome.report.is_empty() {
+                    eprintln!("{}", outcome.report.trim_end());
+                }
+                for f in &outcome.written {
+                    eprintln!("wrote {}", f.display());
+                }
+            }
+            Ok(())
+        }
+        Command::Check { scene, set } => {
+            let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            println!("{}: ok ({} scene \"{}\")", scene.display(), loaded.scene.kind(), loaded.scene.name());
+            Ok(())
+        }
+        Command::Bench { .. } => anyhow::bail!("`mechdraw bench` is not implemented yet"),
+    }
+}

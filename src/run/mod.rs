@@ -1,0 +1,65 @@
+//! One scene through the pipeline: scene → solve → figure → writers, and a report.
+//! Each kind has its own pipeline file; this module holds what they share: the options,
+//! the outcome and the dispatch. Nothing is written unless everything could be
+//! (see [`output::Output`]).
+
+mod chain;
+mod fourbar;
+mod linkage;
+pub mod output;
+mod triad;
+
+use std::path::PathBuf;
+
+use crate::Error;
+use crate::scene::{Loaded, Scene};
+
+/// What the user asked for on the command line, besides the scene.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Output directory; `None` solves and reports without writing files.
+    pub out_dir: Option<PathBuf>,
+    /// Also write PNG copies of the diagrams.
+    pub png: bool,
+    /// Skip the per-position SVG frames and the HTML viewer.
+    pub no_frames: bool,
+    /// Show a progress bar on the terminal while frames are written.
+    pub progress: bool,
+    /// `--drag BODY.POINT=x,y` requests (general linkages).
+    pub drag: Vec<String>,
+}
+
+/// What a run produced.
+#[derive(Debug, Clone)]
+pub struct Outcome {
+    /// The JSON summary (printed with `--json`).
+    pub summary: serde_json::Value,
+    /// A short human-readable report for the terminal.
+    pub report: String,
+    /// Warnings (skipped positions, dead points, ...), one line each.
+    pub warnings: Vec<String>,
+    /// Files written, in order.
+    pub written: Vec<PathBuf>,
+}
+
+/// Solves `loaded` and writes its outputs as `opts` asks.
+pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
+    let file = loaded.path.display().to_string();
+    if !opts.drag.is_empty() && !matches!(loaded.scene, Scene::Linkage(_)) {
+        return Err(Error::Option {
+            option: "--drag".into(),
+            message: format!("only a linkage scene can be dragged; {file} is a {} scene", loaded.scene.kind()),
+        });
+    }
+    match &loaded.scene {
+        Scene::Triad(s) => triad::run(s, &file, opts),
+        Scene::Fourbar(s) => fourbar::run(s, &file, opts),
+        Scene::Linkage(s) => linkage::run(s, &file, opts),
+        Scene::Chain(s) => chain::run(s, &file, opts),
+    }
+}
+
+/// Wraps a solver error with the scene file.
+pub(crate) fn solve_err(file: &str) -> impl FnOnce(crate::solve::SolveError) -> Error + '_ {
+    move |source| Error::Solve { file: file.to_string(), source }
+}

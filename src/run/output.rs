@@ -1,0 +1,100 @@
+//! All-or-nothing output: files are written into a staging directory inside the output
+//! directory and moved into place only when every one of them has been written. A run
+//! that fails leaves the output directory as it was.
+
+use std::path::{Path, PathBuf};
+
+use crate::Error;
+
+/// Outputs of one run, staged until [`Output::commit`].
+#[derive(Debug)]
+pub struct Output {
+    dir: PathBuf,
+    staging: PathBuf,
+    files: Vec<PathBuf>,
+    committed: bool,
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Error + '_ {
+    move |source| Error::Io { path: path.display().to_string(), source }
+}
+
+impl Output {
+    /// Prepares to write into `dir` (created if missing).
+    pub fn new(dir: &Path) -> Result<Output, Error> {
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let staging = dir.join(format!(".mechdraw-partial-{}", std::process::id()));
+        if staging.exists() {
+            std::fs::remove_dir_all(&staging).map_err(io(&staging))?;
+        }
+        std::fs::create_dir_all(&staging).map_err(io(&staging))?;
+        Ok(Output { dir: dir.to_path_buf(), staging, files: Vec::new(), committed: false })
+    }
+
+    /// The final output directory.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Stages `bytes` as `rel` (a path relative to the output directory, e.g.
+    /// `frames/pos_000.svg`).
+    pub fn write(&mut self, rel: impl AsRef<Path>, bytes: impl AsRef<[u8]>) -> Result<(), Error> {
+        let rel = rel.as_ref();
+        let path = self.staging.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(io(parent))?;
+        }
+        std::fs::write(&path, bytes).map_err(io(&path))?;
+        self.files.push(rel.to_path_buf());
+        Ok(())
+    }
+
+    /// Moves every staged file into the output directory. A staged top-level directory
+    /// (e.g. `frames/`) replaces the old one whole, so no stale frames remain.
+    /// Returns the final paths in the order they were written.
+    pub fn commit(mut self) -> Result<Vec<PathBuf>, Error> {
+        let entries = std::fs::read_dir(&self.staging).map_err(io(&self.staging))?;
+        for entry in entries {
+            let entry = entry.map_err(io(&self.staging))?;
+            let target = self.dir.join(entry.file_name());
+            if target.is_dir() {
+                std::fs::remove_dir_all(&target).map_err(io(&target))?;
+            }
+            std::fs::rename(entry.path(), &target).map_err(io(&target))?;
+        }
+        std::fs::remove_dir_all(&self.staging).map_err(io(&self.staging))?;
+        self.committed = true;
+        Ok(self.files.iter().map(|f| self.dir.join(f)).collect())
+    }
+}
+
+impl Drop for Output {
+    fn drop(&mut self) {
+        if !self.committed {
+            let _ = std::fs::remove_dir_all(&self.staging);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nothing_lands_until_commit_and_a_dropped_output_leaves_no_trace() {
+        let tmp = tempfile::tempdir().unwrap();
+        {
+            let mut out = Output::new(tmp.path()).unwrap();
+            out.write("a.txt", "x").unwrap();
+            assert!(!tmp.path().join("a.txt").exists());
+        }
+        assert_eq!(std::fs::read_dir(tmp.path()).unwrap().count(), 0);
+        let mut out = Output::new(tmp.path()).unwrap();
+        out.write("frames/f1.svg", "y").unwrap();
+        out.write("a.txt", "x").unwrap();
+        let files = out.commit().unwrap();
+        assert_eq!(files.len(), 2);
+        assert_eq!(std::fs::read_to_string(tmp.path().join("frames/f1.svg")).unwrap(), "y");
+        assert_eq!(std::fs::read_dir(tmp.path()).unwrap().count(), 2);
+    }
+}

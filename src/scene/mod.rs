@@ -1,0 +1,272 @@
+//! Scene files: the TOML a user writes, read into checked types.
+//!
+//! Loading is three steps, each with its own error: the text is parsed as TOML
+//! ([`SceneError::Syntax`], with line and column); `--set` overrides are applied to the
+//! parsed table ([`Override`]); the table is read into the scene kind's schema with unknown
+//! fields refused and then validated ([`SceneError::Field`], naming the field path, what is
+//! wrong and what would be valid). A scene that loads is safe to solve: no NaN, no
+//! non-positive length reaches a solver.
+
+pub mod chain;
+pub mod fourbar;
+pub mod linkage;
+mod overrides;
+pub mod triad;
+
+use std::path::{Path, PathBuf};
+
+use serde::de::DeserializeOwned;
+
+pub use overrides::Override;
+
+/// The scene kinds, as written in the `kind` field.
+pub const KINDS: &[&str] = &["triad", "fourbar", "linkage", "chain"];
+
+/// A loaded, validated scene.
+#[derive(Debug, Clone)]
+pub enum Scene {
+    /// `kind = "triad"`: a 6R triad (seed 000).
+    Triad(triad::TriadScene),
+    /// `kind = "fourbar"`: a crank-rocker four-bar with a ternary coupler (seed 003).
+    Fourbar(fourbar::FourbarScene),
+    /// `kind = "linkage"`: a general planar linkage of bodies and joints (seed 002).
+    Linkage(linkage::LinkageScene),
+    /// `kind = "chain"`: a dimensional chain (seed 001).
+    Chain(chain::ChainScene),
+}
+
+impl Scene {
+    /// The `kind` string.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Scene::Triad(_) => "triad",
+            Scene::Fourbar(_) => "fourbar",
+            Scene::Linkage(_) => "linkage",
+            Scene::Chain(_) => "chain",
+        }
+    }
+
+    /// The scene's `name`, used for output file names.
+    pub fn name(&self) -> &str {
+        match self {
+            Scene::Triad(s) => &s.name,
+            Scene::Fourbar(s) => &s.name,
+            Scene::Linkage(s) => &s.name,
+            Scene::Chain(s) => &s.name,
+        }
+    }
+}
+
+/// A scene together with the file it came from.
+#[derive(Debug, Clone)]
+pub struct Loaded {
+    /// The scene file as given on the command line (for messages).
+    pub path: PathBuf,
+    /// The checked scene.
+    pub scene: Scene,
+}
+
+/// Length units of a scene, stated once per file.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
+pub enum Units {
+    /// Millimetres (and seconds, newtons): `units = "mm"`.
+    #[serde(rename = "mm")]
+    Mm,
+    /// SI: metres, seconds, kilograms, newtons: `units = "SI"` (or `"m"`).
+    #[serde(rename = "SI", alias = "m", alias = "si")]
+    Si,
+}
+
+impl Units {
+    /// Unit symbol for lengths.
+    pub fn length(self) -> &'static str {
+        match self {
+            Units::Mm => "mm",
+            Units::Si => "m",
+        }
+    }
+}
+
+/// What is wrong with a scene file or a `--set` override.
+#[derive(Debug, thiserror::Error)]
+pub enum SceneError {
+    /// The file cannot be read. Example: a misspelt path.
+    #[error("{file}: cannot read the scene file: {source}")]
+    Read {
+        /// The file.
+        file: String,
+        /// The I/O error.
+        source: std::io::Error,
+    },
+    /// The text is not TOML. Example: `l12 = 50,0`.
+    #[error("{file}: not valid TOML: {message}")]
+    Syntax {
+        /// The file.
+        file: String,
+        /// The TOML parser's message, with line and column.
+        message: String,
+    },
+    /// No `kind`, or one that is not a scene kind. Example: `kind = "tirad"`.
+    #[error("{file}: field `kind`: {message}; valid kinds: triad, fourbar, linkage, chain")]
+    Kind {
+        /// The file.
+        file: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// A field is missing, unknown, of the wrong type, or has an invalid value.
+    /// Example: `l12 = -5.0` ("must be a positive length").
+    #[error("{file}: field `{field}`: {message}")]
+    Field {
+        /// The file.
+        file: String,
+        /// Dotted path of the field, e.g. `pattern.tol` or `r[2]`.
+        field: String,
+        /// What is wrong and what would be valid.
+        message: String,
+    },
+    /// A `--set KEY=VALUE` override is malformed. Example: `--set l12`.
+    #[error("--set {spec}: {message}")]
+    Override {
+        /// The override as given.
+        spec: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+/// A field-level problem found by a kind's validation, before the file name is attached.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FieldError {
+    /// Dotted path of the field.
+    pub field: String,
+    /// What is wrong and what would be valid.
+    pub message: String,
+}
+
+impl FieldError {
+    /// A field error.
+    pub fn new(field: impl Into<String>, message: impl Into<String>) -> FieldError {
+        FieldError { field: field.into(), message: message.into() }
+    }
+
+    fn in_file(self, file: &str) -> SceneError {
+        SceneError::Field { file: file.to_string(), field: self.field, message: self.message }
+    }
+}
+
+/// Checks that a scene field is a finite, strictly positive length.
+pub fn positive(field: &str, v: f64) -> Result<f64, FieldError> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(FieldError::new(field, format!("must be a positive length, got {v}")))
+    }
+}
+
+/// Checks that a scene field is a finite number.
+pub fn finite(field: &str, v: f64) -> Result<f64, FieldError> {
+    if v.is_finite() { Ok(v) } else { Err(FieldError::new(field, format!("must be a finite number, got {v}"))) }
+}
+
+/// Checks that a point field has finite coordinates.
+pub fn finite_point(field: &str, p: [f64; 2]) -> Result<crate::geom::Point, FieldError> {
+    if p.iter().all(|v| v.is_finite()) {
+        Ok(crate::geom::Point::new(p[0], p[1]))
+    } else {
+        Err(FieldError::new(field, format!("must be a point [x, y] of finite numbers, got {p:?}")))
+    }
+}
+
+/// Reads and checks the scene file `path`, with `overrides` applied in order.
+pub fn load(path: &Path, overrides: &[Override]) -> Result<Loaded, SceneError> {
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { file: file.clone(), source })?;
+    let scene = parse(&text, &file, overrides)?;
+    Ok(Loaded { path: path.to_path_buf(), scene })
+}
+
+/// Parses and checks scene text; `file` names it in messages.
+pub fn parse(text: &str, file: &str, overrides: &[Override]) -> Result<Scene, SceneError> {
+    let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| SceneError::Syntax {
+        file: file.to_string(),
+        message: e.to_string().trim_end().to_string(),
+    })?;
+    for o in overrides {
+        o.apply(&mut table)?;
+    }
+    let kind = match table.remove("kind") {
+        None => {
+            return Err(SceneError::Kind {
+                file: file.to_string(),
+                message: "missing (it must come first in the file)".into(),
+            });
+        }
+        Some(toml::Value::String(k)) => k,
+        Some(v) => {
+            return Err(SceneError::Kind { file: file.to_string(), message: format!("must be a string, got {v}") });
+        }
+    };
+    let checked = match kind.as_str() {
+        "triad" => triad::check(read(table, file)?).map(Scene::Triad),
+        "fourbar" => fourbar::check(read(table, file)?).map(Scene::Fourbar),
+        "linkage" => linkage::check(read(table, file)?).map(Scene::Linkage),
+        "chain" => chain::check(read(table, file)?).map(Scene::Chain),
+        other => {
+            return Err(SceneError::Kind {
+                file: file.to_string(),
+                message: format!("\"{other}\" is not a scene kind"),
+            });
+        }
+    };
+    checked.map_err(|e| e.in_file(file))
+}
+
+/// Deserialises a kind's raw schema from the table, naming the field on error.
+fn read<T: DeserializeOwned>(table: toml::Table, file: &str) -> Result<T, SceneError> {
+    serde_path_to_error::deserialize(table).map_err(|e| {
+        let path = e.path().to_string();
+        let inner = e.into_inner();
+        let message = inner.message().trim_end().to_string();
+        // serde names the parent for unknown and missing fields: say which field exactly.
+        let field = if path == "." { String::new() } else { path };
+        let (field, message) = match unknown_or_missing(&message) {
+            Some(name) if field.is_empty() => (name.to_string(), message),
+            Some(name) if field != name && !field.ends_with(&format!(".{name}")) => {
+                (format!("{field}.{name}"), message)
+            }
+            _ => (field, message),
+        };
+        SceneError::Field {
+            file: file.to_string(),
+            field: if field.is_empty() { "(top level)".into() } else { field },
+            message,
+        }
+    })
+}
+
+/// The field name in serde's "unknown field `x`" / "missing field `x`" messages.
+fn unknown_or_missing(message: &str) -> Option<&str> {
+    for prefix in ["unknown field `", "missing field `"] {
+        if let Some(rest) = message.strip_prefix(prefix) {
+            return rest.split('`').next();
+        }
+    }
+    None
+}
+
+/// Checks a scene `name`: it becomes a file stem, so it must be a plain file name.
+pub fn check_name(name: &str) -> Result<String, FieldError> {
+    let ok = !name.is_empty()
+        && name.len() <= 100
+        && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
+        && !name.starts_with('.');
+    if ok {
+        Ok(name.to_string())
+    } else {
+        Err(FieldError::new(
+            "name",
+            format!("\"{name}\" cannot be a file name: use letters, digits, '-', '_' and '.', not starting with '.'"),
+        ))
+    }
+}

@@ -1,0 +1,154 @@
+//! Shared test harness: golden files (text and images), the ezdxf audit, the binary.
+//!
+//! Golden files live in `golden/`; `UPDATE_GOLDEN=1 cargo test` re-blesses them (look at
+//! every re-blessed file before committing it: golden/README.md). A mismatch writes the
+//! actual output (and for images a diff) under `target/golden-mismatch/`.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Channel tolerance of the image comparison: a pixel differs when any channel differs
+/// by more than this (as in resvg's own tests).
+pub const PIXEL_CHANNEL_TOL: u8 = 1;
+/// Fraction of pixels allowed to differ (anti-aliasing noise between CPUs).
+pub const PIXEL_FRACTION_TOL: f64 = 0.001;
+/// Width at which golden SVGs are rasterised.
+pub const GOLDEN_WIDTH_PX: u32 = 800;
+
+/// The repository root.
+pub fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn update() -> bool {
+    std::env::var_os("UPDATE_GOLDEN").is_some_and(|v| v == "1")
+}
+
+fn mismatch_dir() -> PathBuf {
+    let d = root().join("target/golden-mismatch");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Compares `actual` text with `golden/<name>` (line ends normalised).
+pub fn assert_golden_text(name: &str, actual: &str) {
+    let actual = actual.replace("\r\n", "\n");
+    let path = root().join("golden").join(name);
+    if update() {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        std::fs::write(&path, &actual).unwrap();
+        eprintln!("re-blessed {}", path.display());
+        return;
+    }
+    let expected = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("golden file {} missing ({e}); run with UPDATE_GOLDEN=1 and look at it", path.display()))
+        .replace("\r\n", "\n");
+    if expected != actual {
+        let out = mismatch_dir().join(name.replace('/', "_"));
+        std::fs::write(&out, &actual).unwrap();
+        let (i, (e, a)) = expected
+            .lines()
+            .zip(actual.lines())
+            .enumerate()
+            .find(|(_, (e, a))| e != a)
+            .unwrap_or((expected.lines().count().min(actual.lines().count()), ("<end>", "<end>")));
+        panic!(
+            "{name} differs from its golden file at line {}:\n  golden: {e}\n  actual: {a}\nactual written to {}",
+            i + 1,
+            out.display()
+        );
+    }
+}
+
+/// Rasterises `svg` at [`GOLDEN_WIDTH_PX`] with the bundled font and compares it with
+/// `golden/<name>` (a PNG) pixel by pixel.
+pub fn assert_golden_png(name: &str, svg: &str) {
+    use mechdraw::draw::raster;
+    let actual = raster::render(svg, GOLDEN_WIDTH_PX).expect("rasterise");
+    let path = root().join("golden").join(name);
+    if update() {
+        std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+        actual.save_png(&path).unwrap();
+        eprintln!("re-blessed {}", path.display());
+        return;
+    }
+    let expected = resvg::tiny_skia::Pixmap::load_png(&path)
+        .unwrap_or_else(|e| panic!("golden image {} missing or unreadable ({e}); run with UPDATE_GOLDEN=1 and look at it", path.display()));
+    let stem = name.replace('/', "_");
+    if (expected.width(), expected.height()) != (actual.width(), actual.height()) {
+        let out = mismatch_dir().join(format!("{stem}.actual.png"));
+        actual.save_png(&out).unwrap();
+        panic!(
+            "{name}: size {}×{} differs from golden {}×{}; actual written to {}",
+            actual.width(),
+            actual.height(),
+            expected.width(),
+            expected.height(),
+            out.display()
+        );
+    }
+    let mut diff = resvg::tiny_skia::Pixmap::new(actual.width(), actual.height()).unwrap();
+    let mut differing = 0usize;
+    for ((e, a), d) in expected.pixels().iter().zip(actual.pixels()).zip(diff.pixels_mut()) {
+        let (e, a) = (e.demultiply(), a.demultiply());
+        let delta = [e.red().abs_diff(a.red()), e.green().abs_diff(a.green()), e.blue().abs_diff(a.blue()), e.alpha().abs_diff(a.alpha())];
+        *d = if delta.iter().any(|&c| c > PIXEL_CHANNEL_TOL) {
+            differing += 1;
+            resvg::tiny_skia::PremultipliedColorU8::from_rgba(255, 0, 0, 255).unwrap()
+        } else {
+            resvg::tiny_skia::PremultipliedColorU8::from_rgba(255, 255, 255, 255).unwrap()
+        };
+    }
+    let fraction = differing as f64 / (actual.width() * actual.height()) as f64;
+    if fraction > PIXEL_FRACTION_TOL {
+        let a = mismatch_dir().join(format!("{stem}.actual.png"));
+        let d = mismatch_dir().join(format!("{stem}.diff.png"));
+        actual.save_png(&a).unwrap();
+        diff.save_png(&d).unwrap();
+        panic!(
+            "{name}: {differing} pixels ({:.3} %) differ by more than {PIXEL_CHANNEL_TOL} in a channel (allowed {:.3} %); see {} and {}",
+            100.0 * fraction,
+            100.0 * PIXEL_FRACTION_TOL,
+            a.display(),
+            d.display()
+        );
+    }
+}
+
+/// The Python interpreter that has ezdxf: `$MECHDRAW_PYTHON`, else the venv that
+/// `.ci/test` creates (`target/venv`).
+pub fn python() -> PathBuf {
+    if let Some(p) = std::env::var_os("MECHDRAW_PYTHON") {
+        return PathBuf::from(p);
+    }
+    root().join("target/venv/bin/python")
+}
+
+/// Audits DXF files with ezdxf (recover + audit): fails on any error or any fix, and on a
+/// DIMENSION whose geometry block is missing. Needs the venv from `.ci/test`.
+pub fn assert_ezdxf_clean(files: &[&Path]) {
+    let py = python();
+    assert!(
+        py.exists(),
+        "{} not found: run `bash .ci/test` once (it creates target/venv with ezdxf) or set MECHDRAW_PYTHON",
+        py.display()
+    );
+    let out = Command::new(&py)
+        .arg(root().join("tests/ezdxf_audit.py"))
+        .args(files)
+        .output()
+        .expect("run the ezdxf audit");
+    let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "ezdxf audit failed:\n{text}");
+}
+
+/// The mechdraw binary under test.
+pub fn mechdraw() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_mechdraw"))
+}
+
+/// `a` and `b` agree to `rel` relative to the larger magnitude (or `floor`).
+pub fn rel_close(a: f64, b: f64, rel: f64, floor: f64) -> bool {
+    (a - b).abs() <= rel * a.abs().max(b.abs()).max(floor)
+}
