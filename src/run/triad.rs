@@ -6,5 +6,5 @@ use crate::scene::triad::TriadScene;
 use crate::solve::triad::TriadError;
 
 pub(super) fn run(_scene: &TriadScene, file: &str, _opts: &RunOptions) -> Result<Outcome, Error> {
-    Err(solve_err(file)(TriadError::NotImplemented.into()))
+    Err(solve_err(file)(TriadError::Movable.into()))
 }
