@@ -156,8 +156,8 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
 
     // The exact position.
     let a = f.exact.a;
-    for i in 0..3 {
-        d.add(mechanism, Shape::Polyline { points: vec![t.o[i], a[i]], closed: false, width: s.link_width });
+    for (o, p) in t.o.iter().zip(a) {
+        d.add(mechanism, Shape::Polyline { points: vec![*o, p], closed: false, width: s.link_width });
     }
     d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.triangle_width });
     for o in t.o {
@@ -170,20 +170,20 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
 
     // Angular dimensions phi_i at O_i from +x (value on the dimension, the name φi inside
     // the angle, as a draughtsman writes it).
-    for i in 0..3 {
+    for (i, (o, p)) in t.o.iter().zip(a).enumerate() {
         let radius = 0.42 * t.r[i].min(0.3 * t.scale() + 0.1 * t.r[i]);
         let phi = f.exact.phi[i];
         d.add(
             dimensions,
             Shape::AngularDimension {
-                vertex: t.o[i],
-                first: t.o[i] + Vector::new(s.pivot + 0.3 * s.text, 0.0),
-                second: a[i],
+                vertex: *o,
+                first: o + Vector::new(s.pivot + 0.3 * s.text, 0.0),
+                second: p,
                 radius,
                 text: format!("{:.2}°", phi.to_degrees()),
             },
         );
-        let name_at = polar(t.o[i], 0.62 * radius, 0.5 * phi);
+        let name_at = polar(*o, 0.62 * radius, 0.5 * phi);
         d.add(
             dimensions,
             Shape::Text {

@@ -103,8 +103,8 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
                 None
             }
         },
-        Err(e) => {
-            warnings.push(format!("{e}; drawing the mode nearest to its start"));
+        Err(_) => {
+            warnings.push("the pattern method failed (see the report); drawing the mode nearest to its start".into());
             None
         }
     };
