@@ -10,7 +10,7 @@ use svg::Document;
 use svg::Node as _;
 use svg::node::element::{Circle, Group, Line, Path, Polygon, Polyline, Rectangle, Text};
 
-use super::parts::{arrow, explode_dimension};
+use super::parts::{arc_sweep, arrow, dash_pattern, explode_dimension};
 use super::{Aci, Bounds, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, polar};
 
@@ -42,6 +42,8 @@ impl Default for SvgOptions {
 struct Frame {
     /// Stroke width of a hairline, model units.
     hairline: f64,
+    /// Dash and gap of dashed lines, model units (the DXF writer's DASHED pattern).
+    dash: (f64, f64),
 }
 
 impl Frame {
@@ -71,7 +73,7 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
         .unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
     let extent = bounds.width().max(bounds.height()).max(f64::MIN_POSITIVE);
     let margin = opts.margin * extent;
-    let frame = Frame { hairline: opts.hairline * extent };
+    let frame = Frame { hairline: opts.hairline * extent, dash: dash_pattern(extent) };
     let (x0, y0) = (bounds.min.x - margin, -(bounds.max.y + margin));
     let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
     let w = w.max(extent * 1e-3);
@@ -122,13 +124,13 @@ fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::No
     let dashed = drawing.linetype_of(e) == LineType::Dashed;
     let mut nodes: Vec<Box<dyn svg::Node>> = Vec::new();
     let stroke = |w: f64| -> (String, String) { (color.clone(), num(w.max(f.hairline))) };
-    let dash = num(6.0 * f.hairline * 2.0);
+    let (dash, gap) = (num(f.dash.0), num(f.dash.1));
     let styled = |mut el: svg::node::element::Element, w: f64| {
         let (c, sw) = stroke(w);
         el.assign("stroke", c);
         el.assign("stroke-width", sw);
         if dashed {
-            el.assign("stroke-dasharray", format!("{dash} {}", num(6.0 * f.hairline)));
+            el.assign("stroke-dasharray", format!("{dash} {gap}"));
         }
         el
     };
@@ -251,7 +253,8 @@ fn text_node(
 }
 
 fn arc_path(f: &Frame, center: Point, radius: f64, start: f64, end: f64) -> String {
-    let sweep = end - start;
+    // Counter-clockwise from start to end, wrapping through 0 when end < start (as in DXF).
+    let sweep = arc_sweep(start, end);
     // SVG arcs cannot draw a full circle in one command: split into two halves.
     let n = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
     let mut d = String::new();
