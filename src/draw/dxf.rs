@@ -4,7 +4,8 @@
 //! What is written (R12):
 //! - HEADER: fixed, no timestamps (`$TDCREATE`/`$TDUPDATE` = 2415021.0, i.e. 1 Jan 1900, the
 //!   DXF epoch), `$EXTMIN/$EXTMAX` from [`Drawing::bounds`], `$LIMMIN/$LIMMAX` and
-//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin (LibreCAD sizes its page from them),
+//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin and `$PINSBASE` = −`$PLIMMIN`
+//!   (LibreCAD prints the sheet `$PLIMMIN`–`$PLIMMAX` with the drawing's origin at `$PINSBASE`),
 //!   `$DIMTXT`, `$DIMASZ` (and `$DIMEXO`, `$DIMEXE`, `$DIMGAP`, `$DIMTAD`) from
 //!   [`Drawing::dim_style`] as [`parts::explode_dimension`] draws them, `$LTSCALE` = 1.
 //!   R12 has no `$INSUNITS`: the drawing is in the scene's units.
@@ -142,7 +143,8 @@ pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfErro
     let doc = build(drawing, opts);
     let mut raw = Vec::new();
     doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
-    Ok(fix_up(&raw, opts.version))
+    let limits_min = doc.header.paperspace_minimum_drawing_limits.clone();
+    Ok(fix_up(&raw, opts.version, (-limits_min.x, -limits_min.y)))
 }
 
 /// Writes `drawing` as DXF to `out`.
@@ -347,6 +349,9 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
     h.maximum_drawing_limits = lim_max.clone();
     h.paperspace_minimum_drawing_limits = lim_min;
     h.paperspace_maximum_drawing_limits = lim_max;
+    // The drawing's origin on the sheet $PLIMMIN–$PLIMMAX (R14+ here; R12 gets it in fix_up).
+    h.paperspace_insertion_base =
+        DxfPoint::new(-h.paperspace_minimum_drawing_limits.x, -h.paperspace_minimum_drawing_limits.y, 0.0);
     h.line_type_scale = 1.0;
     let s = drawing.dim_style;
     h.default_text_height = s.text_height;
@@ -597,7 +602,7 @@ fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) ->
 
 /// Fixes the crate's text output where its API cannot: see the module documentation.
 /// Works record by record (a record runs from one group-0 pair to the next).
-fn fix_up(raw: &[u8], version: DxfVersion) -> Vec<u8> {
+fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> Vec<u8> {
     let text = String::from_utf8_lossy(raw);
     let lines: Vec<&str> = text.split("\r\n").collect();
     let pairs: Vec<(&str, &str)> = lines.chunks_exact(2).map(|c| (c[0], c[1])).collect();
@@ -620,6 +625,20 @@ fn fix_up(raw: &[u8], version: DxfVersion) -> Vec<u8> {
                 "ENTITIES" => "ENTITIES",
                 _ => "",
             };
+        }
+        let is_header = kind == "SECTION" && record.get(1).is_some_and(|(_, v)| v == "HEADER");
+        if version == DxfVersion::R12 && is_header {
+            // $PINSBASE (the crate writes it from R14 on): where the drawing's origin lies on
+            // the sheet $PLIMMIN–$PLIMMAX. LibreCAD prints that sheet with the drawing on it.
+            if let Some(at) = record.iter().position(|(c, v)| code(c) == 9 && v == "$PLIMMAX") {
+                let next = record[at + 1..].iter().position(|(c, _)| code(c) == 9).map_or(record.len(), |k| at + 1 + k);
+                let (x, y) = paper_insertion_base;
+                let var =
+                    [("  9", "$PINSBASE".to_string()), (" 10", fmt_f64(x)), (" 20", fmt_f64(y)), (" 30", fmt_f64(0.0))];
+                for (k, (c, v)) in var.into_iter().enumerate() {
+                    record.insert(next + k, (c.to_string(), v));
+                }
+            }
         }
         if version == DxfVersion::R12 {
             // R12 has no subclass markers, and its table records have no handles.
@@ -661,6 +680,14 @@ fn fix_up(raw: &[u8], version: DxfVersion) -> Vec<u8> {
         }
     }
     out.into_bytes()
+}
+
+/// A float as the crate writes it: at most 12 decimals, trailing zeros trimmed, at least one
+/// decimal.
+fn fmt_f64(v: f64) -> String {
+    let s = format!("{:.12}", snap(v));
+    let s = s.trim_end_matches('0');
+    if s.ends_with('.') { format!("{s}0") } else { s.to_string() }
 }
 
 fn push_pair(out: &mut String, code: &str, value: &str) {
@@ -876,6 +903,13 @@ mod tests {
             let i = p.iter().position(|(c, v)| *c == 9 && v == var).unwrap();
             assert_eq!(p[i + 1].1, "2415021.0", "{var}");
         }
+        // The sheet for LibreCAD: the drawing's origin at −$PLIMMIN on it.
+        let var = |name: &str, k: usize| {
+            let i = p.iter().position(|(c, v)| *c == 9 && v == name).unwrap();
+            p[i + 1 + k].1.trim().parse::<f64>().unwrap()
+        };
+        assert_eq!((var("$PINSBASE", 0), var("$PINSBASE", 1)), (-var("$PLIMMIN", 0), -var("$PLIMMIN", 1)));
+        assert!(var("$PLIMMIN", 0) < 0.0 && var("$PLIMMAX", 1) > 4.0, "limits around the arrow with a margin");
         assert_eq!(p[1].1, "HEADER");
         assert!(p.iter().any(|(c, v)| *c == 1 && v == "AC1009"));
         assert!(!p.iter().any(|(c, _)| *c == 100), "no subclass markers in R12");
