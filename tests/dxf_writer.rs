@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use std::path::PathBuf;
 use std::process::Command;
 
-use mechdraw::draw::dxf::{self, DxfOptions};
+use mechdraw::draw::dxf::{self, DxfOptions, DxfVersion};
 use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign, svg};
 use mechdraw::geom::{Point, Vector};
 use serde_json::Value;
@@ -351,6 +351,18 @@ fn sample_drawing_audits_clean_and_reads_back() {
     assert!(close(info["extmin"][0].as_f64().unwrap(), b.min.x, 1e-9));
     assert!(close(info["extmax"][1].as_f64().unwrap(), b.max.y, 1e-9));
     assert!(info["limmin"][0].as_f64().unwrap() < b.min.x && info["limmax"][1].as_f64().unwrap() > b.max.y);
+}
+
+#[test]
+fn r2000_audits_clean_too() {
+    let path = out_dir().join("many_layers_r2000.dxf");
+    let bytes = dxf::to_bytes(&many_layers_drawing(), &DxfOptions { version: DxfVersion::R2000 }).unwrap();
+    std::fs::write(&path, bytes).unwrap();
+    common::assert_ezdxf_clean(&[&path]);
+    let info = inspect(&path);
+    assert_eq!(info["version"], "AC1015");
+    assert_eq!(info["counts"]["DIMENSION"].as_u64(), Some(6));
+    assert_eq!(info["dimensions"][1]["measurement"].as_f64().map(|m| m > 180.0), Some(true));
 }
 
 #[test]

@@ -35,15 +35,21 @@
 //! same bytes. Lines end in CRLF, as the crate (and AutoCAD) write them; every reader accepts
 //! that, and the golden comparison normalises line ends.
 //!
-//! A small pass over the crate's text output fixes what its API cannot express: VERTEX and
-//! SEQEND on the POLYLINE's layer (the crate writes them on layer 0), and for R12 the removal
-//! of subclass markers (group 100, R13+ only) and of table-record handles (R12 table entries
-//! have none; in DIMSTYLE group 5 would be read as the arrow block `$DIMBLK`).
+//! A small pass over the crate's text output (`fix_up`) fixes what its API cannot express:
+//! VERTEX and SEQEND on the POLYLINE's layer (the crate writes them on layer 0), the
+//! alignment point 11/21 of justified text at (0, 0) (the crate omits a zero point, and
+//! ezdxf's renderer then fails), `$PINSBASE` in R12, and for R12 the removal of subclass
+//! markers (group 100, R13+ only) and of table-record handles (R12 table entries have none;
+//! in DIMSTYLE group 5 would be read as the arrow block `$DIMBLK`).
 //!
-//! [`DxfVersion::R2000`] is available for programs that want LWPOLYLINE-era files, with the
-//! structural fixes from dxf-notes.md (lineweight BYLAYER, opaque transparency); it is less
-//! portable: the crate writes TABLE heads without handles, which ezdxf repairs (fix code
-//! 110) and AutoCAD LT has reported as an error. Prefer R12.
+//! [`DxfVersion::R2000`] (AC1015) is there for programs that insist on a newer file. It is
+//! less portable and less tested than R12 (checked with ezdxf and LibreCAD only). Polylines
+//! stay POLYLINE/VERTEX. The crate's R2000 faults are repaired: lineweight BYLAYER (−1)
+//! instead of 0 mm on every entity, opaque transparency, and in the text pass handles for
+//! the TABLE heads (ezdxf fix code 110, AutoCAD LT's "Bad handle 0"), own handles for
+//! ENDBLK (the crate repeats the BLOCK's), DIMSTYLE handles in group 105, `$HANDSEED` after
+//! them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot). GUIDs are nil. Group 42
+//! (actual measurement) is not written: readers recompute it from the definition points.
 
 use std::io::Write;
 
@@ -353,6 +359,8 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
     h.paperspace_insertion_base =
         DxfPoint::new(-h.paperspace_minimum_drawing_limits.x, -h.paperspace_minimum_drawing_limits.y, 0.0);
     h.line_type_scale = 1.0;
+    // R2000+: the sheet's scale; LibreCAD draws a 0 (the crate's default) as a dot.
+    h.viewport_view_scale_factor = 1.0;
     let s = drawing.dim_style;
     h.default_text_height = s.text_height;
     h.dimensioning_text_height = s.text_height;
@@ -445,6 +453,10 @@ struct Common {
 impl Common {
     fn entity(&self, specific: EntityType) -> DxfEntity {
         let mut e = DxfEntity::new(specific);
+        // R2000+: BYLAYER lineweight (the crate's default 0 means 0 mm) and opaque (the
+        // crate's 0 is an invalid transparency); neither is written to R12.
+        e.common.lineweight_enum_value = -1;
+        e.common.transparency = 0x0200_00FF;
         e.common.layer = self.layer.clone();
         e.common.color = self.color.clone();
         e.common.line_type_name = self.linetype.to_string();
@@ -608,6 +620,17 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
     let pairs: Vec<(&str, &str)> = lines.chunks_exact(2).map(|c| (c[0], c[1])).collect();
     let code = |c: &str| c.trim().parse::<i32>().unwrap_or(-1);
 
+    // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
+    // BLOCK's), numbered after the highest handle the crate assigned.
+    let mut next_handle = 1 + pairs
+        .iter()
+        .filter(|(c, _)| code(c) == 5 || code(c) == 105)
+        .filter_map(|(_, v)| u64::from_str_radix(v.trim(), 16).ok())
+        .max()
+        .unwrap_or(0);
+    let extra = pairs.iter().filter(|(c, v)| code(c) == 0 && (*v == "TABLE" || *v == "ENDBLK")).count() as u64;
+    let handle_seed = next_handle + extra;
+
     let mut out = String::with_capacity(raw.len() + 1024);
     let mut section = "";
     let mut poly_layer: Option<String> = None;
@@ -638,6 +661,43 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
                 for (k, (c, v)) in var.into_iter().enumerate() {
                     record.insert(next + k, (c.to_string(), v));
                 }
+            }
+        }
+        if version == DxfVersion::R2000 {
+            if is_header {
+                if let Some(at) = record.iter().position(|(c, v)| code(c) == 9 && v == "$HANDSEED") {
+                    if let Some(pair) = record.get_mut(at + 1) {
+                        pair.1 = format!("{handle_seed:X}");
+                    }
+                }
+            }
+            match kind.as_str() {
+                "TABLE" => {
+                    let at = if record.get(1).is_some_and(|(c, _)| code(c) == 2) { 2 } else { 1 };
+                    record.insert(at, ("  5".to_string(), format!("{next_handle:X}")));
+                    record.insert(at + 1, ("330".to_string(), "0".to_string()));
+                    next_handle += 1;
+                }
+                "ENDBLK" => {
+                    match record.iter_mut().find(|(c, _)| code(c) == 5) {
+                        Some(pair) => pair.1 = format!("{next_handle:X}"),
+                        None => record.insert(1, ("  5".to_string(), format!("{next_handle:X}"))),
+                    }
+                    next_handle += 1;
+                }
+                // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
+                "DIMSTYLE" if section == "TABLES" => {
+                    for pair in record.iter_mut().filter(|(c, _)| code(c) == 5) {
+                        pair.0 = "105".to_string();
+                    }
+                }
+                // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
+                "VERTEX" => {
+                    for pair in record.iter_mut().filter(|(c, _)| code(c) == 370) {
+                        pair.1 = format!("{:>6}", -1);
+                    }
+                }
+                _ => {}
             }
         }
         if version == DxfVersion::R12 {
@@ -913,6 +973,35 @@ mod tests {
         assert_eq!(p[1].1, "HEADER");
         assert!(p.iter().any(|(c, v)| *c == 1 && v == "AC1009"));
         assert!(!p.iter().any(|(c, _)| *c == 100), "no subclass markers in R12");
+    }
+
+    #[test]
+    fn r2000_is_deterministic_with_fixed_guids_and_table_handles() {
+        let mut d = drawing();
+        d.add(
+            0,
+            Shape::Polyline { points: vec![Point::new(0.0, 0.0), Point::new(1.0, 1.0)], closed: false, width: 0.2 },
+        );
+        let opts = DxfOptions { version: DxfVersion::R2000 };
+        let a = to_bytes(&d, &opts).unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1100));
+        assert_eq!(a, to_bytes(&d, &opts).unwrap());
+        let p = pairs(&a);
+        assert!(p.iter().any(|(c, v)| *c == 1 && v == "AC1015"));
+        for var in ["$FINGERPRINTGUID", "$VERSIONGUID"] {
+            let i = p.iter().position(|(c, v)| *c == 9 && v == var).unwrap();
+            assert_eq!(p[i + 1].1, "00000000-0000-0000-0000-000000000000", "{var}");
+        }
+        for t in records(&p, "TABLE") {
+            assert_eq!(get(&t, 5).len(), 1, "TABLE {:?} has a handle", get(&t, 2));
+        }
+        for v in records(&p, "VERTEX") {
+            assert_eq!(get(&v, 370)[0].trim(), "-1", "lineweight BYLAYER");
+        }
+        // Handles are unique.
+        let handles: Vec<&str> = p.iter().filter(|(c, _)| *c == 5 || *c == 105).map(|(_, v)| v.as_str()).collect();
+        let unique: std::collections::HashSet<&str> = handles.iter().copied().collect();
+        assert_eq!(unique.len(), handles.len());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! SVG writer: the same content as the DXF, for browsers and golden images.
 //!
 //! The model's y axis points up (as in CAD); SVG's points down. The flip happens in one
-//! place, [`Frame::pt`]. The viewBox is fitted to the drawing's bounds with a margin.
+//! place, `Frame::pt`. The viewBox is fitted to the drawing's bounds with a margin.
 //! Line widths, dash lengths and font sizes follow the model units, so the SVG is to scale.
 
 use std::io::Write;
