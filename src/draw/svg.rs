@@ -94,21 +94,28 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
                 .set("fill", "#ffffff"),
         );
 
-    // One group per layer, in layer order, with the layer name as id (like a CAD layer).
-    let mut groups: Vec<Option<Group>> = vec![None; drawing.layers.len()];
+    // Entities in drawing order (later ones on top, as in the DXF), grouped into runs of
+    // consecutive entities on one layer: `<g class="layer-NAME">` (a layer may have several).
+    let mut run: Option<(usize, Group)> = None;
     for e in &drawing.entities {
-        let g = groups[e.layer].get_or_insert_with(|| {
-            Group::new()
-                .set("id", format!("layer-{}", drawing.layers[e.layer].name))
+        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer) {
+            if let Some((_, g)) = run.take() {
+                doc = doc.add(g);
+            }
+        }
+        let (_, g) = run.get_or_insert_with(|| {
+            let g = Group::new()
+                .set("class", format!("layer-{}", drawing.layers[e.layer].name))
                 .set("fill", "none")
                 .set("stroke-linecap", "round")
-                .set("stroke-linejoin", "round")
+                .set("stroke-linejoin", "round");
+            (e.layer, g)
         });
         for node in entity_nodes(drawing, e, &frame) {
             *g = std::mem::take(g).add(node);
         }
     }
-    for g in groups.into_iter().flatten() {
+    if let Some((_, g)) = run {
         doc = doc.add(g);
     }
     doc.to_string()
@@ -281,6 +288,20 @@ mod tests {
         let s = to_string(&d, &SvgOptions { margin: 0.0, ..Default::default() });
         assert!(s.contains(r#"y2="-20""#), "{s}");
         assert!(s.contains(r#"viewBox="0 -20 10 20""#), "{s}");
+    }
+
+    #[test]
+    fn entities_keep_drawing_order_across_layers() {
+        let mut d = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        let (a, b) = (d.layer("A", Aci::RED, LineType::Continuous), d.layer("B", Aci::BLUE, LineType::Continuous));
+        let line = |x: f64| Shape::Line { from: Point::new(x, 0.0), to: Point::new(x, 1.0) };
+        d.add(a, line(1.0));
+        d.add(b, line(2.0));
+        d.add(a, line(3.0));
+        let s = to_string(&d, &SvgOptions::default());
+        let pos = |x: &str| s.find(&format!(r#"x1="{x}""#)).unwrap();
+        assert!(pos("1") < pos("2") && pos("2") < pos("3"), "{s}");
+        assert_eq!(s.matches(r#"class="layer-A""#).count(), 2);
     }
 
     #[test]
