@@ -55,7 +55,7 @@ fn assert_solutions_close(s: &Value, l12: f64) {
 }
 
 #[test]
-fn run_writes_svg_and_json_and_prints_the_summary() {
+fn run_writes_dxf_svg_and_json_and_prints_the_summary() {
     let tmp = tempfile::tempdir().unwrap();
     let out = common::mechdraw()
         .args(["run", TEMPLATE, "--json", "--out"])
@@ -64,7 +64,7 @@ fn run_writes_svg_and_json_and_prints_the_summary() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    for f in ["triad-popa.svg", "triad-popa.json"] {
+    for f in ["triad-popa.dxf", "triad-popa.svg", "triad-popa.json"] {
         assert!(tmp.path().join(f).is_file(), "{f} missing");
     }
     let s: Value = serde_json::from_slice(&out.stdout).unwrap();

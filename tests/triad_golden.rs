@@ -23,3 +23,13 @@ fn triad_popa_svg_matches_golden_png() {
     let svg = std::fs::read_to_string(tmp.path().join("triad-popa.svg")).unwrap();
     common::assert_golden_png("triad-popa.png", &svg);
 }
+
+#[test]
+fn triad_popa_dxf_matches_golden_and_audits_clean() {
+    let tmp = tempfile::tempdir().unwrap();
+    run_template(tmp.path());
+    let path = tmp.path().join("triad-popa.dxf");
+    let text = std::fs::read_to_string(&path).unwrap();
+    common::assert_golden_text("triad-popa.dxf", &text);
+    common::assert_ezdxf_clean(&[&path]);
+}
