@@ -406,8 +406,13 @@ impl Prepared {
         let cb = b - g.c;
         let phi2 = ab.y.atan2(ab.x);
         let phi3 = cb.y.atan2(cb.x);
-        // Angle between BA and BC = angle between the directions A→B and C→B.
-        let transmission = geom::wrap_pi(phi2 - phi3).abs();
+        // Angle between BA and BC = angle between the directions A→B and C→B; both in
+        // [−π, π], so one correction by 2π wraps the difference (no fmod in the hot path).
+        let mut diff = (phi2 - phi3).abs();
+        if diff > std::f64::consts::PI {
+            diff = std::f64::consts::TAU - diff;
+        }
+        let transmission = diff;
         let u_ba = -ab / g.l_ab;
         let m = b + self.geom.bm_dir(self.sin_alpha, self.cos_alpha, u_ba) * g.l_bm;
         Position { phi1, a, b, m, phi2, phi3, transmission, kin: None }
