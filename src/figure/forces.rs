@@ -72,37 +72,39 @@ pub fn polygons(d: &mut Drawing, f: &Forces, scale: Scale, pole: Point, s: Sizes
     let pts: Vec<Point> = chain_vertices(f).into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
     for (i, (name, _)) in dyad_chain(f).iter().enumerate() {
-        arrow_named(d, l, None, pts[i], pts[i + 1], name, centroid, s);
+        arrow_named(d, l, None, (pts[i], pts[i + 1]), name, 0.5, centroid, s);
     }
     let int = pts[10];
     let p_ran = pts[1];
     let p_f = pts[6];
     let p_fi3 = pts[8];
     // Resultants: R_A = int → end of R_A^n; R_B = end of F → int; R_C = end of F_i3 → int.
-    arrow_named(d, l, Some(RESULTANT), int, p_ran, "RA", centroid, s);
-    arrow_named(d, l, Some(RESULTANT), p_f, int, "RB", centroid, s);
-    arrow_named(d, l, Some(RESULTANT), p_fi3, int, "RC", centroid, s);
+    // R_B and R_C are often nearly the same segment (a light rocker): their names sit at
+    // different places along it.
+    arrow_named(d, l, Some(RESULTANT), (int, p_ran), "RA", 0.5, centroid, s);
+    arrow_named(d, l, Some(RESULTANT), (p_f, int), "RB", 0.7, centroid, s);
+    arrow_named(d, l, Some(RESULTANT), (p_fi3, int), "RC", 0.3, centroid, s);
     // The crank (seed Fig. 5): from int, F_i1 then G1; R_O closes back to the end of R_A^n.
     let p_fi1 = int + scale.draw(f.fi1);
     let p_g1 = p_fi1 + scale.draw(f.g1);
     let crank_centroid = Point::from((p_ran.coords + int.coords + p_fi1.coords + p_g1.coords) / 4.0);
-    arrow_named(d, l, Some(CRANK), int, p_fi1, "Fi1", crank_centroid, s);
-    arrow_named(d, l, Some(CRANK), p_fi1, p_g1, "G1", crank_centroid, s);
-    arrow_named(d, l, Some(CRANK), p_g1, p_ran, "RO", crank_centroid, s);
+    arrow_named(d, l, Some(CRANK), (int, p_fi1), "Fi1", 0.5, crank_centroid, s);
+    arrow_named(d, l, Some(CRANK), (p_fi1, p_g1), "G1", 0.5, crank_centroid, s);
+    arrow_named(d, l, Some(CRANK), (p_g1, p_ran), "RO", 0.5, crank_centroid, s);
     d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
     label(d, l, pole, s.text, "f", pole - centroid);
 }
 
-/// An arrow from `from` to `to` with `name` beside its middle, on the side away from
-/// `inside`; nothing for a vector too short to see.
+/// An arrow from `from` to `to` with `name` beside it (at the fraction `at` of its length),
+/// on the side away from `inside`; nothing for a vector too short to see.
 #[allow(clippy::too_many_arguments)]
 fn arrow_named(
     d: &mut Drawing,
     layer: usize,
     color: Option<Aci>,
-    from: Point,
-    to: Point,
+    (from, to): (Point, Point),
     name: &str,
+    at: f64,
     inside: Point,
     s: Sizes,
 ) {
@@ -115,14 +117,13 @@ fn arrow_named(
     if len < MIN_LABELLED * s.text {
         return;
     }
-    let mid = Point::from((from.coords + to.coords) / 2.0);
+    let mid = from + v * at;
     let mut n = perp(v / len);
     if n.dot(&(mid - inside)) < 0.0 {
         n = -n;
     }
-    let at = mid + n * (0.9 * s.text);
     let text = Shape::Text {
-        at,
+        at: mid + n * (0.9 * s.text),
         height: 0.8 * s.text,
         value: name.to_string(),
         halign: crate::draw::HAlign::Center,
