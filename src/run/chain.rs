@@ -75,7 +75,8 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         report.push_str(&format!(
             "  seed's check: {} end at one point when every base is 0: over-dimensioned {} time(s)\n",
             names.join(", "),
-            g.len().saturating_sub(1).max(1)
+            // p coinciding points (the zero point counts) are p − 1 redundant dimensions.
+            g.len() - 1 + usize::from(g.iter().any(|&i| analysis.node_of[dims[i].to] == analysis.node_of[0]))
         ));
     }
     for r in &analysis.redundant {
