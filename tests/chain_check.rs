@@ -131,3 +131,44 @@ fn an_ambiguous_base_points_to_the_named_form() {
     let o = common::mechdraw().arg("check").arg(&scene).output().unwrap();
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+#[test]
+fn the_template_writes_its_tables_with_the_documented_columns() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let scene = common::root().join("templates/chain-humienny-2.toml");
+    let o = common::mechdraw()
+        .arg("run")
+        .arg(&scene)
+        .arg("--out")
+        .arg(&out)
+        .args(["--set", "stackup.samples=20000", "--json"])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let j: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let z1 = &j["dependent"][0];
+    assert_eq!(z1["z"], "Z1");
+    assert_eq!(z1["function"], "w1 - w2 + w3");
+    assert_eq!(z1["nominal"], 17.0);
+    // Three dimensions of ±0.1 on the path: worst case 0.3, RSS 0.1·√3.
+    assert!((z1["worst_case"]["tol"].as_f64().unwrap() - 0.3).abs() < 1e-12);
+    assert!((z1["rss"]["tol"].as_f64().unwrap() - 0.1 * 3f64.sqrt()).abs() < 1e-12);
+    assert_eq!(z1["contributions"].as_array().unwrap().len(), 3);
+    assert_eq!(z1["monte_carlo"]["samples"], 20000);
+    let csv = std::fs::read_to_string(out.join("chain-humienny-2.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "z,between,function,nominal,mean,wc_tol,wc_min,wc_max,rss_tol,mrss_tol,sigma,mc_mean,mc_sigma,\
+         mc_p0.135,mc_p50,mc_p99.865,lsl,usl,ppm,cp,cpk"
+    );
+    let mut rd = csv::Reader::from_reader(csv.as_bytes());
+    let rec = rd.records().next().unwrap().unwrap();
+    assert_eq!((&rec[0], &rec[1], &rec[2]), ("Z1", "[25, 80]", "w1 - w2 + w3"));
+    assert!((rec[5].parse::<f64>().unwrap() - 0.3).abs() < 1e-12);
+    assert!((rec[6].parse::<f64>().unwrap() - 16.7).abs() < 1e-12);
+    let contrib = std::fs::read_to_string(out.join("chain-humienny-2-contributions.csv")).unwrap();
+    assert_eq!(contrib.lines().count(), 1 + 3 + 2 + 3 + 3);
+    assert!(out.join("chain-humienny-2-Z1-histogram.svg").exists());
+}
