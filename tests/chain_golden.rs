@@ -49,3 +49,14 @@ fn over_dimensioned_chain_drawing_shows_the_reference_dimension() {
     assert!(svg.contains("(17)"));
     common::assert_golden_png("chain-over.png", &svg);
 }
+
+#[test]
+fn chain_humienny_2_dxf_is_audit_clean_and_matches_its_golden_file() {
+    let (_tmp, out) = run("chain-humienny-2.toml", &["--set", "stackup.samples=1000"]);
+    let dxf = out.join("chain-humienny-2.dxf");
+    common::assert_ezdxf_clean(&[&dxf]);
+    let text = std::fs::read_to_string(&dxf).unwrap();
+    // Twelve real DIMENSION entities: eight independent, four dependent.
+    assert_eq!(text.replace("\r\n", "\n").matches("\n  0\nDIMENSION\n").count(), 12);
+    common::assert_golden_text("chain-humienny-2.dxf", &text);
+}
