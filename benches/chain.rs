@@ -73,21 +73,14 @@ fn bench(c: &mut Criterion) {
     c.bench_function("chain/check+1000 functions, 1000 dims, serial chain", |b| {
         b.iter(|| check_and_functions(&serial))
     });
-    let a = analyse(&tree);
-    // Monte Carlo: the template's Z3 (3 dimensions) and a 100-dimension path of the serial chain.
+    // Monte Carlo: a 3-dimension path (like the template's Z3) and a 100-dimension path
+    // of the serial chain.
     let short = chain(3, true, 0);
-    let f3 = analyse(&short)
-        .function(&short, &Dependent { name: "Z".into(), left: 0, right: 3, label: String::new(), spec: None })
-        .unwrap();
-    let long = serial
-        .dependent
-        .first()
-        .map(|_| {
-            let z = Dependent { name: "Z".into(), left: 100, right: 200, label: String::new(), spec: Some([0.0, 1.0]) };
-            analyse(&serial).function(&serial, &z).unwrap()
-        })
-        .unwrap();
-    let _ = a;
+    let z_short = Dependent { name: "Z".into(), left: 0, right: 3, label: String::new(), spec: None };
+    let f3 = analyse(&short).function(&short, &z_short).expect("tied");
+    let z_long = Dependent { name: "Z".into(), left: 100, right: 200, label: String::new(), spec: Some([0.0, 1.0]) };
+    let long = analyse(&serial).function(&serial, &z_long).expect("tied");
+    assert_eq!(long.terms.len(), 100);
     let mut g = c.benchmark_group("chain/monte carlo 1e6");
     g.sample_size(10);
     for dist in [Distribution::Normal, Distribution::Uniform] {

@@ -93,7 +93,8 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         } else {
             format!("redundant: {} ({}) repeats the loop {}", d.name, fmt_value(d.nominal), loop_text(r))
         };
-        let line = format!("{what}; mark {} as a reference dimension \"(ref)\"", dims[r.suggest_ref].name);
+        let fix = if r.contradiction { "correct the values, then mark" } else { "mark" };
+        let line = format!("{what}; {fix} {} as a reference dimension \"(ref)\"", dims[r.suggest_ref].name);
         report.push_str(&format!("  {line}\n"));
         warnings.push(line);
     }

@@ -462,4 +462,22 @@ mod tests {
         assert_eq!(f.nominal, 6.0);
         assert_eq!(f.equation("Z", &s.dimensions), "Z = a - c = 10 - 4 = 6");
     }
+
+    #[test]
+    fn matrix_end_points_at_the_zero_point_or_at_each_other_are_the_seeds_over_dimensioning() {
+        // B = [0, -38, 0, 25], W = [-38, 38, 25, -25]: w2 = 38 from the end of -38 returns to
+        // 0 (coincides with the zero point); w4 = -25 from the end of 25 returns to 0 as well.
+        // Three points at 0 (zero point, ends of w2 and w4): p = 3, p − 1 = 2 redundant.
+        let text = "kind='chain'\nname='c'\nunits='mm'\nB=[0,-38,0,25]\nW=[-38,38,25,-25]";
+        let s = match crate::scene::parse(text, "t", &[]).unwrap() {
+            crate::scene::Scene::Chain(c) => c,
+            _ => unreachable!(),
+        };
+        let a = analyse(&s);
+        assert_eq!(a.coincident, vec![vec![1, 3]]);
+        assert_eq!(a.features.len(), 3);
+        assert_eq!(a.redundant_count(4), 2);
+        assert_eq!(a.redundant.iter().map(|r| r.dim).collect::<Vec<_>>(), vec![1, 3]);
+        assert!(a.redundant.iter().all(|r| !r.contradiction));
+    }
 }
