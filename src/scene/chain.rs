@@ -412,8 +412,11 @@ fn resolve_value(w: &[f64], v: f64) -> Result<usize, String> {
         [i] => Ok(i + 1),
         [] => {
             let valid: Vec<String> = w.iter().map(|x| value_label(*x)).collect();
+            // The seed's own examples (5) write Z1 = [80, 100] for the dimension -100: say so.
+            let flipped = w.iter().find(|x| (**x + v).abs() < VALUE_MATCH_TOL);
+            let hint = flipped.map_or(String::new(), |x| format!("; did you mean {} (signs count)?", value_label(*x)));
             Err(format!(
-                "{} refers to no dimension: a base is 0 (the zero point) or the value of a dimension in W ({})",
+                "{} refers to no dimension: a base is 0 (the zero point) or the value of a dimension in W ({}){hint}",
                 value_label(v),
                 valid.join(", ")
             ))
@@ -594,6 +597,14 @@ mod tests {
     fn a_dangling_base_names_the_field_and_the_valid_values() {
         let e = chain("kind='chain'\nname='c'\nunits='mm'\nB=[0,99]\nW=[-38,25]").unwrap_err().to_string();
         assert!(e.contains("field `B[1]`") && e.contains("99 refers to no dimension") && e.contains("-38, 25"), "{e}");
+    }
+
+    #[test]
+    fn a_base_with_the_wrong_sign_gets_a_hint() {
+        let e = chain("kind='chain'\nname='c'\nunits='mm'\nB=[0,0]\nW=[-100,25]\ndependent=[[25,100]]")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("dependent[0][1]") && e.contains("did you mean -100"), "{e}");
     }
 
     #[test]
