@@ -161,7 +161,7 @@ fn the_template_writes_its_tables_with_the_documented_columns() {
     assert_eq!(
         lines.next().unwrap(),
         "z,between,function,nominal,mean,wc_tol,wc_min,wc_max,rss_tol,mrss_tol,sigma,mc_mean,mc_sigma,\
-         mc_p0.135,mc_p50,mc_p99.865,lsl,usl,ppm,cp,cpk"
+         mc_p0.135,mc_p50,mc_p99.865,lsl,usl,ppm,ppm_normal,cp,cpk"
     );
     let mut rd = csv::Reader::from_reader(csv.as_bytes());
     let rec = rd.records().next().unwrap().unwrap();

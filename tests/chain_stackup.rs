@@ -87,6 +87,9 @@ fn spec_limits_at_three_sigma_give_2700_ppm_and_cp_one() {
     let ppm = mc.out_of_spec_ppm.unwrap();
     // 1080 expected outside of 400000: binomial σ ≈ 33 → 3 %; allow 10 %.
     assert!(common::rel_close(ppm, 2699.8, 0.10, 0.0), "ppm {ppm}");
+    // The normal model with the sample mean and σ: within the sampling error of μ and σ.
+    let ppm_normal = mc.out_of_spec_ppm_normal.unwrap();
+    assert!(common::rel_close(ppm_normal, 2699.8, 0.05, 0.0), "normal-model ppm {ppm_normal}");
     assert!(common::rel_close(mc.cp.unwrap(), 1.0, 0.01, 0.0), "Cp {:?}", mc.cp);
     assert!(common::rel_close(mc.cpk.unwrap(), 1.0, 0.02, 0.0), "Cpk {:?}", mc.cpk);
     // The ±3σ percentiles sit at μ ± 3σ (to the sampling error of a tail quantile).

@@ -157,9 +157,10 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
             report.push_str(&format!("    Monte Carlo ({}): {}\n", scene.stackup.distribution.name(), p.join(", ")));
             if let (Some(ppm), Some([lsl, usl])) = (m.out_of_spec_ppm, z.spec) {
                 report.push_str(&format!(
-                    "    spec [{}, {}]: {ppm:.1} ppm out of spec, Cp {}, Cpk {}\n",
+                    "    spec [{}, {}]: {ppm:.1} ppm out of spec ({} ppm for a normal distribution), Cp {}, Cpk {}\n",
                     fmt_value(lsl),
                     fmt_value(usl),
+                    m.out_of_spec_ppm_normal.map_or("-".into(), |p| format!("{p:.1}")),
                     m.cp.map_or("-".into(), fmt4),
                     m.cpk.map_or("-".into(), fmt4)
                 ));
@@ -280,6 +281,7 @@ pub fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) ->
                     "max": m.max,
                     "percentiles": m.percentiles.iter().map(|(p, v)| json!({ "p": p, "value": v })).collect::<Vec<_>>(),
                     "out_of_spec_ppm": opt(m.out_of_spec_ppm),
+                    "out_of_spec_ppm_normal": opt(m.out_of_spec_ppm_normal),
                     "cp": opt(m.cp),
                     "cpk": opt(m.cpk),
                 })
@@ -351,6 +353,7 @@ pub fn dependent_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv {
         "lsl",
         "usl",
         "ppm",
+        "ppm_normal",
         "cp",
         "cpk",
     ]);
@@ -380,6 +383,7 @@ pub fn dependent_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv {
             num(z.spec.map(|s| s[0])),
             num(z.spec.map(|s| s[1])),
             num(m.and_then(|m| m.out_of_spec_ppm)),
+            num(m.and_then(|m| m.out_of_spec_ppm_normal)),
             num(m.and_then(|m| m.cp)),
             num(m.and_then(|m| m.cpk)),
         ]);

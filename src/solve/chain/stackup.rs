@@ -126,6 +126,9 @@ pub struct MonteCarlo {
     pub histogram: (f64, f64, Vec<u64>),
     /// With spec limits: the fraction of samples outside them, parts per million.
     pub out_of_spec_ppm: Option<f64>,
+    /// With spec limits: the out-of-spec fraction of a normal distribution with the sample
+    /// mean and σ, parts per million (resolves fractions far below 1/samples).
+    pub out_of_spec_ppm_normal: Option<f64>,
     /// With spec limits: Cp = (USL − LSL) / 6σ (`None` when σ = 0).
     pub cp: Option<f64>,
     /// With spec limits: Cpk = min(USL − mean, mean − LSL) / 3σ (`None` when σ = 0).
@@ -217,6 +220,10 @@ pub fn monte_carlo(
         }
         None => (None, None, None),
     };
+    let out_of_spec_ppm_normal = spec.filter(|_| sigma > 0.0).map(|[lsl, usl]| {
+        let tail = |d: f64| 0.5 * erfc(d / (sigma * std::f64::consts::SQRT_2));
+        1e6 * (tail(usl - mean) + tail(mean - lsl))
+    });
     // Nearest-rank percentiles by successive selection (ascending ranks).
     let mut percentiles = Vec::with_capacity(PERCENTILES.len());
     let mut lo = 0usize;
@@ -236,9 +243,26 @@ pub fn monte_carlo(
         percentiles,
         histogram: (x0, width, counts),
         out_of_spec_ppm,
+        out_of_spec_ppm_normal,
         cp,
         cpk,
     })
+}
+
+/// The complementary error function, fractional error below 1.2e-7 everywhere
+/// (Chebyshev fit of Numerical Recipes, 2nd ed., §6.2 `erfcc`).
+pub fn erfc(x: f64) -> f64 {
+    let z = x.abs();
+    let t = 1.0 / (1.0 + 0.5 * z);
+    let poly = -z * z - 1.265_512_23
+        + t * (1.000_023_68
+            + t * (0.374_091_96
+                + t * (0.096_784_18
+                    + t * (-0.186_288_06
+                        + t * (0.278_868_07
+                            + t * (-1.135_203_98 + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
+    let r = t * poly.exp();
+    if x >= 0.0 { r } else { 2.0 - r }
 }
 
 #[cfg(test)]
@@ -276,5 +300,14 @@ mod tests {
         let b = pool.install(|| sample(&f, &dims, Distribution::Uniform, 3 * CHUNK + 7, 42));
         assert_eq!(a, b);
         assert!(a.iter().all(|z| (z - 30.0).abs() <= 0.3));
+    }
+
+    #[test]
+    fn erfc_matches_tabulated_values() {
+        // Abramowitz & Stegun table 7.1 / exact: erfc(0) = 1, erfc(1) = 0.157299207,
+        // erfc(3/√2) = 0.002699796 (the two-sided 3σ tail), erfc(-1) = 1.842700793.
+        for (x, v) in [(0.0, 1.0), (1.0, 0.157_299_207), (3.0 / 2f64.sqrt(), 0.002_699_796), (-1.0, 1.842_700_793)] {
+            assert!((erfc(x) - v).abs() <= 2e-7 * v, "erfc({x}) = {} vs {v}", erfc(x));
+        }
     }
 }
