@@ -6,5 +6,5 @@ use crate::scene::linkage::LinkageScene;
 use crate::solve::linkage::LinkageError;
 
 pub(super) fn run(_scene: &LinkageScene, file: &str, _opts: &RunOptions) -> Result<Outcome, Error> {
-    Err(solve_err(file)(LinkageError::NotImplemented.into()))
+    Err(solve_err(file)(LinkageError::Drag { what: "todo".into() }.into()))
 }
