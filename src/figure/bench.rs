@@ -1,0 +1,164 @@
+//! The speed-against-accuracy chart of `mechdraw bench`: time per solve (log x) against
+//! error (log y), one series per method and problem, each point labelled by its setting.
+
+use crate::bench::Measurement;
+use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::geom::Point;
+
+/// Errors below this are drawn on the chart's floor (exact answers have error 0).
+pub const ERROR_FLOOR: f64 = 1e-17;
+
+const W: f64 = 180.0;
+const H: f64 = 120.0;
+const TEXT: f64 = 2.4;
+const PALETTE: [Aci; 8] =
+    [Aci::BLUE, Aci::RED, Aci::GREEN, Aci::MAGENTA, Aci::ORANGE, Aci::CYAN, Aci::DARK_GREY, Aci(34)];
+
+/// `10^k` written with superscript digits, e.g. `10⁻¹²`.
+pub fn power_of_ten(k: i32) -> String {
+    const SUP: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let mut s = String::from("10");
+    if k < 0 {
+        s.push('⁻');
+    }
+    for d in k.unsigned_abs().to_string().bytes() {
+        s.push(SUP[(d - b'0') as usize]);
+    }
+    s
+}
+
+/// Decade range `[floor(log10 min), ceil(log10 max)]`, at least one decade wide.
+fn decades(values: impl Iterator<Item = f64>) -> (i32, i32) {
+    let (lo, hi) = values
+        .filter(|v| v.is_finite() && *v > 0.0)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    if !lo.is_finite() {
+        return (0, 1);
+    }
+    let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    (a, b.max(a + 1))
+}
+
+/// Draws the chart of the measurements that have an error. Series are keyed by
+/// `problem / method`, points joined in the order given.
+pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
+    let mut d = Drawing::new(DimStyle { text_height: TEXT, arrow_size: 2.0 });
+    let axes = d.layer("AXES", Aci::BLACK, LineType::Continuous);
+    let grid = d.layer("GRID", Aci::LIGHT_GREY, LineType::Continuous);
+    let data = d.layer("DATA", Aci::BLACK, LineType::Continuous);
+    let labels = d.layer("LABELS", Aci::DARK_GREY, LineType::Continuous);
+    let pts: Vec<&Measurement> = ms.iter().filter(|m| m.error.is_some() && m.ns_per_solve > 0.0).collect();
+    let (x0, x1) = decades(pts.iter().map(|m| m.ns_per_solve));
+    let (y0, y1) = decades(pts.iter().map(|m| m.error.unwrap_or(1.0).max(ERROR_FLOOR)));
+    let px = |ns: f64| W * (ns.log10() - x0 as f64) / (x1 - x0) as f64;
+    let py = |e: f64| H * (e.max(ERROR_FLOOR).log10() - y0 as f64) / (y1 - y0) as f64;
+
+    // Frame, decade grid and labels.
+    d.add(
+        axes,
+        Shape::Polyline {
+            points: vec![Point::new(0.0, 0.0), Point::new(W, 0.0), Point::new(W, H), Point::new(0.0, H)],
+            closed: true,
+            width: 0.0,
+        },
+    );
+    let label = |at: Point, value: String, h: HAlign, v: VAlign| Shape::Text {
+        at,
+        height: TEXT,
+        value,
+        halign: h,
+        valign: v,
+        rotation: 0.0,
+    };
+    for k in x0..=x1 {
+        let x = px(10f64.powi(k));
+        d.add(grid, Shape::Line { from: Point::new(x, 0.0), to: Point::new(x, H) });
+        d.add(axes, label(Point::new(x, -2.0), power_of_ten(k), HAlign::Center, VAlign::Top));
+    }
+    for k in y0..=y1 {
+        let y = H * (k - y0) as f64 / (y1 - y0) as f64;
+        d.add(grid, Shape::Line { from: Point::new(0.0, y), to: Point::new(W, y) });
+        d.add(axes, label(Point::new(-2.0, y), power_of_ten(k), HAlign::Right, VAlign::Middle));
+    }
+    d.add(axes, label(Point::new(W / 2.0, -9.0), "time per solve [ns]".into(), HAlign::Center, VAlign::Top));
+    d.add(
+        axes,
+        Shape::Text {
+            at: Point::new(-16.0, H / 2.0),
+            height: TEXT,
+            value: "error (relative)".into(),
+            halign: HAlign::Center,
+            valign: VAlign::Baseline,
+            rotation: std::f64::consts::FRAC_PI_2,
+        },
+    );
+    d.add(
+        axes,
+        Shape::Text {
+            at: Point::new(W / 2.0, H + 5.0),
+            height: 1.4 * TEXT,
+            value: title.into(),
+            halign: HAlign::Center,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        },
+    );
+
+    // Series in order of first appearance.
+    let mut keys: Vec<(String, String)> = Vec::new();
+    for m in &pts {
+        let k = (m.problem.clone(), m.method.clone());
+        if !keys.contains(&k) {
+            keys.push(k);
+        }
+    }
+    for (i, (problem, method)) in keys.iter().enumerate() {
+        let color = PALETTE[i % PALETTE.len()];
+        let series: Vec<&&Measurement> = pts.iter().filter(|m| &m.problem == problem && &m.method == method).collect();
+        let points: Vec<Point> =
+            series.iter().map(|m| Point::new(px(m.ns_per_solve), py(m.error.unwrap_or(1.0)))).collect();
+        if points.len() > 1 {
+            d.add_colored(data, color, Shape::Polyline { points: points.clone(), closed: false, width: 0.3 });
+        }
+        for (p, m) in points.iter().zip(&series) {
+            d.add_colored(data, color, Shape::Circle { center: *p, radius: 0.9 });
+            d.add_colored(
+                labels,
+                color,
+                Shape::Text {
+                    at: p + crate::geom::Vector::new(1.2, 1.0),
+                    height: 0.65 * TEXT,
+                    value: m.setting.clone(),
+                    halign: HAlign::Left,
+                    valign: VAlign::Baseline,
+                    rotation: 0.0,
+                },
+            );
+        }
+        // Legend to the right of the plot.
+        let y = H - 4.0 - 5.0 * i as f64;
+        d.add_colored(data, color, Shape::Line { from: Point::new(W + 6.0, y), to: Point::new(W + 12.0, y) });
+        d.add_colored(data, color, Shape::Circle { center: Point::new(W + 9.0, y), radius: 0.9 });
+        d.add(labels, label(Point::new(W + 14.0, y), format!("{problem}: {method}"), HAlign::Left, VAlign::Middle));
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn powers_of_ten_use_superscripts() {
+        assert_eq!(power_of_ten(-12), "10⁻¹²");
+        assert_eq!(power_of_ten(3), "10³");
+        assert_eq!(power_of_ten(0), "10⁰");
+    }
+
+    #[test]
+    fn decades_cover_the_data() {
+        assert_eq!(decades([3.0, 2500.0].into_iter()), (0, 4));
+        assert_eq!(decades([1e-13, 1e-13].into_iter()), (-13, -12));
+        assert_eq!(decades(std::iter::empty()), (0, 1));
+    }
+}
