@@ -20,20 +20,27 @@ fn run_bad(text: &str) -> String {
     let stderr = String::from_utf8_lossy(&out.stderr).to_string();
     assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
     assert!(stderr.contains("bad.toml"), "the file is not named: {stderr}");
-    assert!(!Path::new(&out_dir).exists() || std::fs::read_dir(&out_dir).unwrap().next().is_none(), "something was written");
+    assert!(
+        !Path::new(&out_dir).exists() || std::fs::read_dir(&out_dir).unwrap().next().is_none(),
+        "something was written"
+    );
     stderr
 }
 
 #[test]
 fn unknown_body_in_a_joint() {
-    let e = run_bad(&shaper_text().replace("revolute = [\"crank.A\", \"block.A\"]", "revolute = [\"crank.A\", \"blok.A\"]"));
+    let e = run_bad(
+        &shaper_text().replace("revolute = [\"crank.A\", \"block.A\"]", "revolute = [\"crank.A\", \"blok.A\"]"),
+    );
     assert!(e.contains("joint[1].revolute[1]"), "{e}");
     assert!(e.contains("unknown body `blok`") && e.contains("block"), "{e}");
 }
 
 #[test]
 fn point_that_does_not_exist() {
-    let e = run_bad(&shaper_text().replace("revolute = [\"rocker.B\", \"link.B\"]", "revolute = [\"rocker.C\", \"link.B\"]"));
+    let e = run_bad(
+        &shaper_text().replace("revolute = [\"rocker.B\", \"link.B\"]", "revolute = [\"rocker.C\", \"link.B\"]"),
+    );
     assert!(e.contains("joint[4].revolute[0]"), "{e}");
     assert!(e.contains("body `rocker` has no point `C`; its points are: O3, B"), "{e}");
 }
@@ -71,7 +78,10 @@ fn start_that_cannot_be_assembled() {
 
 #[test]
 fn a_joint_with_both_kinds_or_none() {
-    let e = run_bad(&shaper_text().replace("name = \"A\"\nrevolute", "name = \"A\"\nprismatic = { point = \"block.A\", line = [\"rocker.O3\", \"rocker.B\"] }\nrevolute"));
+    let e = run_bad(&shaper_text().replace(
+        "name = \"A\"\nrevolute",
+        "name = \"A\"\nprismatic = { point = \"block.A\", line = [\"rocker.O3\", \"rocker.B\"] }\nrevolute",
+    ));
     assert!(e.contains("joint[1]") && e.contains("exactly one of"), "{e}");
 }
 

@@ -85,7 +85,12 @@ fn chebyshev_linkage_scene_equals_the_closed_form_four_bar() {
         assert!(close_vec(st.velocity(b), cf.vb, rel, vs), "vB at {deg}°: {:?} vs {:?}", st.velocity(b), cf.vb);
         assert!(close_vec(st.velocity(m), cf.vm, rel, vs), "vM at {deg}°");
         assert!(close_vec(st.acceleration(b), cf.ab, rel, as_), "aB at {deg}°");
-        assert!(close_vec(st.acceleration(m), cf.am, rel, as_), "aM at {deg}°: {:?} vs {:?}", st.acceleration(m), cf.am);
+        assert!(
+            close_vec(st.acceleration(m), cf.am, rel, as_),
+            "aM at {deg}°: {:?} vs {:?}",
+            st.acceleration(m),
+            cf.am
+        );
         let (p2, w2, e2) = st.angular(coupler);
         let (p3, w3, e3) = st.angular(rocker);
         assert!(same_angle(p2, cf.phi2) && same_angle(p3, cf.phi3), "angles at {deg}°");

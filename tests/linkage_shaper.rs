@@ -74,7 +74,9 @@ fn shaper_matches_the_closed_form_at_every_step() {
         assert!(common::rel_close(eps, thdd, 1e-9, 1e-2), "t = {}: rocker eps {eps} vs {thdd}", st.t);
         assert!(st.residual <= 1e-12, "t = {}: residual {}", st.t, st.residual);
     }
-    eprintln!("shaper vs closed form: |Δx_E| ≤ {worst_x:.2e} mm, |Δv_E|/2000 ≤ {worst_v:.2e}, |Δa_E|/30000 ≤ {worst_a:.2e}");
+    eprintln!(
+        "shaper vs closed form: |Δx_E| ≤ {worst_x:.2e} mm, |Δv_E|/2000 ≤ {worst_v:.2e}, |Δa_E|/30000 ≤ {worst_a:.2e}"
+    );
 }
 
 #[test]

@@ -214,3 +214,20 @@ pub fn trajectory_layer(d: &mut Drawing) -> usize {
 pub fn position_layer(d: &mut Drawing, k: usize) -> usize {
     d.layer(&format!("POS_{k:03}"), Aci::BLACK, LineType::Continuous)
 }
+
+/// One frame of the animation: the mechanism at `q` on layer `MECHANISM`, with the paths
+/// of the measured points over `motion` on `TRAJECTORY`.
+pub fn frame(
+    scene: &LinkageScene,
+    motion: &[&[f64]],
+    q: &[f64],
+    spans: &[Option<(Point, Point)>],
+    style: &Style,
+) -> Drawing {
+    let mut d = new_drawing(style);
+    let tl = trajectory_layer(&mut d);
+    trajectories(&mut d, tl, scene, motion);
+    let layer = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
+    mechanism(&mut d, layer, scene, q, spans, style);
+    d
+}

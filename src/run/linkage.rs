@@ -230,14 +230,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     let window = all.bounds();
 
     // The first position with the paths, as the scene's picture.
-    let frame_drawing = |q: &[f64]| {
-        let mut d = fig::new_drawing(&style);
-        let tl = fig::trajectory_layer(&mut d);
-        fig::trajectories(&mut d, tl, scene, &motion);
-        let layer = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
-        fig::mechanism(&mut d, layer, scene, q, &spans, &style);
-        d
-    };
+    let frame_drawing = |q: &[f64]| fig::frame(scene, &motion, q, &spans, &style);
     let svg_opts = SvgOptions { window, ..SvgOptions::default() };
     out.write(format!("{}.svg", scene.name), svg_string(&frame_drawing(motion[0]), &svg_opts))?;
 
@@ -280,8 +273,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
 }
 
 fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Solver) -> Result<Outcome, Error> {
-    let requests: Vec<(Anchor, Point)> =
-        opts.drag.iter().map(|s| parse_drag(scene, s)).collect::<Result<_, _>>()?;
+    let requests: Vec<(Anchor, Point)> = opts.drag.iter().map(|s| parse_drag(scene, s)).collect::<Result<_, _>>()?;
     let t0 = scene.times[0];
     let mut state = solver.assemble(t0).map_err(|e| solve_err(file)(e.into()))?;
     let mut records = Vec::new();
@@ -320,7 +312,15 @@ fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Sol
     });
     let report = records
         .iter()
-        .map(|r| format!("drag {}: reached {} (distance {:.6} {})", r["request"], r["reached"], r["distance"], scene.units.length()))
+        .map(|r| {
+            format!(
+                "drag {}: reached {} (distance {:.6} {})",
+                r["request"],
+                r["reached"],
+                r["distance"],
+                scene.units.length()
+            )
+        })
         .collect::<Vec<_>>()
         .join("\n");
     let Some(dir) = &opts.out_dir else {

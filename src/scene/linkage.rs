@@ -534,9 +534,8 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     // Degrees of freedom against drivers, before any solving.
     let dof = 3 * bodies.len() as i64 - 2 * joints.len() as i64;
     if dof != drivers.len() as i64 {
-        let field = if drivers.is_empty() { "driver" } else { "driver" };
         return Err(FieldError::new(
-            field,
+            "driver",
             format!(
                 "the mechanism has {dof} degree(s) of freedom (3 × {} bodies − 2 × {} joints) but {} driver(s) are given: {}",
                 bodies.len(),
@@ -559,7 +558,8 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         let field = format!("measure[{k}]");
         let (target, default_label, table) = match (&m.point, &m.body) {
             (Some(p), None) => {
-                let a = resolve(p, &ground_points, &bodies).map_err(|e| FieldError::new(format!("{field}.point"), e))?;
+                let a =
+                    resolve(p, &ground_points, &bodies).map_err(|e| FieldError::new(format!("{field}.point"), e))?;
                 let label = p.split_once('.').map_or(p.as_str(), |(_, n)| n).to_string();
                 (MeasureTarget::Point(a), label, POINT_QUANTITIES)
             }

@@ -501,7 +501,9 @@ impl Parser<'_> {
 
     fn primary(&mut self) -> Result<Node, ParseError> {
         let Some(tok) = self.peek().cloned() else {
-            return Err(self.error_at(self.end_col(), "the expression ends here; expected a number, t, a name or `(`".into()));
+            return Err(
+                self.error_at(self.end_col(), "the expression ends here; expected a number, t, a name or `(`".into())
+            );
         };
         self.pos += 1;
         match tok.kind {
@@ -542,7 +544,9 @@ impl Parser<'_> {
                     }
                 }
             }
-            Kind::Op(c) => Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, t, a name or `(`"))),
+            Kind::Op(c) => {
+                Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, t, a name or `(`")))
+            }
             Kind::RParen => Err(self.error_at(tok.col, "unexpected `)`; expected a number, t, a name or `(`".into())),
         }
     }
@@ -553,9 +557,10 @@ impl Parser<'_> {
                 self.pos += 1;
                 Ok(())
             }
-            Some(tok) => {
-                Err(self.error_at(tok.col, format!("expected `)` (to close the `(` at column {open_col}), found {}", tok.kind)))
-            }
+            Some(tok) => Err(self.error_at(
+                tok.col,
+                format!("expected `)` (to close the `(` at column {open_col}), found {}", tok.kind),
+            )),
             None => Err(self.error_at(self.end_col(), format!("missing `)` to close the `(` at column {open_col}"))),
         }
     }
@@ -643,7 +648,10 @@ mod tests {
                 let j = e.eval(t);
                 let h = hand(t);
                 for (k, (got, want)) in [j.value, j.d1, j.d2].iter().zip(h).enumerate() {
-                    assert!((got - want).abs() <= 1e-12 * want.abs().max(1.0), "{src} at t={t}: d{k} = {got}, hand {want}");
+                    assert!(
+                        (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                        "{src} at t={t}: d{k} = {got}, hand {want}"
+                    );
                 }
                 // Central finite differences (independent of the hand derivatives).
                 let dt = 1e-4;

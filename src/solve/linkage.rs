@@ -166,7 +166,9 @@ pub enum LinkageError {
     },
     /// The Jacobian turned singular (a dead point, a change of assembly mode, redundant
     /// constraints). Example: a crank-rocker whose crank is driven through a dead point.
-    #[error("the constraint Jacobian is singular at t = {t} s (a dead point or redundant constraints); involved: {constraints}")]
+    #[error(
+        "the constraint Jacobian is singular at t = {t} s (a dead point or redundant constraints); involved: {constraints}"
+    )]
     Singular {
         /// Time.
         t: f64,
@@ -174,7 +176,9 @@ pub enum LinkageError {
         constraints: String,
     },
     /// Newton–Raphson did not converge.
-    #[error("Newton–Raphson did not converge at t = {t} s after {iterations} iterations (residual {residual:.3e} relative, largest in {worst})")]
+    #[error(
+        "Newton–Raphson did not converge at t = {t} s after {iterations} iterations (residual {residual:.3e} relative, largest in {worst})"
+    )]
     NoConvergence {
         /// Time.
         t: f64,
@@ -235,7 +239,7 @@ impl Con {
 }
 
 /// Coordinates of one body (ground: zeros), read from q.
-#[derive(Clone, Copy)]
+#[derive(Debug, Clone, Copy)]
 struct Pose {
     r: Vector,
     phi: f64,
@@ -257,6 +261,24 @@ fn pose(q: &[f64], a: Attach) -> Pose {
             let (s, c) = q[k + 2].sin_cos();
             Pose { r: Vector::new(q[k], q[k + 1]), phi: q[k + 2], c, s }
         }
+    }
+}
+
+/// Poses of every moving body at `q` (one sin/cos each), into `out`.
+fn fill_poses(q: &[f64], out: &mut Vec<Pose>) {
+    out.clear();
+    for k in (0..q.len()).step_by(3) {
+        out.push(pose(q, Attach::Body(k / 3)));
+    }
+}
+
+const GROUND_POSE: Pose = Pose { r: Vector::new(0.0, 0.0), phi: 0.0, c: 1.0, s: 0.0 };
+
+/// The cached pose of `a`.
+fn pz(poses: &[Pose], a: Attach) -> Pose {
+    match a {
+        Attach::Ground => GROUND_POSE,
+        Attach::Body(i) => poses[i],
     }
 }
 
@@ -415,11 +437,17 @@ pub struct Solver {
     q: Vec<f64>,
     qd: Vec<f64>,
     qdd: Vec<f64>,
+    /// q̈ of the step before (for the third-order predictor).
+    qdd_prev: Vec<f64>,
+    /// Length of the previous step, when there was one.
+    dt_prev: Option<f64>,
     t: Option<f64>,
     phi: Vec<f64>,
     rhs: Vec<f64>,
     lu: Lu,
     laws: Vec<(f64, f64, f64)>,
+    /// Poses of the bodies at the current q (refreshed by `residual`).
+    poses: Vec<Pose>,
 }
 
 impl Solver {
@@ -477,7 +505,9 @@ impl Solver {
                         cons.push(Con::Distance { p: point, q: q1, guide: q1.body, u, law: k })
                     }
                     JointKind::Revolute { .. } => {
-                        return Err(LinkageError::Drag { what: "internal: distance driver on a revolute joint".into() });
+                        return Err(LinkageError::Drag {
+                            what: "internal: distance driver on a revolute joint".into(),
+                        });
                     }
                 },
             }
@@ -509,11 +539,14 @@ impl Solver {
             q,
             qd: vec![0.0; n],
             qdd: vec![0.0; n],
+            qdd_prev: vec![0.0; n],
+            dt_prev: None,
             t: None,
             phi: vec![0.0; m],
             rhs: vec![0.0; m.max(n)],
             lu: Lu::new(n),
             laws,
+            poses: Vec::with_capacity(nb),
         })
     }
 
@@ -565,27 +598,28 @@ impl Solver {
     /// Φ(q, t) into `self.phi` (laws already evaluated), only the first `rows` rows
     /// (drag leaves out the drivers, which come last).
     fn residual(&mut self) {
-        let q = &self.q;
+        fill_poses(&self.q, &mut self.poses);
+        let q = &self.poses;
         let mut r = 0;
         for c in &self.cons {
             match *c {
                 Con::Coincide { a, b } => {
-                    let (pa, pb) = (pose(q, a.body), pose(q, b.body));
+                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
                     let d = pa.r + pa.rot(a.local) - pb.r - pb.rot(b.local);
                     self.phi[r] = d.x;
                     self.phi[r + 1] = d.y;
                 }
                 Con::OnLine { p, q: qa, guide, u } => {
-                    let (pp, pg) = (pose(q, p.body), pose(q, guide));
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
                     let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
                     self.phi[r] = perp(pg.rot(u)).dot(&d);
                 }
                 Con::Angle { i, j, offset, law } => {
                     let f = law.map_or(0.0, |k| self.laws[k].0);
-                    self.phi[r] = pose(q, i).phi - pose(q, j).phi - offset - f;
+                    self.phi[r] = pz(q, i).phi - pz(q, j).phi - offset - f;
                 }
                 Con::Distance { p, q: qa, guide, u, law } => {
-                    let (pp, pg) = (pose(q, p.body), pose(q, guide));
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
                     let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
                     self.phi[r] = pg.rot(u).dot(&d) - self.laws[law].0;
                 }
@@ -596,6 +630,13 @@ impl Solver {
 
     /// Φq into `jac` (row-major, `rows` × n).
     fn jacobian(cons: &[Con], q: &[f64], n: usize, jac: &mut [f64]) {
+        let mut poses = Vec::with_capacity(n / 3);
+        fill_poses(q, &mut poses);
+        Self::jacobian_with(cons, &poses, n, jac);
+    }
+
+    /// Φq into `jac` from cached poses (allocation-free).
+    fn jacobian_with(cons: &[Con], q: &[Pose], n: usize, jac: &mut [f64]) {
         jac.iter_mut().for_each(|v| *v = 0.0);
         let mut r = 0;
         let put = |jac: &mut [f64], row: usize, a: Attach, dx: f64, dy: f64, dphi: f64| {
@@ -608,7 +649,7 @@ impl Solver {
         for c in cons {
             match *c {
                 Con::Coincide { a, b } => {
-                    let (pa, pb) = (pose(q, a.body), pose(q, b.body));
+                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
                     let (ba, bb) = (perp(pa.rot(a.local)), perp(pb.rot(b.local)));
                     put(jac, r, a.body, 1.0, 0.0, ba.x);
                     put(jac, r + 1, a.body, 0.0, 1.0, ba.y);
@@ -616,7 +657,7 @@ impl Solver {
                     put(jac, r + 1, b.body, 0.0, -1.0, -bb.y);
                 }
                 Con::OnLine { p, guide, u, .. } | Con::Distance { p, guide, u, .. } => {
-                    let (pp, pg) = (pose(q, p.body), pose(q, guide));
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
                     let sp = pp.rot(p.local);
                     let rp = pp.r + sp;
                     let ug = pg.rot(u);
@@ -657,12 +698,13 @@ impl Solver {
 
     /// γ (acceleration right-hand side), analytic per constraint type.
     fn gamma(&mut self) {
-        let (q, qd) = (&self.q, &self.qd);
+        // Poses cached by the last residual() at this q.
+        let (q, qd) = (&self.poses, &self.qd);
         let mut r = 0;
         for c in &self.cons {
             match *c {
                 Con::Coincide { a, b } => {
-                    let (pa, pb) = (pose(q, a.body), pose(q, b.body));
+                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
                     let (wa, wb) = (rate(qd, a.body).1, rate(qd, b.body).1);
                     let g = pa.rot(a.local) * (wa * wa) - pb.rot(b.local) * (wb * wb);
                     self.rhs[r] = g.x;
@@ -670,7 +712,7 @@ impl Solver {
                 }
                 Con::Angle { law, .. } => self.rhs[r] = law.map_or(0.0, |k| self.laws[k].2),
                 Con::OnLine { p, q: qa, guide, u } | Con::Distance { p, q: qa, guide, u, .. } => {
-                    let (pp, pg) = (pose(q, p.body), pose(q, guide));
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
                     let (vp, wp) = rate(qd, p.body);
                     let (vg, wg) = rate(qd, guide);
                     let sp = pp.rot(p.local);
@@ -713,6 +755,12 @@ impl Solver {
     fn scaled_jacobian(&self, q: &[f64], jac: &mut [f64]) {
         let n = self.n;
         Self::jacobian(&self.cons, q, n, jac);
+        self.equilibrate(jac);
+    }
+
+    /// Row and column scaling of a Jacobian in place (see [`Solver::scaled_jacobian`]).
+    fn equilibrate(&self, jac: &mut [f64]) {
+        let n = self.n;
         for r in 0..n {
             let ir = 1.0 / self.row_scale[r];
             for c in 0..n {
@@ -726,7 +774,9 @@ impl Solver {
     fn factor(&mut self) -> bool {
         let n = self.n;
         let mut a = std::mem::take(&mut self.lu.a);
-        self.scaled_jacobian(&self.q, &mut a);
+        // Poses were cached by residual() at this q.
+        Self::jacobian_with(&self.cons, &self.poses, n, &mut a);
+        self.equilibrate(&mut a);
         let mut norm: f64 = 0.0;
         for r in 0..n {
             norm = norm.max(a[r * n..(r + 1) * n].iter().map(|v| v.abs()).sum::<f64>());
@@ -826,6 +876,7 @@ impl Solver {
         self.levenberg_marquardt(t)?;
         let iterations = self.newton(t, MAX_NEWTON_ITERATIONS)?;
         self.kinematics();
+        self.dt_prev = None;
         self.t = Some(t);
         Ok(State {
             t,
@@ -904,11 +955,16 @@ impl Solver {
         };
         self.eval_laws(t)?;
         let dt = t - t0;
+        // Taylor predictor q + q̇·Δt + ½·q̈·Δt² (+ ⅙·q⃛·Δt³ with q⃛ from the last two q̈).
+        let jerk = self.dt_prev.filter(|d| *d != 0.0).map(|d| 1.0 / d);
         for k in 0..self.n {
-            self.q[k] += self.qd[k] * dt + 0.5 * self.qdd[k] * dt * dt;
+            let third = jerk.map_or(0.0, |inv| (self.qdd[k] - self.qdd_prev[k]) * inv * dt * dt * dt / 6.0);
+            self.q[k] += self.qd[k] * dt + 0.5 * self.qdd[k] * dt * dt + third;
         }
         let it = self.newton(t, MAX_NEWTON_ITERATIONS)?;
+        self.qdd_prev.copy_from_slice(&self.qdd);
         self.kinematics();
+        self.dt_prev = Some(dt);
         self.t = Some(t);
         Ok(it)
     }
@@ -1126,7 +1182,12 @@ mod tests {
                     at: Point::from(a),
                     angle: beta,
                 },
-                Body { name: "slider".into(), points: vec![("B".into(), Vector::zeros())], at: Point::new(bx, 0.0), angle: 0.0 },
+                Body {
+                    name: "slider".into(),
+                    points: vec![("B".into(), Vector::zeros())],
+                    at: Point::new(bx, 0.0),
+                    angle: 0.0,
+                },
             ],
             joints: vec![
                 Joint {
@@ -1160,7 +1221,11 @@ mod tests {
                     },
                 },
             ],
-            drivers: vec![Driver { name: "crank".into(), target: DriverTarget::JointAngle(0), law: Expr::parse(law).unwrap() }],
+            drivers: vec![Driver {
+                name: "crank".into(),
+                target: DriverTarget::JointAngle(0),
+                law: Expr::parse(law).unwrap(),
+            }],
             length_scale: 4.0,
         }
     }

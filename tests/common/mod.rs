@@ -42,7 +42,9 @@ pub fn assert_golden_text(name: &str, actual: &str) {
         return;
     }
     let expected = std::fs::read_to_string(&path)
-        .unwrap_or_else(|e| panic!("golden file {} missing ({e}); run with UPDATE_GOLDEN=1 and look at it", path.display()))
+        .unwrap_or_else(|e| {
+            panic!("golden file {} missing ({e}); run with UPDATE_GOLDEN=1 and look at it", path.display())
+        })
         .replace("\r\n", "\n");
     if expected != actual {
         let out = mismatch_dir().join(name.replace('/', "_"));
@@ -73,8 +75,9 @@ pub fn assert_golden_png(name: &str, svg: &str) {
         eprintln!("re-blessed {}", path.display());
         return;
     }
-    let expected = resvg::tiny_skia::Pixmap::load_png(&path)
-        .unwrap_or_else(|e| panic!("golden image {} missing or unreadable ({e}); run with UPDATE_GOLDEN=1 and look at it", path.display()));
+    let expected = resvg::tiny_skia::Pixmap::load_png(&path).unwrap_or_else(|e| {
+        panic!("golden image {} missing or unreadable ({e}); run with UPDATE_GOLDEN=1 and look at it", path.display())
+    });
     let stem = name.replace('/', "_");
     if (expected.width(), expected.height()) != (actual.width(), actual.height()) {
         let out = mismatch_dir().join(format!("{stem}.actual.png"));
@@ -92,7 +95,12 @@ pub fn assert_golden_png(name: &str, svg: &str) {
     let mut differing = 0usize;
     for ((e, a), d) in expected.pixels().iter().zip(actual.pixels()).zip(diff.pixels_mut()) {
         let (e, a) = (e.demultiply(), a.demultiply());
-        let delta = [e.red().abs_diff(a.red()), e.green().abs_diff(a.green()), e.blue().abs_diff(a.blue()), e.alpha().abs_diff(a.alpha())];
+        let delta = [
+            e.red().abs_diff(a.red()),
+            e.green().abs_diff(a.green()),
+            e.blue().abs_diff(a.blue()),
+            e.alpha().abs_diff(a.alpha()),
+        ];
         *d = if delta.iter().any(|&c| c > PIXEL_CHANNEL_TOL) {
             differing += 1;
             resvg::tiny_skia::PremultipliedColorU8::from_rgba(255, 0, 0, 255).unwrap()
@@ -134,11 +142,8 @@ pub fn assert_ezdxf_clean(files: &[&Path]) {
         "{} not found: run `bash .ci/test` once (it creates target/venv with ezdxf) or set MECHDRAW_PYTHON",
         py.display()
     );
-    let out = Command::new(&py)
-        .arg(root().join("tests/ezdxf_audit.py"))
-        .args(files)
-        .output()
-        .expect("run the ezdxf audit");
+    let out =
+        Command::new(&py).arg(root().join("tests/ezdxf_audit.py")).args(files).output().expect("run the ezdxf audit");
     let text = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
     assert!(out.status.success(), "ezdxf audit failed:\n{text}");
 }
