@@ -133,7 +133,13 @@ pub fn mechanism(
     }
     // Joints.
     let mut labelled: Vec<Point> = Vec::new();
-    for j in &mech.joints {
+    // Sliders first, so that their names sit beside the block rather than on it.
+    let order = mech
+        .joints
+        .iter()
+        .filter(|j| matches!(j.kind, JointKind::Prismatic { .. }))
+        .chain(mech.joints.iter().filter(|j| matches!(j.kind, JointKind::Revolute { .. })));
+    for j in order {
         match j.kind {
             JointKind::Revolute { a, b } => {
                 let p = anchor_at(q, a);
@@ -153,7 +159,22 @@ pub fn mechanism(
                 let corners = vec![p - u * hl - n * hh, p + u * hl - n * hh, p + u * hl + n * hh, p - u * hl + n * hh];
                 d.add(layer, Shape::Polyline { points: corners, closed: true, width: 0.0 });
                 if let Some(name) = scene.point_name(point) {
-                    label(d, layer, p, name, style, &mut labelled);
+                    // Beside the block, clear of its outline.
+                    let at = p + u * hl + n * (hh + 0.3 * style.text_height);
+                    if !labelled.iter().any(|x| (x - p).norm() <= style.joint_radius) {
+                        labelled.push(p);
+                        d.add(
+                            layer,
+                            Shape::Text {
+                                at,
+                                height: style.text_height,
+                                value: name.to_string(),
+                                halign: HAlign::Left,
+                                valign: VAlign::Baseline,
+                                rotation: 0.0,
+                            },
+                        );
+                    }
                 }
             }
         }
@@ -173,7 +194,7 @@ fn label(d: &mut Drawing, layer: usize, p: Point, name: &str, style: &Style, don
         return;
     }
     done.push(p);
-    let off = Vector::new(1.4, 1.0) * style.joint_radius;
+    let off = Vector::new(1.8, 1.2) * style.joint_radius;
     d.add(
         layer,
         Shape::Text {
