@@ -1,2 +1,1022 @@
-//! DXF writer (R12 by default) through the `dxf` crate. See ../shared/dxf-notes.md.
-//! Implemented with the drawing-layer work of the triad issue.
+//! DXF writer through the `dxf` crate: AutoCAD R12 (AC1009) by default, the version every
+//! CAD program reads. See `../shared/dxf-notes.md` for what was measured.
+//!
+//! What is written (R12):
+//! - HEADER: fixed, no timestamps (`$TDCREATE`/`$TDUPDATE` = 2415021.0, i.e. 1 Jan 1900, the
+//!   DXF epoch), `$EXTMIN/$EXTMAX` from [`Drawing::bounds`], `$LIMMIN/$LIMMAX` and
+//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin and `$PINSBASE` = −`$PLIMMIN`
+//!   (LibreCAD prints the sheet `$PLIMMIN`–`$PLIMMAX` with the drawing's origin at `$PINSBASE`),
+//!   `$DIMTXT`, `$DIMASZ` (and `$DIMEXO`, `$DIMEXE`, `$DIMGAP`, `$DIMTAD`) from
+//!   [`Drawing::dim_style`] as [`parts::explode_dimension`] draws them, `$LTSCALE` = 1.
+//!   R12 has no `$INSUNITS`: the drawing is in the scene's units.
+//! - TABLES: LTYPE `CONTINUOUS` and `DASHED` (pattern from [`parts::dash_pattern`], scaled to
+//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD`;
+//!   DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`; VPORT `*ACTIVE`
+//!   centred on the drawing.
+//! - BLOCKS: one anonymous block `*D1`, `*D2`, … per dimension holding its exploded geometry
+//!   ([`parts::explode_dimension`]: lines, arc, SOLID arrowheads, TEXT) on the dimension's
+//!   layer in its colour.
+//! - ENTITIES in drawing order: CIRCLE, ARC (degrees, counter-clockwise), LINE, POLYLINE +
+//!   VERTEX (start and end widths, closed flag) + SEQEND, SOLID (for `Filled`; quads in SOLID's
+//!   1-2-4-3 vertex order), arrows as LINE + SOLID ([`parts::arrow`], as in the SVG), TEXT
+//!   (alignment groups 72/73 with the alignment point 11/21 when not left/baseline, rotation
+//!   in degrees), DIMENSION (3-point angular, type 5; rotated linear, type 0; both with flags
+//!   32 "block used by this dimension only" and 128 "text at a user-defined location", the
+//!   drawing's text as override and the definition points readers measure from).
+//!   Entities carry their own ACI colour and line type when they have one, else BYLAYER.
+//!
+//! Text: R12 files are code-page based; every non-ASCII character is written as a `\U+XXXX`
+//! escape (the crate does this for R12–R2004), which AutoCAD, ezdxf and LibreCAD decode
+//! (`φ1 = 75.77°` is written `\U+03C61 = 75.77\U+00B0`).
+//!
+//! Determinism: handles are assigned in a fixed order (tables, then blocks, then entities),
+//! floats are written by the crate with at most 12 decimals (trailing zeros trimmed, `-0`
+//! written as `0`), and nothing depends on time or randomness: the same drawing gives the
+//! same bytes. Lines end in CRLF, as the crate (and AutoCAD) write them; every reader accepts
+//! that, and the golden comparison normalises line ends.
+//!
+//! A small pass over the crate's text output (`fix_up`) fixes what its API cannot express:
+//! VERTEX and SEQEND on the POLYLINE's layer (the crate writes them on layer 0), the
+//! alignment point 11/21 of justified text at (0, 0) (the crate omits a zero point, and
+//! ezdxf's renderer then fails), `$PINSBASE` in R12, and for R12 the removal of subclass
+//! markers (group 100, R13+ only) and of table-record handles (R12 table entries have none;
+//! in DIMSTYLE group 5 would be read as the arrow block `$DIMBLK`).
+//!
+//! [`DxfVersion::R2000`] (AC1015) is there for programs that insist on a newer file. It is
+//! less portable and less tested than R12 (checked with ezdxf and LibreCAD only). Polylines
+//! stay POLYLINE/VERTEX. The crate's R2000 faults are repaired: lineweight BYLAYER (−1)
+//! instead of 0 mm on every entity, opaque transparency, and in the text pass handles for
+//! the TABLE heads (ezdxf fix code 110, AutoCAD LT's "Bad handle 0"), own handles for
+//! ENDBLK (the crate repeats the BLOCK's), DIMSTYLE handles in group 105, `$HANDSEED` after
+//! them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot). GUIDs are nil. Group 42
+//! (actual measurement) is not written: readers recompute it from the definition points.
+
+use std::io::Write;
+
+use dxf::entities::{
+    AngularThreePointDimension, Arc, Circle, DimensionBase, Entity as DxfEntity, EntityType, Line, Polyline,
+    RotatedDimension, Solid, Text, Vertex,
+};
+use dxf::enums::{AcadVersion, DimensionType, HorizontalTextJustification, VerticalTextJustification};
+use dxf::tables::{Layer as DxfLayer, LineType as DxfLineType};
+use dxf::{Block, Color, Point as DxfPoint};
+
+use super::parts::{self, arrow, explode_dimension};
+use super::{Aci, Bounds, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
+
+/// Name of the dashed line type in the LTYPE table.
+pub const DASHED: &str = "DASHED";
+/// Name of the solid line type in the LTYPE table.
+pub const CONTINUOUS: &str = "CONTINUOUS";
+/// Margin added around the drawing's bounds for the limits, as a fraction of its larger
+/// extent (the SVG uses the same).
+pub const LIMITS_MARGIN: f64 = 0.05;
+/// Values smaller than this in magnitude are written as 0, so that rounding noise such as
+/// `cos(π/2) = 6e-17` does not appear as `-0.0` or `0.000000000000` in the file.
+pub const ZERO_SNAP: f64 = 5e-13;
+
+/// DXF version written.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DxfVersion {
+    /// AutoCAD R12 (AC1009): read by every CAD program; audits clean with ezdxf. The default.
+    #[default]
+    R12,
+    /// AutoCAD 2000 (AC1015): less portable (see the module documentation).
+    R2000,
+}
+
+/// Options of the DXF writer.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct DxfOptions {
+    /// File version; [`DxfVersion::R12`] by default.
+    pub version: DxfVersion,
+}
+
+/// Errors of the DXF writer. All but [`DxfError::Io`] mean the [`Drawing`] holds something
+/// DXF cannot represent; nothing is written then.
+#[derive(Debug, thiserror::Error)]
+pub enum DxfError {
+    /// Writing to the output failed.
+    #[error("writing DXF failed: {0}")]
+    Io(#[from] std::io::Error),
+    /// The `dxf` crate reported an error while serialising.
+    #[error("DXF serialisation failed: {0}")]
+    Crate(String),
+    /// An entity refers to a layer index the drawing does not have.
+    #[error("entity {entity} is on layer index {layer}, but the drawing has {count} layers")]
+    NoSuchLayer {
+        /// Index of the entity in [`Drawing::entities`].
+        entity: usize,
+        /// The layer index it refers to.
+        layer: usize,
+        /// Number of layers in the drawing.
+        count: usize,
+    },
+    /// A layer name DXF cannot hold (empty, a character from `<>/\":;?*|=`` ` or a control
+    /// character, or a name used twice).
+    #[error("layer name {name:?} cannot be written to DXF: {reason}")]
+    BadLayerName {
+        /// The layer name.
+        name: String,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+    /// A coordinate, length or angle is NaN or infinite.
+    #[error("entity {entity} ({kind}) has a non-finite coordinate, length or angle")]
+    NonFinite {
+        /// Index of the entity in [`Drawing::entities`].
+        entity: usize,
+        /// Shape kind.
+        kind: &'static str,
+    },
+    /// A shape DXF cannot draw (too few vertices, non-positive radius or text height,
+    /// negative width).
+    #[error("entity {entity} ({kind}) cannot be written: {reason}")]
+    BadShape {
+        /// Index of the entity in [`Drawing::entities`].
+        entity: usize,
+        /// Shape kind.
+        kind: &'static str,
+        /// What is wrong with it.
+        reason: &'static str,
+    },
+}
+
+/// Writes `drawing` as DXF into a byte vector (CRLF line ends, ASCII only).
+pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    validate(drawing)?;
+    let doc = build(drawing, opts);
+    let mut raw = Vec::new();
+    doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
+    let limits_min = doc.header.paperspace_minimum_drawing_limits.clone();
+    Ok(fix_up(&raw, opts.version, (-limits_min.x, -limits_min.y)))
+}
+
+/// Writes `drawing` as DXF to `out`.
+pub fn write(drawing: &Drawing, opts: &DxfOptions, mut out: impl Write) -> Result<(), DxfError> {
+    let bytes = to_bytes(drawing, opts)?;
+    out.write_all(&bytes)?;
+    Ok(())
+}
+
+fn kind(shape: &Shape) -> &'static str {
+    match shape {
+        Shape::Circle { .. } => "circle",
+        Shape::Arc { .. } => "arc",
+        Shape::Line { .. } => "line",
+        Shape::Polyline { .. } => "polyline",
+        Shape::Filled { .. } => "filled polygon",
+        Shape::Arrow { .. } => "arrow",
+        Shape::Text { .. } => "text",
+        Shape::AngularDimension { .. } => "angular dimension",
+        Shape::LinearDimension { .. } => "linear dimension",
+    }
+}
+
+/// Checks everything the writer relies on, so that it never panics and never writes `NaN`.
+fn validate(drawing: &Drawing) -> Result<(), DxfError> {
+    let mut seen = std::collections::HashSet::new();
+    for layer in &drawing.layers {
+        let bad = |reason| DxfError::BadLayerName { name: layer.name.clone(), reason };
+        if layer.name.is_empty() {
+            return Err(bad("it is empty"));
+        }
+        if layer.name.chars().any(|c| c.is_control() || "<>/\\\":;?*|=`".contains(c)) {
+            return Err(bad("it contains a character DXF forbids in table names"));
+        }
+        if !seen.insert(layer.name.to_uppercase()) {
+            return Err(bad("another layer has the same name (DXF names ignore case)"));
+        }
+    }
+    if drawing.layers.first().is_none_or(|l| l.name != "0") {
+        return Err(DxfError::BadLayerName {
+            name: drawing.layers.first().map(|l| l.name.clone()).unwrap_or_default(),
+            reason: "the first layer must be \"0\"",
+        });
+    }
+    let style = drawing.dim_style;
+    for (i, e) in drawing.entities.iter().enumerate() {
+        let kind = kind(&e.shape);
+        if e.layer >= drawing.layers.len() {
+            return Err(DxfError::NoSuchLayer { entity: i, layer: e.layer, count: drawing.layers.len() });
+        }
+        let bad = |reason| DxfError::BadShape { entity: i, kind, reason };
+        let pts_ok = |ps: &[Point]| ps.iter().all(|p| p.x.is_finite() && p.y.is_finite());
+        let finite = match &e.shape {
+            Shape::Circle { center, radius } => pts_ok(&[*center]) && radius.is_finite(),
+            Shape::Arc { center, radius, start, end } => {
+                pts_ok(&[*center]) && radius.is_finite() && start.is_finite() && end.is_finite()
+            }
+            Shape::Line { from, to } => pts_ok(&[*from, *to]),
+            Shape::Polyline { points, width, .. } => pts_ok(points) && width.is_finite(),
+            Shape::Filled { points } => pts_ok(points),
+            Shape::Arrow { from, to, head } => pts_ok(&[*from, *to]) && head.is_finite(),
+            Shape::Text { at, height, rotation, .. } => pts_ok(&[*at]) && height.is_finite() && rotation.is_finite(),
+            Shape::AngularDimension { vertex, first, second, radius, .. } => {
+                pts_ok(&[*vertex, *first, *second]) && radius.is_finite()
+            }
+            Shape::LinearDimension { p1, p2, line_at, angle, .. } => pts_ok(&[*p1, *p2, *line_at]) && angle.is_finite(),
+        };
+        if !finite {
+            return Err(DxfError::NonFinite { entity: i, kind });
+        }
+        match &e.shape {
+            Shape::Circle { radius, .. } | Shape::Arc { radius, .. } if *radius <= 0.0 => {
+                return Err(bad("the radius must be positive"));
+            }
+            Shape::Polyline { points, .. } if points.len() < 2 => return Err(bad("a polyline needs two vertices")),
+            Shape::Polyline { width, .. } if *width < 0.0 => return Err(bad("the width must not be negative")),
+            Shape::Filled { points } if points.len() < 3 => {
+                return Err(bad("a filled polygon needs at least three vertices"));
+            }
+            Shape::Arrow { head, .. } if *head < 0.0 => return Err(bad("the head length must not be negative")),
+            Shape::Text { height, .. } if *height <= 0.0 => return Err(bad("the text height must be positive")),
+            Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
+                if !(style.text_height.is_finite() && style.text_height > 0.0) {
+                    return Err(bad("the drawing's dimension text height must be positive"));
+                }
+                if !(style.arrow_size.is_finite() && style.arrow_size > 0.0) {
+                    return Err(bad("the drawing's dimension arrow size must be positive"));
+                }
+                if let Shape::AngularDimension { vertex, first, second, radius, .. } = &e.shape {
+                    if *radius <= 0.0 {
+                        return Err(bad("the dimension arc radius must be positive"));
+                    }
+                    if first == vertex || second == vertex {
+                        return Err(bad("a ray point coincides with the vertex"));
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    Ok(())
+}
+
+/// `v` with rounding noise below [`ZERO_SNAP`] (and `-0`) written as 0.
+fn snap(v: f64) -> f64 {
+    if v.abs() < ZERO_SNAP { 0.0 } else { v }
+}
+
+fn pt(p: Point) -> DxfPoint {
+    DxfPoint::new(snap(p.x), snap(p.y), 0.0)
+}
+
+fn deg(rad: f64) -> f64 {
+    snap(rad.to_degrees())
+}
+
+fn aci(c: Aci) -> Color {
+    Color::from_index(c.0)
+}
+
+/// The layer-table colour: 1–255 (0 would mean BYBLOCK, which a layer cannot have).
+fn layer_color(c: Aci) -> Color {
+    Color::from_index(if c.0 == 0 { 7 } else { c.0 })
+}
+
+fn linetype_name(lt: LineType) -> &'static str {
+    match lt {
+        LineType::Continuous => CONTINUOUS,
+        LineType::Dashed => DASHED,
+    }
+}
+
+/// The DXF-epoch date (1 Jan 1900 local time = 2415021.0 whatever the time zone) used for
+/// every date in the header.
+fn epoch_local() -> chrono::DateTime<chrono::Local> {
+    use chrono::TimeZone;
+    chrono::Local.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest().unwrap_or_default()
+}
+
+fn epoch_utc() -> chrono::DateTime<chrono::Utc> {
+    use chrono::TimeZone;
+    chrono::Utc.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest().unwrap_or_default()
+}
+
+/// Builds the crate's drawing. `drawing` has been validated.
+fn build(drawing: &Drawing, opts: &DxfOptions) -> dxf::Drawing {
+    let mut doc = dxf::Drawing::new();
+    let bounds = drawing.bounds().unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
+    let extent = bounds.width().max(bounds.height());
+    let extent = if extent > 0.0 { extent } else { 1.0 };
+    setup_header(&mut doc, drawing, opts, &bounds, extent);
+    setup_tables(&mut doc, drawing, &bounds, extent);
+
+    let style = drawing.dim_style;
+    let mut dim_count = 0usize;
+    for e in &drawing.entities {
+        let common = Common {
+            layer: drawing.layers[e.layer].name.clone(),
+            color: e.color.map(aci).unwrap_or_else(Color::by_layer),
+            linetype: e.linetype.map(linetype_name).unwrap_or("BYLAYER"),
+        };
+        match &e.shape {
+            Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
+                dim_count += 1;
+                let block_name = format!("*D{dim_count}");
+                add_dimension_block(&mut doc, &block_name, &e.shape, drawing, &common);
+                if let Some(dim) = dimension_entity(&e.shape, &block_name, &style) {
+                    doc.add_entity(common.entity(dim));
+                }
+            }
+            shape => {
+                for specific in simple_entities(&mut doc, shape) {
+                    doc.add_entity(common.entity(specific));
+                }
+            }
+        }
+    }
+    doc
+}
+
+fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bounds: &Bounds, extent: f64) {
+    let h = &mut doc.header;
+    h.version = match opts.version {
+        DxfVersion::R12 => AcadVersion::R12,
+        DxfVersion::R2000 => AcadVersion::R2000,
+    };
+    h.handles_enabled = true;
+    h.creation_date = epoch_local();
+    h.update_date = epoch_local();
+    h.creation_date_universal = epoch_utc();
+    h.update_date_universal = epoch_utc();
+    h.time_in_drawing = Default::default();
+    h.user_elapsed_timer = Default::default();
+    h.user_timer_on = false;
+    h.fingerprint_guid = Default::default();
+    h.version_guid = Default::default();
+    h.minimum_drawing_extents = pt(bounds.min);
+    h.maximum_drawing_extents = pt(bounds.max);
+    let m = Vector::new(LIMITS_MARGIN * extent, LIMITS_MARGIN * extent);
+    let (lim_min, lim_max) = (pt(bounds.min - m), pt(bounds.max + m));
+    h.minimum_drawing_limits = lim_min.clone();
+    h.maximum_drawing_limits = lim_max.clone();
+    h.paperspace_minimum_drawing_limits = lim_min;
+    h.paperspace_maximum_drawing_limits = lim_max;
+    // The drawing's origin on the sheet $PLIMMIN–$PLIMMAX (R14+ here; R12 gets it in fix_up).
+    h.paperspace_insertion_base =
+        DxfPoint::new(-h.paperspace_minimum_drawing_limits.x, -h.paperspace_minimum_drawing_limits.y, 0.0);
+    h.line_type_scale = 1.0;
+    // R2000+: the sheet's scale; LibreCAD draws a 0 (the crate's default) as a dot.
+    h.viewport_view_scale_factor = 1.0;
+    let s = drawing.dim_style;
+    h.default_text_height = s.text_height;
+    h.dimensioning_text_height = s.text_height;
+    h.dimensioning_arrow_size = s.arrow_size;
+    h.dimension_extension_line_offset = parts::EXT_LINE_GAP * s.arrow_size;
+    h.dimension_extension_line_extension = parts::EXT_LINE_OVERSHOOT * s.arrow_size;
+    h.dimension_line_gap = parts::LINEAR_TEXT_LIFT * s.text_height;
+    h.text_above_dimension_line = true;
+    h.dimension_text_inside_horizontal = false;
+    h.dimension_text_outside_horizontal = false;
+}
+
+fn setup_tables(doc: &mut dxf::Drawing, drawing: &Drawing, bounds: &Bounds, extent: f64) {
+    // R12 knows none of the annotative items the crate adds; keep only what R12 has.
+    let remove_named = |names: Vec<String>, keep: &dyn Fn(&str) -> bool| -> Vec<usize> {
+        let mut idx: Vec<usize> = names.iter().enumerate().filter(|(_, n)| !keep(n)).map(|(i, _)| i).collect();
+        idx.reverse();
+        idx
+    };
+    for i in remove_named(doc.app_ids().map(|a| a.name.clone()).collect(), &|n| n == "ACAD") {
+        doc.remove_app_id(i);
+    }
+    for i in remove_named(doc.dim_styles().map(|a| a.name.clone()).collect(), &|n| n == "STANDARD") {
+        doc.remove_dim_style(i);
+    }
+    for i in remove_named(doc.styles().map(|a| a.name.clone()).collect(), &|n| n == "STANDARD") {
+        doc.remove_style(i);
+    }
+
+    let (dash, gap) = parts::dash_pattern(extent);
+    doc.add_line_type(DxfLineType {
+        name: DASHED.to_string(),
+        description: "Dashed __ __ __".to_string(),
+        element_count: 2,
+        total_pattern_length: dash + gap,
+        dash_dot_space_lengths: vec![dash, -gap],
+        ..Default::default()
+    });
+    for lt in doc.line_types_mut() {
+        if lt.name == CONTINUOUS {
+            lt.description = "Solid line".to_string();
+        }
+    }
+
+    for (i, layer) in drawing.layers.iter().enumerate() {
+        if i == 0 {
+            for l in doc.layers_mut().filter(|l| l.name == "0") {
+                l.color = layer_color(layer.color);
+                l.line_type_name = linetype_name(layer.linetype).to_string();
+            }
+        } else {
+            doc.add_layer(DxfLayer {
+                name: layer.name.clone(),
+                color: layer_color(layer.color),
+                line_type_name: linetype_name(layer.linetype).to_string(),
+                ..Default::default()
+            });
+        }
+    }
+
+    let s = drawing.dim_style;
+    for ds in doc.dim_styles_mut() {
+        ds.dimensioning_text_height = s.text_height;
+        ds.dimensioning_arrow_size = s.arrow_size;
+        ds.dimension_extension_line_offset = parts::EXT_LINE_GAP * s.arrow_size;
+        ds.dimension_extension_line_extension = parts::EXT_LINE_OVERSHOOT * s.arrow_size;
+        ds.dimension_line_gap = parts::LINEAR_TEXT_LIFT * s.text_height;
+        ds.text_above_dimension_line = true;
+        ds.dimension_text_inside_horizontal = false;
+        ds.dimension_text_outside_horizontal = false;
+    }
+
+    // Open on the whole drawing.
+    let center = Point::from((bounds.min.coords + bounds.max.coords) / 2.0);
+    let (w, h) = (bounds.width().max(1e-9 * extent), bounds.height().max(1e-9 * extent));
+    for vp in doc.view_ports_mut() {
+        vp.view_center = pt(center);
+        vp.view_height = (1.0 + 2.0 * LIMITS_MARGIN) * h;
+        vp.view_port_aspect_ratio = w / h;
+    }
+}
+
+/// Layer, colour and line type shared by the DXF entities made from one [`Entity`].
+struct Common {
+    layer: String,
+    color: Color,
+    linetype: &'static str,
+}
+
+impl Common {
+    fn entity(&self, specific: EntityType) -> DxfEntity {
+        let mut e = DxfEntity::new(specific);
+        // R2000+: BYLAYER lineweight (the crate's default 0 means 0 mm) and opaque (the
+        // crate's 0 is an invalid transparency); neither is written to R12.
+        e.common.lineweight_enum_value = -1;
+        e.common.transparency = 0x0200_00FF;
+        e.common.layer = self.layer.clone();
+        e.common.color = self.color.clone();
+        e.common.line_type_name = self.linetype.to_string();
+        e
+    }
+}
+
+fn line(from: Point, to: Point) -> EntityType {
+    EntityType::Line(Line::new(pt(from), pt(to)))
+}
+
+/// SOLIDs for a filled polygon: a triangle as 1-2-3-3, a quad a-b-c-d in SOLID's 1-2-4-3
+/// order (a, b, d, c), larger polygons as a fan of triangles (exact for convex outlines).
+fn solids(points: &[Point]) -> Vec<EntityType> {
+    let solid = |a: Point, b: Point, c: Point, d: Point| EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d)));
+    match points {
+        [a, b, c] => vec![solid(*a, *b, *c, *c)],
+        [a, b, c, d] => vec![solid(*a, *b, *d, *c)],
+        [a, rest @ ..] => rest.windows(2).map(|w| solid(*a, w[0], w[1], w[1])).collect(),
+        [] => Vec::new(),
+    }
+}
+
+fn text(at: Point, height: f64, value: &str, halign: HAlign, valign: VAlign, rotation: f64) -> EntityType {
+    let mut t = Text {
+        location: pt(at),
+        text_height: height,
+        value: value.to_string(),
+        rotation: deg(normalize_angle(rotation)),
+        horizontal_text_justification: match halign {
+            HAlign::Left => HorizontalTextJustification::Left,
+            HAlign::Center => HorizontalTextJustification::Center,
+            HAlign::Right => HorizontalTextJustification::Right,
+        },
+        vertical_text_justification: match valign {
+            VAlign::Baseline => VerticalTextJustification::Baseline,
+            VAlign::Middle => VerticalTextJustification::Middle,
+            VAlign::Top => VerticalTextJustification::Top,
+        },
+        ..Default::default()
+    };
+    if halign != HAlign::Left || valign != VAlign::Baseline {
+        // Readers place justified text by the alignment point (11/21); the insertion point
+        // is what AutoCAD would recompute from it and is given the same value.
+        t.second_alignment_point = pt(at);
+    }
+    EntityType::Text(t)
+}
+
+/// DXF entities for a shape other than a dimension.
+fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
+    match shape {
+        Shape::Circle { center, radius } => vec![EntityType::Circle(Circle::new(pt(*center), *radius))],
+        Shape::Arc { center, radius, start, end } => {
+            let sweep = parts::arc_sweep(*start, *end);
+            if sweep >= std::f64::consts::TAU {
+                vec![EntityType::Circle(Circle::new(pt(*center), *radius))]
+            } else {
+                let a0 = normalize_angle(*start);
+                vec![EntityType::Arc(Arc::new(pt(*center), *radius, deg(a0), deg(normalize_angle(a0 + sweep))))]
+            }
+        }
+        Shape::Line { from, to } => vec![line(*from, *to)],
+        Shape::Polyline { points, closed, width } => {
+            let mut poly =
+                Polyline { default_starting_width: *width, default_ending_width: *width, ..Default::default() };
+            poly.set_is_closed(*closed);
+            for p in points {
+                let v = Vertex { starting_width: *width, ending_width: *width, ..Vertex::new(pt(*p)) };
+                poly.add_vertex(doc, v);
+            }
+            vec![EntityType::Polyline(poly)]
+        }
+        Shape::Filled { points } => solids(points),
+        Shape::Arrow { from, to, head } => match arrow(*from, *to, *head) {
+            Some((base, tri)) => {
+                let mut v = vec![line(*from, base)];
+                v.extend(solids(&tri));
+                v
+            }
+            None => Vec::new(),
+        },
+        Shape::Text { at, height, value, halign, valign, rotation } => {
+            vec![text(*at, *height, value, *halign, *valign, *rotation)]
+        }
+        Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => Vec::new(),
+    }
+}
+
+/// The anonymous block `name` with the dimension's exploded geometry, on the dimension's
+/// layer in its colour (explicit rather than BYBLOCK: ezdxf's renderer draws BYBLOCK
+/// dimension geometry black) and line type CONTINUOUS (dimensions are never dashed, as in
+/// the SVG).
+fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, shape: &Shape, drawing: &Drawing, dim: &Common) {
+    let common = Common { layer: dim.layer.clone(), color: dim.color.clone(), linetype: CONTINUOUS };
+    let mut entities = Vec::new();
+    for part in explode_dimension(shape, &drawing.dim_style) {
+        for specific in simple_entities(doc, &part) {
+            entities.push(common.entity(specific));
+        }
+    }
+    let mut block = Block { name: name.to_string(), layer: "0".to_string(), entities, ..Default::default() };
+    block.set_is_anonymous(true);
+    doc.add_block(block);
+}
+
+/// The DIMENSION entity for a dimension shape, pointing at `block_name`.
+fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) -> Option<EntityType> {
+    let base = |def1: Point, text_mid: Point, kind: DimensionType, text: &str| DimensionBase {
+        block_name: block_name.to_string(),
+        definition_point_1: pt(def1),
+        text_mid_point: pt(text_mid),
+        dimension_type: kind,
+        text: text.to_string(),
+        is_block_reference_referenced_by_this_block_only: true,
+        is_at_user_defined_location: true,
+        ..Default::default()
+    };
+    match shape {
+        Shape::AngularDimension { vertex, first, second, radius, text } => {
+            let a1 = angle_of(first - vertex);
+            let sweep = normalize_angle(angle_of(second - vertex) - a1);
+            let mid = a1 + 0.5 * sweep;
+            let on_arc = polar(*vertex, *radius, mid);
+            let text_at = polar(*vertex, radius + parts::ANGULAR_TEXT_LIFT * style.text_height, mid);
+            Some(EntityType::AngularThreePointDimension(AngularThreePointDimension {
+                dimension_base: base(on_arc, text_at, DimensionType::AngularThreePoint, text),
+                definition_point_2: pt(*first),
+                definition_point_3: pt(*second),
+                definition_point_4: pt(*vertex),
+                definition_point_5: pt(on_arc),
+            }))
+        }
+        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+            let u = Vector::new(angle.cos(), angle.sin());
+            let n = perp(u);
+            let foot = |p: &Point| p + n * (line_at - p).dot(&n);
+            let (f1, f2) = (foot(p1), foot(p2));
+            let mid = Point::from((f1.coords + f2.coords) / 2.0);
+            let up = if parts::linear_text_flipped(*angle) { -n } else { n };
+            // Middle of the text: its baseline is LINEAR_TEXT_LIFT above the line, half a
+            // cap height more to its middle.
+            let text_mid = mid + up * ((parts::LINEAR_TEXT_LIFT + 0.5) * style.text_height);
+            Some(EntityType::RotatedDimension(RotatedDimension {
+                dimension_base: base(f2, text_mid, DimensionType::RotatedHorizontalOrVertical, text),
+                definition_point_2: pt(*p1),
+                definition_point_3: pt(*p2),
+                rotation_angle: deg(normalize_angle(*angle)),
+                ..Default::default()
+            }))
+        }
+        _ => None,
+    }
+}
+
+/// Fixes the crate's text output where its API cannot: see the module documentation.
+/// Works record by record (a record runs from one group-0 pair to the next).
+fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> Vec<u8> {
+    let text = String::from_utf8_lossy(raw);
+    let lines: Vec<&str> = text.split("\r\n").collect();
+    let pairs: Vec<(&str, &str)> = lines.chunks_exact(2).map(|c| (c[0], c[1])).collect();
+    let code = |c: &str| c.trim().parse::<i32>().unwrap_or(-1);
+
+    // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
+    // BLOCK's), numbered after the highest handle the crate assigned.
+    let mut next_handle = 1 + pairs
+        .iter()
+        .filter(|(c, _)| code(c) == 5 || code(c) == 105)
+        .filter_map(|(_, v)| u64::from_str_radix(v.trim(), 16).ok())
+        .max()
+        .unwrap_or(0);
+    let extra = pairs.iter().filter(|(c, v)| code(c) == 0 && (*v == "TABLE" || *v == "ENDBLK")).count() as u64;
+    let handle_seed = next_handle + extra;
+
+    let mut out = String::with_capacity(raw.len() + 1024);
+    let mut section = "";
+    let mut poly_layer: Option<String> = None;
+    let mut start = 0;
+    while start < pairs.len() {
+        let end = pairs[start + 1..].iter().position(|(c, _)| code(c) == 0).map_or(pairs.len(), |k| start + 1 + k);
+        let mut record: Vec<(String, String)> =
+            pairs[start..end].iter().map(|(c, v)| (c.to_string(), v.to_string())).collect();
+        start = end;
+        let kind = record[0].1.clone();
+        if let Some((_, v)) = record.get(1).filter(|(c, _)| kind == "SECTION" && code(c) == 2) {
+            section = match v.as_str() {
+                "TABLES" => "TABLES",
+                "BLOCKS" => "BLOCKS",
+                "ENTITIES" => "ENTITIES",
+                _ => "",
+            };
+        }
+        let is_header = kind == "SECTION" && record.get(1).is_some_and(|(_, v)| v == "HEADER");
+        if version == DxfVersion::R12 && is_header {
+            // $PINSBASE (the crate writes it from R14 on): where the drawing's origin lies on
+            // the sheet $PLIMMIN–$PLIMMAX. LibreCAD prints that sheet with the drawing on it.
+            if let Some(at) = record.iter().position(|(c, v)| code(c) == 9 && v == "$PLIMMAX") {
+                let next = record[at + 1..].iter().position(|(c, _)| code(c) == 9).map_or(record.len(), |k| at + 1 + k);
+                let (x, y) = paper_insertion_base;
+                let var =
+                    [("  9", "$PINSBASE".to_string()), (" 10", fmt_f64(x)), (" 20", fmt_f64(y)), (" 30", fmt_f64(0.0))];
+                for (k, (c, v)) in var.into_iter().enumerate() {
+                    record.insert(next + k, (c.to_string(), v));
+                }
+            }
+        }
+        if version == DxfVersion::R2000 {
+            if is_header {
+                if let Some(at) = record.iter().position(|(c, v)| code(c) == 9 && v == "$HANDSEED") {
+                    if let Some(pair) = record.get_mut(at + 1) {
+                        pair.1 = format!("{handle_seed:X}");
+                    }
+                }
+            }
+            match kind.as_str() {
+                "TABLE" => {
+                    let at = if record.get(1).is_some_and(|(c, _)| code(c) == 2) { 2 } else { 1 };
+                    record.insert(at, ("  5".to_string(), format!("{next_handle:X}")));
+                    record.insert(at + 1, ("330".to_string(), "0".to_string()));
+                    next_handle += 1;
+                }
+                "ENDBLK" => {
+                    match record.iter_mut().find(|(c, _)| code(c) == 5) {
+                        Some(pair) => pair.1 = format!("{next_handle:X}"),
+                        None => record.insert(1, ("  5".to_string(), format!("{next_handle:X}"))),
+                    }
+                    next_handle += 1;
+                }
+                // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
+                "DIMSTYLE" if section == "TABLES" => {
+                    for pair in record.iter_mut().filter(|(c, _)| code(c) == 5) {
+                        pair.0 = "105".to_string();
+                    }
+                }
+                // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
+                "VERTEX" => {
+                    for pair in record.iter_mut().filter(|(c, _)| code(c) == 370) {
+                        pair.1 = format!("{:>6}", -1);
+                    }
+                }
+                _ => {}
+            }
+        }
+        if version == DxfVersion::R12 {
+            // R12 has no subclass markers, and its table records have no handles.
+            record.retain(|(c, _)| code(c) != 100);
+            if section == "TABLES" && kind != "TABLE" && kind != "ENDTAB" && kind != "SECTION" {
+                record.retain(|(c, _)| code(c) != 5);
+            }
+        }
+        match kind.as_str() {
+            "POLYLINE" => poly_layer = record.iter().find(|(c, _)| code(c) == 8).map(|(_, v)| v.clone()),
+            "VERTEX" | "SEQEND" => {
+                if let Some(layer) = &poly_layer {
+                    match record.iter_mut().find(|(c, _)| code(c) == 8) {
+                        Some(pair) => pair.1 = layer.clone(),
+                        None => {
+                            // After the type and the handle.
+                            let at = if record.get(1).is_some_and(|(c, _)| code(c) == 5) { 2 } else { 1 };
+                            record.insert(at.min(record.len()), ("  8".to_string(), layer.clone()));
+                        }
+                    }
+                }
+            }
+            "TEXT" => {
+                // The crate omits the alignment point when it is (0, 0); justified text needs it.
+                let justified = record.iter().any(|(c, v)| (code(c) == 72 || code(c) == 73) && v.trim() != "0");
+                if justified && !record.iter().any(|(c, _)| code(c) == 11) {
+                    let at = record.iter().position(|(c, _)| code(c) == 72 || code(c) == 73).unwrap_or(record.len());
+                    let at = if record.get(at).is_some_and(|(c, _)| code(c) == 72) { at + 1 } else { at };
+                    for (i, c) in [" 11", " 21", " 31"].into_iter().enumerate() {
+                        record.insert(at + i, (c.to_string(), "0.0".to_string()));
+                    }
+                }
+                poly_layer = None;
+            }
+            _ => poly_layer = None,
+        }
+        for (c, v) in &record {
+            push_pair(&mut out, c, v);
+        }
+    }
+    out.into_bytes()
+}
+
+/// A float as the crate writes it: at most 12 decimals, trailing zeros trimmed, at least one
+/// decimal.
+fn fmt_f64(v: f64) -> String {
+    let s = format!("{:.12}", snap(v));
+    let s = s.trim_end_matches('0');
+    if s.ends_with('.') { format!("{s}0") } else { s.to_string() }
+}
+
+fn push_pair(out: &mut String, code: &str, value: &str) {
+    out.push_str(code);
+    out.push_str("\r\n");
+    out.push_str(value);
+    out.push_str("\r\n");
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::draw::DimStyle;
+
+    /// The file as (group code, value) pairs.
+    fn pairs(bytes: &[u8]) -> Vec<(i32, String)> {
+        let text = std::str::from_utf8(bytes).expect("DXF is ASCII");
+        let lines: Vec<&str> = text.split("\r\n").collect();
+        lines.chunks_exact(2).map(|c| (c[0].trim().parse().expect("group code"), c[1].to_string())).collect()
+    }
+
+    /// The records (group-0 pair and what follows) of type `kind`.
+    fn records(p: &[(i32, String)], kind: &str) -> Vec<Vec<(i32, String)>> {
+        let mut out = Vec::new();
+        for (i, (c, v)) in p.iter().enumerate() {
+            if *c == 0 && v == kind {
+                let end = p[i + 1..].iter().position(|(c, _)| *c == 0).map_or(p.len(), |k| i + 1 + k);
+                out.push(p[i..end].to_vec());
+            }
+        }
+        out
+    }
+
+    fn get(rec: &[(i32, String)], code: i32) -> Vec<&str> {
+        rec.iter().filter(|(c, _)| *c == code).map(|(_, v)| v.as_str()).collect()
+    }
+
+    fn f(rec: &[(i32, String)], code: i32) -> Vec<f64> {
+        get(rec, code).iter().map(|v| v.trim().parse().unwrap()).collect()
+    }
+
+    fn drawing() -> Drawing {
+        Drawing::new(DimStyle { text_height: 2.5, arrow_size: 3.0 })
+    }
+
+    fn write(d: &Drawing) -> Vec<(i32, String)> {
+        pairs(&to_bytes(d, &DxfOptions::default()).unwrap())
+    }
+
+    #[test]
+    fn polyline_has_widths_closed_flag_and_vertices_on_its_layer() {
+        let mut d = drawing();
+        let l = d.layer("LINKS", Aci::BLUE, LineType::Continuous);
+        let pts = vec![Point::new(0.0, 0.0), Point::new(10.0, 0.0), Point::new(10.0, 5.0)];
+        d.add(l, Shape::Polyline { points: pts, closed: true, width: 0.5 });
+        let p = write(&d);
+        let poly = &records(&p, "POLYLINE")[0];
+        assert_eq!(get(poly, 8), ["LINKS"]);
+        assert_eq!(get(poly, 66)[0].trim(), "1");
+        assert_eq!(get(poly, 70)[0].trim(), "1", "closed flag");
+        assert_eq!(f(poly, 40), [0.5]);
+        assert_eq!(f(poly, 41), [0.5]);
+        let vertices = records(&p, "VERTEX");
+        assert_eq!(vertices.len(), 3);
+        for v in &vertices {
+            assert_eq!(get(v, 8), ["LINKS"]);
+            assert_eq!(f(v, 40), [0.5]);
+            assert_eq!(f(v, 41), [0.5]);
+            assert!(get(v, 100).is_empty(), "no subclass markers in R12");
+        }
+        assert_eq!(f(&vertices[2], 10), [10.0]);
+        assert_eq!(f(&vertices[2], 20), [5.0]);
+        assert_eq!(get(&records(&p, "SEQEND")[0], 8), ["LINKS"]);
+    }
+
+    #[test]
+    fn each_dimension_has_its_own_anonymous_block() {
+        let mut d = drawing();
+        let o = Point::new(0.0, 0.0);
+        for text in ["a", "b"] {
+            d.add(
+                0,
+                Shape::AngularDimension {
+                    vertex: o,
+                    first: Point::new(1.0, 0.0),
+                    second: Point::new(0.0, 1.0),
+                    radius: 5.0,
+                    text: text.into(),
+                },
+            );
+        }
+        d.add(
+            0,
+            Shape::LinearDimension {
+                p1: o,
+                p2: Point::new(10.0, 0.0),
+                line_at: Point::new(0.0, -5.0),
+                angle: 0.0,
+                text: "10".into(),
+            },
+        );
+        let p = write(&d);
+        let dims = records(&p, "DIMENSION");
+        let names: Vec<&str> = dims.iter().map(|r| get(r, 2)[0]).collect();
+        assert_eq!(names, ["*D1", "*D2", "*D3"]);
+        assert!(!p.iter().any(|(_, v)| v == "*MODEL_SPACE"));
+        // Types 5 (3-point angular) and 0 (rotated), each with flags 32 + 128.
+        let types: Vec<i32> = dims.iter().map(|r| get(r, 70)[0].trim().parse().unwrap()).collect();
+        assert_eq!(types, [5 | 32 | 128, 5 | 32 | 128, 32 | 128]);
+        assert_eq!(get(&dims[1], 1), ["b"]);
+        // 3-point angular: 13/14 the ray points, 15 the vertex.
+        assert_eq!((f(&dims[0], 13), f(&dims[0], 24), f(&dims[0], 15)), (vec![1.0], vec![1.0], vec![0.0]));
+        // Rotated: 13/14 the feature points, 50 the angle in degrees, 10 on the dimension line.
+        assert_eq!((f(&dims[2], 14), f(&dims[2], 50), f(&dims[2], 20)), (vec![10.0], vec![0.0], vec![-5.0]));
+        let blocks = records(&p, "BLOCK");
+        let block_names: Vec<&str> = blocks.iter().map(|r| get(r, 2)[0]).collect();
+        assert_eq!(block_names, ["*D1", "*D2", "*D3"]);
+        for b in &blocks {
+            assert_eq!(get(b, 70)[0].trim(), "1", "anonymous");
+        }
+        // Each block holds its geometry: extension lines out to the arc (the ray points lie
+        // inside it), the arc, two SOLID arrowheads and the text.
+        let first_block = p.iter().position(|(c, v)| *c == 0 && v == "BLOCK").unwrap();
+        let first_end = p.iter().position(|(c, v)| *c == 0 && v == "ENDBLK").unwrap();
+        let kinds: Vec<&str> =
+            p[first_block + 1..first_end].iter().filter(|(c, _)| *c == 0).map(|(_, v)| v.as_str()).collect();
+        assert_eq!(kinds, ["LINE", "LINE", "ARC", "SOLID", "SOLID", "TEXT"]);
+        // Header dimension sizes.
+        let header_value = |name: &str| {
+            let i = p.iter().position(|(c, v)| *c == 9 && v == name).unwrap();
+            p[i + 1].1.trim().parse::<f64>().unwrap()
+        };
+        assert_eq!(header_value("$DIMTXT"), 2.5);
+        assert_eq!(header_value("$DIMASZ"), 3.0);
+    }
+
+    #[test]
+    fn dashed_line_type_has_its_pattern() {
+        let mut d = drawing();
+        let l = d.layer("C", Aci::RED, LineType::Dashed);
+        d.add(l, Shape::Line { from: Point::new(0.0, 0.0), to: Point::new(200.0, 100.0) });
+        let p = write(&d);
+        let lt = records(&p, "LTYPE").into_iter().find(|r| get(r, 2) == ["DASHED"]).unwrap();
+        assert_eq!(get(&lt, 73)[0].trim(), "2");
+        // Extent 200: 1.8 % is 3.6, rounded down to the 1-2-5 series: dash 2, gap 1.
+        assert_eq!(f(&lt, 49), [2.0, -1.0]);
+        assert_eq!(f(&lt, 40), [3.0]);
+        let layer = records(&p, "LAYER").into_iter().find(|r| get(r, 2) == ["C"]).unwrap();
+        assert_eq!(get(&layer, 6), ["DASHED"]);
+        assert_eq!(get(&layer, 62)[0].trim(), "1");
+    }
+
+    #[test]
+    fn colours_are_by_layer_unless_given() {
+        let mut d = drawing();
+        let l = d.layer("L", Aci::GREEN, LineType::Continuous);
+        d.add(l, Shape::Circle { center: Point::new(0.0, 0.0), radius: 1.0 });
+        d.add_colored(l, Aci(42), Shape::Circle { center: Point::new(0.0, 0.0), radius: 2.0 });
+        let p = write(&d);
+        let circles = records(&p, "CIRCLE");
+        assert!(get(&circles[0], 62).is_empty(), "BYLAYER is the default, not written");
+        assert_eq!(get(&circles[1], 62)[0].trim(), "42");
+    }
+
+    #[test]
+    fn solid_quads_use_the_1_2_4_3_order() {
+        let mut d = drawing();
+        let sq = vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0), Point::new(1.0, 1.0), Point::new(0.0, 1.0)];
+        d.add(0, Shape::Filled { points: sq });
+        let p = write(&d);
+        let s = &records(&p, "SOLID")[0];
+        // Corners 1, 2, 3, 4 = (0,0), (1,0), (0,1), (1,1): a quad a-b-c-d as a, b, d, c.
+        let corners: Vec<(f64, f64)> = (0..4).map(|k| (f(s, 10 + k)[0], f(s, 20 + k)[0])).collect();
+        assert_eq!(corners, [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]);
+    }
+
+    #[test]
+    fn text_alignment_rotation_and_unicode_escapes() {
+        let mut d = drawing();
+        let t = |at, halign, valign, rotation: f64, value: &str| Shape::Text {
+            at,
+            height: 2.0,
+            value: value.into(),
+            halign,
+            valign,
+            rotation: rotation.to_radians(),
+        };
+        d.add(0, t(Point::new(3.0, 4.0), HAlign::Left, VAlign::Baseline, 0.0, "φ1 = 75.77°"));
+        d.add(0, t(Point::new(0.0, 0.0), HAlign::Center, VAlign::Middle, 90.0, "ω ε π ′"));
+        d.add(0, t(Point::new(5.0, 6.0), HAlign::Right, VAlign::Top, 0.0, "x"));
+        let p = write(&d);
+        let texts = records(&p, "TEXT");
+        assert_eq!(get(&texts[0], 1), ["\\U+03C61 = 75.77\\U+00B0"]);
+        assert!(get(&texts[0], 72).is_empty() && get(&texts[0], 11).is_empty());
+        assert_eq!(get(&texts[1], 1), ["\\U+03C9 \\U+03B5 \\U+03C0 \\U+2032"]);
+        assert_eq!((get(&texts[1], 72)[0].trim(), get(&texts[1], 73)[0].trim()), ("1", "2"));
+        assert_eq!((f(&texts[1], 11), f(&texts[1], 21)), (vec![0.0], vec![0.0]), "alignment point at the origin");
+        assert_eq!(f(&texts[1], 50), [90.0]);
+        assert_eq!((get(&texts[2], 72)[0].trim(), get(&texts[2], 73)[0].trim()), ("2", "3"));
+        assert_eq!((f(&texts[2], 11), f(&texts[2], 21)), (vec![5.0], vec![6.0]));
+    }
+
+    #[test]
+    fn output_is_deterministic_and_has_no_timestamps() {
+        let mut d = drawing();
+        d.add(0, Shape::Arrow { from: Point::new(0.0, 0.0), to: Point::new(3.0, 4.0), head: 1.0 });
+        let a = to_bytes(&d, &DxfOptions::default()).unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1100));
+        let b = to_bytes(&d, &DxfOptions::default()).unwrap();
+        assert_eq!(a, b);
+        let p = pairs(&a);
+        for var in ["$TDCREATE", "$TDUPDATE"] {
+            let i = p.iter().position(|(c, v)| *c == 9 && v == var).unwrap();
+            assert_eq!(p[i + 1].1, "2415021.0", "{var}");
+        }
+        // The sheet for LibreCAD: the drawing's origin at −$PLIMMIN on it.
+        let var = |name: &str, k: usize| {
+            let i = p.iter().position(|(c, v)| *c == 9 && v == name).unwrap();
+            p[i + 1 + k].1.trim().parse::<f64>().unwrap()
+        };
+        assert_eq!((var("$PINSBASE", 0), var("$PINSBASE", 1)), (-var("$PLIMMIN", 0), -var("$PLIMMIN", 1)));
+        assert!(var("$PLIMMIN", 0) < 0.0 && var("$PLIMMAX", 1) > 4.0, "limits around the arrow with a margin");
+        assert_eq!(p[1].1, "HEADER");
+        assert!(p.iter().any(|(c, v)| *c == 1 && v == "AC1009"));
+        assert!(!p.iter().any(|(c, _)| *c == 100), "no subclass markers in R12");
+    }
+
+    #[test]
+    fn r2000_is_deterministic_with_fixed_guids_and_table_handles() {
+        let mut d = drawing();
+        d.add(
+            0,
+            Shape::Polyline { points: vec![Point::new(0.0, 0.0), Point::new(1.0, 1.0)], closed: false, width: 0.2 },
+        );
+        let opts = DxfOptions { version: DxfVersion::R2000 };
+        let a = to_bytes(&d, &opts).unwrap();
+        std::thread::sleep(std::time::Duration::from_millis(1100));
+        assert_eq!(a, to_bytes(&d, &opts).unwrap());
+        let p = pairs(&a);
+        assert!(p.iter().any(|(c, v)| *c == 1 && v == "AC1015"));
+        for var in ["$FINGERPRINTGUID", "$VERSIONGUID"] {
+            let i = p.iter().position(|(c, v)| *c == 9 && v == var).unwrap();
+            assert_eq!(p[i + 1].1, "00000000-0000-0000-0000-000000000000", "{var}");
+        }
+        for t in records(&p, "TABLE") {
+            assert_eq!(get(&t, 5).len(), 1, "TABLE {:?} has a handle", get(&t, 2));
+        }
+        for v in records(&p, "VERTEX") {
+            assert_eq!(get(&v, 370)[0].trim(), "-1", "lineweight BYLAYER");
+        }
+        // Handles are unique.
+        let handles: Vec<&str> = p.iter().filter(|(c, _)| *c == 5 || *c == 105).map(|(_, v)| v.as_str()).collect();
+        let unique: std::collections::HashSet<&str> = handles.iter().copied().collect();
+        assert_eq!(unique.len(), handles.len());
+    }
+
+    #[test]
+    fn bad_input_is_an_error_not_a_panic() {
+        let mut d = drawing();
+        d.add(0, Shape::Circle { center: Point::new(f64::NAN, 0.0), radius: 1.0 });
+        assert!(matches!(to_bytes(&d, &DxfOptions::default()), Err(DxfError::NonFinite { entity: 0, .. })));
+        let mut d = drawing();
+        d.add(3, Shape::Line { from: Point::new(0.0, 0.0), to: Point::new(1.0, 0.0) });
+        assert!(matches!(to_bytes(&d, &DxfOptions::default()), Err(DxfError::NoSuchLayer { layer: 3, .. })));
+        let mut d = drawing();
+        d.add(0, Shape::Filled { points: vec![Point::new(0.0, 0.0), Point::new(1.0, 0.0)] });
+        assert!(matches!(to_bytes(&d, &DxfOptions::default()), Err(DxfError::BadShape { .. })));
+        let mut d = drawing();
+        d.layer("A/B", Aci::RED, LineType::Continuous);
+        assert!(matches!(to_bytes(&d, &DxfOptions::default()), Err(DxfError::BadLayerName { .. })));
+    }
+}

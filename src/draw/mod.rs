@@ -364,18 +364,31 @@ impl Drawing {
             Some(b) => b.add(p),
         };
         for e in entities {
-            shape_extent_points(&e.shape, &mut add);
+            shape_extent_points(&e.shape, &self.dim_style, &mut add);
         }
         b
     }
 }
 
-/// Calls `add` with points whose bounding box covers the shape.
-fn shape_extent_points(shape: &Shape, add: &mut impl FnMut(Point)) {
+/// Calls `add` with points whose bounding box covers the shape (dimensions: their
+/// exploded geometry, as drawn).
+fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Point)) {
     match shape {
-        Shape::Circle { center, radius } | Shape::Arc { center, radius, .. } => {
+        Shape::Circle { center, radius } => {
             add(center + Vector::new(-radius, -radius));
             add(center + Vector::new(*radius, *radius));
+        }
+        Shape::Arc { center, radius, start, end } => {
+            // The end points and every axis direction the arc passes through.
+            let sweep = parts::arc_sweep(*start, *end);
+            add(crate::geom::polar(*center, *radius, *start));
+            add(crate::geom::polar(*center, *radius, start + sweep));
+            for k in 0..4 {
+                let axis = k as f64 * std::f64::consts::FRAC_PI_2;
+                if crate::geom::normalize_angle(axis - start) <= sweep {
+                    add(crate::geom::polar(*center, *radius, axis));
+                }
+            }
         }
         Shape::Line { from, to } | Shape::Arrow { from, to, .. } => {
             add(*from);
@@ -393,14 +406,40 @@ fn shape_extent_points(shape: &Shape, add: &mut impl FnMut(Point)) {
             add(Point::new(x0, at.y - 0.3 * height));
             add(Point::new(x0 + w, at.y + height));
         }
-        Shape::AngularDimension { vertex, radius, .. } => {
-            add(vertex + Vector::new(-radius, -radius));
-            add(vertex + Vector::new(*radius, *radius));
+        Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
+            for part in parts::explode_dimension(shape, style) {
+                shape_extent_points(&part, style, add);
+            }
         }
-        Shape::LinearDimension { p1, p2, line_at, .. } => {
-            add(*p1);
-            add(*p2);
-            add(*line_at);
-        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn arc_bounds_cover_only_the_drawn_part() {
+        let mut d = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        // Quarter arc from 0° to 90° of radius 2 about (1, 1): box (1,1)–(3,3).
+        d.add(
+            0,
+            Shape::Arc { center: Point::new(1.0, 1.0), radius: 2.0, start: 0.0, end: std::f64::consts::FRAC_PI_2 },
+        );
+        let b = d.bounds().unwrap();
+        assert!((b.min - Point::new(1.0, 1.0)).norm() < 1e-12 && (b.max - Point::new(3.0, 3.0)).norm() < 1e-12);
+        // 300° → 40° passes through 0°: x reaches centre + r.
+        let mut d = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        d.add(
+            0,
+            Shape::Arc {
+                center: Point::new(0.0, 0.0),
+                radius: 1.0,
+                start: 300f64.to_radians(),
+                end: 40f64.to_radians(),
+            },
+        );
+        let b = d.bounds().unwrap();
+        assert!((b.max.x - 1.0).abs() < 1e-12 && (b.min.x - 0.5).abs() < 1e-12);
     }
 }

@@ -6,6 +6,23 @@ use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
 
 /// Half-width of an arrowhead relative to its length.
 pub const ARROW_HALF_WIDTH: f64 = 0.2;
+/// Gap between a linear dimension's feature point and its extension line, in arrow sizes
+/// (DXF `$DIMEXO`).
+pub const EXT_LINE_GAP: f64 = 0.3;
+/// Overshoot of extension lines past the dimension line, in arrow sizes (DXF `$DIMEXE`).
+pub const EXT_LINE_OVERSHOOT: f64 = 0.6;
+/// Baseline of a linear dimension's text above its dimension line, in text heights
+/// (DXF `$DIMGAP`).
+pub const LINEAR_TEXT_LIFT: f64 = 0.5;
+/// Middle of an angular dimension's text outside its arc, in text heights.
+pub const ANGULAR_TEXT_LIFT: f64 = 0.6;
+
+/// Whether a linear dimension measured along `angle` (radians) has its text turned by half
+/// a turn to stay readable (read from below or from the right): directions in (90°, 270°].
+pub fn linear_text_flipped(angle: f64) -> bool {
+    let a = normalize_angle(angle);
+    a > std::f64::consts::FRAC_PI_2 && a <= 1.5 * std::f64::consts::PI
+}
 
 /// The shaft end and the filled head triangle of an arrow from `from` to `to` with a head
 /// of length `head` (shortened to half the vector on short vectors). `None` for a
@@ -21,6 +38,35 @@ pub fn arrow(from: Point, to: Point, head: f64) -> Option<(Point, [Point; 3])> {
     let base = to - u * h;
     let n = perp(u) * (h * ARROW_HALF_WIDTH);
     Some((base, [to, base + n, base - n]))
+}
+
+/// Dash and gap lengths (model units) of the DASHED line type for a drawing whose larger
+/// extent is `extent`: a dash of about 1.8 % of the extent rounded down to 1, 2 or 5 times
+/// a power of ten (so the DXF LTYPE table holds a readable number), the gap half the dash.
+/// Both writers use it, so SVG and DXF dashes match. A non-positive or non-finite extent
+/// gives the pattern of a 100-unit drawing.
+pub fn dash_pattern(extent: f64) -> (f64, f64) {
+    let extent = if extent.is_finite() && extent > 0.0 { extent } else { 100.0 };
+    let target = 0.018 * extent;
+    let decade = 10f64.powf(target.log10().floor());
+    let mantissa = target / decade;
+    let step = if mantissa >= 5.0 {
+        5.0
+    } else if mantissa >= 2.0 {
+        2.0
+    } else {
+        1.0
+    };
+    let dash = step * decade;
+    (dash, 0.5 * dash)
+}
+
+/// Counter-clockwise sweep (radians) of the arc from `start` to `end`, in [0, 2π]: `end`
+/// below `start` wraps around; equal angles give 0, a difference that is a non-zero multiple
+/// of 2π gives a full turn.
+pub fn arc_sweep(start: f64, end: f64) -> f64 {
+    let sweep = normalize_angle(end - start);
+    if sweep == 0.0 && end != start { std::f64::consts::TAU } else { sweep }
 }
 
 fn arrow_shapes(from: Point, to: Point, head: f64, out: &mut Vec<Shape>) {
@@ -56,7 +102,7 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
             arrow_shapes(polar(*vertex, *radius, a1 + sweep - step), p_end, asz, &mut out);
             let mid = a1 + 0.5 * sweep;
             out.push(Shape::Text {
-                at: polar(*vertex, radius + 0.6 * th, mid),
+                at: polar(*vertex, radius + ANGULAR_TEXT_LIFT * th, mid),
                 height: th,
                 value: text.clone(),
                 halign: HAlign::Center,
@@ -76,7 +122,10 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
                 if len > 0.0 {
                     // Gap at the feature, overshoot past the dimension line.
                     let dir = d / len;
-                    out.push(Shape::Line { from: p + dir * (0.3 * asz).min(len), to: f + dir * 0.6 * asz });
+                    out.push(Shape::Line {
+                        from: p + dir * (EXT_LINE_GAP * asz).min(len),
+                        to: f + dir * EXT_LINE_OVERSHOOT * asz,
+                    });
                 }
             }
             out.push(Shape::Line { from: f1, to: f2 });
@@ -84,15 +133,9 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
             arrow_shapes(mid, f1, asz, &mut out);
             arrow_shapes(mid, f2, asz, &mut out);
             // Text above the dimension line, upright when read from below or the right.
-            let mut rot = *angle;
-            let mut up = n;
-            if normalize_angle(rot) > std::f64::consts::FRAC_PI_2 && normalize_angle(rot) <= 1.5 * std::f64::consts::PI
-            {
-                rot += std::f64::consts::PI;
-                up = -n;
-            }
+            let (rot, up) = if linear_text_flipped(*angle) { (angle + std::f64::consts::PI, -n) } else { (*angle, n) };
             out.push(Shape::Text {
-                at: mid + up * (0.5 * th),
+                at: mid + up * (LINEAR_TEXT_LIFT * th),
                 height: th,
                 value: text.clone(),
                 halign: HAlign::Center,
@@ -117,6 +160,26 @@ mod tests {
         let (base, _) = arrow(Point::new(0.0, 0.0), Point::new(1.0, 0.0), 2.0).unwrap();
         assert!((base.x - 0.5).abs() < 1e-12);
         assert!(arrow(Point::new(1.0, 1.0), Point::new(1.0, 1.0), 2.0).is_none());
+    }
+
+    #[test]
+    fn arc_sweep_wraps_through_zero_and_keeps_full_turns() {
+        use std::f64::consts::{PI, TAU};
+        assert!((arc_sweep(0.0, PI / 2.0) - PI / 2.0).abs() < 1e-15);
+        // 300° to 40°: counter-clockwise through 0°, 100°.
+        assert!((arc_sweep(300f64.to_radians(), 40f64.to_radians()) - 100f64.to_radians()).abs() < 1e-12);
+        assert_eq!(arc_sweep(1.0, 1.0), 0.0);
+        assert_eq!(arc_sweep(0.0, TAU), TAU);
+    }
+
+    #[test]
+    fn dash_pattern_is_a_round_fraction_of_the_extent() {
+        // 1.8 % of 100 = 1.8 → 1; of 200 = 3.6 → 2; of 300 = 5.4 → 5; of 1 = 0.018 → 0.01.
+        assert_eq!(dash_pattern(100.0), (1.0, 0.5));
+        assert_eq!(dash_pattern(200.0), (2.0, 1.0));
+        assert_eq!(dash_pattern(300.0), (5.0, 2.5));
+        assert!((dash_pattern(1.0).0 - 0.01).abs() < 1e-15);
+        assert_eq!(dash_pattern(f64::NAN), dash_pattern(100.0));
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! SVG writer: the same content as the DXF, for browsers and golden images.
 //!
 //! The model's y axis points up (as in CAD); SVG's points down. The flip happens in one
-//! place, [`Frame::pt`]. The viewBox is fitted to the drawing's bounds with a margin.
+//! place, `Frame::pt`. The viewBox is fitted to the drawing's bounds with a margin.
 //! Line widths, dash lengths and font sizes follow the model units, so the SVG is to scale.
 
 use std::io::Write;
@@ -10,7 +10,7 @@ use svg::Document;
 use svg::Node as _;
 use svg::node::element::{Circle, Group, Line, Path, Polygon, Polyline, Rectangle, Text};
 
-use super::parts::{arrow, explode_dimension};
+use super::parts::{arc_sweep, arrow, dash_pattern, explode_dimension};
 use super::{Aci, Bounds, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, polar};
 
@@ -42,6 +42,8 @@ impl Default for SvgOptions {
 struct Frame {
     /// Stroke width of a hairline, model units.
     hairline: f64,
+    /// Dash and gap of dashed lines, model units (the DXF writer's DASHED pattern).
+    dash: (f64, f64),
 }
 
 impl Frame {
@@ -71,7 +73,7 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
         .unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
     let extent = bounds.width().max(bounds.height()).max(f64::MIN_POSITIVE);
     let margin = opts.margin * extent;
-    let frame = Frame { hairline: opts.hairline * extent };
+    let frame = Frame { hairline: opts.hairline * extent, dash: dash_pattern(extent) };
     let (x0, y0) = (bounds.min.x - margin, -(bounds.max.y + margin));
     let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
     let w = w.max(extent * 1e-3);
@@ -92,21 +94,28 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
                 .set("fill", "#ffffff"),
         );
 
-    // One group per layer, in layer order, with the layer name as id (like a CAD layer).
-    let mut groups: Vec<Option<Group>> = vec![None; drawing.layers.len()];
+    // Entities in drawing order (later ones on top, as in the DXF), grouped into runs of
+    // consecutive entities on one layer: `<g class="layer-NAME">` (a layer may have several).
+    let mut run: Option<(usize, Group)> = None;
     for e in &drawing.entities {
-        let g = groups[e.layer].get_or_insert_with(|| {
-            Group::new()
-                .set("id", format!("layer-{}", drawing.layers[e.layer].name))
+        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer) {
+            if let Some((_, g)) = run.take() {
+                doc = doc.add(g);
+            }
+        }
+        let (_, g) = run.get_or_insert_with(|| {
+            let g = Group::new()
+                .set("class", format!("layer-{}", drawing.layers[e.layer].name))
                 .set("fill", "none")
                 .set("stroke-linecap", "round")
-                .set("stroke-linejoin", "round")
+                .set("stroke-linejoin", "round");
+            (e.layer, g)
         });
         for node in entity_nodes(drawing, e, &frame) {
             *g = std::mem::take(g).add(node);
         }
     }
-    for g in groups.into_iter().flatten() {
+    if let Some((_, g)) = run {
         doc = doc.add(g);
     }
     doc.to_string()
@@ -122,13 +131,13 @@ fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::No
     let dashed = drawing.linetype_of(e) == LineType::Dashed;
     let mut nodes: Vec<Box<dyn svg::Node>> = Vec::new();
     let stroke = |w: f64| -> (String, String) { (color.clone(), num(w.max(f.hairline))) };
-    let dash = num(6.0 * f.hairline * 2.0);
+    let (dash, gap) = (num(f.dash.0), num(f.dash.1));
     let styled = |mut el: svg::node::element::Element, w: f64| {
         let (c, sw) = stroke(w);
         el.assign("stroke", c);
         el.assign("stroke-width", sw);
         if dashed {
-            el.assign("stroke-dasharray", format!("{dash} {}", num(6.0 * f.hairline)));
+            el.assign("stroke-dasharray", format!("{dash} {gap}"));
         }
         el
     };
@@ -251,7 +260,8 @@ fn text_node(
 }
 
 fn arc_path(f: &Frame, center: Point, radius: f64, start: f64, end: f64) -> String {
-    let sweep = end - start;
+    // Counter-clockwise from start to end, wrapping through 0 when end < start (as in DXF).
+    let sweep = arc_sweep(start, end);
     // SVG arcs cannot draw a full circle in one command: split into two halves.
     let n = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
     let mut d = String::new();
@@ -278,6 +288,20 @@ mod tests {
         let s = to_string(&d, &SvgOptions { margin: 0.0, ..Default::default() });
         assert!(s.contains(r#"y2="-20""#), "{s}");
         assert!(s.contains(r#"viewBox="0 -20 10 20""#), "{s}");
+    }
+
+    #[test]
+    fn entities_keep_drawing_order_across_layers() {
+        let mut d = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        let (a, b) = (d.layer("A", Aci::RED, LineType::Continuous), d.layer("B", Aci::BLUE, LineType::Continuous));
+        let line = |x: f64| Shape::Line { from: Point::new(x, 0.0), to: Point::new(x, 1.0) };
+        d.add(a, line(1.0));
+        d.add(b, line(2.0));
+        d.add(a, line(3.0));
+        let s = to_string(&d, &SvgOptions::default());
+        let pos = |x: &str| s.find(&format!(r#"x1="{x}""#)).unwrap();
+        assert!(pos("1") < pos("2") && pos("2") < pos("3"), "{s}");
+        assert_eq!(s.matches(r#"class="layer-A""#).count(), 2);
     }
 
     #[test]

@@ -101,9 +101,7 @@ fn export(what: &str) -> impl FnOnce(String) -> Error + '_ {
 }
 
 fn dxf_bytes(d: &Drawing) -> Result<Vec<u8>, Error> {
-    // PENDING: the DXF writer lands on main from the dxf branch; until then this fails loudly.
-    let _ = d;
-    Err(export("DXF")("the DXF writer is not merged yet".to_string()))
+    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default()).map_err(|e| export("DXF")(e.to_string()))
 }
 
 /// Parses `BODY.POINT=x,y`.

@@ -1,0 +1,56 @@
+//! Speed of the DXF writer: a mechanism-sized drawing (about 60 entities, 4 dimensions) and
+//! the same with 360 position layers (one circle each), as a full-turn animation writes.
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use mechdraw::draw::dxf::{DxfOptions, to_bytes};
+use mechdraw::draw::{Aci, DimStyle, Drawing, LineType, Shape};
+use mechdraw::geom::{Point, polar};
+
+fn drawing(position_layers: usize) -> Drawing {
+    let mut d = Drawing::new(DimStyle { text_height: 2.5, arrow_size: 2.5 });
+    let links = d.layer("LINKS", Aci::BLUE, LineType::Continuous);
+    let constr = d.layer("CONSTRUCTION", Aci::RED, LineType::Dashed);
+    let dims = d.layer("DIMENSIONS", Aci::GREEN, LineType::Continuous);
+    let o = Point::new(0.0, 0.0);
+    for i in 0..12 {
+        let a = i as f64 * 0.5;
+        let p = polar(o, 40.0, a);
+        d.add(links, Shape::Polyline { points: vec![o, p, polar(p, 20.0, a + 1.0)], closed: false, width: 0.5 });
+        d.add(links, Shape::Circle { center: p, radius: 1.5 });
+        d.add(constr, Shape::Arc { center: o, radius: 40.0, start: a, end: a + 0.4 });
+        d.add(links, Shape::Arrow { from: p, to: polar(p, 10.0, a + 1.5), head: 2.0 });
+        d.text(links, polar(p, 3.0, a), 2.5, format!("A{i} φ{i}"));
+    }
+    for i in 0..2 {
+        let v = Point::new(10.0 * i as f64, 0.0);
+        let text = "φ = 40.00°".to_string();
+        d.add(
+            dims,
+            Shape::AngularDimension {
+                vertex: v,
+                first: polar(v, 5.0, 0.0),
+                second: polar(v, 5.0, 0.7),
+                radius: 12.0,
+                text,
+            },
+        );
+        let (p1, p2) = (v, polar(v, 30.0, 0.3));
+        d.add(dims, Shape::LinearDimension { p1, p2, line_at: polar(v, 8.0, 1.9), angle: 0.3, text: "30".into() });
+    }
+    for i in 0..position_layers {
+        let l = d.layer(&format!("POS_{i:03}"), Aci((i % 255 + 1) as u8), LineType::Continuous);
+        d.add(l, Shape::Circle { center: polar(o, 40.0, (i as f64).to_radians()), radius: 0.5 });
+    }
+    d
+}
+
+fn bench(c: &mut Criterion) {
+    let small = drawing(0);
+    let many = drawing(360);
+    let opts = DxfOptions::default();
+    c.bench_function("dxf_r12_mechanism", |b| b.iter(|| to_bytes(&small, &opts).unwrap()));
+    c.bench_function("dxf_r12_360_layers", |b| b.iter(|| to_bytes(&many, &opts).unwrap()));
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);

@@ -1,0 +1,381 @@
+//! The DXF writer checked with an independent reader (ezdxf: recover + audit, then a read
+//! back of counts, layers, line type pattern, dimension measurements, widths and text),
+//! plus the golden DXF and the golden PNG (SVG writer) of one sample drawing.
+
+mod common;
+
+use std::f64::consts::PI;
+use std::path::PathBuf;
+use std::process::Command;
+
+use mechdraw::draw::dxf::{self, DxfOptions, DxfVersion};
+use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign, svg};
+use mechdraw::geom::{Point, Vector};
+use serde_json::Value;
+
+fn p(x: f64, y: f64) -> Point {
+    Point::new(x, y)
+}
+
+/// A four-bar-like sketch that uses every shape kind, every text alignment, entity colours,
+/// the dashed line type (by layer and by entity) and four dimensions (an angular one over
+/// 180°, a rotated linear one, one whose text is turned).
+fn sample_drawing() -> Drawing {
+    let mut d = Drawing::new(DimStyle { text_height: 2.5, arrow_size: 2.5 });
+    let frame = d.layer("FRAME", Aci::BLACK, LineType::Continuous);
+    let links = d.layer("LINKS", Aci::BLUE, LineType::Continuous);
+    let constr = d.layer("CONSTRUCTION", Aci::RED, LineType::Dashed);
+    let dims = d.layer("DIMENSIONS", Aci::GREEN, LineType::Continuous);
+    let text = d.layer("TEXT", Aci::MAGENTA, LineType::Continuous);
+    let vectors = d.layer("VECTORS", Aci::ORANGE, LineType::Continuous);
+
+    let (a0, b0, a, b) = (p(10.0, 10.0), p(70.0, 10.0), p(25.0, 35.0), p(65.0, 45.0));
+    // Origin marker with a centred label exactly at (0, 0).
+    d.add(frame, Shape::Line { from: p(-4.0, 0.0), to: p(4.0, 0.0) });
+    d.add(frame, Shape::Line { from: p(0.0, -4.0), to: p(0.0, 4.0) });
+    d.add(
+        text,
+        Shape::Text {
+            at: p(0.0, 0.0),
+            height: 1.5,
+            value: "O".into(),
+            halign: HAlign::Center,
+            valign: VAlign::Middle,
+            rotation: 0.0,
+        },
+    );
+    // Ground: hatched filled triangles and a quad under each fixed joint.
+    for g in [a0, b0] {
+        d.add(frame, Shape::Filled { points: vec![g, g + Vector::new(-3.0, -5.0), g + Vector::new(3.0, -5.0)] });
+        d.add(
+            frame,
+            Shape::Filled {
+                points: vec![
+                    g + Vector::new(-6.0, -5.0),
+                    g + Vector::new(6.0, -5.0),
+                    g + Vector::new(6.0, -6.0),
+                    g + Vector::new(-6.0, -6.0),
+                ],
+            },
+        );
+    }
+    // A convex pentagon (more than four vertices: written as a fan of SOLIDs).
+    d.add_colored(
+        frame,
+        Aci(140),
+        Shape::Filled { points: vec![p(125.0, 20.0), p(130.0, 24.0), p(128.0, 30.0), p(122.0, 30.0), p(120.0, 24.0)] },
+    );
+    // Links: a wide open polyline and a closed triangle (coupler) of zero width.
+    d.add(links, Shape::Polyline { points: vec![a0, a, b, b0], closed: false, width: 0.8 });
+    d.add(links, Shape::Polyline { points: vec![a, b, p(50.0, 60.0)], closed: true, width: 0.0 });
+    for j in [a0, b0, a, b] {
+        d.add(links, Shape::Circle { center: j, radius: 1.5 });
+    }
+    // Construction: the circle of A about A0 (dashed by layer), an arc wrapping through 0°,
+    // and a dashed line on a continuous layer (dashed by entity).
+    let ra = (a - a0).norm();
+    d.add(constr, Shape::Arc { center: a0, radius: ra, start: 20f64.to_radians(), end: 150f64.to_radians() });
+    d.add(constr, Shape::Arc { center: b0, radius: 12.0, start: 300f64.to_radians(), end: 40f64.to_radians() });
+    d.push(Entity {
+        layer: links,
+        color: Some(Aci::DARK_GREY),
+        linetype: Some(LineType::Dashed),
+        shape: Shape::Line { from: a0, to: b },
+    });
+    // Velocity of B and a short vector whose head is shortened.
+    d.add(vectors, Shape::Arrow { from: b, to: p(80.0, 60.0), head: 3.0 });
+    d.add_colored(vectors, Aci::RED, Shape::Arrow { from: a, to: p(27.0, 36.0), head: 3.0 });
+    // Every alignment, with Greek letters, degrees and primes.
+    let words = ["φ1", "ω2 = 12.5 rad/s", "ε3 ≈ π/2", "30′", "45°"];
+    let mut k = 0;
+    for (iv, valign) in [VAlign::Baseline, VAlign::Middle, VAlign::Top].into_iter().enumerate() {
+        for (ih, halign) in [HAlign::Left, HAlign::Center, HAlign::Right].into_iter().enumerate() {
+            let at = p(100.0 + 25.0 * ih as f64, 60.0 - 8.0 * iv as f64);
+            d.add(frame, Shape::Circle { center: at, radius: 0.3 });
+            d.add(
+                text,
+                Shape::Text { at, height: 2.0, value: words[k % words.len()].into(), halign, valign, rotation: 0.0 },
+            );
+            k += 1;
+        }
+    }
+    d.add(
+        text,
+        Shape::Text {
+            at: p(95.0, 10.0),
+            height: 2.5,
+            value: "rotated 30°".into(),
+            halign: HAlign::Left,
+            valign: VAlign::Baseline,
+            rotation: 30f64.to_radians(),
+        },
+    );
+    d.text(text, p(a.x - 6.0, a.y + 2.0), 3.0, "A");
+    d.text(text, p(b.x + 2.0, b.y + 2.0), 3.0, "B");
+    // Dimensions: φ1 at A0, the 250° reflex angle at B0, A0B0 horizontal, AB rotated along
+    // the link, B0B vertical, and one measured at 200° (text turned to stay readable).
+    let phi1 = (a - a0).y.atan2((a - a0).x).to_degrees();
+    d.add(
+        dims,
+        Shape::AngularDimension {
+            vertex: a0,
+            first: p(30.0, 10.0),
+            second: a,
+            radius: 14.0,
+            text: format!("φ1 = {phi1:.2}°"),
+        },
+    );
+    d.add(
+        dims,
+        Shape::AngularDimension {
+            vertex: b0,
+            first: b0 + Vector::new(-10.0, 0.0),
+            second: b,
+            radius: 8.0,
+            text: "reflex".into(),
+        },
+    );
+    d.add(dims, Shape::LinearDimension { p1: a0, p2: b0, line_at: p(40.0, -12.0), angle: 0.0, text: "60".into() });
+    let ab = b - a;
+    d.add_colored(
+        dims,
+        Aci::BLUE,
+        Shape::LinearDimension {
+            p1: a,
+            p2: b,
+            line_at: a + Vector::new(-ab.y, ab.x).normalize() * 8.0,
+            angle: ab.y.atan2(ab.x),
+            text: format!("{:.2}", ab.norm()),
+        },
+    );
+    d.add(dims, Shape::LinearDimension { p1: b0, p2: b, line_at: p(90.0, 30.0), angle: PI / 2.0, text: "35".into() });
+    d.add(
+        dims,
+        Shape::LinearDimension {
+            p1: a,
+            p2: p(50.0, 60.0),
+            line_at: p(30.0, 60.0),
+            angle: 200f64.to_radians(),
+            text: "~".into(),
+        },
+    );
+    d
+}
+
+/// The sample drawing plus 360 layers `POS_000` … `POS_359` (one marker each), as a
+/// position-per-degree animation would write.
+fn many_layers_drawing() -> Drawing {
+    let mut d = sample_drawing();
+    for i in 0..360 {
+        let color = Aci((i % 255 + 1) as u8);
+        let l = d.layer(&format!("POS_{i:03}"), color, LineType::Continuous);
+        let a = (i as f64).to_radians();
+        d.add(l, Shape::Circle { center: p(40.0 + 30.0 * a.cos(), 30.0 + 30.0 * a.sin()), radius: 0.4 });
+    }
+    d
+}
+
+fn out_dir() -> PathBuf {
+    let d = common::root().join("target/test-out/dxf_writer");
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write_dxf(name: &str, d: &Drawing) -> PathBuf {
+    let path = out_dir().join(name);
+    let bytes = dxf::to_bytes(d, &DxfOptions::default()).expect("DXF written");
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+fn inspect(path: &std::path::Path) -> Value {
+    let out = Command::new(common::python())
+        .arg(common::root().join("tests/ezdxf_inspect.py"))
+        .arg(path)
+        .output()
+        .expect("run ezdxf_inspect.py");
+    assert!(out.status.success(), "ezdxf_inspect failed: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("inspect JSON")
+}
+
+fn close(a: f64, b: f64, tol: f64) -> bool {
+    (a - b).abs() <= tol
+}
+
+#[test]
+fn sample_drawing_audits_clean_and_reads_back() {
+    let d = many_layers_drawing();
+    let path = write_dxf("many_layers.dxf", &d);
+    common::assert_ezdxf_clean(&[&path]);
+    let info = inspect(&path);
+    assert_eq!(info["version"], "AC1009");
+
+    // Entity counts, counted by hand from sample_drawing().
+    let counts = &info["counts"];
+    let n = |t: &str| counts[t].as_u64().unwrap_or(0);
+    // Circles: 4 joints + 9 alignment markers + 360 POS markers.
+    assert_eq!(n("CIRCLE"), 4 + 9 + 360);
+    // Arcs: two construction arcs.
+    assert_eq!(n("ARC"), 2);
+    // Lines: origin cross (2) + dashed A0–B + two arrow shafts.
+    assert_eq!(n("LINE"), 2 + 1 + 2);
+    // SOLIDs: 2 triangles + 2 quads + pentagon fan (3) + 2 arrowheads.
+    assert_eq!(n("SOLID"), 2 + 2 + 3 + 2);
+    assert_eq!(n("POLYLINE"), 2);
+    assert_eq!(n("TEXT"), 1 + 9 + 1 + 2);
+    assert_eq!(n("DIMENSION"), 6);
+
+    // Layers with their colours and line types.
+    // (ezdxf adds its own "Defpoints" layer to every document it loads.)
+    let layers = info["layers"].as_object().unwrap();
+    assert_eq!(layers.keys().filter(|k| *k != "Defpoints").count(), d.layers.len());
+    for l in &d.layers {
+        let got = &layers[&l.name];
+        assert_eq!(got[0].as_i64().unwrap(), l.color.0 as i64, "colour of {}", l.name);
+        let lt = if l.linetype == LineType::Dashed { "DASHED" } else { "CONTINUOUS" };
+        assert_eq!(got[1].as_str().unwrap(), lt, "line type of {}", l.name);
+    }
+
+    // The DASHED pattern: two elements, dash positive, gap negative, total = |dash| + |gap|,
+    // and a dash a sensible fraction (0.5–5 %) of the drawing's extent.
+    let pat: Vec<f64> = info["linetypes"]["DASHED"].as_array().unwrap().iter().filter_map(|v| v.as_f64()).collect();
+    // ezdxf stores [72 alignment, 73 count, 40 total, 49 dash, 49 gap].
+    let (count, total, dash, gap) = (pat[pat.len() - 4], pat[pat.len() - 3], pat[pat.len() - 2], pat[pat.len() - 1]);
+    assert_eq!(count, 2.0);
+    assert!(dash > 0.0 && gap < 0.0);
+    assert!(close(total, dash - gap, 1e-12));
+    let b = d.bounds().unwrap();
+    let extent = b.width().max(b.height());
+    assert!(dash > 0.005 * extent && dash < 0.05 * extent, "dash {dash} for extent {extent}");
+
+    // Entity colour overrides and line type overrides.
+    let ents = info["entities"].as_array().unwrap();
+    assert!(ents.iter().any(|e| e["type"] == "LINE" && e["color"] == 8 && e["linetype"] == "DASHED"));
+    assert!(ents.iter().any(|e| e["type"] == "SOLID" && e["color"] == 140));
+    assert!(ents.iter().filter(|e| e["type"] == "CIRCLE").all(|e| e["color"] == 256), "circles are BYLAYER");
+
+    // Polylines: width 0.8 at every vertex, open; the triangle closed; vertices on the
+    // polyline's layer.
+    let polys = info["polylines"].as_array().unwrap();
+    assert_eq!(polys[0]["closed"], false);
+    for w in polys[0]["widths"].as_array().unwrap() {
+        assert_eq!(w[0].as_f64().unwrap(), 0.8);
+        assert_eq!(w[1].as_f64().unwrap(), 0.8);
+    }
+    assert_eq!(polys[0]["points"].as_array().unwrap().len(), 4);
+    assert_eq!(polys[1]["closed"], true);
+    for poly in polys {
+        for l in poly["vertex_layers"].as_array().unwrap() {
+            assert_eq!(l, &poly["layer"]);
+        }
+    }
+
+    // Text: every value round-trips (Greek letters, °, ′, ≈); justified text is placed at
+    // its alignment point, including the one at the origin.
+    let texts = info["texts"].as_array().unwrap();
+    let expected: Vec<(&str, Point, u8, u8, f64)> = d
+        .entities
+        .iter()
+        .filter_map(|e| match &e.shape {
+            Shape::Text { at, value, halign, valign, rotation, .. } => Some((
+                value.as_str(),
+                *at,
+                match halign {
+                    HAlign::Left => 0,
+                    HAlign::Center => 1,
+                    HAlign::Right => 2,
+                },
+                match valign {
+                    VAlign::Baseline => 0,
+                    VAlign::Middle => 2,
+                    VAlign::Top => 3,
+                },
+                rotation.to_degrees(),
+            )),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(texts.len(), expected.len());
+    for (t, (value, at, h, v, rot)) in texts.iter().zip(&expected) {
+        assert_eq!(t["text"].as_str().unwrap(), *value);
+        assert_eq!(t["halign"].as_u64().unwrap(), *h as u64, "{value}");
+        assert_eq!(t["valign"].as_u64().unwrap(), *v as u64, "{value}");
+        let pl = t["placement"].as_array().unwrap();
+        assert!(
+            close(pl[0].as_f64().unwrap(), at.x, 1e-9) && close(pl[1].as_f64().unwrap(), at.y, 1e-9),
+            "{value}: {pl:?}"
+        );
+        assert!(close(t["rotation"].as_f64().unwrap(), *rot, 1e-9), "{value}");
+    }
+
+    // Dimensions: measurements equal the true angle or distance computed here from the
+    // coordinates; the drawing's text is the override; each has its own *D block with
+    // arrowheads and the same text.
+    let dims = info["dimensions"].as_array().unwrap();
+    let truth: Vec<(u64, f64, String)> = d
+        .entities
+        .iter()
+        .filter_map(|e| match &e.shape {
+            Shape::AngularDimension { vertex, first, second, text, .. } => {
+                let a1 = (first - vertex).y.atan2((first - vertex).x).to_degrees();
+                let a2 = (second - vertex).y.atan2((second - vertex).x).to_degrees();
+                Some((5, (a2 - a1).rem_euclid(360.0), text.clone()))
+            }
+            Shape::LinearDimension { p1, p2, angle, text, .. } => {
+                let u = Vector::new(angle.cos(), angle.sin());
+                Some((0, (p2 - p1).dot(&u).abs(), text.clone()))
+            }
+            _ => None,
+        })
+        .collect();
+    assert_eq!(dims.len(), truth.len());
+    let mut names = std::collections::HashSet::new();
+    for (dim, (kind, value, text)) in dims.iter().zip(&truth) {
+        assert_eq!(dim["dimtype"].as_u64().unwrap() & 0x0F, *kind);
+        let m = dim["measurement"].as_f64().unwrap();
+        assert!(close(m, *value, 1e-9), "measurement {m} vs true {value} ({text})");
+        assert_eq!(dim["text"].as_str().unwrap(), text);
+        let block = dim["block"].as_str().unwrap();
+        assert!(block.starts_with("*D") && names.insert(block.to_string()), "block {block}");
+        let content = &dim["block_content"];
+        assert_eq!(content["SOLID"].as_u64(), Some(2), "{block}: two arrowheads");
+        assert_eq!(content["TEXT"].as_u64(), Some(1), "{block}: one text");
+        assert_eq!(dim["block_texts"][0].as_str().unwrap(), text);
+    }
+    // The reflex angle is over 180°.
+    assert!(truth.iter().any(|(k, v, _)| *k == 5 && *v > 180.0));
+
+    // Header: dimension sizes and extents.
+    assert_eq!(info["header"]["$DIMTXT"].as_f64(), Some(d.dim_style.text_height));
+    assert_eq!(info["header"]["$DIMASZ"].as_f64(), Some(d.dim_style.arrow_size));
+    assert!(close(info["extmin"][0].as_f64().unwrap(), b.min.x, 1e-9));
+    assert!(close(info["extmax"][1].as_f64().unwrap(), b.max.y, 1e-9));
+    assert!(info["limmin"][0].as_f64().unwrap() < b.min.x && info["limmax"][1].as_f64().unwrap() > b.max.y);
+}
+
+#[test]
+fn r2000_audits_clean_too() {
+    let path = out_dir().join("many_layers_r2000.dxf");
+    let bytes = dxf::to_bytes(&many_layers_drawing(), &DxfOptions { version: DxfVersion::R2000 }).unwrap();
+    std::fs::write(&path, bytes).unwrap();
+    common::assert_ezdxf_clean(&[&path]);
+    let info = inspect(&path);
+    assert_eq!(info["version"], "AC1015");
+    assert_eq!(info["counts"]["DIMENSION"].as_u64(), Some(6));
+    assert_eq!(info["dimensions"][1]["measurement"].as_f64().map(|m| m > 180.0), Some(true));
+}
+
+#[test]
+fn golden_sample_dxf() {
+    let bytes = dxf::to_bytes(&sample_drawing(), &DxfOptions::default()).unwrap();
+    let path = write_dxf("draw_sample.dxf", &sample_drawing());
+    common::assert_ezdxf_clean(&[&path]);
+    common::assert_golden_text("draw_sample.dxf", std::str::from_utf8(&bytes).expect("ASCII DXF"));
+}
+
+#[test]
+fn golden_sample_png() {
+    let svg = svg::to_string(&sample_drawing(), &svg::SvgOptions::default());
+    std::fs::write(out_dir().join("draw_sample.svg"), &svg).unwrap();
+    common::assert_golden_png("draw_sample.png", &svg);
+}
