@@ -448,7 +448,12 @@ pub struct Solver {
     laws: Vec<(f64, f64, f64)>,
     /// Poses of the bodies at the current q (refreshed by `residual`).
     poses: Vec<Pose>,
+    /// Newton stops when the largest relative residual is at or below this.
+    newton_tol: f64,
 }
+
+/// The default Newton goal of [`Solver`]: 1e-2 · [`crate::geom::tol::RESIDUAL_REL`].
+pub const NEWTON_TOL_DEFAULT: f64 = crate::geom::tol::RESIDUAL_REL * 1e-2;
 
 impl Solver {
     /// Compiles the mechanism; counts degrees of freedom against drivers first.
@@ -547,7 +552,17 @@ impl Solver {
             lu: Lu::new(n),
             laws,
             poses: Vec::with_capacity(nb),
+            newton_tol: NEWTON_TOL_DEFAULT,
         })
+    }
+
+    /// Sets the Newton goal: the largest relative constraint residual at which an
+    /// iteration stops (default [`NEWTON_TOL_DEFAULT`]; `mechdraw bench` charts speed
+    /// against accuracy with it). Non-finite or negative values are ignored.
+    pub fn set_newton_tolerance(&mut self, rel: f64) {
+        if rel.is_finite() && rel >= 0.0 {
+            self.newton_tol = rel;
+        }
     }
 
     /// The mechanism.
@@ -829,7 +844,7 @@ impl Solver {
         loop {
             self.residual();
             let (res, worst) = self.residual_norm();
-            let converged = res <= crate::geom::tol::RESIDUAL_REL * 1e-2;
+            let converged = res <= self.newton_tol;
             if !self.factor() {
                 return Err(LinkageError::Singular { t, constraints: self.singular_constraints() });
             }
