@@ -21,7 +21,7 @@ mod poly;
 use crate::geom::{Point, cross, deg, polar};
 
 pub use modes::{all_modes, modes_with};
-pub use newton::{NewtonOptions, NewtonSolution, newton};
+pub use newton::{NewtonOptions, NewtonSolution, newton, newton_to};
 pub use pattern::{PatternOptions, PatternSolution, pattern};
 
 /// Configurations whose residual (largest of the six constraint errors divided by

@@ -96,13 +96,22 @@ fn solve3(j: &[[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
 /// Newton–Raphson from `opts.start`. Errors name a singular Jacobian (with the angles) or a
 /// missed convergence.
 pub fn newton(triad: &Triad, opts: &NewtonOptions) -> Result<NewtonSolution, TriadError> {
-    let stop = NEWTON_RESIDUAL_REL * triad.scale();
+    newton_to(triad, opts, NEWTON_RESIDUAL_REL)
+}
+
+/// [`newton`] with another stopping goal: iteration stops when the largest |g_ij| is below
+/// `residual_rel` · [`Triad::scale`] (or the step is below [`tol::NEWTON_ANGLE`]); the
+/// answer is accepted when its residual is below the larger of `residual_rel` and
+/// [`super::RESIDUAL_ACCEPT_REL`]. `mechdraw bench` charts speed against accuracy with it.
+pub fn newton_to(triad: &Triad, opts: &NewtonOptions, residual_rel: f64) -> Result<NewtonSolution, TriadError> {
+    let accept = super::RESIDUAL_ACCEPT_REL.max(residual_rel);
+    let stop = residual_rel * triad.scale();
     let mut phi = opts.start;
     for iteration in 0..=opts.max_iterations {
         let (g, j) = system(triad, &phi);
         let gmax = g[0].abs().max(g[1].abs()).max(g[2].abs());
         if gmax <= stop {
-            return finish(triad, phi, iteration, opts.max_iterations);
+            return finish(triad, phi, iteration, opts.max_iterations, accept);
         }
         if iteration == opts.max_iterations {
             break;
@@ -116,16 +125,22 @@ pub fn newton(triad: &Triad, opts: &NewtonOptions) -> Result<NewtonSolution, Tri
             break;
         }
         if dx.iter().all(|d| d.abs() <= tol::NEWTON_ANGLE) {
-            return finish(triad, phi, iteration + 1, opts.max_iterations);
+            return finish(triad, phi, iteration + 1, opts.max_iterations, accept);
         }
     }
     let residual = if phi.iter().all(|p| p.is_finite()) { triad.residual(&triad.vertices(phi)) } else { f64::INFINITY };
     Err(TriadError::NewtonNotConverged { iterations: opts.max_iterations, residual })
 }
 
-fn finish(triad: &Triad, phi: [f64; 3], iterations: usize, cap: usize) -> Result<NewtonSolution, TriadError> {
+fn finish(
+    triad: &Triad,
+    phi: [f64; 3],
+    iterations: usize,
+    cap: usize,
+    accept: f64,
+) -> Result<NewtonSolution, TriadError> {
     let configuration = triad.configuration(phi);
-    if configuration.residual > super::RESIDUAL_ACCEPT_REL {
+    if configuration.residual > accept {
         return Err(TriadError::NewtonNotConverged { iterations: cap, residual: configuration.residual });
     }
     Ok(NewtonSolution { configuration, iterations })
