@@ -116,6 +116,13 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             println!("{}: ok ({} scene \"{}\")", scene.display(), loaded.scene.kind(), loaded.scene.name());
             Ok(())
         }
-        Command::Bench { .. } => anyhow::bail!("`mechdraw bench` is not implemented yet"),
+        Command::Bench { out, quick } => {
+            let report = mechdraw::bench::run(&mechdraw::bench::BenchOptions { out_dir: out, quick })?;
+            print!("{}", mechdraw::bench::markdown(&report));
+            for f in &report.written {
+                eprintln!("wrote {}", f.display());
+            }
+            Ok(())
+        }
     }
 }

@@ -1,5 +1,6 @@
 //! The shaper (seed 002, design.md §3) through the general linkage solver, against a
-//! closed-form solution of the same mechanism written here, and its quick-return ratio
+//! closed-form solution of the same mechanism (mechdraw::bench::reference::shaper, shared
+//! with `mechdraw bench`), and its quick-return ratio
 //! against the analytic one.
 
 mod common;
@@ -7,37 +8,7 @@ mod common;
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::linkage::{Attach, Solver, State};
 
-const H_PIVOT: f64 = 300.0; // O1 above O3
-const R: f64 = 125.0; // crank
-const L: f64 = 600.0; // rocker O3B
-const LBE: f64 = 150.0; // link BE
-const Y_RAM: f64 = 600.0; // the ram's line
-const OMEGA: f64 = std::f64::consts::TAU; // 360°/s
-
-/// Closed form: (x_E, v_E, a_E) and (theta, theta', theta'') of the rocker at time t.
-fn closed_form(t: f64) -> ([f64; 3], [f64; 3]) {
-    let phi = OMEGA * t;
-    let (s, c) = phi.sin_cos();
-    let a = [R * c, H_PIVOT + R * s];
-    let ad = [-R * OMEGA * s, R * OMEGA * c];
-    let add = [-R * OMEGA * OMEGA * c, -R * OMEGA * OMEGA * s];
-    let n2 = a[0] * a[0] + a[1] * a[1];
-    let cross = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
-    let dot = |u: [f64; 2], v: [f64; 2]| u[0] * v[0] + u[1] * v[1];
-    let th = a[1].atan2(a[0]);
-    let thd = cross(a, ad) / n2;
-    let thdd = cross(a, add) / n2 - 2.0 * cross(a, ad) * dot(a, ad) / (n2 * n2);
-    let (st, ct) = th.sin_cos();
-    let b = [L * ct, L * st];
-    let bd = [-L * thd * st, L * thd * ct];
-    let bdd = [-L * thdd * st - L * thd * thd * ct, L * thdd * ct - L * thd * thd * st];
-    let dy = Y_RAM - b[1];
-    let root = (LBE * LBE - dy * dy).sqrt();
-    let xe = b[0] + root;
-    let ve = bd[0] + dy * bd[1] / root;
-    let ae = bdd[0] + (dy * bdd[1] - bd[1] * bd[1]) / root - (dy * bd[1]).powi(2) / root.powi(3);
-    ([xe, ve, ae], [th, thd, thdd])
-}
+use mechdraw::bench::reference::shaper::{H_PIVOT, R, Y_RAM, closed_form};
 
 fn shaper() -> (mechdraw::scene::linkage::LinkageScene, Vec<State>) {
     let path = common::root().join("templates/shaper.toml");

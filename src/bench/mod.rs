@@ -1,13 +1,22 @@
 //! `mechdraw bench`: every solving method on the same problems, time per solve against
-//! error, written as an SVG chart (log–log), a CSV and a Markdown table.
+//! error, written as an SVG chart (log–log), a CSV and a Markdown table; what a scene's
+//! `outputs` cost; and the basins of the triad's methods.
 //!
 //! Error is measured against an independent, high-accuracy answer (the residual of the
 //! original equations at the method's answer, and the distance to a polished root), never
 //! against the method itself. Times are medians over batches, in nanoseconds per solve.
 
+pub mod basins;
+pub mod reference;
+pub mod suite;
 pub mod timing;
 
+use crate::draw::svg::{self, SvgOptions};
+use crate::error::Error;
+use crate::run::output::Output;
 use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
 
 /// One point of the chart: a method at one setting on one problem.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -20,7 +29,244 @@ pub struct Measurement {
     pub setting: String,
     /// Median time per solve, nanoseconds.
     pub ns_per_solve: f64,
-    /// Error against the independent reference (dimensionless, relative); `None` when the
-    /// row measures cost only (e.g. a whole run's outputs).
+    /// Error against the independent reference (dimensionless, relative): the larger of
+    /// [`Measurement::residual`] and [`Measurement::distance`]; `None` when the row
+    /// measures cost only.
     pub error: Option<f64>,
+    /// Residual of the original equations at the method's answer (relative).
+    pub residual: Option<f64>,
+    /// Distance to the independent polished root or closed form (relative).
+    pub distance: Option<f64>,
+}
+
+impl Measurement {
+    /// A measurement with error = max(residual, distance).
+    pub fn new(problem: &str, method: &str, setting: &str, ns_per_solve: f64, residual: f64, distance: f64) -> Self {
+        Measurement {
+            problem: problem.into(),
+            method: method.into(),
+            setting: setting.into(),
+            ns_per_solve,
+            error: Some(residual.max(distance)),
+            residual: Some(residual),
+            distance: Some(distance),
+        }
+    }
+}
+
+/// The cost of one whole run of a scene with some `outputs`.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct RunCost {
+    /// The scene.
+    pub scene: String,
+    /// What its `outputs` asked for.
+    pub outputs: String,
+    /// Whether the per-position frames and the viewer were written.
+    pub frames: bool,
+    /// Files written by one run.
+    pub files: usize,
+    /// Median wall time of one `run::run`, milliseconds.
+    pub ms_per_run: f64,
+}
+
+/// What `mechdraw bench` is asked to do.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchOptions {
+    /// Where to write the chart, CSVs and tables.
+    pub out_dir: PathBuf,
+    /// Smaller timing budgets (a smoke run).
+    pub quick: bool,
+}
+
+/// What `mechdraw bench` measured.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BenchReport {
+    /// Method measurements (the chart).
+    pub methods: Vec<Measurement>,
+    /// Output costs.
+    pub runs: Vec<RunCost>,
+    /// Machine and build, one line.
+    pub machine: String,
+    /// Files written.
+    pub written: Vec<PathBuf>,
+    /// Wall time of the whole bench, seconds.
+    pub seconds: f64,
+}
+
+/// Number of starts per basin strip (every 1°).
+pub const BASIN_STARTS: usize = 360;
+
+/// CPU model and core count (Linux /proc/cpuinfo), build profile, rustc on the PATH.
+pub fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .and_then(|l| l.split_once(':'))
+                .map(|(_, v)| v.trim().into())
+        })
+        .unwrap_or_else(|| String::from("unknown CPU"));
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let profile = if cfg!(debug_assertions) { "debug" } else { "release" };
+    let rustc = std::process::Command::new("rustc")
+        .arg("--version")
+        .output()
+        .ok()
+        .and_then(|o| String::from_utf8(o.stdout).ok())
+        .map(|s| s.trim().to_string())
+        .unwrap_or_else(|| "rustc unknown".into());
+    format!("{cpu}, {cores} cores; mechdraw {} ({profile} build), {rustc}", env!("CARGO_PKG_VERSION"))
+}
+
+fn sci(v: Option<f64>) -> String {
+    v.map_or(String::new(), |v| format!("{v:.2e}"))
+}
+
+/// The methods' CSV: `problem, method, setting, ns_per_solve, error, residual, distance`.
+pub fn methods_csv(ms: &[Measurement]) -> Vec<u8> {
+    let mut csv =
+        crate::report::Csv::new(["problem", "method", "setting", "ns_per_solve", "error", "residual", "distance"]);
+    for m in ms {
+        csv.row_text([
+            m.problem.clone(),
+            m.method.clone(),
+            m.setting.clone(),
+            format!("{:.1}", m.ns_per_solve),
+            sci(m.error),
+            sci(m.residual),
+            sci(m.distance),
+        ]);
+    }
+    csv.to_bytes()
+}
+
+/// The outputs' CSV: `scene, outputs, frames, files, ms_per_run`.
+pub fn runs_csv(rs: &[RunCost]) -> Vec<u8> {
+    let mut csv = crate::report::Csv::new(["scene", "outputs", "frames", "files", "ms_per_run"]);
+    for r in rs {
+        csv.row_text([
+            r.scene.clone(),
+            r.outputs.clone(),
+            r.frames.to_string(),
+            r.files.to_string(),
+            format!("{:.2}", r.ms_per_run),
+        ]);
+    }
+    csv.to_bytes()
+}
+
+/// For each problem, the fastest measurement whose error is at most `goal`.
+pub fn fastest_reaching(ms: &[Measurement], goal: f64) -> Vec<&Measurement> {
+    let mut problems: Vec<&str> = Vec::new();
+    for m in ms {
+        if !problems.contains(&m.problem.as_str()) {
+            problems.push(&m.problem);
+        }
+    }
+    problems
+        .into_iter()
+        .filter_map(|p| {
+            ms.iter()
+                .filter(|m| m.problem == p && m.error.is_some_and(|e| e <= goal))
+                .min_by(|a, b| a.ns_per_solve.total_cmp(&b.ns_per_solve))
+        })
+        .collect()
+}
+
+fn time(ns: f64) -> String {
+    if ns >= 1e6 {
+        format!("{:.2} ms", ns / 1e6)
+    } else if ns >= 1e3 {
+        format!("{:.2} µs", ns / 1e3)
+    } else {
+        format!("{ns:.0} ns")
+    }
+}
+
+/// The Markdown report: headline, methods table, outputs table, machine.
+pub fn markdown(report: &BenchReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(s, "Machine: {}. Bench wall time {:.1} s.\n", report.machine, report.seconds);
+    let _ = writeln!(s, "Fastest method reaching an error of 1e-12, per problem:\n");
+    for m in fastest_reaching(&report.methods, 1e-12) {
+        let _ = writeln!(s, "- {}: {} ({}) in {} per solve", m.problem, m.method, m.setting, time(m.ns_per_solve));
+    }
+    let _ = writeln!(s, "\n| problem | method | setting | time per solve | error | residual | distance |");
+    let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|");
+    for m in &report.methods {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} |",
+            m.problem,
+            m.method,
+            m.setting,
+            time(m.ns_per_solve),
+            sci(m.error),
+            sci(m.residual),
+            sci(m.distance)
+        );
+    }
+    let _ = writeln!(s, "\nWhat a scene's `outputs` cost (whole `mechdraw run`, median of runs):\n");
+    let _ = writeln!(s, "| scene | outputs | frames | files | ms per run |");
+    let _ = writeln!(s, "|---|---|---|---:|---:|");
+    for r in &report.runs {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {:.1} |",
+            r.scene,
+            r.outputs,
+            if r.frames { "yes" } else { "no" },
+            r.files,
+            r.ms_per_run
+        );
+    }
+    s
+}
+
+fn png(svg_text: &str, what: &str) -> Result<Vec<u8>, Error> {
+    crate::draw::raster::to_png(svg_text, 1400).map_err(|e| Error::Export { what: what.into(), message: e.to_string() })
+}
+
+/// Runs every measurement and writes, under `opts.out_dir`: `chart.svg`/`.png` (speed
+/// against accuracy), `methods.csv`, `outputs.csv`, `bench.md`, `basins.svg`/`.png`.
+pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
+    let t0 = std::time::Instant::now();
+    let budget = if opts.quick { timing::Budget::QUICK } else { timing::Budget::NORMAL };
+    let mut methods = suite::triad(budget)?;
+    methods.extend(suite::fourbar(budget)?);
+    methods.extend(suite::shaper(budget)?);
+    std::fs::create_dir_all(&opts.out_dir)
+        .map_err(|e| Error::Io { path: opts.out_dir.display().to_string(), source: e })?;
+    let scratch = scratch_dir(&opts.out_dir);
+    let runs = suite::outputs_cost(&scratch, if opts.quick { 1 } else { 3 });
+    let _ = std::fs::remove_dir_all(&scratch);
+    let runs = runs?;
+
+    let triad = suite::popa_triad()?;
+    let modes = reference::triad_modes(&triad)
+        .map_err(|e| Error::Solve { file: "triad-popa.toml".into(), source: e.into() })?;
+    let strips = basins::triad_basins(&triad, &modes, BASIN_STARTS);
+
+    let mut out = Output::new(&opts.out_dir)?;
+    let chart = crate::figure::bench::speed_accuracy_chart("Time per solve against error", &methods);
+    let chart_svg = svg::to_string(&chart, &SvgOptions::default());
+    out.write("chart.png", png(&chart_svg, "chart.png")?)?;
+    out.write("chart.svg", chart_svg)?;
+    let basin_chart =
+        crate::figure::bench::basins_chart("Triad (seed 000): where each start phi1 converges", &strips, &modes);
+    let basin_svg = svg::to_string(&basin_chart, &SvgOptions::default());
+    out.write("basins.png", png(&basin_svg, "basins.png")?)?;
+    out.write("basins.svg", basin_svg)?;
+    out.write("methods.csv", methods_csv(&methods))?;
+    out.write("outputs.csv", runs_csv(&runs))?;
+    let mut report = BenchReport { methods, runs, machine: machine(), written: Vec::new(), seconds: 0.0 };
+    report.seconds = t0.elapsed().as_secs_f64();
+    out.write("bench.md", markdown(&report))?;
+    report.written = out.commit()?;
+    Ok(report)
+}
+
+fn scratch_dir(out: &Path) -> PathBuf {
+    out.join(format!(".bench-scratch-{}", std::process::id()))
 }

@@ -2,8 +2,10 @@
 //! error (log y), one series per method and problem, each point labelled by its setting.
 
 use crate::bench::Measurement;
+use crate::bench::basins::{Basin, Strip};
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::Point;
+use crate::solve::triad::Configuration;
 
 /// Errors below this are drawn on the chart's floor (exact answers have error 0).
 pub const ERROR_FLOOR: f64 = 1e-17;
@@ -140,6 +142,114 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
         d.add_colored(data, color, Shape::Line { from: Point::new(W + 6.0, y), to: Point::new(W + 12.0, y) });
         d.add_colored(data, color, Shape::Circle { center: Point::new(W + 9.0, y), radius: 0.9 });
         d.add(labels, label(Point::new(W + 14.0, y), format!("{problem}: {method}"), HAlign::Left, VAlign::Middle));
+    }
+    d
+}
+
+/// Width of the basin strips, model units (360° of start angle).
+const BASIN_W: f64 = 180.0;
+/// Height of one strip.
+const STRIP_H: f64 = 8.0;
+/// Gap between strips.
+const STRIP_GAP: f64 = 5.0;
+const MODE_COLORS: [Aci; 6] = [Aci::BLUE, Aci::ORANGE, Aci::GREEN, Aci::MAGENTA, Aci::CYAN, Aci(34)];
+
+fn basin_color(b: Basin) -> Aci {
+    match b {
+        Basin::Mode(k) => MODE_COLORS[k % MODE_COLORS.len()],
+        Basin::NoStart => Aci::LIGHT_GREY,
+        Basin::Failed => Aci::BLACK,
+        Basin::Stray => Aci::RED,
+    }
+}
+
+/// The basins chart: one horizontal strip per method over start phi1 ∈ [0°, 360°),
+/// coloured by the assembly mode each start converges to (legend: the modes' angles and
+/// orientation), light grey where the start triangle does not exist, black where the
+/// method fails by name, red for a result that is no mode.
+pub fn basins_chart(title: &str, strips: &[Strip], modes: &[Configuration]) -> Drawing {
+    let mut d = Drawing::new(DimStyle { text_height: TEXT, arrow_size: 2.0 });
+    let axes = d.layer("AXES", Aci::BLACK, LineType::Continuous);
+    let fill = d.layer("BASINS", Aci::BLACK, LineType::Continuous);
+    let text = |at: Point, value: String, halign: HAlign, valign: VAlign| Shape::Text {
+        at,
+        height: TEXT,
+        value,
+        halign,
+        valign,
+        rotation: 0.0,
+    };
+    let rect = |x0: f64, x1: f64, y0: f64, y1: f64| Shape::Filled {
+        points: vec![Point::new(x0, y0), Point::new(x1, y0), Point::new(x1, y1), Point::new(x0, y1)],
+    };
+    let top = strips.len() as f64 * (STRIP_H + STRIP_GAP);
+    for (i, strip) in strips.iter().enumerate() {
+        let y0 = top - (i as f64 + 1.0) * (STRIP_H + STRIP_GAP);
+        let n = strip.outcomes.len().max(1);
+        let dx = BASIN_W / n as f64;
+        let mut k = 0;
+        while k < strip.outcomes.len() {
+            let b = strip.outcomes[k];
+            let mut e = k + 1;
+            while e < strip.outcomes.len() && strip.outcomes[e] == b {
+                e += 1;
+            }
+            d.add_colored(fill, basin_color(b), rect(k as f64 * dx, e as f64 * dx, y0, y0 + STRIP_H));
+            k = e;
+        }
+        d.add(
+            axes,
+            Shape::Polyline {
+                points: vec![
+                    Point::new(0.0, y0),
+                    Point::new(BASIN_W, y0),
+                    Point::new(BASIN_W, y0 + STRIP_H),
+                    Point::new(0.0, y0 + STRIP_H),
+                ],
+                closed: true,
+                width: 0.0,
+            },
+        );
+        d.add(axes, text(Point::new(0.0, y0 + STRIP_H + 1.0), strip.method.clone(), HAlign::Left, VAlign::Baseline));
+    }
+    // Start-angle axis under the strips.
+    for deg in (0..=360).step_by(45) {
+        let x = BASIN_W * deg as f64 / 360.0;
+        d.add(axes, Shape::Line { from: Point::new(x, -STRIP_GAP + 1.0), to: Point::new(x, -STRIP_GAP - 0.5) });
+        d.add(axes, text(Point::new(x, -STRIP_GAP - 1.5), format!("{deg}°"), HAlign::Center, VAlign::Top));
+    }
+    d.add(axes, Shape::Line { from: Point::new(0.0, -STRIP_GAP + 1.0), to: Point::new(BASIN_W, -STRIP_GAP + 1.0) });
+    d.add(axes, text(Point::new(BASIN_W / 2.0, -STRIP_GAP - 7.0), "start phi1".into(), HAlign::Center, VAlign::Top));
+    d.add(
+        axes,
+        Shape::Text {
+            at: Point::new(BASIN_W / 2.0, top + 4.0),
+            height: 1.4 * TEXT,
+            value: title.into(),
+            halign: HAlign::Center,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        },
+    );
+    // Legend to the right.
+    let mut entries: Vec<(Aci, String)> = modes
+        .iter()
+        .enumerate()
+        .map(|(k, m)| {
+            let p = m.phi_deg();
+            (
+                basin_color(Basin::Mode(k)),
+                format!("mode {}: phi = ({:.2}°, {:.2}°, {:.2}°), {}", k + 1, p[0], p[1], p[2], m.orientation),
+            )
+        })
+        .collect();
+    entries.push((basin_color(Basin::NoStart), "no start triangle at this phi1".into()));
+    entries.push((basin_color(Basin::Failed), "named failure (stalled, no intersection, ...)".into()));
+    entries.push((basin_color(Basin::Stray), "converged to no mode (never expected)".into()));
+    for (i, (c, label)) in entries.into_iter().enumerate() {
+        let y = top - 4.0 - 5.0 * i as f64;
+        d.add_colored(fill, c, rect(BASIN_W + 6.0, BASIN_W + 10.0, y - 1.5, y + 1.5));
+        d.add(axes, text(Point::new(BASIN_W + 12.0, y), label, HAlign::Left, VAlign::Middle));
     }
     d
 }
