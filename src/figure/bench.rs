@@ -13,6 +13,8 @@ pub const ERROR_FLOOR: f64 = 1e-17;
 const W: f64 = 180.0;
 const H: f64 = 120.0;
 const TEXT: f64 = 2.4;
+/// Points of one series closer than this (model units) share one label.
+const LABEL_MERGE: f64 = 6.0;
 const PALETTE: [Aci; 8] =
     [Aci::BLUE, Aci::RED, Aci::GREEN, Aci::MAGENTA, Aci::ORANGE, Aci::CYAN, Aci::DARK_GREY, Aci(34)];
 
@@ -122,15 +124,28 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
         if points.len() > 1 {
             d.add_colored(data, color, Shape::Polyline { points: points.clone(), closed: false, width: 0.3 });
         }
+        // Points closer than LABEL_MERGE share one label ("tol=1e-12, 1e-15"), so labels of
+        // coinciding points do not pile up.
+        let mut groups: Vec<(Point, String)> = Vec::new();
         for (p, m) in points.iter().zip(&series) {
             d.add_colored(data, color, Shape::Circle { center: *p, radius: 0.9 });
+            match groups.last_mut() {
+                Some((q, text)) if (p - *q).norm() < LABEL_MERGE => {
+                    let value = m.setting.split_once('=').map_or(m.setting.as_str(), |(_, v)| v);
+                    text.push_str(", ");
+                    text.push_str(value);
+                }
+                _ => groups.push((*p, m.setting.clone())),
+            }
+        }
+        for (p, text) in groups {
             d.add_colored(
                 labels,
                 color,
                 Shape::Text {
                     at: p + crate::geom::Vector::new(1.2, 1.0),
                     height: 0.65 * TEXT,
-                    value: m.setting.clone(),
+                    value: text,
                     halign: HAlign::Left,
                     valign: VAlign::Baseline,
                     rotation: 0.0,
