@@ -108,7 +108,8 @@ fn branch_is_kept_through_near_singular_positions() {
     let dphi = rad(step);
     for w in motion.positions.windows(2) {
         let db = (w[1].b - w[0].b).norm();
-        let vmax = [w[0], w[1]].iter().map(|p| p.kin.map_or(f64::INFINITY, |k| k.omega3.abs() * g.l_bc)).fold(0.0, f64::max);
+        let vmax =
+            [w[0], w[1]].iter().map(|p| p.kin.map_or(f64::INFINITY, |k| k.omega3.abs() * g.l_bc)).fold(0.0, f64::max);
         // Near the limit B moves like √(phi* − phi1): allow the √ step as well.
         let allowed = 1.5 * vmax * dphi + 2.0 * g.l_bc * dphi.sqrt() * 0.01;
         assert!(db <= allowed, "phi1 = {}°: |ΔB| = {db} > {allowed}", deg(w[0].phi1));
