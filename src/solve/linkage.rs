@@ -1086,58 +1086,75 @@ impl Solver {
                     a[(c, r)] += v;
                 }
             }
+            // The Gauss–Newton matrix JpᵀJp: a descent direction when the full Hessian's is not.
+            let mut gn = nalgebra::DMatrix::<f64>::zeros(size, size);
             Self::jacobian(&s.cons, &s.q, n, &mut jac);
             if let Some(k0) = col(anchor.body) {
                 for r in 0..3 {
+                    for c in 0..3 {
+                        gn[(k0 + r, k0 + c)] += pj[0][r] * pj[0][c] + pj[1][r] * pj[1][c];
+                    }
                     b[k0 + r] -= pj[0][r] * e.x + pj[1][r] * e.y;
                 }
             }
-            for k in 0..n {
-                // Levenberg damping keeps the step finite in directions the point does not see.
-                a[(k, k)] += 1e-9 * if k % 3 == 2 { l * l } else { 1.0 };
+            for m in [&mut a, &mut gn] {
+                for k in 0..n {
+                    // Levenberg damping keeps the step finite in directions the point does not see.
+                    m[(k, k)] += 1e-9 * if k % 3 == 2 { l * l } else { 1.0 };
+                }
+                for r in 0..mk {
+                    for c in 0..n {
+                        m[(n + r, c)] = jac[r * n + c];
+                        m[(c, n + r)] = jac[r * n + c];
+                    }
+                }
             }
             for r in 0..mk {
-                for c in 0..n {
-                    a[(n + r, c)] = jac[r * n + c];
-                    a[(c, n + r)] = jac[r * n + c];
-                }
                 b[n + r] = -s.phi[r];
             }
-            let Some(step) = a.lu().solve(&b) else {
-                return Err(LinkageError::Drag { what: "failed: the constraint Jacobian is singular".into() });
-            };
-            for r in 0..mk {
-                lambda[r] = step[n + r];
-            }
-            let mut norm: f64 = 0.0;
-            for k in 0..n {
-                norm = norm.max(if k % 3 == 2 { step[k].abs() * l } else { step[k].abs() });
-            }
-            if norm <= 1e-11 * l {
-                converged = true;
-                break;
-            }
-            // Backtracking: at most a tenth of the mechanism's size per step.
             let q0 = s.q.clone();
             let d0 = dist(&q0);
-            let mut alpha = if norm > 0.1 * l { 0.1 * l / norm } else { 1.0 };
             let mut accepted = false;
-            for _ in 0..40 {
-                for k in 0..n {
-                    s.q[k] = q0[k] + alpha * step[k];
+            let mut small = false;
+            for (k, m) in [a, gn].into_iter().enumerate() {
+                let Some(step) = m.lu().solve(&b) else { continue };
+                if k == 0 {
+                    for r in 0..mk {
+                        lambda[r] = step[n + r];
+                    }
                 }
-                let res = Self::project(&mut s, mk, &mut jac);
-                // Near the minimum the distance changes below its roundoff: accept a step
-                // that does not increase it beyond that.
-                if res <= crate::geom::tol::RESIDUAL_REL && dist(&s.q) <= d0 + 1e-14 * l {
-                    accepted = true;
+                let mut norm: f64 = 0.0;
+                for c in 0..n {
+                    norm = norm.max(if c % 3 == 2 { step[c].abs() * l } else { step[c].abs() });
+                }
+                if norm <= 1e-11 * l {
+                    small = true;
                     break;
                 }
-                alpha *= 0.5;
+                // Backtracking: at most a tenth of the mechanism's size per step.
+                let mut alpha = if norm > 0.1 * l { 0.1 * l / norm } else { 1.0 };
+                for _ in 0..40 {
+                    for c in 0..n {
+                        s.q[c] = q0[c] + alpha * step[c];
+                    }
+                    let res = Self::project(&mut s, mk, &mut jac);
+                    // Near the minimum the distance changes below its roundoff: accept a
+                    // step that does not increase it beyond that.
+                    if res <= crate::geom::tol::RESIDUAL_REL && dist(&s.q) <= d0 + 1e-14 * l {
+                        accepted = true;
+                        break;
+                    }
+                    alpha *= 0.5;
+                }
+                if accepted {
+                    break;
+                }
             }
-            if !accepted {
-                // No feasible step lowers the distance: a constrained minimum.
-                s.q.copy_from_slice(&q0);
+            if small || !accepted {
+                // The step vanishes, or no feasible step lowers the distance: a constrained minimum.
+                if !accepted {
+                    s.q.copy_from_slice(&q0);
+                }
                 converged = true;
                 break;
             }
