@@ -24,6 +24,9 @@ use crate::solve::expr::Expr;
 pub const SINGULAR_PIVOT_REL: f64 = 1e-10;
 /// Newton–Raphson iterations allowed per time step.
 pub const MAX_NEWTON_ITERATIONS: usize = 30;
+/// Relative residual at which the position iterations stop: well below
+/// `geom::tol::RESIDUAL_REL`, which every answer must meet.
+pub const NEWTON_TOL: f64 = 1e-14;
 /// Iterations allowed to assemble the mechanism from the scene's initial placement.
 pub const MAX_ASSEMBLY_ITERATIONS: usize = 200;
 /// Component of the left singular vector above which a constraint is named as taking part
@@ -331,20 +334,19 @@ impl Lu {
             }
             self.piv[k] = p;
             if p != k {
-                for c in 0..n {
-                    a.swap(k * n + c, p * n + c);
-                }
+                let (upper, lower) = a.split_at_mut(p * n);
+                upper[k * n..(k + 1) * n].swap_with_slice(&mut lower[..n]);
             }
-            let inv = 1.0 / a[k * n + k];
-            for r in k + 1..n {
-                let f = a[r * n + k] * inv;
+            let (top, bottom) = a.split_at_mut((k + 1) * n);
+            let pivot_row = &top[k * n..];
+            let inv = 1.0 / pivot_row[k];
+            for row in bottom.chunks_exact_mut(n) {
+                let f = row[k] * inv;
+                row[k] = f;
                 if f != 0.0 {
-                    a[r * n + k] = f;
-                    for c in k + 1..n {
-                        a[r * n + c] -= f * a[k * n + c];
+                    for (x, y) in row[k + 1..].iter_mut().zip(&pivot_row[k + 1..]) {
+                        *x -= f * y;
                     }
-                } else {
-                    a[r * n + k] = 0.0;
                 }
             }
         }
@@ -359,18 +361,14 @@ impl Lu {
             b.swap(k, self.piv[k]);
         }
         for r in 1..n {
-            let mut s = b[r];
-            for c in 0..r {
-                s -= a[r * n + c] * b[c];
-            }
-            b[r] = s;
+            let row = &a[r * n..r * n + r];
+            let s: f64 = row.iter().zip(&b[..r]).map(|(x, y)| x * y).sum();
+            b[r] -= s;
         }
         for r in (0..n).rev() {
-            let mut s = b[r];
-            for c in r + 1..n {
-                s -= a[r * n + c] * b[c];
-            }
-            b[r] = s / a[r * n + r];
+            let row = &a[r * n + r + 1..(r + 1) * n];
+            let s: f64 = row.iter().zip(&b[r + 1..n]).map(|(x, y)| x * y).sum();
+            b[r] = (b[r] - s) / a[r * n + r];
         }
     }
 }
@@ -761,10 +759,10 @@ impl Solver {
     /// Row and column scaling of a Jacobian in place (see [`Solver::scaled_jacobian`]).
     fn equilibrate(&self, jac: &mut [f64]) {
         let n = self.n;
-        for r in 0..n {
-            let ir = 1.0 / self.row_scale[r];
-            for c in 0..n {
-                jac[r * n + c] *= self.col_scale[c] * ir;
+        for (row, rs) in jac.chunks_exact_mut(n).zip(&self.row_scale) {
+            let ir = 1.0 / rs;
+            for (x, cs) in row.iter_mut().zip(&self.col_scale) {
+                *x *= cs * ir;
             }
         }
     }
@@ -829,7 +827,7 @@ impl Solver {
         loop {
             self.residual();
             let (res, worst) = self.residual_norm();
-            let converged = res <= crate::geom::tol::RESIDUAL_REL * 1e-2;
+            let converged = res <= NEWTON_TOL;
             if !self.factor() {
                 return Err(LinkageError::Singular { t, constraints: self.singular_constraints() });
             }
