@@ -170,11 +170,14 @@ pub enum LinkageError {
     /// The Jacobian turned singular (a dead point, a change of assembly mode, redundant
     /// constraints). Example: a crank-rocker whose crank is driven through a dead point.
     #[error(
-        "the constraint Jacobian is singular at t = {t} s (a dead point or redundant constraints); involved: {constraints}"
+        "the constraint Jacobian is singular at t = {t} s ({drivers}): a dead point or redundant constraints; \
+         involved: {constraints}"
     )]
     Singular {
         /// Time.
         t: f64,
+        /// The drivers' values there (the position), e.g. "driver `O1` = 90°".
+        drivers: String,
         /// The constraints that take part (from the left singular vector), comma-separated.
         constraints: String,
     },
@@ -795,6 +798,20 @@ impl Solver {
         }
     }
 
+    /// The drivers' current values, for messages (angles in degrees).
+    fn driver_values(&self) -> String {
+        self.mech
+            .drivers
+            .iter()
+            .zip(&self.laws)
+            .map(|(d, l)| match d.target {
+                DriverTarget::JointDistance(_) => format!("driver `{}` = {:.6}", d.name, l.0),
+                _ => format!("driver `{}` = {:.4}°", d.name, l.0.to_degrees()),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
+    }
+
     /// Names of the constraints that take part in a singular Jacobian at q: the rows with
     /// a large share in the left singular vector of the smallest singular value.
     fn singular_constraints(&self) -> String {
@@ -829,7 +846,11 @@ impl Solver {
             let (res, worst) = self.residual_norm();
             let converged = res <= NEWTON_TOL;
             if !self.factor() {
-                return Err(LinkageError::Singular { t, constraints: self.singular_constraints() });
+                return Err(LinkageError::Singular {
+                    t,
+                    drivers: self.driver_values(),
+                    constraints: self.singular_constraints(),
+                });
             }
             if converged {
                 return Ok(iterations);
@@ -1326,11 +1347,11 @@ mod tests {
         let times: Vec<f64> = (0..=100).map(|k| k as f64 * (std::f64::consts::FRAC_PI_2 - 0.3) / 100.0).collect();
         let e = s.run(&times).unwrap_err();
         match &e {
-            LinkageError::Singular { t, constraints } => {
+            LinkageError::Singular { t, constraints, drivers } => {
                 assert!((t - times[100]).abs() < 1e-12, "{e}");
+                assert!(drivers.contains("driver `crank` = 90.0000°"), "{e}");
                 assert!(constraints.contains("joint"), "{e}");
             }
-            LinkageError::NoConvergence { .. } => {}
             other => panic!("expected a singularity, got {other}"),
         }
     }
