@@ -211,7 +211,14 @@ pub enum LinkageError {
         /// f''(t).
         d2: f64,
     },
-    /// A drag request names no point of the mechanism or does not converge.
+    /// The model given to the solver is inconsistent (a bug in the caller: checked scenes
+    /// never produce it). Example: an angle driver on a prismatic joint.
+    #[error("invalid linkage model: {what}")]
+    InvalidModel {
+        /// What is inconsistent.
+        what: String,
+    },
+    /// A drag request does not converge.
     #[error("drag {what}")]
     Drag {
         /// What went wrong.
@@ -497,7 +504,9 @@ impl Solver {
                         cons.push(Con::Angle { i: b.body, j: a.body, offset: 0.0, law: Some(k) })
                     }
                     JointKind::Prismatic { .. } => {
-                        return Err(LinkageError::Drag { what: "internal: angle driver on a prismatic joint".into() });
+                        return Err(LinkageError::InvalidModel {
+                            what: format!("driver `{}`: an angle driver on a prismatic joint", d.name),
+                        });
                     }
                 },
                 DriverTarget::JointDistance(j) => match mech.joints[j].kind {
@@ -506,8 +515,8 @@ impl Solver {
                         cons.push(Con::Distance { p: point, q: q1, guide: q1.body, u, law: k })
                     }
                     JointKind::Revolute { .. } => {
-                        return Err(LinkageError::Drag {
-                            what: "internal: distance driver on a revolute joint".into(),
+                        return Err(LinkageError::InvalidModel {
+                            what: format!("driver `{}`: a distance driver on a revolute joint", d.name),
                         });
                     }
                 },
