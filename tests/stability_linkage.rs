@@ -45,7 +45,7 @@ fn rocker_driven_through_its_extreme_fails_by_name_at_the_dead_point() {
                 assert!(solver.q().iter().all(|v| v.is_finite()));
                 solved_to = Some(t);
             }
-            Err(LinkageError::Singular { t: at, constraints }) => {
+            Err(LinkageError::Singular { t: at, constraints, .. }) => {
                 assert!(at >= t_star - 0.011 && at <= t_star + 0.011, "singular at {at}, t* = {t_star}");
                 assert!(!constraints.is_empty());
                 break;

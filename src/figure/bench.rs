@@ -167,7 +167,8 @@ const BASIN_W: f64 = 180.0;
 const STRIP_H: f64 = 8.0;
 /// Gap between strips.
 const STRIP_GAP: f64 = 5.0;
-const MODE_COLORS: [Aci; 6] = [Aci::BLUE, Aci::ORANGE, Aci::GREEN, Aci::MAGENTA, Aci::CYAN, Aci(34)];
+const MODE_COLORS: [Aci; 8] =
+    [Aci::BLUE, Aci::ORANGE, Aci::GREEN, Aci::MAGENTA, Aci::CYAN, Aci(34), Aci::YELLOW, Aci(190)];
 
 fn basin_color(b: Basin) -> Aci {
     match b {
