@@ -270,3 +270,34 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
 fn scratch_dir(out: &Path) -> PathBuf {
     out.join(format!(".bench-scratch-{}", std::process::id()))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn m(problem: &str, method: &str, ns: f64, err: f64) -> Measurement {
+        Measurement::new(problem, method, "s=1", ns, err / 2.0, err)
+    }
+
+    #[test]
+    fn fastest_reaching_picks_per_problem_among_those_accurate_enough() {
+        let ms = [
+            m("a", "slow", 900.0, 1e-15),
+            m("a", "fast", 100.0, 1e-6),
+            m("a", "mid", 400.0, 1e-13),
+            m("b", "x", 5.0, 1e-3),
+        ];
+        let best = fastest_reaching(&ms, 1e-12);
+        assert_eq!(best.len(), 1);
+        assert_eq!(best[0].method, "mid");
+        assert_eq!(ms[0].error, Some(1e-15));
+    }
+
+    #[test]
+    fn csv_has_the_promised_columns() {
+        let text = String::from_utf8(methods_csv(&[m("a", "b", 12.5, 1e-9)])).unwrap();
+        let mut lines = text.lines();
+        assert_eq!(lines.next(), Some("problem,method,setting,ns_per_solve,error,residual,distance"));
+        assert_eq!(lines.next(), Some("a,b,s=1,12.5,1.00e-9,5.00e-10,1.00e-9"));
+    }
+}
