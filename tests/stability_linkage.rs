@@ -22,9 +22,11 @@ fn linkage(text: &str, sets: &[&str]) -> mechdraw::scene::linkage::LinkageScene 
 /// driven by its rocker's absolute angle, falling from 101.54° at 0.6 rad/s. The rocker's
 /// smallest angle is reached with crank and coupler stretched out (|O1B| = 0.14): there
 /// B = (0.1, √0.0096), rocker angle atan2(√0.0096, 0.02) = 78.463°, at
-/// t* = (1.77221 − 1.369438)/0.6 ≈ 0.671 s. Expected: every step before t* solves; the
-/// solver stops with `Singular` (constraints named) or `NoConvergence` at the first step
-/// at or past t* — never a NaN state, never a state past t*.
+/// t* = (1.77221 − 1.369438)/0.6 ≈ 0.671 s. Expected (and observed): every step before t*
+/// solves; at the first step past t* (t = 0.68) no configuration exists and Newton stops
+/// with `NoConvergence` naming the time and the worst constraint — never a NaN state,
+/// never a state past t*. (`Singular` is accepted too, should a step land on t*: see the
+/// next test.)
 #[test]
 fn rocker_driven_through_its_extreme_fails_by_name_at_the_dead_point() {
     let text = FOURBAR.replace(
@@ -48,11 +50,14 @@ fn rocker_driven_through_its_extreme_fails_by_name_at_the_dead_point() {
             Err(LinkageError::Singular { t: at, constraints, .. }) => {
                 assert!(at >= t_star - 0.011 && at <= t_star + 0.011, "singular at {at}, t* = {t_star}");
                 assert!(!constraints.is_empty());
+                eprintln!("rocker through its extreme: Singular at t = {at} (t* = {t_star}): {constraints}");
                 break;
             }
-            Err(LinkageError::NoConvergence { t: at, residual, .. }) => {
+            Err(LinkageError::NoConvergence { t: at, residual, worst, .. }) => {
                 assert!(at >= t_star && at <= t_star + 0.011, "no convergence at {at}, t* = {t_star}");
                 assert!(!residual.is_nan());
+                eprintln!("rocker through its extreme: NoConvergence at t = {at} (t* = {t_star})");
+                assert!(!worst.is_empty());
                 break;
             }
             Err(e) => panic!("t = {t}: unexpected {e}"),
@@ -60,6 +65,33 @@ fn rocker_driven_through_its_extreme_fails_by_name_at_the_dead_point() {
     }
     let last = solved_to.expect("the motion starts");
     assert!(last >= t_star - 0.011, "stopped early at {last}, t* = {t_star}");
+}
+
+/// The same rocker-driven four-bar with its last time step exactly on the dead point t*,
+/// where the configuration exists but the constraint Jacobian is singular in exact
+/// arithmetic (crank and coupler in line). Observed: the solver is not refused there (the
+/// equilibrated Jacobian's smallest pivot at the computed q stays above
+/// `SINGULAR_PIVOT_REL`); it returns the dead-point position — tested: B within 1e-7 m of
+/// the exact B = (0.1, √0.0096) (observed 1e-15) with every coordinate, velocity and
+/// acceleration finite. The velocities there are those of a nearly singular system (crank
+/// ω ≈ 1.6e6 rad/s observed, printed by the test): finite, but not flagged — a known gap,
+/// left to the solver's owner. The next step past t* fails by name (previous test).
+#[test]
+fn landing_exactly_on_the_dead_point_gives_the_dead_point_position() {
+    let theta_min = (0.0096f64).sqrt().atan2(0.02);
+    let t_star = (1.7722121 - theta_min) / 0.6;
+    let text = FOURBAR.replace("body = \"crank\"\nlaw = \"20*t\"", "body = \"rocker\"\nlaw = \"1.7722121 - 0.6*t\"");
+    let s = linkage(&text, &[&format!("time.to={t_star:.17}"), "time.steps=40"]);
+    assert!((s.times[s.times.len() - 1] - t_star).abs() < 1e-15);
+    let b_anchor = s.anchor("coupler.B").unwrap();
+    let mut solver = Solver::new(s.mechanism.clone()).unwrap();
+    let states = solver.run(&s.times).unwrap();
+    let last = states.last().unwrap();
+    let b = last.point(b_anchor);
+    let exact = Point::new(0.1, 0.0096f64.sqrt());
+    eprintln!("dead point: |B − B*| = {:.3e} m, crank omega = {:.3e}", (b - exact).norm(), last.qd[2]);
+    assert!((b - exact).norm() <= 1e-7, "B = {b:?} vs {exact:?}");
+    assert!(last.q.iter().chain(&last.qd).chain(&last.qdd).all(|v| v.is_finite()));
 }
 
 /// Redundant constraints: a parallelogram four-bar (crank 0.04, coupler 0.08 parallel to
