@@ -1,0 +1,45 @@
+//! `mechdraw bench --quick`: writes the chart, basins, CSVs and Markdown, and its numbers
+//! say what the independent references promise (exact methods near rounding, loose
+//! settings visibly less accurate).
+
+mod common;
+
+use std::collections::HashMap;
+
+#[test]
+fn bench_quick_writes_every_output_with_sane_numbers() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = common::mechdraw().args(["bench", "--quick", "--out"]).arg(dir.path()).output().unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    for f in ["chart.svg", "chart.png", "basins.svg", "basins.png", "methods.csv", "outputs.csv", "bench.md"] {
+        assert!(dir.path().join(f).is_file(), "{f} missing");
+    }
+    let csv = std::fs::read_to_string(dir.path().join("methods.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(lines.next(), Some("problem,method,setting,ns_per_solve,error,residual,distance"));
+    let mut rows: HashMap<(String, String), f64> = HashMap::new();
+    for line in lines {
+        let f: Vec<&str> = line.split(',').collect();
+        assert_eq!(f.len(), 7, "{line}");
+        let ns: f64 = f[3].parse().unwrap();
+        let err: f64 = f[4].parse().unwrap();
+        assert!(ns > 0.0 && ns.is_finite() && err.is_finite() && err >= 0.0, "{line}");
+        rows.insert((f[1].to_string(), f[2].to_string()), err);
+    }
+    let err = |method: &str, setting: &str| rows[&(method.to_string(), setting.to_string())];
+    // Exact or converged methods sit near rounding against the independent references.
+    assert!(err("closed-form dyad", "exact") < 1e-14);
+    assert!(err("Newton–Raphson", "tol=1e-15") < 1e-14);
+    assert!(err("all modes (degree 6)", "8 modes") < 1e-13);
+    assert!(err("pattern (secant)", "ε=1e-12") < 1e-13);
+    // Loose settings are visibly less accurate (the error is not measured against itself).
+    assert!(err("Newton–Raphson", "tol=1e-3") > 1e-6);
+    assert!(err("pattern (secant)", "ε=1e-2") > 1e-9);
+    let runs = std::fs::read_to_string(dir.path().join("outputs.csv")).unwrap();
+    assert_eq!(runs.lines().count(), 7, "{runs}");
+    let md = std::fs::read_to_string(dir.path().join("bench.md")).unwrap();
+    assert!(md.contains("cores") && md.contains("build"), "{md}");
+    assert_eq!(md.lines().filter(|l| l.starts_with("- ") && l.contains("per solve")).count(), 3, "{md}");
+    let svg = std::fs::read_to_string(dir.path().join("basins.svg")).unwrap();
+    assert!(svg.contains("mode 8") && !svg.contains("NaN"));
+}
