@@ -77,76 +77,95 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
         .collect();
     let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(layout.window), ..SvgOptions::default() };
 
-    // DXF: every position on its own layer.
-    let named: Vec<(String, Drawing)> = names.iter().cloned().zip(moving.iter().cloned()).collect();
-    let all = layout.animation(&base, &named);
-    drop(named);
-    if let Some(dxf) = dxf_bytes(&all, name)? {
-        out.write(format!("{name}.dxf"), dxf)?;
-    }
+    // The DXF (every position on its own layer) is built on one core while the frames,
+    // the viewer and the diagrams are built on the others.
+    let want_frames = !opts.no_frames;
+    let (dxf, (frames, rendered)) = rayon::join(
+        || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
+        || {
+            let frames = if want_frames {
+                frame_svgs(&layout, &base, &moving, &motion.positions, &svg_opts, opts.progress)
+            } else {
+                Vec::new()
+            };
+            let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
+            let rendered: Result<Vec<RenderedDiagram>, Error> = diagrams
+                .par_iter()
+                .map(|(file, d)| {
+                    let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
+                    let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
+                    png.transpose()
+                        .map(|png| (file.clone(), s, png))
+                        .map_err(|e| Error::Export { what: format!("diagrams/{file}.png"), message: e.to_string() })
+                })
+                .collect();
+            (frames, rendered)
+        },
+    );
+    out.write(format!("{name}.dxf"), dxf?)?;
 
     // The first position as the scene's picture.
-    if let Some(first) = moving.first() {
-        out.write(format!("{name}.svg"), svg::to_string(&layout.frame(&base, first), &svg_opts))?;
-    } else {
-        out.write(format!("{name}.svg"), svg::to_string(&base, &svg_opts))?;
-    }
+    let picture = match (frames.first(), moving.first()) {
+        (Some(f), _) => f.svg.clone(),
+        (None, Some(first)) => svg::to_string(&layout.frame(&base, first), &svg_opts),
+        (None, None) => svg::to_string(&base, &svg_opts),
+    };
+    out.write(format!("{name}.svg"), picture)?;
     out.write(format!("{name}.csv"), table.csv.to_bytes())?;
     let json_text = serde_json::to_string_pretty(&summary)
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
     out.write(format!("{name}.json"), json_text)?;
-
-    // Diagrams.
-    let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
-    let rendered: Vec<(String, String, Option<Vec<u8>>)> = diagrams
-        .par_iter()
-        .map(|(file, d)| {
-            let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
-            let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
-            png.transpose()
-                .map(|png| (file.clone(), s, png))
-                .map_err(|e| Error::Export { what: format!("diagrams/{file}.png"), message: e.to_string() })
-        })
-        .collect::<Result<_, Error>>()?;
-    for (file, s, png) in rendered {
+    for (file, s, png) in rendered? {
         out.write(format!("diagrams/{file}.svg"), s)?;
         if let Some(png) = png {
             out.write(format!("diagrams/{file}.png"), png)?;
         }
     }
-
-    // Frames and the viewer.
-    if !opts.no_frames {
-        let bar = progress_bar(opts.progress, moving.len());
-        let frames: Vec<viewer::Frame> = moving
-            .par_iter()
-            .zip(motion.positions.par_iter())
-            .map(|(m, p)| {
-                let s = svg::to_string(&layout.frame(&base, m), &svg_opts);
-                if let Some(b) = &bar {
-                    b.inc(1);
-                }
-                viewer::Frame { label: format!("φ1 = {}°", angle_text(deg(p.phi1))), svg: s }
-            })
-            .collect();
-        if let Some(b) = &bar {
-            b.finish_and_clear();
-        }
+    if want_frames {
         for (f, n) in frames.iter().zip(&names) {
             out.write(format!("frames/{}.svg", n.to_lowercase()), &f.svg)?;
         }
-        out.write(
-            format!("{name}.html"),
-            viewer::html(&format!("{name}: four-bar, {} positions", frames.len()), &frames),
-        )?;
+        let title = format!("{name}: four-bar, {} positions", frames.len());
+        out.write(format!("{name}.html"), viewer::html(&title, &frames))?;
     }
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings, written })
 }
 
-/// The DXF of the whole motion. (Until the DXF writer lands on main: nothing.)
-fn dxf_bytes(_d: &Drawing, _name: &str) -> Result<Option<Vec<u8>>, Error> {
-    Ok(None)
+/// A diagram's file stem, its SVG and (with `--png`) its PNG.
+type RenderedDiagram = (String, String, Option<Vec<u8>>);
+
+/// The DXF of the whole motion (R12, the writer's default).
+fn dxf_bytes(d: &Drawing, name: &str) -> Result<Vec<u8>, Error> {
+    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default())
+        .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+}
+
+/// The SVG frames (in parallel), with the progress bar when asked for.
+fn frame_svgs(
+    layout: &Layout,
+    base: &Drawing,
+    moving: &[Drawing],
+    positions: &[Position],
+    svg_opts: &SvgOptions,
+    progress: bool,
+) -> Vec<viewer::Frame> {
+    let bar = progress_bar(progress, moving.len());
+    let frames: Vec<viewer::Frame> = moving
+        .par_iter()
+        .zip(positions.par_iter())
+        .map(|(m, p)| {
+            let s = svg::to_string(&layout.frame(base, m), svg_opts);
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            viewer::Frame { label: format!("φ1 = {}°", angle_text(deg(p.phi1))), svg: s }
+        })
+        .collect();
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    frames
 }
 
 fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
