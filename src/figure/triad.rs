@@ -1,1 +1,246 @@
-//! Figure: triad. (Placeholder: filled in by its issue.)
+//! Figure: the triad as the seed's Fig. 3 — the three circles, the approximate triangle at
+//! the pattern method's start angle (red, dashed), the exact position (closed polyline of
+//! width 0.5) with its links O_iA_i, ground pivots, angular dimensions of phi1, phi2, phi3
+//! measured at O1, O2, O3 from +x, point labels, and the other assembly modes, numbered,
+//! on their own lighter layer.
+//!
+//! Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM` (exact
+//! position, pivots, joints), `MODES` (other assembly modes), `DIMENSIONS`, `TEXT`.
+//! Sizes are model lengths chosen for a drawing in millimetres, scaled with the triad so a
+//! triad in metres looks the same.
+
+use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
+use crate::solve::triad::{Configuration, Triad};
+
+/// What to draw.
+#[derive(Debug, Clone, Copy)]
+pub struct TriadFigure<'a> {
+    /// The triad's data.
+    pub triad: &'a Triad,
+    /// The position drawn as the mechanism (the pattern method's, polished).
+    pub exact: &'a Configuration,
+    /// The approximate triangle at the start angle (A1, A2, A3), if it exists.
+    pub approximate: Option<[Point; 3]>,
+    /// The other assembly modes with their numbers (1-based).
+    pub others: &'a [(usize, Configuration)],
+    /// Caption lines under the drawing (may be empty).
+    pub caption: &'a [String],
+}
+
+/// Drawing sizes for a triad whose [`Triad::scale`] is `scale`: text and symbols are
+/// designed for a ~100-unit triad in millimetres (3.5 mm labels) and scale with it.
+#[derive(Debug, Clone, Copy)]
+struct Sizes {
+    text: f64,
+    small_text: f64,
+    pivot: f64,
+    joint: f64,
+    ground: f64,
+    link_width: f64,
+    triangle_width: f64,
+}
+
+impl Sizes {
+    fn for_scale(scale: f64) -> Sizes {
+        let k = scale / 100.0;
+        Sizes {
+            text: 3.5 * k,
+            small_text: 2.8 * k,
+            pivot: 1.6 * k,
+            joint: 1.2 * k,
+            ground: 4.0 * k,
+            link_width: 0.35 * k,
+            triangle_width: 0.5 * k,
+        }
+    }
+}
+
+/// Direction (radians) in the middle of the widest gap between the `occupied` directions.
+fn free_direction(occupied: &[f64]) -> f64 {
+    let mut a: Vec<f64> = occupied.iter().map(|&x| normalize_angle(x)).collect();
+    if a.is_empty() {
+        return std::f64::consts::FRAC_PI_4;
+    }
+    a.sort_by(f64::total_cmp);
+    let mut best = (0.0, 0.0);
+    for i in 0..a.len() {
+        let next = if i + 1 < a.len() { a[i + 1] } else { a[0] + std::f64::consts::TAU };
+        let gap = next - a[i];
+        if gap > best.0 {
+            best = (gap, a[i] + 0.5 * gap);
+        }
+    }
+    best.1
+}
+
+/// A label centred at `distance` from `p` in direction `dir`, pushed further out along
+/// `dir` by half the label's extent in that direction.
+fn label(d: &mut Drawing, layer: usize, p: Point, dir: f64, distance: f64, height: f64, text: &str) {
+    let w = 0.7 * height * text.chars().count() as f64;
+    let u = Vector::new(dir.cos(), dir.sin());
+    let reach = 0.5 * (w * u.x.abs() + height * u.y.abs());
+    d.add(
+        layer,
+        Shape::Text {
+            at: p + u * (distance + reach),
+            height,
+            value: text.to_string(),
+            halign: HAlign::Center,
+            valign: VAlign::Middle,
+            rotation: 0.0,
+        },
+    );
+}
+
+/// Ground symbol under a pivot: a small triangle standing on a hatched ground line.
+fn ground(d: &mut Drawing, layer: usize, o: Point, s: &Sizes) {
+    let h = s.ground;
+    let base = o + Vector::new(0.0, -h);
+    let left = base + Vector::new(-0.6 * h, 0.0);
+    let right = base + Vector::new(0.6 * h, 0.0);
+    let top_l = o + Vector::new(-s.pivot * 0.6, -s.pivot * 0.8);
+    let top_r = o + Vector::new(s.pivot * 0.6, -s.pivot * 0.8);
+    d.add(layer, Shape::Line { from: top_l, to: left });
+    d.add(layer, Shape::Line { from: top_r, to: right });
+    let g0 = base + Vector::new(-h, 0.0);
+    let g1 = base + Vector::new(h, 0.0);
+    d.add(layer, Shape::Line { from: g0, to: g1 });
+    for i in 0..5 {
+        let x = -h + 0.5 * h * i as f64 + 0.4 * h;
+        let top = base + Vector::new(x, 0.0);
+        d.add(layer, Shape::Line { from: top, to: top + Vector::new(-0.4 * h, -0.4 * h) });
+    }
+}
+
+/// The seed's Fig. 3 for `f`.
+pub fn drawing(f: &TriadFigure) -> Drawing {
+    let t = f.triad;
+    let s = Sizes::for_scale(t.scale());
+    let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
+    let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
+    let modes = d.layer("MODES", Aci::LIGHT_GREY, LineType::Continuous);
+    let approximate = d.layer("APPROXIMATE", Aci::RED, LineType::Dashed);
+    let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
+    let dimensions = d.layer("DIMENSIONS", Aci::BLUE, LineType::Continuous);
+    let text = d.layer("TEXT", Aci::BLACK, LineType::Continuous);
+
+    for (o, r) in t.o.iter().zip(t.r) {
+        d.add(construction, Shape::Circle { center: *o, radius: r });
+    }
+
+    // Other assembly modes first, so the exact position is drawn over them.
+    for (n, c) in f.others {
+        d.add(modes, Shape::Polyline { points: c.a.to_vec(), closed: true, width: 0.0 });
+        for i in 0..3 {
+            d.add(modes, Shape::Line { from: t.o[i], to: c.a[i] });
+        }
+        let centroid = Point::from((c.a[0].coords + c.a[1].coords + c.a[2].coords) / 3.0);
+        d.add_colored(
+            modes,
+            Aci::DARK_GREY,
+            Shape::Text {
+                at: centroid,
+                height: s.small_text,
+                value: n.to_string(),
+                halign: HAlign::Center,
+                valign: VAlign::Middle,
+                rotation: 0.0,
+            },
+        );
+    }
+
+    if let Some(a) = f.approximate {
+        d.add(approximate, Shape::Polyline { points: a.to_vec(), closed: true, width: 0.0 });
+    }
+
+    // The exact position.
+    let a = f.exact.a;
+    for (o, p) in t.o.iter().zip(a) {
+        d.add(mechanism, Shape::Polyline { points: vec![*o, p], closed: false, width: s.link_width });
+    }
+    d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.triangle_width });
+    for o in t.o {
+        ground(&mut d, mechanism, o, &s);
+        d.add(mechanism, Shape::Circle { center: o, radius: s.pivot });
+    }
+    for p in a {
+        d.add(mechanism, Shape::Circle { center: p, radius: s.joint });
+    }
+
+    // Angular dimensions phi_i at O_i from +x (value on the dimension, the name φi inside
+    // the angle, as a draughtsman writes it).
+    for (i, (o, p)) in t.o.iter().zip(a).enumerate() {
+        let radius = 0.42 * t.r[i].min(0.3 * t.scale() + 0.1 * t.r[i]);
+        let phi = f.exact.phi[i];
+        d.add(
+            dimensions,
+            Shape::AngularDimension {
+                vertex: *o,
+                first: o + Vector::new(s.pivot + 0.3 * s.text, 0.0),
+                second: p,
+                radius,
+                text: format!("{:.2}°", phi.to_degrees()),
+            },
+        );
+        let name_at = polar(*o, 0.62 * radius, 0.5 * phi);
+        d.add(
+            dimensions,
+            Shape::Text {
+                at: name_at,
+                height: s.small_text,
+                value: format!("φ{}", i + 1),
+                halign: HAlign::Center,
+                valign: VAlign::Middle,
+                rotation: 0.0,
+            },
+        );
+    }
+
+    // Labels: each in the widest free direction around its point.
+    for i in 0..3 {
+        let phi = f.exact.phi[i];
+        // At O_i: the link, the +x reference line and the ground symbol below.
+        let dir = free_direction(&[phi, 0.0, -std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
+        label(&mut d, text, t.o[i], dir, s.pivot + 0.6 * s.text, s.text, &format!("O{}", i + 1));
+        // At A_i: the link back to O_i and the two sides.
+        let occupied = [angle_of(t.o[i] - a[i]), angle_of(a[(i + 1) % 3] - a[i]), angle_of(a[(i + 2) % 3] - a[i])];
+        let dir = free_direction(&occupied);
+        label(&mut d, text, a[i], dir, s.joint + 0.4 * s.text, s.text, &format!("A{}", i + 1));
+    }
+
+    // Caption under everything drawn so far.
+    if !f.caption.is_empty() {
+        if let Some(b) = d.bounds() {
+            let mut y = b.min.y - 2.0 * s.text;
+            for line in f.caption {
+                d.add(
+                    text,
+                    Shape::Text {
+                        at: Point::new(b.min.x, y),
+                        height: s.small_text,
+                        value: line.clone(),
+                        halign: HAlign::Left,
+                        valign: VAlign::Baseline,
+                        rotation: 0.0,
+                    },
+                );
+                y -= 1.8 * s.small_text;
+            }
+        }
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn free_direction_is_the_middle_of_the_widest_gap() {
+        let d = free_direction(&[0.0, std::f64::consts::FRAC_PI_2]);
+        assert!((d - 1.25 * std::f64::consts::PI).abs() < 1e-12);
+        let d = free_direction(&[0.1]);
+        assert!((normalize_angle(d) - (0.1 + std::f64::consts::PI)).abs() < 1e-12);
+    }
+}
