@@ -80,7 +80,7 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
     // The DXF (every position on its own layer) is built on one core while the frames,
     // the viewer and the diagrams are built on the others.
     let want_frames = !opts.no_frames;
-    let (dxf, (frames, rendered)) = rayon::join(
+    let (dxf, (frames, html, rendered)) = rayon::join(
         || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
         || {
             let frames = if want_frames {
@@ -99,7 +99,11 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
                         .map_err(|e| Error::Export { what: format!("diagrams/{file}.png"), message: e.to_string() })
                 })
                 .collect();
-            (frames, rendered)
+            let html = want_frames.then(|| {
+                let title = format!("{name}: four-bar, {} positions", frames.len());
+                viewer::html(&title, &frames)
+            });
+            (frames, html, rendered)
         },
     );
     out.write(format!("{name}.dxf"), dxf?)?;
@@ -121,12 +125,11 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
             out.write(format!("diagrams/{file}.png"), png)?;
         }
     }
-    if want_frames {
-        for (f, n) in frames.iter().zip(&names) {
-            out.write(format!("frames/{}.svg", n.to_lowercase()), &f.svg)?;
-        }
-        let title = format!("{name}: four-bar, {} positions", frames.len());
-        out.write(format!("{name}.html"), viewer::html(&title, &frames))?;
+    for (f, n) in frames.iter().zip(&names) {
+        out.write(format!("frames/{}.svg", n.to_lowercase()), &f.svg)?;
+    }
+    if let Some(html) = html {
+        out.write(format!("{name}.html"), html)?;
     }
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings, written })
@@ -151,11 +154,14 @@ fn frame_svgs(
     progress: bool,
 ) -> Vec<viewer::Frame> {
     let bar = progress_bar(progress, moving.len());
+    // The shared part is written once; each frame is its moving part appended to it.
+    let base_svg = svg::to_string(base, svg_opts);
     let frames: Vec<viewer::Frame> = moving
         .par_iter()
         .zip(positions.par_iter())
         .map(|(m, p)| {
-            let s = svg::to_string(&layout.frame(base, m), svg_opts);
+            let s = splice(&base_svg, &svg::to_string(m, svg_opts))
+                .unwrap_or_else(|| svg::to_string(&layout.frame(base, m), svg_opts));
             if let Some(b) = &bar {
                 b.inc(1);
             }
@@ -177,6 +183,28 @@ fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
         bar.set_style(style);
     }
     Some(bar)
+}
+
+/// The SVG of `base` followed by `moving` (both written with the same options, so with the
+/// same header): `base_svg` without its closing tag, then `moving_svg` after its header
+/// (the `<svg>` line and the background `<rect>` line). This is the SVG writer's output for
+/// the frame (base, then moving), written without redoing the shared part; `None` when the
+/// two headers differ (then the frame is written whole).
+fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
+    const CLOSE: &str = "</svg>";
+    let header_end = |s: &str| -> Option<usize> {
+        let first = s.find('\n')?;
+        Some(first + 1 + s[first + 1..].find('\n')? + 1)
+    };
+    let (hb, hm) = (header_end(base_svg)?, header_end(moving_svg)?);
+    if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) {
+        return None;
+    }
+    let head = &base_svg[..base_svg.len() - CLOSE.len()];
+    let mut out = String::with_capacity(head.len() + moving_svg.len() - hm);
+    out.push_str(head);
+    out.push_str(&moving_svg[hm..]);
+    Some(out)
 }
 
 /// Layer (and frame file) names: `POS_ddd` with the crank angle in whole degrees when every
@@ -554,4 +582,33 @@ fn diagrams(
             (file.to_string(), Diagram { title, x_label: "φ1 [°]".into(), y_label, series })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    #[test]
+    fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
+        let over: Vec<crate::scene::Override> = vec!["phi1_deg.step=45".parse().unwrap()];
+        let loaded = crate::scene::load(&path, &over).unwrap();
+        let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
+        let motion = solve_motion(&scene.spec).unwrap();
+        let show = Show { velocity: true, acceleration: true, forces: true };
+        let geom = &scene.spec.geometry;
+        let layout = Layout::new(geom, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
+        let base = layout.base(geom, &runs(&motion.positions, 45.0, |p| p.m));
+        let opts = SvgOptions { window: Some(layout.window), ..SvgOptions::default() };
+        let base_svg = svg::to_string(&base, &opts);
+        for (p, f) in motion.positions.iter().zip(&motion.forces) {
+            let m = layout.moving(geom, p, Some(f));
+            let whole = svg::to_string(&layout.frame(&base, &m), &opts);
+            assert_eq!(splice(&base_svg, &svg::to_string(&m, &opts)).as_deref(), Some(whole.as_str()));
+        }
+        // Different windows: no splice.
+        let other = SvgOptions { width_px: 10, ..opts };
+        assert!(splice(&base_svg, &svg::to_string(&base, &other)).is_none());
+    }
 }
