@@ -125,9 +125,14 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
             out.write(format!("diagrams/{file}.png"), png)?;
         }
     }
-    for (f, n) in frames.iter().zip(&names) {
-        out.write(format!("frames/{}.svg", n.to_lowercase()), &f.svg)?;
-    }
+    let frame_files = frames
+        .iter()
+        .zip(&names)
+        .map(|(f, n)| {
+            (std::path::PathBuf::from(format!("frames/{}.svg", n.to_lowercase())), f.svg.clone().into_bytes())
+        })
+        .collect();
+    out.write_many(frame_files)?;
     if let Some(html) = html {
         out.write(format!("{name}.html"), html)?;
     }
