@@ -60,3 +60,10 @@ fn chain_humienny_2_dxf_is_audit_clean_and_matches_its_golden_file() {
     assert_eq!(text.replace("\r\n", "\n").matches("\n  0\nDIMENSION\n").count(), 12);
     common::assert_golden_text("chain-humienny-2.dxf", &text);
 }
+
+#[test]
+fn chain_humienny_2_z3_histogram() {
+    let (_tmp, out) = run("chain-humienny-2.toml", &["--set", "stackup.samples=20000"]);
+    let svg = std::fs::read_to_string(out.join("chain-humienny-2-Z3-histogram.svg")).unwrap();
+    common::assert_golden_png("chain-humienny-2-Z3-histogram.png", &svg);
+}

@@ -178,7 +178,15 @@ pub fn chain(scene: &ChainScene, analysis: &Analysis, dependents: &[DependentMar
 
 /// The Monte Carlo histogram of one dependent dimension, with the mean, the worst-case
 /// limits and the spec limits marked.
-pub fn histogram(z: &str, label: &str, units: &str, mc: &MonteCarlo, stack: &Stack, spec: Option<[f64; 2]>) -> Drawing {
+pub fn histogram(
+    z: &str,
+    label: &str,
+    units: &str,
+    distribution: &str,
+    mc: &MonteCarlo,
+    stack: &Stack,
+    spec: Option<[f64; 2]>,
+) -> Drawing {
     let (x0, bin_width, counts) = mc.histogram.clone();
     let mut markers = vec![
         (mc.mean, "mean".to_string()),
@@ -190,7 +198,7 @@ pub fn histogram(z: &str, label: &str, units: &str, mc: &MonteCarlo, stack: &Sta
         markers.push((usl, "USL".into()));
     }
     plot::histogram(&Histogram {
-        title: format!("{z} = {label}: Monte Carlo, {} samples", mc.samples),
+        title: format!("{z} = {label}: Monte Carlo, {} samples, {distribution}", mc.samples),
         x_label: format!("{z} [{units}]"),
         x0,
         bin_width,

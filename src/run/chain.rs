@@ -202,7 +202,8 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         for r in &results {
             let z = &scene.dependent[r.index];
             if let Some(m) = &r.monte_carlo {
-                let h = fig::histogram(&z.name, &z.label, units, m, &r.stack, z.spec);
+                let h =
+                    fig::histogram(&z.name, &z.label, units, scene.stackup.distribution.name(), m, &r.stack, z.spec);
                 let text = svg::to_string(&h, &SvgOptions::default());
                 out.write(format!("{}-{}-histogram.svg", scene.name, z.name), &text)?;
                 if opts.png {

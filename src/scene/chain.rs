@@ -387,7 +387,16 @@ fn check_matrix(raw: &RawChainScene) -> Result<(Vec<String>, Vec<Dimension>), Fi
     for (i, (&base, &value)) in b.iter().zip(w).enumerate() {
         let field = format!("B[{i}]");
         super::finite(&field, base)?;
-        let from = resolve_value(w, base).map_err(|m| FieldError::new(field, m))?;
+        let from = resolve_value(w, base).map_err(|m| FieldError::new(field.clone(), m))?;
+        if from == i + 1 {
+            return Err(FieldError::new(
+                field,
+                format!(
+                    "{} is the dimension's own value: a dimension cannot start from its own end point",
+                    value_label(base)
+                ),
+            ));
+        }
         dims.push(Dimension {
             name: format!("w{}", i + 1),
             from,
@@ -597,6 +606,12 @@ mod tests {
     fn a_dangling_base_names_the_field_and_the_valid_values() {
         let e = chain("kind='chain'\nname='c'\nunits='mm'\nB=[0,99]\nW=[-38,25]").unwrap_err().to_string();
         assert!(e.contains("field `B[1]`") && e.contains("99 refers to no dimension") && e.contains("-38, 25"), "{e}");
+    }
+
+    #[test]
+    fn a_dimension_based_on_itself_is_refused() {
+        let e = chain("kind='chain'\nname='c'\nunits='mm'\nB=[0,25]\nW=[-38,25]").unwrap_err().to_string();
+        assert!(e.contains("field `B[1]`") && e.contains("own end point"), "{e}");
     }
 
     #[test]
