@@ -22,8 +22,8 @@ enum Command {
     Run {
         /// The scene file (TOML; see templates/).
         scene: PathBuf,
-        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, and per kind frames/,
-        /// <name>.html, diagrams, <name>.csv, <name>.json.
+        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, and per kind frames/<name>/,
+        /// <name>.html, diagrams/<name>/, <name>.csv, <name>.json. Several scenes can share DIR.
         #[arg(short, long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
         /// Override a scene field, checked like the file: `l12=55`, `pattern.tol=1e-7`,

@@ -94,9 +94,10 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
                 .map(|(file, d)| {
                     let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
                     let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
-                    png.transpose()
-                        .map(|png| (file.clone(), s, png))
-                        .map_err(|e| Error::Export { what: format!("diagrams/{file}.png"), message: e.to_string() })
+                    png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
+                        what: format!("diagrams/{name}/{file}.png"),
+                        message: e.to_string(),
+                    })
                 })
                 .collect();
             let html = want_frames.then(|| {
@@ -120,16 +121,16 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
     out.write(format!("{name}.json"), json_text)?;
     for (file, s, png) in rendered? {
-        out.write(format!("diagrams/{file}.svg"), s)?;
+        out.write(format!("diagrams/{name}/{file}.svg"), s)?;
         if let Some(png) = png {
-            out.write(format!("diagrams/{file}.png"), png)?;
+            out.write(format!("diagrams/{name}/{file}.png"), png)?;
         }
     }
     let frame_files = frames
         .iter()
         .zip(&names)
         .map(|(f, n)| {
-            (std::path::PathBuf::from(format!("frames/{}.svg", n.to_lowercase())), f.svg.clone().into_bytes())
+            (std::path::PathBuf::from(format!("frames/{name}/{}.svg", n.to_lowercase())), f.svg.clone().into_bytes())
         })
         .collect();
     out.write_many(frame_files)?;
