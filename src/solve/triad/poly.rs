@@ -31,6 +31,7 @@ impl Trig {
     }
 
     /// The coefficient c_k, k in −N..=N.
+    #[cfg(test)]
     pub fn coeff(&self, k: i32) -> C {
         self.c[(k + N as i32) as usize]
     }
@@ -104,10 +105,10 @@ impl Trig {
         // the k < 0 terms are the conjugates of the k > 0 ones.
         let table = binomial_table();
         let mut out = [0.0; 7];
-        for k in 0..=3usize {
+        for (k, row) in table.iter().enumerate() {
             let ck = self.c[N + k];
             let w = if k == 0 { 1.0 } else { 2.0 };
-            for (o, v) in out.iter_mut().zip(table[k]) {
+            for (o, v) in out.iter_mut().zip(row) {
                 *o += w * (ck * v).re;
             }
         }
