@@ -1,1 +1,254 @@
-//! Figure: linkage. (Placeholder: filled in by its issue.)
+//! Figure: a general linkage at one instant, as the engineer draws a kinematic diagram:
+//! bodies as polylines between their points (closed for three or more), revolute joints
+//! as small circles, sliders as small rectangles along their guide, guides fixed to the
+//! ground as lines with hatching, ground pivots with the ground symbol (triangle, base
+//! line, hatch), point names, and the paths of the measured points.
+
+use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::geom::{Point, Vector, perp};
+use crate::scene::linkage::{LinkageScene, MeasureTarget};
+use crate::solve::linkage::{Anchor, Attach, JointKind, place};
+
+/// Sizes of the symbols, model units (from the mechanism's size).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Style {
+    /// Radius of a joint circle.
+    pub joint_radius: f64,
+    /// Height of point names.
+    pub text_height: f64,
+    /// Slider rectangle length (along the guide).
+    pub slider_length: f64,
+    /// Slider rectangle height (across the guide).
+    pub slider_height: f64,
+    /// Size of a ground symbol.
+    pub ground_size: f64,
+}
+
+impl Style {
+    /// Sizes for a mechanism of characteristic length `l`.
+    pub fn for_length(l: f64) -> Style {
+        Style {
+            joint_radius: 0.012 * l,
+            text_height: 0.028 * l,
+            slider_length: 0.07 * l,
+            slider_height: 0.04 * l,
+            ground_size: 0.035 * l,
+        }
+    }
+}
+
+/// Colour of the i-th body's outline.
+fn body_color(i: usize) -> Aci {
+    const COLORS: [Aci; 6] = [Aci::BLUE, Aci::GREEN, Aci::MAGENTA, Aci::ORANGE, Aci::CYAN, Aci::RED];
+    COLORS[i % COLORS.len()]
+}
+
+fn anchor_at(q: &[f64], a: Anchor) -> Point {
+    place(q, a.body, a.local)
+}
+
+/// Extent of each ground-fixed guide over a motion: for each prismatic joint whose line
+/// is on the ground, the segment of the guide line the slider covers (plus the slider's
+/// length and the line's own points). `None` for guides on moving bodies.
+pub fn guide_spans(scene: &LinkageScene, motion: &[&[f64]], style: &Style) -> Vec<Option<(Point, Point)>> {
+    scene
+        .mechanism
+        .joints
+        .iter()
+        .map(|j| match j.kind {
+            JointKind::Prismatic { point, q1, q2, .. } if q1.body == Attach::Ground => {
+                let (a, b) = (Point::from(q1.local), Point::from(q2.local));
+                let u = (b - a).normalize();
+                let mut lo: f64 = 0.0;
+                let mut hi: f64 = (b - a).norm();
+                for q in motion {
+                    let s = u.dot(&(anchor_at(q, point) - a));
+                    lo = lo.min(s);
+                    hi = hi.max(s);
+                }
+                let ext = style.slider_length;
+                Some((a + u * (lo - ext), a + u * (hi + ext)))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// Hatch strokes on the `side` of the segment a→b (the side opposite to `perp(b − a)`).
+fn hatch(d: &mut Drawing, layer: usize, a: Point, b: Point, size: f64) {
+    let len = (b - a).norm();
+    if len <= 0.0 {
+        return;
+    }
+    let u = (b - a) / len;
+    let down = -perp(u);
+    let step = 0.5 * size;
+    let count = (len / step).floor() as usize;
+    for k in 0..=count {
+        let p = a + u * (k as f64 * step);
+        d.add(layer, Shape::Line { from: p, to: p + (down - u) * (0.6 * size) });
+    }
+}
+
+/// The ground symbol under a pivot: a triangle from the pivot down to a base line, with
+/// hatch under the base.
+fn ground_symbol(d: &mut Drawing, layer: usize, p: Point, style: &Style) {
+    let s = style.ground_size;
+    let r = style.joint_radius;
+    let l = p + Vector::new(-0.6 * s, -s - r);
+    let rr = p + Vector::new(0.6 * s, -s - r);
+    d.add(layer, Shape::Polyline { points: vec![p + Vector::new(0.0, -r), l, rr], closed: true, width: 0.0 });
+    let (bl, br) = (l + Vector::new(-0.4 * s, 0.0), rr + Vector::new(0.4 * s, 0.0));
+    d.add(layer, Shape::Line { from: bl, to: br });
+    hatch(d, layer, bl, br, 0.5 * s);
+}
+
+/// Draws the mechanism at coordinates `q` on layer `layer` of `d`.
+pub fn mechanism(
+    d: &mut Drawing,
+    layer: usize,
+    scene: &LinkageScene,
+    q: &[f64],
+    spans: &[Option<(Point, Point)>],
+    style: &Style,
+) {
+    let mech = &scene.mechanism;
+    // Guides fixed to the ground.
+    for span in spans.iter().flatten() {
+        d.add(layer, Shape::Line { from: span.0, to: span.1 });
+        let u = (span.1 - span.0).normalize();
+        let off = -perp(u) * (0.5 * style.slider_height);
+        hatch(d, layer, span.0 + off, span.1 + off, style.ground_size);
+    }
+    // Bodies.
+    for (i, b) in mech.bodies.iter().enumerate() {
+        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+        if pts.len() >= 2 {
+            d.add_colored(
+                layer,
+                body_color(i),
+                Shape::Polyline { points: pts, closed: b.points.len() >= 3, width: 0.3 * style.joint_radius },
+            );
+        }
+    }
+    // Joints.
+    let mut labelled: Vec<Point> = Vec::new();
+    // Sliders first, so that their names sit beside the block rather than on it.
+    let order = mech
+        .joints
+        .iter()
+        .filter(|j| matches!(j.kind, JointKind::Prismatic { .. }))
+        .chain(mech.joints.iter().filter(|j| matches!(j.kind, JointKind::Revolute { .. })));
+    for j in order {
+        match j.kind {
+            JointKind::Revolute { a, b } => {
+                let p = anchor_at(q, a);
+                d.add(layer, Shape::Circle { center: p, radius: style.joint_radius });
+                if a.body == Attach::Ground || b.body == Attach::Ground {
+                    ground_symbol(d, layer, p, style);
+                }
+                let name = scene.point_name(b).or_else(|| scene.point_name(a)).unwrap_or(&j.name);
+                label(d, layer, p, name, style, &mut labelled);
+            }
+            JointKind::Prismatic { point, q1, q2, .. } => {
+                let p = anchor_at(q, point);
+                let dir = anchor_at(q, q2) - anchor_at(q, q1);
+                let u = dir.normalize();
+                let n = perp(u);
+                let (hl, hh) = (0.5 * style.slider_length, 0.5 * style.slider_height);
+                let corners = vec![p - u * hl - n * hh, p + u * hl - n * hh, p + u * hl + n * hh, p - u * hl + n * hh];
+                d.add(layer, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+                if let Some(name) = scene.point_name(point) {
+                    // Beside the block, clear of its outline.
+                    let at = p + u * hl + n * (hh + 0.3 * style.text_height);
+                    if !labelled.iter().any(|x| (x - p).norm() <= style.joint_radius) {
+                        labelled.push(p);
+                        d.add(
+                            layer,
+                            Shape::Text {
+                                at,
+                                height: style.text_height,
+                                value: name.to_string(),
+                                halign: HAlign::Left,
+                                valign: VAlign::Baseline,
+                                rotation: 0.0,
+                            },
+                        );
+                    }
+                }
+            }
+        }
+    }
+    // Names of body points not at a joint (coupler points, tips).
+    for (i, b) in mech.bodies.iter().enumerate() {
+        for (name, v) in &b.points {
+            let p = place(q, Attach::Body(i), *v);
+            label(d, layer, p, name, style, &mut labelled);
+        }
+    }
+}
+
+/// A point name beside `p`, once per place.
+fn label(d: &mut Drawing, layer: usize, p: Point, name: &str, style: &Style, done: &mut Vec<Point>) {
+    if done.iter().any(|x| (x - p).norm() <= style.joint_radius) {
+        return;
+    }
+    done.push(p);
+    let off = Vector::new(1.8, 1.2) * style.joint_radius;
+    d.add(
+        layer,
+        Shape::Text {
+            at: p + off,
+            height: style.text_height,
+            value: name.to_string(),
+            halign: HAlign::Left,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        },
+    );
+}
+
+/// Paths of the measured points over the motion, on layer `layer` (dashed grey).
+pub fn trajectories(d: &mut Drawing, layer: usize, scene: &LinkageScene, motion: &[&[f64]]) {
+    for m in &scene.measures {
+        if let MeasureTarget::Point(a) = m.target {
+            if a.body == Attach::Ground || motion.len() < 2 {
+                continue;
+            }
+            let pts: Vec<Point> = motion.iter().map(|q| anchor_at(q, a)).collect();
+            d.add(layer, Shape::Polyline { points: pts, closed: false, width: 0.0 });
+        }
+    }
+}
+
+/// A new drawing with the dimension style of the mechanism's size.
+pub fn new_drawing(style: &Style) -> Drawing {
+    Drawing::new(DimStyle { text_height: style.text_height, arrow_size: style.text_height })
+}
+
+/// Layer of the paths of measured points.
+pub fn trajectory_layer(d: &mut Drawing) -> usize {
+    d.layer("TRAJECTORY", Aci::DARK_GREY, LineType::Dashed)
+}
+
+/// Layer of position `k` (`POS_000`, …).
+pub fn position_layer(d: &mut Drawing, k: usize) -> usize {
+    d.layer(&format!("POS_{k:03}"), Aci::BLACK, LineType::Continuous)
+}
+
+/// One frame of the animation: the mechanism at `q` on layer `MECHANISM`, with the paths
+/// of the measured points over `motion` on `TRAJECTORY`.
+pub fn frame(
+    scene: &LinkageScene,
+    motion: &[&[f64]],
+    q: &[f64],
+    spans: &[Option<(Point, Point)>],
+    style: &Style,
+) -> Drawing {
+    let mut d = new_drawing(style);
+    let tl = trajectory_layer(&mut d);
+    trajectories(&mut d, tl, scene, motion);
+    let layer = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
+    mechanism(&mut d, layer, scene, q, spans, style);
+    d
+}

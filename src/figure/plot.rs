@@ -2,9 +2,19 @@
 //! [`Drawing`] (axes, ticks, units, title, legend) that the SVG writer turns into a
 //! picture. Shared by every mechanism kind.
 //!
-//! (API fixed by the skeleton; the drawing is filled in by the four-bar kinematics issue.)
+//! The plot is drawn in abstract "paper millimetres": a frame [`PLOT_WIDTH`] ×
+//! [`PLOT_HEIGHT`] with its lower-left corner at the origin, text and tick labels around
+//! it. Axis ranges are chosen by [`nice_ticks`]: ticks at 1, 2, 2.5 or 5 × 10ᵏ (for an x
+//! axis labelled in degrees, multiples of 15°, 30°, 45°, 90° … instead), and the y range
+//! widened to the ticks just outside the data, so every sample lies inside the frame.
+//! A constant series gets a range around its value (never a division by zero); non-finite
+//! samples break a curve into separate polylines and are never drawn.
+//!
+//! Layers: `PLOT_FRAME` (frame and ticks), `PLOT_GRID` (light grid), `PLOT_TEXT` (title,
+//! labels, numbers, legend), `PLOT_DATA` (the curves, one colour per series; bars).
 
-use crate::draw::{DimStyle, Drawing};
+use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::geom::Point;
 
 /// One curve of a diagram.
 #[derive(Debug, Clone, PartialEq)]
@@ -47,14 +57,481 @@ pub struct Histogram {
     pub markers: Vec<(f64, String)>,
 }
 
-/// Draws a line diagram.
-pub fn diagram(d: &Diagram) -> Drawing {
-    let _ = d;
-    Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 })
+/// Width of the plot frame, paper millimetres.
+pub const PLOT_WIDTH: f64 = 160.0;
+/// Height of the plot frame, paper millimetres.
+pub const PLOT_HEIGHT: f64 = 100.0;
+/// Cap height of tick numbers and axis labels.
+const TEXT_H: f64 = 3.2;
+/// Cap height of the title.
+const TITLE_H: f64 = 4.5;
+/// Tick mark length.
+const TICK: f64 = 1.8;
+/// Width of data curves (paper mm).
+const CURVE_W: f64 = 0.45;
+/// Most ticks wanted on an axis.
+const MAX_TICKS: usize = 8;
+/// Relative span under which a range counts as constant (all samples equal).
+const FLAT_REL: f64 = 1e-12;
+/// Colours of successive series.
+const SERIES_COLORS: [Aci; 6] = [Aci::BLUE, Aci::RED, Aci::GREEN, Aci::MAGENTA, Aci::ORANGE, Aci::CYAN];
+
+/// The ticks of one axis: the axis runs from `lo` to `hi`, with ticks every `step`
+/// starting at `first`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ticks {
+    /// Lower end of the axis.
+    pub lo: f64,
+    /// Upper end of the axis.
+    pub hi: f64,
+    /// Distance between ticks (> 0).
+    pub step: f64,
+    /// Value of the first tick (≥ `lo`).
+    pub first: f64,
 }
 
-/// Draws a histogram.
+impl Ticks {
+    /// Tick values from `first` to `hi`, each rounded to a multiple of `step`.
+    pub fn values(&self) -> Vec<f64> {
+        let n = ((self.hi - self.first) / self.step + 1e-9).floor().max(0.0) as usize;
+        (0..=n).map(|i| snap(self.first + i as f64 * self.step, self.step)).collect()
+    }
+
+    /// Decimals needed to print the tick values exactly.
+    pub fn decimals(&self) -> usize {
+        decimals_for(self.step)
+    }
+}
+
+/// Rounds `v` to the nearest multiple of `step` (removes float noise like 0.30000000000000004).
+fn snap(v: f64, step: f64) -> f64 {
+    let r = (v / step).round() * step;
+    if r == 0.0 { 0.0 } else { r }
+}
+
+fn decimals_for(step: f64) -> usize {
+    (0..10)
+        .find(|&d| {
+            let s = 10f64.powi(d as i32) * step;
+            (s - s.round()).abs() < 1e-6 * s.max(1.0)
+        })
+        .unwrap_or(10)
+}
+
+/// A "nice" tick step (1, 2, 2.5 or 5 × 10ᵏ; with `degrees`, also 15, 30, 45, 90, 180, 360)
+/// so that `span / step` is at most `max_ticks`.
+pub fn nice_step(span: f64, max_ticks: usize, degrees: bool) -> f64 {
+    let max_ticks = max_ticks.max(2) as f64;
+    let raw = span / max_ticks;
+    if degrees && (10.0..=360.0).contains(&raw) {
+        for s in [15.0, 30.0, 45.0, 60.0, 90.0, 180.0, 360.0] {
+            if s >= raw {
+                return s;
+            }
+        }
+    }
+    let mag = 10f64.powf(raw.log10().floor());
+    for m in [1.0, 2.0, 2.5, 5.0, 10.0] {
+        if m * mag >= raw * (1.0 - 1e-12) {
+            return m * mag;
+        }
+    }
+    10.0 * mag
+}
+
+/// Ticks covering [`lo`, `hi`] (the finite data range; `lo ≤ hi`): the axis is widened to
+/// the nearest ticks outside the data. A flat or tiny range is widened around its value.
+/// Non-finite input gives the axis [0, 1].
+pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize, degrees: bool) -> Ticks {
+    let (mut lo, mut hi) = if lo.is_finite() && hi.is_finite() && lo <= hi { (lo, hi) } else { (0.0, 1.0) };
+    let scale = lo.abs().max(hi.abs());
+    if hi - lo <= FLAT_REL * scale || hi - lo < f64::MIN_POSITIVE * 1e3 {
+        let pad = if scale > 0.0 { 0.1 * scale } else { 1.0 };
+        lo -= pad;
+        hi += pad;
+    }
+    let step = nice_step(hi - lo, max_ticks, degrees);
+    // Tick indices just outside the data (a sample within 1e-9 steps of a tick sits on it).
+    let mut ka = (lo / step + 1e-9).floor();
+    let mut kb = (hi / step - 1e-9).ceil();
+    if snap(ka * step, step) > lo {
+        ka -= 1.0;
+    }
+    if snap(kb * step, step) < hi {
+        kb += 1.0;
+    }
+    let (a, b) = (snap(ka * step, step), snap(kb * step, step));
+    Ticks { lo: a, hi: b, step, first: a }
+}
+
+/// Ticks inside an exact range [`lo`, `hi`] (the axis is the data range itself): used for the
+/// abscissa, where the data fill the axis (e.g. φ1 from 0° to 359°).
+fn inner_ticks(lo: f64, hi: f64, max_ticks: usize, degrees: bool) -> Ticks {
+    let t = nice_ticks(lo, hi, max_ticks, degrees);
+    if !(lo.is_finite() && hi.is_finite()) || hi - lo <= FLAT_REL * lo.abs().max(hi.abs()) {
+        return t;
+    }
+    let first = snap((lo / t.step - 1e-9).ceil() * t.step, t.step);
+    Ticks { lo, hi, step: t.step, first }
+}
+
+/// Formats a tick value with `decimals` decimals ("-0" printed as "0").
+fn tick_label(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
+        s.trim_start_matches('-').to_string()
+    } else {
+        s
+    }
+}
+
+/// Drawing layers of a plot.
+struct PlotLayers {
+    frame: usize,
+    grid: usize,
+    text: usize,
+    data: usize,
+}
+
+fn new_plot() -> (Drawing, PlotLayers) {
+    let mut d = Drawing::new(DimStyle { text_height: TEXT_H, arrow_size: 2.5 });
+    let frame = d.layer("PLOT_FRAME", Aci::BLACK, LineType::Continuous);
+    let grid = d.layer("PLOT_GRID", Aci(254), LineType::Continuous);
+    let text = d.layer("PLOT_TEXT", Aci::BLACK, LineType::Continuous);
+    let data = d.layer("PLOT_DATA", Aci::BLUE, LineType::Continuous);
+    (d, PlotLayers { frame, grid, text, data })
+}
+
+fn text(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, (halign, valign): (HAlign, VAlign), rot: f64) {
+    d.add(layer, Shape::Text { at, height: h, value: s.to_string(), halign, valign, rotation: rot });
+}
+
+/// Draws the frame, grid, ticks, numbers, labels and title for axes `xt` × `yt`; returns
+/// the map from data to paper coordinates.
+fn axes(
+    d: &mut Drawing,
+    l: &PlotLayers,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    xt: &Ticks,
+    yt: &Ticks,
+) -> impl Fn(f64, f64) -> Point + use<> {
+    let (xlo, xspan) = (xt.lo, (xt.hi - xt.lo).max(f64::MIN_POSITIVE));
+    let (ylo, yspan) = (yt.lo, (yt.hi - yt.lo).max(f64::MIN_POSITIVE));
+    let map = move |x: f64, y: f64| Point::new((x - xlo) / xspan * PLOT_WIDTH, (y - ylo) / yspan * PLOT_HEIGHT);
+    let (xd, yd) = (xt.decimals(), yt.decimals());
+    for x in xt.values() {
+        let p = map(x, yt.lo);
+        if p.x > 1e-9 && p.x < PLOT_WIDTH - 1e-9 {
+            d.add(l.grid, Shape::Line { from: p, to: Point::new(p.x, PLOT_HEIGHT) });
+        }
+        d.add(l.frame, Shape::Line { from: p, to: Point::new(p.x, -TICK) });
+        text(d, l.text, Point::new(p.x, -TICK - 1.0), TEXT_H, &tick_label(x, xd), (HAlign::Center, VAlign::Top), 0.0);
+    }
+    let mut widest = 0usize;
+    for y in yt.values() {
+        let p = map(xt.lo, y);
+        if p.y > 1e-9 && p.y < PLOT_HEIGHT - 1e-9 {
+            d.add(l.grid, Shape::Line { from: p, to: Point::new(PLOT_WIDTH, p.y) });
+        }
+        d.add(l.frame, Shape::Line { from: p, to: Point::new(-TICK, p.y) });
+        let s = tick_label(y, yd);
+        widest = widest.max(s.chars().count());
+        text(d, l.text, Point::new(-TICK - 1.0, p.y), TEXT_H, &s, (HAlign::Right, VAlign::Middle), 0.0);
+    }
+    // A zero line when zero is inside the y range.
+    if yt.lo < 0.0 && yt.hi > 0.0 {
+        let p = map(xt.lo, 0.0);
+        d.add(l.frame, Shape::Line { from: p, to: Point::new(PLOT_WIDTH, p.y) });
+    }
+    d.add(
+        l.frame,
+        Shape::Polyline {
+            points: vec![
+                Point::new(0.0, 0.0),
+                Point::new(PLOT_WIDTH, 0.0),
+                Point::new(PLOT_WIDTH, PLOT_HEIGHT),
+                Point::new(0.0, PLOT_HEIGHT),
+            ],
+            closed: true,
+            width: 0.3,
+        },
+    );
+    let label_y = -TICK - 2.6 * TEXT_H - 1.0;
+    text(d, l.text, Point::new(PLOT_WIDTH / 2.0, label_y), TEXT_H, x_label, (HAlign::Center, VAlign::Top), 0.0);
+    let label_x = -TICK - 1.0 - 0.62 * TEXT_H * widest as f64 - 2.0 * TEXT_H;
+    text(
+        d,
+        l.text,
+        Point::new(label_x, PLOT_HEIGHT / 2.0),
+        TEXT_H,
+        y_label,
+        (HAlign::Center, VAlign::Baseline),
+        std::f64::consts::FRAC_PI_2,
+    );
+    text(
+        d,
+        l.text,
+        Point::new(PLOT_WIDTH / 2.0, PLOT_HEIGHT + 4.0),
+        TITLE_H,
+        title,
+        (HAlign::Center, VAlign::Baseline),
+        0.0,
+    );
+    map
+}
+
+/// Finite range of `values`, or `None` when there is no finite value.
+fn finite_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
+    values.filter(|v| v.is_finite()).fold(None, |acc, v| match acc {
+        None => Some((v, v)),
+        Some((a, b)) => Some((a.min(v), b.max(v))),
+    })
+}
+
+/// Whether an axis label names degrees (then ticks fall on 15°, 30°, 45°, 90° …).
+fn is_degrees(label: &str) -> bool {
+    label.contains('°') || label.contains("deg")
+}
+
+/// Draws a line diagram: frame, grid, ticks with numbers, axis labels, title, one
+/// polyline per finite run of each series, and a legend when there is more than one
+/// series. Samples whose x or y is not finite are skipped and break the curve.
+pub fn diagram(d: &Diagram) -> Drawing {
+    let (mut dr, l) = new_plot();
+    let finite_pairs = |s: &Series| -> Vec<(f64, f64)> {
+        s.x.iter().zip(&s.y).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect()
+    };
+    let all: Vec<(f64, f64)> = d.series.iter().flat_map(finite_pairs).collect();
+    let (x0, x1) = finite_range(all.iter().map(|p| p.0)).unwrap_or((0.0, 1.0));
+    let (y0, y1) = finite_range(all.iter().map(|p| p.1)).unwrap_or((0.0, 1.0));
+    let xt = inner_ticks(x0, x1, MAX_TICKS + 4, is_degrees(&d.x_label));
+    let yt = nice_ticks(y0, y1, MAX_TICKS, false);
+    let map = axes(&mut dr, &l, &d.title, &d.x_label, &d.y_label, &xt, &yt);
+    for (i, s) in d.series.iter().enumerate() {
+        let color = SERIES_COLORS[i % SERIES_COLORS.len()];
+        let mut run: Vec<Point> = Vec::new();
+        let flush = |run: &mut Vec<Point>, dr: &mut Drawing| {
+            match run.len() {
+                0 => {}
+                1 => dr.add_colored(l.data, color, Shape::Circle { center: run[0], radius: CURVE_W }),
+                _ => dr.add_colored(
+                    l.data,
+                    color,
+                    Shape::Polyline { points: std::mem::take(run), closed: false, width: CURVE_W },
+                ),
+            }
+            run.clear();
+        };
+        for (x, y) in s.x.iter().zip(&s.y) {
+            if x.is_finite() && y.is_finite() {
+                run.push(map(*x, *y));
+            } else {
+                flush(&mut run, &mut dr);
+            }
+        }
+        flush(&mut run, &mut dr);
+    }
+    if d.series.len() > 1 {
+        for (i, s) in d.series.iter().enumerate() {
+            let color = SERIES_COLORS[i % SERIES_COLORS.len()];
+            let y = PLOT_HEIGHT - 5.0 - 5.0 * i as f64;
+            let x = PLOT_WIDTH + 4.0;
+            dr.add_colored(
+                l.data,
+                color,
+                Shape::Polyline {
+                    points: vec![Point::new(x, y), Point::new(x + 8.0, y)],
+                    closed: false,
+                    width: CURVE_W,
+                },
+            );
+            text(&mut dr, l.text, Point::new(x + 10.0, y), TEXT_H, &s.label, (HAlign::Left, VAlign::Middle), 0.0);
+        }
+    }
+    dr
+}
+
+/// Draws a histogram: one bar per bin (outlined, light fill), ticks, title, and dashed
+/// vertical marker lines with their labels.
 pub fn histogram(h: &Histogram) -> Drawing {
-    let _ = h;
-    Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 })
+    let (mut dr, l) = new_plot();
+    let bw = if h.bin_width.is_finite() && h.bin_width > 0.0 { h.bin_width } else { 1.0 };
+    let x_end = h.x0 + bw * h.counts.len() as f64;
+    let markers = h.markers.iter().map(|m| m.0).filter(|v| v.is_finite());
+    let (x0, x1) = finite_range([h.x0, x_end].into_iter().chain(markers)).unwrap_or((0.0, 1.0));
+    let xt = nice_ticks(x0, x1, MAX_TICKS + 2, is_degrees(&h.x_label));
+    let max_count = h.counts.iter().copied().max().unwrap_or(0) as f64;
+    let yt = nice_ticks(0.0, max_count.max(1.0), MAX_TICKS, false);
+    let yt = Ticks { step: yt.step.max(1.0), ..yt };
+    let map = axes(&mut dr, &l, &h.title, &h.x_label, "count", &xt, &yt);
+    let fill = dr.layer("PLOT_BARS", Aci(151), LineType::Continuous);
+    for (i, &c) in h.counts.iter().enumerate() {
+        if c == 0 {
+            continue;
+        }
+        let a = h.x0 + bw * i as f64;
+        let p0 = map(a, 0.0);
+        let p1 = map(a + bw, c as f64);
+        let corners =
+            vec![Point::new(p0.x, p0.y), Point::new(p1.x, p0.y), Point::new(p1.x, p1.y), Point::new(p0.x, p1.y)];
+        dr.add(fill, Shape::Filled { points: corners.clone() });
+        dr.add_colored(l.data, Aci::BLUE, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+    }
+    for (i, (x, label)) in h.markers.iter().enumerate() {
+        if !x.is_finite() {
+            continue;
+        }
+        let p = map(*x, yt.lo);
+        dr.push(crate::draw::Entity {
+            layer: l.data,
+            color: Some(Aci::RED),
+            linetype: Some(LineType::Dashed),
+            shape: Shape::Line { from: p, to: Point::new(p.x, PLOT_HEIGHT) },
+        });
+        let y = PLOT_HEIGHT - 3.0 - 4.5 * (i % 4) as f64;
+        text(&mut dr, l.text, Point::new(p.x + 1.0, y), TEXT_H, label, (HAlign::Left, VAlign::Top), 0.0);
+    }
+    dr
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn is_nice(step: f64) -> bool {
+        let mag = 10f64.powf(step.log10().floor());
+        let m = step / mag;
+        [1.0, 2.0, 2.5, 5.0, 10.0].iter().any(|n| (m - n).abs() < 1e-9)
+    }
+
+    #[test]
+    fn ticks_are_nice_numbers_covering_the_data() {
+        for &(lo, hi) in &[(0.0, 1.0), (-3.7, 12.2), (0.013, 0.0171), (-1520.0, 880.0), (7.0, 7.000001), (-0.5, -0.2)] {
+            let t = nice_ticks(lo, hi, 8, false);
+            assert!(is_nice(t.step), "step {} for [{lo}, {hi}]", t.step);
+            assert!(t.lo <= lo && t.hi >= hi, "{t:?} does not cover [{lo}, {hi}]");
+            let v = t.values();
+            assert!(v.len() >= 2 && v.len() <= 9 + 1, "{} ticks for [{lo}, {hi}]: {v:?}", v.len());
+            // The axis ends on ticks and no more than one step beyond the data.
+            assert!((t.lo - v[0]).abs() < 1e-9 * t.step && (t.hi - v[v.len() - 1]).abs() < 1e-9 * t.step);
+            assert!(lo - t.lo < t.step && t.hi - hi < t.step);
+            for w in v.windows(2) {
+                // Float spacing of the values themselves bounds how equal the gaps can be.
+                let noise = 1e-9 * t.step + 8.0 * f64::EPSILON * w[1].abs().max(w[0].abs());
+                assert!(((w[1] - w[0]) - t.step).abs() < noise);
+            }
+            // Each tick is an integer multiple of the step.
+            for x in &v {
+                let r = x / t.step;
+                assert!((r - r.round()).abs() < 1e-9 + 1e-12 * r.abs(), "tick {x} vs step {}", t.step);
+            }
+        }
+        // span 15.9 over at most 8 intervals: raw step 1.99 → 2; the data lie in [-4, 14].
+        let t = nice_ticks(-3.7, 12.2, 8, false);
+        assert_eq!((t.step, t.lo, t.hi), (2.0, -4.0, 14.0));
+        assert_eq!(nice_ticks(-3.7, 12.2, 4, false).values(), vec![-5.0, 0.0, 5.0, 10.0, 15.0]);
+    }
+
+    #[test]
+    fn degree_axes_use_degree_steps() {
+        let t = inner_ticks(0.0, 359.0, 12, true);
+        assert_eq!(t.step, 30.0);
+        assert_eq!((t.lo, t.hi), (0.0, 359.0));
+        assert_eq!(t.values().last().copied(), Some(330.0));
+    }
+
+    #[test]
+    fn constant_series_does_not_divide_by_zero() {
+        for c in [0.0, 5.0, -2.5e-7] {
+            let t = nice_ticks(c, c, 8, false);
+            assert!(t.lo < c && t.hi > c && t.step > 0.0 && t.step.is_finite(), "{t:?}");
+        }
+        let d = diagram(&Diagram {
+            title: "flat".into(),
+            x_label: "φ1 [°]".into(),
+            y_label: "y".into(),
+            series: vec![Series { label: "c".into(), x: vec![0.0, 1.0, 2.0], y: vec![3.0; 3] }],
+        });
+        for e in &d.entities {
+            if let Shape::Polyline { points, .. } = &e.shape {
+                assert!(points.iter().all(|p| p.x.is_finite() && p.y.is_finite()));
+            }
+        }
+        // A series with a single x value, too.
+        let d = diagram(&Diagram {
+            title: "point".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series { label: "p".into(), x: vec![1.0], y: vec![1.0] }],
+        });
+        assert!(d.bounds().is_some_and(|b| b.min.x.is_finite() && b.max.y.is_finite()));
+    }
+
+    #[test]
+    fn non_finite_values_break_the_curve() {
+        let x: Vec<f64> = (0..10).map(f64::from).collect();
+        let mut y: Vec<f64> = x.iter().map(|v| v * v).collect();
+        y[4] = f64::NAN;
+        y[7] = f64::INFINITY;
+        let d = diagram(&Diagram {
+            title: "t".into(),
+            x_label: "x".into(),
+            y_label: "y".into(),
+            series: vec![Series { label: "s".into(), x, y }],
+        });
+        let data = d.layers.iter().position(|l| l.name == "PLOT_DATA").unwrap();
+        let runs: Vec<usize> = d
+            .entities
+            .iter()
+            .filter(|e| e.layer == data)
+            .filter_map(|e| match &e.shape {
+                Shape::Polyline { points, .. } => Some(points.len()),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(runs, vec![4, 2, 2]);
+        // The infinite sample did not stretch the y axis: all points stay in the frame.
+        for e in d.entities.iter().filter(|e| e.layer == data) {
+            if let Shape::Polyline { points, .. } = &e.shape {
+                assert!(points.iter().all(|p| p.y >= -1e-9 && p.y <= PLOT_HEIGHT + 1e-9));
+            }
+        }
+    }
+
+    #[test]
+    fn tick_labels_have_just_enough_decimals() {
+        let t = nice_ticks(0.0, 0.75, 8, false);
+        assert_eq!(t.step, 0.1);
+        assert_eq!(tick_label(0.30000000000000004, t.decimals()), "0.3");
+        assert_eq!(tick_label(-0.0, 2), "0.00");
+        assert_eq!(decimals_for(2.5), 1);
+        assert_eq!(decimals_for(50.0), 0);
+    }
+
+    #[test]
+    fn histogram_bars_have_the_counts_heights() {
+        let h = Histogram {
+            title: "h".into(),
+            x_label: "Z [mm]".into(),
+            x0: 10.0,
+            bin_width: 0.5,
+            counts: vec![1, 4, 2],
+            markers: vec![(10.75, "mean".into())],
+        };
+        let d = histogram(&h);
+        let bars = d.layers.iter().position(|l| l.name == "PLOT_BARS").unwrap();
+        let heights: Vec<f64> = d
+            .entities
+            .iter()
+            .filter(|e| e.layer == bars)
+            .filter_map(|e| match &e.shape {
+                Shape::Filled { points } => Some(points[2].y - points[0].y),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(heights.len(), 3);
+        assert!((heights[1] / heights[0] - 4.0).abs() < 1e-9 && (heights[2] / heights[0] - 2.0).abs() < 1e-9);
+    }
 }

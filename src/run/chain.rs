@@ -1,10 +1,428 @@
-//! The chain pipeline. (Placeholder: filled in by the chain issue.)
+//! The chain pipeline: analyse the graph, write the dimensional functions, stack up the
+//! tolerances, draw the chain and the histograms, write the report, JSON and CSV.
 
+use serde_json::{Value, json};
+
+use super::output::Output;
 use super::{Outcome, RunOptions, solve_err};
 use crate::Error;
-use crate::scene::chain::ChainScene;
-use crate::solve::chain::ChainError;
+use crate::draw::svg::{self, SvgOptions};
+use crate::figure::chain::{self as fig, DependentMark};
+use crate::report::Csv;
+use crate::scene::chain::{ChainScene, Form};
+use crate::solve::chain::graph::fmt_value;
+use crate::solve::chain::{Analysis, Function, MonteCarlo, Stack, analyse, monte_carlo, stack};
 
-pub(super) fn run(_scene: &ChainScene, file: &str, _opts: &RunOptions) -> Result<Outcome, Error> {
-    Err(solve_err(file)(ChainError::NotImplemented.into()))
+/// Everything computed for one dependent dimension.
+#[derive(Debug, Clone)]
+pub struct DependentResult {
+    /// Index in the scene's `dependent` list.
+    pub index: usize,
+    /// The dimensional function.
+    pub function: Function,
+    /// Analytic stack-up.
+    pub stack: Stack,
+    /// Monte Carlo, unless `samples = 0`.
+    pub monte_carlo: Option<MonteCarlo>,
+}
+
+/// Analysis plus every dependent dimension's function and stack-up.
+pub fn solve(scene: &ChainScene) -> Result<(Analysis, Vec<DependentResult>), crate::solve::chain::ChainError> {
+    let analysis = analyse(scene);
+    let s = &scene.stackup;
+    let mut results = Vec::with_capacity(scene.dependent.len());
+    for (index, z) in scene.dependent.iter().enumerate() {
+        let function = analysis.function(scene, z)?;
+        let st = stack(&function, &scene.dimensions, s.mrss_factor, s.distribution);
+        let mc = monte_carlo(&function, &scene.dimensions, s.distribution, s.samples, s.seed, s.bins, z.spec);
+        results.push(DependentResult { index, function, stack: st, monte_carlo: mc });
+    }
+    Ok((analysis, results))
+}
+
+fn opt(v: Option<f64>) -> Value {
+    v.filter(|x| x.is_finite()).map_or(Value::Null, Value::from)
+}
+
+fn band(center: f64, tol: f64) -> Value {
+    json!({ "tol": tol, "min": center - tol, "max": center + tol })
+}
+
+pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+    let (analysis, results) = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
+    let dims = &scene.dimensions;
+    let units = scene.units.length();
+
+    // Check: the seed's coincidence test and the graph's redundancy.
+    let mut warnings = Vec::new();
+    let mut report = String::new();
+    let n_red = analysis.redundant_count(dims.len());
+    report.push_str(&format!(
+        "chain {}: {} features, {} dimensions, {} group(s) of features; {} redundant dimension(s)\n",
+        scene.name,
+        analysis.features.len(),
+        dims.len(),
+        analysis.components,
+        n_red
+    ));
+    let loop_text = |r: &crate::solve::chain::Redundant| {
+        let f = Function { terms: r.path.clone(), nominal: r.path.iter().map(|t| t.coef * dims[t.dim].nominal).sum() };
+        format!("{} = {}", dims[r.dim].name, f.names(dims))
+    };
+    for g in &analysis.coincident {
+        let names: Vec<String> =
+            g.iter().map(|&i| format!("{} ({})", dims[i].name, fmt_value(dims[i].nominal))).collect();
+        report.push_str(&format!(
+            "  seed's check: {} end at one point when every base is 0: over-dimensioned {} time(s)\n",
+            names.join(", "),
+            // p coinciding points (the zero point counts) are p − 1 redundant dimensions.
+            g.len() - 1 + usize::from(g.iter().any(|&i| analysis.node_of[dims[i].to] == analysis.node_of[0]))
+        ));
+    }
+    for r in &analysis.redundant {
+        let d = &dims[r.dim];
+        let what = if r.contradiction {
+            format!(
+                "CONTRADICTION: the loop {} does not close: the others give {} but {} = {} ({:+} {units})",
+                loop_text(r),
+                fmt_value(d.nominal + r.residual),
+                d.name,
+                fmt_value(d.nominal),
+                r.residual
+            )
+        } else {
+            format!("redundant: {} ({}) repeats the loop {}", d.name, fmt_value(d.nominal), loop_text(r))
+        };
+        let fix = if r.contradiction { "correct the values, then mark" } else { "mark" };
+        let line = format!("{what}; {fix} {} as a reference dimension \"(ref)\"", dims[r.suggest_ref].name);
+        report.push_str(&format!("  {line}\n"));
+        warnings.push(line);
+    }
+    if !analysis.untied.is_empty() {
+        let line = format!(
+            "under-dimensioned: these groups of features are not tied to the zero point {}: {}",
+            analysis.features[0].name,
+            analysis.untied_text()
+        );
+        report.push_str(&format!("  {line}\n"));
+        warnings.push(line);
+    }
+    if n_red == 0 && analysis.untied.is_empty() {
+        report.push_str("  dimensioning correct: no over- or under-dimensioning\n");
+    }
+    report.push_str("  features: ");
+    report.push_str(
+        &analysis.features.iter().map(|f| format!("{} at {}", f.name, fmt_value(f.x))).collect::<Vec<_>>().join(", "),
+    );
+    report.push('\n');
+
+    // Dependent dimensions: table and equations.
+    if !results.is_empty() {
+        report.push_str(&format!(
+            "\n{:<6} {:<14} {:>10} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}\n",
+            "Z", "between", "nominal", "mean", "WC ±", "RSS ±", "MRSS ±", "MC mean", "MC σ"
+        ));
+    }
+    for r in &results {
+        let z = &scene.dependent[r.index];
+        let s = &r.stack;
+        let (mcm, mcs) = r.monte_carlo.as_ref().map_or(("-".into(), "-".into()), |m| (fmt4(m.mean), fmt4(m.sigma)));
+        report.push_str(&format!(
+            "{:<6} {:<14} {:>10} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}\n",
+            z.name,
+            z.label,
+            fmt4(s.nominal),
+            fmt4(s.mean),
+            fmt4(s.worst_case),
+            fmt4(s.rss),
+            fmt4(s.mrss),
+            mcm,
+            mcs
+        ));
+    }
+    for r in &results {
+        let z = &scene.dependent[r.index];
+        report.push_str(&format!("  {}\n", r.function.equation(&z.name, dims)));
+        let contrib: Vec<String> = r
+            .stack
+            .contributions
+            .iter()
+            .map(|c| format!("{} {:.1}% WC / {:.1}% var", dims[c.dim].name, c.pct_worst_case, c.pct_variance))
+            .collect();
+        if !contrib.is_empty() {
+            report.push_str(&format!("    contributions: {}\n", contrib.join(", ")));
+        }
+        if let Some(m) = &r.monte_carlo {
+            let p: Vec<String> = m.percentiles.iter().map(|(p, v)| format!("P{p} {}", fmt4(*v))).collect();
+            report.push_str(&format!("    Monte Carlo ({}): {}\n", scene.stackup.distribution.name(), p.join(", ")));
+            if let (Some(ppm), Some([lsl, usl])) = (m.out_of_spec_ppm, z.spec) {
+                report.push_str(&format!(
+                    "    spec [{}, {}]: {ppm:.1} ppm out of spec ({} ppm for a normal distribution), Cp {}, Cpk {}\n",
+                    fmt_value(lsl),
+                    fmt_value(usl),
+                    m.out_of_spec_ppm_normal.map_or("-".into(), |p| format!("{p:.1}")),
+                    m.cp.map_or("-".into(), fmt4),
+                    m.cpk.map_or("-".into(), fmt4)
+                ));
+            }
+        }
+    }
+
+    let summary = summary(scene, &analysis, &results);
+
+    let mut written = Vec::new();
+    if let Some(dir) = &opts.out_dir {
+        let marks: Vec<DependentMark> = results
+            .iter()
+            .map(|r| {
+                let z = &scene.dependent[r.index];
+                let (l, p) =
+                    (analysis.features[analysis.node_of[z.left]].x, analysis.features[analysis.node_of[z.right]].x);
+                let tol = if r.stack.worst_case > 0.0 {
+                    format!(" ±{}", fmt_value(r.stack.worst_case))
+                } else {
+                    String::new()
+                };
+                let shift = r.stack.mean - r.stack.nominal;
+                let text = if shift.abs() > 0.0 {
+                    format!("{} = {}{} (mean {})", z.name, fmt_value(r.stack.nominal), tol, fmt_value(r.stack.mean))
+                } else {
+                    format!("{} = {}{}", z.name, fmt_value(r.stack.nominal), tol)
+                };
+                DependentMark { left_x: l, right_x: p, text }
+            })
+            .collect();
+        let drawing = fig::chain(scene, &analysis, &marks);
+        let mut out = Output::new(dir)?;
+        let chain_svg = svg::to_string(&drawing, &SvgOptions::default());
+        out.write(format!("{}.svg", scene.name), &chain_svg)?;
+        let dxf = crate::draw::dxf::to_bytes(&drawing, &crate::draw::dxf::DxfOptions::default())
+            .map_err(|e| Error::Export { what: format!("{}.dxf", scene.name), message: e.to_string() })?;
+        out.write(format!("{}.dxf", scene.name), dxf)?;
+        for r in &results {
+            let z = &scene.dependent[r.index];
+            if let Some(m) = &r.monte_carlo {
+                let h =
+                    fig::histogram(&z.name, &z.label, units, scene.stackup.distribution.name(), m, &r.stack, z.spec);
+                let text = svg::to_string(&h, &SvgOptions::default());
+                out.write(format!("{}-{}-histogram.svg", scene.name, z.name), &text)?;
+                if opts.png {
+                    let png = crate::draw::raster::to_png(&text, 1000).map_err(|e| Error::Export {
+                        what: format!("{}-{}-histogram.png", scene.name, z.name),
+                        message: e.to_string(),
+                    })?;
+                    out.write(format!("{}-{}-histogram.png", scene.name, z.name), png)?;
+                }
+            }
+        }
+        if opts.png {
+            let png = crate::draw::raster::to_png(&chain_svg, 1600)
+                .map_err(|e| Error::Export { what: format!("{}.png", scene.name), message: e.to_string() })?;
+            out.write(format!("{}.png", scene.name), png)?;
+        }
+        out.write(format!("{}.csv", scene.name), dependent_csv(scene, &results).to_bytes())?;
+        out.write(format!("{}-contributions.csv", scene.name), contributions_csv(scene, &results).to_bytes())?;
+        let json = serde_json::to_string_pretty(&summary)
+            .map_err(|e| Error::Export { what: format!("{}.json", scene.name), message: e.to_string() })?;
+        out.write(format!("{}.json", scene.name), json + "\n")?;
+        written = out.commit()?;
+    }
+    Ok(Outcome { summary, report, warnings, written })
+}
+
+fn fmt4(v: f64) -> String {
+    fmt_value((v * 1e4).round() / 1e4)
+}
+
+/// The JSON summary (keys documented in docs/chain.md).
+pub fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Value {
+    let dims = &scene.dimensions;
+    let fname = |f: usize| a.features[a.node_of[f]].name.clone();
+    let features: Vec<Value> =
+        a.features.iter().map(|f| json!({ "name": f.name, "x": f.x, "aliases": f.aliases, "tied": f.tied })).collect();
+    let dimensions: Vec<Value> = dims
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            json!({
+                "name": d.name, "from": fname(d.from), "to": fname(d.to), "nominal": d.nominal,
+                "upper": d.upper, "lower": d.lower, "redundant": !a.in_tree[i],
+            })
+        })
+        .collect();
+    let redundant: Vec<Value> = a
+        .redundant
+        .iter()
+        .map(|r| {
+            let f = Function { terms: r.path.clone(), nominal: 0.0 };
+            json!({
+                "dimension": dims[r.dim].name,
+                "nominal": dims[r.dim].nominal,
+                "loop": format!("{} = {}", dims[r.dim].name, f.names(dims)),
+                "path": r.path.iter().map(|t| json!({ "dimension": dims[t.dim].name, "coef": t.coef })).collect::<Vec<_>>(),
+                "residual": r.residual,
+                "kind": if r.contradiction { "contradiction" } else { "repeat" },
+                "suggest_ref": dims[r.suggest_ref].name,
+            })
+        })
+        .collect();
+    let dependent: Vec<Value> = results
+        .iter()
+        .map(|r| {
+            let z = &scene.dependent[r.index];
+            let s = &r.stack;
+            let mc = r.monte_carlo.as_ref().map_or(Value::Null, |m| {
+                json!({
+                    "distribution": scene.stackup.distribution.name(),
+                    "samples": m.samples,
+                    "seed": scene.stackup.seed,
+                    "mean": m.mean,
+                    "sigma": m.sigma,
+                    "min": m.min,
+                    "max": m.max,
+                    "percentiles": m.percentiles.iter().map(|(p, v)| json!({ "p": p, "value": v })).collect::<Vec<_>>(),
+                    "out_of_spec_ppm": opt(m.out_of_spec_ppm),
+                    "out_of_spec_ppm_normal": opt(m.out_of_spec_ppm_normal),
+                    "cp": opt(m.cp),
+                    "cpk": opt(m.cpk),
+                })
+            });
+            json!({
+                "z": z.name,
+                "between": z.label,
+                "left": fname(z.left),
+                "right": fname(z.right),
+                "function": r.function.names(dims),
+                "equation": r.function.equation(&z.name, dims),
+                "terms": r.function.terms.iter().map(|t| json!({ "dimension": dims[t.dim].name, "coef": t.coef })).collect::<Vec<_>>(),
+                "nominal": s.nominal,
+                "mean": s.mean,
+                "worst_case": band(s.mean, s.worst_case),
+                "rss": band(s.mean, s.rss),
+                "mrss": { "factor": s.mrss_factor, "tol": s.mrss, "min": s.mean - s.mrss, "max": s.mean + s.mrss },
+                "sigma": s.sigma,
+                "spec": z.spec,
+                "monte_carlo": mc,
+                "contributions": s.contributions.iter().map(|c| json!({
+                    "dimension": dims[c.dim].name, "coef": c.coef, "tol": c.half, "shift": c.shift,
+                    "pct_worst_case": c.pct_worst_case, "pct_variance": c.pct_variance,
+                })).collect::<Vec<_>>(),
+            })
+        })
+        .collect();
+    json!({
+        "kind": "chain",
+        "name": scene.name,
+        "units": scene.units.length(),
+        "form": match scene.form { Form::Matrix => "matrix", Form::Named => "named" },
+        "features": features,
+        "dimensions": dimensions,
+        "check": {
+            "features": a.features.len(),
+            "dimensions": dims.len(),
+            "groups": a.components,
+            "redundant_count": a.redundant_count(dims.len()),
+            "contradictions": a.redundant.iter().filter(|r| r.contradiction).count(),
+            "coincident": a.coincident.iter().map(|g| g.iter().map(|&i| dims[i].name.clone()).collect::<Vec<_>>()).collect::<Vec<_>>(),
+            "correct": a.redundant.is_empty() && a.untied.is_empty(),
+        },
+        "redundant": redundant,
+        "untied": a.untied.iter().map(|g| g.iter().map(|&i| a.features[i].name.clone()).collect::<Vec<_>>()).collect::<Vec<_>>(),
+        "dependent": dependent,
+    })
+}
+
+/// `<name>.csv`: one row per dependent dimension.
+pub fn dependent_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv {
+    let mut csv = Csv::new([
+        "z",
+        "between",
+        "function",
+        "nominal",
+        "mean",
+        "wc_tol",
+        "wc_min",
+        "wc_max",
+        "rss_tol",
+        "mrss_tol",
+        "sigma",
+        "mc_mean",
+        "mc_sigma",
+        "mc_p0.135",
+        "mc_p50",
+        "mc_p99.865",
+        "lsl",
+        "usl",
+        "ppm",
+        "ppm_normal",
+        "cp",
+        "cpk",
+    ]);
+    let num = |v: Option<f64>| v.filter(|x| x.is_finite()).map_or(String::new(), |x| format!("{x}"));
+    for r in results {
+        let z = &scene.dependent[r.index];
+        let s = &r.stack;
+        let m = r.monte_carlo.as_ref();
+        let pct = |p: f64| m.and_then(|m| m.percentiles.iter().find(|(q, _)| *q == p).map(|(_, v)| *v));
+        csv.row_text([
+            z.name.clone(),
+            z.label.clone(),
+            r.function.names(&scene.dimensions),
+            num(Some(s.nominal)),
+            num(Some(s.mean)),
+            num(Some(s.worst_case)),
+            num(Some(s.mean - s.worst_case)),
+            num(Some(s.mean + s.worst_case)),
+            num(Some(s.rss)),
+            num(Some(s.mrss)),
+            num(Some(s.sigma)),
+            num(m.map(|m| m.mean)),
+            num(m.map(|m| m.sigma)),
+            num(pct(0.135)),
+            num(pct(50.0)),
+            num(pct(99.865)),
+            num(z.spec.map(|s| s[0])),
+            num(z.spec.map(|s| s[1])),
+            num(m.and_then(|m| m.out_of_spec_ppm)),
+            num(m.and_then(|m| m.out_of_spec_ppm_normal)),
+            num(m.and_then(|m| m.cp)),
+            num(m.and_then(|m| m.cpk)),
+        ]);
+    }
+    csv
+}
+
+/// `<name>-contributions.csv`: one row per (dependent, independent dimension) pair.
+pub fn contributions_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv {
+    let mut csv = Csv::new([
+        "z",
+        "dimension",
+        "coef",
+        "nominal",
+        "upper",
+        "lower",
+        "tol",
+        "shift",
+        "pct_worst_case",
+        "pct_variance",
+    ]);
+    for r in results {
+        let z = &scene.dependent[r.index];
+        for c in &r.stack.contributions {
+            let d = &scene.dimensions[c.dim];
+            csv.row_text([
+                z.name.clone(),
+                d.name.clone(),
+                format!("{}", c.coef),
+                format!("{}", d.nominal),
+                format!("{}", d.upper),
+                format!("{}", d.lower),
+                format!("{}", c.half),
+                format!("{}", c.shift),
+                format!("{}", c.pct_worst_case),
+                format!("{}", c.pct_variance),
+            ]);
+        }
+    }
+    csv
 }

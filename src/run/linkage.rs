@@ -1,10 +1,339 @@
-//! The linkage pipeline. (Placeholder: filled in by the linkage issue.)
+//! The linkage pipeline: assemble at the first time, step through the time range keeping
+//! the assembly mode, measure the asked quantities, draw every position, and write the
+//! DXF (a layer per position), SVG frames with the HTML viewer, diagrams, CSV and JSON.
+//! With `--drag`, the dragged configuration is written instead of the motion.
 
+use serde_json::{Map, Value, json};
+
+use super::output::Output;
 use super::{Outcome, RunOptions, solve_err};
 use crate::Error;
-use crate::scene::linkage::LinkageScene;
-use crate::solve::linkage::LinkageError;
+use crate::draw::svg::{SvgOptions, to_string as svg_string};
+use crate::draw::viewer::{Frame, html};
+use crate::draw::{Aci, Drawing, LineType};
+use crate::figure::linkage::{self as fig, Style};
+use crate::figure::plot::{Diagram, Series, diagram};
+use crate::geom::{Point, deg};
+use crate::report::Csv;
+use crate::scene::linkage::{LinkageScene, MeasureTarget, Quantity};
+use crate::solve::linkage::{Anchor, LinkageError, Solver, State};
 
-pub(super) fn run(_scene: &LinkageScene, file: &str, _opts: &RunOptions) -> Result<Outcome, Error> {
-    Err(solve_err(file)(LinkageError::NotImplemented.into()))
+/// One measured column: its name, unit and values over the motion.
+#[derive(Debug, Clone)]
+pub struct Column {
+    /// `E.x`, `rocker.omega`, …
+    pub name: String,
+    /// Unit for diagram labels.
+    pub unit: String,
+    /// Description for diagram titles.
+    pub title: String,
+    /// One value per sample.
+    pub values: Vec<f64>,
+}
+
+/// The value of one quantity at one state.
+pub fn quantity(state: &State, target: MeasureTarget, q: Quantity) -> f64 {
+    match target {
+        MeasureTarget::Point(a) => {
+            let p = state.point(a);
+            let v = state.velocity(a);
+            let acc = state.acceleration(a);
+            match q {
+                Quantity::X => p.x,
+                Quantity::Y => p.y,
+                Quantity::Vx => v.x,
+                Quantity::Vy => v.y,
+                Quantity::Ax => acc.x,
+                Quantity::Ay => acc.y,
+                Quantity::V => v.norm(),
+                Quantity::A => acc.norm(),
+                _ => f64::NAN,
+            }
+        }
+        MeasureTarget::Body(b) => {
+            let (phi, w, e) = state.angular(b);
+            match q {
+                Quantity::Angle => deg(phi),
+                Quantity::Omega => w,
+                Quantity::Eps => e,
+                _ => f64::NAN,
+            }
+        }
+    }
+}
+
+/// The measured columns of a scene over `states`.
+pub fn columns(scene: &LinkageScene, states: &[State]) -> Vec<Column> {
+    let lu = scene.units.length();
+    let mut out = Vec::new();
+    for m in &scene.measures {
+        for &q in &m.quantities {
+            let (unit, what) = match q {
+                Quantity::X => (lu.to_string(), "x"),
+                Quantity::Y => (lu.to_string(), "y"),
+                Quantity::Vx => (format!("{lu}/s"), "x-velocity"),
+                Quantity::Vy => (format!("{lu}/s"), "y-velocity"),
+                Quantity::V => (format!("{lu}/s"), "speed"),
+                Quantity::Ax => (format!("{lu}/s²"), "x-acceleration"),
+                Quantity::Ay => (format!("{lu}/s²"), "y-acceleration"),
+                Quantity::A => (format!("{lu}/s²"), "acceleration magnitude"),
+                Quantity::Angle => ("°".to_string(), "angle"),
+                Quantity::Omega => ("rad/s".to_string(), "angular velocity"),
+                Quantity::Eps => ("rad/s²".to_string(), "angular acceleration"),
+            };
+            let owner = match m.target {
+                MeasureTarget::Point(_) => "point",
+                MeasureTarget::Body(_) => "body",
+            };
+            out.push(Column {
+                name: format!("{}.{}", m.label, q.column()),
+                unit,
+                title: format!("{what} of {owner} {}", m.label),
+                values: states.iter().map(|s| quantity(s, m.target, q)).collect(),
+            });
+        }
+    }
+    out
+}
+
+fn export(what: &str) -> impl FnOnce(String) -> Error + '_ {
+    move |message| Error::Export { what: what.to_string(), message }
+}
+
+fn dxf_bytes(d: &Drawing) -> Result<Vec<u8>, Error> {
+    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default()).map_err(|e| export("DXF")(e.to_string()))
+}
+
+/// Parses `BODY.POINT=x,y`.
+fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error> {
+    let bad = |message: String| Error::Option { option: format!("--drag {spec}"), message };
+    let Some((point, xy)) = spec.split_once('=') else {
+        return Err(bad("expected BODY.POINT=x,y, e.g. crank.A=10,20".into()));
+    };
+    let anchor = scene.anchor(point.trim()).map_err(bad)?;
+    let parts: Vec<&str> = xy.split(',').collect();
+    let nums: Vec<f64> = parts.iter().filter_map(|s| s.trim().parse::<f64>().ok()).collect();
+    if parts.len() != 2 || nums.len() != 2 || !nums.iter().all(|v| v.is_finite()) {
+        return Err(bad(format!("`{xy}` is not a target x,y of two finite numbers, e.g. 10,20")));
+    }
+    Ok((anchor, Point::new(nums[0], nums[1])))
+}
+
+pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+    let serr = solve_err(file);
+    let mut solver = match Solver::new(scene.mechanism.clone()) {
+        Ok(s) => s,
+        Err(e) => return Err(serr(e.into())),
+    };
+    if !opts.drag.is_empty() {
+        return run_drag(scene, file, opts, solver);
+    }
+    let states = solver.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?;
+    let cols = columns(scene, &states);
+    let max_residual = states.iter().map(|s| s.residual).fold(0.0, f64::max);
+    let max_iter = states.iter().skip(1).map(|s| s.iterations).max().unwrap_or(0);
+    let mean_iter = if states.len() > 1 {
+        states.iter().skip(1).map(|s| s.iterations as f64).sum::<f64>() / (states.len() - 1) as f64
+    } else {
+        0.0
+    };
+    let mut warnings = Vec::new();
+    if scene.measures.is_empty() {
+        warnings.push("no [[measure]] in the scene: the CSV and the diagrams have no quantity columns".to_string());
+    }
+    for c in &cols {
+        if c.values.iter().any(|v| !v.is_finite()) {
+            return Err(serr(
+                LinkageError::Drag { what: format!("internal: measured column {} is not finite", c.name) }.into(),
+            ));
+        }
+    }
+
+    // JSON summary.
+    let mut samples = Vec::with_capacity(states.len());
+    for (k, s) in states.iter().enumerate() {
+        let mut rec = Map::new();
+        rec.insert("t".into(), json!(s.t));
+        for c in &cols {
+            rec.insert(c.name.clone(), json!(c.values[k]));
+        }
+        samples.push(Value::Object(rec));
+    }
+    let mut extremes = Map::new();
+    for c in &cols {
+        let (mut kmin, mut kmax) = (0, 0);
+        for (k, v) in c.values.iter().enumerate() {
+            if *v < c.values[kmin] {
+                kmin = k;
+            }
+            if *v > c.values[kmax] {
+                kmax = k;
+            }
+        }
+        extremes.insert(
+            c.name.clone(),
+            json!({"min": c.values[kmin], "t_min": states[kmin].t, "max": c.values[kmax], "t_max": states[kmax].t}),
+        );
+    }
+    let mech = &scene.mechanism;
+    let summary = json!({
+        "kind": "linkage",
+        "name": scene.name,
+        "units": scene.units.length(),
+        "bodies": mech.bodies.len(),
+        "joints": mech.joints.len(),
+        "drivers": mech.drivers.len(),
+        "positions": states.len(),
+        "t_from": scene.times[0],
+        "t_to": scene.times[scene.times.len() - 1],
+        "max_residual": max_residual,
+        "newton_iterations_max": max_iter,
+        "newton_iterations_mean": mean_iter,
+        "columns": cols.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),
+        "extremes": extremes,
+        "samples": samples,
+    });
+    let report = format!(
+        "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
+         Newton iterations per step ≤ {} (mean {:.2})",
+        scene.name,
+        mech.bodies.len(),
+        mech.joints.len(),
+        mech.drivers.len(),
+        states.len(),
+        scene.times[0],
+        scene.times[scene.times.len() - 1],
+        max_residual,
+        max_iter,
+        mean_iter
+    );
+
+    let Some(dir) = &opts.out_dir else {
+        return Ok(Outcome { summary, report, warnings, written: Vec::new() });
+    };
+    let mut out = Output::new(dir)?;
+    let style = Style::for_length(mech.length_scale);
+    let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
+    let spans = fig::guide_spans(scene, &motion, &style);
+
+    // DXF: every position on its own layer, the paths on TRAJECTORY.
+    let mut all = fig::new_drawing(&style);
+    let traj = fig::trajectory_layer(&mut all);
+    fig::trajectories(&mut all, traj, scene, &motion);
+    for (k, q) in motion.iter().enumerate() {
+        let layer = fig::position_layer(&mut all, k);
+        fig::mechanism(&mut all, layer, scene, q, &spans, &style);
+    }
+    out.write(format!("{}.dxf", scene.name), dxf_bytes(&all)?)?;
+    let window = all.bounds();
+
+    // The first position with the paths, as the scene's picture.
+    let frame_drawing = |q: &[f64]| fig::frame(scene, &motion, q, &spans, &style);
+    let svg_opts = SvgOptions { window, ..SvgOptions::default() };
+    out.write(format!("{}.svg", scene.name), svg_string(&frame_drawing(motion[0]), &svg_opts))?;
+
+    if !opts.no_frames {
+        let mut frames = Vec::with_capacity(states.len());
+        for (k, s) in states.iter().enumerate() {
+            let svg = svg_string(&frame_drawing(&s.q), &svg_opts);
+            out.write(format!("frames/pos_{k:03}.svg"), &svg)?;
+            frames.push(Frame { label: format!("t = {:.4} s", s.t), svg });
+        }
+        out.write(format!("{}.html", scene.name), html(&scene.name, &frames))?;
+    }
+
+    // Diagrams, one per measured column.
+    let t: Vec<f64> = states.iter().map(|s| s.t).collect();
+    for c in &cols {
+        let d = diagram(&Diagram {
+            title: format!("{} — {}", c.name, c.title),
+            x_label: "t [s]".into(),
+            y_label: format!("{} [{}]", c.name, c.unit),
+            series: vec![Series { label: c.name.clone(), x: t.clone(), y: c.values.clone() }],
+        });
+        let svg = svg_string(&d, &SvgOptions::default());
+        if opts.png {
+            let png = crate::draw::raster::to_png(&svg, 1000).map_err(|e| export("PNG")(e.to_string()))?;
+            out.write(format!("diagrams/{}.png", c.name), png)?;
+        }
+        out.write(format!("diagrams/{}.svg", c.name), svg)?;
+    }
+
+    // CSV.
+    let mut csv = Csv::new(std::iter::once("t".to_string()).chain(cols.iter().map(|c| c.name.clone())));
+    for (k, s) in states.iter().enumerate() {
+        csv.row(std::iter::once(s.t).chain(cols.iter().map(|c| c.values[k])));
+    }
+    out.write(format!("{}.csv", scene.name), csv.to_bytes())?;
+    out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
+    let written = out.commit()?;
+    Ok(Outcome { summary, report, warnings, written })
+}
+
+fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Solver) -> Result<Outcome, Error> {
+    let requests: Vec<(Anchor, Point)> = opts.drag.iter().map(|s| parse_drag(scene, s)).collect::<Result<_, _>>()?;
+    let t0 = scene.times[0];
+    let mut state = solver.assemble(t0).map_err(|e| solve_err(file)(e.into()))?;
+    let mut records = Vec::new();
+    for ((anchor, target), spec) in requests.iter().zip(&opts.drag) {
+        state = solver.drag(&state, *anchor, *target).map_err(|e| solve_err(file)(e.into()))?;
+        let reached = state.point(*anchor);
+        records.push(json!({
+            "request": spec,
+            "target": crate::report::point(*target),
+            "reached": crate::report::point(reached),
+            "distance": (reached - target).norm(),
+        }));
+    }
+    let mech = &scene.mechanism;
+    let bodies: Vec<Value> = mech
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let points: Map<String, Value> = b
+                .points
+                .iter()
+                .map(|(n, v)| (n.clone(), crate::report::point(crate::solve::linkage::place(&state.q, crate::solve::linkage::Attach::Body(i), *v))))
+                .collect();
+            json!({"name": b.name, "x": state.q[3 * i], "y": state.q[3 * i + 1], "angle_deg": deg(state.q[3 * i + 2]), "points": points})
+        })
+        .collect();
+    let summary = json!({
+        "kind": "linkage",
+        "name": scene.name,
+        "units": scene.units.length(),
+        "t": t0,
+        "drag": records,
+        "max_residual": state.residual,
+        "bodies": bodies,
+    });
+    let report = records
+        .iter()
+        .map(|r| {
+            format!(
+                "drag {}: reached {} (distance {:.6} {})",
+                r["request"],
+                r["reached"],
+                r["distance"],
+                scene.units.length()
+            )
+        })
+        .collect::<Vec<_>>()
+        .join("\n");
+    let Some(dir) = &opts.out_dir else {
+        return Ok(Outcome { summary, report, warnings: Vec::new(), written: Vec::new() });
+    };
+    let mut out = Output::new(dir)?;
+    let style = Style::for_length(mech.length_scale);
+    let motion = [state.q.as_slice()];
+    let spans = fig::guide_spans(scene, &motion, &style);
+    let mut d = fig::new_drawing(&style);
+    let layer = d.layer("DRAG", Aci::BLACK, LineType::Continuous);
+    fig::mechanism(&mut d, layer, scene, &state.q, &spans, &style);
+    out.write(format!("{}.dxf", scene.name), dxf_bytes(&d)?)?;
+    out.write(format!("{}.svg", scene.name), svg_string(&d, &SvgOptions::default()))?;
+    out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
+    let written = out.commit()?;
+    Ok(Outcome { summary, report, warnings: Vec::new(), written })
 }

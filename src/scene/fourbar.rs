@@ -1,8 +1,17 @@
-//! Scene kind `fourbar`: schema and validation. (Placeholder: filled in by the fourbar issue.)
+//! Scene kind `fourbar` (design.md §4b): schema and validation. The checked scene holds
+//! the solver's input types ([`MotionSpec`]), so the pipeline hands `scene.spec` to
+//! [`crate::solve::fourbar::solve_motion`]. The schema is documented field by field in
+//! docs/fourbar-solver.md.
 
 use serde::Deserialize;
 
-use super::{FieldError, Units};
+use super::{FieldError, Units, finite, finite_point, positive};
+use crate::geom::{Side, Vector};
+use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
+use crate::solve::kinetostatics::{CrankRange, Dynamics, ExternalForce, ForcePoint};
+
+/// Standard gravity in m/s², the default `dynamics.g` of an SI scene (mm scenes: ×1000).
+pub const STANDARD_GRAVITY: f64 = 9.80665;
 
 /// The scene as written in the file (`kind` removed).
 #[derive(Debug, Clone, Deserialize)]
@@ -12,6 +21,78 @@ pub struct RawFourbarScene {
     pub name: String,
     /// Length units.
     pub units: Units,
+    /// Crank pivot O1.
+    pub o1: [f64; 2],
+    /// Rocker pivot C.
+    pub c: [f64; 2],
+    /// Crank length O1A.
+    pub l1: f64,
+    /// Coupler side AB.
+    pub l_ab: f64,
+    /// Coupler side BM.
+    pub l_bm: f64,
+    /// Angle from ray B→A to ray B→M, degrees, CCW.
+    pub alpha_deg: f64,
+    /// Rocker length BC.
+    pub l_bc: f64,
+    /// Crank angular velocity, rad/s, CCW positive.
+    pub omega1: f64,
+    /// Crank angles.
+    pub phi1_deg: RawSweep,
+    /// Side of B relative to the directed line A→C at the first crank angle.
+    #[serde(default)]
+    pub branch: Option<Side>,
+    /// What to compute.
+    #[serde(default)]
+    pub outputs: Option<Vec<String>>,
+    /// Masses, gravity and external forces.
+    #[serde(default)]
+    pub dynamics: Option<RawDynamics>,
+}
+
+/// `phi1_deg = { from, to, step }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSweep {
+    /// First angle, degrees.
+    pub from: f64,
+    /// Last angle (included when the grid lands on it), degrees.
+    pub to: f64,
+    /// Step, degrees.
+    pub step: f64,
+}
+
+/// `[dynamics]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDynamics {
+    /// Gravity, length units/s², along −y.
+    #[serde(default)]
+    pub g: Option<f64>,
+    /// Crank mass, kg.
+    pub m1: f64,
+    /// Coupler bar AB mass, kg.
+    pub m21: f64,
+    /// Coupler bar BM mass, kg.
+    pub m22: f64,
+    /// Rocker mass, kg.
+    pub m3: f64,
+    /// `[[dynamics.force]]`.
+    #[serde(default)]
+    pub force: Vec<RawForce>,
+}
+
+/// `[[dynamics.force]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawForce {
+    /// "A", "B" or "M".
+    pub at: String,
+    /// [fx, fy], N.
+    pub value: [f64; 2],
+    /// [from, to], degrees, closed, counter-clockwise from `from`.
+    #[serde(default)]
+    pub phi1_deg: Option<[f64; 2]>,
 }
 
 /// A checked `fourbar` scene.
@@ -21,9 +102,143 @@ pub struct FourbarScene {
     pub name: String,
     /// Length units.
     pub units: Units,
+    /// The solver's input: geometry, omega1, sweep, outputs, dynamics.
+    pub spec: MotionSpec,
 }
+
+const OUTPUT_NAMES: &str = "\"position\", \"velocity\", \"acceleration\", \"forces\"";
 
 /// Validates the raw scene.
 pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
-    Ok(FourbarScene { name: super::check_name(&raw.name)?, units: raw.units })
+    let name = super::check_name(&raw.name)?;
+    let o1 = finite_point("o1", raw.o1)?;
+    let c = finite_point("c", raw.c)?;
+    if o1 == c {
+        return Err(FieldError::new("c", "must differ from o1 (the ground link O1C has zero length)"));
+    }
+    let alpha_deg = finite("alpha_deg", raw.alpha_deg)?;
+    let geometry = Geometry {
+        o1,
+        c,
+        l1: positive("l1", raw.l1)?,
+        l_ab: positive("l_ab", raw.l_ab)?,
+        l_bm: positive("l_bm", raw.l_bm)?,
+        alpha: alpha_deg.to_radians(),
+        l_bc: positive("l_bc", raw.l_bc)?,
+        branch: raw.branch.unwrap_or(Side::Left),
+    };
+    let omega1 = finite("omega1", raw.omega1)?;
+    let sweep = check_sweep(&raw.phi1_deg)?;
+
+    let outputs = match &raw.outputs {
+        None => Outputs { velocity: true, acceleration: true, forces: raw.dynamics.is_some() },
+        Some(list) => {
+            if list.is_empty() {
+                return Err(FieldError::new(
+                    "outputs",
+                    format!("must name at least \"position\"; valid: {OUTPUT_NAMES}"),
+                ));
+            }
+            let mut o = Outputs::POSITIONS;
+            for (i, s) in list.iter().enumerate() {
+                match s.as_str() {
+                    "position" => {}
+                    "velocity" => o.velocity = true,
+                    "acceleration" => o.acceleration = true,
+                    "forces" => o.forces = true,
+                    other => {
+                        return Err(FieldError::new(
+                            format!("outputs[{i}]"),
+                            format!("\"{other}\" is not an output; valid: {OUTPUT_NAMES}"),
+                        ));
+                    }
+                }
+            }
+            o
+        }
+    };
+    if outputs.forces && raw.dynamics.is_none() {
+        return Err(FieldError::new(
+            "outputs",
+            "\"forces\" needs a [dynamics] table (g, m1, m21, m22, m3 and optional [[dynamics.force]])",
+        ));
+    }
+    let dynamics = raw.dynamics.as_ref().map(|d| check_dynamics(d, raw.units)).transpose()?;
+    Ok(FourbarScene { name, units: raw.units, spec: MotionSpec { geometry, omega1, sweep, outputs, dynamics } })
+}
+
+fn check_sweep(s: &RawSweep) -> Result<Sweep, FieldError> {
+    let from_deg = finite("phi1_deg.from", s.from)?;
+    let to_deg = finite("phi1_deg.to", s.to)?;
+    let step_deg = finite("phi1_deg.step", s.step)?;
+    if step_deg <= 0.0 {
+        return Err(FieldError::new("phi1_deg.step", format!("must be a positive angle in degrees, got {step_deg}")));
+    }
+    if to_deg < from_deg {
+        return Err(FieldError::new(
+            "phi1_deg.to",
+            format!("must be at least phi1_deg.from = {from_deg} (the crank turns counter-clockwise), got {to_deg}"),
+        ));
+    }
+    let sweep = Sweep { from_deg, to_deg, step_deg };
+    let n = (to_deg - from_deg) / step_deg + ANGLE_EPS_DEG;
+    if n >= MAX_POSITIONS as f64 {
+        return Err(FieldError::new(
+            "phi1_deg.step",
+            format!("gives {} crank angles; at most {MAX_POSITIONS} are allowed: use a larger step", n.floor() + 1.0),
+        ));
+    }
+    Ok(sweep)
+}
+
+fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError> {
+    let default_g = match units {
+        Units::Si => STANDARD_GRAVITY,
+        Units::Mm => STANDARD_GRAVITY * 1000.0,
+    };
+    let g = finite("dynamics.g", d.g.unwrap_or(default_g))?;
+    if g < 0.0 {
+        return Err(FieldError::new("dynamics.g", format!("must be ≥ 0 (gravity acts along −y), got {g}")));
+    }
+    let mass = |field: &str, v: f64| {
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(FieldError::new(field, format!("must be a mass ≥ 0 in kg, got {v}")))
+        }
+    };
+    let mut forces = Vec::with_capacity(d.force.len());
+    for (i, f) in d.force.iter().enumerate() {
+        let at = match f.at.as_str() {
+            "A" => ForcePoint::A,
+            "B" => ForcePoint::B,
+            "M" => ForcePoint::M,
+            other => {
+                return Err(FieldError::new(
+                    format!("dynamics.force[{i}].at"),
+                    format!("\"{other}\" is not a point of the coupler; valid: \"A\", \"B\", \"M\""),
+                ));
+            }
+        };
+        let v = finite_point(&format!("dynamics.force[{i}].value"), f.value)?;
+        let range = match f.phi1_deg {
+            None => None,
+            Some([from, to]) => {
+                let field = format!("dynamics.force[{i}].phi1_deg");
+                if !from.is_finite() || !to.is_finite() {
+                    return Err(FieldError::new(field, format!("must be [from, to] in degrees, got [{from}, {to}]")));
+                }
+                Some(CrankRange { from_deg: from, to_deg: to })
+            }
+        };
+        forces.push(ExternalForce { at, value: Vector::new(v.x, v.y), range });
+    }
+    Ok(Dynamics {
+        g,
+        m1: mass("dynamics.m1", d.m1)?,
+        m21: mass("dynamics.m21", d.m21)?,
+        m22: mass("dynamics.m22", d.m22)?,
+        m3: mass("dynamics.m3", d.m3)?,
+        forces,
+    })
 }

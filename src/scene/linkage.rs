@@ -1,8 +1,182 @@
-//! Scene kind `linkage`: schema and validation. (Placeholder: filled in by the linkage issue.)
+//! Scene kind `linkage`: a general planar linkage of named bodies, revolute and prismatic
+//! joints and drivers given as expressions of time (seed 002).
+//!
+//! ```toml
+//! kind = "linkage"
+//! name = "slider-crank"
+//! units = "mm"
+//! time = { from = 0.0, to = 1.0, steps = 36 }   # samples at from + k·(to − from)/steps, k = 0..=steps
+//!
+//! [ground]                                      # fixed points, global coordinates
+//! points = { O = [0.0, 0.0], G1 = [0.0, 0.0], G2 = [100.0, 0.0] }
+//!
+//! [[body]]
+//! name = "crank"
+//! points = { O = [0.0, 0.0], A = [30.0, 0.0] }  # body coordinates; the outline joins them in this order
+//! at = [0.0, 0.0]                               # initial placement of the body frame (a guess)
+//! angle_deg = 0.0
+//!
+//! [[body]]
+//! name = "rod"
+//! points = { A = [0.0, 0.0], B = [100.0, 0.0] }
+//! at = [30.0, 0.0]
+//!
+//! [[body]]
+//! name = "slider"
+//! points = { B = [0.0, 0.0] }
+//! at = [130.0, 0.0]
+//!
+//! [[joint]]
+//! name = "O"
+//! revolute = ["ground.O", "crank.O"]            # the two points coincide
+//! [[joint]]
+//! name = "A"
+//! revolute = ["crank.A", "rod.A"]
+//! [[joint]]
+//! name = "B"
+//! revolute = ["rod.B", "slider.B"]
+//! [[joint]]
+//! name = "guide"
+//! prismatic = { point = "slider.B", line = ["ground.G1", "ground.G2"] }   # angle_deg: locked φ_slider − φ_guide
+//!
+//! [[driver]]
+//! joint = "O"                                   # relative angle across a revolute (rad), or distance along a prismatic
+//! law = "2*pi*t"                                # or: body = "crank" (absolute angle, rad)
+//!
+//! [[measure]]
+//! point = "slider.B"                            # columns B.x, B.vx, B.ax
+//! quantities = ["x", "vx", "ax"]
+//! [[measure]]
+//! body = "rod"                                  # columns rod.angle_deg, rod.omega, rod.eps
+//! quantities = ["angle", "omega", "eps"]
+//! ```
 
 use serde::Deserialize;
+use serde::de::{MapAccess, Visitor};
 
-use super::{FieldError, Units};
+use super::{FieldError, Units, finite, finite_point};
+use crate::geom::{Point, Vector, rad, rotate};
+use crate::solve::expr::Expr;
+use crate::solve::linkage::{Anchor, Attach, Body, Driver, DriverTarget, Joint, JointKind, Mechanism};
+
+/// Largest number of time steps a scene may ask for.
+pub const MAX_STEPS: u32 = 100_000;
+
+/// Named points in file order (`{ A = [x, y], B = [x, y] }`).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct OrderedPoints(pub Vec<(String, [f64; 2])>);
+
+impl<'de> Deserialize<'de> for OrderedPoints {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        impl<'de> Visitor<'de> for V {
+            type Value = OrderedPoints;
+            fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+                f.write_str("a table of named points, e.g. { A = [0.0, 0.0], B = [100.0, 0.0] }")
+            }
+            fn visit_map<M: MapAccess<'de>>(self, mut map: M) -> Result<OrderedPoints, M::Error> {
+                let mut out = Vec::new();
+                while let Some(key) = map.next_key::<String>()? {
+                    let value: [f64; 2] = map.next_value()?;
+                    out.push((key, value));
+                }
+                Ok(OrderedPoints(out))
+            }
+        }
+        d.deserialize_map(V)
+    }
+}
+
+/// `time = { from, to, steps }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTime {
+    /// Start time, s.
+    pub from: f64,
+    /// End time, s (> from).
+    pub to: f64,
+    /// Number of intervals; samples are taken at both ends (steps + 1 samples).
+    pub steps: u32,
+}
+
+/// `[ground]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawGround {
+    /// Fixed points, global coordinates.
+    #[serde(default)]
+    pub points: OrderedPoints,
+}
+
+/// One `[[body]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawBody {
+    /// Unique name (not `ground`).
+    pub name: String,
+    /// Named points in body coordinates.
+    pub points: OrderedPoints,
+    /// Initial placement of the body frame's origin (default [0, 0]).
+    #[serde(default)]
+    pub at: Option<[f64; 2]>,
+    /// Initial placement: angle of the body frame, degrees (default 0).
+    #[serde(default)]
+    pub angle_deg: f64,
+}
+
+/// `prismatic = { point, line, angle_deg }`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPrismatic {
+    /// The sliding point, `body.point`.
+    pub point: String,
+    /// Two points of the guide body, `["body.P", "body.Q"]`; P → Q is the positive direction.
+    pub line: [String; 2],
+    /// Locked relative rotation φ_slider − φ_guide, degrees (default: its value in the
+    /// initial placement).
+    pub angle_deg: Option<f64>,
+}
+
+/// One `[[joint]]`: exactly one of `revolute`, `prismatic`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawJoint {
+    /// Name (default `J1`, `J2`, … by position).
+    pub name: Option<String>,
+    /// Two points that coincide, `["body.P", "body.Q"]`.
+    pub revolute: Option<[String; 2]>,
+    /// A point on a line of another body.
+    pub prismatic: Option<RawPrismatic>,
+}
+
+/// One `[[driver]]`: exactly one of `body`, `joint`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDriver {
+    /// Name for messages (default: the body or joint).
+    pub name: Option<String>,
+    /// Drive this body's absolute angle (radians).
+    pub body: Option<String>,
+    /// Drive the relative angle across this revolute joint (radians, φ of its second body
+    /// minus φ of its first) or the distance along this prismatic joint (length units).
+    pub joint: Option<String>,
+    /// The law, an expression of t (s).
+    pub law: String,
+}
+
+/// One `[[measure]]`: exactly one of `point`, `body`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawMeasure {
+    /// A point, `body.point`; quantities x y vx vy ax ay v a.
+    pub point: Option<String>,
+    /// A body; quantities angle omega eps.
+    pub body: Option<String>,
+    /// Column prefix (default: the point's or body's name).
+    pub label: Option<String>,
+    /// What to measure.
+    pub quantities: Vec<String>,
+}
 
 /// The scene as written in the file (`kind` removed).
 #[derive(Debug, Clone, Deserialize)]
@@ -12,6 +186,92 @@ pub struct RawLinkageScene {
     pub name: String,
     /// Length units.
     pub units: Units,
+    /// Time range.
+    pub time: RawTime,
+    /// Fixed points.
+    #[serde(default)]
+    pub ground: RawGround,
+    /// Moving bodies.
+    pub body: Vec<RawBody>,
+    /// Joints.
+    #[serde(default)]
+    pub joint: Vec<RawJoint>,
+    /// Drivers.
+    #[serde(default)]
+    pub driver: Vec<RawDriver>,
+    /// Measured quantities.
+    #[serde(default)]
+    pub measure: Vec<RawMeasure>,
+}
+
+/// A measured quantity.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Quantity {
+    /// x of a point.
+    X,
+    /// y of a point.
+    Y,
+    /// x-velocity.
+    Vx,
+    /// y-velocity.
+    Vy,
+    /// x-acceleration.
+    Ax,
+    /// y-acceleration.
+    Ay,
+    /// Speed |v|.
+    V,
+    /// |a|.
+    A,
+    /// Body angle (reported in degrees).
+    Angle,
+    /// Angular velocity, rad/s.
+    Omega,
+    /// Angular acceleration, rad/s².
+    Eps,
+}
+
+const POINT_QUANTITIES: &[(&str, Quantity)] = &[
+    ("x", Quantity::X),
+    ("y", Quantity::Y),
+    ("vx", Quantity::Vx),
+    ("vy", Quantity::Vy),
+    ("ax", Quantity::Ax),
+    ("ay", Quantity::Ay),
+    ("v", Quantity::V),
+    ("a", Quantity::A),
+];
+const BODY_QUANTITIES: &[(&str, Quantity)] =
+    &[("angle", Quantity::Angle), ("omega", Quantity::Omega), ("eps", Quantity::Eps)];
+
+impl Quantity {
+    /// Column suffix (`x`, `vx`, `angle_deg`, `omega`…).
+    pub fn column(self) -> &'static str {
+        match self {
+            Quantity::Angle => "angle_deg",
+            q => POINT_QUANTITIES.iter().chain(BODY_QUANTITIES).find(|(_, v)| *v == q).map_or("?", |(n, _)| n),
+        }
+    }
+}
+
+/// What a measure looks at.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum MeasureTarget {
+    /// A point.
+    Point(Anchor),
+    /// A body.
+    Body(Attach),
+}
+
+/// A checked measure: one CSV column per quantity, named `label.quantity`.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Measure {
+    /// Column prefix.
+    pub label: String,
+    /// Point or body.
+    pub target: MeasureTarget,
+    /// Quantities, in the order asked.
+    pub quantities: Vec<Quantity>,
 }
 
 /// A checked `linkage` scene.
@@ -21,9 +281,331 @@ pub struct LinkageScene {
     pub name: String,
     /// Length units.
     pub units: Units,
+    /// Sample times, s (steps + 1 of them).
+    pub times: Vec<f64>,
+    /// Ground points (global), in file order.
+    pub ground_points: Vec<(String, Point)>,
+    /// The mechanism for the solver.
+    pub mechanism: Mechanism,
+    /// Measures.
+    pub measures: Vec<Measure>,
+}
+
+impl LinkageScene {
+    /// Resolves `body.point` (as written in scene files and `--drag`) to an anchor.
+    pub fn anchor(&self, spec: &str) -> Result<Anchor, String> {
+        resolve(spec, &self.ground_points, &self.mechanism.bodies)
+    }
+
+    /// `body.point` name of an anchor (for labels), if it is a named point.
+    pub fn point_name(&self, a: Anchor) -> Option<&str> {
+        match a.body {
+            Attach::Ground => self.ground_points.iter().find(|(_, p)| p.coords == a.local).map(|(n, _)| n.as_str()),
+            Attach::Body(i) => {
+                self.mechanism.bodies[i].points.iter().find(|(_, p)| *p == a.local).map(|(n, _)| n.as_str())
+            }
+        }
+    }
+
+    /// Name of a body (`ground` for the ground).
+    pub fn body_name(&self, b: Attach) -> &str {
+        match b {
+            Attach::Ground => "ground",
+            Attach::Body(i) => &self.mechanism.bodies[i].name,
+        }
+    }
+}
+
+fn valid_ident(s: &str) -> bool {
+    !s.is_empty() && s.chars().all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+fn resolve(spec: &str, ground: &[(String, Point)], bodies: &[Body]) -> Result<Anchor, String> {
+    let Some((b, p)) = spec.split_once('.') else {
+        return Err(format!("`{spec}` is not a point reference: write body.point, e.g. crank.A or ground.O1"));
+    };
+    let body_list =
+        || std::iter::once("ground").chain(bodies.iter().map(|b| b.name.as_str())).collect::<Vec<_>>().join(", ");
+    if b == "ground" {
+        return match ground.iter().find(|(n, _)| n == p) {
+            Some((_, pt)) => Ok(Anchor { body: Attach::Ground, local: pt.coords }),
+            None => Err(format!(
+                "the ground has no point `{p}`; its points are: {}",
+                if ground.is_empty() {
+                    "(none: add them under [ground] points)".to_string()
+                } else {
+                    ground.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+                }
+            )),
+        };
+    }
+    let Some(i) = bodies.iter().position(|x| x.name == b) else {
+        return Err(format!("unknown body `{b}` in `{spec}`; the bodies are: {}", body_list()));
+    };
+    match bodies[i].points.iter().find(|(n, _)| n == p) {
+        Some((_, v)) => Ok(Anchor { body: Attach::Body(i), local: *v }),
+        None => Err(format!(
+            "body `{b}` has no point `{p}`; its points are: {}",
+            bodies[i].points.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+        )),
+    }
 }
 
 /// Validates the raw scene.
 pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
-    Ok(LinkageScene { name: super::check_name(&raw.name)?, units: raw.units })
+    let name = super::check_name(&raw.name)?;
+    // Time.
+    let from = finite("time.from", raw.time.from)?;
+    let to = finite("time.to", raw.time.to)?;
+    if to <= from {
+        return Err(FieldError::new("time.to", format!("must be later than time.from ({from}), got {to}")));
+    }
+    if raw.time.steps == 0 || raw.time.steps > MAX_STEPS {
+        return Err(FieldError::new("time.steps", format!("must be 1 to {MAX_STEPS}, got {}", raw.time.steps)));
+    }
+    let steps = raw.time.steps;
+    let times: Vec<f64> = (0..=steps).map(|k| from + (to - from) * k as f64 / steps as f64).collect();
+
+    // Ground points.
+    let mut ground_points = Vec::new();
+    for (pname, p) in &raw.ground.points.0 {
+        let field = format!("ground.points.{pname}");
+        if !valid_ident(pname) {
+            return Err(FieldError::new(field, "point names use letters, digits, '_' and '-'"));
+        }
+        ground_points.push((pname.clone(), finite_point(&field, *p)?));
+    }
+
+    // Bodies.
+    if raw.body.is_empty() {
+        return Err(FieldError::new("body", "at least one [[body]] is needed"));
+    }
+    let mut bodies: Vec<Body> = Vec::new();
+    for (i, b) in raw.body.iter().enumerate() {
+        let field = format!("body[{i}]");
+        if !valid_ident(&b.name) || b.name == "ground" {
+            return Err(FieldError::new(
+                format!("{field}.name"),
+                format!("\"{}\" cannot name a body: use letters, digits, '_' and '-', and not `ground`", b.name),
+            ));
+        }
+        if bodies.iter().any(|x| x.name == b.name) {
+            return Err(FieldError::new(format!("{field}.name"), format!("a body named `{}` already exists", b.name)));
+        }
+        if b.points.0.is_empty() {
+            return Err(FieldError::new(format!("{field}.points"), "a body needs at least one named point"));
+        }
+        let mut points: Vec<(String, Vector)> = Vec::new();
+        for (pname, p) in &b.points.0 {
+            let pf = format!("{field}.points.{pname}");
+            if !valid_ident(pname) {
+                return Err(FieldError::new(pf, "point names use letters, digits, '_' and '-'"));
+            }
+            points.push((pname.clone(), finite_point(&pf, *p)?.coords));
+        }
+        let at = finite_point(&format!("{field}.at"), b.at.unwrap_or([0.0, 0.0]))?;
+        let angle = rad(finite(&format!("{field}.angle_deg"), b.angle_deg)?);
+        bodies.push(Body { name: b.name.clone(), points, at, angle });
+    }
+
+    // Characteristic length: extent of every point in the initial placement.
+    let mut all: Vec<Point> = ground_points.iter().map(|(_, p)| *p).collect();
+    for b in &bodies {
+        all.extend(b.points.iter().map(|(_, v)| b.at + rotate(*v, b.angle)));
+    }
+    let (mut lo, mut hi) = (all[0], all[0]);
+    for p in &all {
+        lo = Point::new(lo.x.min(p.x), lo.y.min(p.y));
+        hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
+    }
+    let mut length_scale = (hi - lo).norm();
+    for b in &bodies {
+        for (_, v) in &b.points {
+            length_scale = length_scale.max(v.norm());
+        }
+    }
+    if length_scale <= 0.0 || !length_scale.is_finite() {
+        return Err(FieldError::new("body", "every point is at the same place: the mechanism has no size"));
+    }
+    let tiny = crate::geom::tol::LENGTH_REL * length_scale;
+
+    // Joints.
+    let mut joints: Vec<Joint> = Vec::new();
+    for (k, j) in raw.joint.iter().enumerate() {
+        let field = format!("joint[{k}]");
+        let name = j.name.clone().unwrap_or_else(|| format!("J{}", k + 1));
+        if joints.iter().any(|x| x.name == name) {
+            return Err(FieldError::new(format!("{field}.name"), format!("a joint named `{name}` already exists")));
+        }
+        let res = |f: String, spec: &str| resolve(spec, &ground_points, &bodies).map_err(|m| FieldError::new(f, m));
+        let kind = match (&j.revolute, &j.prismatic) {
+            (Some(pair), None) => {
+                let a = res(format!("{field}.revolute[0]"), &pair[0])?;
+                let b = res(format!("{field}.revolute[1]"), &pair[1])?;
+                if a.body == b.body {
+                    return Err(FieldError::new(
+                        format!("{field}.revolute"),
+                        "both points are on the same body: a revolute joint connects two bodies",
+                    ));
+                }
+                JointKind::Revolute { a, b }
+            }
+            (None, Some(p)) => {
+                let point = res(format!("{field}.prismatic.point"), &p.point)?;
+                let q1 = res(format!("{field}.prismatic.line[0]"), &p.line[0])?;
+                let q2 = res(format!("{field}.prismatic.line[1]"), &p.line[1])?;
+                if q1.body != q2.body {
+                    return Err(FieldError::new(
+                        format!("{field}.prismatic.line"),
+                        "the two points of the line must be on the same body (the guide)",
+                    ));
+                }
+                if (q2.local - q1.local).norm() <= tiny {
+                    return Err(FieldError::new(
+                        format!("{field}.prismatic.line"),
+                        "the two points of the line coincide: they must be distinct to give a direction",
+                    ));
+                }
+                if point.body == q1.body {
+                    return Err(FieldError::new(
+                        format!("{field}.prismatic"),
+                        "the point and the line are on the same body: a prismatic joint connects two bodies",
+                    ));
+                }
+                let phi = |a: Attach| match a {
+                    Attach::Ground => 0.0,
+                    Attach::Body(i) => bodies[i].angle,
+                };
+                let angle = match p.angle_deg {
+                    Some(d) => rad(finite(&format!("{field}.prismatic.angle_deg"), d)?),
+                    None => phi(point.body) - phi(q1.body),
+                };
+                JointKind::Prismatic { point, q1, q2, angle }
+            }
+            _ => {
+                return Err(FieldError::new(
+                    field,
+                    "give exactly one of `revolute = [\"body.P\", \"body.Q\"]` or `prismatic = { point = \"body.P\", line = [\"body.Q\", \"body.R\"] }`",
+                ));
+            }
+        };
+        joints.push(Joint { name, kind });
+    }
+
+    // Drivers.
+    let mut drivers = Vec::new();
+    for (k, d) in raw.driver.iter().enumerate() {
+        let field = format!("driver[{k}]");
+        let law = Expr::parse(&d.law)
+            .map_err(|e| FieldError::new(format!("{field}.law"), format!("cannot parse the law: {e}")))?;
+        let (target, default_name) = match (&d.body, &d.joint) {
+            (Some(b), None) => match bodies.iter().position(|x| &x.name == b) {
+                Some(i) => (DriverTarget::BodyAngle(i), b.clone()),
+                None => {
+                    return Err(FieldError::new(
+                        format!("{field}.body"),
+                        format!(
+                            "unknown body `{b}`; the bodies are: {}",
+                            bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", ")
+                        ),
+                    ));
+                }
+            },
+            (None, Some(j)) => match joints.iter().position(|x| &x.name == j) {
+                Some(i) => match joints[i].kind {
+                    JointKind::Revolute { .. } => (DriverTarget::JointAngle(i), j.clone()),
+                    JointKind::Prismatic { .. } => (DriverTarget::JointDistance(i), j.clone()),
+                },
+                None => {
+                    return Err(FieldError::new(
+                        format!("{field}.joint"),
+                        format!(
+                            "unknown joint `{j}`; the joints are: {}",
+                            joints.iter().map(|j| j.name.as_str()).collect::<Vec<_>>().join(", ")
+                        ),
+                    ));
+                }
+            },
+            _ => return Err(FieldError::new(field, "give exactly one of `body = \"...\"` or `joint = \"...\"`")),
+        };
+        drivers.push(Driver { name: d.name.clone().unwrap_or(default_name), target, law });
+    }
+
+    // Degrees of freedom against drivers, before any solving.
+    let dof = 3 * bodies.len() as i64 - 2 * joints.len() as i64;
+    if dof != drivers.len() as i64 {
+        return Err(FieldError::new(
+            "driver",
+            format!(
+                "the mechanism has {dof} degree(s) of freedom (3 × {} bodies − 2 × {} joints) but {} driver(s) are given: {}",
+                bodies.len(),
+                joints.len(),
+                drivers.len(),
+                if dof <= 0 {
+                    "the joints leave no motion; remove a joint or add a body".to_string()
+                } else if (drivers.len() as i64) < dof {
+                    format!("add {} driver(s)", dof - drivers.len() as i64)
+                } else {
+                    format!("remove {} driver(s)", drivers.len() as i64 - dof)
+                }
+            ),
+        ));
+    }
+
+    // Measures.
+    let mut measures: Vec<Measure> = Vec::new();
+    for (k, m) in raw.measure.iter().enumerate() {
+        let field = format!("measure[{k}]");
+        let (target, default_label, table) = match (&m.point, &m.body) {
+            (Some(p), None) => {
+                let a =
+                    resolve(p, &ground_points, &bodies).map_err(|e| FieldError::new(format!("{field}.point"), e))?;
+                let label = p.split_once('.').map_or(p.as_str(), |(_, n)| n).to_string();
+                (MeasureTarget::Point(a), label, POINT_QUANTITIES)
+            }
+            (None, Some(b)) => match bodies.iter().position(|x| &x.name == b) {
+                Some(i) => (MeasureTarget::Body(Attach::Body(i)), b.clone(), BODY_QUANTITIES),
+                None => return Err(FieldError::new(format!("{field}.body"), format!("unknown body `{b}`"))),
+            },
+            _ => return Err(FieldError::new(field, "give exactly one of `point = \"body.P\"` or `body = \"...\"`")),
+        };
+        let label = m.label.clone().unwrap_or(default_label);
+        if !valid_ident(&label) {
+            return Err(FieldError::new(format!("{field}.label"), "labels use letters, digits, '_' and '-'"));
+        }
+        if measures.iter().any(|x| x.label == label) {
+            return Err(FieldError::new(
+                format!("{field}.label"),
+                format!("the label `{label}` is already used by another measure: give this one its own `label`"),
+            ));
+        }
+        let mut quantities = Vec::new();
+        for (qi, q) in m.quantities.iter().enumerate() {
+            match table.iter().find(|(n, _)| n == q) {
+                Some((_, v)) => quantities.push(*v),
+                None => {
+                    return Err(FieldError::new(
+                        format!("{field}.quantities[{qi}]"),
+                        format!(
+                            "unknown quantity `{q}`; valid here: {}",
+                            table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
+                        ),
+                    ));
+                }
+            }
+        }
+        if quantities.is_empty() {
+            return Err(FieldError::new(format!("{field}.quantities"), "list at least one quantity"));
+        }
+        measures.push(Measure { label, target, quantities });
+    }
+
+    Ok(LinkageScene {
+        name,
+        units: raw.units,
+        times,
+        ground_points,
+        mechanism: Mechanism { bodies, joints, drivers, length_scale },
+        measures,
+    })
 }

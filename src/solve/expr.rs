@@ -1,2 +1,701 @@
-//! Driver laws: expressions of t, parsed once and differentiated exactly.
-//! (Placeholder: filled in by the general-linkage issue.)
+//! Driver laws: expressions of the time `t`, parsed once into a tree and evaluated with
+//! their exact first and second time derivatives.
+//!
+//! Grammar (usual precedence, `^` binds tightest and is right-associative, unary minus
+//! binds looser than `^`, so `-t^2 = -(t^2)` and `2^-1 = 0.5`):
+//!
+//! ```text
+//! expr    := term (('+' | '-') term)*
+//! term    := unary (('*' | '/') unary)*
+//! unary   := ('-' | '+') unary | power
+//! power   := primary ('^' unary)?
+//! primary := number | 't' | 'pi' | 'e' | 'deg' | function '(' expr ')' | '(' expr ')'
+//! ```
+//!
+//! Numbers: `2`, `0.5`, `.5`, `1e-3`. Constants: `pi`, `e`, `deg` (= π/180, so
+//! `360*deg*t` is one turn a second). Functions: `sin cos tan asin acos atan sinh cosh
+//! tanh exp ln log (natural) log10 sqrt abs`.
+//!
+//! Derivatives are exact: the tree is evaluated on second-order jets (value, d/dt,
+//! d²/dt²), the forward-mode analogue of symbolic differentiation, so a driver's velocity
+//! and acceleration carry no finite-difference error.
+//!
+//! ```
+//! use mechdraw::solve::expr::Expr;
+//! let law = Expr::parse("0.3*sin(4*t) + t^2").unwrap();
+//! let j = law.eval(0.5);
+//! assert!((j.value - (0.3 * 2f64.sin() + 0.25)).abs() < 1e-15);
+//! assert!((j.d1 - (1.2 * 2f64.cos() + 1.0)).abs() < 1e-15);
+//! assert!((j.d2 - (-4.8 * 2f64.sin() + 2.0)).abs() < 1e-15);
+//! ```
+
+use std::fmt;
+
+/// A value with its first and second derivatives with respect to `t`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Jet {
+    /// f(t).
+    pub value: f64,
+    /// df/dt.
+    pub d1: f64,
+    /// d²f/dt².
+    pub d2: f64,
+}
+
+impl Jet {
+    fn constant(v: f64) -> Jet {
+        Jet { value: v, d1: 0.0, d2: 0.0 }
+    }
+
+    /// Chain rule for g(self) with g(v), g'(v), g''(v) given.
+    fn chain(self, g: f64, g1: f64, g2: f64) -> Jet {
+        Jet { value: g, d1: g1 * self.d1, d2: g2 * self.d1 * self.d1 + g1 * self.d2 }
+    }
+
+    fn add(self, o: Jet) -> Jet {
+        Jet { value: self.value + o.value, d1: self.d1 + o.d1, d2: self.d2 + o.d2 }
+    }
+
+    fn sub(self, o: Jet) -> Jet {
+        Jet { value: self.value - o.value, d1: self.d1 - o.d1, d2: self.d2 - o.d2 }
+    }
+
+    fn mul(self, o: Jet) -> Jet {
+        Jet {
+            value: self.value * o.value,
+            d1: self.d1 * o.value + self.value * o.d1,
+            d2: self.d2 * o.value + 2.0 * self.d1 * o.d1 + self.value * o.d2,
+        }
+    }
+
+    fn recip(self) -> Jet {
+        let v = self.value;
+        self.chain(1.0 / v, -1.0 / (v * v), 2.0 / (v * v * v))
+    }
+
+    fn neg(self) -> Jet {
+        Jet { value: -self.value, d1: -self.d1, d2: -self.d2 }
+    }
+
+    /// self^c for a constant exponent c.
+    fn powc(self, c: f64) -> Jet {
+        let v = self.value;
+        if c == 0.0 {
+            return Jet::constant(1.0);
+        }
+        // Integer exponents through powi: exact signs for negative bases.
+        let p = |k: f64| -> f64 {
+            let e = c - k;
+            if e == 0.0 {
+                1.0
+            } else if e.fract() == 0.0 && e.abs() < 1e9 {
+                v.powi(e as i32)
+            } else {
+                v.powf(e)
+            }
+        };
+        let g1 = c * p(1.0);
+        let g2 = if c == 1.0 { 0.0 } else { c * (c - 1.0) * p(2.0) };
+        self.chain(p(0.0), g1, g2)
+    }
+}
+
+/// A one-argument function of the grammar.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Func {
+    /// sin
+    Sin,
+    /// cos
+    Cos,
+    /// tan
+    Tan,
+    /// asin
+    Asin,
+    /// acos
+    Acos,
+    /// atan
+    Atan,
+    /// sinh
+    Sinh,
+    /// cosh
+    Cosh,
+    /// tanh
+    Tanh,
+    /// exp
+    Exp,
+    /// ln (also `log`): natural logarithm
+    Ln,
+    /// log10
+    Log10,
+    /// sqrt
+    Sqrt,
+    /// abs
+    Abs,
+}
+
+const FUNCS: &[(&str, Func)] = &[
+    ("sin", Func::Sin),
+    ("cos", Func::Cos),
+    ("tan", Func::Tan),
+    ("asin", Func::Asin),
+    ("acos", Func::Acos),
+    ("atan", Func::Atan),
+    ("sinh", Func::Sinh),
+    ("cosh", Func::Cosh),
+    ("tanh", Func::Tanh),
+    ("exp", Func::Exp),
+    ("ln", Func::Ln),
+    ("log", Func::Ln),
+    ("log10", Func::Log10),
+    ("sqrt", Func::Sqrt),
+    ("abs", Func::Abs),
+];
+
+impl Func {
+    fn apply(self, a: Jet) -> Jet {
+        let v = a.value;
+        match self {
+            Func::Sin => {
+                let (s, c) = v.sin_cos();
+                a.chain(s, c, -s)
+            }
+            Func::Cos => {
+                let (s, c) = v.sin_cos();
+                a.chain(c, -s, -c)
+            }
+            Func::Tan => {
+                let t = v.tan();
+                let sec2 = 1.0 + t * t;
+                a.chain(t, sec2, 2.0 * t * sec2)
+            }
+            Func::Asin => {
+                let w = 1.0 - v * v;
+                a.chain(v.asin(), 1.0 / w.sqrt(), v / (w * w.sqrt()))
+            }
+            Func::Acos => {
+                let w = 1.0 - v * v;
+                a.chain(v.acos(), -1.0 / w.sqrt(), -v / (w * w.sqrt()))
+            }
+            Func::Atan => {
+                let w = 1.0 + v * v;
+                a.chain(v.atan(), 1.0 / w, -2.0 * v / (w * w))
+            }
+            Func::Sinh => a.chain(v.sinh(), v.cosh(), v.sinh()),
+            Func::Cosh => a.chain(v.cosh(), v.sinh(), v.cosh()),
+            Func::Tanh => {
+                let t = v.tanh();
+                let s = 1.0 - t * t;
+                a.chain(t, s, -2.0 * t * s)
+            }
+            Func::Exp => {
+                let e = v.exp();
+                a.chain(e, e, e)
+            }
+            Func::Ln => a.chain(v.ln(), 1.0 / v, -1.0 / (v * v)),
+            Func::Log10 => {
+                let k = std::f64::consts::LN_10;
+                a.chain(v.log10(), 1.0 / (k * v), -1.0 / (k * v * v))
+            }
+            Func::Sqrt => {
+                let s = v.sqrt();
+                a.chain(s, 0.5 / s, -0.25 / (s * v))
+            }
+            Func::Abs => {
+                let sg = if v > 0.0 {
+                    1.0
+                } else if v < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                };
+                a.chain(v.abs(), sg, 0.0)
+            }
+        }
+    }
+
+    fn name(self) -> &'static str {
+        FUNCS.iter().find(|(_, f)| *f == self).map_or("?", |(n, _)| n)
+    }
+}
+
+/// A binary operator.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum BinOp {
+    /// `+`
+    Add,
+    /// `-`
+    Sub,
+    /// `*`
+    Mul,
+    /// `/`
+    Div,
+    /// `^` (right-associative)
+    Pow,
+}
+
+/// The parsed expression tree.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Node {
+    /// A number or a named constant.
+    Const(f64),
+    /// The time `t`.
+    T,
+    /// Unary minus.
+    Neg(Box<Node>),
+    /// A binary operation.
+    Bin(BinOp, Box<Node>, Box<Node>),
+    /// A function call.
+    Call(Func, Box<Node>),
+}
+
+impl Node {
+    fn depends_on_t(&self) -> bool {
+        match self {
+            Node::Const(_) => false,
+            Node::T => true,
+            Node::Neg(a) | Node::Call(_, a) => a.depends_on_t(),
+            Node::Bin(_, a, b) => a.depends_on_t() || b.depends_on_t(),
+        }
+    }
+
+    fn eval(&self, t: f64) -> Jet {
+        match self {
+            Node::Const(c) => Jet::constant(*c),
+            Node::T => Jet { value: t, d1: 1.0, d2: 0.0 },
+            Node::Neg(a) => a.eval(t).neg(),
+            Node::Call(f, a) => f.apply(a.eval(t)),
+            Node::Bin(op, a, b) => {
+                let x = a.eval(t);
+                match op {
+                    BinOp::Add => x.add(b.eval(t)),
+                    BinOp::Sub => x.sub(b.eval(t)),
+                    BinOp::Mul => x.mul(b.eval(t)),
+                    BinOp::Div => x.mul(b.eval(t).recip()),
+                    BinOp::Pow => {
+                        if b.depends_on_t() {
+                            // a^b = exp(b·ln a), defined for a > 0.
+                            Func::Exp.apply(b.eval(t).mul(Func::Ln.apply(x)))
+                        } else {
+                            x.powc(b.eval(t).value)
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// A parsed driver law f(t).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Expr {
+    source: String,
+    root: Node,
+}
+
+impl Expr {
+    /// Parses `source`; the error says where it went wrong.
+    pub fn parse(source: &str) -> Result<Expr, ParseError> {
+        let tokens = lex(source)?;
+        let mut p = Parser { tokens: &tokens, pos: 0, source };
+        let root = p.expr()?;
+        if let Some(tok) = p.peek() {
+            return Err(p.error_at(tok.col, format!("unexpected {} after a complete expression", tok.kind)));
+        }
+        Ok(Expr { source: source.to_string(), root })
+    }
+
+    /// The text the expression was parsed from.
+    pub fn source(&self) -> &str {
+        &self.source
+    }
+
+    /// The tree.
+    pub fn root(&self) -> &Node {
+        &self.root
+    }
+
+    /// f(t), f'(t), f''(t). Outside the domain of a function (e.g. `sqrt` of a negative
+    /// number) the values are not finite: callers check.
+    pub fn eval(&self, t: f64) -> Jet {
+        self.root.eval(t)
+    }
+}
+
+impl fmt::Display for Expr {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.source)
+    }
+}
+
+/// Why an expression does not parse, and where.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{message} at column {column}\n  {text}\n  {caret}")]
+pub struct ParseError {
+    /// 1-based character column of the problem.
+    pub column: usize,
+    /// What is wrong and what would be valid.
+    pub message: String,
+    /// The expression text.
+    pub text: String,
+    /// A line with a `^` under the column.
+    pub caret: String,
+}
+
+#[derive(Debug, Clone, PartialEq)]
+enum Kind {
+    Num(f64),
+    Ident(String),
+    Op(char),
+    LParen,
+    RParen,
+}
+
+impl fmt::Display for Kind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Kind::Num(v) => write!(f, "number {v}"),
+            Kind::Ident(s) => write!(f, "name `{s}`"),
+            Kind::Op(c) => write!(f, "`{c}`"),
+            Kind::LParen => f.write_str("`(`"),
+            Kind::RParen => f.write_str("`)`"),
+        }
+    }
+}
+
+#[derive(Debug, Clone)]
+struct Token {
+    kind: Kind,
+    /// 1-based character column.
+    col: usize,
+}
+
+fn make_error(source: &str, column: usize, message: String) -> ParseError {
+    ParseError { column, message, text: source.to_string(), caret: format!("{}^", " ".repeat(column - 1)) }
+}
+
+fn lex(source: &str) -> Result<Vec<Token>, ParseError> {
+    let chars: Vec<char> = source.chars().collect();
+    let mut out = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        let c = chars[i];
+        let col = i + 1;
+        if c.is_whitespace() {
+            i += 1;
+        } else if c.is_ascii_digit() || c == '.' {
+            let start = i;
+            while i < chars.len() && (chars[i].is_ascii_digit() || chars[i] == '.') {
+                i += 1;
+            }
+            // Exponent: e or E followed by an optional sign and digits.
+            if i < chars.len() && (chars[i] == 'e' || chars[i] == 'E') {
+                let mut j = i + 1;
+                if j < chars.len() && (chars[j] == '+' || chars[j] == '-') {
+                    j += 1;
+                }
+                if j < chars.len() && chars[j].is_ascii_digit() {
+                    while j < chars.len() && chars[j].is_ascii_digit() {
+                        j += 1;
+                    }
+                    i = j;
+                }
+            }
+            let text: String = chars[start..i].iter().collect();
+            let v: f64 = text
+                .parse()
+                .map_err(|_| make_error(source, col, format!("`{text}` is not a number (write e.g. 2, 0.5, 1e-3)")))?;
+            out.push(Token { kind: Kind::Num(v), col });
+        } else if c.is_alphabetic() || c == '_' {
+            let start = i;
+            while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
+                i += 1;
+            }
+            out.push(Token { kind: Kind::Ident(chars[start..i].iter().collect()), col });
+        } else if "+-*/^".contains(c) {
+            out.push(Token { kind: Kind::Op(c), col });
+            i += 1;
+        } else if c == '(' {
+            out.push(Token { kind: Kind::LParen, col });
+            i += 1;
+        } else if c == ')' {
+            out.push(Token { kind: Kind::RParen, col });
+            i += 1;
+        } else {
+            return Err(make_error(
+                source,
+                col,
+                format!("unexpected character `{c}` (operators are + - * / ^ and parentheses)"),
+            ));
+        }
+    }
+    Ok(out)
+}
+
+struct Parser<'a> {
+    tokens: &'a [Token],
+    pos: usize,
+    source: &'a str,
+}
+
+impl Parser<'_> {
+    fn peek(&self) -> Option<&Token> {
+        self.tokens.get(self.pos)
+    }
+
+    fn end_col(&self) -> usize {
+        self.source.chars().count() + 1
+    }
+
+    fn error_at(&self, col: usize, message: String) -> ParseError {
+        make_error(self.source, col, message)
+    }
+
+    fn eat_op(&mut self, ops: &str) -> Option<char> {
+        match self.peek() {
+            Some(Token { kind: Kind::Op(c), .. }) if ops.contains(*c) => {
+                let c = *c;
+                self.pos += 1;
+                Some(c)
+            }
+            _ => None,
+        }
+    }
+
+    fn expr(&mut self) -> Result<Node, ParseError> {
+        let mut left = self.term()?;
+        while let Some(c) = self.eat_op("+-") {
+            let right = self.term()?;
+            let op = if c == '+' { BinOp::Add } else { BinOp::Sub };
+            left = Node::Bin(op, Box::new(left), Box::new(right));
+        }
+        Ok(left)
+    }
+
+    fn term(&mut self) -> Result<Node, ParseError> {
+        let mut left = self.unary()?;
+        while let Some(c) = self.eat_op("*/") {
+            let right = self.unary()?;
+            let op = if c == '*' { BinOp::Mul } else { BinOp::Div };
+            left = Node::Bin(op, Box::new(left), Box::new(right));
+        }
+        Ok(left)
+    }
+
+    fn unary(&mut self) -> Result<Node, ParseError> {
+        match self.eat_op("+-") {
+            Some('-') => Ok(Node::Neg(Box::new(self.unary()?))),
+            Some(_) => self.unary(),
+            None => self.power(),
+        }
+    }
+
+    fn power(&mut self) -> Result<Node, ParseError> {
+        let base = self.primary()?;
+        if self.eat_op("^").is_some() {
+            // Right-associative: the exponent is itself a unary (which contains a power).
+            let exponent = self.unary()?;
+            return Ok(Node::Bin(BinOp::Pow, Box::new(base), Box::new(exponent)));
+        }
+        Ok(base)
+    }
+
+    fn primary(&mut self) -> Result<Node, ParseError> {
+        let Some(tok) = self.peek().cloned() else {
+            return Err(
+                self.error_at(self.end_col(), "the expression ends here; expected a number, t, a name or `(`".into())
+            );
+        };
+        self.pos += 1;
+        match tok.kind {
+            Kind::Num(v) => Ok(Node::Const(v)),
+            Kind::LParen => {
+                let inner = self.expr()?;
+                self.close_paren(tok.col)?;
+                Ok(inner)
+            }
+            Kind::Ident(name) => {
+                if let Some((_, f)) = FUNCS.iter().find(|(n, _)| *n == name) {
+                    match self.peek() {
+                        Some(Token { kind: Kind::LParen, col }) => {
+                            let open = *col;
+                            self.pos += 1;
+                            let arg = self.expr()?;
+                            self.close_paren(open)?;
+                            Ok(Node::Call(*f, Box::new(arg)))
+                        }
+                        _ => Err(self.error_at(
+                            tok.col + name.chars().count(),
+                            format!("function `{}` needs its argument in parentheses, e.g. {}(t)", f.name(), f.name()),
+                        )),
+                    }
+                } else {
+                    match name.as_str() {
+                        "t" => Ok(Node::T),
+                        "pi" => Ok(Node::Const(std::f64::consts::PI)),
+                        "e" => Ok(Node::Const(std::f64::consts::E)),
+                        "deg" => Ok(Node::Const(std::f64::consts::PI / 180.0)),
+                        _ => Err(self.error_at(
+                            tok.col,
+                            format!(
+                                "unknown name `{name}`: the variable is t, constants are pi, e, deg, functions are {}",
+                                FUNCS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
+                            ),
+                        )),
+                    }
+                }
+            }
+            Kind::Op(c) => {
+                Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, t, a name or `(`")))
+            }
+            Kind::RParen => Err(self.error_at(tok.col, "unexpected `)`; expected a number, t, a name or `(`".into())),
+        }
+    }
+
+    fn close_paren(&mut self, open_col: usize) -> Result<(), ParseError> {
+        match self.peek() {
+            Some(Token { kind: Kind::RParen, .. }) => {
+                self.pos += 1;
+                Ok(())
+            }
+            Some(tok) => Err(self.error_at(
+                tok.col,
+                format!("expected `)` (to close the `(` at column {open_col}), found {}", tok.kind),
+            )),
+            None => Err(self.error_at(self.end_col(), format!("missing `)` to close the `(` at column {open_col}"))),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn v(s: &str) -> f64 {
+        Expr::parse(s).unwrap().eval(0.0).value
+    }
+
+    #[test]
+    fn precedence_and_associativity() {
+        assert_eq!(v("1 + 2 * 3"), 7.0);
+        assert_eq!(v("(1 + 2) * 3"), 9.0);
+        assert_eq!(v("8 / 4 / 2"), 1.0); // left-assoc
+        assert_eq!(v("10 - 4 - 3"), 3.0);
+        assert_eq!(v("2 ^ 3 ^ 2"), 512.0); // right-assoc: 2^9
+        assert_eq!(v("-2 ^ 2"), -4.0); // unary minus looser than ^
+        assert_eq!(v("2 ^ -1"), 0.5);
+        assert_eq!(v("--3"), 3.0);
+        assert_eq!(v("2 * -3"), -6.0);
+        assert_eq!(v("1.5e2 + .5"), 150.5);
+        assert_eq!(v("2E-1"), 0.2);
+        assert!((v("pi") - std::f64::consts::PI).abs() < 1e-16);
+        assert!((v("180*deg") - std::f64::consts::PI).abs() < 1e-15);
+        assert!((v("ln(e)") - 1.0).abs() < 1e-16);
+        assert!((v("log10(1000)") - 3.0).abs() < 1e-15);
+        assert_eq!(v("sqrt(16) + abs(-2)"), 6.0);
+        assert!((v("cos(pi)") + 1.0).abs() < 1e-16);
+    }
+
+    /// Each case: expression, hand-derived f, f', f''.
+    type Case = (&'static str, fn(f64) -> [f64; 3]);
+
+    #[test]
+    fn derivatives_match_hand_derivatives_and_finite_differences() {
+        let cases: &[Case] = &[
+            ("0.3*sin(4*t) + t^2", |t| {
+                [0.3 * (4.0 * t).sin() + t * t, 1.2 * (4.0 * t).cos() + 2.0 * t, -4.8 * (4.0 * t).sin() + 2.0]
+            }),
+            ("2*pi*t", |_t| [2.0 * std::f64::consts::PI * _t, 2.0 * std::f64::consts::PI, 0.0]),
+            ("exp(-t)*cos(3*t)", |t| {
+                let (e, c, s) = ((-t).exp(), (3.0 * t).cos(), (3.0 * t).sin());
+                [e * c, e * (-c - 3.0 * s), e * (c + 6.0 * s - 9.0 * c)]
+            }),
+            ("1/(1+t^2)", |t| {
+                let w = 1.0 + t * t;
+                [1.0 / w, -2.0 * t / (w * w), (6.0 * t * t - 2.0) / (w * w * w)]
+            }),
+            ("t^t", |t| {
+                let f = t.powf(t);
+                let l = t.ln() + 1.0;
+                [f, f * l, f * (l * l + 1.0 / t)]
+            }),
+            ("sqrt(1+t)", |t| [(1.0 + t).sqrt(), 0.5 / (1.0 + t).sqrt(), -0.25 / (1.0 + t).powf(1.5)]),
+            ("atan(t) - asin(t/2) + acos(t/3)", |t| {
+                let a = [t.atan(), 1.0 / (1.0 + t * t), -2.0 * t / (1.0 + t * t).powi(2)];
+                let w = 1.0 - t * t / 4.0;
+                let b = [(t / 2.0).asin(), 0.5 / w.sqrt(), 0.125 * t / w.powf(1.5)];
+                let u = 1.0 - t * t / 9.0;
+                let c = [(t / 3.0).acos(), -(1.0 / 3.0) / u.sqrt(), -(t / 27.0) / u.powf(1.5)];
+                [a[0] - b[0] + c[0], a[1] - b[1] + c[1], a[2] - b[2] + c[2]]
+            }),
+            ("tan(t) + tanh(t) + sinh(t)*cosh(t)", |t| {
+                let sec2 = 1.0 / t.cos().powi(2);
+                let sech2 = 1.0 - t.tanh().powi(2);
+                [
+                    t.tan() + t.tanh() + t.sinh() * t.cosh(),
+                    sec2 + sech2 + (2.0 * t).cosh(),
+                    2.0 * t.tan() * sec2 - 2.0 * t.tanh() * sech2 + 2.0 * (2.0 * t).sinh(),
+                ]
+            }),
+            ("(t-2)^3", |t| [(t - 2.0).powi(3), 3.0 * (t - 2.0).powi(2), 6.0 * (t - 2.0)]),
+            ("ln(t) + log10(t)", |t| {
+                let k = std::f64::consts::LN_10;
+                [t.ln() + t.log10(), 1.0 / t + 1.0 / (k * t), -1.0 / (t * t) - 1.0 / (k * t * t)]
+            }),
+        ];
+        for (src, hand) in cases {
+            let e = Expr::parse(src).unwrap();
+            for &t in &[0.3, 0.7, 1.1] {
+                let j = e.eval(t);
+                let h = hand(t);
+                for (k, (got, want)) in [j.value, j.d1, j.d2].iter().zip(h).enumerate() {
+                    assert!(
+                        (got - want).abs() <= 1e-12 * want.abs().max(1.0),
+                        "{src} at t={t}: d{k} = {got}, hand {want}"
+                    );
+                }
+                // Central finite differences (independent of the hand derivatives).
+                let dt = 1e-4;
+                let (fm, fp) = (e.eval(t - dt), e.eval(t + dt));
+                let fd1 = (fp.value - fm.value) / (2.0 * dt);
+                let fd2 = (fp.value - 2.0 * j.value + fm.value) / (dt * dt);
+                assert!((fd1 - j.d1).abs() <= 1e-6 * j.d1.abs().max(1.0), "{src}: fd d1 {fd1} vs {}", j.d1);
+                assert!((fd2 - j.d2).abs() <= 1e-4 * j.d2.abs().max(1.0), "{src}: fd d2 {fd2} vs {}", j.d2);
+                let fdd = (fp.d1 - fm.d1) / (2.0 * dt);
+                assert!((fdd - j.d2).abs() <= 1e-6 * j.d2.abs().max(1.0), "{src}: fd of d1 {fdd} vs {}", j.d2);
+            }
+        }
+    }
+
+    #[test]
+    fn errors_point_at_the_column() {
+        let e = Expr::parse("0.3*sin(4*t +").unwrap_err();
+        assert_eq!(e.column, 14, "{e}");
+        assert!(e.to_string().contains("0.3*sin(4*t +\n               ^"), "{e}");
+        let e = Expr::parse("2*x + 1").unwrap_err();
+        assert_eq!(e.column, 3);
+        assert!(e.message.contains("unknown name `x`"));
+        let e = Expr::parse("sin t").unwrap_err();
+        assert_eq!(e.column, 4);
+        assert!(e.message.contains("parentheses"));
+        let e = Expr::parse("(t + 1").unwrap_err();
+        assert_eq!(e.column, 7);
+        assert!(e.message.contains("missing `)`"), "{e}");
+        let e = Expr::parse("t $ 2").unwrap_err();
+        assert_eq!(e.column, 3);
+        let e = Expr::parse("t 2").unwrap_err();
+        assert_eq!(e.column, 3);
+        assert!(e.message.contains("after a complete expression"));
+        let e = Expr::parse("1.2.3").unwrap_err();
+        assert_eq!(e.column, 1);
+        let e = Expr::parse("").unwrap_err();
+        assert_eq!(e.column, 1);
+        let e = Expr::parse("3 * )").unwrap_err();
+        assert_eq!(e.column, 5);
+    }
+
+    #[test]
+    fn domain_errors_give_non_finite_values() {
+        assert!(!Expr::parse("sqrt(t - 1)").unwrap().eval(0.0).value.is_finite());
+        assert!(!Expr::parse("ln(t)").unwrap().eval(0.0).value.is_finite());
+    }
+}

@@ -4,12 +4,99 @@
 //! Conventions (design.md §4): R_A = force of link 1 on link 2 at A; R_B = force of link 3
 //! on link 2 at B; R_C = force of the ground on link 3 at C; R_O = force of the ground on
 //! link 1 at O1; Me1 = balancing (driving) torque on link 1, counter-clockwise positive.
-//! Forces in N, torques in N·(scene length unit).
+//! Forces in N, torques in N·(scene length unit) (SI scenes: N·m). Gravity acts along −y.
 //!
-//! (Types fixed by the skeleton so that the force figures can be written in parallel; the
-//! solver is filled in by the kineto-statics issue.)
+//! Two routes to the same reactions:
+//! - [`forces`], the seed's route (eqs. 3–9), which is also what the force polygon draws:
+//!   moments about B of link 2 and of link 3 give R_A^n ⊥ AB and R_C^n ⊥ BC; closing the
+//!   dyad's force polygon with R_C^t ∥ BC and R_A^t ∥ AB gives their magnitudes; link 2's
+//!   polygon gives R_B; the crank's polygon gives R_O and its moments about O1 give Me1.
+//! - [`forces_newton_euler`]: all nine unknowns (R_A, R_B, R_C, R_O, Me1) from one 9×9
+//!   linear system (Newton–Euler for links 1–3, moments about O1, A and C), solved by LU.
+//!
+//! Bars are homogeneous: centroid at the middle, J = m·l²/12 about it (for every bar,
+//! including the rocker: the seed's J3 line forgets m3). The coupler is the two bars AB
+//! and BM, as in the seed.
 
-use crate::geom::Vector;
+use nalgebra::{SMatrix, SVector};
+
+use super::fourbar::{FourbarError, Geometry, Kinematics, Position, SINGULAR_SIN, singular};
+use crate::geom::{self, Point, Vector, cross, perp};
+
+/// Point of the coupler (link 2) where an external force acts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+pub enum ForcePoint {
+    /// The crank pin A (the force acts on the coupler there).
+    A,
+    /// The joint B (the force acts on the coupler there).
+    B,
+    /// The coupler point M.
+    M,
+}
+
+impl ForcePoint {
+    /// The point at `pos`.
+    pub fn at(self, pos: &Position) -> Point {
+        match self {
+            ForcePoint::A => pos.a,
+            ForcePoint::B => pos.b,
+            ForcePoint::M => pos.m,
+        }
+    }
+}
+
+/// A closed range of crank angles, degrees, running counter-clockwise from `from_deg` to
+/// `to_deg`, both ends included (within [`super::fourbar::ANGLE_EPS_DEG`]), compared modulo
+/// 360°: `[80, 280]` holds 80° … 280°; `[300, 60]` holds 300° … 360° and 0° … 60°; a range
+/// with `to_deg − from_deg ≥ 360` holds every angle; `from_deg = to_deg` one angle.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CrankRange {
+    /// Start, degrees.
+    pub from_deg: f64,
+    /// End (included), degrees.
+    pub to_deg: f64,
+}
+
+impl CrankRange {
+    /// Whether the crank angle `phi1_deg` (any real, degrees) lies in the range.
+    pub fn contains_deg(&self, phi1_deg: f64) -> bool {
+        let eps = super::fourbar::ANGLE_EPS_DEG;
+        if self.to_deg - self.from_deg >= 360.0 - eps {
+            return true;
+        }
+        let span = (self.to_deg - self.from_deg).rem_euclid(360.0);
+        let x = (phi1_deg - self.from_deg).rem_euclid(360.0);
+        x <= span + eps || x >= 360.0 - eps
+    }
+}
+
+/// An external force on the coupler.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ExternalForce {
+    /// Where it acts.
+    pub at: ForcePoint,
+    /// The force, N (SI scenes).
+    pub value: Vector,
+    /// Crank angles where it acts; `None`: at every angle.
+    pub range: Option<CrankRange>,
+}
+
+/// Masses, gravity and external forces.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Dynamics {
+    /// Gravitational acceleration (length units/s²), acting along −y; ≥ 0.
+    pub g: f64,
+    /// Mass of the crank O1A, kg.
+    pub m1: f64,
+    /// Mass of the coupler bar AB, kg.
+    pub m21: f64,
+    /// Mass of the coupler bar BM, kg.
+    pub m22: f64,
+    /// Mass of the rocker BC, kg.
+    pub m3: f64,
+    /// External forces on the coupler.
+    pub forces: Vec<ExternalForce>,
+}
 
 /// Forces at one crank angle: the seed's route, with every vector its force polygon draws.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -58,4 +145,235 @@ pub struct Forces {
     pub r_o: Vector,
     /// Balancing torque on the crank, CCW positive.
     pub me1: f64,
+}
+
+/// The applied (non-reaction) loads at one position: weights, inertia torsors, external
+/// forces, with their points of application. Shared by both routes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Loads {
+    /// Centroids G1 (middle of O1A), G21 (AB), G22 (BM), G3 (BC).
+    pub g1_at: Point,
+    /// See `g1_at`.
+    pub g21_at: Point,
+    /// See `g1_at`.
+    pub g22_at: Point,
+    /// See `g1_at`.
+    pub g3_at: Point,
+    /// Weights (G1, G21, G22, G3), along −y.
+    pub w1: Vector,
+    /// See `w1`.
+    pub w21: Vector,
+    /// See `w1`.
+    pub w22: Vector,
+    /// See `w1`.
+    pub w3: Vector,
+    /// Inertia forces −m·a_G.
+    pub fi1: Vector,
+    /// See `fi1`.
+    pub fi21: Vector,
+    /// See `fi1`.
+    pub fi22: Vector,
+    /// See `fi1`.
+    pub fi3: Vector,
+    /// Inertia moments −J·eps (crank: eps1 = 0).
+    pub mi1: f64,
+    /// See `mi1`.
+    pub mi21: f64,
+    /// See `mi1`.
+    pub mi22: f64,
+    /// See `mi1`.
+    pub mi3: f64,
+    /// Sum of the external forces acting at this angle.
+    pub f_ext: Vector,
+    /// Moment of the external forces about B (they act on the coupler).
+    pub f_ext_moment_b: f64,
+}
+
+/// The applied loads at `pos` (crank angle `pos.phi1`).
+pub fn loads(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynamics) -> Loads {
+    let d = dynamics;
+    let down = Vector::new(0.0, -d.g);
+    let phi1_deg = geom::deg(pos.phi1);
+    let mut f_ext = Vector::zeros();
+    let mut f_ext_moment_b = 0.0;
+    for f in &d.forces {
+        if f.range.is_none_or(|r| r.contains_deg(phi1_deg)) {
+            f_ext += f.value;
+            f_ext_moment_b += cross(f.at.at(pos) - pos.b, f.value);
+        }
+    }
+    let j21 = d.m21 * geom.l_ab * geom.l_ab / 12.0;
+    let j22 = d.m22 * geom.l_bm * geom.l_bm / 12.0;
+    let j3 = d.m3 * geom.l_bc * geom.l_bc / 12.0;
+    Loads {
+        g1_at: geom.o1 + (pos.a - geom.o1) * 0.5,
+        g21_at: pos.a + (pos.b - pos.a) * 0.5,
+        g22_at: pos.b + (pos.m - pos.b) * 0.5,
+        g3_at: geom.c + (pos.b - geom.c) * 0.5,
+        w1: down * d.m1,
+        w21: down * d.m21,
+        w22: down * d.m22,
+        w3: down * d.m3,
+        fi1: -kin.a_g1 * d.m1,
+        fi21: -kin.a_g21 * d.m21,
+        fi22: -kin.a_g22 * d.m22,
+        fi3: -kin.a_g3 * d.m3,
+        mi1: 0.0, // constant omega1: eps1 = 0
+        mi21: -j21 * kin.eps2,
+        mi22: -j22 * kin.eps2,
+        mi3: -j3 * kin.eps3,
+        f_ext,
+        f_ext_moment_b,
+    }
+}
+
+/// Reactions and balancing moment by the seed's route (eqs. 3–9); see the module docs.
+/// Errors with [`FourbarError::Singular`] when A, B, C are collinear (the directions of
+/// R_A^t and R_C^t coincide and the force polygon cannot close).
+#[inline]
+pub fn forces(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynamics) -> Result<Forces, FourbarError> {
+    let l = loads(geom, pos, kin, dynamics);
+    let b = pos.b;
+    let u2 = (pos.b - pos.a) / geom.l_ab; // A→B
+    let u3 = (pos.b - geom.c) / geom.l_bc; // C→B
+    let s = cross(u2, u3);
+    if s.abs() <= SINGULAR_SIN {
+        return Err(singular(pos));
+    }
+    // Eq. 3: link 2, moments about B. R_A^n = k·perp(u2) has moment
+    // (A−B) × k·perp(u2) = −l_ab·k about B; the loads' moment K2 balances it: k = K2 / l_ab.
+    let k2 =
+        cross(l.g21_at - b, l.w21 + l.fi21) + cross(l.g22_at - b, l.w22 + l.fi22) + l.f_ext_moment_b + l.mi21 + l.mi22;
+    let r_a_n = perp(u2) * (k2 / geom.l_ab);
+    // Eq. 4: link 3, moments about B. R_C^n = k·perp(u3): (C−B) × k·perp(u3) = −l_bc·k.
+    let k3 = cross(l.g3_at - b, l.w3 + l.fi3) + l.mi3;
+    let r_c_n = perp(u3) * (k3 / geom.l_bc);
+    // Eq. 5: the dyad's polygon closes with p·u2 (R_A^t) and q·u3 (R_C^t).
+    let known = r_a_n + l.w21 + l.fi21 + l.w22 + l.fi22 + l.f_ext + l.w3 + l.fi3 + r_c_n;
+    let rhs = -known;
+    let p = cross(rhs, u3) / s;
+    let q = cross(u2, rhs) / s;
+    let r_a_t = u2 * p;
+    let r_c_t = u3 * q;
+    let r_a = r_a_n + r_a_t;
+    let r_c = r_c_n + r_c_t;
+    // Eq. 7: link 2's polygon.
+    let r_b = -(r_a + l.w21 + l.fi21 + l.w22 + l.fi22 + l.f_ext);
+    // Eq. 8: link 1 carries −R_A at A: R_O − R_A + G1 + F_i1 = 0.
+    let r_o = r_a - l.w1 - l.fi1;
+    // Eq. 9: moments about O1 on link 1: Me1 + (A−O1) × (−R_A) + (G1−O1) × (G1 + F_i1) + M_i1 = 0.
+    let me1 = cross(pos.a - geom.o1, r_a) - cross(l.g1_at - geom.o1, l.w1 + l.fi1) - l.mi1;
+    Ok(Forces {
+        g21: l.w21,
+        g22: l.w22,
+        g3: l.w3,
+        g1: l.w1,
+        fi21: l.fi21,
+        fi22: l.fi22,
+        fi3: l.fi3,
+        fi1: l.fi1,
+        mi21: l.mi21,
+        mi22: l.mi22,
+        mi3: l.mi3,
+        mi1: l.mi1,
+        f_ext: l.f_ext,
+        r_a_n,
+        r_a_t,
+        r_c_n,
+        r_c_t,
+        r_a,
+        r_b,
+        r_c,
+        r_o,
+        me1,
+    })
+}
+
+/// The reactions of the Newton–Euler route: one 9×9 linear system.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Reactions {
+    /// Force of link 1 on link 2 at A.
+    pub r_a: Vector,
+    /// Force of link 3 on link 2 at B.
+    pub r_b: Vector,
+    /// Force of the ground on link 3 at C.
+    pub r_c: Vector,
+    /// Force of the ground on link 1 at O1.
+    pub r_o: Vector,
+    /// Balancing torque on link 1, CCW positive.
+    pub me1: f64,
+}
+
+/// The same reactions as [`forces`] from Newton–Euler's equations of links 1–3 solved
+/// together (unknowns R_A, R_B, R_C, R_O, Me1; equations: forces of each link, moments of
+/// link 1 about O1, link 2 about A, link 3 about C, each with Σ(r_G − P) × m·a_G + J·eps on
+/// the inertia side), by LU decomposition.
+pub fn forces_newton_euler(
+    geom: &Geometry,
+    pos: &Position,
+    kin: &Kinematics,
+    dynamics: &Dynamics,
+) -> Result<Reactions, FourbarError> {
+    let d = dynamics;
+    let l = loads(geom, pos, kin, dynamics);
+    let (o1, a, b, c) = (geom.o1, pos.a, pos.b, geom.c);
+    // Unknown order: R_Ax, R_Ay, R_Bx, R_By, R_Cx, R_Cy, R_Ox, R_Oy, Me1.
+    let mut m = SMatrix::<f64, 9, 9>::zeros();
+    let mut rhs = SVector::<f64, 9>::zeros();
+    // Moment of an unknown force (x, y components at columns i, i+1) applied at r about P:
+    // (r−P) × F = rx·Fy − ry·Fx.
+    let moment = |m: &mut SMatrix<f64, 9, 9>, row: usize, col: usize, arm: Vector, sign: f64| {
+        m[(row, col)] += -arm.y * sign;
+        m[(row, col + 1)] += arm.x * sign;
+    };
+    // Link 1: R_O − R_A + G1 = m1·a_G1.
+    for i in 0..2 {
+        m[(i, 6 + i)] = 1.0;
+        m[(i, i)] = -1.0;
+    }
+    rhs[0] = d.m1 * kin.a_g1.x - l.w1.x;
+    rhs[1] = d.m1 * kin.a_g1.y - l.w1.y;
+    // Link 1 about O1: Me1 + (A−O1) × (−R_A) + (G1−O1) × G1 = (G1−O1) × m1·a_G1 + J1·eps1.
+    m[(2, 8)] = 1.0;
+    moment(&mut m, 2, 0, a - o1, -1.0);
+    rhs[2] = cross(l.g1_at - o1, kin.a_g1 * d.m1) - cross(l.g1_at - o1, l.w1);
+    // Link 2: R_A + R_B + G21 + G22 + F = m21·a_G21 + m22·a_G22.
+    for i in 0..2 {
+        m[(3 + i, i)] = 1.0;
+        m[(3 + i, 2 + i)] = 1.0;
+    }
+    let lin2 = kin.a_g21 * d.m21 + kin.a_g22 * d.m22 - l.w21 - l.w22 - l.f_ext;
+    rhs[3] = lin2.x;
+    rhs[4] = lin2.y;
+    // Link 2 about A: (B−A) × R_B + Σ (r−A) × (G, F) = Σ (G−A) × m·a_G + (J21 + J22)·eps2.
+    moment(&mut m, 5, 2, b - a, 1.0);
+    let j2 = (d.m21 * geom.l_ab * geom.l_ab + d.m22 * geom.l_bm * geom.l_bm) / 12.0;
+    let ext_a = l.f_ext_moment_b + cross(b - a, l.f_ext); // moment about A = about B + (B−A) × ΣF
+    rhs[5] = cross(l.g21_at - a, kin.a_g21 * d.m21) + cross(l.g22_at - a, kin.a_g22 * d.m22) + j2 * kin.eps2
+        - cross(l.g21_at - a, l.w21)
+        - cross(l.g22_at - a, l.w22)
+        - ext_a;
+    // Link 3: R_C − R_B + G3 = m3·a_G3.
+    for i in 0..2 {
+        m[(6 + i, 4 + i)] = 1.0;
+        m[(6 + i, 2 + i)] = -1.0;
+    }
+    rhs[6] = d.m3 * kin.a_g3.x - l.w3.x;
+    rhs[7] = d.m3 * kin.a_g3.y - l.w3.y;
+    // Link 3 about C: (B−C) × (−R_B) + (G3−C) × G3 = (G3−C) × m3·a_G3 + J3·eps3.
+    moment(&mut m, 8, 2, b - c, -1.0);
+    let j3 = d.m3 * geom.l_bc * geom.l_bc / 12.0;
+    rhs[8] = cross(l.g3_at - c, kin.a_g3 * d.m3) + j3 * kin.eps3 - cross(l.g3_at - c, l.w3);
+    let s = cross(b - a, b - c);
+    if s.abs() <= SINGULAR_SIN * geom.l_ab * geom.l_bc {
+        return Err(singular(pos));
+    }
+    let x = m.lu().solve(&rhs).ok_or_else(|| singular(pos))?;
+    Ok(Reactions {
+        r_a: Vector::new(x[0], x[1]),
+        r_b: Vector::new(x[2], x[3]),
+        r_c: Vector::new(x[4], x[5]),
+        r_o: Vector::new(x[6], x[7]),
+        me1: x[8],
+    })
 }

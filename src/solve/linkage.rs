@@ -1,9 +1,1348 @@
-//! Linkage solver. (Placeholder: filled in by the linkage issue.)
+//! General planar linkage solver (seed 002): bodies with Cartesian coordinates
+//! q = (x, y, φ) per body, revolute joints (coincidence constraints), prismatic joints
+//! (collinear constraints: a point of one body on a line of another, relative rotation
+//! locked) and drivers (a body angle, a relative angle across a revolute joint, or a
+//! relative distance along a prismatic joint, each a law f(t) from [`super::expr`]).
+//!
+//! Method: Newton–Raphson on Φ(q, t) = 0 with the analytic Jacobian Φq of each constraint
+//! type and an in-place LU factorisation with partial pivoting; the start of each time
+//! step is the previous solution extrapolated with q̇·Δt + ½·q̈·Δt², which keeps the
+//! assembly mode and usually converges in one or two iterations. Velocities from
+//! Φq·q̇ = −Φt, accelerations from Φq·q̈ = γ, with γ analytic per constraint type and the
+//! drivers' f′, f″ exact (second-order jets). The hot loop allocates nothing: matrices and
+//! vectors are sized once in [`Solver::new`].
+//!
+//! Conventions: lengths in the scene's units, angles in radians from +x,
+//! counter-clockwise positive; a body's point with body coordinates s is at
+//! r = R + A(φ)·s. The ground has R = 0, φ = 0: its points are global.
+
+use crate::geom::{Point, Vector, perp, rotate};
+use crate::solve::expr::Expr;
+
+/// Relative pivot size under which the Jacobian counts as singular: a pivot `|u_kk|`
+/// below `SINGULAR_PIVOT_REL · ‖Φq‖∞` (with the φ columns scaled by the mechanism's size).
+pub const SINGULAR_PIVOT_REL: f64 = 1e-10;
+/// Newton–Raphson iterations allowed per time step.
+pub const MAX_NEWTON_ITERATIONS: usize = 30;
+/// Iterations allowed to assemble the mechanism from the scene's initial placement.
+pub const MAX_ASSEMBLY_ITERATIONS: usize = 200;
+/// Component of the left singular vector above which a constraint is named as taking part
+/// in a singularity.
+const SINGULAR_SHARE: f64 = 0.1;
+
+/// Which body a point or line belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Attach {
+    /// The fixed frame.
+    Ground,
+    /// A moving body, by index into [`Mechanism::bodies`].
+    Body(usize),
+}
+
+/// A moving body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Name (unique, not `ground`).
+    pub name: String,
+    /// Named points in body coordinates, in the order the body's outline joins them.
+    pub points: Vec<(String, Vector)>,
+    /// Initial placement (a guess the solver assembles from): origin of the body frame.
+    pub at: Point,
+    /// Initial placement: angle of the body frame, radians.
+    pub angle: f64,
+}
+
+/// A point fixed in a body (or in the ground).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Anchor {
+    /// The body.
+    pub body: Attach,
+    /// Body coordinates (global for the ground).
+    pub local: Vector,
+}
+
+/// A joint between two bodies.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JointKind {
+    /// The points coincide (2 equations).
+    Revolute {
+        /// Point of the first body.
+        a: Anchor,
+        /// Point of the second body.
+        b: Anchor,
+    },
+    /// `point` (on the slider body) stays on the line `q1 → q2` of the guide body, and
+    /// φ_slider − φ_guide = `angle` (2 equations: the seed's collinear constraint).
+    Prismatic {
+        /// The sliding point.
+        point: Anchor,
+        /// First point of the guide line (its origin for distance drivers).
+        q1: Anchor,
+        /// Second point of the guide line (q1 → q2 is the positive direction), same body as q1.
+        q2: Anchor,
+        /// Locked relative rotation φ_slider − φ_guide, radians.
+        angle: f64,
+    },
+}
+
+/// A named joint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    /// Name for messages and drivers.
+    pub name: String,
+    /// The constraint.
+    pub kind: JointKind,
+}
+
+/// What a driver prescribes.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum DriverTarget {
+    /// φ of a body = f(t), radians.
+    BodyAngle(usize),
+    /// φ_b − φ_a across a revolute joint (index into [`Mechanism::joints`]) = f(t), radians.
+    JointAngle(usize),
+    /// Distance of the slider point from q1 along q1 → q2 of a prismatic joint = f(t).
+    JointDistance(usize),
+}
+
+/// A driver: a coordinate prescribed as a function of time.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Driver {
+    /// Name for messages.
+    pub name: String,
+    /// What it drives.
+    pub target: DriverTarget,
+    /// The law f(t) (radians or length units).
+    pub law: Expr,
+}
+
+/// The mechanism as the solver sees it (built from a checked scene).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mechanism {
+    /// Moving bodies.
+    pub bodies: Vec<Body>,
+    /// Joints.
+    pub joints: Vec<Joint>,
+    /// Drivers.
+    pub drivers: Vec<Driver>,
+    /// Characteristic length (the mechanism's size): residuals of length equations are
+    /// divided by it.
+    pub length_scale: f64,
+}
 
 /// Why a linkage cannot be solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LinkageError {
-    /// Not implemented yet.
-    #[error("the linkage solver is not implemented yet")]
-    NotImplemented,
+    /// Degrees of freedom and drivers don't match (counted before solving).
+    /// Example: a crank-rocker with no driver.
+    #[error(
+        "the mechanism has {dof} degree(s) of freedom (3 × {bodies} moving bodies − {equations} joint equations) \
+         but {drivers} driver(s): {hint}"
+    )]
+    DofMismatch {
+        /// Moving bodies.
+        bodies: usize,
+        /// Joint equations (2 per revolute or prismatic joint).
+        equations: usize,
+        /// 3·bodies − equations.
+        dof: i64,
+        /// Drivers given.
+        drivers: usize,
+        /// What to do.
+        hint: String,
+    },
+    /// The start cannot be assembled. Example: a coupler too short to reach the rocker.
+    #[error(
+        "cannot assemble the mechanism at t = {t} s from the initial placement: the constraints cannot all be met \
+         (smallest residual {residual:.3e} relative, largest in {worst}); check the lengths and the initial placement"
+    )]
+    CannotAssemble {
+        /// Time.
+        t: f64,
+        /// Relative residual reached.
+        residual: f64,
+        /// The constraint with the largest residual.
+        worst: String,
+    },
+    /// The Jacobian turned singular (a dead point, a change of assembly mode, redundant
+    /// constraints). Example: a crank-rocker whose crank is driven through a dead point.
+    #[error(
+        "the constraint Jacobian is singular at t = {t} s (a dead point or redundant constraints); involved: {constraints}"
+    )]
+    Singular {
+        /// Time.
+        t: f64,
+        /// The constraints that take part (from the left singular vector), comma-separated.
+        constraints: String,
+    },
+    /// Newton–Raphson did not converge.
+    #[error(
+        "Newton–Raphson did not converge at t = {t} s after {iterations} iterations (residual {residual:.3e} relative, largest in {worst})"
+    )]
+    NoConvergence {
+        /// Time.
+        t: f64,
+        /// Iterations done.
+        iterations: usize,
+        /// Relative residual reached.
+        residual: f64,
+        /// The constraint with the largest residual.
+        worst: String,
+    },
+    /// A driver law is not finite (outside a function's domain).
+    #[error("driver `{driver}`: its law `{law}` is not finite at t = {t} s (value {value}, f' {d1}, f'' {d2})")]
+    DriverNotFinite {
+        /// Driver name.
+        driver: String,
+        /// The law's text.
+        law: String,
+        /// Time.
+        t: f64,
+        /// f(t).
+        value: f64,
+        /// f'(t).
+        d1: f64,
+        /// f''(t).
+        d2: f64,
+    },
+    /// A drag request names no point of the mechanism or does not converge.
+    #[error("drag {what}")]
+    Drag {
+        /// What went wrong.
+        what: String,
+    },
+}
+
+/// One compiled constraint (one or two rows of Φ).
+#[derive(Debug, Clone)]
+enum Con {
+    /// r_a − r_b = 0 (2 rows).
+    Coincide { a: Anchor, b: Anchor },
+    /// n_g · (r_P − r_Q) = 0, n_g the guide's unit normal (1 row, length).
+    OnLine { p: Anchor, q: Anchor, guide: Attach, u: Vector },
+    /// φ_i − φ_j − offset − f(t) = 0 (1 row, angle); `law` None for a lock.
+    Angle { i: Attach, j: Attach, offset: f64, law: Option<usize> },
+    /// u_g · (r_P − r_Q) − f(t) = 0 (1 row, length).
+    Distance { p: Anchor, q: Anchor, guide: Attach, u: Vector, law: usize },
+}
+
+impl Con {
+    fn rows(&self) -> usize {
+        match self {
+            Con::Coincide { .. } => 2,
+            _ => 1,
+        }
+    }
+    fn is_length(&self) -> bool {
+        !matches!(self, Con::Angle { .. })
+    }
+}
+
+/// Coordinates of one body (ground: zeros), read from q.
+#[derive(Debug, Clone, Copy)]
+struct Pose {
+    r: Vector,
+    phi: f64,
+    c: f64,
+    s: f64,
+}
+
+fn col(a: Attach) -> Option<usize> {
+    match a {
+        Attach::Ground => None,
+        Attach::Body(i) => Some(3 * i),
+    }
+}
+
+fn pose(q: &[f64], a: Attach) -> Pose {
+    match col(a) {
+        None => Pose { r: Vector::zeros(), phi: 0.0, c: 1.0, s: 0.0 },
+        Some(k) => {
+            let (s, c) = q[k + 2].sin_cos();
+            Pose { r: Vector::new(q[k], q[k + 1]), phi: q[k + 2], c, s }
+        }
+    }
+}
+
+/// Poses of every moving body at `q` (one sin/cos each), into `out`.
+fn fill_poses(q: &[f64], out: &mut Vec<Pose>) {
+    out.clear();
+    for k in (0..q.len()).step_by(3) {
+        out.push(pose(q, Attach::Body(k / 3)));
+    }
+}
+
+const GROUND_POSE: Pose = Pose { r: Vector::new(0.0, 0.0), phi: 0.0, c: 1.0, s: 0.0 };
+
+/// The cached pose of `a`.
+fn pz(poses: &[Pose], a: Attach) -> Pose {
+    match a {
+        Attach::Ground => GROUND_POSE,
+        Attach::Body(i) => poses[i],
+    }
+}
+
+impl Pose {
+    /// A(φ)·v.
+    fn rot(&self, v: Vector) -> Vector {
+        Vector::new(self.c * v.x - self.s * v.y, self.s * v.x + self.c * v.y)
+    }
+}
+
+/// Velocity triple of a body (zeros for the ground).
+fn rate(qd: &[f64], a: Attach) -> (Vector, f64) {
+    match col(a) {
+        None => (Vector::zeros(), 0.0),
+        Some(k) => (Vector::new(qd[k], qd[k + 1]), qd[k + 2]),
+    }
+}
+
+/// Dense LU with partial pivoting, in place, allocation-free after construction.
+/// (nalgebra's `LU` takes its matrix by value, which would allocate on every step.)
+#[derive(Debug, Clone)]
+struct Lu {
+    n: usize,
+    a: Vec<f64>,
+    piv: Vec<usize>,
+}
+
+impl Lu {
+    fn new(n: usize) -> Lu {
+        Lu { n, a: vec![0.0; n * n], piv: vec![0; n] }
+    }
+
+    /// Factors the row-major matrix in `self.a`; false if a pivot falls below
+    /// `SINGULAR_PIVOT_REL · scale`.
+    fn factor(&mut self, scale: f64) -> bool {
+        let n = self.n;
+        let a = &mut self.a;
+        for k in 0..n {
+            let mut p = k;
+            let mut best = a[k * n + k].abs();
+            for r in k + 1..n {
+                let v = a[r * n + k].abs();
+                if v > best {
+                    best = v;
+                    p = r;
+                }
+            }
+            if best <= SINGULAR_PIVOT_REL * scale || !best.is_finite() {
+                return false;
+            }
+            self.piv[k] = p;
+            if p != k {
+                for c in 0..n {
+                    a.swap(k * n + c, p * n + c);
+                }
+            }
+            let inv = 1.0 / a[k * n + k];
+            for r in k + 1..n {
+                let f = a[r * n + k] * inv;
+                if f != 0.0 {
+                    a[r * n + k] = f;
+                    for c in k + 1..n {
+                        a[r * n + c] -= f * a[k * n + c];
+                    }
+                } else {
+                    a[r * n + k] = 0.0;
+                }
+            }
+        }
+        true
+    }
+
+    /// Solves A·x = b in place.
+    fn solve(&self, b: &mut [f64]) {
+        let n = self.n;
+        let a = &self.a;
+        for k in 0..n {
+            b.swap(k, self.piv[k]);
+        }
+        for r in 1..n {
+            let mut s = b[r];
+            for c in 0..r {
+                s -= a[r * n + c] * b[c];
+            }
+            b[r] = s;
+        }
+        for r in (0..n).rev() {
+            let mut s = b[r];
+            for c in r + 1..n {
+                s -= a[r * n + c] * b[c];
+            }
+            b[r] = s / a[r * n + r];
+        }
+    }
+}
+
+/// The state at one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct State {
+    /// Time, s.
+    pub t: f64,
+    /// Coordinates (x, y, φ) per body.
+    pub q: Vec<f64>,
+    /// Their time derivatives.
+    pub qd: Vec<f64>,
+    /// Their second time derivatives.
+    pub qdd: Vec<f64>,
+    /// Newton iterations this step took (corrections applied).
+    pub iterations: usize,
+    /// Largest relative constraint residual at the answer.
+    pub residual: f64,
+}
+
+impl State {
+    /// Global position of `anchor`.
+    pub fn point(&self, anchor: Anchor) -> Point {
+        let p = pose(&self.q, anchor.body);
+        Point::from(p.r + p.rot(anchor.local))
+    }
+
+    /// Velocity of `anchor`.
+    pub fn velocity(&self, anchor: Anchor) -> Vector {
+        let p = pose(&self.q, anchor.body);
+        let (rd, w) = rate(&self.qd, anchor.body);
+        rd + perp(p.rot(anchor.local)) * w
+    }
+
+    /// Acceleration of `anchor`.
+    pub fn acceleration(&self, anchor: Anchor) -> Vector {
+        let p = pose(&self.q, anchor.body);
+        let (_, w) = rate(&self.qd, anchor.body);
+        let (rdd, e) = rate(&self.qdd, anchor.body);
+        let s = p.rot(anchor.local);
+        rdd + perp(s) * e - s * (w * w)
+    }
+
+    /// Angle, angular velocity and angular acceleration of a body (radians, rad/s, rad/s²).
+    pub fn angular(&self, body: Attach) -> (f64, f64, f64) {
+        (pose(&self.q, body).phi, rate(&self.qd, body).1, rate(&self.qdd, body).1)
+    }
+}
+
+/// The Newton–Raphson solver of one mechanism, with every buffer sized once.
+#[derive(Debug, Clone)]
+pub struct Solver {
+    mech: Mechanism,
+    cons: Vec<Con>,
+    /// Description of each row, for messages.
+    row_names: Vec<String>,
+    /// 1 for angle rows, the length scale for length rows.
+    row_scale: Vec<f64>,
+    /// The length scale for x/y columns, 1 for φ columns.
+    col_scale: Vec<f64>,
+    n: usize,
+    m: usize,
+    q: Vec<f64>,
+    qd: Vec<f64>,
+    qdd: Vec<f64>,
+    /// q̈ of the step before (for the third-order predictor).
+    qdd_prev: Vec<f64>,
+    /// Length of the previous step, when there was one.
+    dt_prev: Option<f64>,
+    t: Option<f64>,
+    phi: Vec<f64>,
+    rhs: Vec<f64>,
+    lu: Lu,
+    laws: Vec<(f64, f64, f64)>,
+    /// Poses of the bodies at the current q (refreshed by `residual`).
+    poses: Vec<Pose>,
+}
+
+impl Solver {
+    /// Compiles the mechanism; counts degrees of freedom against drivers first.
+    pub fn new(mech: Mechanism) -> Result<Solver, LinkageError> {
+        let nb = mech.bodies.len();
+        let n = 3 * nb;
+        let equations = 2 * mech.joints.len();
+        let dof = n as i64 - equations as i64;
+        if dof != mech.drivers.len() as i64 {
+            let d = mech.drivers.len() as i64;
+            let hint = if dof <= 0 {
+                "the joints leave no motion (a structure or over-constrained): remove a joint or add a body".to_string()
+            } else if d < dof {
+                format!("add {} driver(s) (a body angle, a joint angle or a joint distance)", dof - d)
+            } else {
+                format!("remove {} driver(s)", d - dof)
+            };
+            return Err(LinkageError::DofMismatch { bodies: nb, equations, dof, drivers: mech.drivers.len(), hint });
+        }
+        let mut cons = Vec::new();
+        let mut names = Vec::new();
+        for jt in &mech.joints {
+            match jt.kind {
+                JointKind::Revolute { a, b } => {
+                    cons.push(Con::Coincide { a, b });
+                    names.push(format!("revolute joint `{}` (x)", jt.name));
+                    names.push(format!("revolute joint `{}` (y)", jt.name));
+                }
+                JointKind::Prismatic { point, q1, q2, angle } => {
+                    let u = (q2.local - q1.local).normalize();
+                    cons.push(Con::OnLine { p: point, q: q1, guide: q1.body, u });
+                    names.push(format!("prismatic joint `{}` (point on line)", jt.name));
+                    cons.push(Con::Angle { i: point.body, j: q1.body, offset: angle, law: None });
+                    names.push(format!("prismatic joint `{}` (rotation locked)", jt.name));
+                }
+            }
+        }
+        for (k, d) in mech.drivers.iter().enumerate() {
+            match d.target {
+                DriverTarget::BodyAngle(b) => {
+                    cons.push(Con::Angle { i: Attach::Body(b), j: Attach::Ground, offset: 0.0, law: Some(k) })
+                }
+                DriverTarget::JointAngle(j) => match mech.joints[j].kind {
+                    JointKind::Revolute { a, b } => {
+                        cons.push(Con::Angle { i: b.body, j: a.body, offset: 0.0, law: Some(k) })
+                    }
+                    JointKind::Prismatic { .. } => {
+                        return Err(LinkageError::Drag { what: "internal: angle driver on a prismatic joint".into() });
+                    }
+                },
+                DriverTarget::JointDistance(j) => match mech.joints[j].kind {
+                    JointKind::Prismatic { point, q1, q2, .. } => {
+                        let u = (q2.local - q1.local).normalize();
+                        cons.push(Con::Distance { p: point, q: q1, guide: q1.body, u, law: k })
+                    }
+                    JointKind::Revolute { .. } => {
+                        return Err(LinkageError::Drag {
+                            what: "internal: distance driver on a revolute joint".into(),
+                        });
+                    }
+                },
+            }
+            names.push(format!("driver `{}`", d.name));
+        }
+        let mut row_scale = Vec::new();
+        for c in &cons {
+            for _ in 0..c.rows() {
+                row_scale.push(if c.is_length() { mech.length_scale } else { 1.0 });
+            }
+        }
+        let m = row_scale.len();
+        let mut q = vec![0.0; n];
+        for (i, b) in mech.bodies.iter().enumerate() {
+            q[3 * i] = b.at.x;
+            q[3 * i + 1] = b.at.y;
+            q[3 * i + 2] = b.angle;
+        }
+        let laws = vec![(0.0, 0.0, 0.0); mech.drivers.len()];
+        let col_scale = (0..n).map(|c| if c % 3 == 2 { 1.0 } else { mech.length_scale }).collect();
+        Ok(Solver {
+            mech,
+            cons,
+            row_names: names,
+            row_scale,
+            col_scale,
+            n,
+            m,
+            q,
+            qd: vec![0.0; n],
+            qdd: vec![0.0; n],
+            qdd_prev: vec![0.0; n],
+            dt_prev: None,
+            t: None,
+            phi: vec![0.0; m],
+            rhs: vec![0.0; m.max(n)],
+            lu: Lu::new(n),
+            laws,
+            poses: Vec::with_capacity(nb),
+        })
+    }
+
+    /// The mechanism.
+    pub fn mechanism(&self) -> &Mechanism {
+        &self.mech
+    }
+
+    /// Number of coordinates (3 per moving body).
+    pub fn coordinates(&self) -> usize {
+        self.n
+    }
+
+    /// Current coordinates.
+    pub fn q(&self) -> &[f64] {
+        &self.q
+    }
+
+    /// The state after the last step.
+    pub fn state(&self) -> State {
+        State {
+            t: self.t.unwrap_or(0.0),
+            q: self.q.clone(),
+            qd: self.qd.clone(),
+            qdd: self.qdd.clone(),
+            iterations: 0,
+            residual: self.residual_norm().0,
+        }
+    }
+
+    fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
+        for (k, d) in self.mech.drivers.iter().enumerate() {
+            let j = d.law.eval(t);
+            if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
+                return Err(LinkageError::DriverNotFinite {
+                    driver: d.name.clone(),
+                    law: d.law.source().to_string(),
+                    t,
+                    value: j.value,
+                    d1: j.d1,
+                    d2: j.d2,
+                });
+            }
+            self.laws[k] = (j.value, j.d1, j.d2);
+        }
+        Ok(())
+    }
+
+    /// Φ(q, t) into `self.phi` (laws already evaluated), only the first `rows` rows
+    /// (drag leaves out the drivers, which come last).
+    fn residual(&mut self) {
+        fill_poses(&self.q, &mut self.poses);
+        let q = &self.poses;
+        let mut r = 0;
+        for c in &self.cons {
+            match *c {
+                Con::Coincide { a, b } => {
+                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
+                    let d = pa.r + pa.rot(a.local) - pb.r - pb.rot(b.local);
+                    self.phi[r] = d.x;
+                    self.phi[r + 1] = d.y;
+                }
+                Con::OnLine { p, q: qa, guide, u } => {
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
+                    let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
+                    self.phi[r] = perp(pg.rot(u)).dot(&d);
+                }
+                Con::Angle { i, j, offset, law } => {
+                    let f = law.map_or(0.0, |k| self.laws[k].0);
+                    self.phi[r] = pz(q, i).phi - pz(q, j).phi - offset - f;
+                }
+                Con::Distance { p, q: qa, guide, u, law } => {
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
+                    let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
+                    self.phi[r] = pg.rot(u).dot(&d) - self.laws[law].0;
+                }
+            }
+            r += c.rows();
+        }
+    }
+
+    /// Φq into `jac` (row-major, `rows` × n).
+    fn jacobian(cons: &[Con], q: &[f64], n: usize, jac: &mut [f64]) {
+        let mut poses = Vec::with_capacity(n / 3);
+        fill_poses(q, &mut poses);
+        Self::jacobian_with(cons, &poses, n, jac);
+    }
+
+    /// Φq into `jac` from cached poses (allocation-free).
+    fn jacobian_with(cons: &[Con], q: &[Pose], n: usize, jac: &mut [f64]) {
+        jac.iter_mut().for_each(|v| *v = 0.0);
+        let mut r = 0;
+        let put = |jac: &mut [f64], row: usize, a: Attach, dx: f64, dy: f64, dphi: f64| {
+            if let Some(k) = col(a) {
+                jac[row * n + k] += dx;
+                jac[row * n + k + 1] += dy;
+                jac[row * n + k + 2] += dphi;
+            }
+        };
+        for c in cons {
+            match *c {
+                Con::Coincide { a, b } => {
+                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
+                    let (ba, bb) = (perp(pa.rot(a.local)), perp(pb.rot(b.local)));
+                    put(jac, r, a.body, 1.0, 0.0, ba.x);
+                    put(jac, r + 1, a.body, 0.0, 1.0, ba.y);
+                    put(jac, r, b.body, -1.0, 0.0, -bb.x);
+                    put(jac, r + 1, b.body, 0.0, -1.0, -bb.y);
+                }
+                Con::OnLine { p, guide, u, .. } | Con::Distance { p, guide, u, .. } => {
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
+                    let sp = pp.rot(p.local);
+                    let rp = pp.r + sp;
+                    let ug = pg.rot(u);
+                    let ng = perp(ug);
+                    // Normal row (OnLine): n·(r_P − r_Q); tangential row (Distance): u·(r_P − r_Q).
+                    // ∂/∂φ_guide of n·(r_P − R_g − A s_Q) = −u·(r_P − R_g); of u·(...) = n·(r_P − R_g).
+                    let (dir, dphi_g) = if matches!(c, Con::OnLine { .. }) {
+                        (ng, -ug.dot(&(rp - pg.r)))
+                    } else {
+                        (ug, ng.dot(&(rp - pg.r)))
+                    };
+                    put(jac, r, p.body, dir.x, dir.y, dir.dot(&perp(sp)));
+                    put(jac, r, guide, -dir.x, -dir.y, dphi_g);
+                }
+                Con::Angle { i, j, .. } => {
+                    put(jac, r, i, 0.0, 0.0, 1.0);
+                    put(jac, r, j, 0.0, 0.0, -1.0);
+                }
+            }
+            r += c.rows();
+        }
+    }
+
+    /// −Φt (velocity right-hand side): f′ on driver rows.
+    fn velocity_rhs(&mut self) {
+        let mut r = 0;
+        for c in &self.cons {
+            let v = match *c {
+                Con::Angle { law: Some(k), .. } | Con::Distance { law: k, .. } => self.laws[k].1,
+                _ => 0.0,
+            };
+            for k in 0..c.rows() {
+                self.rhs[r + k] = if k == 0 { v } else { 0.0 };
+            }
+            r += c.rows();
+        }
+    }
+
+    /// γ (acceleration right-hand side), analytic per constraint type.
+    fn gamma(&mut self) {
+        // Poses cached by the last residual() at this q.
+        let (q, qd) = (&self.poses, &self.qd);
+        let mut r = 0;
+        for c in &self.cons {
+            match *c {
+                Con::Coincide { a, b } => {
+                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
+                    let (wa, wb) = (rate(qd, a.body).1, rate(qd, b.body).1);
+                    let g = pa.rot(a.local) * (wa * wa) - pb.rot(b.local) * (wb * wb);
+                    self.rhs[r] = g.x;
+                    self.rhs[r + 1] = g.y;
+                }
+                Con::Angle { law, .. } => self.rhs[r] = law.map_or(0.0, |k| self.laws[k].2),
+                Con::OnLine { p, q: qa, guide, u } | Con::Distance { p, q: qa, guide, u, .. } => {
+                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
+                    let (vp, wp) = rate(qd, p.body);
+                    let (vg, wg) = rate(qd, guide);
+                    let sp = pp.rot(p.local);
+                    let sq = pg.rot(qa.local);
+                    let d = pp.r + sp - pg.r - sq;
+                    let dd = vp + perp(sp) * wp - vg - perp(sq) * wg;
+                    let ug = pg.rot(u);
+                    let ng = perp(ug);
+                    let centripetal = sp * (wp * wp) - sq * (wg * wg);
+                    self.rhs[r] = match *c {
+                        // Φ = n·d: Φ̈ = Φq·q̈ − ωg²·n·d − 2ωg·u·ḋ − n·(ωp² s_P − ωg² s_Q)
+                        Con::OnLine { .. } => wg * wg * ng.dot(&d) + 2.0 * wg * ug.dot(&dd) + ng.dot(&centripetal),
+                        // Φ = u·d − f: Φ̈ = Φq·q̈ − ωg²·u·d + 2ωg·n·ḋ − u·(ωp² s_P − ωg² s_Q) − f″
+                        Con::Distance { law, .. } => {
+                            self.laws[law].2 + wg * wg * ug.dot(&d) - 2.0 * wg * ng.dot(&dd) + ug.dot(&centripetal)
+                        }
+                        _ => 0.0,
+                    };
+                }
+            }
+            r += c.rows();
+        }
+    }
+
+    /// Largest relative residual and the row where it is.
+    fn residual_norm(&self) -> (f64, usize) {
+        let mut worst = (0.0, 0);
+        for (k, (&p, &s)) in self.phi.iter().zip(&self.row_scale).enumerate() {
+            let v = (p / s).abs();
+            if v > worst.0 || v.is_nan() {
+                worst = (v, k);
+            }
+        }
+        worst
+    }
+
+    /// Writes the equilibrated Jacobian J̃ = D_r⁻¹·Φq·D_c into `jac` (rows divided by
+    /// their unit, x/y columns multiplied by the length scale), so every entry is
+    /// dimensionless and O(1).
+    fn scaled_jacobian(&self, q: &[f64], jac: &mut [f64]) {
+        let n = self.n;
+        Self::jacobian(&self.cons, q, n, jac);
+        self.equilibrate(jac);
+    }
+
+    /// Row and column scaling of a Jacobian in place (see [`Solver::scaled_jacobian`]).
+    fn equilibrate(&self, jac: &mut [f64]) {
+        let n = self.n;
+        for r in 0..n {
+            let ir = 1.0 / self.row_scale[r];
+            for c in 0..n {
+                jac[r * n + c] *= self.col_scale[c] * ir;
+            }
+        }
+    }
+
+    /// Builds and factors the equilibrated Φq at the current q; false if a pivot falls
+    /// below [`SINGULAR_PIVOT_REL`] · ‖J̃‖∞.
+    fn factor(&mut self) -> bool {
+        let n = self.n;
+        let mut a = std::mem::take(&mut self.lu.a);
+        // Poses were cached by residual() at this q.
+        Self::jacobian_with(&self.cons, &self.poses, n, &mut a);
+        self.equilibrate(&mut a);
+        let mut norm: f64 = 0.0;
+        for r in 0..n {
+            norm = norm.max(a[r * n..(r + 1) * n].iter().map(|v| v.abs()).sum::<f64>());
+        }
+        self.lu.a = a;
+        self.lu.factor(norm)
+    }
+
+    /// Solves Φq·x = rhs[..n] in place with the factored J̃.
+    fn solve_in_place(&mut self) {
+        let n = self.n;
+        for r in 0..n {
+            self.rhs[r] /= self.row_scale[r];
+        }
+        self.lu.solve(&mut self.rhs[..n]);
+        for c in 0..n {
+            self.rhs[c] *= self.col_scale[c];
+        }
+    }
+
+    /// Names of the constraints that take part in a singular Jacobian at q: the rows with
+    /// a large share in the left singular vector of the smallest singular value.
+    fn singular_constraints(&self) -> String {
+        let n = self.n;
+        let mut jac = vec![0.0; n * n];
+        self.scaled_jacobian(&self.q, &mut jac);
+        let mat = nalgebra::DMatrix::from_row_slice(n, n, &jac);
+        let svd = mat.svd(true, false);
+        let Some(u) = svd.u else { return "(unknown)".into() };
+        let (k, _) = svd
+            .singular_values
+            .iter()
+            .enumerate()
+            .fold((0, f64::INFINITY), |acc, (i, &s)| if s < acc.1 { (i, s) } else { acc });
+        let mut names: Vec<&str> = Vec::new();
+        for r in 0..n {
+            if u[(r, k)].abs() > SINGULAR_SHARE {
+                let name = self.row_names[r].as_str();
+                if !names.contains(&name) {
+                    names.push(name);
+                }
+            }
+        }
+        names.join(", ")
+    }
+
+    /// Newton–Raphson from the current q at time t; leaves Φq factored at the answer.
+    fn newton(&mut self, t: f64, max_iter: usize) -> Result<usize, LinkageError> {
+        let mut iterations = 0;
+        loop {
+            self.residual();
+            let (res, worst) = self.residual_norm();
+            let converged = res <= crate::geom::tol::RESIDUAL_REL * 1e-2;
+            if !self.factor() {
+                return Err(LinkageError::Singular { t, constraints: self.singular_constraints() });
+            }
+            if converged {
+                return Ok(iterations);
+            }
+            if iterations >= max_iter || !res.is_finite() {
+                // Accept a residual at the crate tolerance when roundoff stalls the tighter goal.
+                if res <= crate::geom::tol::RESIDUAL_REL {
+                    return Ok(iterations);
+                }
+                return Err(LinkageError::NoConvergence {
+                    t,
+                    iterations,
+                    residual: res,
+                    worst: self.row_names[worst].clone(),
+                });
+            }
+            for k in 0..self.n {
+                self.rhs[k] = -self.phi[k];
+            }
+            self.solve_in_place();
+            for k in 0..self.n {
+                self.q[k] += self.rhs[k];
+            }
+            iterations += 1;
+        }
+    }
+
+    fn kinematics(&mut self) {
+        let n = self.n;
+        self.velocity_rhs();
+        self.solve_in_place();
+        self.qd.copy_from_slice(&self.rhs[..n]);
+        self.gamma();
+        self.solve_in_place();
+        self.qdd.copy_from_slice(&self.rhs[..n]);
+    }
+
+    /// Assembles the mechanism at `t` from the initial placement (damped Gauss–Newton,
+    /// then Newton), and computes velocities and accelerations there.
+    pub fn assemble(&mut self, t: f64) -> Result<State, LinkageError> {
+        self.eval_laws(t)?;
+        self.levenberg_marquardt(t)?;
+        let iterations = self.newton(t, MAX_NEWTON_ITERATIONS)?;
+        self.kinematics();
+        self.dt_prev = None;
+        self.t = Some(t);
+        Ok(State {
+            t,
+            q: self.q.clone(),
+            qd: self.qd.clone(),
+            qdd: self.qdd.clone(),
+            iterations,
+            residual: self.residual_norm().0,
+        })
+    }
+
+    /// Levenberg–Marquardt on ½‖Φ/scale‖² from the current q (robust from a rough
+    /// initial placement); fails when it stalls at a nonzero residual.
+    fn levenberg_marquardt(&mut self, t: f64) -> Result<(), LinkageError> {
+        let n = self.n;
+        let l = self.mech.length_scale;
+        // Variables scaled so that every column is a length / L: x/L, y/L, φ.
+        let colscale: Vec<f64> = (0..n).map(|c| if c % 3 == 2 { 1.0 } else { l }).collect();
+        let mut jac = vec![0.0; n * n];
+        let mut mu = 1e-3;
+        let cost = |s: &Solver| s.phi.iter().zip(&s.row_scale).map(|(p, sc)| (p / sc).powi(2)).sum::<f64>();
+        self.residual();
+        let mut f = cost(self);
+        for _ in 0..MAX_ASSEMBLY_ITERATIONS {
+            if f.sqrt() <= 1e-10 {
+                return Ok(());
+            }
+            Self::jacobian(&self.cons, &self.q, n, &mut jac);
+            let j = nalgebra::DMatrix::from_fn(n, n, |r, c| jac[r * n + c] * colscale[c] / self.row_scale[r]);
+            let e = nalgebra::DVector::from_fn(n, |r, _| self.phi[r] / self.row_scale[r]);
+            let jtj = j.transpose() * &j;
+            let g = j.transpose() * &e;
+            let q0 = self.q.clone();
+            let mut improved = false;
+            for _ in 0..30 {
+                let mut a = jtj.clone();
+                for k in 0..n {
+                    a[(k, k)] += mu * (1.0 + jtj[(k, k)]);
+                }
+                let Some(step) = a.lu().solve(&(-&g)) else {
+                    mu *= 10.0;
+                    continue;
+                };
+                for k in 0..n {
+                    self.q[k] = q0[k] + step[k] * colscale[k];
+                }
+                self.residual();
+                let f_new = cost(self);
+                if f_new < f {
+                    f = f_new;
+                    mu = (mu / 3.0).max(1e-12);
+                    improved = true;
+                    break;
+                }
+                mu *= 10.0;
+            }
+            if !improved {
+                self.q.copy_from_slice(&q0);
+                self.residual();
+                break;
+            }
+        }
+        self.residual();
+        let (res, worst) = self.residual_norm();
+        if res <= 1e-6 {
+            return Ok(());
+        }
+        Err(LinkageError::CannotAssemble { t, residual: res, worst: self.row_names[worst].clone() })
+    }
+
+    /// Advances to time `t` from the previous state (extrapolated), keeping the assembly
+    /// mode. Allocation-free. Returns the Newton iterations.
+    pub fn step(&mut self, t: f64) -> Result<usize, LinkageError> {
+        let Some(t0) = self.t else {
+            return self.assemble(t).map(|s| s.iterations);
+        };
+        self.eval_laws(t)?;
+        let dt = t - t0;
+        // Taylor predictor q + q̇·Δt + ½·q̈·Δt² (+ ⅙·q⃛·Δt³ with q⃛ from the last two q̈).
+        let jerk = self.dt_prev.filter(|d| *d != 0.0).map(|d| 1.0 / d);
+        for k in 0..self.n {
+            let third = jerk.map_or(0.0, |inv| (self.qdd[k] - self.qdd_prev[k]) * inv * dt * dt * dt / 6.0);
+            self.q[k] += self.qd[k] * dt + 0.5 * self.qdd[k] * dt * dt + third;
+        }
+        let it = self.newton(t, MAX_NEWTON_ITERATIONS)?;
+        self.qdd_prev.copy_from_slice(&self.qdd);
+        self.kinematics();
+        self.dt_prev = Some(dt);
+        self.t = Some(t);
+        Ok(it)
+    }
+
+    /// Solves at every time in `times` (the first assembles from the initial placement).
+    pub fn run(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
+        let mut out = Vec::with_capacity(times.len());
+        for &t in times {
+            let iterations = self.step(t)?;
+            self.residual();
+            out.push(State {
+                t,
+                q: self.q.clone(),
+                qd: self.qd.clone(),
+                qdd: self.qdd.clone(),
+                iterations,
+                residual: self.residual_norm().0,
+            });
+        }
+        Ok(out)
+    }
+
+    /// Relative residual of every constraint row at `state` (for checks).
+    pub fn residuals(&mut self, state: &State) -> Result<Vec<f64>, LinkageError> {
+        let saved = std::mem::replace(&mut self.q, state.q.clone());
+        self.eval_laws(state.t)?;
+        self.residual();
+        self.q = saved;
+        Ok(self.phi.iter().zip(&self.row_scale).map(|(p, s)| p / s).collect())
+    }
+
+    /// Projects `s.q` onto the joint equations (the first `mk` rows) with minimum-norm
+    /// Newton corrections; returns the relative residual reached.
+    fn project(s: &mut Solver, mk: usize, jac: &mut [f64]) -> f64 {
+        let n = s.n;
+        let res = |s: &Solver| (0..mk).map(|r| (s.phi[r] / s.row_scale[r]).abs()).fold(0.0, f64::max);
+        for _ in 0..30 {
+            s.residual();
+            if res(s) <= crate::geom::tol::RESIDUAL_REL * 1e-2 {
+                break;
+            }
+            Self::jacobian(&s.cons, &s.q, n, jac);
+            let j = nalgebra::DMatrix::from_fn(mk, n, |r, c| jac[r * n + c] * s.col_scale[c] / s.row_scale[r]);
+            let phi = nalgebra::DVector::from_fn(mk, |r, _| s.phi[r] / s.row_scale[r]);
+            let jjt = &j * j.transpose();
+            let Some(y) = jjt.lu().solve(&phi) else { break };
+            let dq = j.transpose() * y;
+            for k in 0..n {
+                s.q[k] -= dq[k] * s.col_scale[k];
+            }
+        }
+        s.residual();
+        res(s)
+    }
+
+    /// The drag constraint (seed 002): from `state`, moves `anchor` as close as the joints
+    /// allow to `target`, with the drivers released: minimises ½|r(q) − target|² on the
+    /// manifold of the joint equations (Gauss–Newton steps from the KKT system, each
+    /// projected back onto the joints, with a backtracking line search), so the result is
+    /// the nearest reachable configuration in the current assembly mode. Returns the new
+    /// coordinates (velocities and accelerations zero).
+    pub fn drag(&self, state: &State, anchor: Anchor, target: Point) -> Result<State, LinkageError> {
+        let n = self.n;
+        let mk = self.m - self.mech.drivers.len();
+        let l = self.mech.length_scale;
+        let mut s = self.clone();
+        s.q.copy_from_slice(&state.q);
+        let mut jac = vec![0.0; self.m * n];
+        let point_jac = |q: &[f64]| -> (Point, [[f64; 3]; 2]) {
+            let p = pose(q, anchor.body);
+            let sv = p.rot(anchor.local);
+            let b = perp(sv);
+            (Point::from(p.r + sv), [[1.0, 0.0, b.x], [0.0, 1.0, b.y]])
+        };
+        let dist = |q: &[f64]| (point_jac(q).0 - target).norm();
+        Self::project(&mut s, mk, &mut jac);
+        let mut converged = false;
+        let mut lambda = vec![0.0; mk];
+        for _ in 0..500 {
+            s.residual();
+            Self::jacobian(&s.cons, &s.q, n, &mut jac);
+            let (p, pj) = point_jac(&s.q);
+            let e = p - target;
+            // KKT: [H + μI, Φqᵀ; Φq, 0] [Δq; λ] = [−Jpᵀ e; −Φ], with H the Hessian of the
+            // Lagrangian ½|e|² + λ·Φ (central differences of its gradient; Gauss–Newton's
+            // JpᵀJp alone overshoots when the target is far out of reach).
+            let size = n + mk;
+            let mut a = nalgebra::DMatrix::<f64>::zeros(size, size);
+            let mut b = nalgebra::DVector::<f64>::zeros(size);
+            let grad = |s: &Solver, q: &[f64], jac: &mut [f64]| -> Vec<f64> {
+                let mut g = vec![0.0; n];
+                let (p, pj) = point_jac(q);
+                let e = p - target;
+                if let Some(k0) = col(anchor.body) {
+                    for r in 0..3 {
+                        g[k0 + r] += pj[0][r] * e.x + pj[1][r] * e.y;
+                    }
+                }
+                Self::jacobian(&s.cons, q, n, jac);
+                for r in 0..mk {
+                    for c in 0..n {
+                        g[c] += jac[r * n + c] * lambda[r];
+                    }
+                }
+                g
+            };
+            let mut work = vec![0.0; self.m * n];
+            let mut qh = s.q.clone();
+            for c in 0..n {
+                let h = 1e-6 * s.col_scale[c];
+                qh[c] = s.q[c] + h;
+                let gp = grad(&s, &qh, &mut work);
+                qh[c] = s.q[c] - h;
+                let gm = grad(&s, &qh, &mut work);
+                qh[c] = s.q[c];
+                for r in 0..n {
+                    let v = 0.5 * (gp[r] - gm[r]) / (2.0 * h);
+                    a[(r, c)] += v;
+                    a[(c, r)] += v;
+                }
+            }
+            Self::jacobian(&s.cons, &s.q, n, &mut jac);
+            if let Some(k0) = col(anchor.body) {
+                for r in 0..3 {
+                    b[k0 + r] -= pj[0][r] * e.x + pj[1][r] * e.y;
+                }
+            }
+            for k in 0..n {
+                // Levenberg damping keeps the step finite in directions the point does not see.
+                a[(k, k)] += 1e-9 * if k % 3 == 2 { l * l } else { 1.0 };
+            }
+            for r in 0..mk {
+                for c in 0..n {
+                    a[(n + r, c)] = jac[r * n + c];
+                    a[(c, n + r)] = jac[r * n + c];
+                }
+                b[n + r] = -s.phi[r];
+            }
+            let Some(step) = a.lu().solve(&b) else {
+                return Err(LinkageError::Drag { what: "failed: the constraint Jacobian is singular".into() });
+            };
+            for r in 0..mk {
+                lambda[r] = step[n + r];
+            }
+            let mut norm: f64 = 0.0;
+            for k in 0..n {
+                norm = norm.max(if k % 3 == 2 { step[k].abs() * l } else { step[k].abs() });
+            }
+            if norm <= 1e-11 * l {
+                converged = true;
+                break;
+            }
+            // Backtracking: at most a tenth of the mechanism's size per step.
+            let q0 = s.q.clone();
+            let d0 = dist(&q0);
+            let mut alpha = if norm > 0.1 * l { 0.1 * l / norm } else { 1.0 };
+            let mut accepted = false;
+            for _ in 0..40 {
+                for k in 0..n {
+                    s.q[k] = q0[k] + alpha * step[k];
+                }
+                let res = Self::project(&mut s, mk, &mut jac);
+                // Near the minimum the distance changes below its roundoff: accept a step
+                // that does not increase it beyond that.
+                if res <= crate::geom::tol::RESIDUAL_REL && dist(&s.q) <= d0 + 1e-14 * l {
+                    accepted = true;
+                    break;
+                }
+                alpha *= 0.5;
+            }
+            if !accepted {
+                // No feasible step lowers the distance: a constrained minimum.
+                s.q.copy_from_slice(&q0);
+                converged = true;
+                break;
+            }
+        }
+        let res = Self::project(&mut s, mk, &mut jac);
+        if !converged || res > crate::geom::tol::RESIDUAL_REL {
+            return Err(LinkageError::Drag { what: format!("did not converge (joint residual {res:.3e} relative)") });
+        }
+        Ok(State { t: state.t, q: s.q.clone(), qd: vec![0.0; n], qdd: vec![0.0; n], iterations: 0, residual: res })
+    }
+}
+
+/// The global position of a body point from coordinates `q` (helper for figures).
+pub fn place(q: &[f64], body: Attach, local: Vector) -> Point {
+    let p = pose(q, body);
+    Point::from(p.r + rotate(local, p.phi))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A slider-crank: crank (O at origin, A at r), rod (A, B), slider B on the x axis.
+    fn slider_crank(law: &str) -> Mechanism {
+        let r = 1.0;
+        let l = 3.0;
+        let phi0: f64 = 0.3;
+        let a = Vector::new(r * phi0.cos(), r * phi0.sin());
+        let beta = (-(a.y / l)).asin();
+        let bx = a.x + l * beta.cos();
+        Mechanism {
+            bodies: vec![
+                Body {
+                    name: "crank".into(),
+                    points: vec![("O".into(), Vector::zeros()), ("A".into(), Vector::new(r, 0.0))],
+                    at: Point::origin(),
+                    angle: phi0,
+                },
+                Body {
+                    name: "rod".into(),
+                    points: vec![("A".into(), Vector::zeros()), ("B".into(), Vector::new(l, 0.0))],
+                    at: Point::from(a),
+                    angle: beta,
+                },
+                Body {
+                    name: "slider".into(),
+                    points: vec![("B".into(), Vector::zeros())],
+                    at: Point::new(bx, 0.0),
+                    angle: 0.0,
+                },
+            ],
+            joints: vec![
+                Joint {
+                    name: "O".into(),
+                    kind: JointKind::Revolute {
+                        a: Anchor { body: Attach::Ground, local: Vector::zeros() },
+                        b: Anchor { body: Attach::Body(0), local: Vector::zeros() },
+                    },
+                },
+                Joint {
+                    name: "A".into(),
+                    kind: JointKind::Revolute {
+                        a: Anchor { body: Attach::Body(0), local: Vector::new(r, 0.0) },
+                        b: Anchor { body: Attach::Body(1), local: Vector::zeros() },
+                    },
+                },
+                Joint {
+                    name: "B".into(),
+                    kind: JointKind::Revolute {
+                        a: Anchor { body: Attach::Body(1), local: Vector::new(l, 0.0) },
+                        b: Anchor { body: Attach::Body(2), local: Vector::zeros() },
+                    },
+                },
+                Joint {
+                    name: "guide".into(),
+                    kind: JointKind::Prismatic {
+                        point: Anchor { body: Attach::Body(2), local: Vector::zeros() },
+                        q1: Anchor { body: Attach::Ground, local: Vector::new(-1.0, 0.0) },
+                        q2: Anchor { body: Attach::Ground, local: Vector::new(1.0, 0.0) },
+                        angle: 0.0,
+                    },
+                },
+            ],
+            drivers: vec![Driver {
+                name: "crank".into(),
+                target: DriverTarget::JointAngle(0),
+                law: Expr::parse(law).unwrap(),
+            }],
+            length_scale: 4.0,
+        }
+    }
+
+    #[test]
+    fn jacobian_matches_finite_differences() {
+        let mut s = Solver::new(slider_crank("0.3 + 2*t")).unwrap();
+        // A generic (non-assembled) q so that every term is exercised.
+        let q0: Vec<f64> = (0..s.n).map(|k| 0.3 + 0.17 * k as f64).collect();
+        let n = s.n;
+        let mut jac = vec![0.0; n * n];
+        Solver::jacobian(&s.cons, &q0, n, &mut jac);
+        s.eval_laws(0.2).unwrap();
+        let h = 1e-6;
+        for c in 0..n {
+            s.q.copy_from_slice(&q0);
+            s.q[c] += h;
+            s.residual();
+            let plus = s.phi.clone();
+            s.q[c] -= 2.0 * h;
+            s.residual();
+            for r in 0..n {
+                let fd = (plus[r] - s.phi[r]) / (2.0 * h);
+                assert!((fd - jac[r * n + c]).abs() < 1e-7, "row {r} col {c}: fd {fd} vs {}", jac[r * n + c]);
+            }
+        }
+    }
+
+    #[test]
+    fn slider_crank_matches_its_closed_form() {
+        let mut s = Solver::new(slider_crank("0.3 + 2*t")).unwrap();
+        let times: Vec<f64> = (0..50).map(|k| k as f64 * 0.07).collect();
+        let states = s.run(&times).unwrap();
+        let slider = Anchor { body: Attach::Body(2), local: Vector::zeros() };
+        for st in &states {
+            let phi = 0.3 + 2.0 * st.t;
+            let (r, l, w) = (1.0_f64, 3.0_f64, 2.0_f64);
+            let root = (l * l - (r * phi.sin()).powi(2)).sqrt();
+            let x = r * phi.cos() + root;
+            let v = -r * w * phi.sin() - r * r * w * phi.sin() * phi.cos() / root;
+            let p = st.point(slider);
+            assert!((p.x - x).abs() < 1e-12 && p.y.abs() < 1e-12, "t={}: {p:?} vs {x}", st.t);
+            let vs = st.velocity(slider);
+            assert!((vs.x - v).abs() < 1e-11, "t={}: v {} vs {v}", st.t, vs.x);
+            assert!(st.residual <= crate::geom::tol::RESIDUAL_REL);
+        }
+        // Accelerations against central differences of the exact velocities.
+        for st in &states[1..] {
+            let (r, l, w) = (1.0_f64, 3.0_f64, 2.0_f64);
+            let vel = |t: f64| {
+                let phi = 0.3 + 2.0 * t;
+                let root = (l * l - (r * phi.sin()).powi(2)).sqrt();
+                -r * w * phi.sin() - r * r * w * phi.sin() * phi.cos() / root
+            };
+            let h = 1e-5;
+            let a = (vel(st.t + h) - vel(st.t - h)) / (2.0 * h);
+            assert!((st.acceleration(slider).x - a).abs() < 1e-6, "t={}", st.t);
+        }
+    }
+
+    #[test]
+    fn counts_degrees_of_freedom_before_solving() {
+        let mut m = slider_crank("t");
+        m.drivers.clear();
+        let e = Solver::new(m).unwrap_err();
+        assert!(matches!(e, LinkageError::DofMismatch { dof: 1, drivers: 0, .. }), "{e}");
+        assert!(e.to_string().contains("add 1 driver"), "{e}");
+    }
+
+    #[test]
+    fn dead_point_is_reported_as_singular() {
+        // Rod as long as... a slider-crank with r = l reaches a singular position at φ = 90°.
+        let mut m = slider_crank("0.3 + t");
+        let l = 1.0;
+        if let JointKind::Revolute { a, .. } = &mut m.joints[2].kind {
+            a.local = Vector::new(l, 0.0);
+        }
+        m.bodies[1].points[1].1 = Vector::new(l, 0.0);
+        let a0 = Vector::new(0.3f64.cos(), 0.3f64.sin());
+        m.bodies[1].angle = -0.3;
+        m.bodies[2].at = Point::new(2.0 * a0.x, 0.0);
+        let mut s = Solver::new(m).unwrap();
+        let times: Vec<f64> = (0..=100).map(|k| k as f64 * (std::f64::consts::FRAC_PI_2 - 0.3) / 100.0).collect();
+        let e = s.run(&times).unwrap_err();
+        match &e {
+            LinkageError::Singular { t, constraints } => {
+                assert!((t - times[100]).abs() < 1e-12, "{e}");
+                assert!(constraints.contains("joint"), "{e}");
+            }
+            LinkageError::NoConvergence { .. } => {}
+            other => panic!("expected a singularity, got {other}"),
+        }
+    }
+
+    #[test]
+    fn cannot_assemble_is_reported() {
+        let mut m = slider_crank("0.3");
+        // Guide far above the reach of crank + rod.
+        if let JointKind::Prismatic { q1, q2, .. } = &mut m.joints[3].kind {
+            q1.local.y = 10.0;
+            q2.local.y = 10.0;
+        }
+        let mut s = Solver::new(m).unwrap();
+        let e = s.assemble(0.0).unwrap_err();
+        assert!(matches!(e, LinkageError::CannotAssemble { .. }), "{e}");
+    }
+
+    #[test]
+    fn drag_moves_the_point_as_close_as_the_joints_allow() {
+        let mut s = Solver::new(slider_crank("0.3")).unwrap();
+        let st = s.assemble(0.0).unwrap();
+        let a = Anchor { body: Attach::Body(0), local: Vector::new(1.0, 0.0) };
+        // Crank pin A dragged towards (0, 5): it can only reach (0, 1).
+        let d = s.drag(&st, a, Point::new(0.0, 5.0)).unwrap();
+        let p = d.point(a);
+        assert!((p - Point::new(0.0, 1.0)).norm() < 1e-9, "{p:?}");
+        let res = s.residuals(&d).unwrap();
+        assert!(res[..7].iter().all(|r| r.abs() <= 1e-12), "{res:?}");
+    }
 }

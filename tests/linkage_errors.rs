@@ -1,0 +1,100 @@
+//! Bad linkage scenes: each gives a clear error naming the file and the field (or the
+//! constraint), exit code 2, and writes nothing.
+
+mod common;
+
+use std::path::Path;
+
+fn shaper_text() -> String {
+    std::fs::read_to_string(common::root().join("templates/shaper.toml")).unwrap()
+}
+
+/// Runs `mechdraw run` on `text`; returns stderr after checking exit code 2 and that the
+/// output directory was not created.
+fn run_bad(text: &str) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("bad.toml");
+    std::fs::write(&scene, text).unwrap();
+    let out_dir = tmp.path().join("out");
+    let out = common::mechdraw().arg("run").arg(&scene).arg("--out").arg(&out_dir).output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr).to_string();
+    assert_eq!(out.status.code(), Some(2), "stderr: {stderr}");
+    assert!(stderr.contains("bad.toml"), "the file is not named: {stderr}");
+    assert!(
+        !Path::new(&out_dir).exists() || std::fs::read_dir(&out_dir).unwrap().next().is_none(),
+        "something was written"
+    );
+    stderr
+}
+
+#[test]
+fn unknown_body_in_a_joint() {
+    let e = run_bad(
+        &shaper_text().replace("revolute = [\"crank.A\", \"block.A\"]", "revolute = [\"crank.A\", \"blok.A\"]"),
+    );
+    assert!(e.contains("joint[1].revolute[1]"), "{e}");
+    assert!(e.contains("unknown body `blok`") && e.contains("block"), "{e}");
+}
+
+#[test]
+fn point_that_does_not_exist() {
+    let e = run_bad(
+        &shaper_text().replace("revolute = [\"rocker.B\", \"link.B\"]", "revolute = [\"rocker.C\", \"link.B\"]"),
+    );
+    assert!(e.contains("joint[4].revolute[0]"), "{e}");
+    assert!(e.contains("body `rocker` has no point `C`; its points are: O3, B"), "{e}");
+}
+
+#[test]
+fn expression_that_does_not_parse_shows_where() {
+    let e = run_bad(&shaper_text().replace("law = \"2*pi*t\"", "law = \"2*pi*t +\""));
+    assert!(e.contains("driver[0].law"), "{e}");
+    assert!(e.contains("column 9") && e.contains("  2*pi*t +\n          ^"), "{e}");
+    let e = run_bad(&shaper_text().replace("law = \"2*pi*t\"", "law = \"2*pi*tt\""));
+    assert!(e.contains("unknown name `tt`") && e.contains("column 6"), "{e}");
+}
+
+#[test]
+fn degrees_of_freedom_that_do_not_match_the_drivers() {
+    let text = shaper_text();
+    let i = text.find("[[driver]]").unwrap();
+    let j = text.find("[[measure]]").unwrap();
+    let no_driver = format!("{}{}", &text[..i], &text[j..]);
+    let e = run_bad(&no_driver);
+    assert!(e.contains("field `driver`") && e.contains("1 degree(s) of freedom") && e.contains("0 driver(s)"), "{e}");
+    assert!(e.contains("add 1 driver"), "{e}");
+    let two = text.replace("[[measure]]\npoint", "[[driver]]\nbody = \"rocker\"\nlaw = \"t\"\n\n[[measure]]\npoint");
+    let e = run_bad(&two);
+    assert!(e.contains("remove 1 driver"), "{e}");
+}
+
+#[test]
+fn start_that_cannot_be_assembled() {
+    // The link BE cannot reach the ram's line when it is 20 mm long.
+    let e = run_bad(&shaper_text().replace("E = [150.0, 0.0]", "E = [20.0, 0.0]"));
+    assert!(e.contains("cannot assemble the mechanism at t = 0"), "{e}");
+    assert!(e.contains("joint"), "the constraint is not named: {e}");
+}
+
+#[test]
+fn a_joint_with_both_kinds_or_none() {
+    let e = run_bad(&shaper_text().replace(
+        "name = \"A\"\nrevolute",
+        "name = \"A\"\nprismatic = { point = \"block.A\", line = [\"rocker.O3\", \"rocker.B\"] }\nrevolute",
+    ));
+    assert!(e.contains("joint[1]") && e.contains("exactly one of"), "{e}");
+}
+
+#[test]
+fn bad_drag_option() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = common::mechdraw()
+        .args(["run", "templates/shaper.toml", "--drag", "crank.Z=1,2", "--out"])
+        .arg(tmp.path().join("o"))
+        .current_dir(common::root())
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{e}");
+    assert!(e.contains("--drag crank.Z=1,2") && e.contains("no point `Z`"), "{e}");
+}

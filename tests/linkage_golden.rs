@@ -1,0 +1,22 @@
+//! Golden image of one shaper frame (t = 0.125 s, crank at 45°): bodies, joints, the
+//! slider on the rocker, the ram on its hatched guide, ground pivots, names, and the
+//! path of E.
+
+mod common;
+
+use mechdraw::draw::svg::{SvgOptions, to_string};
+use mechdraw::figure::linkage::{Style, frame, guide_spans};
+use mechdraw::scene::{self, Scene};
+use mechdraw::solve::linkage::Solver;
+
+#[test]
+fn shaper_frame_045_golden_png() {
+    let loaded = scene::load(&common::root().join("templates/shaper.toml"), &[]).unwrap();
+    let Scene::Linkage(s) = loaded.scene else { panic!() };
+    let states = Solver::new(s.mechanism.clone()).unwrap().run(&s.times).unwrap();
+    let style = Style::for_length(s.mechanism.length_scale);
+    let motion: Vec<&[f64]> = states.iter().map(|st| st.q.as_slice()).collect();
+    let spans = guide_spans(&s, &motion, &style);
+    let d = frame(&s, &motion, &states[45].q, &spans, &style);
+    common::assert_golden_png("linkage/shaper_frame_045.png", &to_string(&d, &SvgOptions::default()));
+}
