@@ -366,6 +366,18 @@ fn r2000_audits_clean_too() {
 }
 
 #[test]
+fn empty_drawing_audits_clean() {
+    let d = Drawing::new(DimStyle { text_height: 2.5, arrow_size: 2.5 });
+    let mut paths = Vec::new();
+    for (name, version) in [("empty_r12.dxf", DxfVersion::R12), ("empty_r2000.dxf", DxfVersion::R2000)] {
+        let path = out_dir().join(name);
+        std::fs::write(&path, dxf::to_bytes(&d, &DxfOptions { version }).unwrap()).unwrap();
+        paths.push(path);
+    }
+    common::assert_ezdxf_clean(&paths.iter().map(|p| p.as_path()).collect::<Vec<_>>());
+}
+
+#[test]
 fn golden_sample_dxf() {
     let bytes = dxf::to_bytes(&sample_drawing(), &DxfOptions::default()).unwrap();
     let path = write_dxf("draw_sample.dxf", &sample_drawing());

@@ -512,7 +512,10 @@ fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
         Shape::Circle { center, radius } => vec![EntityType::Circle(Circle::new(pt(*center), *radius))],
         Shape::Arc { center, radius, start, end } => {
             let sweep = parts::arc_sweep(*start, *end);
-            if sweep >= std::f64::consts::TAU {
+            if sweep == 0.0 {
+                // Nothing to draw (as in the SVG); DXF would read equal angles as a full turn.
+                Vec::new()
+            } else if sweep >= std::f64::consts::TAU {
                 vec![EntityType::Circle(Circle::new(pt(*center), *radius))]
             } else {
                 let a0 = normalize_angle(*start);
@@ -910,6 +913,20 @@ mod tests {
         let circles = records(&p, "CIRCLE");
         assert!(get(&circles[0], 62).is_empty(), "BYLAYER is the default, not written");
         assert_eq!(get(&circles[1], 62)[0].trim(), "42");
+    }
+
+    #[test]
+    fn arcs_wrap_counter_clockwise_and_degenerate_ones_are_skipped() {
+        let mut d = drawing();
+        let c = Point::new(0.0, 0.0);
+        d.add(0, Shape::Arc { center: c, radius: 1.0, start: 300f64.to_radians(), end: 40f64.to_radians() });
+        d.add(0, Shape::Arc { center: c, radius: 1.0, start: 1.0, end: 1.0 });
+        d.add(0, Shape::Arc { center: c, radius: 2.0, start: 0.0, end: std::f64::consts::TAU });
+        let p = write(&d);
+        let arcs = records(&p, "ARC");
+        assert_eq!(arcs.len(), 1);
+        assert!((f(&arcs[0], 50)[0] - 300.0).abs() < 1e-9 && (f(&arcs[0], 51)[0] - 40.0).abs() < 1e-9);
+        assert_eq!(f(&records(&p, "CIRCLE")[0], 40), [2.0], "a full turn is a circle");
     }
 
     #[test]

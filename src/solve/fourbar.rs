@@ -161,11 +161,6 @@ impl Geometry {
         }
     }
 
-    /// The unit vector from B towards M given the unit vector from B towards A.
-    fn bm_dir(&self, sin_alpha: f64, cos_alpha: f64, u_ba: Vector) -> Vector {
-        Vector::new(cos_alpha * u_ba.x - sin_alpha * u_ba.y, sin_alpha * u_ba.x + cos_alpha * u_ba.y)
-    }
-
     /// Crank angles (radians, in (−π, π] plus the ground direction) where |AC| equals
     /// `l_ab + l_bc` ([`Reach::TooFar`]) or `|l_ab − l_bc|` ([`Reach::TooClose`]): the
     /// dead points of the dyad, by the law of cosines in the triangle O1AC:
@@ -357,18 +352,35 @@ impl Position {
 pub struct Prepared {
     /// The geometry.
     pub geom: Geometry,
-    sin_alpha: f64,
-    cos_alpha: f64,
+    /// −(l_bm/l_ab)·(cos alpha, sin alpha): maps A→B onto B→M.
+    bm: (f64, f64),
+    /// l_ab² − l_bc².
+    r_diff: f64,
+    /// l_ab².
+    r1_sq: f64,
+    /// max(l_ab, l_bc)²: the tangent tolerance's scale (with |AC|², as in `geom::circle_circle`).
+    r_max_sq: f64,
 }
 
 impl Prepared {
     /// Precomputes `geom`'s constants.
     pub fn new(geom: &Geometry) -> Prepared {
         let (sin_alpha, cos_alpha) = geom.alpha.sin_cos();
-        Prepared { geom: *geom, sin_alpha, cos_alpha }
+        let r1_sq = geom.l_ab * geom.l_ab;
+        let r2_sq = geom.l_bc * geom.l_bc;
+        let ratio = -geom.l_bm / geom.l_ab;
+        Prepared {
+            geom: *geom,
+            bm: (ratio * cos_alpha, ratio * sin_alpha),
+            r_diff: r1_sq - r2_sq,
+            r1_sq,
+            r_max_sq: r1_sq.max(r2_sq),
+        }
     }
 
-    /// Crank pin A and the intersection of the circles (A, l_ab), (C, l_bc).
+    /// Crank pin A and the intersection of the circles (A, l_ab), (C, l_bc): the same
+    /// points and the same tangent tolerance as [`geom::circle_circle`], written with one
+    /// division and one square root for the hot path.
     #[inline]
     pub fn dyad(&self, phi1: f64) -> Result<(Point, CircleIntersection), FourbarError> {
         let g = &self.geom;
@@ -376,11 +388,25 @@ impl Prepared {
         // sin/cos/atan2 here; the hot path makes one sincos and two atan2 calls per angle.
         let (s, c) = libm::sincos(phi1);
         let a = Point::new(g.o1.x + g.l1 * c, g.o1.y + g.l1 * s);
-        let ix = geom::circle_circle(a, g.l_ab, g.c, g.l_bc);
-        if let CircleIntersection::None = ix {
+        let ac = g.c - a;
+        let d2 = ac.norm_squared();
+        if d2 == 0.0 || !d2.is_finite() {
             return Err(self.why_not(phi1, a));
         }
-        Ok((a, ix))
+        let inv_d2 = 1.0 / d2;
+        // Foot of the chord at k·AC from A, k = a/d; half-chord h = √h2, h2 = l_ab² − a².
+        let k = 0.5 * (1.0 + self.r_diff * inv_d2);
+        let h2 = self.r1_sq - k * k * d2;
+        let foot = a + ac * k;
+        if h2.abs() <= geom::tol::TANGENT_REL * self.r_max_sq.max(d2) {
+            return Ok((a, CircleIntersection::Tangent(foot)));
+        }
+        if h2 < 0.0 {
+            return Err(self.why_not(phi1, a));
+        }
+        // perp(AC)·h/d: on the left of A→C.
+        let off = perp(ac) * (h2 * inv_d2).sqrt();
+        Ok((a, CircleIntersection::Two { left: foot + off, right: foot - off }))
     }
 
     #[cold]
@@ -415,8 +441,8 @@ impl Prepared {
             diff = std::f64::consts::TAU - diff;
         }
         let transmission = diff;
-        let u_ba = -ab / g.l_ab;
-        let m = b + self.geom.bm_dir(self.sin_alpha, self.cos_alpha, u_ba) * g.l_bm;
+        // B→M is B→A rotated by alpha and scaled by l_bm/l_ab (precomputed in `bm`).
+        let m = b + Vector::new(self.bm.0 * ab.x - self.bm.1 * ab.y, self.bm.1 * ab.x + self.bm.0 * ab.y);
         Position { phi1, a, b, m, phi2, phi3, transmission, kin: None }
     }
 
@@ -804,4 +830,44 @@ pub fn solve_motion(spec: &MotionSpec) -> Result<Motion, FourbarError> {
         dead_points: dead_points(geom, &spec.sweep),
         grashof: geom.grashof(),
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn hot_path_dyad_agrees_with_circle_circle() {
+        let g = Geometry {
+            o1: Point::new(0.3, -0.2),
+            c: Point::new(1.1, 0.4),
+            l1: 0.35,
+            l_ab: 0.9,
+            l_bm: 0.5,
+            alpha: 2.0,
+            l_bc: 0.6,
+            branch: Side::Left,
+        };
+        let p = Prepared::new(&g);
+        for k in 0..720 {
+            let phi1 = f64::from(k).to_radians() * 0.5;
+            let (a, ix) = p.dyad(phi1).unwrap();
+            let reference = geom::circle_circle(a, g.l_ab, g.c, g.l_bc);
+            match (ix, reference) {
+                (CircleIntersection::Two { left, right }, CircleIntersection::Two { left: l, right: r }) => {
+                    assert!((left - l).norm() < 1e-15 && (right - r).norm() < 1e-15, "phi1 = {phi1}");
+                }
+                other => panic!("phi1 = {phi1}: {other:?}"),
+            }
+        }
+        // Tangent and disjoint cases: |AC| = l_ab + l_bc at phi1 = π for this geometry.
+        let t = Geometry { o1: Point::origin(), c: Point::new(0.08, 0.0), l1: 0.04, l_ab: 0.07, l_bc: 0.05, ..g };
+        let p = Prepared::new(&t);
+        assert!(matches!(p.dyad(std::f64::consts::PI), Ok((_, CircleIntersection::Tangent(_)))));
+        let far = Geometry { l_ab: 0.06, ..t };
+        assert!(matches!(
+            Prepared::new(&far).dyad(std::f64::consts::PI),
+            Err(FourbarError::Unassemblable { reach: Reach::TooFar, .. })
+        ));
+    }
 }
