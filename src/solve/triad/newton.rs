@@ -19,6 +19,12 @@ pub const NEWTON_RESIDUAL_REL: f64 = 1e-15;
 /// counts as singular.
 pub const SINGULAR_REL: f64 = 1e-13;
 
+/// A Newton step below this (radians, every angle) ends [`newton`]: convergence is
+/// quadratic, so the error after it is ~1e-16 and another evaluation would only confirm it
+/// (the final residual is still computed and checked against
+/// [`super::RESIDUAL_ACCEPT_REL`]).
+pub const CONVERGED_STEP: f64 = 1e-9;
+
 /// Settings of Newton–Raphson.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
@@ -121,7 +127,7 @@ pub fn newton(triad: &Triad, opts: &NewtonOptions) -> Result<NewtonSolution, Tri
         if !phi.iter().all(|p| p.is_finite()) {
             break;
         }
-        if dx.iter().all(|d| d.abs() <= tol::NEWTON_ANGLE) {
+        if dx.iter().all(|d| d.abs() <= CONVERGED_STEP) {
             return finish(triad, phi, iteration + 1, opts.max_iterations);
         }
     }
