@@ -101,3 +101,43 @@ fn chebyshev_linkage_scene_equals_the_closed_form_four_bar() {
         assert!(st.residual <= 1e-12);
     }
 }
+
+/// The same scene against the project's closed-form four-bar solver (`solve::fourbar`,
+/// written independently on its own branch): the second solver on the same mechanism.
+#[test]
+fn chebyshev_linkage_scene_equals_the_fourbar_solver() {
+    use mechdraw::solve::fourbar::{Geometry, kinematics, position};
+    let loaded = scene::load(&common::root().join("templates/fourbar-linkage.toml"), &[]).unwrap();
+    let Scene::Linkage(s) = loaded.scene else { panic!("not a linkage scene") };
+    let states = Solver::new(s.mechanism.clone()).unwrap().run(&s.times).unwrap();
+    let geom = Geometry {
+        o1: Point::new(0.0, 0.0),
+        c: Point::new(0.08, 0.0),
+        l1: L1,
+        l_ab: 0.10,
+        l_bm: 0.10,
+        alpha: std::f64::consts::PI,
+        l_bc: 0.10,
+        branch: Side::Left,
+    };
+    let (b, m) = (s.anchor("coupler.B").unwrap(), s.anchor("coupler.M").unwrap());
+    let rel = 1e-9;
+    let (vs, as_) = (OMEGA1 * L1, OMEGA1 * OMEGA1 * L1);
+    for st in &states {
+        let phi1 = OMEGA1 * st.t;
+        let pos = position(&geom, phi1, Side::Left).unwrap();
+        let kin = kinematics(&geom, &pos, OMEGA1).unwrap();
+        let deg = phi1.to_degrees();
+        assert!(close_vec(st.point(b).coords, pos.b.coords, rel, L1), "B at {deg}°");
+        assert!(close_vec(st.point(m).coords, pos.m.coords, rel, L1), "M at {deg}°");
+        assert!(close_vec(st.velocity(b), kin.v_b, rel, vs), "vB at {deg}°");
+        assert!(close_vec(st.velocity(m), kin.v_m, rel, vs), "vM at {deg}°");
+        assert!(close_vec(st.acceleration(b), kin.a_b, rel, as_), "aB at {deg}°");
+        assert!(close_vec(st.acceleration(m), kin.a_m, rel, as_), "aM at {deg}°");
+        let (_, w2, e2) = st.angular(Attach::Body(1));
+        let (_, w3, e3) = st.angular(Attach::Body(2));
+        assert!(common::rel_close(w2, kin.omega2, rel, OMEGA1) && common::rel_close(w3, kin.omega3, rel, OMEGA1));
+        assert!(common::rel_close(e2, kin.eps2, rel, OMEGA1 * OMEGA1), "eps2 at {deg}°");
+        assert!(common::rel_close(e3, kin.eps3, rel, OMEGA1 * OMEGA1), "eps3 at {deg}°");
+    }
+}

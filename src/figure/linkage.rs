@@ -193,15 +193,24 @@ fn label(d: &mut Drawing, layer: usize, p: Point, name: &str, style: &Style, don
     if done.iter().any(|x| (x - p).norm() <= style.joint_radius) {
         return;
     }
+    // A labelled point close on the right: put this name on the left, so they don't overlap.
+    let crowded = done.iter().any(|x| {
+        let dx = x.x - p.x;
+        dx >= 0.0 && dx <= 3.0 * style.text_height && (x.y - p.y).abs() <= 1.5 * style.text_height
+    });
     done.push(p);
-    let off = Vector::new(1.8, 1.2) * style.joint_radius;
+    let (off, halign) = if crowded {
+        (Vector::new(-1.8, 1.2) * style.joint_radius, HAlign::Right)
+    } else {
+        (Vector::new(1.8, 1.2) * style.joint_radius, HAlign::Left)
+    };
     d.add(
         layer,
         Shape::Text {
             at: p + off,
             height: style.text_height,
             value: name.to_string(),
-            halign: HAlign::Left,
+            halign,
             valign: VAlign::Baseline,
             rotation: 0.0,
         },

@@ -144,7 +144,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     for c in &cols {
         if c.values.iter().any(|v| !v.is_finite()) {
             return Err(serr(
-                LinkageError::Drag { what: format!("internal: measured column {} is not finite", c.name) }.into(),
+                LinkageError::InvalidModel { what: format!("measured column {} is not finite", c.name) }.into(),
             ));
         }
     }

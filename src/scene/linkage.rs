@@ -609,3 +609,53 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         measures,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::scene::{Scene, parse};
+    use crate::solve::linkage::Solver;
+
+    /// The module documentation's example scene, as written there.
+    fn doc_example() -> String {
+        let src = include_str!("linkage.rs");
+        let lines: Vec<&str> =
+            src.lines().map(|l| l.strip_prefix("//! ").or(l.strip_prefix("//!")).unwrap_or(l)).collect();
+        let start = lines.iter().position(|l| *l == "```toml").unwrap() + 1;
+        let end = start + lines[start..].iter().position(|l| *l == "```").unwrap();
+        lines[start..end].join("\n")
+    }
+
+    #[test]
+    fn documented_example_loads_and_its_slider_follows_the_slider_crank_formula() {
+        let Scene::Linkage(s) = parse(&doc_example(), "doc-example.toml", &[]).unwrap() else { panic!() };
+        assert_eq!(s.times.len(), 37);
+        let states = Solver::new(s.mechanism.clone()).unwrap().run(&s.times).unwrap();
+        let b = s.anchor("slider.B").unwrap();
+        for st in &states {
+            let phi = std::f64::consts::TAU * st.t;
+            let x = 30.0 * phi.cos() + (100.0f64.powi(2) - (30.0 * phi.sin()).powi(2)).sqrt();
+            assert!((st.point(b).x - x).abs() < 1e-9, "t = {}", st.t);
+        }
+    }
+
+    #[test]
+    fn field_errors_name_the_field() {
+        let text = doc_example();
+        let bad = text.replace("line = [\"ground.G1\", \"ground.G2\"]", "line = [\"ground.G1\", \"ground.G1\"]");
+        let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
+        assert!(e.contains("joint[3].prismatic.line") && e.contains("coincide"), "{e}");
+        let bad = text.replace("quantities = [\"x\", \"vx\", \"ax\"]", "quantities = [\"x\", \"omega\"]");
+        let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
+        assert!(e.contains("measure[0].quantities[1]") && e.contains("unknown quantity `omega`"), "{e}");
+        let bad =
+            text.replace("time = { from = 0.0, to = 1.0, steps = 36 }", "time = { from = 1.0, to = 1.0, steps = 36 }");
+        let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
+        assert!(e.contains("time.to"), "{e}");
+        let bad = text.replace("name = \"rod\"", "name = \"crank\"");
+        let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
+        assert!(e.contains("body[1].name") && e.contains("already exists"), "{e}");
+        let bad = text.replace("angle_deg = 0.0\n", "angle_deg = 0.0\nmass = 1.0\n");
+        let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
+        assert!(e.contains("mass"), "{e}");
+    }
+}

@@ -24,6 +24,9 @@ use crate::solve::expr::Expr;
 pub const SINGULAR_PIVOT_REL: f64 = 1e-10;
 /// Newton–Raphson iterations allowed per time step.
 pub const MAX_NEWTON_ITERATIONS: usize = 30;
+/// Relative residual at which the position iterations stop: well below
+/// `geom::tol::RESIDUAL_REL`, which every answer must meet.
+pub const NEWTON_TOL: f64 = 1e-14;
 /// Iterations allowed to assemble the mechanism from the scene's initial placement.
 pub const MAX_ASSEMBLY_ITERATIONS: usize = 200;
 /// Component of the left singular vector above which a constraint is named as taking part
@@ -167,11 +170,14 @@ pub enum LinkageError {
     /// The Jacobian turned singular (a dead point, a change of assembly mode, redundant
     /// constraints). Example: a crank-rocker whose crank is driven through a dead point.
     #[error(
-        "the constraint Jacobian is singular at t = {t} s (a dead point or redundant constraints); involved: {constraints}"
+        "the constraint Jacobian is singular at t = {t} s ({drivers}): a dead point or redundant constraints; \
+         involved: {constraints}"
     )]
     Singular {
         /// Time.
         t: f64,
+        /// The drivers' values there (the position), e.g. "driver `O1` = 90°".
+        drivers: String,
         /// The constraints that take part (from the left singular vector), comma-separated.
         constraints: String,
     },
@@ -205,7 +211,14 @@ pub enum LinkageError {
         /// f''(t).
         d2: f64,
     },
-    /// A drag request names no point of the mechanism or does not converge.
+    /// The model given to the solver is inconsistent (a bug in the caller: checked scenes
+    /// never produce it). Example: an angle driver on a prismatic joint.
+    #[error("invalid linkage model: {what}")]
+    InvalidModel {
+        /// What is inconsistent.
+        what: String,
+    },
+    /// A drag request does not converge.
     #[error("drag {what}")]
     Drag {
         /// What went wrong.
@@ -331,20 +344,19 @@ impl Lu {
             }
             self.piv[k] = p;
             if p != k {
-                for c in 0..n {
-                    a.swap(k * n + c, p * n + c);
-                }
+                let (upper, lower) = a.split_at_mut(p * n);
+                upper[k * n..(k + 1) * n].swap_with_slice(&mut lower[..n]);
             }
-            let inv = 1.0 / a[k * n + k];
-            for r in k + 1..n {
-                let f = a[r * n + k] * inv;
+            let (top, bottom) = a.split_at_mut((k + 1) * n);
+            let pivot_row = &top[k * n..];
+            let inv = 1.0 / pivot_row[k];
+            for row in bottom.chunks_exact_mut(n) {
+                let f = row[k] * inv;
+                row[k] = f;
                 if f != 0.0 {
-                    a[r * n + k] = f;
-                    for c in k + 1..n {
-                        a[r * n + c] -= f * a[k * n + c];
+                    for (x, y) in row[k + 1..].iter_mut().zip(&pivot_row[k + 1..]) {
+                        *x -= f * y;
                     }
-                } else {
-                    a[r * n + k] = 0.0;
                 }
             }
         }
@@ -359,18 +371,14 @@ impl Lu {
             b.swap(k, self.piv[k]);
         }
         for r in 1..n {
-            let mut s = b[r];
-            for c in 0..r {
-                s -= a[r * n + c] * b[c];
-            }
-            b[r] = s;
+            let row = &a[r * n..r * n + r];
+            let s: f64 = row.iter().zip(&b[..r]).map(|(x, y)| x * y).sum();
+            b[r] -= s;
         }
         for r in (0..n).rev() {
-            let mut s = b[r];
-            for c in r + 1..n {
-                s -= a[r * n + c] * b[c];
-            }
-            b[r] = s / a[r * n + r];
+            let row = &a[r * n + r + 1..(r + 1) * n];
+            let s: f64 = row.iter().zip(&b[r + 1..n]).map(|(x, y)| x * y).sum();
+            b[r] = (b[r] - s) / a[r * n + r];
         }
     }
 }
@@ -496,7 +504,9 @@ impl Solver {
                         cons.push(Con::Angle { i: b.body, j: a.body, offset: 0.0, law: Some(k) })
                     }
                     JointKind::Prismatic { .. } => {
-                        return Err(LinkageError::Drag { what: "internal: angle driver on a prismatic joint".into() });
+                        return Err(LinkageError::InvalidModel {
+                            what: format!("driver `{}`: an angle driver on a prismatic joint", d.name),
+                        });
                     }
                 },
                 DriverTarget::JointDistance(j) => match mech.joints[j].kind {
@@ -505,8 +515,8 @@ impl Solver {
                         cons.push(Con::Distance { p: point, q: q1, guide: q1.body, u, law: k })
                     }
                     JointKind::Revolute { .. } => {
-                        return Err(LinkageError::Drag {
-                            what: "internal: distance driver on a revolute joint".into(),
+                        return Err(LinkageError::InvalidModel {
+                            what: format!("driver `{}`: a distance driver on a revolute joint", d.name),
                         });
                     }
                 },
@@ -761,10 +771,10 @@ impl Solver {
     /// Row and column scaling of a Jacobian in place (see [`Solver::scaled_jacobian`]).
     fn equilibrate(&self, jac: &mut [f64]) {
         let n = self.n;
-        for r in 0..n {
-            let ir = 1.0 / self.row_scale[r];
-            for c in 0..n {
-                jac[r * n + c] *= self.col_scale[c] * ir;
+        for (row, rs) in jac.chunks_exact_mut(n).zip(&self.row_scale) {
+            let ir = 1.0 / rs;
+            for (x, cs) in row.iter_mut().zip(&self.col_scale) {
+                *x *= cs * ir;
             }
         }
     }
@@ -795,6 +805,20 @@ impl Solver {
         for c in 0..n {
             self.rhs[c] *= self.col_scale[c];
         }
+    }
+
+    /// The drivers' current values, for messages (angles in degrees).
+    fn driver_values(&self) -> String {
+        self.mech
+            .drivers
+            .iter()
+            .zip(&self.laws)
+            .map(|(d, l)| match d.target {
+                DriverTarget::JointDistance(_) => format!("driver `{}` = {:.6}", d.name, l.0),
+                _ => format!("driver `{}` = {:.4}°", d.name, l.0.to_degrees()),
+            })
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// Names of the constraints that take part in a singular Jacobian at q: the rows with
@@ -829,9 +853,13 @@ impl Solver {
         loop {
             self.residual();
             let (res, worst) = self.residual_norm();
-            let converged = res <= crate::geom::tol::RESIDUAL_REL * 1e-2;
+            let converged = res <= NEWTON_TOL;
             if !self.factor() {
-                return Err(LinkageError::Singular { t, constraints: self.singular_constraints() });
+                return Err(LinkageError::Singular {
+                    t,
+                    drivers: self.driver_values(),
+                    constraints: self.singular_constraints(),
+                });
             }
             if converged {
                 return Ok(iterations);
@@ -1086,58 +1114,75 @@ impl Solver {
                     a[(c, r)] += v;
                 }
             }
+            // The Gauss–Newton matrix JpᵀJp: a descent direction when the full Hessian's is not.
+            let mut gn = nalgebra::DMatrix::<f64>::zeros(size, size);
             Self::jacobian(&s.cons, &s.q, n, &mut jac);
             if let Some(k0) = col(anchor.body) {
                 for r in 0..3 {
+                    for c in 0..3 {
+                        gn[(k0 + r, k0 + c)] += pj[0][r] * pj[0][c] + pj[1][r] * pj[1][c];
+                    }
                     b[k0 + r] -= pj[0][r] * e.x + pj[1][r] * e.y;
                 }
             }
-            for k in 0..n {
-                // Levenberg damping keeps the step finite in directions the point does not see.
-                a[(k, k)] += 1e-9 * if k % 3 == 2 { l * l } else { 1.0 };
+            for m in [&mut a, &mut gn] {
+                for k in 0..n {
+                    // Levenberg damping keeps the step finite in directions the point does not see.
+                    m[(k, k)] += 1e-9 * if k % 3 == 2 { l * l } else { 1.0 };
+                }
+                for r in 0..mk {
+                    for c in 0..n {
+                        m[(n + r, c)] = jac[r * n + c];
+                        m[(c, n + r)] = jac[r * n + c];
+                    }
+                }
             }
             for r in 0..mk {
-                for c in 0..n {
-                    a[(n + r, c)] = jac[r * n + c];
-                    a[(c, n + r)] = jac[r * n + c];
-                }
                 b[n + r] = -s.phi[r];
             }
-            let Some(step) = a.lu().solve(&b) else {
-                return Err(LinkageError::Drag { what: "failed: the constraint Jacobian is singular".into() });
-            };
-            for r in 0..mk {
-                lambda[r] = step[n + r];
-            }
-            let mut norm: f64 = 0.0;
-            for k in 0..n {
-                norm = norm.max(if k % 3 == 2 { step[k].abs() * l } else { step[k].abs() });
-            }
-            if norm <= 1e-11 * l {
-                converged = true;
-                break;
-            }
-            // Backtracking: at most a tenth of the mechanism's size per step.
             let q0 = s.q.clone();
             let d0 = dist(&q0);
-            let mut alpha = if norm > 0.1 * l { 0.1 * l / norm } else { 1.0 };
             let mut accepted = false;
-            for _ in 0..40 {
-                for k in 0..n {
-                    s.q[k] = q0[k] + alpha * step[k];
+            let mut small = false;
+            for (k, m) in [a, gn].into_iter().enumerate() {
+                let Some(step) = m.lu().solve(&b) else { continue };
+                if k == 0 {
+                    for r in 0..mk {
+                        lambda[r] = step[n + r];
+                    }
                 }
-                let res = Self::project(&mut s, mk, &mut jac);
-                // Near the minimum the distance changes below its roundoff: accept a step
-                // that does not increase it beyond that.
-                if res <= crate::geom::tol::RESIDUAL_REL && dist(&s.q) <= d0 + 1e-14 * l {
-                    accepted = true;
+                let mut norm: f64 = 0.0;
+                for c in 0..n {
+                    norm = norm.max(if c % 3 == 2 { step[c].abs() * l } else { step[c].abs() });
+                }
+                if norm <= 1e-11 * l {
+                    small = true;
                     break;
                 }
-                alpha *= 0.5;
+                // Backtracking: at most a tenth of the mechanism's size per step.
+                let mut alpha = if norm > 0.1 * l { 0.1 * l / norm } else { 1.0 };
+                for _ in 0..40 {
+                    for c in 0..n {
+                        s.q[c] = q0[c] + alpha * step[c];
+                    }
+                    let res = Self::project(&mut s, mk, &mut jac);
+                    // Near the minimum the distance changes below its roundoff: accept a
+                    // step that does not increase it beyond that.
+                    if res <= crate::geom::tol::RESIDUAL_REL && dist(&s.q) <= d0 + 1e-14 * l {
+                        accepted = true;
+                        break;
+                    }
+                    alpha *= 0.5;
+                }
+                if accepted {
+                    break;
+                }
             }
-            if !accepted {
-                // No feasible step lowers the distance: a constrained minimum.
-                s.q.copy_from_slice(&q0);
+            if small || !accepted {
+                // The step vanishes, or no feasible step lowers the distance: a constrained minimum.
+                if !accepted {
+                    s.q.copy_from_slice(&q0);
+                }
                 converged = true;
                 break;
             }
@@ -1311,11 +1356,11 @@ mod tests {
         let times: Vec<f64> = (0..=100).map(|k| k as f64 * (std::f64::consts::FRAC_PI_2 - 0.3) / 100.0).collect();
         let e = s.run(&times).unwrap_err();
         match &e {
-            LinkageError::Singular { t, constraints } => {
+            LinkageError::Singular { t, constraints, drivers } => {
                 assert!((t - times[100]).abs() < 1e-12, "{e}");
+                assert!(drivers.contains("driver `crank` = 90.0000°"), "{e}");
                 assert!(constraints.contains("joint"), "{e}");
             }
-            LinkageError::NoConvergence { .. } => {}
             other => panic!("expected a singularity, got {other}"),
         }
     }
