@@ -70,6 +70,16 @@ fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
     set.iter().map(|s| s.parse::<Override>().map_err(mechdraw::Error::from)).collect()
 }
 
+/// Writes a line to stdout; a closed pipe (`mechdraw run … --json | head`) is not an error.
+fn print_stdout(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => Ok(other?),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -96,7 +106,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {
-                println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
+                print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
             }
             if !quiet {
                 for w in &outcome.warnings {
@@ -113,7 +123,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Check { scene, set } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
-            println!("{}: ok ({} scene \"{}\")", scene.display(), loaded.scene.kind(), loaded.scene.name());
+            print_stdout(&format!(
+                "{}: ok ({} scene \"{}\")",
+                scene.display(),
+                loaded.scene.kind(),
+                loaded.scene.name()
+            ))?;
             Ok(())
         }
         Command::Bench { .. } => anyhow::bail!("`mechdraw bench` is not implemented yet"),
