@@ -22,8 +22,8 @@ enum Command {
     Run {
         /// The scene file (TOML; see templates/).
         scene: PathBuf,
-        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, and per kind frames/,
-        /// <name>.html, diagrams, <name>.csv, <name>.json.
+        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, and per kind frames/<name>/,
+        /// <name>.html, diagrams/<name>/, <name>.csv, <name>.json. Several scenes can share DIR.
         #[arg(short, long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
         /// Override a scene field, checked like the file: `l12=55`, `pattern.tol=1e-7`,
@@ -70,6 +70,16 @@ fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
     set.iter().map(|s| s.parse::<Override>().map_err(mechdraw::Error::from)).collect()
 }
 
+/// Writes a line to stdout; a closed pipe (`mechdraw run … --json | head`) is not an error.
+fn print_stdout(text: &str) -> anyhow::Result<()> {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    match writeln!(out, "{text}").and_then(|()| out.flush()) {
+        Err(e) if e.kind() == std::io::ErrorKind::BrokenPipe => Ok(()),
+        other => Ok(other?),
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match run(cli) {
@@ -96,7 +106,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {
-                println!("{}", serde_json::to_string_pretty(&outcome.summary)?);
+                print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
             }
             if !quiet {
                 for w in &outcome.warnings {
@@ -113,7 +123,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Check { scene, set } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
-            println!("{}: ok ({} scene \"{}\")", scene.display(), loaded.scene.kind(), loaded.scene.name());
+            print_stdout(&format!(
+                "{}: ok ({} scene \"{}\")",
+                scene.display(),
+                loaded.scene.kind(),
+                loaded.scene.name()
+            ))?;
             Ok(())
         }
         Command::Bench { out, quick } => {

@@ -62,32 +62,32 @@ fn read(p: &Path) -> String {
 
 #[test]
 fn golden_frame_000() {
-    assert_golden_png("fourbar/frame_000.png", &read(&kinematics_only().join("frames/pos_000.svg")));
+    assert_golden_png("fourbar/frame_000.png", &read(&kinematics_only().join(format!("frames/{NAME}/pos_000.svg"))));
 }
 
 #[test]
 fn golden_frame_090() {
-    assert_golden_png("fourbar/frame_090.png", &read(&kinematics_only().join("frames/pos_090.svg")));
+    assert_golden_png("fourbar/frame_090.png", &read(&kinematics_only().join(format!("frames/{NAME}/pos_090.svg"))));
 }
 
 #[test]
 fn golden_frame_180() {
-    assert_golden_png("fourbar/frame_180.png", &read(&kinematics_only().join("frames/pos_180.svg")));
+    assert_golden_png("fourbar/frame_180.png", &read(&kinematics_only().join(format!("frames/{NAME}/pos_180.svg"))));
 }
 
 #[test]
 fn golden_force_frame_000() {
-    assert_golden_png("fourbar/forces_000.png", &read(&full().join("frames/pos_000.svg")));
+    assert_golden_png("fourbar/forces_000.png", &read(&full().join(format!("frames/{NAME}/pos_000.svg"))));
 }
 
 #[test]
 fn golden_force_frame_090() {
-    assert_golden_png("fourbar/forces_090.png", &read(&full().join("frames/pos_090.svg")));
+    assert_golden_png("fourbar/forces_090.png", &read(&full().join(format!("frames/{NAME}/pos_090.svg"))));
 }
 
 #[test]
 fn golden_force_frame_180() {
-    assert_golden_png("fourbar/forces_180.png", &read(&full().join("frames/pos_180.svg")));
+    assert_golden_png("fourbar/forces_180.png", &read(&full().join(format!("frames/{NAME}/pos_180.svg"))));
 }
 
 #[test]
@@ -120,12 +120,12 @@ fn every_output_is_written() {
     ] {
         assert!(dir.join(&f).is_file(), "{f} missing");
     }
-    let frames = std::fs::read_dir(dir.join("frames")).unwrap().count();
+    let frames = std::fs::read_dir(dir.join(format!("frames/{NAME}"))).unwrap().count();
     assert_eq!(frames, 360);
     for q in ["phi2", "phi3", "omega2", "omega3", "eps2", "eps3", "vM", "aM", "R_A", "R_B", "R_C", "R_O", "Me1"] {
-        let svg = dir.join(format!("diagrams/{q}.svg"));
+        let svg = dir.join(format!("diagrams/{NAME}/{q}.svg"));
         assert!(read(&svg).starts_with("<svg"), "{q}.svg");
-        let png = std::fs::read(dir.join(format!("diagrams/{q}.png"))).unwrap();
+        let png = std::fs::read(dir.join(format!("diagrams/{NAME}/{q}.png"))).unwrap();
         assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n", "{q}.png is not a PNG");
     }
     // The viewer is self-contained: no external script, style, image or font.
@@ -143,16 +143,16 @@ fn no_frames_skips_frames_and_viewer() {
     assert!(!d.path().join("frames").exists());
     assert!(!d.path().join(format!("{NAME}.html")).exists());
     assert!(d.path().join(format!("{NAME}.dxf")).is_file());
-    assert!(d.path().join("diagrams/omega2.svg").is_file());
+    assert!(d.path().join(format!("diagrams/{NAME}/omega2.svg")).is_file());
     // Without --png no PNG copies.
-    assert!(!d.path().join("diagrams/omega2.png").exists());
+    assert!(!d.path().join(format!("diagrams/{NAME}/omega2.png")).exists());
 }
 
 #[test]
 fn positions_only_scene_has_no_polygons_and_no_kinematic_columns() {
     let d = tempfile::tempdir().unwrap();
     run(d.path(), &["--set", r#"outputs=["position"]"#, "--set", "phi1_deg.step=45"]);
-    let frame = read(&d.path().join("frames/pos_045.svg"));
+    let frame = read(&d.path().join(format!("frames/{NAME}/pos_045.svg")));
     assert!(frame.contains("layer-MECHANISM"));
     assert!(
         !frame.contains("layer-VELOCITY") && !frame.contains("layer-ACCELERATION") && !frame.contains("layer-FORCES")
@@ -161,7 +161,10 @@ fn positions_only_scene_has_no_polygons_and_no_kinematic_columns() {
     let header = csv.lines().next().unwrap();
     assert!(header.starts_with("phi1_deg,A_x,A_y"));
     assert!(!header.contains("omega2") && !header.contains("eps2") && !header.contains("R_A"));
-    assert!(!d.path().join("diagrams/omega2.svg").exists() && d.path().join("diagrams/phi2.svg").exists());
+    assert!(
+        !d.path().join(format!("diagrams/{NAME}/omega2.svg")).exists()
+            && d.path().join(format!("diagrams/{NAME}/phi2.svg")).exists()
+    );
 }
 
 /// The CSV as columns by name.
@@ -406,7 +409,7 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
     }
     // Scales as stated on the drawings.
     let kv = json["scales"]["k_v"]["value"].as_f64().unwrap();
-    let frame = read(&full().join("frames/pos_000.svg"));
+    let frame = read(&full().join(format!("frames/{NAME}/pos_000.svg")));
     let shown = format!("k_v = {} (m/s)/mm", mechdraw::figure::fourbar::scale_text(kv));
     assert!(frame.contains(&shown), "frame does not show `{shown}`");
     // --json prints the same summary on stdout.
@@ -428,7 +431,7 @@ fn unassemblable_angles_produce_no_frame_and_a_warning() {
     let skipped: Vec<u32> = (0..360).filter(|&k| (k as f64) > limit && (k as f64) < 360.0 - limit).collect();
     assert_eq!(skipped.len(), 125);
     for k in 0..360u32 {
-        let f = d.path().join(format!("frames/pos_{k:03}.svg"));
+        let f = d.path().join(format!("frames/{NAME}/pos_{k:03}.svg"));
         assert_eq!(f.exists(), !skipped.contains(&k), "frame {k}");
     }
     let json: serde_json::Value = serde_json::from_str(&read(&d.path().join(format!("{NAME}.json")))).unwrap();
@@ -438,7 +441,7 @@ fn unassemblable_angles_produce_no_frame_and_a_warning() {
     // No NaN anywhere in the frames or the CSV.
     let csv = read(&d.path().join(format!("{NAME}.csv")));
     assert!(!csv.to_lowercase().contains("nan"));
-    for e in std::fs::read_dir(d.path().join("frames")).unwrap() {
+    for e in std::fs::read_dir(d.path().join(format!("frames/{NAME}"))).unwrap() {
         assert!(!read(&e.unwrap().path()).contains("NaN"));
     }
 }

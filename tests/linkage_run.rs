@@ -23,12 +23,12 @@ fn shaper_run_writes_every_output() {
     let text = std::fs::read_to_string(&dxf).unwrap();
     assert!(text.contains("POS_000") && text.contains("POS_090") && !text.contains("POS_091"));
     assert!(text.contains("TRAJECTORY"));
-    assert_eq!(std::fs::read_dir(out.join("frames")).unwrap().count(), 91);
+    assert_eq!(std::fs::read_dir(out.join("frames/shaper")).unwrap().count(), 91);
     let html = std::fs::read_to_string(out.join("shaper.html")).unwrap();
     assert!(html.contains("shaper"));
     for col in ["E.x", "E.vx", "E.ax", "rocker.angle_deg", "rocker.omega", "rocker.eps"] {
-        assert!(out.join(format!("diagrams/{col}.svg")).exists(), "{col}.svg");
-        assert!(out.join(format!("diagrams/{col}.png")).exists(), "{col}.png");
+        assert!(out.join(format!("diagrams/shaper/{col}.svg")).exists(), "{col}.svg");
+        assert!(out.join(format!("diagrams/shaper/{col}.png")).exists(), "{col}.png");
     }
     // CSV: header, 91 rows; the first row is the start position (phi1 = 0), whose ram
     // position follows from the geometry: rocker through A = (125, 300), B at 600 along it,

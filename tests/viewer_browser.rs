@@ -107,7 +107,7 @@ fn viewer_moves_to_the_frame_asked_for_and_plays() {
     assert!(label.starts_with("φ1 = 90°"), "label {label}");
     assert_ne!(stage_svg(&first), stage_svg(&moved), "the picture did not change");
     // The frame shown is the frame file for 90°.
-    let file = std::fs::read_to_string(dir.path().join("frames/pos_090.svg")).unwrap();
+    let file = std::fs::read_to_string(dir.path().join(format!("frames/{NAME}/pos_090.svg"))).unwrap();
     assert!(stage_svg(&moved).contains("φ1 = 90°") && file.contains("φ1 = 90°"));
 
     // Playing advances the frames with (virtual) time.

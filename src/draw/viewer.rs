@@ -1,8 +1,9 @@
 //! The self-contained HTML viewer: SVG frames with a slider, play/pause and speed, that
 //! works from `file://` (everything inline, no network, no external script or font).
 //!
-//! The frames are embedded as a JSON array of SVG strings; the page shows one at a time
-//! in `<div id="stage">`. Its state is readable from the DOM (for people and for the
+//! The frames are embedded as JavaScript data (each distinct SVG line once, each frame as
+//! the list of its lines, since consecutive frames share most of their lines); the page
+//! shows one at a time in `<div id="stage">`. Its state is readable from the DOM (for people and for the
 //! browser test): `#stage[data-frame]` holds the index of the frame shown, and
 //! `#frame-label` its label. The URL hash chooses the frame and the mode:
 //! `#frame=90` shows frame 90 (through the slider, as a user would), `#play` starts
@@ -35,25 +36,39 @@ fn escape_html(s: &str) -> String {
 
 /// `s` as a JavaScript string literal that is safe inside `<script>` (JSON escaping, plus
 /// `<` written as `\u003c` so no `</script>` can end the block early).
+#[cfg(test)]
 fn js_string(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 16);
+    push_js_string(&mut out, s);
+    out
+}
+
+/// Appends `s` as a JavaScript string literal (see [`js_string`]), copying runs of plain
+/// characters at once.
+fn push_js_string(out: &mut String, s: &str) {
     out.push('"');
-    for c in s.chars() {
-        match c {
-            '"' => out.push_str("\\\""),
-            '\\' => out.push_str("\\\\"),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            '<' => out.push_str("\\u003c"),
-            '\u{2028}' => out.push_str("\\u2028"),
-            '\u{2029}' => out.push_str("\\u2029"),
-            c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
-            c => out.push(c),
+    let mut plain = 0;
+    for (i, c) in s.char_indices() {
+        let esc: Option<std::borrow::Cow<'static, str>> = match c {
+            '"' => Some("\\\"".into()),
+            '\\' => Some("\\\\".into()),
+            '\n' => Some("\\n".into()),
+            '\r' => Some("\\r".into()),
+            '\t' => Some("\\t".into()),
+            '<' => Some("\\u003c".into()),
+            '\u{2028}' => Some("\\u2028".into()),
+            '\u{2029}' => Some("\\u2029".into()),
+            c if (c as u32) < 0x20 => Some(format!("\\u{:04x}", c as u32).into()),
+            _ => None,
+        };
+        if let Some(e) = esc {
+            out.push_str(&s[plain..i]);
+            out.push_str(&e);
+            plain = i + c.len_utf8();
         }
     }
+    out.push_str(&s[plain..]);
     out.push('"');
-    out
 }
 
 const STYLE: &str = r#"
@@ -77,12 +92,16 @@ const SCRIPT: &str = r#"
   var play = document.getElementById("play");
   var speed = document.getElementById("speed");
   var timer = null;
+  var N = FRAME_PARTS.length;
+  function frameSvg(i) {
+    return FRAME_PARTS[i].map(function (k) { return PARTS[k]; }).join("\n");
+  }
   function show(i) {
-    if (FRAMES.length === 0) { return; }
-    i = Math.max(0, Math.min(FRAMES.length - 1, i | 0));
-    stage.innerHTML = FRAMES[i];
+    if (N === 0) { return; }
+    i = Math.max(0, Math.min(N - 1, i | 0));
+    stage.innerHTML = frameSvg(i);
     stage.setAttribute("data-frame", String(i));
-    label.textContent = LABELS[i] + "  (" + (i + 1) + "/" + FRAMES.length + ")";
+    label.textContent = LABELS[i] + "  (" + (i + 1) + "/" + N + ")";
     if (String(slider.value) !== String(i)) { slider.value = String(i); }
   }
   function stop() {
@@ -94,7 +113,7 @@ const SCRIPT: &str = r#"
     stop();
     var fps = parseFloat(speed.value) || 30;
     timer = setInterval(function () {
-      show((parseInt(slider.value, 10) + 1) % FRAMES.length);
+      show((parseInt(slider.value, 10) + 1) % N);
     }, 1000 / fps);
     play.textContent = "Pause";
     document.body.setAttribute("data-playing", "1");
@@ -104,10 +123,11 @@ const SCRIPT: &str = r#"
   speed.addEventListener("change", function () { if (timer !== null) { start(); } });
   document.addEventListener("keydown", function (e) {
     var i = parseInt(slider.value, 10);
-    if (e.key === "ArrowRight") { stop(); show((i + 1) % FRAMES.length); }
-    else if (e.key === "ArrowLeft") { stop(); show((i - 1 + FRAMES.length) % FRAMES.length); }
+    if (N === 0) { return; }
+    if (e.key === "ArrowRight") { stop(); show((i + 1) % N); }
+    else if (e.key === "ArrowLeft") { stop(); show((i - 1 + N) % N); }
     else if (e.key === "Home") { stop(); show(0); }
-    else if (e.key === "End") { stop(); show(FRAMES.length - 1); }
+    else if (e.key === "End") { stop(); show(N - 1); }
     else if (e.key === " ") { e.preventDefault(); play.click(); }
   });
   function fromHash() {
@@ -120,13 +140,13 @@ const SCRIPT: &str = r#"
     });
     if (frame !== null) {
       // Move the slider as a user would, then let its input handler show the frame.
-      slider.value = String(Math.min(frame, FRAMES.length - 1));
+      slider.value = String(Math.min(frame, N - 1));
       slider.dispatchEvent(new Event("input"));
     }
-    if (wantPlay) { start(); }
+    if (wantPlay && N > 0) { start(); }
   }
   window.addEventListener("hashchange", fromHash);
-  slider.max = String(Math.max(0, FRAMES.length - 1));
+  slider.max = String(Math.max(0, N - 1));
   show(0);
   fromHash();
 })();
@@ -153,19 +173,51 @@ pub fn html(title: &str, frames: &[Frame]) -> String {
         s.push_str(&format!("<option value=\"{fps}\"{sel}>{name}</option>"));
     }
     s.push_str("</select></label>\n</div>\n</header>\n");
-    s.push_str("<div id=\"stage\" data-frame=\"0\"></div>\n<script>\nvar FRAMES = [\n");
-    for (i, f) in frames.iter().enumerate() {
+    // The frames share most of their lines (the ground, the coupler curve, titles): each
+    // distinct line is stored once in PARTS, each frame as the list of its lines' indices.
+    let mut index: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    let mut parts: Vec<&str> = Vec::new();
+    let mut lists: Vec<Vec<usize>> = Vec::with_capacity(frames.len());
+    for f in frames {
+        let list = f
+            .svg
+            .split('\n')
+            .map(|line| {
+                *index.entry(line).or_insert_with(|| {
+                    parts.push(line);
+                    parts.len() - 1
+                })
+            })
+            .collect();
+        lists.push(list);
+    }
+    s.push_str("<div id=\"stage\" data-frame=\"0\"></div>\n<script>\nvar PARTS = [\n");
+    for (i, p) in parts.iter().enumerate() {
         if i > 0 {
             s.push_str(",\n");
         }
-        s.push_str(&js_string(&f.svg));
+        push_js_string(&mut s, p);
+    }
+    s.push_str("\n];\nvar FRAME_PARTS = [\n");
+    for (i, list) in lists.iter().enumerate() {
+        if i > 0 {
+            s.push_str(",\n");
+        }
+        s.push('[');
+        for (j, k) in list.iter().enumerate() {
+            if j > 0 {
+                s.push(',');
+            }
+            s.push_str(&k.to_string());
+        }
+        s.push(']');
     }
     s.push_str("\n];\nvar LABELS = [");
     for (i, f) in frames.iter().enumerate() {
         if i > 0 {
             s.push(',');
         }
-        s.push_str(&js_string(&f.label));
+        push_js_string(&mut s, &f.label);
     }
     s.push_str("];\n");
     s.push_str(SCRIPT);
@@ -192,6 +244,18 @@ mod tests {
         for external in ["src=", "href=", "http://", "https://", "@import"] {
             assert!(!page.contains(external), "page refers to something outside: {external}");
         }
+    }
+
+    #[test]
+    fn lines_shared_by_frames_are_stored_once() {
+        let shared = "<polyline points=\"0,0 1,1 2,0\"/>";
+        let frames: Vec<Frame> = (0..3)
+            .map(|i| Frame { label: format!("{i}"), svg: format!("<svg>\n{shared}\n<circle r=\"{i}\"/>\n</svg>") })
+            .collect();
+        let page = html("t", &frames);
+        assert_eq!(page.matches("0,0 1,1 2,0").count(), 1);
+        // Frame 2 is lines 0 (<svg>), 1 (shared), its own circle, and the closing tag.
+        assert!(page.contains("[0,1,5,3]"), "{page}");
     }
 
     #[test]

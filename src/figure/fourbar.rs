@@ -329,7 +329,8 @@ impl Layout {
         DimStyle { text_height: self.sizes.text, arrow_size: self.sizes.head }
     }
 
-    /// What every frame shares: the ground pivots with their hatch symbols, the coupler
+    /// What every frame shares: the ground pivots with their hatch symbols (their letters
+    /// move with the links, see [`Layout::moving`]), the coupler
     /// curve of M (`curve`: runs of consecutive positions; a gap in the motion breaks it),
     /// the panel titles with the scales.
     pub fn base(&self, geom: &Geometry, curve: &[Vec<Point>]) -> Drawing {
@@ -342,9 +343,8 @@ impl Layout {
                 d.add(cc, Shape::Polyline { points: run.clone(), closed: false, width: 0.0 });
             }
         }
-        for (p, name, dir) in [(geom.o1, "O1", Vector::new(-1.0, 0.0)), (geom.c, "C", Vector::new(1.0, 0.0))] {
+        for p in [geom.o1, geom.c] {
             ground(&mut d, mech, p, self.sizes);
-            label(&mut d, mech, p + dir * (2.2 * self.sizes.joint), self.sizes.text, name, dir);
         }
         for (title, _ll, ur) in &self.panels {
             let at = Point::new(_ll.x, ur.y - 1.2 * self.sizes.text);
@@ -406,10 +406,14 @@ impl Layout {
     /// The whole motion in one drawing (for the DXF): `base` on its content layers, and each
     /// position's entities on its own layer (`(layer name, moving drawing)`), with the
     /// content's colour and line type kept on every entity.
-    pub fn animation(&self, base: &Drawing, positions: &[(String, Drawing)]) -> Drawing {
+    pub fn animation<'a>(
+        &self,
+        base: &Drawing,
+        positions: impl IntoIterator<Item = (&'a str, &'a Drawing)>,
+    ) -> Drawing {
         let mut d = base.clone();
         for (layer, moving) in positions {
-            append(&mut d, moving, |_| layer.clone(), true);
+            append(&mut d, moving, |_| layer.to_string(), true);
         }
         d
     }
@@ -446,10 +450,13 @@ pub fn angle_text(deg: f64) -> String {
 pub(crate) fn label(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, dir: Vector) {
     let n = dir.norm();
     let u = if n > 0.0 && n.is_finite() { dir / n } else { Vector::zeros() };
+    // Wider names sit further out sideways (about 0.6 letter heights per character).
+    let chars = s.chars().count().max(1) as f64;
+    let nudge = 0.8 * h + 0.3 * h * (chars - 1.0) * u.x.abs();
     d.add(
         layer,
         Shape::Text {
-            at: at + u * (0.8 * h),
+            at: at + u * nudge,
             height: h,
             value: s.to_string(),
             halign: HAlign::Center,
@@ -511,6 +518,13 @@ fn mechanism(d: &mut Drawing, geom: &Geometry, pos: &Position, s: Sizes) {
     let off = 1.8 * s.joint;
     let ua = unit_or(pos.a - geom.o1, Vector::new(0.0, 1.0));
     label(d, mech, pos.a + ua * off, s.text, "A", ua);
+    // The pivots' letters opposite to their links, so no link runs over them, but never
+    // down into the ground symbol.
+    let level = |v: Vector, fallback: Vector| unit_or(Vector::new(v.x, v.y.max(0.0)), fallback);
+    let uo = level(unit_or(geom.o1 - pos.a, Vector::zeros()), Vector::new(-1.0, 0.0));
+    label(d, mech, geom.o1 + uo * (1.8 * s.joint), s.text, "O1", uo);
+    let uc = level(unit_or(geom.c - pos.b, Vector::zeros()), Vector::new(1.0, 0.0));
+    label(d, mech, geom.c + uc * (1.8 * s.joint), s.text, "C", uc);
     let mid_ac = Point::from((pos.a.coords + geom.c.coords) / 2.0);
     let ub = unit_or(pos.b - mid_ac, Vector::new(0.0, 1.0));
     label(d, mech, pos.b + ub * off, s.text, "B", ub);

@@ -200,8 +200,11 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     // Labels: each in the widest free direction around its point.
     for i in 0..3 {
         let phi = f.exact.phi[i];
-        // At O_i: the link, the +x reference line and the ground symbol below.
-        let dir = free_direction(&[phi, 0.0, -std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
+        // At O_i: the link, the +x reference line, the dimensioned sector between them and
+        // the ground symbol below.
+        let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
+        occupied.extend([-std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
+        let dir = free_direction(&occupied);
         label(&mut d, text, t.o[i], dir, s.pivot + 0.6 * s.text, s.text, &format!("O{}", i + 1));
         // At A_i: the link back to O_i and the two sides.
         let occupied = [angle_of(t.o[i] - a[i]), angle_of(a[(i + 1) % 3] - a[i]), angle_of(a[(i + 2) % 3] - a[i])];

@@ -77,76 +77,107 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
         .collect();
     let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(layout.window), ..SvgOptions::default() };
 
-    // DXF: every position on its own layer.
-    let named: Vec<(String, Drawing)> = names.iter().cloned().zip(moving.iter().cloned()).collect();
-    let all = layout.animation(&base, &named);
-    drop(named);
-    if let Some(dxf) = dxf_bytes(&all, name)? {
-        out.write(format!("{name}.dxf"), dxf)?;
-    }
+    // The DXF (every position on its own layer) is built on one core while the frames,
+    // the viewer and the diagrams are built on the others.
+    let want_frames = !opts.no_frames;
+    let (dxf, (frames, html, rendered)) = rayon::join(
+        || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
+        || {
+            let frames = if want_frames {
+                frame_svgs(&layout, &base, &moving, &motion.positions, &svg_opts, opts.progress)
+            } else {
+                Vec::new()
+            };
+            let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
+            let rendered: Result<Vec<RenderedDiagram>, Error> = diagrams
+                .par_iter()
+                .map(|(file, d)| {
+                    let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
+                    let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
+                    png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
+                        what: format!("diagrams/{name}/{file}.png"),
+                        message: e.to_string(),
+                    })
+                })
+                .collect();
+            let html = want_frames.then(|| {
+                let title = format!("{name}: four-bar, {} positions", frames.len());
+                viewer::html(&title, &frames)
+            });
+            (frames, html, rendered)
+        },
+    );
+    out.write(format!("{name}.dxf"), dxf?)?;
 
     // The first position as the scene's picture.
-    if let Some(first) = moving.first() {
-        out.write(format!("{name}.svg"), svg::to_string(&layout.frame(&base, first), &svg_opts))?;
-    } else {
-        out.write(format!("{name}.svg"), svg::to_string(&base, &svg_opts))?;
-    }
+    let picture = match (frames.first(), moving.first()) {
+        (Some(f), _) => f.svg.clone(),
+        (None, Some(first)) => svg::to_string(&layout.frame(&base, first), &svg_opts),
+        (None, None) => svg::to_string(&base, &svg_opts),
+    };
+    out.write(format!("{name}.svg"), picture)?;
     out.write(format!("{name}.csv"), table.csv.to_bytes())?;
     let json_text = serde_json::to_string_pretty(&summary)
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
     out.write(format!("{name}.json"), json_text)?;
-
-    // Diagrams.
-    let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
-    let rendered: Vec<(String, String, Option<Vec<u8>>)> = diagrams
-        .par_iter()
-        .map(|(file, d)| {
-            let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
-            let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
-            png.transpose()
-                .map(|png| (file.clone(), s, png))
-                .map_err(|e| Error::Export { what: format!("diagrams/{file}.png"), message: e.to_string() })
-        })
-        .collect::<Result<_, Error>>()?;
-    for (file, s, png) in rendered {
-        out.write(format!("diagrams/{file}.svg"), s)?;
+    for (file, s, png) in rendered? {
+        out.write(format!("diagrams/{name}/{file}.svg"), s)?;
         if let Some(png) = png {
-            out.write(format!("diagrams/{file}.png"), png)?;
+            out.write(format!("diagrams/{name}/{file}.png"), png)?;
         }
     }
-
-    // Frames and the viewer.
-    if !opts.no_frames {
-        let bar = progress_bar(opts.progress, moving.len());
-        let frames: Vec<viewer::Frame> = moving
-            .par_iter()
-            .zip(motion.positions.par_iter())
-            .map(|(m, p)| {
-                let s = svg::to_string(&layout.frame(&base, m), &svg_opts);
-                if let Some(b) = &bar {
-                    b.inc(1);
-                }
-                viewer::Frame { label: format!("φ1 = {}°", angle_text(deg(p.phi1))), svg: s }
-            })
-            .collect();
-        if let Some(b) = &bar {
-            b.finish_and_clear();
-        }
-        for (f, n) in frames.iter().zip(&names) {
-            out.write(format!("frames/{}.svg", n.to_lowercase()), &f.svg)?;
-        }
-        out.write(
-            format!("{name}.html"),
-            viewer::html(&format!("{name}: four-bar, {} positions", frames.len()), &frames),
-        )?;
+    let frame_files = frames
+        .iter()
+        .zip(&names)
+        .map(|(f, n)| {
+            (std::path::PathBuf::from(format!("frames/{name}/{}.svg", n.to_lowercase())), f.svg.clone().into_bytes())
+        })
+        .collect();
+    out.write_many(frame_files)?;
+    if let Some(html) = html {
+        out.write(format!("{name}.html"), html)?;
     }
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings, written })
 }
 
-/// The DXF of the whole motion. (Until the DXF writer lands on main: nothing.)
-fn dxf_bytes(_d: &Drawing, _name: &str) -> Result<Option<Vec<u8>>, Error> {
-    Ok(None)
+/// A diagram's file stem, its SVG and (with `--png`) its PNG.
+type RenderedDiagram = (String, String, Option<Vec<u8>>);
+
+/// The DXF of the whole motion (R12, the writer's default).
+fn dxf_bytes(d: &Drawing, name: &str) -> Result<Vec<u8>, Error> {
+    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default())
+        .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+}
+
+/// The SVG frames (in parallel), with the progress bar when asked for.
+fn frame_svgs(
+    layout: &Layout,
+    base: &Drawing,
+    moving: &[Drawing],
+    positions: &[Position],
+    svg_opts: &SvgOptions,
+    progress: bool,
+) -> Vec<viewer::Frame> {
+    let bar = progress_bar(progress, moving.len());
+    // The shared part is written once; each frame is its moving part appended to it.
+    let base_svg = svg::to_string(base, svg_opts);
+    let frames: Vec<viewer::Frame> = moving
+        .par_iter()
+        .zip(positions.par_iter())
+        .map(|(m, p)| {
+            let s = splice(&base_svg, &svg::to_string(m, svg_opts))
+                .unwrap_or_else(|| svg::to_string(&layout.frame(base, m), svg_opts));
+            if let Some(b) = &bar {
+                b.inc(1);
+            }
+            viewer::Frame { label: format!("φ1 = {}°", angle_text(deg(p.phi1))), svg: s }
+        })
+        .collect();
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    frames
 }
 
 fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
@@ -158,6 +189,28 @@ fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
         bar.set_style(style);
     }
     Some(bar)
+}
+
+/// The SVG of `base` followed by `moving` (both written with the same options, so with the
+/// same header): `base_svg` without its closing tag, then `moving_svg` after its header
+/// (the `<svg>` line and the background `<rect>` line). This is the SVG writer's output for
+/// the frame (base, then moving), written without redoing the shared part; `None` when the
+/// two headers differ (then the frame is written whole).
+fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
+    const CLOSE: &str = "</svg>";
+    let header_end = |s: &str| -> Option<usize> {
+        let first = s.find('\n')?;
+        Some(first + 1 + s[first + 1..].find('\n')? + 1)
+    };
+    let (hb, hm) = (header_end(base_svg)?, header_end(moving_svg)?);
+    if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) {
+        return None;
+    }
+    let head = &base_svg[..base_svg.len() - CLOSE.len()];
+    let mut out = String::with_capacity(head.len() + moving_svg.len() - hm);
+    out.push_str(head);
+    out.push_str(&moving_svg[hm..]);
+    Some(out)
 }
 
 /// Layer (and frame file) names: `POS_ddd` with the crank angle in whole degrees when every
@@ -535,4 +588,33 @@ fn diagrams(
             (file.to_string(), Diagram { title, x_label: "φ1 [°]".into(), y_label, series })
         })
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    #[test]
+    fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
+        let over: Vec<crate::scene::Override> = vec!["phi1_deg.step=45".parse().unwrap()];
+        let loaded = crate::scene::load(&path, &over).unwrap();
+        let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
+        let motion = solve_motion(&scene.spec).unwrap();
+        let show = Show { velocity: true, acceleration: true, forces: true };
+        let geom = &scene.spec.geometry;
+        let layout = Layout::new(geom, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
+        let base = layout.base(geom, &runs(&motion.positions, 45.0, |p| p.m));
+        let opts = SvgOptions { window: Some(layout.window), ..SvgOptions::default() };
+        let base_svg = svg::to_string(&base, &opts);
+        for (p, f) in motion.positions.iter().zip(&motion.forces) {
+            let m = layout.moving(geom, p, Some(f));
+            let whole = svg::to_string(&layout.frame(&base, &m), &opts);
+            assert_eq!(splice(&base_svg, &svg::to_string(&m, &opts)).as_deref(), Some(whole.as_str()));
+        }
+        // Different windows: no splice.
+        let other = SvgOptions { width_px: 10, ..opts };
+        assert!(splice(&base_svg, &svg::to_string(&base, &other)).is_none());
+    }
 }

@@ -236,7 +236,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         let mut frames = Vec::with_capacity(states.len());
         for (k, s) in states.iter().enumerate() {
             let svg = svg_string(&frame_drawing(&s.q), &svg_opts);
-            out.write(format!("frames/pos_{k:03}.svg"), &svg)?;
+            out.write(format!("frames/{}/pos_{k:03}.svg", scene.name), &svg)?;
             frames.push(Frame { label: format!("t = {:.4} s", s.t), svg });
         }
         out.write(format!("{}.html", scene.name), html(&scene.name, &frames))?;
@@ -254,9 +254,9 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         let svg = svg_string(&d, &SvgOptions::default());
         if opts.png {
             let png = crate::draw::raster::to_png(&svg, 1000).map_err(|e| export("PNG")(e.to_string()))?;
-            out.write(format!("diagrams/{}.png", c.name), png)?;
+            out.write(format!("diagrams/{}/{}.png", scene.name, c.name), png)?;
         }
-        out.write(format!("diagrams/{}.svg", c.name), svg)?;
+        out.write(format!("diagrams/{}/{}.svg", scene.name, c.name), svg)?;
     }
 
     // CSV.

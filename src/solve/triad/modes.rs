@@ -54,6 +54,9 @@ pub const DEDUPE_REL: f64 = 1e-7;
 /// pre-cancellation size vanishes identically: the triad is movable.
 pub const MOVABLE_REL: f64 = 1e-12;
 
+/// Roots phi1 closer than this (radians) are one root seen from both charts.
+const SAME_ROOT_RAD: f64 = 1e-12;
+
 /// Newton steps allowed when polishing a root.
 const POLISH_ITERATIONS: usize = 60;
 
@@ -131,6 +134,11 @@ pub fn modes_with(triad: &Triad, orientation: Orientation) -> Result<Vec<Configu
 /// Completes a root phi1 into configurations (both A2 branches tried), polishes, checks and
 /// adds the new ones to `found`.
 fn complete(triad: &Triad, m: C, orientation: Orientation, phi1: f64, found: &mut Vec<Configuration>) {
+    // A root in the overlap of the two charts is seen twice; both of its A2 branches were
+    // tried the first time.
+    if found.iter().any(|c| crate::geom::wrap_pi(c.phi[0] - phi1).abs() <= SAME_ROOT_RAD) {
+        return;
+    }
     let scale = triad.scale();
     let a1 = polar(triad.o[0], triad.r[0], phi1);
     for a2 in a2_candidates(a1, triad.l12, triad.o[1], triad.r[1], scale).into_iter().flatten() {

@@ -19,6 +19,12 @@ pub const NEWTON_RESIDUAL_REL: f64 = 1e-15;
 /// counts as singular.
 pub const SINGULAR_REL: f64 = 1e-13;
 
+/// A Newton step below this (radians, every angle) ends [`newton`]: convergence is
+/// quadratic, so the error after it is ~1e-16 and another evaluation would only confirm it
+/// (the final residual is still computed and checked against
+/// [`super::RESIDUAL_ACCEPT_REL`]).
+pub const CONVERGED_STEP: f64 = 1e-9;
+
 /// Settings of Newton–Raphson.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NewtonOptions {
@@ -70,27 +76,33 @@ fn system(t: &Triad, phi: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
     (g, j)
 }
 
-/// Solves `j·x = b` by Cramer's rule; `None` when `j` is singular (see [`SINGULAR_REL`]).
+/// Solves `j·x = b` with the adjugate (Cramer's rule sharing the cofactors); `None` when
+/// `j` is singular (see [`SINGULAR_REL`]).
 #[inline]
 fn solve3(j: &[[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
-    let det3 = |m: &[[f64; 3]; 3]| {
-        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
-            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
-    };
-    let det = det3(j);
-    let norms: f64 = j.iter().map(|r| (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt()).product();
-    if det.is_nan() || det.abs() <= SINGULAR_REL * norms {
+    let [[a, bb, c], [d, e, f], [g, h, i]] = *j;
+    // Cofactors.
+    let c00 = e * i - f * h;
+    let c01 = f * g - d * i;
+    let c02 = d * h - e * g;
+    let det = a * c00 + bb * c01 + c * c02;
+    let n2 = |r: &[f64; 3]| r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
+    let norms2 = n2(&j[0]) * n2(&j[1]) * n2(&j[2]);
+    if det.is_nan() || det * det <= SINGULAR_REL * SINGULAR_REL * norms2 {
         return None;
     }
-    let mut x = [0.0; 3];
-    for (k, xk) in x.iter_mut().enumerate() {
-        let mut m = *j;
-        for (row, bv) in m.iter_mut().zip(b) {
-            row[k] = bv;
-        }
-        *xk = det3(&m) / det;
-    }
-    Some(x)
+    let c10 = c * h - bb * i;
+    let c11 = a * i - c * g;
+    let c12 = bb * g - a * h;
+    let c20 = bb * f - c * e;
+    let c21 = c * d - a * f;
+    let c22 = a * e - bb * d;
+    let inv = 1.0 / det;
+    Some([
+        (c00 * b[0] + c10 * b[1] + c20 * b[2]) * inv,
+        (c01 * b[0] + c11 * b[1] + c21 * b[2]) * inv,
+        (c02 * b[0] + c12 * b[1] + c22 * b[2]) * inv,
+    ])
 }
 
 /// Newton–Raphson from `opts.start`. Errors name a singular Jacobian (with the angles) or a
@@ -100,7 +112,7 @@ pub fn newton(triad: &Triad, opts: &NewtonOptions) -> Result<NewtonSolution, Tri
 }
 
 /// [`newton`] with another stopping goal: iteration stops when the largest |g_ij| is below
-/// `residual_rel` · [`Triad::scale`] (or the step is below [`tol::NEWTON_ANGLE`]); the
+/// `residual_rel` · [`Triad::scale`] (or the step is below [`CONVERGED_STEP`]); the
 /// answer is accepted when its residual is below the larger of `residual_rel` and
 /// [`super::RESIDUAL_ACCEPT_REL`]. `mechdraw bench` charts speed against accuracy with it.
 pub fn newton_to(triad: &Triad, opts: &NewtonOptions, residual_rel: f64) -> Result<NewtonSolution, TriadError> {
@@ -124,7 +136,7 @@ pub fn newton_to(triad: &Triad, opts: &NewtonOptions, residual_rel: f64) -> Resu
         if !phi.iter().all(|p| p.is_finite()) {
             break;
         }
-        if dx.iter().all(|d| d.abs() <= tol::NEWTON_ANGLE) {
+        if dx.iter().all(|d| d.abs() <= CONVERGED_STEP) {
             return finish(triad, phi, iteration + 1, opts.max_iterations, accept);
         }
     }
@@ -205,6 +217,17 @@ mod tests {
             // The pattern method stops at |R3 − d| < 1e-5: about 1e-7 rad from the root.
             let d = crate::geom::wrap_pi(n.configuration.phi[k] - p.configuration.phi[k]);
             assert!(d.abs() < 1e-5, "phi{} differs by {d}", k + 1);
+        }
+    }
+
+    #[test]
+    fn solve3_solves() {
+        let j = [[2.0, -1.0, 0.5], [0.3, 4.0, -2.0], [1.0, 0.0, 3.0]];
+        let x = [0.7, -1.3, 2.1];
+        let b = [0, 1, 2].map(|r| j[r][0] * x[0] + j[r][1] * x[1] + j[r][2] * x[2]);
+        let got = solve3(&j, b).unwrap();
+        for k in 0..3 {
+            assert!((got[k] - x[k]).abs() < 1e-14);
         }
     }
 

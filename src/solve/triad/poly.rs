@@ -31,6 +31,7 @@ impl Trig {
     }
 
     /// The coefficient c_k, k in −N..=N.
+    #[cfg(test)]
     pub fn coeff(&self, k: i32) -> C {
         self.c[(k + N as i32) as usize]
     }
@@ -43,6 +44,9 @@ impl Trig {
                 continue;
             }
             for (j, b) in o.c.iter().enumerate() {
+                if *b == C::new(0.0, 0.0) {
+                    continue;
+                }
                 let k = i as i32 + j as i32 - 2 * N as i32;
                 if k.unsigned_abs() as usize <= N {
                     c[(k + N as i32) as usize] += a * b;
@@ -97,20 +101,25 @@ impl Trig {
     /// ascending powers; valid when harmonics above 3 are negligible (the caller checks).
     /// Uses e^{iφ} = (1 + it)/(1 − it).
     pub fn tan_half_poly(&self) -> [f64; 7] {
-        // (1 + it)^a (1 − it)^b as complex polynomials, a + b = 6.
-        let mut out = [C::new(0.0, 0.0); 7];
-        for k in -3i32..=3 {
-            let ck = self.coeff(k);
-            if ck == C::new(0.0, 0.0) {
-                continue;
-            }
-            let p = binomial_product((3 + k) as usize, (3 - k) as usize);
-            for (o, v) in out.iter_mut().zip(p) {
-                *o += ck * v;
+        // P(t) = c0 (1+it)^3 (1−it)^3 + Σ_{k=1..3} 2·Re(c_k (1+it)^{3+k} (1−it)^{3−k}):
+        // the k < 0 terms are the conjugates of the k > 0 ones.
+        let table = binomial_table();
+        let mut out = [0.0; 7];
+        for (k, row) in table.iter().enumerate() {
+            let ck = self.c[N + k];
+            let w = if k == 0 { 1.0 } else { 2.0 };
+            for (o, v) in out.iter_mut().zip(row) {
+                *o += w * (ck * v).re;
             }
         }
-        out.map(|v| v.re)
+        out
     }
+}
+
+/// (1 + it)^{3+k} (1 − it)^{3−k} for k = 0..3, computed once.
+fn binomial_table() -> &'static [[C; 7]; 4] {
+    static TABLE: std::sync::OnceLock<[[C; 7]; 4]> = std::sync::OnceLock::new();
+    TABLE.get_or_init(|| [0, 1, 2, 3].map(|k| binomial_product(3 + k, 3 - k)))
 }
 
 /// Coefficients of (1 + it)^a (1 − it)^b (a + b = 6), ascending powers of t.
@@ -231,7 +240,7 @@ pub fn real_roots(p: &[f64], lo: f64, hi: f64, near_zero: f64) -> Roots {
         if i + 1 < nk {
             let (y, w) = (knots[i + 1], values[i + 1]);
             if v != 0.0 && w != 0.0 && (v < 0.0) != (w < 0.0) {
-                out.push(bracketed_root(p, x, y, v));
+                out.push(bracketed_root(p, x, y, v, w));
             }
         }
     }
@@ -239,12 +248,17 @@ pub fn real_roots(p: &[f64], lo: f64, hi: f64, near_zero: f64) -> Roots {
     out
 }
 
+/// Absolute accuracy of a bracketed root (the roots sought lie in |t| ≲ 1.2).
+pub const ROOT_ABS_TOL: f64 = 4.0 * f64::EPSILON;
+
 /// The single root of `p` in `[a, b]` where p changes sign (p monotone there): Newton
 /// kept inside the bracket, bisection when a step leaves it.
-fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64) -> f64 {
+fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64, fb: f64) -> f64 {
     let neg_at_a = fa < 0.0;
-    let mut x = 0.5 * (a + b);
-    for _ in 0..100 {
+    // Start at the secant (regula falsi) point, inside the bracket.
+    let s = a - fa * (b - a) / (fb - fa);
+    let mut x = if s > a && s < b { s } else { 0.5 * (a + b) };
+    for _ in 0..200 {
         let (v, d) = eval_d(p, x);
         if v == 0.0 {
             return x;
@@ -254,14 +268,22 @@ fn bracketed_root(p: &[f64], mut a: f64, mut b: f64, fa: f64) -> f64 {
         } else {
             b = x;
         }
-        let newton = x - v / d;
-        let next = if d != 0.0 && newton > a && newton < b { newton } else { 0.5 * (a + b) };
-        if (next - x).abs() <= 2.0 * f64::EPSILON * x.abs().max(f64::MIN_POSITIVE)
-            || b - a <= f64::EPSILON * b.abs().max(a.abs())
-        {
-            return next;
+        if d != 0.0 {
+            let newton = x - v / d;
+            // The charts keep |t| ≲ 1.2, so an absolute tolerance of a few ulps of 1 is the
+            // accuracy that matters (phi1 = 2·atan t).
+            if (newton - x).abs() <= ROOT_ABS_TOL {
+                return newton.clamp(a, b);
+            }
+            if newton > a && newton < b {
+                x = newton;
+                continue;
+            }
         }
-        x = next;
+        if b - a <= ROOT_ABS_TOL {
+            return 0.5 * (a + b);
+        }
+        x = 0.5 * (a + b);
     }
     x
 }
