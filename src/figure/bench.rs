@@ -138,12 +138,20 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
                 _ => groups.push((*p, m.setting.clone())),
             }
         }
+        // A label close to the one before it (same height band, within a label's width)
+        // goes below its point instead of above.
+        let mut prev: Option<(Point, bool)> = None;
         for (p, text) in groups {
+            let below = prev.is_some_and(|(q, was_below)| {
+                !was_below && (p.y - q.y).abs() < 3.0 && (p.x - q.x).abs() < 0.45 * TEXT * text.chars().count() as f64
+            });
+            prev = Some((p, below));
+            let offset = if below { crate::geom::Vector::new(1.2, -2.6) } else { crate::geom::Vector::new(1.2, 1.0) };
             d.add_colored(
                 labels,
                 color,
                 Shape::Text {
-                    at: p + crate::geom::Vector::new(1.2, 1.0),
+                    at: p + offset,
                     height: 0.65 * TEXT,
                     value: text,
                     halign: HAlign::Left,
