@@ -51,6 +51,7 @@
 //! them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot). GUIDs are nil. Group 42
 //! (actual measurement) is not written: readers recompute it from the definition points.
 
+use std::borrow::Cow;
 use std::io::Write;
 
 use dxf::entities::{
@@ -615,89 +616,117 @@ fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) ->
     }
 }
 
+/// One group-code/value pair of the crate's output: its code as written (with the padding),
+/// the code's number, and the value. Pairs are borrowed from the crate's text unless the
+/// fix-up replaces them.
+struct Pair<'a> {
+    /// The code line as written (e.g. `"  8"`).
+    code_text: Cow<'a, str>,
+    /// The code's number (−1 if the line is not a number).
+    code: i32,
+    /// The value line.
+    value: Cow<'a, str>,
+}
+
+impl<'a> Pair<'a> {
+    fn borrowed(code_text: &'a str, value: &'a str) -> Pair<'a> {
+        Pair { code_text: Cow::Borrowed(code_text), code: code_text.trim().parse().unwrap_or(-1), value: value.into() }
+    }
+
+    fn owned(code_text: &'static str, value: String) -> Pair<'a> {
+        Pair { code_text: Cow::Borrowed(code_text), code: code_text.trim().parse().unwrap_or(-1), value: value.into() }
+    }
+}
+
 /// Fixes the crate's text output where its API cannot: see the module documentation.
-/// Works record by record (a record runs from one group-0 pair to the next).
+/// Works record by record (a record runs from one group-0 pair to the next), in one pass
+/// that borrows every pair it leaves unchanged.
 fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> Vec<u8> {
     let text = String::from_utf8_lossy(raw);
-    let lines: Vec<&str> = text.split("\r\n").collect();
-    let pairs: Vec<(&str, &str)> = lines.chunks_exact(2).map(|c| (c[0], c[1])).collect();
-    let code = |c: &str| c.trim().parse::<i32>().unwrap_or(-1);
+    let mut lines = text.split("\r\n");
+    let mut pairs: Vec<Pair> = Vec::with_capacity(raw.len() / 16);
+    while let (Some(c), Some(v)) = (lines.next(), lines.next()) {
+        pairs.push(Pair::borrowed(c, v));
+    }
 
     // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
     // BLOCK's), numbered after the highest handle the crate assigned.
     let mut next_handle = 1 + pairs
         .iter()
-        .filter(|(c, _)| code(c) == 5 || code(c) == 105)
-        .filter_map(|(_, v)| u64::from_str_radix(v.trim(), 16).ok())
+        .filter(|p| p.code == 5 || p.code == 105)
+        .filter_map(|p| u64::from_str_radix(p.value.trim(), 16).ok())
         .max()
         .unwrap_or(0);
-    let extra = pairs.iter().filter(|(c, v)| code(c) == 0 && (*v == "TABLE" || *v == "ENDBLK")).count() as u64;
+    let extra = pairs.iter().filter(|p| p.code == 0 && (p.value == "TABLE" || p.value == "ENDBLK")).count() as u64;
     let handle_seed = next_handle + extra;
 
     let mut out = String::with_capacity(raw.len() + 1024);
     let mut section = "";
     let mut poly_layer: Option<String> = None;
-    let mut start = 0;
-    while start < pairs.len() {
-        let end = pairs[start + 1..].iter().position(|(c, _)| code(c) == 0).map_or(pairs.len(), |k| start + 1 + k);
-        let mut record: Vec<(String, String)> =
-            pairs[start..end].iter().map(|(c, v)| (c.to_string(), v.to_string())).collect();
-        start = end;
-        let kind = record[0].1.clone();
-        if let Some((_, v)) = record.get(1).filter(|(c, _)| kind == "SECTION" && code(c) == 2) {
-            section = match v.as_str() {
+    let mut pairs = pairs.into_iter().peekable();
+    let mut record: Vec<Pair> = Vec::new();
+    while let Some(first) = pairs.next() {
+        record.clear();
+        record.push(first);
+        while let Some(p) = pairs.next_if(|p| p.code != 0) {
+            record.push(p);
+        }
+        let kind = record[0].value.clone();
+        if let Some(p) = record.get(1).filter(|p| kind == "SECTION" && p.code == 2) {
+            section = match p.value.as_ref() {
                 "TABLES" => "TABLES",
                 "BLOCKS" => "BLOCKS",
                 "ENTITIES" => "ENTITIES",
                 _ => "",
             };
         }
-        let is_header = kind == "SECTION" && record.get(1).is_some_and(|(_, v)| v == "HEADER");
+        let is_header = kind == "SECTION" && record.get(1).is_some_and(|p| p.value == "HEADER");
         if version == DxfVersion::R12 && is_header {
             // $PINSBASE (the crate writes it from R14 on): where the drawing's origin lies on
             // the sheet $PLIMMIN–$PLIMMAX. LibreCAD prints that sheet with the drawing on it.
-            if let Some(at) = record.iter().position(|(c, v)| code(c) == 9 && v == "$PLIMMAX") {
-                let next = record[at + 1..].iter().position(|(c, _)| code(c) == 9).map_or(record.len(), |k| at + 1 + k);
+            if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$PLIMMAX") {
+                let next = record[at + 1..].iter().position(|p| p.code == 9).map_or(record.len(), |k| at + 1 + k);
                 let (x, y) = paper_insertion_base;
                 let var =
                     [("  9", "$PINSBASE".to_string()), (" 10", fmt_f64(x)), (" 20", fmt_f64(y)), (" 30", fmt_f64(0.0))];
                 for (k, (c, v)) in var.into_iter().enumerate() {
-                    record.insert(next + k, (c.to_string(), v));
+                    record.insert(next + k, Pair::owned(c, v));
                 }
             }
         }
         if version == DxfVersion::R2000 {
             if is_header {
-                if let Some(at) = record.iter().position(|(c, v)| code(c) == 9 && v == "$HANDSEED") {
+                if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED") {
                     if let Some(pair) = record.get_mut(at + 1) {
-                        pair.1 = format!("{handle_seed:X}");
+                        pair.value = format!("{handle_seed:X}").into();
                     }
                 }
             }
-            match kind.as_str() {
+            match kind.as_ref() {
                 "TABLE" => {
-                    let at = if record.get(1).is_some_and(|(c, _)| code(c) == 2) { 2 } else { 1 };
-                    record.insert(at, ("  5".to_string(), format!("{next_handle:X}")));
-                    record.insert(at + 1, ("330".to_string(), "0".to_string()));
+                    let at = if record.get(1).is_some_and(|p| p.code == 2) { 2 } else { 1 };
+                    record.insert(at, Pair::owned("  5", format!("{next_handle:X}")));
+                    record.insert(at + 1, Pair::owned("330", "0".to_string()));
                     next_handle += 1;
                 }
                 "ENDBLK" => {
-                    match record.iter_mut().find(|(c, _)| code(c) == 5) {
-                        Some(pair) => pair.1 = format!("{next_handle:X}"),
-                        None => record.insert(1, ("  5".to_string(), format!("{next_handle:X}"))),
+                    match record.iter_mut().find(|p| p.code == 5) {
+                        Some(pair) => pair.value = format!("{next_handle:X}").into(),
+                        None => record.insert(1, Pair::owned("  5", format!("{next_handle:X}"))),
                     }
                     next_handle += 1;
                 }
                 // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
                 "DIMSTYLE" if section == "TABLES" => {
-                    for pair in record.iter_mut().filter(|(c, _)| code(c) == 5) {
-                        pair.0 = "105".to_string();
+                    for pair in record.iter_mut().filter(|p| p.code == 5) {
+                        pair.code_text = Cow::Borrowed("105");
+                        pair.code = 105;
                     }
                 }
                 // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
                 "VERTEX" => {
-                    for pair in record.iter_mut().filter(|(c, _)| code(c) == 370) {
-                        pair.1 = format!("{:>6}", -1);
+                    for pair in record.iter_mut().filter(|p| p.code == 370) {
+                        pair.value = format!("{:>6}", -1).into();
                     }
                 }
                 _ => {}
@@ -705,41 +734,41 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
         }
         if version == DxfVersion::R12 {
             // R12 has no subclass markers, and its table records have no handles.
-            record.retain(|(c, _)| code(c) != 100);
+            record.retain(|p| p.code != 100);
             if section == "TABLES" && kind != "TABLE" && kind != "ENDTAB" && kind != "SECTION" {
-                record.retain(|(c, _)| code(c) != 5);
+                record.retain(|p| p.code != 5);
             }
         }
-        match kind.as_str() {
-            "POLYLINE" => poly_layer = record.iter().find(|(c, _)| code(c) == 8).map(|(_, v)| v.clone()),
+        match kind.as_ref() {
+            "POLYLINE" => poly_layer = record.iter().find(|p| p.code == 8).map(|p| p.value.to_string()),
             "VERTEX" | "SEQEND" => {
                 if let Some(layer) = &poly_layer {
-                    match record.iter_mut().find(|(c, _)| code(c) == 8) {
-                        Some(pair) => pair.1 = layer.clone(),
+                    match record.iter_mut().find(|p| p.code == 8) {
+                        Some(pair) => pair.value = layer.clone().into(),
                         None => {
                             // After the type and the handle.
-                            let at = if record.get(1).is_some_and(|(c, _)| code(c) == 5) { 2 } else { 1 };
-                            record.insert(at.min(record.len()), ("  8".to_string(), layer.clone()));
+                            let at = if record.get(1).is_some_and(|p| p.code == 5) { 2 } else { 1 };
+                            record.insert(at.min(record.len()), Pair::owned("  8", layer.clone()));
                         }
                     }
                 }
             }
             "TEXT" => {
                 // The crate omits the alignment point when it is (0, 0); justified text needs it.
-                let justified = record.iter().any(|(c, v)| (code(c) == 72 || code(c) == 73) && v.trim() != "0");
-                if justified && !record.iter().any(|(c, _)| code(c) == 11) {
-                    let at = record.iter().position(|(c, _)| code(c) == 72 || code(c) == 73).unwrap_or(record.len());
-                    let at = if record.get(at).is_some_and(|(c, _)| code(c) == 72) { at + 1 } else { at };
+                let justified = record.iter().any(|p| (p.code == 72 || p.code == 73) && p.value.trim() != "0");
+                if justified && !record.iter().any(|p| p.code == 11) {
+                    let at = record.iter().position(|p| p.code == 72 || p.code == 73).unwrap_or(record.len());
+                    let at = if record.get(at).is_some_and(|p| p.code == 72) { at + 1 } else { at };
                     for (i, c) in [" 11", " 21", " 31"].into_iter().enumerate() {
-                        record.insert(at + i, (c.to_string(), "0.0".to_string()));
+                        record.insert(at + i, Pair::owned(c, "0.0".to_string()));
                     }
                 }
                 poly_layer = None;
             }
             _ => poly_layer = None,
         }
-        for (c, v) in &record {
-            push_pair(&mut out, c, v);
+        for p in &record {
+            push_pair(&mut out, &p.code_text, &p.value);
         }
     }
     out.into_bytes()
