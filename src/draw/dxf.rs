@@ -630,7 +630,11 @@ struct Pair<'a> {
 
 impl<'a> Pair<'a> {
     fn borrowed(code_text: &'a str, value: &'a str) -> Pair<'a> {
-        Pair { code_text: Cow::Borrowed(code_text), code: code_text.trim().parse().unwrap_or(-1), value: value.into() }
+        Pair {
+            code_text: Cow::Borrowed(code_text),
+            code: code_text.trim_ascii().parse().unwrap_or(-1),
+            value: value.into(),
+        }
     }
 
     fn owned(code_text: &'static str, value: String) -> Pair<'a> {
@@ -638,32 +642,60 @@ impl<'a> Pair<'a> {
     }
 }
 
+/// The lines of `text` split at CRLF, as `text.split("\r\n")` gives them, but found with a
+/// fast search for the line feed (the general substring search is a good part of the
+/// fix-up's time on a large drawing).
+fn crlf_lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut rest = Some(text);
+    std::iter::from_fn(move || {
+        let s = rest?;
+        let mut from = 0;
+        // Lines are short: a plain scan beats a vectorised search here.
+        while let Some(k) = s.as_bytes()[from..].iter().position(|&b| b == b'\n') {
+            let at = from + k;
+            if at > 0 && s.as_bytes()[at - 1] == b'\r' {
+                rest = Some(&s[at + 1..]);
+                return Some(&s[..at - 1]);
+            }
+            from = at + 1;
+        }
+        rest = None;
+        Some(s)
+    })
+}
+
 /// Fixes the crate's text output where its API cannot: see the module documentation.
 /// Works record by record (a record runs from one group-0 pair to the next), in one pass
 /// that borrows every pair it leaves unchanged.
 fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> Vec<u8> {
     let text = String::from_utf8_lossy(raw);
-    let mut lines = text.split("\r\n");
-    let mut pairs: Vec<Pair> = Vec::with_capacity(raw.len() / 16);
-    while let (Some(c), Some(v)) = (lines.next(), lines.next()) {
-        pairs.push(Pair::borrowed(c, v));
-    }
+    // The pairs, read from the text as they are needed (a whole drawing's pairs would take
+    // several times the text's memory).
+    let pairs = || {
+        let mut lines = crlf_lines(&text);
+        std::iter::from_fn(move || Some(Pair::borrowed(lines.next()?, lines.next()?)))
+    };
 
     // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
-    // BLOCK's), numbered after the highest handle the crate assigned.
-    let mut next_handle = 1 + pairs
-        .iter()
-        .filter(|p| p.code == 5 || p.code == 105)
-        .filter_map(|p| u64::from_str_radix(p.value.trim(), 16).ok())
-        .max()
-        .unwrap_or(0);
-    let extra = pairs.iter().filter(|p| p.code == 0 && (p.value == "TABLE" || p.value == "ENDBLK")).count() as u64;
-    let handle_seed = next_handle + extra;
+    // BLOCK's), numbered after the highest handle the crate assigned. (R12 needs neither.)
+    let (mut next_handle, handle_seed) = if version == DxfVersion::R2000 {
+        let (mut highest, mut extra) = (0u64, 0u64);
+        for p in pairs() {
+            match p.code {
+                5 | 105 => highest = highest.max(u64::from_str_radix(p.value.trim(), 16).unwrap_or(0)),
+                0 if p.value == "TABLE" || p.value == "ENDBLK" => extra += 1,
+                _ => {}
+            }
+        }
+        (highest + 1, highest + 1 + extra)
+    } else {
+        (0, 0)
+    };
 
     let mut out = String::with_capacity(raw.len() + 1024);
     let mut section = "";
     let mut poly_layer: Option<String> = None;
-    let mut pairs = pairs.into_iter().peekable();
+    let mut pairs = pairs().peekable();
     let mut record: Vec<Pair> = Vec::new();
     while let Some(first) = pairs.next() {
         record.clear();
@@ -994,6 +1026,14 @@ mod tests {
         assert_eq!(f(&texts[1], 50), [90.0]);
         assert_eq!((get(&texts[2], 72)[0].trim(), get(&texts[2], 73)[0].trim()), ("2", "3"));
         assert_eq!((f(&texts[2], 11), f(&texts[2], 21)), (vec![5.0], vec![6.0]));
+    }
+
+    #[test]
+    fn crlf_lines_split_as_the_substring_split_does() {
+        for text in ["", "a", "a\r\n", "a\r\nb", "\r\n\r\n", "a\nb\r\nc\r", "\n\r\n", "x\r\r\ny\n"] {
+            let expected: Vec<&str> = text.split("\r\n").collect();
+            assert_eq!(crlf_lines(text).collect::<Vec<_>>(), expected, "{text:?}");
+        }
     }
 
     #[test]
