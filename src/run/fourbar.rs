@@ -127,11 +127,9 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
         }
     }
     let frame_files = frames
-        .iter()
+        .into_iter()
         .zip(&names)
-        .map(|(f, n)| {
-            (std::path::PathBuf::from(format!("frames/{name}/{}.svg", n.to_lowercase())), f.svg.clone().into_bytes())
-        })
+        .map(|(f, n)| (std::path::PathBuf::from(format!("frames/{name}/{}.svg", n.to_lowercase())), f.svg.into_bytes()))
         .collect();
     out.write_many(frame_files)?;
     if let Some(html) = html {
