@@ -55,9 +55,14 @@ impl Frame {
 
 /// Fixed, deterministic number formatting: 6 significant decimals trimmed.
 pub fn num(v: f64) -> String {
-    let s = format!("{v:.6}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" { "0".to_string() } else { s.to_string() }
+    let mut s = format!("{v:.6}");
+    // Trimmed in place: this is called for every coordinate of every frame.
+    let len = s.trim_end_matches('0').trim_end_matches('.').len();
+    s.truncate(len);
+    if s == "-0" {
+        s.remove(0);
+    }
+    s
 }
 
 fn rgb(c: Aci) -> String {

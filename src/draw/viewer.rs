@@ -48,23 +48,25 @@ fn js_string(s: &str) -> String {
 fn push_js_string(out: &mut String, s: &str) {
     out.push('"');
     let mut plain = 0;
-    for (i, c) in s.char_indices() {
-        let esc: Option<std::borrow::Cow<'static, str>> = match c {
-            '"' => Some("\\\"".into()),
-            '\\' => Some("\\\\".into()),
-            '\n' => Some("\\n".into()),
-            '\r' => Some("\\r".into()),
-            '\t' => Some("\\t".into()),
-            '<' => Some("\\u003c".into()),
-            '\u{2028}' => Some("\\u2028".into()),
-            '\u{2029}' => Some("\\u2029".into()),
-            c if (c as u32) < 0x20 => Some(format!("\\u{:04x}", c as u32).into()),
+    // Byte by byte: every character escaped is ASCII except U+2028 and U+2029, whose UTF-8
+    // starts with 0xE2 (never a continuation byte, so `i` is always a character boundary).
+    for (i, &b) in s.as_bytes().iter().enumerate() {
+        let esc: Option<std::borrow::Cow<'static, str>> = match b {
+            b'"' => Some("\\\"".into()),
+            b'\\' => Some("\\\\".into()),
+            b'\n' => Some("\\n".into()),
+            b'\r' => Some("\\r".into()),
+            b'\t' => Some("\\t".into()),
+            b'<' => Some("\\u003c".into()),
+            b if b < 0x20 => Some(format!("\\u{:04x}", b).into()),
+            0xE2 if s[i..].starts_with('\u{2028}') => Some("\\u2028".into()),
+            0xE2 if s[i..].starts_with('\u{2029}') => Some("\\u2029".into()),
             _ => None,
         };
         if let Some(e) = esc {
             out.push_str(&s[plain..i]);
             out.push_str(&e);
-            plain = i + c.len_utf8();
+            plain = i + if b == 0xE2 { 3 } else { 1 };
         }
     }
     out.push_str(&s[plain..]);
@@ -261,5 +263,7 @@ mod tests {
     #[test]
     fn js_strings_escape_quotes_backslashes_and_controls() {
         assert_eq!(js_string("a\"b\\c\n\u{1}<"), "\"a\\\"b\\\\c\\n\\u0001\\u003c\"");
+        // Line and paragraph separators end a JavaScript line; other characters pass as they are.
+        assert_eq!(js_string("φ\u{2028}°\u{2029}\u{2027}"), "\"φ\\u2028°\\u2029\u{2027}\"");
     }
 }
