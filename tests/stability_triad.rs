@@ -4,21 +4,14 @@
 
 use mechdraw::bench::basins::{Basin, triad_basins};
 use mechdraw::bench::reference::{nearest_mode, triad_modes};
-use mechdraw::geom::{Point, Side, angle_of, deg, polar, rad};
+use mechdraw::geom::{Side, angle_of, deg, polar, rad};
 use mechdraw::solve::triad::{
     NewtonOptions, Orientation, PatternOptions, Triad, TriadError, all_modes, newton, pattern, pattern::construct,
 };
 
-fn seed() -> Triad {
-    Triad::new(
-        [Point::new(15.0, 30.0), Point::new(90.0, 20.0), Point::new(150.0, 40.0)],
-        [50.0, 60.0, 84.0],
-        50.0,
-        50.0,
-        92.0,
-    )
-    .unwrap()
-}
+mod common;
+
+use common::seed_triad as seed;
 
 fn with_r3(r3: f64) -> Triad {
     let t = seed();

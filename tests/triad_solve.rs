@@ -8,16 +8,9 @@ use mechdraw::solve::triad::{
 };
 use rand::{RngExt, SeedableRng};
 
-fn seed() -> Triad {
-    Triad::new(
-        [Point::new(15.0, 30.0), Point::new(90.0, 20.0), Point::new(150.0, 40.0)],
-        [50.0, 60.0, 84.0],
-        50.0,
-        50.0,
-        92.0,
-    )
-    .unwrap()
-}
+mod common;
+
+use common::seed_triad as seed;
 
 /// The six constraint errors (absolute, model units).
 fn equations(t: &Triad, a: &[Point; 3]) -> [f64; 6] {

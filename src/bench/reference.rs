@@ -127,16 +127,7 @@ mod tests {
 
     #[test]
     fn second_route_b_matches_circle_intersection() {
-        let g = Geometry {
-            o1: Point::new(0.0, 0.0),
-            c: Point::new(0.08, 0.0),
-            l1: 0.04,
-            l_ab: 0.10,
-            l_bm: 0.10,
-            alpha: std::f64::consts::PI,
-            l_bc: 0.10,
-            branch: Side::Left,
-        };
+        let g = crate::figure::fourbar::tests::chebyshev();
         for k in 0..36 {
             let phi1 = rad(10.0 * k as f64);
             let b = fourbar_b(&g, phi1).unwrap();

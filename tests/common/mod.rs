@@ -157,3 +157,17 @@ pub fn mechdraw() -> Command {
 pub fn rel_close(a: f64, b: f64, rel: f64, floor: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(b.abs()).max(floor)
 }
+
+/// The triad of seed 000 (Popa & Popa): O1(15, 30) R1 = 50, O2(90, 20) R2 = 60,
+/// O3(150, 40) R3 = 84, l12 = 50, l23 = 50, l13 = 92 — the paper's published data.
+pub fn seed_triad() -> mechdraw::solve::triad::Triad {
+    use mechdraw::geom::Point;
+    mechdraw::solve::triad::Triad::new(
+        [Point::new(15.0, 30.0), Point::new(90.0, 20.0), Point::new(150.0, 40.0)],
+        [50.0, 60.0, 84.0],
+        50.0,
+        50.0,
+        92.0,
+    )
+    .expect("the seed's triad is valid")
+}
