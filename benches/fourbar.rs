@@ -2,6 +2,10 @@
 //! positions + velocities + accelerations ≤ 80 ns per angle (360 angles ≤ 30 µs);
 //! kineto-statics for 360 positions adds ≤ 100 µs.
 //!
+//! "Positions" are the joints A, B and the coupler point M (what the kinematics, the
+//! drawings and the closure checks use); the link angles φ2, φ3 are derived on demand
+//! (`Position::phi2`), and `positions_with_link_angles` measures them on top.
+//!
 //! Every benchmark runs over the template's 360 crank angles (throughput: 360 elements, so
 //! criterion's elem/s gives the per-angle figure). Two clocks: wall time, and this
 //! thread's CPU time (`*_cpu`, via `clock_gettime(CLOCK_THREAD_CPUTIME_ID)`), which on a
@@ -76,6 +80,17 @@ fn bench(c: &mut Criterion) {
         for &phi in &angles {
             if let Ok(p) = prepared.position(black_box(phi), g.branch) {
                 acc += p.m.x;
+            }
+        }
+        acc
+    });
+    // The joint positions and, on top, the link angles φ2, φ3 that a position derives on
+    // demand (two atan2): what the CSV and the diagrams read.
+    both(&mut group, "positions_with_link_angles", || {
+        let mut acc = 0.0;
+        for &phi in &angles {
+            if let Ok(p) = prepared.position(black_box(phi), g.branch) {
+                acc += p.phi2() + p.phi3();
             }
         }
         acc

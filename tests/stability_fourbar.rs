@@ -50,10 +50,10 @@ fn edge_of_the_assembly_range() {
     for k in 2..=12 {
         let gap = 10f64.powi(-k);
         let p = position(&g, star - gap, Side::Left).unwrap();
-        assert!(p.b.x.is_finite() && p.b.y.is_finite() && p.transmission.is_finite());
+        assert!(p.b.x.is_finite() && p.b.y.is_finite() && p.transmission().is_finite());
         // 180° − transmission shrinks like √gap.
-        let miss = 180.0 - deg(p.transmission);
-        assert!(miss >= 0.0 && miss <= 200.0 * gap.sqrt(), "gap {gap}: transmission {}°", deg(p.transmission));
+        let miss = 180.0 - deg(p.transmission());
+        assert!(miss >= 0.0 && miss <= 200.0 * gap.sqrt(), "gap {gap}: transmission {}°", deg(p.transmission()));
         match kinematics(&g, &p, 1.0) {
             Ok(kin) => {
                 assert!(!singular_seen, "finite velocities after a Singular at a larger gap");

@@ -600,7 +600,7 @@ fn acceleration_polygon(
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::geom::{Side, angle_of, cross, polar};
+    use crate::geom::{Side, cross, polar};
 
     /// The template's Chebyshev four-bar (design.md §3).
     pub(crate) fn chebyshev() -> Geometry {
@@ -627,8 +627,6 @@ pub(crate) mod tests {
         let h = (g.l_ab * g.l_ab - x * x).sqrt();
         let u = ac / d;
         let b = a + u * x + perp(u) * h; // left of A→C
-        let phi2 = angle_of(b - a);
-        let phi3 = angle_of(b - g.c);
         let m = b + crate::geom::rotate((a - b) / g.l_ab * g.l_bm, g.alpha);
         // Velocities: ω2 × AB − ω3 × CB = −v_A.
         let va = perp(a - g.o1) * omega1;
@@ -672,7 +670,7 @@ pub(crate) mod tests {
             a_g22: (ab + am) / 2.0,
             a_g3: ab / 2.0,
         };
-        Position { phi1, a, b, m, phi2, phi3, transmission: 0.0, kin: Some(kin) }
+        Position { phi1, a, b, m, c: g.c, kin: Some(kin) }
     }
 
     #[test]

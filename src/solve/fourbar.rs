@@ -322,17 +322,39 @@ pub struct Position {
     pub b: Point,
     /// Coupler point M.
     pub m: Point,
-    /// Coupler angle (direction A→B), radians.
-    pub phi2: f64,
-    /// Rocker angle (direction C→B), radians.
-    pub phi3: f64,
-    /// Transmission angle (between BA and BC), radians in [0, π].
-    pub transmission: f64,
+    /// Fixed pivot C (the rocker's ground joint), kept so that the link angles can be
+    /// derived from the position alone.
+    pub c: Point,
     /// Velocities and accelerations, when the scene asks for them.
     pub kin: Option<Kinematics>,
 }
 
 impl Position {
+    /// Coupler angle (direction A→B), radians in (−π, π], CCW from +x.
+    ///
+    /// Link angles are derived on demand rather than stored: the solver's hot path needs
+    /// only the joint positions, and two `atan2` calls are most of a position's cost.
+    #[inline]
+    pub fn phi2(&self) -> f64 {
+        let ab = self.b - self.a;
+        libm::atan2(ab.y, ab.x)
+    }
+
+    /// Rocker angle (direction C→B), radians in (−π, π], CCW from +x.
+    #[inline]
+    pub fn phi3(&self) -> f64 {
+        let cb = self.b - self.c;
+        libm::atan2(cb.y, cb.x)
+    }
+
+    /// Transmission angle (between BA and BC), radians in [0, π]: the angle between the
+    /// directions A→B and C→B, |φ2 − φ3| wrapped into [0, π].
+    pub fn transmission(&self) -> f64 {
+        // Both angles lie in [−π, π], so one correction by 2π wraps the difference.
+        let diff = (self.phi2() - self.phi3()).abs();
+        if diff > std::f64::consts::PI { std::f64::consts::TAU - diff } else { diff }
+    }
+
     /// Side of B relative to the directed line A→C (the assembly mode at this position);
     /// `None` when A, B, C are collinear.
     pub fn side(&self, geom: &Geometry) -> Option<Side> {
@@ -385,7 +407,8 @@ impl Prepared {
     pub fn dyad(&self, phi1: f64) -> Result<(Point, CircleIntersection), FourbarError> {
         let g = &self.geom;
         // libm (the musl/fdlibm port, < 1 ulp) is about twice as fast as the platform's
-        // sin/cos/atan2 here; the hot path makes one sincos and two atan2 calls per angle.
+        // sin/cos/atan2 here; the hot path makes one sincos call per angle (the link angles are
+        // derived on demand: [`Position::phi2`]).
         let (s, c) = libm::sincos(phi1);
         let a = Point::new(g.o1.x + g.l1 * c, g.o1.y + g.l1 * s);
         let ac = g.c - a;
@@ -429,21 +452,10 @@ impl Prepared {
     /// The position with A and B known (kinematics not evaluated).
     #[inline]
     pub fn complete(&self, phi1: f64, a: Point, b: Point) -> Position {
-        let g = &self.geom;
         let ab = b - a;
-        let cb = b - g.c;
-        let phi2 = libm::atan2(ab.y, ab.x);
-        let phi3 = libm::atan2(cb.y, cb.x);
-        // Angle between BA and BC = angle between the directions A→B and C→B; both in
-        // [−π, π], so one correction by 2π wraps the difference (no fmod in the hot path).
-        let mut diff = (phi2 - phi3).abs();
-        if diff > std::f64::consts::PI {
-            diff = std::f64::consts::TAU - diff;
-        }
-        let transmission = diff;
         // B→M is B→A rotated by alpha and scaled by l_bm/l_ab (precomputed in `bm`).
         let m = b + Vector::new(self.bm.0 * ab.x - self.bm.1 * ab.y, self.bm.1 * ab.x + self.bm.0 * ab.y);
-        Position { phi1, a, b, m, phi2, phi3, transmission, kin: None }
+        Position { phi1, a, b, m, c: self.geom.c, kin: None }
     }
 
     /// The position at crank angle `phi1` (radians) with B on `side` of A→C.
@@ -521,7 +533,7 @@ pub fn kinematics(geom: &Geometry, pos: &Position, omega1: f64) -> Result<Kinema
 
 #[cold]
 pub(crate) fn singular(pos: &Position) -> FourbarError {
-    FourbarError::Singular { phi1_deg: geom::deg(pos.phi1), transmission_deg: geom::deg(pos.transmission) }
+    FourbarError::Singular { phi1_deg: geom::deg(pos.phi1), transmission_deg: geom::deg(pos.transmission()) }
 }
 
 /// Why crank angles of the sweep were skipped.
