@@ -78,9 +78,11 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
     let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(layout.window), ..SvgOptions::default() };
 
     // The DXF (every position on its own layer) is built on one core while the frames,
-    // the viewer and the diagrams are built on the others.
+    // the viewer and the diagrams are built on the others; the frame files are staged
+    // (written) while the diagrams and the viewer are built.
     let want_frames = !opts.no_frames;
-    let (dxf, (frames, html, rendered)) = rayon::join(
+    let out_ref = &out;
+    let (dxf, (frames, staged, html, rendered)) = rayon::join(
         || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
         || {
             let frames = if want_frames {
@@ -88,23 +90,34 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
             } else {
                 Vec::new()
             };
-            let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
-            let rendered: Result<Vec<RenderedDiagram>, Error> = diagrams
-                .par_iter()
-                .map(|(file, d)| {
-                    let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
-                    let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
-                    png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
-                        what: format!("diagrams/{name}/{file}.png"),
-                        message: e.to_string(),
-                    })
-                })
+            let frame_files: Vec<(std::path::PathBuf, &[u8])> = frames
+                .iter()
+                .zip(&names)
+                .map(|(f, n)| (format!("frames/{name}/{}.svg", n.to_lowercase()).into(), f.svg.as_bytes()))
                 .collect();
-            let html = want_frames.then(|| {
-                let title = format!("{name}: four-bar, {} positions", frames.len());
-                viewer::html(&title, &frames)
-            });
-            (frames, html, rendered)
+            let (staged, (rendered, html)) = rayon::join(
+                || out_ref.stage(&frame_files),
+                || {
+                    let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
+                    let rendered: Result<Vec<RenderedDiagram>, Error> = diagrams
+                        .par_iter()
+                        .map(|(file, d)| {
+                            let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
+                            let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
+                            png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
+                                what: format!("diagrams/{name}/{file}.png"),
+                                message: e.to_string(),
+                            })
+                        })
+                        .collect();
+                    let html = want_frames.then(|| {
+                        let title = format!("{name}: four-bar, {} positions", frames.len());
+                        viewer::html(&title, &frames)
+                    });
+                    (rendered, html)
+                },
+            );
+            (frames, staged, html, rendered)
         },
     );
     out.write(format!("{name}.dxf"), dxf?)?;
@@ -126,12 +139,7 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
             out.write(format!("diagrams/{name}/{file}.png"), png)?;
         }
     }
-    let frame_files = frames
-        .into_iter()
-        .zip(&names)
-        .map(|(f, n)| (std::path::PathBuf::from(format!("frames/{name}/{}.svg", n.to_lowercase())), f.svg.into_bytes()))
-        .collect();
-    out.write_many(frame_files)?;
+    out.record(staged?);
     if let Some(html) = html {
         out.write(format!("{name}.html"), html)?;
     }
@@ -300,9 +308,9 @@ fn columns(velocity: bool, acceleration: bool, forces: bool) -> Vec<(String, Get
         col(&format!("{n}_x"), Box::new(move |p, _| pt(p).x));
         col(&format!("{n}_y"), Box::new(move |p, _| pt(p).y));
     }
-    col("phi2_deg", Box::new(|p, _| deg(p.phi2)));
-    col("phi3_deg", Box::new(|p, _| deg(p.phi3)));
-    col("transmission_deg", Box::new(|p, _| deg(p.transmission)));
+    col("phi2_deg", Box::new(|p, _| deg(p.phi2())));
+    col("phi3_deg", Box::new(|p, _| deg(p.phi3())));
+    col("transmission_deg", Box::new(|p, _| deg(p.transmission())));
     if velocity {
         col("omega2", Box::new(|p, _| kin_of(p).omega2));
         col("omega3", Box::new(|p, _| kin_of(p).omega3));
@@ -396,9 +404,9 @@ fn position_record(p: &Position, f: Option<&Forces>, velocity: bool, acceleratio
         "A": report::point(p.a),
         "B": report::point(p.b),
         "M": report::point(p.m),
-        "phi2_deg": deg(p.phi2),
-        "phi3_deg": deg(p.phi3),
-        "transmission_deg": deg(p.transmission),
+        "phi2_deg": deg(p.phi2()),
+        "phi3_deg": deg(p.phi3()),
+        "transmission_deg": deg(p.transmission()),
     });
     let obj = r.as_object_mut().expect("json! object");
     if let Some(k) = &p.kin {
@@ -510,8 +518,8 @@ fn diagrams(
     let acceleration = o.acceleration || o.forces;
     type Q = Box<dyn Fn(&Position, Option<&Forces>) -> f64>;
     let mut list: Vec<(&str, String, String, Q)> = vec![
-        ("phi2", "Coupler angle φ2".into(), "φ2 [°]".into(), Box::new(|p, _| deg(p.phi2))),
-        ("phi3", "Rocker angle φ3".into(), "φ3 [°]".into(), Box::new(|p, _| deg(p.phi3))),
+        ("phi2", "Coupler angle φ2".into(), "φ2 [°]".into(), Box::new(|p, _| deg(p.phi2()))),
+        ("phi3", "Rocker angle φ3".into(), "φ3 [°]".into(), Box::new(|p, _| deg(p.phi3()))),
     ];
     if velocity {
         list.push((

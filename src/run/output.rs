@@ -6,6 +6,11 @@ use std::path::{Path, PathBuf};
 
 use crate::Error;
 
+/// Files written by [`Output::stage`], to be listed with [`Output::record`].
+#[derive(Debug)]
+#[must_use = "staged files are listed among the outputs only when recorded"]
+pub struct Staged(Vec<PathBuf>);
+
 /// Outputs of one run, staged until [`Output::commit`].
 #[derive(Debug)]
 pub struct Output {
@@ -49,11 +54,23 @@ impl Output {
         Ok(())
     }
 
-    /// Stages many files at once (`(rel, bytes)` as for [`Output::write`]), written in
-    /// parallel: for the hundreds of frames of an animation, where creating the files is a
-    /// good part of a run's time. Recorded in the given order.
-    pub fn write_many(&mut self, files: Vec<(PathBuf, Vec<u8>)>) -> Result<(), Error> {
-        use rayon::prelude::*;
+    /// Stages many files at once (`(rel, bytes)` as for [`Output::write`]): for the hundreds
+    /// of frames of an animation, where creating the files is a good part of a run's time.
+    /// Recorded in the given order.
+    pub fn write_many<B: AsRef<[u8]>>(&mut self, files: &[(PathBuf, B)]) -> Result<(), Error> {
+        let staged = self.stage(files)?;
+        self.record(staged);
+        Ok(())
+    }
+
+    /// Writes `files` into the staging directory through a shared reference, so that a batch
+    /// can be staged on one thread while the run builds its other outputs on another; the
+    /// returned [`Staged`] is handed to [`Output::record`] to list the files (and so to move
+    /// them into place at commit: staged files that are never recorded are still moved).
+    ///
+    /// The files are written one after another: they go into one directory, whose lock
+    /// serialises file creation anyway, and parallel writers only spin on it.
+    pub fn stage<B: AsRef<[u8]>>(&self, files: &[(PathBuf, B)]) -> Result<Staged, Error> {
         let mut dirs: Vec<PathBuf> =
             files.iter().filter_map(|(rel, _)| self.staging.join(rel).parent().map(Path::to_path_buf)).collect();
         dirs.sort();
@@ -61,13 +78,17 @@ impl Output {
         for d in &dirs {
             std::fs::create_dir_all(d).map_err(io(d))?;
         }
-        let staging = &self.staging;
-        files.par_iter().try_for_each(|(rel, bytes)| {
-            let path = staging.join(rel);
-            std::fs::write(&path, bytes).map_err(io(&path))
-        })?;
-        self.files.extend(files.into_iter().map(|(rel, _)| rel));
-        Ok(())
+        for (rel, bytes) in files {
+            let path = self.staging.join(rel);
+            std::fs::write(&path, bytes).map_err(io(&path))?;
+        }
+        Ok(Staged(files.iter().map(|(rel, _)| rel.clone()).collect()))
+    }
+
+    /// Lists a batch written by [`Output::stage`] among the run's files, at this point of
+    /// the order.
+    pub fn record(&mut self, staged: Staged) {
+        self.files.extend(staged.0);
     }
 
     /// Moves every staged file into the output directory. Directories are merged, except a
@@ -141,7 +162,7 @@ mod tests {
         let mut out = Output::new(tmp.path()).unwrap();
         let files: Vec<(PathBuf, Vec<u8>)> =
             (0..50).map(|i| (PathBuf::from(format!("frames/f{i:02}.svg")), format!("{i}").into_bytes())).collect();
-        out.write_many(files).unwrap();
+        out.write_many(&files).unwrap();
         assert!(!tmp.path().join("frames").exists());
         let written = out.commit().unwrap();
         assert_eq!(written.len(), 50);
