@@ -1,8 +1,13 @@
-//! Speed of the DXF writer: a mechanism-sized drawing (about 60 entities, 4 dimensions) and
-//! the same with 360 position layers (one circle each), as a full-turn animation writes.
+//! Speed of the DXF writer: a mechanism-sized drawing (about 60 entities, 4 dimensions), the
+//! same with 360 position layers (one circle each), and the four-bar run's animation drawing
+//! (the Chebyshev template, every position on its own layer: about 8 MB of R12), each with
+//! the hand-written R12 path ([`to_bytes`]) and the crate path it is checked against
+//! ([`to_bytes_via_crate`]).
+
+use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mechdraw::draw::dxf::{DxfOptions, to_bytes};
+use mechdraw::draw::dxf::{DxfOptions, to_bytes, to_bytes_via_crate};
 use mechdraw::draw::{Aci, DimStyle, Drawing, LineType, Shape};
 use mechdraw::geom::{Point, polar};
 
@@ -44,12 +49,41 @@ fn drawing(position_layers: usize) -> Drawing {
     d
 }
 
+/// The four-bar run's animation drawing, built through the public API as the run builds it.
+fn fourbar_animation() -> Drawing {
+    use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
+    use mechdraw::scene::{Scene, load};
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
+    let loaded = load(&path, &[]).expect("template loads");
+    let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
+    let motion = mechdraw::solve::fourbar::solve_motion(&scene.spec).expect("solves");
+    let show = Show { velocity: true, acceleration: true, forces: !motion.forces.is_empty() };
+    let geom = &scene.spec.geometry;
+    let forces = show.forces.then_some(motion.forces.as_slice());
+    let layout = Layout::new(geom, &motion.positions, forces, show, ModelUnits::SI);
+    let curve: Vec<Point> = motion.positions.iter().map(|p| p.m).collect();
+    let base = layout.base(geom, &[curve]);
+    let moving: Vec<Drawing> = motion
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| layout.moving(geom, p, motion.forces.get(i).filter(|_| show.forces)))
+        .collect();
+    let names: Vec<String> = (0..moving.len()).map(|i| format!("P{i:03}")).collect();
+    layout.animation(&base, names.iter().map(String::as_str).zip(&moving))
+}
+
 fn bench(c: &mut Criterion) {
     let small = drawing(0);
     let many = drawing(360);
+    let fourbar = fourbar_animation();
     let opts = DxfOptions::default();
     c.bench_function("dxf_r12_mechanism", |b| b.iter(|| to_bytes(&small, &opts).unwrap()));
     c.bench_function("dxf_r12_360_layers", |b| b.iter(|| to_bytes(&many, &opts).unwrap()));
+    c.bench_function("dxf_r12_fourbar_animation", |b| b.iter(|| to_bytes(&fourbar, &opts).unwrap()));
+    c.bench_function("dxf_r12_fourbar_animation_via_crate", |b| {
+        b.iter(|| to_bytes_via_crate(&fourbar, &opts).unwrap())
+    });
 }
 
 criterion_group!(benches, bench);

@@ -391,3 +391,67 @@ fn golden_sample_png() {
     std::fs::write(out_dir().join("draw_sample.svg"), &svg).unwrap();
     common::assert_golden_png("draw_sample.png", &svg);
 }
+
+/// The four-bar run's animation drawing (base with the coupler curve, every position of the
+/// Chebyshev template on its own layer), built through the public API as `run` builds it.
+fn fourbar_animation() -> Drawing {
+    use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
+    use mechdraw::scene::{Scene, load};
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
+    let loaded = load(&path, &[]).expect("template loads");
+    let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
+    let motion = mechdraw::solve::fourbar::solve_motion(&scene.spec).expect("solves");
+    let show = Show { velocity: true, acceleration: true, forces: !motion.forces.is_empty() };
+    let geom = &scene.spec.geometry;
+    let forces = show.forces.then_some(motion.forces.as_slice());
+    let layout = Layout::new(geom, &motion.positions, forces, show, ModelUnits::SI);
+    let curve: Vec<Point> = motion.positions.iter().map(|p| p.m).collect();
+    let base = layout.base(geom, &[curve]);
+    let moving: Vec<Drawing> = motion
+        .positions
+        .iter()
+        .enumerate()
+        .map(|(i, p)| layout.moving(geom, p, motion.forces.get(i).filter(|_| show.forces)))
+        .collect();
+    let names: Vec<String> = (0..moving.len()).map(|i| format!("P{i:03}")).collect();
+    layout.animation(&base, names.iter().map(String::as_str).zip(&moving))
+}
+
+/// The shaper's all-positions drawing, as the linkage run builds it.
+fn shaper_positions() -> Drawing {
+    use mechdraw::figure::linkage as fig;
+    use mechdraw::scene::{Scene, load};
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("templates/shaper.toml");
+    let loaded = load(&path, &[]).expect("template loads");
+    let Scene::Linkage(scene) = &loaded.scene else { panic!("not a linkage") };
+    let mut solver = mechdraw::solve::linkage::Solver::new(scene.mechanism.clone()).expect("solver");
+    let states = solver.run(&scene.times).expect("solves");
+    let style = fig::Style::for_length(scene.mechanism.length_scale);
+    let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
+    let spans = fig::guide_spans(scene, &motion, &style);
+    let mut all = fig::new_drawing(&style);
+    let traj = fig::trajectory_layer(&mut all);
+    fig::trajectories(&mut all, traj, scene, &motion);
+    for (k, q) in motion.iter().enumerate() {
+        let layer = fig::position_layer(&mut all, k);
+        fig::mechanism(&mut all, layer, scene, q, &spans, &style);
+    }
+    all
+}
+
+/// The hand-written R12 path gives the crate path's bytes for real drawings (the triad,
+/// chain and three-position four-bar files are also pinned by their golden tests).
+#[test]
+fn fast_r12_path_equals_the_crate_path_on_real_drawings() {
+    let opts = DxfOptions::default();
+    for (name, d) in [
+        ("sample", sample_drawing()),
+        ("fourbar animation", fourbar_animation()),
+        ("shaper positions", shaper_positions()),
+    ] {
+        let fast = dxf::to_bytes(&d, &opts).unwrap();
+        let reference = dxf::to_bytes_via_crate(&d, &opts).unwrap();
+        assert!(fast.len() > 1000, "{name}");
+        assert!(fast == reference, "{name}: the fast R12 bytes differ from the crate path's");
+    }
+}

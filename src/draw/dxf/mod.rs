@@ -1,5 +1,13 @@
-//! DXF writer through the `dxf` crate: AutoCAD R12 (AC1009) by default, the version every
-//! CAD program reads. See `../shared/dxf-notes.md` for what was measured.
+//! DXF writer: AutoCAD R12 (AC1009) by default, the version every CAD program reads. See
+//! `../shared/dxf-notes.md` for what was measured.
+//!
+//! How it is written: HEADER and TABLES (small) through the `dxf` crate, then the fix-up
+//! pass below; for R12 the BLOCKS and ENTITIES sections by hand (`r12.rs`), straight into the
+//! output buffer in exactly the form the crate and the fix-up give them, because the crate
+//! route (a struct per entity, a `String` per value, a re-parse of the whole text) took
+//! about 185 ms for the four-bar run's 8 MB animation drawing against about 15 ms by hand.
+//! The crate route stays as the reference, [`to_bytes_via_crate`], and the tests compare
+//! the two byte for byte; R2000 is written entirely by the crate.
 //!
 //! What is written (R12):
 //! - HEADER: fixed, no timestamps (`$TDCREATE`/`$TDUPDATE` = 2415021.0, i.e. 1 Jan 1900, the
@@ -30,7 +38,7 @@
 //! (`φ1 = 75.77°` is written `\U+03C61 = 75.77\U+00B0`).
 //!
 //! Determinism: handles are assigned in a fixed order (tables, then blocks, then entities),
-//! floats are written by the crate with at most 12 decimals (trailing zeros trimmed, `-0`
+//! floats are written with at most 12 decimals (trailing zeros trimmed, `-0`
 //! written as `0`), and nothing depends on time or randomness: the same drawing gives the
 //! same bytes. Lines end in CRLF, as the crate (and AutoCAD) write them; every reader accepts
 //! that, and the golden comparison normalises line ends.
@@ -61,6 +69,8 @@ use dxf::entities::{
 use dxf::enums::{AcadVersion, DimensionType, HorizontalTextJustification, VerticalTextJustification};
 use dxf::tables::{Layer as DxfLayer, LineType as DxfLineType};
 use dxf::{Block, Color, Point as DxfPoint};
+
+mod r12;
 
 use super::parts::{self, arrow, explode_dimension};
 use super::{Aci, Bounds, Drawing, HAlign, LineType, Shape, VAlign};
@@ -145,9 +155,30 @@ pub enum DxfError {
 }
 
 /// Writes `drawing` as DXF into a byte vector (CRLF line ends, ASCII only).
+///
+/// R12 is written by `r12.rs` (BLOCKS and ENTITIES by hand, HEADER and TABLES through the
+/// crate); R2000 entirely through the crate.
 pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
     validate(drawing)?;
-    let doc = build(drawing, opts);
+    match opts.version {
+        DxfVersion::R12 => r12::to_bytes(drawing),
+        DxfVersion::R2000 => crate_bytes(drawing, opts),
+    }
+}
+
+/// The reference writer: the same file as [`to_bytes`], with every entity built as a `dxf`
+/// crate struct and serialised by the crate, then fixed up. Several times slower than
+/// [`to_bytes`] for R12; kept to check the hand-written R12 path against (tests and
+/// benchmarks).
+pub fn to_bytes_via_crate(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    validate(drawing)?;
+    crate_bytes(drawing, opts)
+}
+
+/// The crate path of a validated drawing.
+fn crate_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    let mut doc = build_head(drawing, opts);
+    add_entities(&mut doc, drawing);
     let mut raw = Vec::new();
     doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
     let limits_min = doc.header.paperspace_minimum_drawing_limits.clone();
@@ -296,15 +327,20 @@ fn epoch_utc() -> chrono::DateTime<chrono::Utc> {
     chrono::Utc.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest().unwrap_or_default()
 }
 
-/// Builds the crate's drawing. `drawing` has been validated.
-fn build(drawing: &Drawing, opts: &DxfOptions) -> dxf::Drawing {
+/// The crate's drawing with the HEADER and the TABLES only (no blocks, no entities).
+/// `drawing` has been validated.
+fn build_head(drawing: &Drawing, opts: &DxfOptions) -> dxf::Drawing {
     let mut doc = dxf::Drawing::new();
     let bounds = drawing.bounds().unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
     let extent = bounds.width().max(bounds.height());
     let extent = if extent > 0.0 { extent } else { 1.0 };
     setup_header(&mut doc, drawing, opts, &bounds, extent);
     setup_tables(&mut doc, drawing, &bounds, extent);
+    doc
+}
 
+/// Adds the blocks and entities of `drawing` to the crate's drawing (the reference path).
+fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing) {
     let style = drawing.dim_style;
     let mut dim_count = 0usize;
     for e in &drawing.entities {
@@ -317,19 +353,18 @@ fn build(drawing: &Drawing, opts: &DxfOptions) -> dxf::Drawing {
             Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
                 dim_count += 1;
                 let block_name = format!("*D{dim_count}");
-                add_dimension_block(&mut doc, &block_name, &e.shape, drawing, &common);
+                add_dimension_block(doc, &block_name, &e.shape, drawing, &common);
                 if let Some(dim) = dimension_entity(&e.shape, &block_name, &style) {
                     doc.add_entity(common.entity(dim));
                 }
             }
             shape => {
-                for specific in simple_entities(&mut doc, shape) {
+                for specific in simple_entities(doc, shape) {
                     doc.add_entity(common.entity(specific));
                 }
             }
         }
     }
-    doc
 }
 
 fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bounds: &Bounds, extent: f64) {
@@ -465,89 +500,123 @@ impl Common {
     }
 }
 
-fn line(from: Point, to: Point) -> EntityType {
-    EntityType::Line(Line::new(pt(from), pt(to)))
+/// One DXF entity of a shape, as both writers draw it: the geometry decided once (arc
+/// wrapping, SOLID vertex order, degrees), the serialisation left to the writer.
+#[derive(Debug, Clone, Copy)]
+enum Prim<'a> {
+    /// CIRCLE (also a full-turn arc).
+    Circle { center: Point, radius: f64 },
+    /// ARC, angles in degrees (snapped), counter-clockwise from `start_deg` to `end_deg`.
+    Arc { center: Point, radius: f64, start_deg: f64, end_deg: f64 },
+    /// LINE.
+    Line { from: Point, to: Point },
+    /// POLYLINE with its VERTEXes and SEQEND.
+    Polyline { points: &'a [Point], closed: bool, width: f64 },
+    /// SOLID, corners in the order written (1-2-3-4).
+    Solid([Point; 4]),
+    /// TEXT, rotation in degrees (snapped).
+    Text { at: Point, height: f64, value: &'a str, halign: HAlign, valign: VAlign, rotation_deg: f64 },
 }
 
-/// SOLIDs for a filled polygon: a triangle as 1-2-3-3, a quad a-b-c-d in SOLID's 1-2-4-3
-/// order (a, b, d, c), larger polygons as a fan of triangles (exact for convex outlines).
-fn solids(points: &[Point]) -> Vec<EntityType> {
-    let solid = |a: Point, b: Point, c: Point, d: Point| EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d)));
-    match points {
-        [a, b, c] => vec![solid(*a, *b, *c, *c)],
-        [a, b, c, d] => vec![solid(*a, *b, *d, *c)],
-        [a, rest @ ..] => rest.windows(2).map(|w| solid(*a, w[0], w[1], w[1])).collect(),
-        [] => Vec::new(),
-    }
-}
-
-fn text(at: Point, height: f64, value: &str, halign: HAlign, valign: VAlign, rotation: f64) -> EntityType {
-    let mut t = Text {
-        location: pt(at),
-        text_height: height,
-        value: value.to_string(),
-        rotation: deg(normalize_angle(rotation)),
-        horizontal_text_justification: match halign {
-            HAlign::Left => HorizontalTextJustification::Left,
-            HAlign::Center => HorizontalTextJustification::Center,
-            HAlign::Right => HorizontalTextJustification::Right,
-        },
-        vertical_text_justification: match valign {
-            VAlign::Baseline => VerticalTextJustification::Baseline,
-            VAlign::Middle => VerticalTextJustification::Middle,
-            VAlign::Top => VerticalTextJustification::Top,
-        },
-        ..Default::default()
+/// Calls `f` with the DXF entities of a shape other than a dimension, in order. A filled
+/// polygon is a triangle as 1-2-3-3, a quad a-b-c-d in SOLID's 1-2-4-3 order (a, b, d, c),
+/// larger polygons a fan of triangles (exact for convex outlines); an arrow a LINE and the
+/// SOLID head; a zero-sweep arc nothing (as in the SVG; DXF would read equal angles as a
+/// full turn).
+fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
+    let solids = |points: &[Point], f: &mut dyn FnMut(Prim<'a>)| match points {
+        [a, b, c] => f(Prim::Solid([*a, *b, *c, *c])),
+        [a, b, c, d] => f(Prim::Solid([*a, *b, *d, *c])),
+        [a, rest @ ..] => rest.windows(2).for_each(|w| f(Prim::Solid([*a, w[0], w[1], w[1]]))),
+        [] => {}
     };
-    if halign != HAlign::Left || valign != VAlign::Baseline {
-        // Readers place justified text by the alignment point (11/21); the insertion point
-        // is what AutoCAD would recompute from it and is given the same value.
-        t.second_alignment_point = pt(at);
-    }
-    EntityType::Text(t)
-}
-
-/// DXF entities for a shape other than a dimension.
-fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
     match shape {
-        Shape::Circle { center, radius } => vec![EntityType::Circle(Circle::new(pt(*center), *radius))],
+        Shape::Circle { center, radius } => f(Prim::Circle { center: *center, radius: *radius }),
         Shape::Arc { center, radius, start, end } => {
             let sweep = parts::arc_sweep(*start, *end);
             if sweep == 0.0 {
-                // Nothing to draw (as in the SVG); DXF would read equal angles as a full turn.
-                Vec::new()
             } else if sweep >= std::f64::consts::TAU {
-                vec![EntityType::Circle(Circle::new(pt(*center), *radius))]
+                f(Prim::Circle { center: *center, radius: *radius });
             } else {
                 let a0 = normalize_angle(*start);
-                vec![EntityType::Arc(Arc::new(pt(*center), *radius, deg(a0), deg(normalize_angle(a0 + sweep))))]
+                let (start_deg, end_deg) = (deg(a0), deg(normalize_angle(a0 + sweep)));
+                f(Prim::Arc { center: *center, radius: *radius, start_deg, end_deg });
             }
         }
-        Shape::Line { from, to } => vec![line(*from, *to)],
-        Shape::Polyline { points, closed, width } => {
+        Shape::Line { from, to } => f(Prim::Line { from: *from, to: *to }),
+        Shape::Polyline { points, closed, width } => f(Prim::Polyline { points, closed: *closed, width: *width }),
+        Shape::Filled { points } => solids(points, &mut f),
+        Shape::Arrow { from, to, head } => {
+            if let Some((base, tri)) = arrow(*from, *to, *head) {
+                f(Prim::Line { from: *from, to: base });
+                solids(&tri, &mut f);
+            }
+        }
+        Shape::Text { at, height, value, halign, valign, rotation } => f(Prim::Text {
+            at: *at,
+            height: *height,
+            value,
+            halign: *halign,
+            valign: *valign,
+            rotation_deg: deg(normalize_angle(*rotation)),
+        }),
+        Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
+    }
+}
+
+/// The crate's entity for a [`Prim`] (polyline vertices take their handles from `doc` here,
+/// as the crate numbers them).
+fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
+    match prim {
+        Prim::Circle { center, radius } => EntityType::Circle(Circle::new(pt(center), radius)),
+        Prim::Arc { center, radius, start_deg, end_deg } => {
+            EntityType::Arc(Arc::new(pt(center), radius, start_deg, end_deg))
+        }
+        Prim::Line { from, to } => EntityType::Line(Line::new(pt(from), pt(to))),
+        Prim::Polyline { points, closed, width } => {
             let mut poly =
-                Polyline { default_starting_width: *width, default_ending_width: *width, ..Default::default() };
-            poly.set_is_closed(*closed);
+                Polyline { default_starting_width: width, default_ending_width: width, ..Default::default() };
+            poly.set_is_closed(closed);
             for p in points {
-                let v = Vertex { starting_width: *width, ending_width: *width, ..Vertex::new(pt(*p)) };
+                let v = Vertex { starting_width: width, ending_width: width, ..Vertex::new(pt(*p)) };
                 poly.add_vertex(doc, v);
             }
-            vec![EntityType::Polyline(poly)]
+            EntityType::Polyline(poly)
         }
-        Shape::Filled { points } => solids(points),
-        Shape::Arrow { from, to, head } => match arrow(*from, *to, *head) {
-            Some((base, tri)) => {
-                let mut v = vec![line(*from, base)];
-                v.extend(solids(&tri));
-                v
+        Prim::Solid([a, b, c, d]) => EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d))),
+        Prim::Text { at, height, value, halign, valign, rotation_deg } => {
+            let mut t = Text {
+                location: pt(at),
+                text_height: height,
+                value: value.to_string(),
+                rotation: rotation_deg,
+                horizontal_text_justification: match halign {
+                    HAlign::Left => HorizontalTextJustification::Left,
+                    HAlign::Center => HorizontalTextJustification::Center,
+                    HAlign::Right => HorizontalTextJustification::Right,
+                },
+                vertical_text_justification: match valign {
+                    VAlign::Baseline => VerticalTextJustification::Baseline,
+                    VAlign::Middle => VerticalTextJustification::Middle,
+                    VAlign::Top => VerticalTextJustification::Top,
+                },
+                ..Default::default()
+            };
+            if halign != HAlign::Left || valign != VAlign::Baseline {
+                // Readers place justified text by the alignment point (11/21); the insertion
+                // point is what AutoCAD would recompute from it and is given the same value.
+                t.second_alignment_point = pt(at);
             }
-            None => Vec::new(),
-        },
-        Shape::Text { at, height, value, halign, valign, rotation } => {
-            vec![text(*at, *height, value, *halign, *valign, *rotation)]
+            EntityType::Text(t)
         }
-        Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => Vec::new(),
     }
+}
+
+/// DXF entities for a shape other than a dimension (crate path).
+fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
+    let mut all = Vec::new();
+    prims(shape, |p| all.push(p));
+    all.into_iter().map(|p| crate_entity(doc, p)).collect()
 }
 
 /// The anonymous block `name` with the dimension's exploded geometry, on the dimension's
@@ -567,34 +636,28 @@ fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, shape: &Shape, drawin
     doc.add_block(block);
 }
 
-/// The DIMENSION entity for a dimension shape, pointing at `block_name`.
-fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) -> Option<EntityType> {
-    let base = |def1: Point, text_mid: Point, kind: DimensionType, text: &str| DimensionBase {
-        block_name: block_name.to_string(),
-        definition_point_1: pt(def1),
-        text_mid_point: pt(text_mid),
-        dimension_type: kind,
-        text: text.to_string(),
-        is_block_reference_referenced_by_this_block_only: true,
-        is_at_user_defined_location: true,
-        ..Default::default()
-    };
+/// The definition points of a DIMENSION entity, as both writers write them.
+#[derive(Debug, Clone, Copy)]
+enum DimPrim {
+    /// 3-point angular (type 5): 10 and 16 on the arc, 13/14 the ray points, 15 the vertex.
+    Angular { on_arc: Point, text_at: Point, first: Point, second: Point, vertex: Point },
+    /// Rotated linear (type 0): 10 on the dimension line, 13/14 the feature points, 50 the
+    /// angle in degrees (snapped).
+    Rotated { on_line: Point, text_mid: Point, p1: Point, p2: Point, angle_deg: f64 },
+}
+
+/// The DIMENSION geometry of a dimension shape (`None` for other shapes).
+fn dimension_prim(shape: &Shape, style: &super::DimStyle) -> Option<DimPrim> {
     match shape {
-        Shape::AngularDimension { vertex, first, second, radius, text } => {
+        Shape::AngularDimension { vertex, first, second, radius, .. } => {
             let a1 = angle_of(first - vertex);
             let sweep = normalize_angle(angle_of(second - vertex) - a1);
             let mid = a1 + 0.5 * sweep;
             let on_arc = polar(*vertex, *radius, mid);
             let text_at = polar(*vertex, radius + parts::ANGULAR_TEXT_LIFT * style.text_height, mid);
-            Some(EntityType::AngularThreePointDimension(AngularThreePointDimension {
-                dimension_base: base(on_arc, text_at, DimensionType::AngularThreePoint, text),
-                definition_point_2: pt(*first),
-                definition_point_3: pt(*second),
-                definition_point_4: pt(*vertex),
-                definition_point_5: pt(on_arc),
-            }))
+            Some(DimPrim::Angular { on_arc, text_at, first: *first, second: *second, vertex: *vertex })
         }
-        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+        Shape::LinearDimension { p1, p2, line_at, angle, .. } => {
             let u = Vector::new(angle.cos(), angle.sin());
             let n = perp(u);
             let foot = |p: &Point| p + n * (line_at - p).dot(&n);
@@ -604,16 +667,46 @@ fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) ->
             // Middle of the text: its baseline is LINEAR_TEXT_LIFT above the line, half a
             // cap height more to its middle.
             let text_mid = mid + up * ((parts::LINEAR_TEXT_LIFT + 0.5) * style.text_height);
-            Some(EntityType::RotatedDimension(RotatedDimension {
-                dimension_base: base(f2, text_mid, DimensionType::RotatedHorizontalOrVertical, text),
-                definition_point_2: pt(*p1),
-                definition_point_3: pt(*p2),
-                rotation_angle: deg(normalize_angle(*angle)),
-                ..Default::default()
-            }))
+            Some(DimPrim::Rotated { on_line: f2, text_mid, p1: *p1, p2: *p2, angle_deg: deg(normalize_angle(*angle)) })
         }
         _ => None,
     }
+}
+
+/// The DIMENSION entity for a dimension shape, pointing at `block_name` (crate path).
+fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) -> Option<EntityType> {
+    let text = match shape {
+        Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => text.as_str(),
+        _ => return None,
+    };
+    let base = |def1: Point, text_mid: Point, kind: DimensionType| DimensionBase {
+        block_name: block_name.to_string(),
+        definition_point_1: pt(def1),
+        text_mid_point: pt(text_mid),
+        dimension_type: kind,
+        text: text.to_string(),
+        is_block_reference_referenced_by_this_block_only: true,
+        is_at_user_defined_location: true,
+        ..Default::default()
+    };
+    Some(match dimension_prim(shape, style)? {
+        DimPrim::Angular { on_arc, text_at, first, second, vertex } => {
+            EntityType::AngularThreePointDimension(AngularThreePointDimension {
+                dimension_base: base(on_arc, text_at, DimensionType::AngularThreePoint),
+                definition_point_2: pt(first),
+                definition_point_3: pt(second),
+                definition_point_4: pt(vertex),
+                definition_point_5: pt(on_arc),
+            })
+        }
+        DimPrim::Rotated { on_line, text_mid, p1, p2, angle_deg } => EntityType::RotatedDimension(RotatedDimension {
+            dimension_base: base(on_line, text_mid, DimensionType::RotatedHorizontalOrVertical),
+            definition_point_2: pt(p1),
+            definition_point_3: pt(p2),
+            rotation_angle: angle_deg,
+            ..Default::default()
+        }),
+    })
 }
 
 /// One group-code/value pair of the crate's output: its code as written (with the padding),
@@ -824,7 +917,7 @@ fn push_pair(out: &mut String, code: &str, value: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::DimStyle;
+    use crate::draw::{DimStyle, Entity};
 
     /// The file as (group code, value) pairs.
     fn pairs(bytes: &[u8]) -> Vec<(i32, String)> {
@@ -1088,6 +1181,148 @@ mod tests {
         let handles: Vec<&str> = p.iter().filter(|(c, _)| *c == 5 || *c == 105).map(|(_, v)| v.as_str()).collect();
         let unique: std::collections::HashSet<&str> = handles.iter().copied().collect();
         assert_eq!(unique.len(), handles.len());
+    }
+
+    /// The fast R12 path and the crate path give the same bytes.
+    fn same_as_crate(d: &Drawing) {
+        let opts = DxfOptions::default();
+        let fast = to_bytes(d, &opts).unwrap();
+        let reference = to_bytes_via_crate(d, &opts).unwrap();
+        if fast != reference {
+            let (f, r) = (String::from_utf8_lossy(&fast), String::from_utf8_lossy(&reference));
+            let at = f.lines().zip(r.lines()).position(|(a, b)| a != b).unwrap_or(0);
+            let show = |s: &str| s.lines().skip(at.saturating_sub(12)).take(16).collect::<Vec<_>>().join("|");
+            panic!("differ at line {at}:\nfast: {}\ncrate: {}", show(&f), show(&r));
+        }
+    }
+
+    #[test]
+    fn fast_r12_is_byte_identical_to_the_crate_path_for_every_shape() {
+        let p = Point::new;
+        let mut d = drawing();
+        same_as_crate(&d);
+        let dashed = d.layer("DASHED_L", Aci::RED, LineType::Dashed);
+        let uni = d.layer("Lφ°^x", Aci(0), LineType::Continuous);
+        let layers: Vec<usize> =
+            (0..40).map(|i| d.layer(&format!("POS_{i:03}"), Aci(i as u8 + 1), LineType::Continuous)).collect();
+        let styles = [
+            (None, None),
+            (Some(Aci(5)), None),
+            (None, Some(LineType::Dashed)),
+            (Some(Aci(0)), Some(LineType::Continuous)),
+        ];
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -2.5,
+            4e-13,
+            -4e-13,
+            5e-13,
+            6e-13,
+            -1e-12,
+            1.0 / 8192.0,
+            1e-9,
+            123456.789_012_345_67,
+            1e12,
+            -3.3e15,
+            9.9e18,
+            2e19,
+        ];
+        let mut k = 0usize;
+        let mut add = |d: &mut Drawing, shape: Shape| {
+            let (color, linetype) = styles[k % styles.len()];
+            let layer = [0, dashed, uni, layers[k % layers.len()]][k % 4];
+            d.push(Entity { layer, color, linetype, shape });
+            k += 1;
+        };
+        for (i, &v) in values.iter().enumerate() {
+            let w = values[(i + 3) % values.len()];
+            let c = p(v, w);
+            add(&mut d, Shape::Circle { center: c, radius: v.abs().max(1e-14) });
+            add(&mut d, Shape::Line { from: c, to: p(w, v) });
+            add(&mut d, Shape::Arc { center: c, radius: 1.0 + v.abs(), start: v, end: w });
+            add(&mut d, Shape::Arc { center: c, radius: 2.0, start: v, end: v });
+            add(&mut d, Shape::Arc { center: c, radius: 2.0, start: 0.0, end: std::f64::consts::TAU });
+            add(&mut d, Shape::Arc { center: c, radius: 2.0, start: 1.0, end: 1.0 + 1e-13 });
+            for closed in [false, true] {
+                for width in [0.0, -0.0, 0.5, 4e-13] {
+                    add(&mut d, Shape::Polyline { points: vec![c, p(w, v), p(1.0, 2.0)], closed, width });
+                }
+            }
+            for n in 3..=6 {
+                let pts = (0..n).map(|j| p(v + (j as f64).cos(), w + (j as f64).sin())).collect();
+                add(&mut d, Shape::Filled { points: pts });
+            }
+            add(&mut d, Shape::Arrow { from: c, to: p(w + 3.0, v), head: 1.0 });
+            add(&mut d, Shape::Arrow { from: c, to: c, head: 1.0 });
+            add(&mut d, Shape::Arrow { from: c, to: p(v + 1.0, w), head: 0.0 });
+            add(&mut d, Shape::Arrow { from: c, to: p(v + 1.0, w), head: 5.0 });
+        }
+        let texts = ["A", "φ1 = 75.77°", "ω ε π ′ αβγΔΣ", "x^y\ttab", "", " 𝄞 ", "0"];
+        for (i, halign) in [HAlign::Left, HAlign::Center, HAlign::Right].into_iter().enumerate() {
+            for (j, valign) in [VAlign::Baseline, VAlign::Middle, VAlign::Top].into_iter().enumerate() {
+                for (r, rotation) in
+                    [0.0, -0.0, 1e-15, 90f64.to_radians(), -30f64.to_radians(), 7.0].into_iter().enumerate()
+                {
+                    for at in [p(0.0, 0.0), p(-0.0, 1e-14), p(3.0, -4.0), p(0.0, 2.0)] {
+                        let value = texts[(i + j + r) % texts.len()].to_string();
+                        add(&mut d, Shape::Text { at, height: 1.0 + r as f64, value, halign, valign, rotation });
+                    }
+                }
+            }
+        }
+        let o = p(0.0, 0.0);
+        for (i, (a, b)) in [(0.3, 1.2), (2.0, 0.1), (0.0, 3.5), (-1.0, 1.0)].into_iter().enumerate() {
+            let text = format!("φ{i} = {a}°");
+            add(
+                &mut d,
+                Shape::AngularDimension {
+                    vertex: p(a, b),
+                    first: p(a + 5.0, b),
+                    second: polar(p(a, b), 4.0, a + b),
+                    radius: 6.0 + b,
+                    text,
+                },
+            );
+            for angle in [0.0, a, -b, std::f64::consts::PI] {
+                add(
+                    &mut d,
+                    Shape::LinearDimension {
+                        p1: o,
+                        p2: p(10.0 * a, b),
+                        line_at: p(0.0, -5.0),
+                        angle,
+                        text: format!("{a}"),
+                    },
+                );
+            }
+        }
+        same_as_crate(&d);
+        // Dimensions only; no dimensions; one shape of each kind alone.
+        let only_dims = Drawing {
+            entities: d
+                .entities
+                .iter()
+                .filter(|e| matches!(e.shape, Shape::AngularDimension { .. } | Shape::LinearDimension { .. }))
+                .cloned()
+                .collect(),
+            ..d.clone()
+        };
+        same_as_crate(&only_dims);
+        let no_dims = Drawing {
+            entities: d
+                .entities
+                .iter()
+                .filter(|e| !matches!(e.shape, Shape::AngularDimension { .. } | Shape::LinearDimension { .. }))
+                .cloned()
+                .collect(),
+            ..d.clone()
+        };
+        same_as_crate(&no_dims);
+        for e in &d.entities {
+            same_as_crate(&Drawing { entities: vec![e.clone()], ..d.clone() });
+        }
     }
 
     #[test]
