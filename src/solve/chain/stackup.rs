@@ -164,6 +164,15 @@ pub fn sample(f: &Function, dims: &[Dimension], dist: Distribution, samples: usi
     out
 }
 
+/// Σ g(v) over `z`, in parallel but in a fixed order (per [`CHUNK`], then the chunks' sums
+/// in turn), so that a seeded run gives the same last digit on any thread count and any
+/// scheduling (rayon's own `sum` splits the work adaptively, and floating-point addition is
+/// not associative).
+fn chunked_sum(z: &[f64], g: impl Fn(f64) -> f64 + Sync) -> f64 {
+    let partial: Vec<f64> = z.par_chunks(CHUNK).map(|c| c.iter().map(|&v| g(v)).sum::<f64>()).collect();
+    partial.iter().sum()
+}
+
 /// Monte Carlo of `f`: statistics of [`sample`], histogram with `bins` bins, and with
 /// `spec = [LSL, USL]` the out-of-spec fraction and Cp/Cpk. `None` when `samples` is 0.
 pub fn monte_carlo(
@@ -180,8 +189,8 @@ pub fn monte_carlo(
     }
     let mut z = sample(f, dims, dist, samples as usize, seed);
     let n = z.len() as f64;
-    let mean = z.par_iter().sum::<f64>() / n;
-    let ss = z.par_iter().map(|v| (v - mean) * (v - mean)).sum::<f64>();
+    let mean = chunked_sum(&z, |v| v) / n;
+    let ss = chunked_sum(&z, |v| (v - mean) * (v - mean));
     let sigma = if z.len() > 1 { (ss / (n - 1.0)).sqrt() } else { 0.0 };
     let (min, max) = z
         .par_iter()
@@ -300,6 +309,25 @@ mod tests {
         let b = pool.install(|| sample(&f, &dims, Distribution::Uniform, 3 * CHUNK + 7, 42));
         assert_eq!(a, b);
         assert!(a.iter().all(|z| (z - 30.0).abs() <= 0.3));
+    }
+
+    #[test]
+    fn monte_carlo_statistics_do_not_depend_on_the_thread_count() {
+        let dims = vec![d(10.0, 0.1, -0.1), d(20.0, 0.2, -0.2), d(5.0, 0.05, -0.02)];
+        let terms = vec![Term { dim: 0, coef: 1.0 }, Term { dim: 1, coef: -1.0 }, Term { dim: 2, coef: 1.0 }];
+        let f = Function { terms, nominal: -5.0 };
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| monte_carlo(&f, &dims, Distribution::Normal, 50 * CHUNK as u64 + 13, 7, 40, None).unwrap())
+        };
+        let one = run(1);
+        for threads in [2, 3, 5] {
+            let other = run(threads);
+            // Bit for bit: a seeded run is reproducible to the last digit.
+            assert_eq!(one.mean.to_bits(), other.mean.to_bits(), "mean with {threads} threads");
+            assert_eq!(one.sigma.to_bits(), other.sigma.to_bits(), "sigma with {threads} threads");
+            assert_eq!(one.histogram, other.histogram);
+        }
     }
 
     #[test]
