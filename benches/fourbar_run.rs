@@ -2,6 +2,10 @@
 //! the DXF with a layer per position, CSV, JSON, 13 diagrams, the HTML viewer), as the
 //! library runs it for the CLI; and its parts: the frames' drawings and SVG, the DXF.
 //! Target (issue 3): the whole run ≤ 300 ms wall in release on the 2-core machine.
+//!
+//! The runs write into a temporary directory (`TMPDIR`). On a journal-less ext4 many
+//! back-to-back runs slow file creation down (docs/fourbar-output.md, "Speed"); run with
+//! `TMPDIR=/dev/shm cargo bench --bench fourbar_run` to time the program rather than that.
 
 use std::path::PathBuf;
 
