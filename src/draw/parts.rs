@@ -14,8 +14,55 @@ pub const EXT_LINE_OVERSHOOT: f64 = 0.6;
 /// Baseline of a linear dimension's text above its dimension line, in text heights
 /// (DXF `$DIMGAP`).
 pub const LINEAR_TEXT_LIFT: f64 = 0.5;
-/// Middle of an angular dimension's text outside its arc, in text heights.
-pub const ANGULAR_TEXT_LIFT: f64 = 0.6;
+/// Clear space between an angular dimension's arc and the nearest point of its text's box
+/// (and between that box and the dimension's rays), in text heights.
+pub const ANGULAR_TEXT_GAP: f64 = 0.3;
+/// Step by which an angular dimension's text moves out along the bisector while its box
+/// still crosses one of the rays, in text heights.
+pub const ANGULAR_TEXT_STEP: f64 = 0.1;
+/// Cap height of DejaVu Sans, in ems: the SVG writer sets the font size to the text height
+/// / 0.73, so a text height is a cap height.
+pub const CAP_HEIGHT_EM: f64 = 0.73;
+/// Depth of descenders (`φ`, `y`) below the baseline, in text heights (DejaVu Sans: 0.24 em
+/// ≈ 0.32 cap heights); part of a text's estimated box.
+pub const TEXT_DESCENT: f64 = 0.3;
+/// Least clear space between a linear dimension's text and each extension line for the
+/// text to stay between them, in text heights.
+pub const LINEAR_TEXT_FIT_GAP: f64 = 0.1;
+/// Clear space between a linear dimension's text placed outside and the extension line it
+/// sits beside, in text heights.
+pub const LINEAR_TEXT_OUTSIDE_GAP: f64 = 0.5;
+/// Shortest dimension line that holds both arrowheads inside the extension lines, in arrow
+/// sizes; shorter ones get their arrowheads outside, pointing in.
+pub const LINEAR_ARROWS_FIT: f64 = 2.5;
+/// Length of the dimension line outside an extension line that carries an arrowhead
+/// pointing in, in arrow sizes.
+pub const LINEAR_ARROW_STUB: f64 = 2.0;
+
+/// Estimated advance of a character in DejaVu Sans (the font the SVG names and the golden
+/// images use), in ems: the font's own advances for digits, punctuation and the signs a
+/// dimension holds, 0.70 em for other capitals and 0.60 em (the font's average) for the
+/// rest.
+fn char_advance(c: char) -> f64 {
+    match c {
+        '0'..='9' => 0.636,
+        ' ' | '.' | ',' | ':' | ';' | '\'' | '!' | '|' | '′' => 0.318,
+        '±' | '=' | '+' | '<' | '>' | '×' => 0.838,
+        '-' => 0.361,
+        '(' | ')' | '[' | ']' => 0.39,
+        '°' => 0.5,
+        'A'..='Z' => 0.70,
+        _ => 0.60,
+    }
+}
+
+/// Estimated width (model units) of `text` drawn `height` high (cap height): the sum of
+/// [`char_advance`]s over [`CAP_HEIGHT_EM`]. The writers leave the glyphs to the reader's
+/// font, so this is an estimate (exact for DejaVu Sans digits and signs), the same for both
+/// writers.
+pub fn text_width(text: &str, height: f64) -> f64 {
+    height / CAP_HEIGHT_EM * text.chars().map(char_advance).sum::<f64>()
+}
 
 /// Whether a linear dimension measured along `angle` (radians) has its text turned by half
 /// a turn to stay readable (read from below or from the right): directions in (90°, 270°].
@@ -75,6 +122,171 @@ fn arrow_shapes(from: Point, to: Point, head: f64, out: &mut Vec<Shape>) {
     }
 }
 
+/// The estimated box (lower-left and upper-right corners) of an unrotated text `width` wide
+/// and `height` high (cap height) whose middle is at `mid` (as drawn with
+/// [`VAlign::Middle`]): the caps' height plus [`TEXT_DESCENT`] below the baseline.
+pub fn middle_text_box(mid: Point, width: f64, height: f64) -> (Point, Point) {
+    (
+        Point::new(mid.x - 0.5 * width, mid.y - (0.5 + TEXT_DESCENT) * height),
+        Point::new(mid.x + 0.5 * width, mid.y + 0.5 * height),
+    )
+}
+
+/// Distance from `p` to the axis-aligned box `(min, max)` (0 inside it).
+fn point_box_distance(p: Point, (min, max): (Point, Point)) -> f64 {
+    let dx = (min.x - p.x).max(p.x - max.x).max(0.0);
+    let dy = (min.y - p.y).max(p.y - max.y).max(0.0);
+    dx.hypot(dy)
+}
+
+/// Whether the segment `a`–`b` meets the axis-aligned box `(min, max)` (Liang–Barsky
+/// clipping; touching counts).
+fn segment_meets_box(a: Point, b: Point, (min, max): (Point, Point)) -> bool {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-d.x, a.x - min.x), (d.x, max.x - a.x), (-d.y, a.y - min.y), (d.y, max.y - a.y)] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else if p < 0.0 {
+            t0 = t0.max(q / p);
+        } else {
+            t1 = t1.min(q / p);
+        }
+    }
+    t0 <= t1
+}
+
+/// Middle of an angular dimension's text (drawn unrotated, [`HAlign::Center`],
+/// [`VAlign::Middle`]), as a draughtsman places it: on the bisector of the swept angle, as
+/// near the arc as lets the text's whole estimated box ([`middle_text_box`],
+/// [`text_width`]) stay [`ANGULAR_TEXT_GAP`] outside the arc's circle, then moved further
+/// out by [`ANGULAR_TEXT_STEP`]s while the box (grown by the gap) still crosses one of the
+/// dimension's rays as drawn (from the vertex to its point, or past the arc where an
+/// extension line reaches it). A text wider than its arc thus sits beyond the arc, never
+/// across it, and stays horizontal, so it reads from below. The DXF DIMENSION entity's text
+/// mid point is this point.
+pub fn angular_text_mid(
+    vertex: Point,
+    first: Point,
+    second: Point,
+    radius: f64,
+    text: &str,
+    style: &DimStyle,
+) -> Point {
+    let th = style.text_height;
+    let a1 = angle_of(first - vertex);
+    let sweep = normalize_angle(angle_of(second - vertex) - a1);
+    let mid = a1 + 0.5 * sweep;
+    let u = Vector::new(mid.cos(), mid.sin());
+    let w = text_width(text, th);
+    let boxed = |d: f64| middle_text_box(vertex + u * d, w, th);
+    // Clear of the arc: the box's distance to the vertex grows with d, so bisect. At `hi`
+    // the box lies wholly beyond the line at `clear` across the bisector.
+    let clear = radius + ANGULAR_TEXT_GAP * th;
+    let (mut lo, mut hi) = (0.0, clear + 0.5 * w + (0.5 + TEXT_DESCENT) * th);
+    for _ in 0..60 {
+        let m = 0.5 * (lo + hi);
+        if point_box_distance(vertex, boxed(m)) >= clear {
+            hi = m;
+        } else {
+            lo = m;
+        }
+    }
+    // Clear of the rays: move out until the grown box misses both (it surely does once
+    // it is beyond the longer ray).
+    let reach = |p: Point| (p - vertex).norm().max(radius + 0.5 * style.arrow_size);
+    let rays = [(reach(first), a1), (reach(second), a1 + sweep)].map(|(r, a)| polar(vertex, r, a));
+    let g = Vector::new(ANGULAR_TEXT_GAP * th, ANGULAR_TEXT_GAP * th);
+    let crosses = |d: f64| {
+        let (min, max) = boxed(d);
+        rays.iter().any(|end| segment_meets_box(vertex, *end, (min - g, max + g)))
+    };
+    let step = ANGULAR_TEXT_STEP * th;
+    let far = rays.iter().map(|end| (end - vertex).norm()).fold(0.0, f64::max) + w + 2.0 * th;
+    // NaN or a zero step gives no steps.
+    let steps = if step > 0.0 { ((far / step).ceil().min(1e5)) as usize } else { 0 };
+    let mut d = hi;
+    for _ in 0..steps {
+        if !crosses(d) {
+            break;
+        }
+        d += step;
+    }
+    vertex + u * d
+}
+
+/// How a linear dimension is laid out ([`linear_layout`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinearLayout {
+    /// Foot of the first extension line on the dimension line.
+    pub f1: Point,
+    /// Foot of the second extension line on the dimension line.
+    pub f2: Point,
+    /// Unit vector along which the text reads (the measuring direction, or its opposite
+    /// when [`linear_text_flipped`]).
+    pub reading: Vector,
+    /// Unit vector from the dimension line up to the text (left of `reading`).
+    pub up: Vector,
+    /// Text insertion point: middle of its baseline ([`HAlign::Center`], [`VAlign::Baseline`]).
+    pub text_at: Point,
+    /// Rotation of the text, radians counter-clockwise.
+    pub rotation: f64,
+    /// Middle of the text, half a text height above `text_at` (the DXF DIMENSION entity's
+    /// text mid point, group 11/21).
+    pub text_mid: Point,
+    /// Estimated width of the text ([`text_width`]), model units.
+    pub text_width: f64,
+    /// Whether the text sits between the extension lines; if not, it sits beside the
+    /// extension line at the end the text reads towards, on the dimension line's extension.
+    pub text_inside: bool,
+    /// Whether the arrowheads sit between the extension lines; if not, they sit outside,
+    /// pointing in, each on a stub of the dimension line [`LINEAR_ARROW_STUB`] long.
+    pub arrows_inside: bool,
+}
+
+/// The layout of a linear dimension (see [`Shape::LinearDimension`]), as ISO 129 and
+/// AutoCAD's "best fit" place it. The text is centred [`LINEAR_TEXT_LIFT`] above the
+/// dimension line when its estimated width plus [`LINEAR_TEXT_FIT_GAP`] on each side fits
+/// between the extension lines; otherwise it goes beyond the extension line at the end it
+/// reads towards, [`LINEAR_TEXT_OUTSIDE_GAP`] clear of it, over an extension of the dimension
+/// line. Independently, the arrowheads point out from the middle when the dimension line is
+/// at least [`LINEAR_ARROWS_FIT`] arrow sizes long, else they sit outside pointing in.
+pub fn linear_layout(p1: Point, p2: Point, line_at: Point, angle: f64, text: &str, style: &DimStyle) -> LinearLayout {
+    let th = style.text_height;
+    let u = Vector::new(angle.cos(), angle.sin());
+    let n = perp(u);
+    let foot = |p: &Point| p + n * (line_at - p).dot(&n);
+    let (f1, f2) = (foot(&p1), foot(&p2));
+    let (rotation, reading, up) =
+        if linear_text_flipped(angle) { (angle + std::f64::consts::PI, -u, -n) } else { (angle, u, n) };
+    let len = (f2 - f1).norm();
+    let w = text_width(text, th);
+    let text_inside = w + 2.0 * LINEAR_TEXT_FIT_GAP * th <= len;
+    let arrows_inside = len >= LINEAR_ARROWS_FIT * style.arrow_size;
+    let on_line = if text_inside {
+        Point::from((f1.coords + f2.coords) / 2.0)
+    } else {
+        // Beyond the foot the text reads towards.
+        let end = if (f2 - f1).dot(&reading) >= 0.0 { f2 } else { f1 };
+        end + reading * (LINEAR_TEXT_OUTSIDE_GAP * th + 0.5 * w)
+    };
+    let text_at = on_line + up * (LINEAR_TEXT_LIFT * th);
+    LinearLayout {
+        f1,
+        f2,
+        reading,
+        up,
+        text_at,
+        rotation,
+        text_mid: text_at + up * (0.5 * th),
+        text_width: w,
+        text_inside,
+        arrows_inside,
+    }
+}
+
 /// A dimension broken into lines, arcs, filled arrowheads and its text; any other shape
 /// is returned unchanged.
 pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
@@ -100,9 +312,8 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
             let p_end = polar(*vertex, *radius, a1 + sweep);
             arrow_shapes(polar(*vertex, *radius, a1 + step), p_start, asz, &mut out);
             arrow_shapes(polar(*vertex, *radius, a1 + sweep - step), p_end, asz, &mut out);
-            let mid = a1 + 0.5 * sweep;
             out.push(Shape::Text {
-                at: polar(*vertex, radius + ANGULAR_TEXT_LIFT * th, mid),
+                at: angular_text_mid(*vertex, *first, *second, *radius, text, style),
                 height: th,
                 value: text.clone(),
                 halign: HAlign::Center,
@@ -111,11 +322,8 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
             });
         }
         Shape::LinearDimension { p1, p2, line_at, angle, text } => {
-            let u = Vector::new(angle.cos(), angle.sin());
-            let n = perp(u);
-            // Feet of the extension lines on the dimension line.
-            let foot = |p: &Point| p + n * (line_at - p).dot(&n);
-            let (f1, f2) = (foot(p1), foot(p2));
+            let lay = linear_layout(*p1, *p2, *line_at, *angle, text, style);
+            let (f1, f2) = (lay.f1, lay.f2);
             for (p, f) in [(p1, f1), (p2, f2)] {
                 let d = f - p;
                 let len = d.norm();
@@ -128,19 +336,38 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
                     });
                 }
             }
-            out.push(Shape::Line { from: f1, to: f2 });
-            let mid = Point::from((f1.coords + f2.coords) / 2.0);
-            arrow_shapes(mid, f1, asz, &mut out);
-            arrow_shapes(mid, f2, asz, &mut out);
+            // Outward along the dimension line at each foot (f1 back, f2 on, when they meet).
+            let u = Vector::new(angle.cos(), angle.sin());
+            let out1 = if (f1 - f2).dot(&u) > 0.0 { u } else { -u };
+            // How far the dimension line runs on past each foot: under an outside text, and
+            // under outside arrowheads.
+            let mut beyond = [0.0f64; 2];
+            if !lay.text_inside {
+                let k = if out1.dot(&lay.reading) > 0.0 { 0 } else { 1 };
+                beyond[k] = LINEAR_TEXT_OUTSIDE_GAP * th + lay.text_width;
+            }
+            if !lay.arrows_inside {
+                beyond = beyond.map(|b| b.max(LINEAR_ARROW_STUB * asz));
+            }
+            let from = f1 + out1 * beyond[0];
+            let to = f2 - out1 * beyond[1];
+            out.push(Shape::Line { from, to });
+            if lay.arrows_inside {
+                let mid = Point::from((f1.coords + f2.coords) / 2.0);
+                arrow_shapes(mid, f1, asz, &mut out);
+                arrow_shapes(mid, f2, asz, &mut out);
+            } else {
+                arrow_shapes(f1 + out1 * (LINEAR_ARROW_STUB * asz), f1, asz, &mut out);
+                arrow_shapes(f2 - out1 * (LINEAR_ARROW_STUB * asz), f2, asz, &mut out);
+            }
             // Text above the dimension line, upright when read from below or the right.
-            let (rot, up) = if linear_text_flipped(*angle) { (angle + std::f64::consts::PI, -n) } else { (*angle, n) };
             out.push(Shape::Text {
-                at: mid + up * (LINEAR_TEXT_LIFT * th),
+                at: lay.text_at,
                 height: th,
                 value: text.clone(),
                 halign: HAlign::Center,
                 valign: VAlign::Baseline,
-                rotation: rot,
+                rotation: lay.rotation,
             });
         }
         other => out.push(other.clone()),

@@ -8,7 +8,7 @@
 //! the dependent dimensions are below the axis on layer `DEPENDENT`, in red, with their
 //! worst-case tolerance.
 
-use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign, parts};
 use crate::figure::plot::{self, Histogram};
 use crate::geom::Point;
 use crate::scene::chain::{ChainScene, Dimension};
@@ -96,10 +96,15 @@ pub fn chain(scene: &ChainScene, analysis: &Analysis, dependents: &[DependentMar
         let text = if analysis.in_tree[i] { format!("{value}{}", tolerance_text(d)) } else { format!("({value})") };
         items.push((a.min(b), a.max(b), text, !analysis.in_tree[i]));
     }
+    // A dimension's span in x with its text where the dimension puts it (between the
+    // extension lines, or beside one when it does not fit), half a character clear.
+    // Arrowheads outside the extension lines sit on stubs of the dimension line.
+    let style = dr.dim_style;
     let widen = |a: f64, b: f64, text: &str| {
-        let w = CHAR_WIDTH * th * (text.chars().count() as f64 + 1.0);
-        let m = 0.5 * (a + b);
-        (a.min(m - w / 2.0), b.max(m + w / 2.0))
+        let lay = parts::linear_layout(Point::new(a, 0.0), Point::new(b, 0.0), Point::new(a, 1.0), 0.0, text, &style);
+        let half = 0.5 * lay.text_width + 0.5 * CHAR_WIDTH * th;
+        let stub = if lay.arrows_inside { 0.0 } else { parts::LINEAR_ARROW_STUB * style.arrow_size };
+        ((a - stub).min(lay.text_at.x - half), (b + stub).max(lay.text_at.x + half))
     };
     let intervals: Vec<(f64, f64)> = items.iter().map(|(a, b, t, _)| widen(*a, *b, t)).collect();
     let rows = pack_rows(&intervals);

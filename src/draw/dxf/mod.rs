@@ -74,7 +74,7 @@ mod r12;
 
 use super::parts::{self, arrow, explode_dimension};
 use super::{Aci, Bounds, Drawing, HAlign, LineType, Shape, VAlign};
-use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
+use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 
 /// Name of the dashed line type in the LTYPE table.
 pub const DASHED: &str = "DASHED";
@@ -649,25 +649,25 @@ enum DimPrim {
 /// The DIMENSION geometry of a dimension shape (`None` for other shapes).
 fn dimension_prim(shape: &Shape, style: &super::DimStyle) -> Option<DimPrim> {
     match shape {
-        Shape::AngularDimension { vertex, first, second, radius, .. } => {
+        Shape::AngularDimension { vertex, first, second, radius, text } => {
             let a1 = angle_of(first - vertex);
             let sweep = normalize_angle(angle_of(second - vertex) - a1);
-            let mid = a1 + 0.5 * sweep;
-            let on_arc = polar(*vertex, *radius, mid);
-            let text_at = polar(*vertex, radius + parts::ANGULAR_TEXT_LIFT * style.text_height, mid);
+            let on_arc = polar(*vertex, *radius, a1 + 0.5 * sweep);
+            // Where the exploded block draws the text.
+            let text_at = parts::angular_text_mid(*vertex, *first, *second, *radius, text, style);
             Some(DimPrim::Angular { on_arc, text_at, first: *first, second: *second, vertex: *vertex })
         }
-        Shape::LinearDimension { p1, p2, line_at, angle, .. } => {
-            let u = Vector::new(angle.cos(), angle.sin());
-            let n = perp(u);
-            let foot = |p: &Point| p + n * (line_at - p).dot(&n);
-            let (f1, f2) = (foot(p1), foot(p2));
-            let mid = Point::from((f1.coords + f2.coords) / 2.0);
-            let up = if parts::linear_text_flipped(*angle) { -n } else { n };
-            // Middle of the text: its baseline is LINEAR_TEXT_LIFT above the line, half a
-            // cap height more to its middle.
-            let text_mid = mid + up * ((parts::LINEAR_TEXT_LIFT + 0.5) * style.text_height);
-            Some(DimPrim::Rotated { on_line: f2, text_mid, p1: *p1, p2: *p2, angle_deg: deg(normalize_angle(*angle)) })
+        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+            // The text's middle where the exploded block draws it (inside or beside an
+            // extension line).
+            let lay = parts::linear_layout(*p1, *p2, *line_at, *angle, text, style);
+            Some(DimPrim::Rotated {
+                on_line: lay.f2,
+                text_mid: lay.text_mid,
+                p1: *p1,
+                p2: *p2,
+                angle_deg: deg(normalize_angle(*angle)),
+            })
         }
         _ => None,
     }
