@@ -39,20 +39,23 @@ pub const LINEAR_ARROWS_FIT: f64 = 2.5;
 /// pointing in, in arrow sizes.
 pub const LINEAR_ARROW_STUB: f64 = 2.0;
 
+/// Font units per em of DejaVu Sans.
+const UNITS_PER_EM: f64 = 2048.0;
+
 /// Estimated advance of a character in DejaVu Sans (the font the SVG names and the golden
-/// images use), in ems: the font's own advances for digits, punctuation and the signs a
-/// dimension holds, 0.70 em for other capitals and 0.60 em (the font's average) for the
-/// rest.
+/// images use), in font units ([`UNITS_PER_EM`]): the font's own advances for digits,
+/// punctuation and the signs a dimension holds, 0.70 em for other capitals and 0.60 em (the
+/// font's average) for the rest.
 fn char_advance(c: char) -> f64 {
     match c {
-        '0'..='9' => 0.636,
-        ' ' | '.' | ',' | ':' | ';' | '\'' | '!' | '|' | '′' => 0.318,
-        '±' | '=' | '+' | '<' | '>' | '×' => 0.838,
-        '-' => 0.361,
-        '(' | ')' | '[' | ']' => 0.39,
-        '°' => 0.5,
-        'A'..='Z' => 0.70,
-        _ => 0.60,
+        '0'..='9' => 1303.0,
+        ' ' | '.' | ',' | ':' | ';' | '\'' | '!' | '|' | '′' => 651.0,
+        '±' | '=' | '+' | '<' | '>' | '×' => 1716.0,
+        '-' => 739.0,
+        '(' | ')' | '[' | ']' => 799.0,
+        '°' => 1024.0,
+        'A'..='Z' => 1434.0,
+        _ => 1229.0,
     }
 }
 
@@ -61,7 +64,7 @@ fn char_advance(c: char) -> f64 {
 /// font, so this is an estimate (exact for DejaVu Sans digits and signs), the same for both
 /// writers.
 pub fn text_width(text: &str, height: f64) -> f64 {
-    height / CAP_HEIGHT_EM * text.chars().map(char_advance).sum::<f64>()
+    height / CAP_HEIGHT_EM * text.chars().map(char_advance).sum::<f64>() / UNITS_PER_EM
 }
 
 /// Whether a linear dimension measured along `angle` (radians) has its text turned by half
@@ -427,5 +430,144 @@ mod tests {
             })
             .unwrap();
         assert!((arc.1 - arc.0 - 1.5 * std::f64::consts::PI).abs() < 1e-12);
+    }
+
+    /// The exploded text of a dimension: insertion point and rotation.
+    fn exploded_text(dim: &Shape, style: &DimStyle) -> (Point, f64) {
+        explode_dimension(dim, style)
+            .into_iter()
+            .find_map(|s| match s {
+                Shape::Text { at, rotation, .. } => Some((at, rotation)),
+                _ => None,
+            })
+            .unwrap()
+    }
+
+    #[test]
+    fn angular_text_box_stays_outside_the_arc_and_off_the_rays() {
+        let style = DimStyle { text_height: 2.0, arrow_size: 1.5 };
+        let th = style.text_height;
+        let vertex = Point::new(3.0, -1.0);
+        for radius in [1.0, 4.0, 10.0, 40.0] {
+            for (a1, a2) in [(0.0, 20.0), (0.0, 75.77), (30.0, 150.0), (100.0, 260.0), (200.0, 350.0), (300.0, 30.0)] {
+                for text in ["5°", "75.77°", "φ1 = 75.77°", "a much wider text = 123.45°"] {
+                    let (a1, a2) = (f64::to_radians(a1), f64::to_radians(a2));
+                    let (first, second) = (polar(vertex, 30.0, a1), polar(vertex, 25.0, a2));
+                    let dim = Shape::AngularDimension { vertex, first, second, radius, text: text.into() };
+                    let (at, rotation) = exploded_text(&dim, &style);
+                    assert_eq!(rotation, 0.0);
+                    let bx = middle_text_box(at, text_width(text, th), th);
+                    // Nearest point of the box to the vertex: clear of the arc's circle.
+                    let gap = point_box_distance(vertex, bx) - radius;
+                    assert!(gap >= ANGULAR_TEXT_GAP * th - 1e-9, "{text} r={radius}: gap {gap}");
+                    // Neither ray (link) crosses the box.
+                    for p in [first, second] {
+                        assert!(!segment_meets_box(vertex, p, bx), "{text} r={radius} crosses a ray");
+                    }
+                    // The DXF DIMENSION's text mid point is the exploded text's.
+                    assert_eq!(angular_text_mid(vertex, first, second, radius, text, &style), at);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn angular_text_sits_on_the_bisector_near_the_arc_when_it_fits() {
+        // A short text on a wide arc: on the bisector (45°), less than a text height and a
+        // half beyond the arc.
+        let style = DimStyle { text_height: 1.0, arrow_size: 1.0 };
+        let v = Point::new(0.0, 0.0);
+        let at = angular_text_mid(v, Point::new(50.0, 0.0), Point::new(0.0, 50.0), 20.0, "5°", &style);
+        assert!((angle_of(at - v) - std::f64::consts::FRAC_PI_4).abs() < 1e-12);
+        assert!(at.coords.norm() < 21.5);
+    }
+
+    /// Text box of a linear dimension's exploded text, in the (reading, up) frame about the
+    /// first foot: (along-from, along-to, up-from, up-to).
+    fn linear_text_span(lay: &LinearLayout, th: f64) -> (f64, f64, f64, f64) {
+        let x = (lay.text_at - lay.f1).dot(&lay.reading);
+        let y = (lay.text_at - lay.f1).dot(&lay.up);
+        (x - 0.5 * lay.text_width, x + 0.5 * lay.text_width, y - TEXT_DESCENT * th, y + th)
+    }
+
+    #[test]
+    fn linear_text_that_fits_is_centred_between_the_extension_lines() {
+        let style = DimStyle { text_height: 2.0, arrow_size: 1.8 };
+        for angle in [0.0, 0.7, 2.0, 3.5, -1.2] {
+            let u = Vector::new(f64::cos(angle), f64::sin(angle));
+            let p1 = Point::new(5.0, 7.0);
+            let p2 = p1 + u * 40.0;
+            let line_at = p1 + perp(u) * 6.0;
+            let dim = Shape::LinearDimension { p1, p2, line_at, angle, text: "40 ±0.1".into() };
+            let (at, rotation) = exploded_text(&dim, &style);
+            let lay = linear_layout(p1, p2, line_at, angle, "40 ±0.1", &style);
+            assert!(lay.text_inside && lay.arrows_inside);
+            // As before: the middle of the dimension line, LINEAR_TEXT_LIFT above it.
+            let mid = Point::from((lay.f1.coords + lay.f2.coords) / 2.0);
+            assert!((at - (mid + lay.up * (LINEAR_TEXT_LIFT * 2.0))).norm() < 1e-12);
+            assert_eq!(rotation, lay.rotation);
+            assert!((lay.text_mid - (at + lay.up * 1.0)).norm() < 1e-12);
+            // The dimension line runs from foot to foot only.
+            let lines: Vec<_> = explode_dimension(&dim, &style)
+                .into_iter()
+                .filter_map(|s| match s {
+                    Shape::Line { from, to } => Some((from, to)),
+                    _ => None,
+                })
+                .collect();
+            assert!(lines.contains(&(lay.f1, lay.f2)));
+        }
+    }
+
+    #[test]
+    fn linear_text_that_does_not_fit_goes_beside_an_extension_line() {
+        let style = DimStyle { text_height: 2.0, arrow_size: 1.8 };
+        let th = style.text_height;
+        for angle in [0.0, 0.7, 2.0, 3.5, -1.2, std::f64::consts::PI] {
+            for (len, arrows_inside) in [(8.0, true), (2.0, false), (0.0, false)] {
+                let u = Vector::new(f64::cos(angle), f64::sin(angle));
+                let p1 = Point::new(-3.0, 2.0);
+                let p2 = p1 + u * len;
+                let line_at = p1 - perp(u) * 4.0;
+                let text = "Z1 = 17 ±0.3";
+                let dim = Shape::LinearDimension { p1, p2, line_at, angle, text: text.into() };
+                let lay = linear_layout(p1, p2, line_at, angle, text, &style);
+                assert!(!lay.text_inside);
+                assert_eq!(lay.arrows_inside, arrows_inside, "len {len}");
+                let (at, _) = exploded_text(&dim, &style);
+                assert_eq!(at, lay.text_at);
+                // Along the reading direction, the box lies wholly beyond both feet, clear
+                // of the extension lines by LINEAR_TEXT_OUTSIDE_GAP.
+                let (x0, x1, _, _) = linear_text_span(&lay, th);
+                let x2 = (lay.f2 - lay.f1).dot(&lay.reading);
+                let nearest = x0.min(x1).min((x0 - x2).abs()).min((x1 - x2).abs());
+                let outside = (x0 >= 0.0 && x0 >= x2) || (x1 <= 0.0 && x1 <= x2);
+                assert!(outside, "angle {angle} len {len}: box {x0}..{x1}, feet 0 and {x2}");
+                assert!(nearest >= LINEAR_TEXT_OUTSIDE_GAP * th - 1e-9);
+                // Arrowheads: tips at the feet, bases outside when they do not fit.
+                let heads: Vec<[Point; 3]> = explode_dimension(&dim, &style)
+                    .into_iter()
+                    .filter_map(|s| match s {
+                        Shape::Filled { points } => Some([points[0], points[1], points[2]]),
+                        _ => None,
+                    })
+                    .collect();
+                assert_eq!(heads.len(), if len == 0.0 && arrows_inside { 0 } else { 2 });
+                for h in heads {
+                    let base = Point::from((h[1].coords + h[2].coords) / 2.0);
+                    let (tip, base) = ((h[0] - lay.f1).dot(&lay.reading), (base - lay.f1).dot(&lay.reading));
+                    assert!(tip.abs() < 1e-9 || (tip - x2).abs() < 1e-9);
+                    let base_inside = base > x2.min(0.0) + 1e-9 && base < x2.max(0.0) - 1e-9;
+                    assert_eq!(base_inside, arrows_inside);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn text_width_is_exact_for_dejavu_digits_and_signs() {
+        // "25 ±0.1": 4 digits (1303 units), space and point (651), ± (1716), 2048 units an em.
+        let em = (4.0 * 1303.0 + 2.0 * 651.0 + 1716.0) / 2048.0;
+        assert!((text_width("25 ±0.1", CAP_HEIGHT_EM) - em).abs() < 1e-12);
     }
 }
