@@ -393,12 +393,11 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
             assert!(rec.contains_key(k), "position {i} lacks `{k}`");
         }
         assert_eq!(rec.len(), keys.len(), "position {i} has undocumented keys: {:?}", rec.keys());
-        // The same f64 in both files: both writers print the shortest round-trip form; the
-        // comparison allows 2 ulp only because serde_json's default number parser (without
-        // its `float_roundtrip` feature) is not correctly rounded.
+        // The same f64 in both files, bit for bit: both writers print the shortest round-trip
+        // form, and the tests parse JSON with serde_json's correctly rounded `float_roundtrip`.
         let same = |j: &serde_json::Value, v: f64, what: &str| {
             let j = j.as_f64().unwrap();
-            assert!((j - v).abs() <= 2.0 * f64::EPSILON * v.abs(), "{what} at {i}: JSON {j} vs CSV {v}");
+            assert_eq!(j.to_bits(), v.to_bits(), "{what} at {i}: JSON {j} vs CSV {v}");
         };
         same(&p["phi2_deg"], c["phi2_deg"][i], "phi2_deg");
         same(&p["omega3"], c["omega3"][i], "omega3");

@@ -77,3 +77,43 @@ fn drag_moves_the_crank_pin_to_the_nearest_reachable_point() {
     assert!((e.1 - 600.0).abs() < 1e-9 && e.0 > b.0);
     common::assert_ezdxf_clean(&[&out.join("shaper.dxf")]);
 }
+
+/// A time step exactly on a dead point (the Chebyshev four-bar driven by its rocker down to
+/// the rocker's smallest angle, 78.463°, reached at t* = 0.67128949 s) is reported by the
+/// run: one warning naming t*, the driver value and the loop's joints, saying velocities
+/// and accelerations there are unreliable; the JSON summary lists the step and flags its
+/// sample (and no other). The shaper run has an empty list and no such warning.
+#[test]
+fn dead_point_step_is_reported_in_warnings_and_json() {
+    let t_star = (1.7722121 - 0.0096f64.sqrt().atan2(0.02)) / 0.6;
+    let text = std::fs::read_to_string(common::root().join("templates/fourbar-linkage.toml"))
+        .unwrap()
+        .replace("body = \"crank\"\nlaw = \"20*t\"", "body = \"rocker\"\nlaw = \"1.7722121 - 0.6*t\"")
+        .replace("to = 0.3141592653589793, steps = 360", &format!("to = {t_star:.17}, steps = 40"));
+    assert!(text.contains("law = \"1.7722121 - 0.6*t\"") && text.contains("steps = 40"), "template changed");
+    let tmp = tempfile::tempdir().unwrap();
+    let path = tmp.path().join("rocker.toml");
+    std::fs::write(&path, text).unwrap();
+    let loaded = mechdraw::scene::load(&path, &[]).unwrap();
+    let outcome = mechdraw::run::run(&loaded, &mechdraw::run::RunOptions::default()).unwrap();
+    let near: Vec<&String> = outcome.warnings.iter().filter(|w| w.contains("near-singular")).collect();
+    assert_eq!(near.len(), 1, "{:?}", outcome.warnings);
+    let w = near[0];
+    assert!(w.contains(&format!("t = {t_star} s")), "{w}");
+    assert!(w.contains("driver `rocker` = 78.4630°"), "{w}");
+    assert!(w.contains("revolute joint `A`") && w.contains("revolute joint `B`"), "{w}");
+    assert!(w.contains("velocities and accelerations there are unreliable"), "{w}");
+    let list = outcome.summary["near_singular"].as_array().unwrap();
+    assert_eq!(list.len(), 1);
+    assert_eq!(list[0]["t"].as_f64().unwrap(), t_star);
+    assert!(list[0]["constraints"].as_str().unwrap().contains("revolute joint `A`"));
+    let samples = outcome.summary["samples"].as_array().unwrap();
+    assert_eq!(samples.len(), 41);
+    assert_eq!(samples[40]["near_singular"], serde_json::json!(true));
+    assert!(samples[..40].iter().all(|s| s.get("near_singular").is_none()));
+
+    let shaper = mechdraw::scene::load(&common::root().join("templates/shaper.toml"), &[]).unwrap();
+    let outcome = mechdraw::run::run(&shaper, &mechdraw::run::RunOptions::default()).unwrap();
+    assert!(outcome.summary["near_singular"].as_array().unwrap().is_empty());
+    assert!(outcome.warnings.iter().all(|w| !w.contains("near-singular")), "{:?}", outcome.warnings);
+}

@@ -16,7 +16,7 @@ use crate::figure::plot::{Diagram, Series, diagram};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
 use crate::scene::linkage::{LinkageScene, MeasureTarget, Quantity};
-use crate::solve::linkage::{Anchor, LinkageError, Solver, State};
+use crate::solve::linkage::{Anchor, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State};
 
 /// One measured column: its name, unit and values over the motion.
 #[derive(Debug, Clone)]
@@ -96,6 +96,16 @@ pub fn columns(scene: &LinkageScene, states: &[State]) -> Vec<Column> {
     out
 }
 
+/// The warning line for a step solved near a singular position.
+fn near_singular_warning(n: &NearSingular) -> String {
+    format!(
+        "near-singular position at t = {} s ({}): the constraint Jacobian is nearly singular (smallest relative pivot \
+         {:.1e} < {:.0e}), a dead point; involved: {}; the position is kept, velocities and accelerations there are \
+         unreliable (JSON: near_singular)",
+        n.t, n.drivers, n.pivot, NEAR_SINGULAR_PIVOT_REL, n.constraints
+    )
+}
+
 fn export(what: &str) -> impl FnOnce(String) -> Error + '_ {
     move |message| Error::Export { what: what.to_string(), message }
 }
@@ -141,6 +151,8 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     if scene.measures.is_empty() {
         warnings.push("no [[measure]] in the scene: the CSV and the diagrams have no quantity columns".to_string());
     }
+    let near_singular: Vec<&NearSingular> = states.iter().filter_map(|s| s.near_singular.as_ref()).collect();
+    warnings.extend(near_singular.iter().map(|n| near_singular_warning(n)));
     for c in &cols {
         if c.values.iter().any(|v| !v.is_finite()) {
             return Err(serr(
@@ -156,6 +168,9 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         rec.insert("t".into(), json!(s.t));
         for c in &cols {
             rec.insert(c.name.clone(), json!(c.values[k]));
+        }
+        if s.near_singular.is_some() {
+            rec.insert("near_singular".into(), json!(true));
         }
         samples.push(Value::Object(rec));
     }
@@ -191,6 +206,10 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         "newton_iterations_mean": mean_iter,
         "columns": cols.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),
         "extremes": extremes,
+        "near_singular": near_singular
+            .iter()
+            .map(|n| json!({"t": n.t, "drivers": n.drivers, "constraints": n.constraints, "pivot": n.pivot}))
+            .collect::<Vec<_>>(),
         "samples": samples,
     });
     let report = format!(

@@ -10,7 +10,9 @@
 //! assembly mode and usually converges in one or two iterations. Velocities from
 //! Φq·q̇ = −Φt, accelerations from Φq·q̈ = γ, with γ analytic per constraint type and the
 //! drivers' f′, f″ exact (second-order jets). The hot loop allocates nothing: matrices and
-//! vectors are sized once in [`Solver::new`].
+//! vectors are sized once in [`Solver::new`]. A Jacobian singular at a step (smallest
+//! relative pivot ≤ [`SINGULAR_PIVOT_REL`]) is an error; one nearly so (≤
+//! [`NEAR_SINGULAR_PIVOT_REL`]) is solved and flagged in [`State::near_singular`].
 //!
 //! Conventions: lengths in the scene's units, angles in radians from +x,
 //! counter-clockwise positive; a body's point with body coordinates s is at
@@ -29,6 +31,20 @@ pub const MAX_NEWTON_ITERATIONS: usize = 30;
 pub const NEWTON_TOL: f64 = 1e-14;
 /// Iterations allowed to assemble the mechanism from the scene's initial placement.
 pub const MAX_ASSEMBLY_ITERATIONS: usize = 200;
+/// Relative pivot size under which a solved step counts as near-singular (see
+/// [`NearSingular`]): the smallest pivot ρ = `|u_kk|` / ‖J̃‖∞ of the equilibrated Jacobian
+/// at the answer, between [`SINGULAR_PIVOT_REL`] and this, ρ standing for 1/κ(J̃).
+///
+/// Why 1e-5: the velocity and acceleration solves lose about log10(1/ρ) digits each, and
+/// near a dead point (a fold: the position moves as the square root of a disturbance,
+/// velocities grow as 1/ρ, accelerations as 1/ρ³) a relative disturbance η of the data —
+/// at best [`NEWTON_TOL`] = 1e-14, the accuracy of the position itself — changes them by
+/// about η/ρ² relative. At ρ = 1e-5 that is 1e-4: fewer digits than the outputs print,
+/// and values set by where the roundoff of t put the step rather than by the mechanism.
+/// Measured on the rocker-driven Chebyshev four-bar (tests/stability_linkage.rs):
+/// ρ ≈ 0.36·√δθ at a rocker angle δθ rad before its extreme, 1.2e-7 on the extreme
+/// itself; the bundled templates stay above 2e-2.
+pub const NEAR_SINGULAR_PIVOT_REL: f64 = 1e-5;
 /// Component of the left singular vector above which a constraint is named as taking part
 /// in a singularity.
 const SINGULAR_SHARE: f64 = 0.1;
@@ -317,18 +333,21 @@ struct Lu {
     n: usize,
     a: Vec<f64>,
     piv: Vec<usize>,
+    /// Smallest pivot of the last factorisation relative to the `scale` it was given.
+    min_pivot_rel: f64,
 }
 
 impl Lu {
     fn new(n: usize) -> Lu {
-        Lu { n, a: vec![0.0; n * n], piv: vec![0; n] }
+        Lu { n, a: vec![0.0; n * n], piv: vec![0; n], min_pivot_rel: f64::INFINITY }
     }
 
     /// Factors the row-major matrix in `self.a`; false if a pivot falls below
-    /// `SINGULAR_PIVOT_REL · scale`.
+    /// `SINGULAR_PIVOT_REL · scale`. Records the smallest pivot / `scale` in `min_pivot_rel`.
     fn factor(&mut self, scale: f64) -> bool {
         let n = self.n;
         let a = &mut self.a;
+        self.min_pivot_rel = f64::INFINITY;
         for k in 0..n {
             let mut p = k;
             let mut best = a[k * n + k].abs();
@@ -339,6 +358,7 @@ impl Lu {
                     p = r;
                 }
             }
+            self.min_pivot_rel = self.min_pivot_rel.min(best / scale);
             if best <= SINGULAR_PIVOT_REL * scale || !best.is_finite() {
                 return false;
             }
@@ -398,6 +418,27 @@ pub struct State {
     pub iterations: usize,
     /// Largest relative constraint residual at the answer.
     pub residual: f64,
+    /// Set when the step was solved close to a singular position (a dead point): the
+    /// position is right, the velocities and accelerations are not to be trusted.
+    pub near_singular: Option<NearSingular>,
+}
+
+/// A step solved close to a singular Jacobian (smallest relative pivot below
+/// [`NEAR_SINGULAR_PIVOT_REL`] but above [`SINGULAR_PIVOT_REL`]), typically a time step
+/// landing on or within ~1e-9 rad of a dead point. The position is kept (it is right to
+/// the Newton tolerance); the velocities and accelerations are kept too (finite, never
+/// NaN) but are not reliable there: callers report the step (the run pipeline prints a
+/// warning and lists it in the JSON summary).
+#[derive(Debug, Clone, PartialEq)]
+pub struct NearSingular {
+    /// Time, s.
+    pub t: f64,
+    /// Smallest pivot of the equilibrated Jacobian relative to its ∞-norm at the answer.
+    pub pivot: f64,
+    /// The drivers' values there, e.g. "driver `rocker` = 78.4630°".
+    pub drivers: String,
+    /// The constraints that take part (from the left singular vector), comma-separated.
+    pub constraints: String,
 }
 
 impl State {
@@ -458,6 +499,8 @@ pub struct Solver {
     poses: Vec<Pose>,
     /// Newton stops when the largest relative residual is at or below this.
     newton_tol: f64,
+    /// The near-singular report of the last step, if any.
+    near: Option<NearSingular>,
 }
 
 impl Solver {
@@ -560,6 +603,7 @@ impl Solver {
             laws,
             poses: Vec::with_capacity(nb),
             newton_tol: NEWTON_TOL,
+            near: None,
         })
     }
 
@@ -596,7 +640,25 @@ impl Solver {
             qdd: self.qdd.clone(),
             iterations: 0,
             residual: self.residual_norm().0,
+            near_singular: self.near.clone(),
         }
+    }
+
+    /// Smallest pivot of the equilibrated Jacobian relative to its ∞-norm, at the answer of
+    /// the last step (an estimate of 1/κ∞; `INFINITY` before the first step).
+    pub fn min_pivot_rel(&self) -> f64 {
+        self.lu.min_pivot_rel
+    }
+
+    /// The near-singular report at the current answer (Φq factored there), or None.
+    fn near_singular(&self, t: f64) -> Option<NearSingular> {
+        let pivot = self.lu.min_pivot_rel;
+        (pivot < NEAR_SINGULAR_PIVOT_REL).then(|| NearSingular {
+            t,
+            pivot,
+            drivers: self.driver_values(),
+            constraints: self.singular_constraints(),
+        })
     }
 
     fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
@@ -915,6 +977,7 @@ impl Solver {
         self.eval_laws(t)?;
         self.levenberg_marquardt(t)?;
         let iterations = self.newton(t, MAX_NEWTON_ITERATIONS)?;
+        self.near = self.near_singular(t);
         self.kinematics();
         self.dt_prev = None;
         self.t = Some(t);
@@ -925,6 +988,7 @@ impl Solver {
             qdd: self.qdd.clone(),
             iterations,
             residual: self.residual_norm().0,
+            near_singular: self.near.clone(),
         })
     }
 
@@ -988,7 +1052,8 @@ impl Solver {
     }
 
     /// Advances to time `t` from the previous state (extrapolated), keeping the assembly
-    /// mode. Allocation-free. Returns the Newton iterations.
+    /// mode. Allocation-free, except on a near-singular step (the SVD that names the
+    /// constraints, see [`NearSingular`]). Returns the Newton iterations.
     pub fn step(&mut self, t: f64) -> Result<usize, LinkageError> {
         let Some(t0) = self.t else {
             return self.assemble(t).map(|s| s.iterations);
@@ -1002,6 +1067,7 @@ impl Solver {
             self.q[k] += self.qd[k] * dt + 0.5 * self.qdd[k] * dt * dt + third;
         }
         let it = self.newton(t, MAX_NEWTON_ITERATIONS)?;
+        self.near = self.near_singular(t);
         self.qdd_prev.copy_from_slice(&self.qdd);
         self.kinematics();
         self.dt_prev = Some(dt);
@@ -1022,6 +1088,7 @@ impl Solver {
                 qdd: self.qdd.clone(),
                 iterations,
                 residual: self.residual_norm().0,
+                near_singular: self.near.clone(),
             });
         }
         Ok(out)
@@ -1203,7 +1270,15 @@ impl Solver {
         if !converged || res > crate::geom::tol::RESIDUAL_REL {
             return Err(LinkageError::Drag { what: format!("did not converge (joint residual {res:.3e} relative)") });
         }
-        Ok(State { t: state.t, q: s.q.clone(), qd: vec![0.0; n], qdd: vec![0.0; n], iterations: 0, residual: res })
+        Ok(State {
+            t: state.t,
+            q: s.q.clone(),
+            qd: vec![0.0; n],
+            qdd: vec![0.0; n],
+            iterations: 0,
+            residual: res,
+            near_singular: None,
+        })
     }
 }
 
