@@ -10,12 +10,13 @@
 //! R_O back to the start. Each vector is an arrow with its name at its middle, on the
 //! outside of the polygon.
 
-use crate::draw::{Aci, Drawing, Entity, LineType, Shape};
+use crate::draw::{Aci, Drawing, Entity, Shape};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::Position;
 use crate::solve::kinetostatics::Forces;
 
-use super::fourbar::{Scale, Sizes, label, layer_of, layers, vector};
+use super::fourbar::{Scale, Sizes, layer_of, layers, vector};
+use super::labels;
 
 /// Colour of the resultant reactions R_A, R_B, R_C inside the dyad's polygon.
 const RESULTANT: Aci = Aci::RED;
@@ -25,6 +26,9 @@ const CRANK: Aci = Aci::ORANGE;
 /// A vector shorter than this many letter heights gets no name: at the run's force scale
 /// the small weights crowd together, and their names would print over each other.
 const MIN_LABELLED: f64 = 0.6;
+
+/// Height of a vector's name in the force polygons, in letter heights.
+const NAME_HEIGHT: f64 = 0.8;
 
 /// The dyad's chain as (name, vector), in the seed's order (eq. 5).
 pub fn dyad_chain(f: &Forces) -> [(&'static str, Vector); 11] {
@@ -66,40 +70,45 @@ pub fn polygon_points(f: &Forces) -> Vec<Vector> {
     pts
 }
 
-/// The dyad's force polygon and the crank's polygon with the pole at `pole`.
+/// The dyad's force polygon and the crank's polygon with the pole at `pole`. The names are
+/// placed by [`labels::Polygon`]: beside their vectors, apart from each other.
 pub fn polygons(d: &mut Drawing, f: &Forces, scale: Scale, pole: Point, s: Sizes) {
     let l = layer_of(d, layers::FORCES);
+    let mut names = labels::Polygon::of_names();
     let pts: Vec<Point> = chain_vertices(f).into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
+    d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
+    names.letter(pole, "f", s.text, pole - centroid, None);
     for (i, (name, _)) in dyad_chain(f).iter().enumerate() {
-        arrow_named(d, l, None, (pts[i], pts[i + 1]), name, 0.5, centroid, s);
+        arrow_named(d, &mut names, l, None, (pts[i], pts[i + 1]), name, 0.5, centroid, s);
     }
     let int = pts[10];
     let p_ran = pts[1];
     let p_f = pts[6];
     let p_fi3 = pts[8];
     // Resultants: R_A = int → end of R_A^n; R_B = end of F → int; R_C = end of F_i3 → int.
-    // R_B and R_C are often nearly the same segment (a light rocker): their names sit at
-    // different places along it.
-    arrow_named(d, l, Some(RESULTANT), (int, p_ran), "RA", 0.5, centroid, s);
-    arrow_named(d, l, Some(RESULTANT), (p_f, int), "RB", 0.7, centroid, s);
-    arrow_named(d, l, Some(RESULTANT), (p_fi3, int), "RC", 0.3, centroid, s);
+    // R_B and R_C are often nearly the same segment (a light rocker): their names start
+    // from different places along it.
+    arrow_named(d, &mut names, l, Some(RESULTANT), (int, p_ran), "RA", 0.5, centroid, s);
+    arrow_named(d, &mut names, l, Some(RESULTANT), (p_f, int), "RB", 0.7, centroid, s);
+    arrow_named(d, &mut names, l, Some(RESULTANT), (p_fi3, int), "RC", 0.3, centroid, s);
     // The crank (seed Fig. 5): from int, F_i1 then G1; R_O closes back to the end of R_A^n.
     let p_fi1 = int + scale.draw(f.fi1);
     let p_g1 = p_fi1 + scale.draw(f.g1);
     let crank_centroid = Point::from((p_ran.coords + int.coords + p_fi1.coords + p_g1.coords) / 4.0);
-    arrow_named(d, l, Some(CRANK), (int, p_fi1), "Fi1", 0.5, crank_centroid, s);
-    arrow_named(d, l, Some(CRANK), (p_fi1, p_g1), "G1", 0.5, crank_centroid, s);
-    arrow_named(d, l, Some(CRANK), (p_g1, p_ran), "RO", 0.5, crank_centroid, s);
-    d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
-    label(d, l, pole, s.text, "f", pole - centroid);
+    arrow_named(d, &mut names, l, Some(CRANK), (int, p_fi1), "Fi1", 0.5, crank_centroid, s);
+    arrow_named(d, &mut names, l, Some(CRANK), (p_fi1, p_g1), "G1", 0.5, crank_centroid, s);
+    arrow_named(d, &mut names, l, Some(CRANK), (p_g1, p_ran), "RO", 0.5, crank_centroid, s);
+    names.draw(d, l);
 }
 
-/// An arrow from `from` to `to` with `name` beside it (at the fraction `at` of its length),
-/// on the side away from `inside`; nothing for a vector too short to see.
+/// An arrow from `from` to `to`, and its `name` for `names` at the fraction `at` of its
+/// length, preferably on the side away from `inside`; nothing for a vector too short to see,
+/// no name for one shorter than [`MIN_LABELLED`].
 #[allow(clippy::too_many_arguments)]
 fn arrow_named(
     d: &mut Drawing,
+    names: &mut labels::Polygon,
     layer: usize,
     color: Option<Aci>,
     (from, to): (Point, Point),
@@ -114,6 +123,7 @@ fn arrow_named(
         return;
     }
     d.push(Entity { layer, color, linetype: None, shape: Shape::Arrow { from, to, head: s.head } });
+    names.segment(from, to);
     if len < MIN_LABELLED * s.text {
         return;
     }
@@ -122,15 +132,7 @@ fn arrow_named(
     if n.dot(&(mid - inside)) < 0.0 {
         n = -n;
     }
-    let text = Shape::Text {
-        at: mid + n * (0.9 * s.text),
-        height: 0.8 * s.text,
-        value: name.to_string(),
-        halign: crate::draw::HAlign::Center,
-        valign: crate::draw::VAlign::Middle,
-        rotation: 0.0,
-    };
-    d.push(Entity { layer, color, linetype: Some(LineType::Continuous), shape: text });
+    names.letter(mid, name, NAME_HEIGHT * s.text, n, color);
 }
 
 /// R_A at A and R_B at B on the mechanism, at the force scale (seed, last section): the

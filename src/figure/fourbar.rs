@@ -28,7 +28,7 @@ use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 use crate::solve::kinetostatics::Forces;
 
-use super::forces;
+use super::{forces, labels};
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -538,18 +538,24 @@ fn unit_or(v: Vector, fallback: Vector) -> Vector {
     if n > 0.0 && n.is_finite() { v / n } else { fallback }
 }
 
-/// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm.
+/// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm. The
+/// letters are placed by [`labels::Polygon`] so that they stay apart in a small polygon.
 fn velocity_polygon(d: &mut Drawing, k: &Kinematics, scale: Scale, pole: Point, s: Sizes) {
     let l = layer_of(d, layers::VELOCITY);
     let (a, b, m) = (pole + scale.draw(k.v_a), pole + scale.draw(k.v_b), pole + scale.draw(k.v_m));
-    vector(d, l, pole, a - pole, "a", s);
-    vector(d, l, pole, b - pole, "b", s);
-    vector(d, l, pole, m - pole, "m", s);
-    // Relative velocities: v_BA from a to b, v_MB from b to m (the image of the coupler).
-    vector(d, l, a, b - a, "", s);
-    vector(d, l, b, m - b, "", s);
+    let mut letters = labels::Polygon::of_points();
+    // pa, pb, pm, then the relative velocities: v_BA from a to b, v_MB from b to m (the
+    // image of the coupler).
+    for (from, to) in [(pole, a), (pole, b), (pole, m), (a, b), (b, m)] {
+        vector(d, l, from, to - from, "", s);
+        letters.segment(from, to);
+    }
     d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
-    label(d, l, pole, s.text, "p", -(a - pole) - (b - pole));
+    letters.letter(pole, "p", s.text, -(a - pole) - (b - pole), None);
+    for (at, name) in [(a, "a"), (b, "b"), (m, "m")] {
+        letters.letter(at, name, s.text, at - pole, None);
+    }
+    letters.draw(d, l);
 }
 
 /// The acceleration polygon as the graph-analytical construction draws it:
@@ -576,25 +582,38 @@ fn acceleration_polygon(
     // Tangential directions: full dashed lines through n_BA ⊥ AB and n_BC ⊥ BC, reaching a
     // little past b′ on both sides.
     let reach = 4.0 * s.head;
+    let mut letters = labels::Polygon::of_points();
     for (n, dir) in [(n_ba, perp(pos.b - pos.a)), (n_bc, perp(pos.b - c_pivot))] {
         let u = unit_or(dir, Vector::new(1.0, 0.0));
         let t0 = (b1 - n).dot(&u);
         let (lo, hi) = (t0.min(0.0) - reach, t0.max(0.0) + reach);
         d.add(c, Shape::Line { from: n + u * lo, to: n + u * hi });
+        letters.segment(n + u * lo, n + u * hi);
     }
     // Components: normal parts solid, tangential parts as dashed arrows.
-    vector(d, l, a1, n_ba - a1, "nBA", s);
-    vector(d, l, pole, n_bc - pole, "nBC", s);
+    vector(d, l, a1, n_ba - a1, "", s);
+    vector(d, l, pole, n_bc - pole, "", s);
     vector(d, c, n_ba, b1 - n_ba, "", s);
     vector(d, c, n_bc, b1 - n_bc, "", s);
-    vector(d, l, pole, a1 - pole, "a'", s);
-    vector(d, l, pole, b1 - pole, "b'", s);
-    vector(d, l, pole, m1 - pole, "m'", s);
+    vector(d, l, pole, a1 - pole, "", s);
+    vector(d, l, pole, b1 - pole, "", s);
+    vector(d, l, pole, m1 - pole, "", s);
     // Image of the coupler: a′b′ (a_BA) and b′m′.
     d.add(l, Shape::Line { from: a1, to: b1 });
     d.add(l, Shape::Line { from: b1, to: m1 });
     d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
-    label(d, l, pole, s.text, "π", -(a1 - pole) - (b1 - pole));
+    for (from, to) in [(a1, n_ba), (pole, n_bc), (n_ba, b1), (n_bc, b1), (pole, a1), (pole, b1), (pole, m1), (a1, b1)] {
+        letters.segment(from, to);
+    }
+    letters.segment(b1, m1);
+    // The points first, then the ends of the normal components.
+    letters.letter(pole, "π", s.text, -(a1 - pole) - (b1 - pole), None);
+    for (at, name) in [(a1, "a'"), (b1, "b'"), (m1, "m'")] {
+        letters.letter(at, name, s.text, at - pole, None);
+    }
+    letters.letter(n_ba, "nBA", s.text, n_ba - a1, None);
+    letters.letter(n_bc, "nBC", s.text, n_bc - pole, None);
+    letters.draw(d, l);
 }
 
 #[cfg(test)]
@@ -744,6 +763,139 @@ pub(crate) mod tests {
         let d = &frames[0];
         let vel = layer_of(d, layers::VELOCITY);
         assert!(!d.entities.iter().any(|e| e.layer == vel));
+    }
+
+    /// The template's whole motion through the public API (scene file → solver → layout),
+    /// with forces.
+    fn template_motion() -> (Geometry, crate::solve::fourbar::Motion, Layout) {
+        let file = concat!(env!("CARGO_MANIFEST_DIR"), "/templates/fourbar-chebyshev.toml");
+        let text = std::fs::read_to_string(file).unwrap();
+        let crate::scene::Scene::Fourbar(scene) = crate::scene::parse(&text, file, &[]).unwrap() else {
+            panic!("not a four-bar scene")
+        };
+        let motion = crate::solve::fourbar::solve_motion(&scene.spec).unwrap();
+        let show = Show { velocity: true, acceleration: true, forces: true };
+        let lay = Layout::new(&scene.spec.geometry, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
+        (scene.spec.geometry, motion, lay)
+    }
+
+    /// The letters of each polygon in a drawn position: (polygon, centre, text, height),
+    /// polygon 0 velocity, 1 acceleration, 2 force (the force panel's texts only).
+    fn polygon_letters(lay: &Layout, d: &Drawing) -> Vec<(usize, Point, String, f64)> {
+        let force_panel = lay.panels.iter().find(|p| p.0.starts_with("Force")).cloned();
+        let (vel, acc, frc) =
+            (layer_of(d, layers::VELOCITY), layer_of(d, layers::ACCELERATION), layer_of(d, layers::FORCES));
+        d.entities
+            .iter()
+            .filter_map(|e| match &e.shape {
+                Shape::Text { at, height, value, .. } => {
+                    let poly = if e.layer == vel {
+                        0
+                    } else if e.layer == acc {
+                        1
+                    } else if e.layer == frc
+                        && force_panel.as_ref().is_some_and(|p| at.x >= p.1.x && at.x <= p.2.x && at.y <= p.2.y)
+                    {
+                        2
+                    } else {
+                        return None;
+                    };
+                    Some((poly, *at, value.clone(), *height))
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    #[test]
+    fn polygon_letters_never_overlap_over_the_template_motion() {
+        use super::super::labels::TextBox;
+        let (g, motion, lay) = template_motion();
+        assert_eq!(motion.positions.len(), 360);
+        let mut overlaps = [0usize; 3];
+        let mut examples = Vec::new();
+        let mut first_bad = None;
+        for (i, pos) in motion.positions.iter().enumerate() {
+            let d = lay.moving(&g, pos, Some(&motion.forces[i]));
+            let letters = polygon_letters(&lay, &d);
+            for (j, a) in letters.iter().enumerate() {
+                for b in &letters[..j] {
+                    let (ba, bb) = (TextBox::centred(a.1, &a.2, a.3), TextBox::centred(b.1, &b.2, b.3));
+                    if a.0 == b.0 && ba.overlaps(&bb) {
+                        overlaps[a.0] += 1;
+                        first_bad.get_or_insert(i);
+                        if examples.len() < 10 {
+                            examples.push(format!("{}°: {} over {}", i, a.2, b.2));
+                        }
+                    }
+                }
+            }
+        }
+        eprintln!("overlapping letter pairs (velocity, acceleration, force): {overlaps:?}; {examples:?}");
+        if let Some(deg) = first_bad {
+            // The first frame with overlapping letters, to look at: target/labels-overlap.png.
+            let base = lay.base(&g, &[motion.positions.iter().map(|p| p.m).collect()]);
+            let f = lay.frame(&base, &lay.moving(&g, &motion.positions[deg], Some(&motion.forces[deg])));
+            let opts = crate::draw::svg::SvgOptions { window: Some(lay.window), ..Default::default() };
+            let png = crate::draw::raster::to_png(&crate::draw::svg::to_string(&f, &opts), 1400).unwrap();
+            let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target");
+            std::fs::write(dir.join("labels-overlap.png"), png).unwrap();
+        }
+        assert_eq!(overlaps, [0, 0, 0], "{examples:?}");
+    }
+
+    #[test]
+    fn polygon_letters_stay_near_their_points_over_the_template_motion() {
+        use super::super::labels::{COINCIDENT, SAME_POINT, max_distance};
+        let (g, motion, lay) = template_motion();
+        let (sv, pv) = lay.velocity.unwrap();
+        let (sa, pa) = lay.acceleration.unwrap();
+        let force_panel = lay.panels.iter().find(|p| p.0.starts_with("Force")).cloned().unwrap();
+        let mut checked = 0;
+        for (i, pos) in motion.positions.iter().enumerate() {
+            let k = pos.kin.unwrap();
+            let d = lay.moving(&g, pos, Some(&motion.forces[i]));
+            let frc = layer_of(&d, layers::FORCES);
+            // The force polygons' sides, for their names.
+            let sides: Vec<(Point, Point)> = d
+                .entities
+                .iter()
+                .filter_map(|e| match e.shape {
+                    Shape::Arrow { from, to, .. } if e.layer == frc && from.x >= force_panel.1.x => Some((from, to)),
+                    _ => None,
+                })
+                .collect();
+            for (poly, at, text, h) in polygon_letters(&lay, &d) {
+                let reach = max_distance(&text, h) + COINCIDENT * h + 1e-9 * h;
+                for name in text.split(SAME_POINT) {
+                    let dist = match (poly, name) {
+                        (0, "p") => (at - pv).norm(),
+                        (0, "a") => (at - (pv + sv.draw(k.v_a))).norm(),
+                        (0, "b") => (at - (pv + sv.draw(k.v_b))).norm(),
+                        (0, "m") => (at - (pv + sv.draw(k.v_m))).norm(),
+                        (1, "π") => (at - pa).norm(),
+                        (1, "a'") => (at - (pa + sa.draw(k.a_a))).norm(),
+                        (1, "b'") => (at - (pa + sa.draw(k.a_b))).norm(),
+                        (1, "m'") => (at - (pa + sa.draw(k.a_m))).norm(),
+                        (1, "nBA") => (at - (pa + sa.draw(k.a_a + k.a_ba_n))).norm(),
+                        (1, "nBC") => (at - (pa + sa.draw(k.a_bc_n))).norm(),
+                        (2, _) => sides
+                            .iter()
+                            .map(|&(a, b)| {
+                                let v = b - a;
+                                let t = ((at - a).dot(&v) / v.norm_squared()).clamp(0.0, 1.0);
+                                (at - (a + v * t)).norm()
+                            })
+                            .fold(f64::INFINITY, f64::min),
+                        _ => panic!("unexpected letter {name} in polygon {poly}"),
+                    };
+                    assert!(dist <= reach, "{i}°: {name} is {dist} from its point, more than {reach}");
+                    checked += 1;
+                }
+            }
+        }
+        // Every velocity and acceleration letter at least, and the force names.
+        assert!(checked > 360 * 10, "{checked}");
     }
 
     #[test]

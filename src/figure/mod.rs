@@ -6,6 +6,7 @@ pub mod bench;
 pub mod chain;
 pub mod forces;
 pub mod fourbar;
+pub mod labels;
 pub mod linkage;
 pub mod plot;
 pub mod triad;
