@@ -6,7 +6,7 @@
 //! first with its box [`LABEL_GAP`] clear of the point, then at the further [`RINGS`]
 //! (1.5, 2, 2.5, 3 times that distance; eight directions and three rings left a crowded
 //! force polygon of the template with overlapping names at 40 positions). "Free"
-//! means that the letter's estimated box (width [`text_width`], one text height tall)
+//! means that the letter's estimated box (width [`label_width`], one text height tall)
 //! overlaps no letter already placed in the same polygon and, preferably, crosses none of
 //! the polygon's segments. When no candidate is free, the one with the fewest overlapping
 //! letters, then the fewest crossed segments, wins (the earliest on a tie). Letters are
@@ -48,10 +48,10 @@ pub struct TextBox {
 }
 
 impl TextBox {
-    /// The estimated box of `text`, `height` high, centred at `centre`: [`text_width`] wide,
+    /// The estimated box of `text`, `height` high, centred at `centre`: [`label_width`] wide,
     /// one height tall.
     pub fn centred(centre: Point, text: &str, height: f64) -> TextBox {
-        let half = Vector::new(0.5 * text_width(text, height), 0.5 * height);
+        let half = Vector::new(0.5 * label_width(text, height), 0.5 * height);
         TextBox { min: centre - half, max: centre + half }
     }
 
@@ -190,6 +190,13 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
     out
 }
 
+/// Estimated width of a label: [`text_width`], with [`SAME_POINT`] as wide as `=` (DejaVu
+/// Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
+/// and a combined label `a≡b≡m` would print over its neighbours).
+pub fn label_width(text: &str, height: f64) -> f64 {
+    text_width(&text.replace(SAME_POINT, "="), height)
+}
+
 /// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
 fn unit(v: Vector, fallback: Vector) -> Vector {
     let n = v.norm();
@@ -200,7 +207,7 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> Vec<Point> {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
     let base = u0.y.atan2(u0.x);
-    let (hw, hh) = (0.5 * text_width(text, height), 0.5 * height);
+    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
     let mut out = Vec::with_capacity(RINGS.len() * TURNS.len());
     for ring in RINGS {
         for turn in TURNS {
@@ -217,7 +224,7 @@ pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> Vec<Point>
 /// The farthest a label's centre can be from its point: the last ring in the worst
 /// direction.
 pub fn max_distance(text: &str, height: f64) -> f64 {
-    let (hw, hh) = (0.5 * text_width(text, height), 0.5 * height);
+    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
     RINGS[RINGS.len() - 1] * (LABEL_GAP * height + hw.hypot(hh))
 }
 
