@@ -7,8 +7,9 @@
 //! intersection point `int` (seed eq. 5). In it, R_A runs from `int` to the end of R_A^n,
 //! R_C from the end of F_i3 to `int`, and R_B (seed eq. 7) from the end of F to `int`.
 //! The crank's polygon (Fig. 5) starts at the end of R_A^n: −R_A (to `int`), F_i1, G1, and
-//! R_O back to the start. Each vector is an arrow with its name at its middle, on the
-//! outside of the polygon.
+//! R_O back to the start. Each vector is an arrow with its name beside its middle,
+//! preferably on the outside of the polygon, placed clear of the other names by
+//! [`super::labels`].
 
 use crate::draw::{Aci, Drawing, Entity, Shape};
 use crate::geom::{Point, Vector, perp};

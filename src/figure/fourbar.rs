@@ -3,7 +3,8 @@
 //! the coupler curve of M; the velocity polygon (pole p, vectors pa, pb, pm, relative ab);
 //! the acceleration polygon (pole π, a′, the normal and tangential components of a_BA and
 //! of a_B about C, image points b′, m′); and, with forces, the force polygons of the dyad
-//! and of the crank (see [`super::forces`]).
+//! and of the crank (see [`super::forces`]). The polygons' letters are placed by
+//! [`super::labels`], so that they stay readable in a small polygon.
 //!
 //! # Layout and scales
 //! One [`Layout`] is computed per run from every position, so all frames share one window
