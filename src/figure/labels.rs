@@ -51,7 +51,16 @@ impl TextBox {
     /// The estimated box of `text`, `height` high, centred at `centre`: [`label_width`] wide,
     /// one height tall.
     pub fn centred(centre: Point, text: &str, height: f64) -> TextBox {
-        let half = Vector::new(0.5 * label_width(text, height), 0.5 * height);
+        TextBox::around(centre, TextBox::half_size(text, height))
+    }
+
+    /// Half the width and half the height of [`TextBox::centred`]'s box.
+    fn half_size(text: &str, height: f64) -> Vector {
+        Vector::new(0.5 * label_width(text, height), 0.5 * height)
+    }
+
+    /// The box with half-sizes `half` centred at `centre`.
+    fn around(centre: Point, half: Vector) -> TextBox {
         TextBox { min: centre - half, max: centre + half }
     }
 
@@ -138,8 +147,9 @@ impl Polygon {
         let mut out = Vec::with_capacity(letters.len());
         for l in &letters {
             let mut best: Option<((usize, usize), Point, TextBox)> = None;
+            let half = TextBox::half_size(&l.text, l.height);
             for c in candidates(l.at, &l.text, l.height, l.dir) {
-                let bx = TextBox::centred(c, &l.text, l.height);
+                let bx = TextBox::around(c, half);
                 let hits = boxes.iter().filter(|b| b.overlaps(&bx)).count();
                 let crossed = self.segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
                 let score = (hits, crossed);
@@ -204,21 +214,21 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 }
 
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
-pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> Vec<Point> {
+pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
     let base = u0.y.atan2(u0.x);
     let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    let mut out = Vec::with_capacity(RINGS.len() * TURNS.len());
-    for ring in RINGS {
-        for turn in TURNS {
+    // Lazy: most letters take their first candidate, so the directions are not computed
+    // ahead (a run places some ten thousand letters).
+    RINGS.into_iter().flat_map(move |ring| {
+        TURNS.into_iter().map(move |turn| {
             let a = base + turn * TURN;
             let u = Vector::new(a.cos(), a.sin());
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
-            out.push(at + u * (ring * (LABEL_GAP * height + reach)));
-        }
-    }
-    out
+            at + u * (ring * (LABEL_GAP * height + reach))
+        })
+    })
 }
 
 /// The farthest a label's centre can be from its point: the last ring in the worst
@@ -286,7 +296,7 @@ mod tests {
 
     #[test]
     fn candidates_start_in_the_preferred_direction_and_stay_within_reach() {
-        let c = candidates(Point::new(0.0, 0.0), "nBA", 1.0, Vector::new(2.0, 0.0));
+        let c: Vec<Point> = candidates(Point::new(0.0, 0.0), "nBA", 1.0, Vector::new(2.0, 0.0)).collect();
         assert_eq!(c.len(), TURNS.len() * RINGS.len());
         let w = text_width("nBA", 1.0);
         assert!((c[0] - Point::new(LABEL_GAP + 0.5 * w, 0.0)).norm() < 1e-12);
