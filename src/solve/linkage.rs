@@ -45,6 +45,10 @@ pub const MAX_ASSEMBLY_ITERATIONS: usize = 200;
 /// ρ ≈ 0.36·√δθ at a rocker angle δθ rad before its extreme, 1.2e-7 on the extreme
 /// itself; the bundled templates stay above 2e-2.
 pub const NEAR_SINGULAR_PIVOT_REL: f64 = 1e-5;
+/// Iterations allowed to the singular value decomposition that names the constraints of a
+/// singularity (nalgebra's default, 0, means no limit; it converges in a few dozen sweeps on
+/// a finite Jacobian of our sizes).
+const SVD_MAX_ITERATIONS: usize = 10_000;
 /// Component of the left singular vector above which a constraint is named as taking part
 /// in a singularity.
 const SINGULAR_SHARE: f64 = 0.1;
@@ -901,8 +905,14 @@ impl Solver {
         let n = self.n;
         let mut jac = vec![0.0; n * n];
         self.scaled_jacobian(&self.q, &mut jac);
+        if jac.iter().any(|v| !v.is_finite()) {
+            // nalgebra's SVD does not terminate on NaN or infinite entries.
+            return "(not determined: the Jacobian has non-finite entries)".into();
+        }
         let mat = nalgebra::DMatrix::from_row_slice(n, n, &jac);
-        let svd = mat.svd(true, false);
+        let Some(svd) = mat.try_svd(true, false, f64::EPSILON, SVD_MAX_ITERATIONS) else {
+            return "(not determined: the singular value decomposition did not converge)".into();
+        };
         let Some(u) = svd.u else { return "(unknown)".into() };
         let (k, _) = svd
             .singular_values
@@ -1450,6 +1460,18 @@ mod tests {
             }
             other => panic!("expected a singularity, got {other}"),
         }
+    }
+
+    #[test]
+    fn constraints_of_a_non_finite_jacobian_are_not_determined_rather_than_looping() {
+        // nalgebra's SVD never returns on NaN entries; a driver far out of range (a scene
+        // with time.to = 1e200) used to hang the run here.
+        let mut s = Solver::new(slider_crank("0.3 + t")).unwrap();
+        s.q.iter_mut().for_each(|v| *v = f64::NAN);
+        assert!(s.singular_constraints().contains("not determined"));
+        s.q.iter_mut().for_each(|v| *v = 1e200);
+        let names = s.singular_constraints();
+        assert!(!names.is_empty());
     }
 
     #[test]
