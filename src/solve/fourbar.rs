@@ -69,6 +69,18 @@ pub enum FourbarError {
         /// Transmission angle, degrees (≈ 0 or 180).
         transmission_deg: f64,
     },
+    /// A computed quantity overflowed or is not a number: the scene's magnitudes are beyond
+    /// what double precision carries through the equations (e.g. a length of 1e200, whose
+    /// square overflows, or omega1 = 1e200).
+    #[error(
+        "the {quantity} at phi1 = {phi1_deg}° are not finite numbers: the scene's lengths, omega1, masses or forces are too large (or too small) for double precision"
+    )]
+    NonFinite {
+        /// Crank angle, degrees.
+        phi1_deg: f64,
+        /// What overflowed: "positions", "velocities and accelerations" or "reactions".
+        quantity: &'static str,
+    },
     /// Not one crank angle of the sweep gives an assembled linkage.
     #[error("the four-bar cannot be assembled at any crank angle of phi1_deg = {from_deg}..{to_deg}")]
     NeverAssembled {
@@ -311,6 +323,32 @@ pub struct Kinematics {
     pub a_g3: Vector,
 }
 
+impl Kinematics {
+    /// Whether every component is a finite number (one sum: NaN and infinities propagate).
+    pub fn is_finite(&self) -> bool {
+        let vectors = [
+            self.v_a,
+            self.v_b,
+            self.v_m,
+            self.v_ba,
+            self.a_a,
+            self.a_b,
+            self.a_m,
+            self.a_ba_n,
+            self.a_ba_t,
+            self.a_bc_n,
+            self.a_bc_t,
+            self.a_g1,
+            self.a_g21,
+            self.a_g22,
+            self.a_g3,
+        ];
+        let sum: f64 =
+            vectors.iter().map(|v| v.x + v.y).sum::<f64>() + self.omega2 + self.omega3 + self.eps2 + self.eps3;
+        sum.is_finite()
+    }
+}
+
 /// The four-bar at one crank angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Position {
@@ -436,6 +474,10 @@ impl Prepared {
     fn why_not(&self, phi1: f64, a: Point) -> FourbarError {
         let g = &self.geom;
         let ac = (g.c - a).norm();
+        if !(a.x.is_finite() && a.y.is_finite() && (ac * ac).is_finite()) {
+            // |AC|² overflows: no assembly question can be answered in double precision.
+            return FourbarError::NonFinite { phi1_deg: geom::deg(phi1), quantity: "positions" };
+        }
         let reach_max = g.l_ab + g.l_bc;
         let reach_min = (g.l_ab - g.l_bc).abs();
         let phi1_deg = geom::deg(phi1);
@@ -778,6 +820,7 @@ pub fn solve_motion(spec: &MotionSpec) -> Result<Motion, FourbarError> {
         let phi1 = geom::rad(deg);
         let (a, ix) = match prepared.dyad(phi1) {
             Ok(x) => x,
+            Err(e @ FourbarError::NonFinite { .. }) => return Err(e),
             Err(e) => {
                 let reason = match e {
                     FourbarError::Unassemblable { reach, .. } => GapReason::Unassemblable(reach),
@@ -810,8 +853,14 @@ pub fn solve_motion(spec: &MotionSpec) -> Result<Motion, FourbarError> {
         };
         track = [track[1], Some((deg, b))];
         let mut pos = prepared.complete(phi1, a, b);
+        if !(pos.a.x + pos.a.y + pos.b.x + pos.b.y + pos.m.x + pos.m.y).is_finite() {
+            return Err(FourbarError::NonFinite { phi1_deg: deg, quantity: "positions" });
+        }
         if want_kin {
             match kinematics(geom, &pos, spec.omega1) {
+                Ok(kin) if !kin.is_finite() => {
+                    return Err(FourbarError::NonFinite { phi1_deg: deg, quantity: "velocities and accelerations" });
+                }
                 Ok(kin) => pos.kin = Some(kin),
                 Err(_) => {
                     gaps.skip(deg, GapReason::Singular, &limits);
@@ -820,6 +869,9 @@ pub fn solve_motion(spec: &MotionSpec) -> Result<Motion, FourbarError> {
             }
             if let (Some(dynamics), Some(kin)) = (dynamics, pos.kin.as_ref()) {
                 match kinetostatics::forces(geom, &pos, kin, dynamics) {
+                    Ok(f) if !f.is_finite() => {
+                        return Err(FourbarError::NonFinite { phi1_deg: deg, quantity: "reactions" });
+                    }
                     Ok(f) => forces.push(f),
                     Err(_) => {
                         gaps.skip(deg, GapReason::Singular, &limits);

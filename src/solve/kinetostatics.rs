@@ -147,6 +147,19 @@ pub struct Forces {
     pub me1: f64,
 }
 
+impl Forces {
+    /// Whether every component is a finite number (one sum: NaN and infinities propagate).
+    pub fn is_finite(&self) -> bool {
+        let vectors = [
+            self.g21, self.g22, self.g3, self.g1, self.fi21, self.fi22, self.fi3, self.fi1, self.f_ext, self.r_a_n,
+            self.r_a_t, self.r_c_n, self.r_c_t, self.r_a, self.r_b, self.r_c, self.r_o,
+        ];
+        let sum: f64 =
+            vectors.iter().map(|v| v.x + v.y).sum::<f64>() + self.mi21 + self.mi22 + self.mi3 + self.mi1 + self.me1;
+        sum.is_finite()
+    }
+}
+
 /// The applied (non-reaction) loads at one position: weights, inertia torsors, external
 /// forces, with their points of application. Shared by both routes.
 #[derive(Debug, Clone, Copy, PartialEq)]
