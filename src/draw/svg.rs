@@ -126,6 +126,30 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
     doc.to_string()
 }
 
+/// The frames of an animation without rewriting their shared part: the SVG of a drawing
+/// `base` followed by a drawing `moving`, both written by [`to_string`] with the same
+/// options (so with the same header). It is `base_svg` without its closing tag, then
+/// `moving_svg` after its header (the `<svg>` line and the background `<rect>` line): the
+/// writer's output for base's entities then moving's, as long as base's last entity and
+/// moving's first are on different layers (else the writer would put them in one group).
+/// `None` when the two headers differ (then write the frame whole).
+pub fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
+    const CLOSE: &str = "</svg>";
+    let header_end = |s: &str| -> Option<usize> {
+        let first = s.find('\n')?;
+        Some(first + 1 + s[first + 1..].find('\n')? + 1)
+    };
+    let (hb, hm) = (header_end(base_svg)?, header_end(moving_svg)?);
+    if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) {
+        return None;
+    }
+    let head = &base_svg[..base_svg.len() - CLOSE.len()];
+    let mut out = String::with_capacity(head.len() + moving_svg.len() - hm);
+    out.push_str(head);
+    out.push_str(&moving_svg[hm..]);
+    Some(out)
+}
+
 /// Writes `drawing` as SVG to `out`.
 pub fn write(drawing: &Drawing, opts: &SvgOptions, mut out: impl Write) -> std::io::Result<()> {
     out.write_all(to_string(drawing, opts).as_bytes())

@@ -246,7 +246,8 @@ pub fn position_layer(d: &mut Drawing, k: usize) -> usize {
 }
 
 /// One frame of the animation: the mechanism at `q` on layer `MECHANISM`, with the paths
-/// of the measured points over `motion` on `TRAJECTORY`.
+/// of the measured points over `motion` on `TRAJECTORY` ([`frame_base`], then
+/// [`frame_moving`]).
 pub fn frame(
     scene: &LinkageScene,
     motion: &[&[f64]],
@@ -254,10 +255,28 @@ pub fn frame(
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) -> Drawing {
+    let mut d = frame_base(scene, motion, style);
+    moving_part(&mut d, scene, q, spans, style);
+    d
+}
+
+/// What every frame shares: the paths of the measured points over `motion`.
+pub fn frame_base(scene: &LinkageScene, motion: &[&[f64]], style: &Style) -> Drawing {
     let mut d = new_drawing(style);
     let tl = trajectory_layer(&mut d);
     trajectories(&mut d, tl, scene, motion);
-    let layer = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
-    mechanism(&mut d, layer, scene, q, spans, style);
     d
+}
+
+/// What changes from frame to frame: the mechanism at `q` on layer `MECHANISM` (to be
+/// written after [`frame_base`], see `draw::svg::splice`).
+pub fn frame_moving(scene: &LinkageScene, q: &[f64], spans: &[Option<(Point, Point)>], style: &Style) -> Drawing {
+    let mut d = new_drawing(style);
+    moving_part(&mut d, scene, q, spans, style);
+    d
+}
+
+fn moving_part(d: &mut Drawing, scene: &LinkageScene, q: &[f64], spans: &[Option<(Point, Point)>], style: &Style) {
+    let layer = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
+    mechanism(d, layer, scene, q, spans, style);
 }

@@ -172,7 +172,7 @@ fn frame_svgs(
         .par_iter()
         .zip(positions.par_iter())
         .map(|(m, p)| {
-            let s = splice(&base_svg, &svg::to_string(m, svg_opts))
+            let s = svg::splice(&base_svg, &svg::to_string(m, svg_opts))
                 .unwrap_or_else(|| svg::to_string(&layout.frame(base, m), svg_opts));
             if let Some(b) = &bar {
                 b.inc(1);
@@ -195,28 +195,6 @@ fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
         bar.set_style(style);
     }
     Some(bar)
-}
-
-/// The SVG of `base` followed by `moving` (both written with the same options, so with the
-/// same header): `base_svg` without its closing tag, then `moving_svg` after its header
-/// (the `<svg>` line and the background `<rect>` line). This is the SVG writer's output for
-/// the frame (base, then moving), written without redoing the shared part; `None` when the
-/// two headers differ (then the frame is written whole).
-fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
-    const CLOSE: &str = "</svg>";
-    let header_end = |s: &str| -> Option<usize> {
-        let first = s.find('\n')?;
-        Some(first + 1 + s[first + 1..].find('\n')? + 1)
-    };
-    let (hb, hm) = (header_end(base_svg)?, header_end(moving_svg)?);
-    if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) {
-        return None;
-    }
-    let head = &base_svg[..base_svg.len() - CLOSE.len()];
-    let mut out = String::with_capacity(head.len() + moving_svg.len() - hm);
-    out.push_str(head);
-    out.push_str(&moving_svg[hm..]);
-    Some(out)
 }
 
 /// Layer (and frame file) names: `POS_ddd` with the crank angle in whole degrees when every
@@ -617,10 +595,10 @@ mod tests {
         for (p, f) in motion.positions.iter().zip(&motion.forces) {
             let m = layout.moving(geom, p, Some(f));
             let whole = svg::to_string(&layout.frame(&base, &m), &opts);
-            assert_eq!(splice(&base_svg, &svg::to_string(&m, &opts)).as_deref(), Some(whole.as_str()));
+            assert_eq!(svg::splice(&base_svg, &svg::to_string(&m, &opts)).as_deref(), Some(whole.as_str()));
         }
         // Different windows: no splice.
         let other = SvgOptions { width_px: 10, ..opts };
-        assert!(splice(&base_svg, &svg::to_string(&base, &other)).is_none());
+        assert!(svg::splice(&base_svg, &svg::to_string(&base, &other)).is_none());
     }
 }

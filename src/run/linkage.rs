@@ -3,12 +3,13 @@
 //! DXF (a layer per position), SVG frames with the HTML viewer, diagrams, CSV and JSON.
 //! With `--drag`, the dragged configuration is written instead of the motion.
 
+use rayon::prelude::*;
 use serde_json::{Map, Value, json};
 
 use super::output::Output;
 use super::{Outcome, RunOptions, solve_err};
 use crate::Error;
-use crate::draw::svg::{SvgOptions, to_string as svg_string};
+use crate::draw::svg::{self, SvgOptions, to_string as svg_string};
 use crate::draw::viewer::{Frame, html};
 use crate::draw::{Aci, Drawing, LineType};
 use crate::figure::linkage::{self as fig, Style};
@@ -252,12 +253,23 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     out.write(format!("{}.svg", scene.name), svg_string(&frame_drawing(motion[0]), &svg_opts))?;
 
     if !opts.no_frames {
-        let mut frames = Vec::with_capacity(states.len());
-        for (k, s) in states.iter().enumerate() {
-            let svg = svg_string(&frame_drawing(&s.q), &svg_opts);
-            out.write(format!("frames/{}/pos_{k:03}.svg", scene.name), &svg)?;
-            frames.push(Frame { label: format!("t = {:.4} s", s.t), svg });
-        }
+        // The paths are written once; each frame is its mechanism appended to them.
+        let base_svg = svg_string(&fig::frame_base(scene, &motion, &style), &svg_opts);
+        let frames: Vec<Frame> = states
+            .par_iter()
+            .map(|s| {
+                let moving = svg_string(&fig::frame_moving(scene, &s.q, &spans, &style), &svg_opts);
+                let svg =
+                    svg::splice(&base_svg, &moving).unwrap_or_else(|| svg_string(&frame_drawing(&s.q), &svg_opts));
+                Frame { label: format!("t = {:.4} s", s.t), svg }
+            })
+            .collect();
+        let files: Vec<(std::path::PathBuf, &[u8])> = frames
+            .iter()
+            .enumerate()
+            .map(|(k, f)| (format!("frames/{}/pos_{k:03}.svg", scene.name).into(), f.svg.as_bytes()))
+            .collect();
+        out.write_many(&files)?;
         out.write(format!("{}.html", scene.name), html(&scene.name, &frames))?;
     }
 
@@ -355,4 +367,33 @@ fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Sol
     out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings: Vec::new(), written })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::Scene;
+
+    #[test]
+    fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
+        for template in ["shaper", "fourbar-linkage", "triad-driven"] {
+            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("templates/{template}.toml"));
+            let over: Vec<crate::scene::Override> = vec!["time.steps=8".parse().unwrap()];
+            let loaded = crate::scene::load(&path, &over).unwrap();
+            let Scene::Linkage(scene) = &loaded.scene else { panic!("{template} is not a linkage") };
+            let states = Solver::new(scene.mechanism.clone()).unwrap().run(&scene.times).unwrap();
+            let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
+            let style = Style::for_length(scene.mechanism.length_scale);
+            let spans = fig::guide_spans(scene, &motion, &style);
+            // One window for every frame, as the run has (else the headers differ).
+            let base = fig::frame_base(scene, &motion, &style);
+            let opts = SvgOptions { window: base.bounds(), ..SvgOptions::default() };
+            let base_svg = svg_string(&base, &opts);
+            for q in &motion {
+                let whole = svg_string(&fig::frame(scene, &motion, q, &spans, &style), &opts);
+                let moving = svg_string(&fig::frame_moving(scene, q, &spans, &style), &opts);
+                assert_eq!(svg::splice(&base_svg, &moving).as_deref(), Some(whole.as_str()), "{template}");
+            }
+        }
+    }
 }
