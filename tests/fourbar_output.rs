@@ -444,3 +444,21 @@ fn unassemblable_angles_produce_no_frame_and_a_warning() {
         assert!(!read(&e.unwrap().path()).contains("NaN"));
     }
 }
+
+/// A mistyped step (0.05° gives 7181 crank angles) is refused before anything is written,
+/// naming the field and the limit of drawn positions; exit code 2.
+#[test]
+fn a_sweep_finer_than_a_run_draws_is_refused() {
+    let d = tempfile::tempdir().unwrap();
+    let out_dir = d.path().join("o");
+    let o = mechdraw()
+        .args(["run", "-q", "--set", "phi1_deg.step=0.05", "--out"])
+        .arg(&out_dir)
+        .arg(root().join("templates/fourbar-chebyshev.toml"))
+        .output()
+        .unwrap();
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{e}");
+    assert!(e.contains("field `phi1_deg.step`") && e.contains("7181 positions") && e.contains("at most 3600"), "{e}");
+    assert!(!out_dir.exists(), "something was written");
+}

@@ -98,3 +98,18 @@ fn bad_drag_option() {
     assert_eq!(out.status.code(), Some(2), "{e}");
     assert!(e.contains("--drag crank.Z=1,2") && e.contains("no point `Z`"), "{e}");
 }
+
+#[test]
+fn more_steps_than_a_run_draws() {
+    // 4000 steps would be 4001 frames, each carrying the whole paths: refused before
+    // anything is written, naming the field and the limit.
+    let e = run_bad(&shaper_text().replace("steps = 360", "steps = 4000"));
+    assert!(e.contains("field `time.steps`") && e.contains("4001 positions") && e.contains("at most 3600"), "{e}");
+    // The limit itself is drawn.
+    let tmp = tempfile::tempdir().unwrap();
+    let scene = tmp.path().join("ok.toml");
+    std::fs::write(&scene, shaper_text().replace("steps = 360", "steps = 3599")).unwrap();
+    let mut cmd = common::mechdraw();
+    cmd.args(["run", "-q", "--no-frames", "--out"]).arg(tmp.path().join("o")).arg(&scene);
+    assert!(cmd.status().unwrap().success());
+}

@@ -59,6 +59,7 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
     let Some(dir) = &opts.out_dir else {
         return Ok(Outcome { summary, report, warnings, written: Vec::new() });
     };
+    super::check_drawn(file, "phi1_deg.step", motion.positions.len(), "use a larger step")?;
     let mut out = Output::new(dir)?;
     let name = &scene.name;
     let step = spec.sweep.step_deg;

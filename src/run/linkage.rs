@@ -231,6 +231,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     let Some(dir) = &opts.out_dir else {
         return Ok(Outcome { summary, report, warnings, written: Vec::new() });
     };
+    super::check_drawn(file, "time.steps", states.len(), "use fewer steps")?;
     let mut out = Output::new(dir)?;
     let style = Style::for_length(mech.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();

@@ -59,6 +59,27 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     }
 }
 
+/// Most positions a run draws: each is a DXF layer and an SVG frame (~20 KB each for the
+/// four-bar, and a linkage frame also carries the whole paths, so its frames grow with the
+/// square of the count). 3600 is a 0.1° crank step over a turn. The library can still
+/// solve a finer scene without an output directory ([`RunOptions::out_dir`] = `None`).
+pub const MAX_DRAWN_POSITIONS: usize = 3600;
+
+/// Refuses to draw more than [`MAX_DRAWN_POSITIONS`] positions, naming the field that sets
+/// their number (so that a mistyped step does not fill the disk).
+pub(crate) fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
+    if count <= MAX_DRAWN_POSITIONS {
+        return Ok(());
+    }
+    Err(Error::Scene(crate::scene::SceneError::Field {
+        file: file.to_string(),
+        field: field.to_string(),
+        message: format!(
+            "gives {count} positions to draw; a run draws at most {MAX_DRAWN_POSITIONS} (each is a DXF layer and an SVG frame, so a mistyped value would fill the disk): {advice}"
+        ),
+    }))
+}
+
 /// Wraps a solver error with the scene file.
 pub(crate) fn solve_err(file: &str) -> impl FnOnce(crate::solve::SolveError) -> Error + '_ {
     move |source| Error::Solve { file: file.to_string(), source }
