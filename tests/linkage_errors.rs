@@ -113,3 +113,11 @@ fn more_steps_than_a_run_draws() {
     cmd.args(["run", "-q", "--no-frames", "--out"]).arg(tmp.path().join("o")).arg(&scene);
     assert!(cmd.status().unwrap().success());
 }
+
+#[test]
+fn a_time_step_too_coarse_for_the_motion_suggests_more_steps() {
+    // 360 steps over 1000 s: the crank turns 2.8 times between samples, so Newton from the
+    // previous position cannot follow; the error says where and what to change.
+    let e = run_bad(&shaper_text().replace("to = 1.0, steps = 360", "to = 1000.0, steps = 360"));
+    assert!(e.contains("did not converge at t = 2.77") && e.contains("try more time steps"), "{e}");
+}

@@ -203,7 +203,7 @@ pub enum LinkageError {
     },
     /// Newton–Raphson did not converge.
     #[error(
-        "Newton–Raphson did not converge at t = {t} s after {iterations} iterations (residual {residual:.3e} relative, largest in {worst})"
+        "Newton–Raphson did not converge at t = {t} s after {iterations} iterations (residual {residual:.3e} relative, largest in {worst}): the mechanism cannot be assembled there (a dead point just passed), or the time step is too large for the motion (try more time steps)"
     )]
     NoConvergence {
         /// Time.
