@@ -429,14 +429,7 @@ fn shaper_positions() -> Drawing {
     let style = fig::Style::for_length(scene.mechanism.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let spans = fig::guide_spans(scene, &motion, &style);
-    let mut all = fig::new_drawing(&style);
-    let traj = fig::trajectory_layer(&mut all);
-    fig::trajectories(&mut all, traj, scene, &motion);
-    for (k, q) in motion.iter().enumerate() {
-        let layer = fig::position_layer(&mut all, k);
-        fig::mechanism(&mut all, layer, scene, q, &spans, &style);
-    }
-    all
+    fig::all_positions(scene, &motion, &spans, &style)
 }
 
 /// The hand-written R12 path gives the crate path's bytes for real drawings (the triad,

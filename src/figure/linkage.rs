@@ -260,6 +260,22 @@ pub fn frame(
     d
 }
 
+/// The DXF drawing of a whole motion: the paths on `TRAJECTORY` ([`frame_base`]) and the
+/// mechanism at every position of `motion` on its own layer `POS_kkk`.
+pub fn all_positions(
+    scene: &LinkageScene,
+    motion: &[&[f64]],
+    spans: &[Option<(Point, Point)>],
+    style: &Style,
+) -> Drawing {
+    let mut all = frame_base(scene, motion, style);
+    for (k, q) in motion.iter().enumerate() {
+        let layer = position_layer(&mut all, k);
+        mechanism(&mut all, layer, scene, q, spans, style);
+    }
+    all
+}
+
 /// What every frame shares: the paths of the measured points over `motion`.
 pub fn frame_base(scene: &LinkageScene, motion: &[&[f64]], style: &Style) -> Drawing {
     let mut d = new_drawing(style);

@@ -238,13 +238,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     let spans = fig::guide_spans(scene, &motion, &style);
 
     // DXF: every position on its own layer, the paths on TRAJECTORY.
-    let mut all = fig::new_drawing(&style);
-    let traj = fig::trajectory_layer(&mut all);
-    fig::trajectories(&mut all, traj, scene, &motion);
-    for (k, q) in motion.iter().enumerate() {
-        let layer = fig::position_layer(&mut all, k);
-        fig::mechanism(&mut all, layer, scene, q, &spans, &style);
-    }
+    let all = fig::all_positions(scene, &motion, &spans, &style);
     out.write(format!("{}.dxf", scene.name), dxf_bytes(&all)?)?;
     let window = all.bounds();
 

@@ -335,22 +335,27 @@ fn short(o: &mut Vec<u8>, code: &[u8], v: i16) {
     o.extend_from_slice(code);
     o.extend_from_slice(b"\r\n");
     let mut buf = [b' '; 6];
-    let mut i = buf.len();
-    let mut m = v.unsigned_abs();
-    loop {
-        i -= 1;
-        buf[i] = b'0' + (m % 10) as u8;
-        m /= 10;
-        if m == 0 {
-            break;
-        }
-    }
+    let mut i = digits(&mut buf, u64::from(v.unsigned_abs()));
     if v < 0 {
         i -= 1;
         buf[i] = b'-';
     }
     o.extend_from_slice(&buf);
     o.extend_from_slice(b"\r\n");
+}
+
+/// Writes the decimal digits of `m` right-aligned at the end of `buf` (which must be long
+/// enough); returns the index of the first digit.
+fn digits(buf: &mut [u8], mut m: u64) -> usize {
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (m % 10) as u8;
+        m /= 10;
+        if m == 0 {
+            return i;
+        }
+    }
 }
 
 /// A string pair, escaped as the crate escapes R12 text.
@@ -424,16 +429,7 @@ pub(super) fn write_f64(o: &mut Vec<u8>, v: f64) {
     }
     let (int, frac) = ((q / SCALE) as u64, (q % SCALE) as u64);
     let mut buf = [0u8; 20];
-    let mut i = buf.len();
-    let mut m = int;
-    loop {
-        i -= 1;
-        buf[i] = b'0' + (m % 10) as u8;
-        m /= 10;
-        if m == 0 {
-            break;
-        }
-    }
+    let i = digits(&mut buf, int);
     o.extend_from_slice(&buf[i..]);
     o.push(b'.');
     if frac == 0 {
