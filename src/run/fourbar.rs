@@ -133,7 +133,7 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
     out.write(format!("{name}.csv"), table.csv.to_bytes())?;
     let json_text = serde_json::to_string_pretty(&summary)
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
-    out.write(format!("{name}.json"), json_text)?;
+    out.write(format!("{name}.json"), json_text + "\n")?;
     for (file, s, png) in rendered? {
         out.write(format!("diagrams/{name}/{file}.svg"), s)?;
         if let Some(png) = png {

@@ -111,6 +111,13 @@ fn export(what: &str) -> impl FnOnce(String) -> Error + '_ {
     move |message| Error::Export { what: what.to_string(), message }
 }
 
+/// The JSON summary as written to `<name>.json`: pretty, with a final newline.
+fn json_text(summary: &Value, name: &str) -> Result<String, Error> {
+    serde_json::to_string_pretty(summary)
+        .map(|s| s + "\n")
+        .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })
+}
+
 fn dxf_bytes(d: &Drawing) -> Result<Vec<u8>, Error> {
     crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default()).map_err(|e| export("DXF")(e.to_string()))
 }
@@ -291,7 +298,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         csv.row(std::iter::once(s.t).chain(cols.iter().map(|c| c.values[k])));
     }
     out.write(format!("{}.csv", scene.name), csv.to_bytes())?;
-    out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
+    out.write(format!("{}.json", scene.name), json_text(&summary, &scene.name)?)?;
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings, written })
 }
@@ -359,7 +366,7 @@ fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Sol
     fig::mechanism(&mut d, layer, scene, &state.q, &spans, &style);
     out.write(format!("{}.dxf", scene.name), dxf_bytes(&d)?)?;
     out.write(format!("{}.svg", scene.name), svg_string(&d, &SvgOptions::default()))?;
-    out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
+    out.write(format!("{}.json", scene.name), json_text(&summary, &scene.name)?)?;
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings: Vec::new(), written })
 }
