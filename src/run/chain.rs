@@ -205,13 +205,13 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
                 let h =
                     fig::histogram(&z.name, &z.label, units, scene.stackup.distribution.name(), m, &r.stack, z.spec);
                 let text = svg::to_string(&h, &SvgOptions::default());
-                out.write(format!("{}-{}-histogram.svg", scene.name, z.name), &text)?;
+                out.write(format!("diagrams/{}/{}-histogram.svg", scene.name, z.name), &text)?;
                 if opts.png {
                     let png = crate::draw::raster::to_png(&text, 1000).map_err(|e| Error::Export {
-                        what: format!("{}-{}-histogram.png", scene.name, z.name),
+                        what: format!("diagrams/{}/{}-histogram.png", scene.name, z.name),
                         message: e.to_string(),
                     })?;
-                    out.write(format!("{}-{}-histogram.png", scene.name, z.name), png)?;
+                    out.write(format!("diagrams/{}/{}-histogram.png", scene.name, z.name), png)?;
                 }
             }
         }
