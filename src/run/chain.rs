@@ -207,7 +207,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
                 let text = svg::to_string(&h, &SvgOptions::default());
                 out.write(format!("diagrams/{}/{}-histogram.svg", scene.name, z.name), &text)?;
                 if opts.png {
-                    let png = crate::draw::raster::to_png(&text, 1000).map_err(|e| Error::Export {
+                    let png = crate::draw::raster::to_png(&text, super::PNG_WIDTH_PX).map_err(|e| Error::Export {
                         what: format!("diagrams/{}/{}-histogram.png", scene.name, z.name),
                         message: e.to_string(),
                     })?;
@@ -216,7 +216,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
             }
         }
         if opts.png {
-            let png = crate::draw::raster::to_png(&chain_svg, 1600)
+            let png = crate::draw::raster::to_png(&chain_svg, super::PNG_WIDTH_PX)
                 .map_err(|e| Error::Export { what: format!("{}.png", scene.name), message: e.to_string() })?;
             out.write(format!("{}.png", scene.name), png)?;
         }

@@ -20,10 +20,8 @@ use crate::scene::fourbar::FourbarScene;
 use crate::solve::fourbar::{Motion, Position, solve_motion};
 use crate::solve::kinetostatics::Forces;
 
-/// Width of the SVG frames and of the diagrams' PNG copies, pixels.
+/// Width of the SVG frames, pixels.
 const FRAME_WIDTH_PX: u32 = 1000;
-/// Width of the PNG copies of the diagrams, pixels.
-const DIAGRAM_PNG_WIDTH_PX: u32 = 1000;
 /// A jump of more than this many sweep steps between consecutive solved positions is a
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
@@ -104,7 +102,7 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
                         .par_iter()
                         .map(|(file, d)| {
                             let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
-                            let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
+                            let png = if opts.png { Some(raster::to_png(&s, super::PNG_WIDTH_PX)) } else { None };
                             png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
                                 what: format!("diagrams/{name}/{file}.png"),
                                 message: e.to_string(),

@@ -286,7 +286,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         });
         let svg = svg_string(&d, &SvgOptions::default());
         if opts.png {
-            let png = crate::draw::raster::to_png(&svg, 1000).map_err(|e| export("PNG")(e.to_string()))?;
+            let png = crate::draw::raster::to_png(&svg, super::PNG_WIDTH_PX).map_err(|e| export("PNG")(e.to_string()))?;
             out.write(format!("diagrams/{}/{}.png", scene.name, c.name), png)?;
         }
         out.write(format!("diagrams/{}/{}.svg", scene.name, c.name), svg)?;

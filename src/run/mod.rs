@@ -59,6 +59,9 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     }
 }
 
+/// Width of every PNG a run writes with `--png` (pictures and diagrams alike), pixels.
+pub const PNG_WIDTH_PX: u32 = 1600;
+
 /// Most positions a run draws: each is a DXF layer and an SVG frame (~20 KB each for the
 /// four-bar, and a linkage frame also carries the whole paths, so its frames grow with the
 /// square of the count). 3600 is a 0.1° crank step over a turn. The library can still
