@@ -6,11 +6,10 @@
 use rayon::prelude::*;
 use serde_json::{Value, json};
 
-use super::output::Output;
-use super::{Outcome, RunOptions, solve_err};
+use super::products::{self, Picture, PositionsSource, Products};
+use super::solve_err;
 use crate::Error;
-use crate::draw::svg::{self, SvgOptions};
-use crate::draw::{Drawing, raster, viewer};
+use crate::figure::animation::Animation;
 use crate::figure::fourbar::{Layout, ModelUnits, Show, angle_text};
 use crate::figure::plot::{self, Diagram, Series};
 use crate::geom::{Point, Vector, deg};
@@ -20,13 +19,11 @@ use crate::scene::fourbar::FourbarScene;
 use crate::solve::fourbar::{Motion, Position, solve_motion};
 use crate::solve::kinetostatics::Forces;
 
-/// Width of the SVG frames, pixels.
-const FRAME_WIDTH_PX: u32 = 1000;
 /// A jump of more than this many sweep steps between consecutive solved positions is a
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
 
-pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Error> {
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
     let units = match scene.units {
@@ -53,147 +50,32 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
         warnings.push("no crank angle of the sweep could be assembled: nothing to draw".to_string());
     }
     let report = report_text(scene, &motion, &layout);
-
-    let Some(dir) = &opts.out_dir else {
-        return Ok(Outcome { summary, report, warnings, written: Vec::new() });
-    };
-    super::check_drawn(file, "phi1_deg.step", motion.positions.len(), "use a larger step")?;
-    let mut out = Output::new(dir)?;
     let name = &scene.name;
     let step = spec.sweep.step_deg;
-    let geom = &spec.geometry;
+    let geom = spec.geometry;
+    let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units)
+        .into_par_iter()
+        .map(|(stem, d)| products::Diagram { stem, drawing: plot::diagram(&d) })
+        .collect();
     let mut curve = runs(&motion.positions, step, |p| p.m);
     close_full_turn(&mut curve, &motion.positions, step);
-    let base = layout.base(geom, &curve);
+    let base = layout.base(&geom, &curve);
     let names = position_names(&motion.positions, spec.sweep.from_deg, step);
-
-    // Each position drawn once (in parallel), for the DXF layer and the frame.
-    let moving: Vec<Drawing> = motion
-        .positions
-        .par_iter()
-        .enumerate()
-        .map(|(i, p)| layout.moving(geom, p, motion.forces.get(i).filter(|_| show.forces)))
-        .collect();
-    let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(layout.window), ..SvgOptions::default() };
-
-    // The DXF (every position on its own layer) is built on one core while the frames,
-    // the viewer and the diagrams are built on the others; the frame files are staged
-    // (written) while the diagrams and the viewer are built.
-    let want_frames = !opts.no_frames;
-    let out_ref = &out;
-    let (dxf, (frames, staged, html, rendered)) = rayon::join(
-        || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
-        || {
-            let frames = if want_frames {
-                frame_svgs(&layout, &base, &moving, &motion.positions, &svg_opts, opts.progress)
-            } else {
-                Vec::new()
-            };
-            let frame_files: Vec<(std::path::PathBuf, &[u8])> = frames
-                .iter()
-                .zip(&names)
-                .map(|(f, n)| (format!("frames/{name}/{}.svg", n.to_lowercase()).into(), f.svg.as_bytes()))
-                .collect();
-            let (staged, (rendered, html)) = rayon::join(
-                || out_ref.stage(&frame_files),
-                || {
-                    let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
-                    let rendered: Result<Vec<RenderedDiagram>, Error> = diagrams
-                        .par_iter()
-                        .map(|(file, d)| {
-                            let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
-                            let png = if opts.png { Some(raster::to_png(&s, super::PNG_WIDTH_PX)) } else { None };
-                            png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
-                                what: format!("diagrams/{name}/{file}.png"),
-                                message: e.to_string(),
-                            })
-                        })
-                        .collect();
-                    let html = want_frames.then(|| {
-                        let title = format!("{name}: four-bar, {} positions", frames.len());
-                        viewer::html(&title, &frames)
-                    });
-                    (rendered, html)
-                },
-            );
-            (frames, staged, html, rendered)
-        },
-    );
-    out.write(format!("{name}.dxf"), dxf?)?;
-
-    // The first position as the scene's picture.
-    let picture = match (frames.first(), moving.first()) {
-        (Some(f), _) => f.svg.clone(),
-        (None, Some(first)) => svg::to_string(&layout.frame(&base, first), &svg_opts),
-        (None, None) => svg::to_string(&base, &svg_opts),
-    };
-    out.write(format!("{name}.svg"), picture)?;
-    out.write(format!("{name}.csv"), table.csv.to_bytes())?;
-    let json_text = serde_json::to_string_pretty(&summary)
-        .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
-    out.write(format!("{name}.json"), json_text + "\n")?;
-    for (file, s, png) in rendered? {
-        out.write(format!("diagrams/{name}/{file}.svg"), s)?;
-        if let Some(png) = png {
-            out.write(format!("diagrams/{name}/{file}.png"), png)?;
-        }
-    }
-    out.record(staged?);
-    if let Some(html) = html {
-        out.write(format!("{name}.html"), html)?;
-    }
-    let written = out.commit()?;
-    Ok(Outcome { summary, report, warnings, written })
-}
-
-/// A diagram's file stem, its SVG and (with `--png`) its PNG.
-type RenderedDiagram = (String, String, Option<Vec<u8>>);
-
-/// The DXF of the whole motion (R12, the writer's default).
-fn dxf_bytes(d: &Drawing, name: &str) -> Result<Vec<u8>, Error> {
-    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default())
-        .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
-}
-
-/// The SVG frames (in parallel), with the progress bar when asked for.
-fn frame_svgs(
-    layout: &Layout,
-    base: &Drawing,
-    moving: &[Drawing],
-    positions: &[Position],
-    svg_opts: &SvgOptions,
-    progress: bool,
-) -> Vec<viewer::Frame> {
-    let bar = progress_bar(progress, moving.len());
-    // The shared part is written once; each frame is its moving part appended to it.
-    let base_svg = svg::to_string(base, svg_opts);
-    let frames: Vec<viewer::Frame> = moving
-        .par_iter()
-        .zip(positions.par_iter())
-        .map(|(m, p)| {
-            let s = svg::splice(&base_svg, &svg::to_string(m, svg_opts))
-                .unwrap_or_else(|| svg::to_string(&layout.frame(base, m), svg_opts));
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-            viewer::Frame { label: format!("φ1 = {}°", angle_text(deg(p.phi1))), svg: s }
-        })
-        .collect();
-    if let Some(b) = &bar {
-        b.finish_and_clear();
-    }
-    frames
-}
-
-fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
-    if !on || n == 0 {
-        return None;
-    }
-    let bar = indicatif::ProgressBar::new(n as u64);
-    if let Ok(style) = indicatif::ProgressStyle::with_template("frames {bar:40.cyan/blue} {pos}/{len} {elapsed}") {
-        bar.set_style(style);
-    }
-    Some(bar)
+    let labels = motion.positions.iter().map(|p| format!("φ1 = {}°", angle_text(deg(p.phi1)))).collect();
+    let title = format!("{name}: four-bar, {} positions", motion.positions.len());
+    let window = layout.window;
+    let Motion { positions, forces, .. } = motion;
+    let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
+    Ok(Products {
+        name: name.clone(),
+        picture: Picture::Motion(Animation::new(title, base, window, names, labels, pose)),
+        positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
+        diagrams,
+        tables: vec![products::Table { suffix: String::new(), csv: table.csv }],
+        summary,
+        report,
+        warnings,
+    })
 }
 
 /// Layer (and frame file) names: `POS_ddd` with the crank angle in whole degrees when every
@@ -571,33 +453,4 @@ fn diagrams(
             (file.to_string(), Diagram { title, x_label: "φ1 [°]".into(), y_label, series })
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::Scene;
-
-    #[test]
-    fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
-        let over: Vec<crate::scene::Override> = vec!["phi1_deg.step=45".parse().unwrap()];
-        let loaded = crate::scene::load(&path, &over).unwrap();
-        let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
-        let motion = solve_motion(&scene.spec).unwrap();
-        let show = Show { velocity: true, acceleration: true, forces: true };
-        let geom = &scene.spec.geometry;
-        let layout = Layout::new(geom, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
-        let base = layout.base(geom, &runs(&motion.positions, 45.0, |p| p.m));
-        let opts = SvgOptions { window: Some(layout.window), ..SvgOptions::default() };
-        let base_svg = svg::to_string(&base, &opts);
-        for (p, f) in motion.positions.iter().zip(&motion.forces) {
-            let m = layout.moving(geom, p, Some(f));
-            let whole = svg::to_string(&layout.frame(&base, &m), &opts);
-            assert_eq!(svg::splice(&base_svg, &svg::to_string(&m, &opts)).as_deref(), Some(whole.as_str()));
-        }
-        // Different windows: no splice.
-        let other = SvgOptions { width_px: 10, ..opts };
-        assert!(svg::splice(&base_svg, &svg::to_string(&base, &other)).is_none());
-    }
 }
