@@ -79,6 +79,17 @@ impl Animation {
         d
     }
 
+    /// Every position's moving part, drawn in parallel.
+    pub fn poses(&self) -> Vec<Drawing> {
+        use rayon::prelude::*;
+        (0..self.len()).into_par_iter().map(|k| self.pose(k)).collect()
+    }
+
+    /// The whole motion in one drawing: [`Animation::all_positions`] of [`Animation::poses`].
+    pub fn whole(&self) -> Drawing {
+        self.all_positions(&self.poses())
+    }
+
     /// The whole motion in one drawing (for the DXF): the base on its content layers and
     /// each position on its own layer ([`Animation::names`]), every entity keeping its
     /// colour and line type. `poses[k]` is position `k`'s moving part.

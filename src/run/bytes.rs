@@ -189,7 +189,7 @@ fn motion(
     let name = &p.name;
     let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window), ..SvgOptions::default() };
     // Each position drawn once (in parallel), for the DXF layer and the frame.
-    let poses: Vec<Drawing> = (0..a.len()).into_par_iter().map(|k| a.pose(k)).collect();
+    let poses = a.poses();
     let want_frames = !opts.no_frames;
     let (dxf, rest) = rayon::join(
         || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),
