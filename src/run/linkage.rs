@@ -3,7 +3,9 @@
 //! DXF (a layer per position), SVG frames with the HTML viewer, diagrams, CSV and JSON.
 //! With `--drag`, the dragged configuration is written instead of the motion.
 
-use serde_json::{Map, Value, json};
+use std::collections::BTreeMap;
+
+use serde::Serialize;
 
 use super::products::{self, Picture, PositionsSource, Products};
 use super::solve_err;
@@ -153,56 +155,61 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     }
 
     // JSON summary.
-    let mut samples = Vec::with_capacity(states.len());
-    for (k, s) in states.iter().enumerate() {
-        let mut rec = Map::new();
-        rec.insert("t".into(), json!(s.t));
-        for c in &cols {
-            rec.insert(c.name.clone(), json!(c.values[k]));
-        }
-        if s.near_singular.is_some() {
-            rec.insert("near_singular".into(), json!(true));
-        }
-        samples.push(Value::Object(rec));
-    }
-    let mut extremes = Map::new();
-    for c in &cols {
-        let (mut kmin, mut kmax) = (0, 0);
-        for (k, v) in c.values.iter().enumerate() {
-            if *v < c.values[kmin] {
-                kmin = k;
+    let samples = states
+        .iter()
+        .enumerate()
+        .map(|(k, s)| Sample {
+            t: s.t,
+            values: cols.iter().map(|c| (c.name.clone(), c.values[k])).collect(),
+            near_singular: s.near_singular.is_some().then_some(true),
+        })
+        .collect();
+    let extremes = cols
+        .iter()
+        .map(|c| {
+            let (mut kmin, mut kmax) = (0, 0);
+            for (k, v) in c.values.iter().enumerate() {
+                if *v < c.values[kmin] {
+                    kmin = k;
+                }
+                if *v > c.values[kmax] {
+                    kmax = k;
+                }
             }
-            if *v > c.values[kmax] {
-                kmax = k;
-            }
-        }
-        extremes.insert(
-            c.name.clone(),
-            json!({"min": c.values[kmin], "t_min": states[kmin].t, "max": c.values[kmax], "t_max": states[kmax].t}),
-        );
-    }
+            let e = Extremes { min: c.values[kmin], t_min: states[kmin].t, max: c.values[kmax], t_max: states[kmax].t };
+            (c.name.clone(), e)
+        })
+        .collect();
     let mech = &scene.mechanism;
-    let summary = json!({
-        "kind": "linkage",
-        "name": scene.name,
-        "units": scene.units.length(),
-        "bodies": mech.bodies.len(),
-        "joints": mech.joints.len(),
-        "drivers": mech.drivers.len(),
-        "positions": states.len(),
-        "t_from": scene.times[0],
-        "t_to": scene.times[scene.times.len() - 1],
-        "max_residual": max_residual,
-        "newton_iterations_max": max_iter,
-        "newton_iterations_mean": mean_iter,
-        "columns": cols.iter().map(|c| c.name.clone()).collect::<Vec<_>>(),
-        "extremes": extremes,
-        "near_singular": near_singular
-            .iter()
-            .map(|n| json!({"t": n.t, "drivers": n.drivers, "constraints": n.constraints, "pivot": n.pivot}))
-            .collect::<Vec<_>>(),
-        "samples": samples,
-    });
+    let summary = products::summary_value(
+        &MotionSummary {
+            kind: "linkage",
+            name: &scene.name,
+            units: scene.units.length(),
+            bodies: mech.bodies.len(),
+            joints: mech.joints.len(),
+            drivers: mech.drivers.len(),
+            positions: states.len(),
+            t_from: scene.times[0],
+            t_to: scene.times[scene.times.len() - 1],
+            max_residual,
+            newton_iterations_max: max_iter,
+            newton_iterations_mean: mean_iter,
+            columns: cols.iter().map(|c| c.name.as_str()).collect(),
+            extremes,
+            near_singular: near_singular
+                .iter()
+                .map(|n| NearSingularRecord {
+                    t: n.t,
+                    drivers: &n.drivers,
+                    constraints: &n.constraints,
+                    pivot: n.pivot,
+                })
+                .collect(),
+            samples,
+        },
+        &scene.name,
+    )?;
     let report = format!(
         "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
          Newton iterations per step ≤ {} (mean {:.2})",
@@ -271,49 +278,56 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
     for ((anchor, target), spec) in requests.iter().zip(drag) {
         state = solver.drag(&state, *anchor, *target).map_err(|e| solve_err(file)(e.into()))?;
         let reached = state.point(*anchor);
-        records.push(json!({
-            "request": spec,
-            "target": crate::report::point(*target),
-            "reached": crate::report::point(reached),
-            "distance": (reached - target).norm(),
-        }));
+        records.push(DragRecord {
+            request: spec,
+            target: [target.x, target.y],
+            reached: [reached.x, reached.y],
+            distance: (reached - target).norm(),
+        });
     }
     let mech = &scene.mechanism;
-    let bodies: Vec<Value> = mech
+    let bodies = mech
         .bodies
         .iter()
         .enumerate()
-        .map(|(i, b)| {
-            let points: Map<String, Value> = b
+        .map(|(i, b)| BodyRecord {
+            name: &b.name,
+            x: state.q[3 * i],
+            y: state.q[3 * i + 1],
+            angle_deg: deg(state.q[3 * i + 2]),
+            points: b
                 .points
                 .iter()
-                .map(|(n, v)| (n.clone(), crate::report::point(crate::solve::linkage::place(&state.q, crate::solve::linkage::Attach::Body(i), *v))))
-                .collect();
-            json!({"name": b.name, "x": state.q[3 * i], "y": state.q[3 * i + 1], "angle_deg": deg(state.q[3 * i + 2]), "points": points})
+                .map(|(n, v)| {
+                    let p = crate::solve::linkage::place(&state.q, crate::solve::linkage::Attach::Body(i), *v);
+                    (n.as_str(), [p.x, p.y])
+                })
+                .collect(),
         })
         .collect();
-    let summary = json!({
-        "kind": "linkage",
-        "name": scene.name,
-        "units": scene.units.length(),
-        "t": t0,
-        "drag": records,
-        "max_residual": state.residual,
-        "bodies": bodies,
-    });
+    let units = scene.units.length();
     let report = records
         .iter()
         .map(|r| {
             format!(
-                "drag {}: reached {} (distance {:.6} {})",
-                r["request"],
-                r["reached"],
-                r["distance"],
-                scene.units.length()
+                "drag {:?}: reached [{}, {}] (distance {:.6} {units})",
+                r.request, r.reached[0], r.reached[1], r.distance
             )
         })
         .collect::<Vec<_>>()
         .join("\n");
+    let summary = products::summary_value(
+        &DragSummary {
+            kind: "linkage",
+            name: &scene.name,
+            units,
+            t: t0,
+            drag: records,
+            max_residual: state.residual,
+            bodies,
+        },
+        &scene.name,
+    )?;
     let style = Style::for_length(mech.length_scale);
     let motion = [state.q.as_slice()];
     let spans = fig::guide_spans(scene, &motion, &style);
@@ -330,4 +344,85 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         report,
         warnings: Vec::new(),
     })
+}
+
+/// One sample of the JSON summary: t, every measured column, and a flag at near-singular
+/// steps.
+#[derive(Debug, Serialize)]
+struct Sample {
+    t: f64,
+    #[serde(flatten)]
+    values: BTreeMap<String, f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    near_singular: Option<bool>,
+}
+
+/// Smallest and largest value of a column, with their times.
+#[derive(Debug, Serialize)]
+struct Extremes {
+    min: f64,
+    t_min: f64,
+    max: f64,
+    t_max: f64,
+}
+
+/// A near-singular step (see `NearSingular`).
+#[derive(Debug, Serialize)]
+struct NearSingularRecord<'a> {
+    t: f64,
+    drivers: &'a str,
+    constraints: &'a str,
+    pivot: f64,
+}
+
+/// The JSON summary of a motion (docs/linkage.md).
+#[derive(Debug, Serialize)]
+struct MotionSummary<'a> {
+    kind: &'static str,
+    name: &'a str,
+    units: &'static str,
+    bodies: usize,
+    joints: usize,
+    drivers: usize,
+    positions: usize,
+    t_from: f64,
+    t_to: f64,
+    max_residual: f64,
+    newton_iterations_max: usize,
+    newton_iterations_mean: f64,
+    columns: Vec<&'a str>,
+    extremes: BTreeMap<String, Extremes>,
+    near_singular: Vec<NearSingularRecord<'a>>,
+    samples: Vec<Sample>,
+}
+
+/// One `--drag` request and where the point went.
+#[derive(Debug, Serialize)]
+struct DragRecord<'a> {
+    request: &'a str,
+    target: [f64; 2],
+    reached: [f64; 2],
+    distance: f64,
+}
+
+/// A body's pose after dragging, with its named points (global).
+#[derive(Debug, Serialize)]
+struct BodyRecord<'a> {
+    name: &'a str,
+    x: f64,
+    y: f64,
+    angle_deg: f64,
+    points: BTreeMap<&'a str, [f64; 2]>,
+}
+
+/// The JSON summary of a `--drag` run.
+#[derive(Debug, Serialize)]
+struct DragSummary<'a> {
+    kind: &'static str,
+    name: &'a str,
+    units: &'static str,
+    t: f64,
+    drag: Vec<DragRecord<'a>>,
+    max_residual: f64,
+    bodies: Vec<BodyRecord<'a>>,
 }
