@@ -310,7 +310,7 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         .iter()
         .map(|r| {
             format!(
-                "drag {:?}: reached [{}, {}] (distance {:.6} {units})",
+                "drag {:?}: reached ({:.6}, {:.6}) (distance {:.6} {units})",
                 r.request, r.reached[0], r.reached[1], r.distance
             )
         })
