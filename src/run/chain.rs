@@ -1,7 +1,7 @@
 //! The chain pipeline: analyse the graph, write the dimensional functions, stack up the
 //! tolerances, draw the chain and the histograms, write the report, JSON and CSV.
 
-use serde_json::{Value, json};
+use serde::Serialize;
 
 use super::products::{self, Picture, Products};
 use super::solve_err;
@@ -37,14 +37,6 @@ pub fn solve(scene: &ChainScene) -> Result<(Analysis, Vec<DependentResult>), cra
         results.push(DependentResult { index, function, stack: st, monte_carlo: mc });
     }
     Ok((analysis, results))
-}
-
-fn opt(v: Option<f64>) -> Value {
-    v.filter(|x| x.is_finite()).map_or(Value::Null, Value::from)
-}
-
-fn band(center: f64, tol: f64) -> Value {
-    json!({ "tol": tol, "min": center - tol, "max": center + tol })
 }
 
 pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error> {
@@ -167,7 +159,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         }
     }
 
-    let summary = summary(scene, &analysis, &results);
+    let summary = summary(scene, &analysis, &results)?;
 
     let marks: Vec<DependentMark> = results
         .iter()
@@ -225,102 +217,270 @@ fn fmt4(v: f64) -> String {
     fmt_value((v * 1e4).round() / 1e4)
 }
 
+/// A dimension named in a loop or a function, with its coefficient (+1 or −1).
+#[derive(Debug, Serialize)]
+struct TermRecord<'a> {
+    dimension: &'a str,
+    coef: f64,
+}
+
+/// A feature on the axis.
+#[derive(Debug, Serialize)]
+struct FeatureRecord<'a> {
+    name: &'a str,
+    x: f64,
+    aliases: &'a [String],
+    tied: bool,
+}
+
+/// A dimension as the check sees it.
+#[derive(Debug, Serialize)]
+struct DimensionRecord<'a> {
+    name: &'a str,
+    from: &'a str,
+    to: &'a str,
+    nominal: f64,
+    upper: f64,
+    lower: f64,
+    redundant: bool,
+}
+
+/// A redundant dimension and the loop it closes.
+#[derive(Debug, Serialize)]
+struct RedundantRecord<'a> {
+    dimension: &'a str,
+    nominal: f64,
+    #[serde(rename = "loop")]
+    loop_: String,
+    path: Vec<TermRecord<'a>>,
+    residual: f64,
+    kind: &'static str,
+    suggest_ref: &'a str,
+}
+
+/// The over-dimensioning check.
+#[derive(Debug, Serialize)]
+struct CheckRecord<'a> {
+    features: usize,
+    dimensions: usize,
+    groups: usize,
+    redundant_count: usize,
+    contradictions: usize,
+    coincident: Vec<Vec<&'a str>>,
+    correct: bool,
+}
+
+/// A tolerance band around the mean.
+#[derive(Debug, Serialize)]
+struct Band {
+    tol: f64,
+    min: f64,
+    max: f64,
+}
+
+impl Band {
+    fn around(center: f64, tol: f64) -> Band {
+        Band { tol, min: center - tol, max: center + tol }
+    }
+}
+
+/// The modified RSS band with its factor.
+#[derive(Debug, Serialize)]
+struct MrssRecord {
+    factor: f64,
+    tol: f64,
+    min: f64,
+    max: f64,
+}
+
+/// A percentile of the Monte Carlo sample.
+#[derive(Debug, Serialize)]
+struct PercentileRecord {
+    p: f64,
+    value: f64,
+}
+
+/// The Monte Carlo stack-up of one dependent dimension.
+#[derive(Debug, Serialize)]
+struct MonteCarloRecord<'a> {
+    distribution: &'a str,
+    samples: u64,
+    seed: u64,
+    mean: f64,
+    sigma: f64,
+    min: f64,
+    max: f64,
+    percentiles: Vec<PercentileRecord>,
+    out_of_spec_ppm: Option<f64>,
+    out_of_spec_ppm_normal: Option<f64>,
+    cp: Option<f64>,
+    cpk: Option<f64>,
+}
+
+/// One independent dimension's share of a dependent one's tolerance.
+#[derive(Debug, Serialize)]
+struct ContributionRecord<'a> {
+    dimension: &'a str,
+    coef: f64,
+    tol: f64,
+    shift: f64,
+    pct_worst_case: f64,
+    pct_variance: f64,
+}
+
+/// A dependent dimension: its function and its stack-up.
+#[derive(Debug, Serialize)]
+struct DependentRecord<'a> {
+    z: &'a str,
+    between: &'a str,
+    left: &'a str,
+    right: &'a str,
+    function: String,
+    equation: String,
+    terms: Vec<TermRecord<'a>>,
+    nominal: f64,
+    mean: f64,
+    worst_case: Band,
+    rss: Band,
+    mrss: MrssRecord,
+    sigma: f64,
+    spec: Option<[f64; 2]>,
+    monte_carlo: Option<MonteCarloRecord<'a>>,
+    contributions: Vec<ContributionRecord<'a>>,
+}
+
+/// The chain's JSON summary (keys documented in docs/chain.md).
+#[derive(Debug, Serialize)]
+struct Summary<'a> {
+    kind: &'static str,
+    name: &'a str,
+    units: &'static str,
+    form: &'static str,
+    features: Vec<FeatureRecord<'a>>,
+    dimensions: Vec<DimensionRecord<'a>>,
+    check: CheckRecord<'a>,
+    redundant: Vec<RedundantRecord<'a>>,
+    untied: Vec<Vec<&'a str>>,
+    dependent: Vec<DependentRecord<'a>>,
+}
+
+/// A finite value, or `None` (JSON `null`).
+fn finite(v: Option<f64>) -> Option<f64> {
+    v.filter(|x| x.is_finite())
+}
+
 /// The JSON summary (keys documented in docs/chain.md).
-pub fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Value {
+fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Result<serde_json::Value, Error> {
     let dims = &scene.dimensions;
-    let fname = |f: usize| a.features[a.node_of[f]].name.clone();
-    let features: Vec<Value> =
-        a.features.iter().map(|f| json!({ "name": f.name, "x": f.x, "aliases": f.aliases, "tied": f.tied })).collect();
-    let dimensions: Vec<Value> = dims
+    let fname = |f: usize| a.features[a.node_of[f]].name.as_str();
+    let terms = |ts: &[crate::solve::chain::graph::Term]| -> Vec<TermRecord<'_>> {
+        ts.iter().map(|t| TermRecord { dimension: &dims[t.dim].name, coef: t.coef }).collect()
+    };
+    let features =
+        a.features.iter().map(|f| FeatureRecord { name: &f.name, x: f.x, aliases: &f.aliases, tied: f.tied }).collect();
+    let dimensions = dims
         .iter()
         .enumerate()
-        .map(|(i, d)| {
-            json!({
-                "name": d.name, "from": fname(d.from), "to": fname(d.to), "nominal": d.nominal,
-                "upper": d.upper, "lower": d.lower, "redundant": !a.in_tree[i],
-            })
+        .map(|(i, d)| DimensionRecord {
+            name: &d.name,
+            from: fname(d.from),
+            to: fname(d.to),
+            nominal: d.nominal,
+            upper: d.upper,
+            lower: d.lower,
+            redundant: !a.in_tree[i],
         })
         .collect();
-    let redundant: Vec<Value> = a
+    let redundant = a
         .redundant
         .iter()
         .map(|r| {
             let f = Function { terms: r.path.clone(), nominal: 0.0 };
-            json!({
-                "dimension": dims[r.dim].name,
-                "nominal": dims[r.dim].nominal,
-                "loop": format!("{} = {}", dims[r.dim].name, f.names(dims)),
-                "path": r.path.iter().map(|t| json!({ "dimension": dims[t.dim].name, "coef": t.coef })).collect::<Vec<_>>(),
-                "residual": r.residual,
-                "kind": if r.contradiction { "contradiction" } else { "repeat" },
-                "suggest_ref": dims[r.suggest_ref].name,
-            })
+            RedundantRecord {
+                dimension: &dims[r.dim].name,
+                nominal: dims[r.dim].nominal,
+                loop_: format!("{} = {}", dims[r.dim].name, f.names(dims)),
+                path: terms(&r.path),
+                residual: r.residual,
+                kind: if r.contradiction { "contradiction" } else { "repeat" },
+                suggest_ref: &dims[r.suggest_ref].name,
+            }
         })
         .collect();
-    let dependent: Vec<Value> = results
+    let dependent = results
         .iter()
         .map(|r| {
             let z = &scene.dependent[r.index];
             let s = &r.stack;
-            let mc = r.monte_carlo.as_ref().map_or(Value::Null, |m| {
-                json!({
-                    "distribution": scene.stackup.distribution.name(),
-                    "samples": m.samples,
-                    "seed": scene.stackup.seed,
-                    "mean": m.mean,
-                    "sigma": m.sigma,
-                    "min": m.min,
-                    "max": m.max,
-                    "percentiles": m.percentiles.iter().map(|(p, v)| json!({ "p": p, "value": v })).collect::<Vec<_>>(),
-                    "out_of_spec_ppm": opt(m.out_of_spec_ppm),
-                    "out_of_spec_ppm_normal": opt(m.out_of_spec_ppm_normal),
-                    "cp": opt(m.cp),
-                    "cpk": opt(m.cpk),
-                })
+            let monte_carlo = r.monte_carlo.as_ref().map(|m| MonteCarloRecord {
+                distribution: scene.stackup.distribution.name(),
+                samples: m.samples,
+                seed: scene.stackup.seed,
+                mean: m.mean,
+                sigma: m.sigma,
+                min: m.min,
+                max: m.max,
+                percentiles: m.percentiles.iter().map(|&(p, value)| PercentileRecord { p, value }).collect(),
+                out_of_spec_ppm: finite(m.out_of_spec_ppm),
+                out_of_spec_ppm_normal: finite(m.out_of_spec_ppm_normal),
+                cp: finite(m.cp),
+                cpk: finite(m.cpk),
             });
-            json!({
-                "z": z.name,
-                "between": z.label,
-                "left": fname(z.left),
-                "right": fname(z.right),
-                "function": r.function.names(dims),
-                "equation": r.function.equation(&z.name, dims),
-                "terms": r.function.terms.iter().map(|t| json!({ "dimension": dims[t.dim].name, "coef": t.coef })).collect::<Vec<_>>(),
-                "nominal": s.nominal,
-                "mean": s.mean,
-                "worst_case": band(s.mean, s.worst_case),
-                "rss": band(s.mean, s.rss),
-                "mrss": { "factor": s.mrss_factor, "tol": s.mrss, "min": s.mean - s.mrss, "max": s.mean + s.mrss },
-                "sigma": s.sigma,
-                "spec": z.spec,
-                "monte_carlo": mc,
-                "contributions": s.contributions.iter().map(|c| json!({
-                    "dimension": dims[c.dim].name, "coef": c.coef, "tol": c.half, "shift": c.shift,
-                    "pct_worst_case": c.pct_worst_case, "pct_variance": c.pct_variance,
-                })).collect::<Vec<_>>(),
-            })
+            DependentRecord {
+                z: &z.name,
+                between: &z.label,
+                left: fname(z.left),
+                right: fname(z.right),
+                function: r.function.names(dims),
+                equation: r.function.equation(&z.name, dims),
+                terms: terms(&r.function.terms),
+                nominal: s.nominal,
+                mean: s.mean,
+                worst_case: Band::around(s.mean, s.worst_case),
+                rss: Band::around(s.mean, s.rss),
+                mrss: MrssRecord { factor: s.mrss_factor, tol: s.mrss, min: s.mean - s.mrss, max: s.mean + s.mrss },
+                sigma: s.sigma,
+                spec: z.spec,
+                monte_carlo,
+                contributions: s
+                    .contributions
+                    .iter()
+                    .map(|c| ContributionRecord {
+                        dimension: &dims[c.dim].name,
+                        coef: c.coef,
+                        tol: c.half,
+                        shift: c.shift,
+                        pct_worst_case: c.pct_worst_case,
+                        pct_variance: c.pct_variance,
+                    })
+                    .collect(),
+            }
         })
         .collect();
-    json!({
-        "kind": "chain",
-        "name": scene.name,
-        "units": scene.units.length(),
-        "form": match scene.form { Form::Matrix => "matrix", Form::Named => "named" },
-        "features": features,
-        "dimensions": dimensions,
-        "check": {
-            "features": a.features.len(),
-            "dimensions": dims.len(),
-            "groups": a.components,
-            "redundant_count": a.redundant_count(dims.len()),
-            "contradictions": a.redundant.iter().filter(|r| r.contradiction).count(),
-            "coincident": a.coincident.iter().map(|g| g.iter().map(|&i| dims[i].name.clone()).collect::<Vec<_>>()).collect::<Vec<_>>(),
-            "correct": a.redundant.is_empty() && a.untied.is_empty(),
+    let s = Summary {
+        kind: "chain",
+        name: &scene.name,
+        units: scene.units.length(),
+        form: match scene.form {
+            Form::Matrix => "matrix",
+            Form::Named => "named",
         },
-        "redundant": redundant,
-        "untied": a.untied.iter().map(|g| g.iter().map(|&i| a.features[i].name.clone()).collect::<Vec<_>>()).collect::<Vec<_>>(),
-        "dependent": dependent,
-    })
+        features,
+        dimensions,
+        check: CheckRecord {
+            features: a.features.len(),
+            dimensions: dims.len(),
+            groups: a.components,
+            redundant_count: a.redundant_count(dims.len()),
+            contradictions: a.redundant.iter().filter(|r| r.contradiction).count(),
+            coincident: a.coincident.iter().map(|g| g.iter().map(|&i| dims[i].name.as_str()).collect()).collect(),
+            correct: a.redundant.is_empty() && a.untied.is_empty(),
+        },
+        redundant,
+        untied: a.untied.iter().map(|g| g.iter().map(|&i| a.features[i].name.as_str()).collect()).collect(),
+        dependent,
+    };
+    products::summary_value(&s, &scene.name)
 }
 
 /// `<name>.csv`: one row per dependent dimension.
