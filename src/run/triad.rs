@@ -2,14 +2,13 @@
 //! and Newton–Raphson from a start; the drawing (the seed's Fig. 3) as SVG and DXF; the
 //! JSON summary. Everything is solved before anything is written.
 
-use serde_json::{Value, json};
+use serde::Serialize;
 
-use super::products::{Picture, Products};
+use super::products::{self, Picture, Products};
 use super::solve_err;
 use crate::Error;
 use crate::figure::triad::{TriadFigure, drawing};
 use crate::geom::{Point, deg};
-use crate::report::point;
 use crate::scene::triad::{OrientationChoice, Sense, TriadScene};
 use crate::solve::triad::pattern::construct;
 use crate::solve::triad::{
@@ -121,59 +120,156 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
     Ok(TriadResults { triad, modes, pattern, start, newton_start, newton, primary, warnings })
 }
 
-fn configuration_json(c: &Configuration) -> Value {
-    let [p1, p2, p3] = c.phi_deg();
-    json!({
-        "phi1_deg": p1,
-        "phi2_deg": p2,
-        "phi3_deg": p3,
-        "A1": point(c.a[0]),
-        "A2": point(c.a[1]),
-        "A3": point(c.a[2]),
-        "orientation": c.orientation.name(),
-        "residual": c.residual,
-    })
+/// A configuration of the triad in the JSON summary.
+#[derive(Debug, Serialize)]
+struct ConfigurationRecord {
+    phi1_deg: f64,
+    phi2_deg: f64,
+    phi3_deg: f64,
+    #[serde(rename = "A1")]
+    a1: [f64; 2],
+    #[serde(rename = "A2")]
+    a2: [f64; 2],
+    #[serde(rename = "A3")]
+    a3: [f64; 2],
+    orientation: &'static str,
+    /// Relative residual of the six constraint equations.
+    residual: f64,
 }
 
-/// The JSON summary (keys documented in docs/triad.md).
-pub fn summary(scene: &TriadScene, r: &TriadResults) -> Value {
+impl ConfigurationRecord {
+    fn of(c: &Configuration) -> ConfigurationRecord {
+        let [phi1_deg, phi2_deg, phi3_deg] = c.phi_deg();
+        let p = |i: usize| [c.a[i].x, c.a[i].y];
+        ConfigurationRecord {
+            phi1_deg,
+            phi2_deg,
+            phi3_deg,
+            a1: p(0),
+            a2: p(1),
+            a3: p(2),
+            orientation: c.orientation.name(),
+            residual: c.residual,
+        }
+    }
+}
+
+/// The pattern method's result: its position, or why it failed.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+enum PatternRecord {
+    Solved {
+        phi1_deg: f64,
+        phi2_deg: f64,
+        phi3_deg: f64,
+        #[serde(rename = "A1")]
+        a1: [f64; 2],
+        #[serde(rename = "A2")]
+        a2: [f64; 2],
+        #[serde(rename = "A3")]
+        a3: [f64; 2],
+        orientation: &'static str,
+        /// |R3 − O3A3|, scene units (the method's own measure).
+        residual: f64,
+        /// Relative residual of the six constraint equations.
+        relative_residual: f64,
+        iterations: usize,
+        evaluations: usize,
+        phi1_start_deg: f64,
+    },
+    Failed {
+        error: String,
+        phi1_start_deg: f64,
+    },
+}
+
+/// Newton–Raphson's result: its position, or why it failed.
+#[derive(Debug, Serialize)]
+#[serde(untagged)]
+enum NewtonRecord {
+    Solved {
+        #[serde(flatten)]
+        configuration: ConfigurationRecord,
+        iterations: usize,
+        start_deg: [f64; 3],
+    },
+    Failed {
+        error: String,
+        start_deg: [f64; 3],
+    },
+}
+
+/// How many assembly modes of each orientation.
+#[derive(Debug, Serialize)]
+struct ModeCount {
+    ccw: usize,
+    cw: usize,
+    collinear: usize,
+    total: usize,
+}
+
+/// The triad's JSON summary (docs/triad.md).
+#[derive(Debug, Serialize)]
+struct Summary<'a> {
+    kind: &'static str,
+    name: &'a str,
+    units: &'static str,
+    pattern: PatternRecord,
+    newton: NewtonRecord,
+    solutions: Vec<ConfigurationRecord>,
+    modes: ModeCount,
+    primary: usize,
+}
+
+/// The JSON summary of the results.
+pub fn summary(scene: &TriadScene, r: &TriadResults) -> Result<serde_json::Value, Error> {
+    let phi1_start_deg = deg(scene.pattern.phi1_start);
     let pattern = match &r.pattern {
         Ok(p) => {
-            let mut v = configuration_json(&p.configuration);
-            v["iterations"] = json!(p.iterations);
-            v["residual"] = json!(p.residual);
-            v["evaluations"] = json!(p.evaluations);
-            v["relative_residual"] = json!(p.configuration.residual);
-            v["phi1_start_deg"] = json!(deg(scene.pattern.phi1_start));
-            v
+            let c = ConfigurationRecord::of(&p.configuration);
+            PatternRecord::Solved {
+                phi1_deg: c.phi1_deg,
+                phi2_deg: c.phi2_deg,
+                phi3_deg: c.phi3_deg,
+                a1: c.a1,
+                a2: c.a2,
+                a3: c.a3,
+                orientation: c.orientation,
+                residual: p.residual,
+                relative_residual: c.residual,
+                iterations: p.iterations,
+                evaluations: p.evaluations,
+                phi1_start_deg,
+            }
         }
-        Err(e) => json!({ "error": e.to_string(), "phi1_start_deg": deg(scene.pattern.phi1_start) }),
+        Err(e) => PatternRecord::Failed { error: e.to_string(), phi1_start_deg },
     };
+    let start_deg = r.newton_start.map(deg);
     let newton = match &r.newton {
-        Ok(n) => {
-            let mut v = configuration_json(&n.configuration);
-            v["iterations"] = json!(n.iterations);
-            v["start_deg"] = json!(r.newton_start.map(deg));
-            v
-        }
-        Err(e) => json!({ "error": e.to_string(), "start_deg": r.newton_start.map(deg) }),
+        Ok(n) => NewtonRecord::Solved {
+            configuration: ConfigurationRecord::of(&n.configuration),
+            iterations: n.iterations,
+            start_deg,
+        },
+        Err(e) => NewtonRecord::Failed { error: e.to_string(), start_deg },
     };
     let count = |o: Orientation| r.modes.iter().filter(|c| c.orientation == o).count();
-    json!({
-        "kind": "triad",
-        "name": scene.name,
-        "units": scene.units.length(),
-        "pattern": pattern,
-        "newton": newton,
-        "solutions": r.modes.iter().map(configuration_json).collect::<Vec<_>>(),
-        "modes": {
-            "ccw": count(Orientation::Ccw),
-            "cw": count(Orientation::Cw),
-            "collinear": count(Orientation::Collinear),
-            "total": r.modes.len(),
+    let s = Summary {
+        kind: "triad",
+        name: &scene.name,
+        units: scene.units.length(),
+        pattern,
+        newton,
+        solutions: r.modes.iter().map(ConfigurationRecord::of).collect(),
+        modes: ModeCount {
+            ccw: count(Orientation::Ccw),
+            cw: count(Orientation::Cw),
+            collinear: count(Orientation::Collinear),
+            total: r.modes.len(),
         },
-        "primary": r.primary,
-    })
+        primary: r.primary,
+    };
+    products::summary_value(&s, &scene.name)
 }
 
 fn report(scene: &TriadScene, r: &TriadResults) -> String {
@@ -249,7 +345,7 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         positions: None,
         diagrams: Vec::new(),
         tables: Vec::new(),
-        summary: summary(scene, &results),
+        summary: summary(scene, &results)?,
         report: report(scene, &results),
         warnings: results.warnings,
     })
