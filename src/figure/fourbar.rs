@@ -26,8 +26,8 @@
 
 use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
+use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
-use crate::solve::kinetostatics::Forces;
 
 use super::{forces, labels};
 

@@ -17,8 +17,8 @@ use crate::geom::{Point, Vector, deg};
 use crate::report::{self, Csv};
 use crate::scene::Units;
 use crate::scene::fourbar::FourbarScene;
+use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::{Motion, Position, solve_motion};
-use crate::solve::kinetostatics::Forces;
 
 /// Width of the SVG frames and of the diagrams' PNG copies, pixels.
 const FRAME_WIDTH_PX: u32 = 1000;
