@@ -28,13 +28,13 @@ pub struct DependentResult {
 
 /// Analysis plus every dependent dimension's function and stack-up.
 pub fn solve(scene: &ChainScene) -> Result<(Analysis, Vec<DependentResult>), crate::solve::chain::ChainError> {
-    let analysis = analyse(scene);
+    let analysis = analyse(&scene.chain);
     let s = &scene.stackup;
-    let mut results = Vec::with_capacity(scene.dependent.len());
-    for (index, z) in scene.dependent.iter().enumerate() {
-        let function = analysis.function(scene, z)?;
-        let st = stack(&function, &scene.dimensions, s.mrss_factor, s.distribution);
-        let mc = monte_carlo(&function, &scene.dimensions, s.distribution, s.samples, s.seed, s.bins, z.spec);
+    let mut results = Vec::with_capacity(scene.chain.dependent.len());
+    for (index, z) in scene.chain.dependent.iter().enumerate() {
+        let function = analysis.function(&scene.chain, z)?;
+        let st = stack(&function, &scene.chain.dimensions, s.mrss_factor, s.distribution);
+        let mc = monte_carlo(&function, &scene.chain.dimensions, s.distribution, s.samples, s.seed, s.bins, z.spec);
         results.push(DependentResult { index, function, stack: st, monte_carlo: mc });
     }
     Ok((analysis, results))
@@ -50,7 +50,7 @@ fn band(center: f64, tol: f64) -> Value {
 
 pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
     let (analysis, results) = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
-    let dims = &scene.dimensions;
+    let dims = &scene.chain.dimensions;
     let units = scene.units.length();
 
     // Check: the seed's coincidence test and the graph's redundancy.
@@ -124,7 +124,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         ));
     }
     for r in &results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         let s = &r.stack;
         let (mcm, mcs) = r.monte_carlo.as_ref().map_or(("-".into(), "-".into()), |m| (fmt4(m.mean), fmt4(m.sigma)));
         report.push_str(&format!(
@@ -141,7 +141,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         ));
     }
     for r in &results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         report.push_str(&format!("  {}\n", r.function.equation(&z.name, dims)));
         let contrib: Vec<String> = r
             .stack
@@ -175,7 +175,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         let marks: Vec<DependentMark> = results
             .iter()
             .map(|r| {
-                let z = &scene.dependent[r.index];
+                let z = &scene.chain.dependent[r.index];
                 let (l, p) =
                     (analysis.features[analysis.node_of[z.left]].x, analysis.features[analysis.node_of[z.right]].x);
                 let tol = if r.stack.worst_case > 0.0 {
@@ -192,7 +192,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
                 DependentMark { left_x: l, right_x: p, text }
             })
             .collect();
-        let drawing = fig::chain(scene, &analysis, &marks);
+        let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, units);
         let mut out = Output::new(dir)?;
         let chain_svg = svg::to_string(&drawing, &SvgOptions::default());
         out.write(format!("{}.svg", scene.name), &chain_svg)?;
@@ -200,7 +200,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
             .map_err(|e| Error::Export { what: format!("{}.dxf", scene.name), message: e.to_string() })?;
         out.write(format!("{}.dxf", scene.name), dxf)?;
         for r in &results {
-            let z = &scene.dependent[r.index];
+            let z = &scene.chain.dependent[r.index];
             if let Some(m) = &r.monte_carlo {
                 let h =
                     fig::histogram(&z.name, &z.label, units, scene.stackup.distribution.name(), m, &r.stack, z.spec);
@@ -236,7 +236,7 @@ fn fmt4(v: f64) -> String {
 
 /// The JSON summary (keys documented in docs/chain.md).
 pub fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Value {
-    let dims = &scene.dimensions;
+    let dims = &scene.chain.dimensions;
     let fname = |f: usize| a.features[a.node_of[f]].name.clone();
     let features: Vec<Value> =
         a.features.iter().map(|f| json!({ "name": f.name, "x": f.x, "aliases": f.aliases, "tied": f.tied })).collect();
@@ -269,7 +269,7 @@ pub fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) ->
     let dependent: Vec<Value> = results
         .iter()
         .map(|r| {
-            let z = &scene.dependent[r.index];
+            let z = &scene.chain.dependent[r.index];
             let s = &r.stack;
             let mc = r.monte_carlo.as_ref().map_or(Value::Null, |m| {
                 json!({
@@ -314,7 +314,7 @@ pub fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) ->
         "kind": "chain",
         "name": scene.name,
         "units": scene.units.length(),
-        "form": match scene.form { Form::Matrix => "matrix", Form::Named => "named" },
+        "form": match scene.chain.form { Form::Matrix => "matrix", Form::Named => "named" },
         "features": features,
         "dimensions": dimensions,
         "check": {
@@ -360,14 +360,14 @@ pub fn dependent_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv {
     ]);
     let num = |v: Option<f64>| v.filter(|x| x.is_finite()).map_or(String::new(), |x| format!("{x}"));
     for r in results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         let s = &r.stack;
         let m = r.monte_carlo.as_ref();
         let pct = |p: f64| m.and_then(|m| m.percentiles.iter().find(|(q, _)| *q == p).map(|(_, v)| *v));
         csv.row_text([
             z.name.clone(),
             z.label.clone(),
-            r.function.names(&scene.dimensions),
+            r.function.names(&scene.chain.dimensions),
             num(Some(s.nominal)),
             num(Some(s.mean)),
             num(Some(s.worst_case)),
@@ -407,9 +407,9 @@ pub fn contributions_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv
         "pct_variance",
     ]);
     for r in results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         for c in &r.stack.contributions {
-            let d = &scene.dimensions[c.dim];
+            let d = &scene.chain.dimensions[c.dim];
             csv.row_text([
                 z.name.clone(),
                 d.name.clone(),
