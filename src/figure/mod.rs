@@ -2,7 +2,6 @@
 //! mechanism, plus [`plot`] for diagrams. Figures build a neutral
 //! [`crate::draw::Drawing`]; they never write files.
 
-pub mod bench;
 pub mod chain;
 pub mod forces;
 pub mod fourbar;
