@@ -1,4 +1,4 @@
-//! Four-bar figures (seed 003 and its reference [8]): what the graph-analytical method
+//! Four-bar figures (seed 003 and its reference \[8\]): what the graph-analytical method
 //! draws for each crank angle — the mechanism with its ground pivots, joints, letters and
 //! the coupler curve of M; the velocity polygon (pole p, vectors pa, pb, pm, relative ab);
 //! the acceleration polygon (pole π, a′, the normal and tangential components of a_BA and

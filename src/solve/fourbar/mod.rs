@@ -1,4 +1,4 @@
-//! The four-bar of seed 003 and its reference [8]: crank O1A, coupler A–B–M (one rigid
+//! The four-bar of seed 003 and its reference \[8\]: crank O1A, coupler A–B–M (one rigid
 //! ternary link), rocker BC. Closed-form RRR dyad for positions, analytic velocities and
 //! accelerations, kineto-statics, and the motion over a sweep of crank angles.
 //!
