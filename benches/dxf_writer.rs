@@ -49,34 +49,22 @@ fn drawing(position_layers: usize) -> Drawing {
     d
 }
 
-/// The four-bar run's animation drawing, built through the public API as the run builds it.
-fn fourbar_animation() -> Drawing {
-    use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
-    use mechdraw::scene::{Scene, load};
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
-    let loaded = load(&path, &[]).expect("template loads");
-    let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
-    let motion = mechdraw::solve::fourbar::solve_motion(&scene.spec).expect("solves");
-    let show = Show { velocity: true, acceleration: true, forces: !motion.forces.is_empty() };
-    let geom = &scene.spec.geometry;
-    let forces = show.forces.then_some(motion.forces.as_slice());
-    let layout = Layout::new(geom, &motion.positions, forces, show, ModelUnits::SI);
-    let curve: Vec<Point> = motion.positions.iter().map(|p| p.m).collect();
-    let base = layout.base(geom, &[curve]);
-    let moving: Vec<Drawing> = motion
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| layout.moving(geom, p, motion.forces.get(i).filter(|_| show.forces)))
-        .collect();
-    let names: Vec<String> = (0..moving.len()).map(|i| format!("P{i:03}")).collect();
-    layout.animation(&base, names.iter().map(String::as_str).zip(&moving))
+/// The DXF drawing a run writes for a template (a motion: every position on its own
+/// layer), built through the products seam as `mechdraw run` builds it.
+fn template_drawing(template: &str) -> Drawing {
+    use mechdraw::run::{RunOptions, products::Picture};
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("templates/{template}.toml"));
+    let loaded = mechdraw::scene::load(&path, &[]).expect("template loads");
+    match mechdraw::run::products(&loaded, &RunOptions::default()).expect("solves").picture {
+        Picture::Motion(a) => a.whole(),
+        Picture::Still(d) => d,
+    }
 }
 
 fn bench(c: &mut Criterion) {
     let small = drawing(0);
     let many = drawing(360);
-    let fourbar = fourbar_animation();
+    let fourbar = template_drawing("fourbar-chebyshev");
     let opts = DxfOptions::default();
     c.bench_function("dxf_r12_mechanism", |b| b.iter(|| to_bytes(&small, &opts).unwrap()));
     c.bench_function("dxf_r12_360_layers", |b| b.iter(|| to_bytes(&many, &opts).unwrap()));

@@ -170,5 +170,5 @@ fn the_template_writes_its_tables_with_the_documented_columns() {
     assert!((rec[6].parse::<f64>().unwrap() - 16.7).abs() < 1e-12);
     let contrib = std::fs::read_to_string(out.join("chain-humienny-2-contributions.csv")).unwrap();
     assert_eq!(contrib.lines().count(), 1 + 3 + 2 + 3 + 3);
-    assert!(out.join("chain-humienny-2-Z1-histogram.svg").exists());
+    assert!(out.join("diagrams/chain-humienny-2/Z1-histogram.svg").exists());
 }

@@ -64,6 +64,6 @@ fn chain_humienny_2_dxf_is_audit_clean_and_matches_its_golden_file() {
 #[test]
 fn chain_humienny_2_z3_histogram() {
     let (_tmp, out) = run("chain-humienny-2.toml", &["--set", "stackup.samples=20000"]);
-    let svg = std::fs::read_to_string(out.join("chain-humienny-2-Z3-histogram.svg")).unwrap();
+    let svg = std::fs::read_to_string(out.join("diagrams/chain-humienny-2/Z3-histogram.svg")).unwrap();
     common::assert_golden_png("chain-humienny-2-Z3-histogram.png", &svg);
 }

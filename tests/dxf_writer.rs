@@ -392,44 +392,16 @@ fn golden_sample_png() {
     common::assert_golden_png("draw_sample.png", &svg);
 }
 
-/// The four-bar run's animation drawing (base with the coupler curve, every position of the
-/// Chebyshev template on its own layer), built through the public API as `run` builds it.
-fn fourbar_animation() -> Drawing {
-    use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
-    use mechdraw::scene::{Scene, load};
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
-    let loaded = load(&path, &[]).expect("template loads");
-    let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
-    let motion = mechdraw::solve::fourbar::solve_motion(&scene.spec).expect("solves");
-    let show = Show { velocity: true, acceleration: true, forces: !motion.forces.is_empty() };
-    let geom = &scene.spec.geometry;
-    let forces = show.forces.then_some(motion.forces.as_slice());
-    let layout = Layout::new(geom, &motion.positions, forces, show, ModelUnits::SI);
-    let curve: Vec<Point> = motion.positions.iter().map(|p| p.m).collect();
-    let base = layout.base(geom, &[curve]);
-    let moving: Vec<Drawing> = motion
-        .positions
-        .iter()
-        .enumerate()
-        .map(|(i, p)| layout.moving(geom, p, motion.forces.get(i).filter(|_| show.forces)))
-        .collect();
-    let names: Vec<String> = (0..moving.len()).map(|i| format!("P{i:03}")).collect();
-    layout.animation(&base, names.iter().map(String::as_str).zip(&moving))
-}
-
-/// The shaper's all-positions drawing, as the linkage run builds it.
-fn shaper_positions() -> Drawing {
-    use mechdraw::figure::linkage as fig;
-    use mechdraw::scene::{Scene, load};
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("templates/shaper.toml");
-    let loaded = load(&path, &[]).expect("template loads");
-    let Scene::Linkage(scene) = &loaded.scene else { panic!("not a linkage") };
-    let mut solver = mechdraw::solve::linkage::Solver::new(scene.mechanism.clone()).expect("solver");
-    let states = solver.run(&scene.times).expect("solves");
-    let style = fig::Style::for_length(scene.mechanism.length_scale);
-    let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
-    let spans = fig::guide_spans(scene, &motion, &style);
-    fig::all_positions(scene, &motion, &spans, &style)
+/// The DXF drawing a run writes for a template (a motion: every position on its own
+/// layer), built through the products seam as `mechdraw run` builds it.
+fn template_drawing(template: &str) -> Drawing {
+    use mechdraw::run::{RunOptions, products::Picture};
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("templates/{template}.toml"));
+    let loaded = mechdraw::scene::load(&path, &[]).expect("template loads");
+    match mechdraw::run::products(&loaded, &RunOptions::default()).expect("solves").picture {
+        Picture::Motion(a) => a.whole(),
+        Picture::Still(d) => d,
+    }
 }
 
 /// The hand-written R12 path gives the crate path's bytes for real drawings (the triad,
@@ -439,8 +411,8 @@ fn fast_r12_path_equals_the_crate_path_on_real_drawings() {
     let opts = DxfOptions::default();
     for (name, d) in [
         ("sample", sample_drawing()),
-        ("fourbar animation", fourbar_animation()),
-        ("shaper positions", shaper_positions()),
+        ("fourbar animation", template_drawing("fourbar-chebyshev")),
+        ("shaper positions", template_drawing("shaper")),
     ] {
         let fast = dxf::to_bytes(&d, &opts).unwrap();
         let reference = dxf::to_bytes_via_crate(&d, &opts).unwrap();

@@ -122,7 +122,8 @@ fn every_output_is_written() {
     }
     let frames = std::fs::read_dir(dir.join(format!("frames/{NAME}"))).unwrap().count();
     assert_eq!(frames, 360);
-    for q in ["phi2", "phi3", "omega2", "omega3", "eps2", "eps3", "vM", "aM", "R_A", "R_B", "R_C", "R_O", "Me1"] {
+    for q in ["phi2_deg", "phi3_deg", "omega2", "omega3", "eps2", "eps3", "vM", "aM", "R_A", "R_B", "R_C", "R_O", "Me1"]
+    {
         let svg = dir.join(format!("diagrams/{NAME}/{q}.svg"));
         assert!(read(&svg).starts_with("<svg"), "{q}.svg");
         let png = std::fs::read(dir.join(format!("diagrams/{NAME}/{q}.png"))).unwrap();
@@ -163,7 +164,7 @@ fn positions_only_scene_has_no_polygons_and_no_kinematic_columns() {
     assert!(!header.contains("omega2") && !header.contains("eps2") && !header.contains("R_A"));
     assert!(
         !d.path().join(format!("diagrams/{NAME}/omega2.svg")).exists()
-            && d.path().join(format!("diagrams/{NAME}/phi2.svg")).exists()
+            && d.path().join(format!("diagrams/{NAME}/phi2_deg.svg")).exists()
     );
 }
 
@@ -381,6 +382,13 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
         "R_B_mag",
         "R_C_mag",
         "R_O_mag",
+        "vA_mag",
+        "vB_mag",
+        "vM_mag",
+        "vBA_mag",
+        "aA_mag",
+        "aB_mag",
+        "aM_mag",
         "Me1",
     ];
     for k in keys {

@@ -320,6 +320,40 @@ impl Drawing {
         self.entities.push(Entity { layer, color: Some(color), linetype: None, shape });
     }
 
+    /// Appends `src`'s entities on layers of the same names (created with `src`'s layer
+    /// colour and line type where new); each entity keeps its own overrides. An animation
+    /// frame is the shared drawing with one position's drawing appended this way.
+    pub fn append(&mut self, src: &Drawing) {
+        let map: Vec<usize> = src.layers.iter().map(|l| self.layer(&l.name, l.color, l.linetype)).collect();
+        self.entities.reserve(src.entities.len());
+        for e in &src.entities {
+            self.entities.push(Entity {
+                layer: map[e.layer],
+                color: e.color,
+                linetype: e.linetype,
+                shape: e.shape.clone(),
+            });
+        }
+    }
+
+    /// Appends every entity of `src` on the one layer `layer` (created black and continuous
+    /// where new), each with the colour and line type it had in `src` written on the entity:
+    /// one position of an animation on its own DXF layer (`POS_000`, …) still shows its
+    /// velocities green and its construction lines dashed.
+    pub fn append_on_layer(&mut self, src: &Drawing, layer: &str) {
+        let target = self.layer(layer, Aci::BLACK, LineType::Continuous);
+        // Layer "0" of `src` keeps its entities too: everything lands on `layer`.
+        self.entities.reserve(src.entities.len());
+        for e in &src.entities {
+            self.entities.push(Entity {
+                layer: target,
+                color: Some(src.color_of(e)),
+                linetype: Some(src.linetype_of(e)),
+                shape: e.shape.clone(),
+            });
+        }
+    }
+
     /// Adds an entity as given.
     pub fn push(&mut self, entity: Entity) {
         self.entities.push(entity);

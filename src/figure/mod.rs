@@ -2,6 +2,7 @@
 //! mechanism, plus [`plot`] for diagrams. Figures build a neutral
 //! [`crate::draw::Drawing`]; they never write files.
 
+pub mod animation;
 pub mod chain;
 pub mod forces;
 pub mod fourbar;

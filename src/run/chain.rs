@@ -3,10 +3,9 @@
 
 use serde_json::{Value, json};
 
-use super::output::Output;
-use super::{Outcome, RunOptions, solve_err};
+use super::products::{self, Picture, Products};
+use super::solve_err;
 use crate::Error;
-use crate::draw::svg::{self, SvgOptions};
 use crate::figure::chain::{self as fig, DependentMark};
 use crate::report::Csv;
 use crate::scene::chain::{ChainScene, Form};
@@ -48,7 +47,7 @@ fn band(center: f64, tol: f64) -> Value {
     json!({ "tol": tol, "min": center - tol, "max": center + tol })
 }
 
-pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error> {
     let (analysis, results) = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
     let dims = &scene.chain.dimensions;
     let units = scene.units.length();
@@ -170,64 +169,56 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
 
     let summary = summary(scene, &analysis, &results);
 
-    let mut written = Vec::new();
-    if let Some(dir) = &opts.out_dir {
-        let marks: Vec<DependentMark> = results
-            .iter()
-            .map(|r| {
-                let z = &scene.chain.dependent[r.index];
-                let (l, p) =
-                    (analysis.features[analysis.node_of[z.left]].x, analysis.features[analysis.node_of[z.right]].x);
-                let tol = if r.stack.worst_case > 0.0 {
-                    format!(" ±{}", fmt_value(r.stack.worst_case))
-                } else {
-                    String::new()
-                };
-                let shift = r.stack.mean - r.stack.nominal;
-                let text = if shift.abs() > 0.0 {
-                    format!("{} = {}{} (mean {})", z.name, fmt_value(r.stack.nominal), tol, fmt_value(r.stack.mean))
-                } else {
-                    format!("{} = {}{}", z.name, fmt_value(r.stack.nominal), tol)
-                };
-                DependentMark { left_x: l, right_x: p, text }
-            })
-            .collect();
-        let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, units);
-        let mut out = Output::new(dir)?;
-        let chain_svg = svg::to_string(&drawing, &SvgOptions::default());
-        out.write(format!("{}.svg", scene.name), &chain_svg)?;
-        let dxf = crate::draw::dxf::to_bytes(&drawing, &crate::draw::dxf::DxfOptions::default())
-            .map_err(|e| Error::Export { what: format!("{}.dxf", scene.name), message: e.to_string() })?;
-        out.write(format!("{}.dxf", scene.name), dxf)?;
-        for r in &results {
+    let marks: Vec<DependentMark> = results
+        .iter()
+        .map(|r| {
             let z = &scene.chain.dependent[r.index];
-            if let Some(m) = &r.monte_carlo {
-                let h =
-                    fig::histogram(&z.name, &z.label, units, scene.stackup.distribution.name(), m, &r.stack, z.spec);
-                let text = svg::to_string(&h, &SvgOptions::default());
-                out.write(format!("{}-{}-histogram.svg", scene.name, z.name), &text)?;
-                if opts.png {
-                    let png = crate::draw::raster::to_png(&text, 1000).map_err(|e| Error::Export {
-                        what: format!("{}-{}-histogram.png", scene.name, z.name),
-                        message: e.to_string(),
-                    })?;
-                    out.write(format!("{}-{}-histogram.png", scene.name, z.name), png)?;
-                }
-            }
-        }
-        if opts.png {
-            let png = crate::draw::raster::to_png(&chain_svg, 1600)
-                .map_err(|e| Error::Export { what: format!("{}.png", scene.name), message: e.to_string() })?;
-            out.write(format!("{}.png", scene.name), png)?;
-        }
-        out.write(format!("{}.csv", scene.name), dependent_csv(scene, &results).to_bytes())?;
-        out.write(format!("{}-contributions.csv", scene.name), contributions_csv(scene, &results).to_bytes())?;
-        let json = serde_json::to_string_pretty(&summary)
-            .map_err(|e| Error::Export { what: format!("{}.json", scene.name), message: e.to_string() })?;
-        out.write(format!("{}.json", scene.name), json + "\n")?;
-        written = out.commit()?;
-    }
-    Ok(Outcome { summary, report, warnings, written })
+            let (l, p) =
+                (analysis.features[analysis.node_of[z.left]].x, analysis.features[analysis.node_of[z.right]].x);
+            let tol =
+                if r.stack.worst_case > 0.0 { format!(" ±{}", fmt_value(r.stack.worst_case)) } else { String::new() };
+            let shift = r.stack.mean - r.stack.nominal;
+            let text = if shift.abs() > 0.0 {
+                format!("{} = {}{} (mean {})", z.name, fmt_value(r.stack.nominal), tol, fmt_value(r.stack.mean))
+            } else {
+                format!("{} = {}{}", z.name, fmt_value(r.stack.nominal), tol)
+            };
+            DependentMark { left_x: l, right_x: p, text }
+        })
+        .collect();
+    let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, units);
+    let diagrams = results
+        .iter()
+        .filter_map(|r| {
+            let z = &scene.chain.dependent[r.index];
+            r.monte_carlo.as_ref().map(|m| products::Diagram {
+                stem: format!("{}-histogram", z.name),
+                drawing: fig::histogram(
+                    &z.name,
+                    &z.label,
+                    units,
+                    scene.stackup.distribution.name(),
+                    m,
+                    &r.stack,
+                    z.spec,
+                ),
+            })
+        })
+        .collect();
+    let tables = vec![
+        products::Table { suffix: String::new(), csv: dependent_csv(scene, &results) },
+        products::Table { suffix: "-contributions".into(), csv: contributions_csv(scene, &results) },
+    ];
+    Ok(Products {
+        name: scene.name.clone(),
+        picture: Picture::Still(drawing),
+        positions: None,
+        diagrams,
+        tables,
+        summary,
+        report,
+        warnings,
+    })
 }
 
 fn fmt4(v: f64) -> String {

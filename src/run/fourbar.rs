@@ -4,13 +4,15 @@
 //! The output formats are documented in docs/fourbar-output.md.
 
 use rayon::prelude::*;
+use std::collections::BTreeMap;
+
+use serde::Serialize;
 use serde_json::{Value, json};
 
-use super::output::Output;
-use super::{Outcome, RunOptions, solve_err};
+use super::products::{self, Picture, PositionsSource, Products};
+use super::solve_err;
 use crate::Error;
-use crate::draw::svg::{self, SvgOptions};
-use crate::draw::{Drawing, raster, viewer};
+use crate::figure::animation::Animation;
 use crate::figure::fourbar::{Layout, ModelUnits, Show, angle_text};
 use crate::figure::plot::{self, Diagram, Series};
 use crate::geom::{Point, Vector, deg};
@@ -20,15 +22,11 @@ use crate::scene::fourbar::FourbarScene;
 use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::{Motion, Position, solve_motion};
 
-/// Width of the SVG frames and of the diagrams' PNG copies, pixels.
-const FRAME_WIDTH_PX: u32 = 1000;
-/// Width of the PNG copies of the diagrams, pixels.
-const DIAGRAM_PNG_WIDTH_PX: u32 = 1000;
 /// A jump of more than this many sweep steps between consecutive solved positions is a
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
 
-pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Error> {
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
     let units = match scene.units {
@@ -42,160 +40,40 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
     };
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
     let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units);
-    let table = Table::new(
-        &motion,
-        spec.outputs.velocity || spec.outputs.forces,
-        spec.outputs.acceleration || spec.outputs.forces,
-        show.forces,
-        units,
-    );
-    let summary = summary(scene, &motion, &layout, &table);
+    let qs = reported(&spec.outputs, layout.show.forces);
+    let csv = table(&motion, &qs, layout.show.forces);
+    let summary = summary(scene, &motion, &layout, &qs)?;
     let mut warnings = motion.warnings();
     if motion.positions.is_empty() {
         warnings.push("no crank angle of the sweep could be assembled: nothing to draw".to_string());
     }
     let report = report_text(scene, &motion, &layout);
-
-    let Some(dir) = &opts.out_dir else {
-        return Ok(Outcome { summary, report, warnings, written: Vec::new() });
-    };
-    super::check_drawn(file, "phi1_deg.step", motion.positions.len(), "use a larger step")?;
-    let mut out = Output::new(dir)?;
     let name = &scene.name;
     let step = spec.sweep.step_deg;
-    let geom = &spec.geometry;
+    let geom = spec.geometry;
+    let diagrams = diagrams(&motion, step, &qs, layout.show.forces, units)
+        .into_par_iter()
+        .map(|(stem, d)| products::Diagram { stem, drawing: plot::diagram(&d) })
+        .collect();
     let mut curve = runs(&motion.positions, step, |p| p.m);
     close_full_turn(&mut curve, &motion.positions, step);
-    let base = layout.base(geom, &curve);
+    let base = layout.base(&geom, &curve);
     let names = position_names(&motion.positions, spec.sweep.from_deg, step);
-
-    // Each position drawn once (in parallel), for the DXF layer and the frame.
-    let moving: Vec<Drawing> = motion
-        .positions
-        .par_iter()
-        .enumerate()
-        .map(|(i, p)| layout.moving(geom, p, motion.forces.get(i).filter(|_| show.forces)))
-        .collect();
-    let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(layout.window), ..SvgOptions::default() };
-
-    // The DXF (every position on its own layer) is built on one core while the frames,
-    // the viewer and the diagrams are built on the others; the frame files are staged
-    // (written) while the diagrams and the viewer are built.
-    let want_frames = !opts.no_frames;
-    let out_ref = &out;
-    let (dxf, (frames, staged, html, rendered)) = rayon::join(
-        || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
-        || {
-            let frames = if want_frames {
-                frame_svgs(&layout, &base, &moving, &motion.positions, &svg_opts, opts.progress)
-            } else {
-                Vec::new()
-            };
-            let frame_files: Vec<(std::path::PathBuf, &[u8])> = frames
-                .iter()
-                .zip(&names)
-                .map(|(f, n)| (format!("frames/{name}/{}.svg", n.to_lowercase()).into(), f.svg.as_bytes()))
-                .collect();
-            let (staged, (rendered, html)) = rayon::join(
-                || out_ref.stage(&frame_files),
-                || {
-                    let diagrams = diagrams(&motion, step, show.forces, &spec.outputs, units);
-                    let rendered: Result<Vec<RenderedDiagram>, Error> = diagrams
-                        .par_iter()
-                        .map(|(file, d)| {
-                            let s = svg::to_string(&plot::diagram(d), &SvgOptions::default());
-                            let png = if opts.png { Some(raster::to_png(&s, DIAGRAM_PNG_WIDTH_PX)) } else { None };
-                            png.transpose().map(|png| (file.clone(), s, png)).map_err(|e| Error::Export {
-                                what: format!("diagrams/{name}/{file}.png"),
-                                message: e.to_string(),
-                            })
-                        })
-                        .collect();
-                    let html = want_frames.then(|| {
-                        let title = format!("{name}: four-bar, {} positions", frames.len());
-                        viewer::html(&title, &frames)
-                    });
-                    (rendered, html)
-                },
-            );
-            (frames, staged, html, rendered)
-        },
-    );
-    out.write(format!("{name}.dxf"), dxf?)?;
-
-    // The first position as the scene's picture.
-    let picture = match (frames.first(), moving.first()) {
-        (Some(f), _) => f.svg.clone(),
-        (None, Some(first)) => svg::to_string(&layout.frame(&base, first), &svg_opts),
-        (None, None) => svg::to_string(&base, &svg_opts),
-    };
-    out.write(format!("{name}.svg"), picture)?;
-    out.write(format!("{name}.csv"), table.csv.to_bytes())?;
-    let json_text = serde_json::to_string_pretty(&summary)
-        .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
-    out.write(format!("{name}.json"), json_text)?;
-    for (file, s, png) in rendered? {
-        out.write(format!("diagrams/{name}/{file}.svg"), s)?;
-        if let Some(png) = png {
-            out.write(format!("diagrams/{name}/{file}.png"), png)?;
-        }
-    }
-    out.record(staged?);
-    if let Some(html) = html {
-        out.write(format!("{name}.html"), html)?;
-    }
-    let written = out.commit()?;
-    Ok(Outcome { summary, report, warnings, written })
-}
-
-/// A diagram's file stem, its SVG and (with `--png`) its PNG.
-type RenderedDiagram = (String, String, Option<Vec<u8>>);
-
-/// The DXF of the whole motion (R12, the writer's default).
-fn dxf_bytes(d: &Drawing, name: &str) -> Result<Vec<u8>, Error> {
-    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default())
-        .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
-}
-
-/// The SVG frames (in parallel), with the progress bar when asked for.
-fn frame_svgs(
-    layout: &Layout,
-    base: &Drawing,
-    moving: &[Drawing],
-    positions: &[Position],
-    svg_opts: &SvgOptions,
-    progress: bool,
-) -> Vec<viewer::Frame> {
-    let bar = progress_bar(progress, moving.len());
-    // The shared part is written once; each frame is its moving part appended to it.
-    let base_svg = svg::to_string(base, svg_opts);
-    let frames: Vec<viewer::Frame> = moving
-        .par_iter()
-        .zip(positions.par_iter())
-        .map(|(m, p)| {
-            let s = svg::splice(&base_svg, &svg::to_string(m, svg_opts))
-                .unwrap_or_else(|| svg::to_string(&layout.frame(base, m), svg_opts));
-            if let Some(b) = &bar {
-                b.inc(1);
-            }
-            viewer::Frame { label: format!("φ1 = {}°", angle_text(deg(p.phi1))), svg: s }
-        })
-        .collect();
-    if let Some(b) = &bar {
-        b.finish_and_clear();
-    }
-    frames
-}
-
-fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
-    if !on || n == 0 {
-        return None;
-    }
-    let bar = indicatif::ProgressBar::new(n as u64);
-    if let Ok(style) = indicatif::ProgressStyle::with_template("frames {bar:40.cyan/blue} {pos}/{len} {elapsed}") {
-        bar.set_style(style);
-    }
-    Some(bar)
+    let labels = motion.positions.iter().map(|p| format!("φ1 = {}°", angle_text(deg(p.phi1)))).collect();
+    let title = format!("{name}: four-bar, {} positions", motion.positions.len());
+    let window = layout.window;
+    let Motion { positions, forces, .. } = motion;
+    let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
+    Ok(Products {
+        name: name.clone(),
+        picture: Picture::Motion(Animation::new(title, base, window, names, labels, pose)),
+        positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
+        diagrams,
+        tables: vec![products::Table { suffix: String::new(), csv }],
+        summary,
+        report,
+        warnings,
+    })
 }
 
 /// Layer (and frame file) names: `POS_ddd` with the crank angle in whole degrees when every
@@ -243,17 +121,71 @@ fn close_full_turn(curve: &mut [Vec<Point>], positions: &[Position], step_deg: f
     }
 }
 
-/// One named column of the table: its CSV name and the value at a position.
-type Getter = Box<dyn Fn(&Position, Option<&Forces>) -> f64 + Sync>;
+/// What a quantity belongs to: it is reported when the scene's outputs ask for it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Group {
+    Position,
+    Velocity,
+    Acceleration,
+    Forces,
+}
 
-/// The per-position quantities, one column each: the CSV, and the source of the JSON
-/// records and the diagrams (so the three always agree).
-struct Table {
-    csv: Csv,
+/// A quantity's unit, written for the scene's length unit.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Unit {
+    Degree,
+    Length,
+    RadPerS,
+    RadPerS2,
+    Speed,
+    Acceleration,
+    Force,
+    Moment,
+}
+
+impl Unit {
+    fn text(self, units: ModelUnits) -> String {
+        let len = units.length;
+        match self {
+            Unit::Degree => "°".into(),
+            Unit::Length => len.into(),
+            Unit::RadPerS => "rad/s".into(),
+            Unit::RadPerS2 => "rad/s²".into(),
+            Unit::Speed => format!("{len}/s"),
+            Unit::Acceleration => format!("{len}/s²"),
+            Unit::Force => "N".into(),
+            Unit::Moment if len == "m" => "N·m".into(),
+            Unit::Moment => format!("N·{len}"),
+        }
+    }
+}
+
+/// How a quantity is read off a position (and its forces, when computed).
+#[derive(Clone, Copy)]
+enum Get {
+    Scalar(fn(&Position, Option<&Forces>) -> f64),
+    Pair(fn(&Position, Option<&Forces>) -> Vector),
+}
+
+/// One per-position quantity, named once: its CSV columns (`name`, or `name_x`, `name_y`
+/// and with `magnitude` `name_mag`), its key in the JSON position records (a pair as
+/// `[x, y]`), and its diagram (`diagrams/<scene>/<name>.svg`; a pair plotted as its
+/// magnitude).
+struct Quantity {
+    name: &'static str,
+    group: Group,
+    unit: Unit,
+    get: Get,
+    /// CSV (and JSON) also carry the magnitude `<name>_mag`.
+    magnitude: bool,
+    /// In the JSON position records (the CSV carries every quantity).
+    json: bool,
+    /// (title, symbol) of its diagram, if it has one.
+    diagram: Option<(&'static str, &'static str)>,
 }
 
 fn kin_of(p: &Position) -> crate::solve::fourbar::Kinematics {
-    // Columns of kinematic quantities exist only when the motion has kinematics.
+    // Quantities of a group are read only when the motion has that group.
     p.kin.unwrap_or(crate::solve::fourbar::Kinematics {
         omega2: f64::NAN,
         omega3: f64::NAN,
@@ -277,189 +209,311 @@ fn kin_of(p: &Position) -> crate::solve::fourbar::Kinematics {
     })
 }
 
-/// The columns, in CSV order.
-fn columns(velocity: bool, acceleration: bool, forces: bool) -> Vec<(String, Getter)> {
-    let mut c: Vec<(String, Getter)> = Vec::new();
-    let mut col = |name: &str, g: Getter| c.push((name.to_string(), g));
-    col("phi1_deg", Box::new(|p, _| deg(p.phi1)));
-    for (n, f) in [("A", 0usize), ("B", 1), ("M", 2)] {
-        let pt = move |p: &Position| -> Point { [p.a, p.b, p.m][f] };
-        col(&format!("{n}_x"), Box::new(move |p, _| pt(p).x));
-        col(&format!("{n}_y"), Box::new(move |p, _| pt(p).y));
+/// Every quantity of the four-bar, in CSV order.
+fn quantities() -> Vec<Quantity> {
+    use Group as G;
+    use Unit as U;
+    let q = |name, group, unit, get, magnitude, json, diagram| Quantity {
+        name,
+        group,
+        unit,
+        get,
+        magnitude,
+        json,
+        diagram,
+    };
+    macro_rules! kin_pair {
+        ($f:ident) => {
+            Get::Pair(|p, _| kin_of(p).$f)
+        };
     }
-    col("phi2_deg", Box::new(|p, _| deg(p.phi2())));
-    col("phi3_deg", Box::new(|p, _| deg(p.phi3())));
-    col("transmission_deg", Box::new(|p, _| deg(p.transmission())));
-    if velocity {
-        col("omega2", Box::new(|p, _| kin_of(p).omega2));
-        col("omega3", Box::new(|p, _| kin_of(p).omega3));
-        type KV = fn(&crate::solve::fourbar::Kinematics) -> Vector;
-        let vs: [(&str, KV); 4] = [("vA", |k| k.v_a), ("vB", |k| k.v_b), ("vM", |k| k.v_m), ("vBA", |k| k.v_ba)];
-        for (n, f) in vs {
-            col(&format!("{n}_x"), Box::new(move |p, _| f(&kin_of(p)).x));
-            col(&format!("{n}_y"), Box::new(move |p, _| f(&kin_of(p)).y));
-            col(&format!("{n}_mag"), Box::new(move |p, _| f(&kin_of(p)).norm()));
-        }
+    macro_rules! kin_scalar {
+        ($f:ident) => {
+            Get::Scalar(|p, _| kin_of(p).$f)
+        };
     }
-    if acceleration {
-        col("eps2", Box::new(|p, _| kin_of(p).eps2));
-        col("eps3", Box::new(|p, _| kin_of(p).eps3));
-        type KV = fn(&crate::solve::fourbar::Kinematics) -> Vector;
-        let acc: [(&str, KV); 11] = [
-            ("aA", |k| k.a_a),
-            ("aB", |k| k.a_b),
-            ("aM", |k| k.a_m),
-            ("aBA_n", |k| k.a_ba_n),
-            ("aBA_t", |k| k.a_ba_t),
-            ("aBC_n", |k| k.a_bc_n),
-            ("aBC_t", |k| k.a_bc_t),
-            ("aG1", |k| k.a_g1),
-            ("aG21", |k| k.a_g21),
-            ("aG22", |k| k.a_g22),
-            ("aG3", |k| k.a_g3),
-        ];
-        for (n, f) in acc {
-            col(&format!("{n}_x"), Box::new(move |p, _| f(&kin_of(p)).x));
-            col(&format!("{n}_y"), Box::new(move |p, _| f(&kin_of(p)).y));
-            if matches!(n, "aA" | "aB" | "aM") {
-                col(&format!("{n}_mag"), Box::new(move |p, _| f(&kin_of(p)).norm()));
+    macro_rules! force_pair {
+        ($f:ident) => {
+            Get::Pair(|_, f| f.map_or(Vector::repeat(f64::NAN), |f| f.$f))
+        };
+    }
+    macro_rules! force_scalar {
+        ($f:ident) => {
+            Get::Scalar(|_, f| f.map_or(f64::NAN, |f| f.$f))
+        };
+    }
+    vec![
+        q("phi1_deg", G::Position, U::Degree, Get::Scalar(|p, _| deg(p.phi1)), false, true, None),
+        q("A", G::Position, U::Length, Get::Pair(|p, _| p.a.coords), false, true, None),
+        q("B", G::Position, U::Length, Get::Pair(|p, _| p.b.coords), false, true, None),
+        q("M", G::Position, U::Length, Get::Pair(|p, _| p.m.coords), false, true, None),
+        q(
+            "phi2_deg",
+            G::Position,
+            U::Degree,
+            Get::Scalar(|p, _| deg(p.phi2())),
+            false,
+            true,
+            Some(("Coupler angle φ2", "φ2")),
+        ),
+        q(
+            "phi3_deg",
+            G::Position,
+            U::Degree,
+            Get::Scalar(|p, _| deg(p.phi3())),
+            false,
+            true,
+            Some(("Rocker angle φ3", "φ3")),
+        ),
+        q("transmission_deg", G::Position, U::Degree, Get::Scalar(|p, _| deg(p.transmission())), false, true, None),
+        q(
+            "omega2",
+            G::Velocity,
+            U::RadPerS,
+            kin_scalar!(omega2),
+            false,
+            true,
+            Some(("Angular velocity of the coupler ω2", "ω2")),
+        ),
+        q(
+            "omega3",
+            G::Velocity,
+            U::RadPerS,
+            kin_scalar!(omega3),
+            false,
+            true,
+            Some(("Angular velocity of the rocker ω3", "ω3")),
+        ),
+        q("vA", G::Velocity, U::Speed, kin_pair!(v_a), true, true, None),
+        q("vB", G::Velocity, U::Speed, kin_pair!(v_b), true, true, None),
+        q("vM", G::Velocity, U::Speed, kin_pair!(v_m), true, true, Some(("Speed of the coupler point M", "vM"))),
+        q("vBA", G::Velocity, U::Speed, kin_pair!(v_ba), true, true, None),
+        q(
+            "eps2",
+            G::Acceleration,
+            U::RadPerS2,
+            kin_scalar!(eps2),
+            false,
+            true,
+            Some(("Angular acceleration of the coupler ε2", "ε2")),
+        ),
+        q(
+            "eps3",
+            G::Acceleration,
+            U::RadPerS2,
+            kin_scalar!(eps3),
+            false,
+            true,
+            Some(("Angular acceleration of the rocker ε3", "ε3")),
+        ),
+        q("aA", G::Acceleration, U::Acceleration, kin_pair!(a_a), true, true, None),
+        q("aB", G::Acceleration, U::Acceleration, kin_pair!(a_b), true, true, None),
+        q(
+            "aM",
+            G::Acceleration,
+            U::Acceleration,
+            kin_pair!(a_m),
+            true,
+            true,
+            Some(("Acceleration of the coupler point M", "aM")),
+        ),
+        q("aBA_n", G::Acceleration, U::Acceleration, kin_pair!(a_ba_n), false, false, None),
+        q("aBA_t", G::Acceleration, U::Acceleration, kin_pair!(a_ba_t), false, false, None),
+        q("aBC_n", G::Acceleration, U::Acceleration, kin_pair!(a_bc_n), false, false, None),
+        q("aBC_t", G::Acceleration, U::Acceleration, kin_pair!(a_bc_t), false, false, None),
+        q("aG1", G::Acceleration, U::Acceleration, kin_pair!(a_g1), false, false, None),
+        q("aG21", G::Acceleration, U::Acceleration, kin_pair!(a_g21), false, false, None),
+        q("aG22", G::Acceleration, U::Acceleration, kin_pair!(a_g22), false, false, None),
+        q("aG3", G::Acceleration, U::Acceleration, kin_pair!(a_g3), false, false, None),
+        q("R_A", G::Forces, U::Force, force_pair!(r_a), true, true, Some(("Reaction in A (link 1 on link 2)", "R_A"))),
+        q("R_B", G::Forces, U::Force, force_pair!(r_b), true, true, Some(("Reaction in B (link 3 on link 2)", "R_B"))),
+        q("R_C", G::Forces, U::Force, force_pair!(r_c), true, true, Some(("Reaction in C (ground on link 3)", "R_C"))),
+        q("R_O", G::Forces, U::Force, force_pair!(r_o), true, true, Some(("Reaction in O1 (ground on link 1)", "R_O"))),
+        q("R_An", G::Forces, U::Force, force_pair!(r_a_n), false, false, None),
+        q("R_At", G::Forces, U::Force, force_pair!(r_a_t), false, false, None),
+        q("R_Cn", G::Forces, U::Force, force_pair!(r_c_n), false, false, None),
+        q("R_Ct", G::Forces, U::Force, force_pair!(r_c_t), false, false, None),
+        q("Fi1", G::Forces, U::Force, force_pair!(fi1), false, false, None),
+        q("Fi21", G::Forces, U::Force, force_pair!(fi21), false, false, None),
+        q("Fi22", G::Forces, U::Force, force_pair!(fi22), false, false, None),
+        q("Fi3", G::Forces, U::Force, force_pair!(fi3), false, false, None),
+        q("F", G::Forces, U::Force, force_pair!(f_ext), false, false, None),
+        q("G1", G::Forces, U::Force, force_pair!(g1), false, false, None),
+        q("G21", G::Forces, U::Force, force_pair!(g21), false, false, None),
+        q("G22", G::Forces, U::Force, force_pair!(g22), false, false, None),
+        q("G3", G::Forces, U::Force, force_pair!(g3), false, false, None),
+        q("Mi1", G::Forces, U::Moment, force_scalar!(mi1), false, false, None),
+        q("Mi21", G::Forces, U::Moment, force_scalar!(mi21), false, false, None),
+        q("Mi22", G::Forces, U::Moment, force_scalar!(mi22), false, false, None),
+        q("Mi3", G::Forces, U::Moment, force_scalar!(mi3), false, false, None),
+        q(
+            "Me1",
+            G::Forces,
+            U::Moment,
+            force_scalar!(me1),
+            false,
+            true,
+            Some(("Balancing moment on the crank (CCW positive)", "Me1")),
+        ),
+    ]
+}
+
+/// The quantities a run reports: positions always; velocities and accelerations when asked
+/// for or when forces are (they need both); forces when computed.
+fn reported(o: &crate::solve::fourbar::Outputs, forces: bool) -> Vec<Quantity> {
+    let velocity = o.velocity || o.forces;
+    let acceleration = o.acceleration || o.forces;
+    quantities()
+        .into_iter()
+        .filter(|q| match q.group {
+            Group::Position => true,
+            Group::Velocity => velocity,
+            Group::Acceleration => acceleration,
+            Group::Forces => forces,
+        })
+        .collect()
+}
+
+/// The forces at position `i`, when computed.
+fn forces_at(motion: &Motion, i: usize, forces: bool) -> Option<&Forces> {
+    if forces { motion.forces.get(i) } else { None }
+}
+
+/// The CSV: one row per position, the columns of [`Quantity`].
+fn table(motion: &Motion, qs: &[Quantity], forces: bool) -> Csv {
+    let mut header = Vec::new();
+    for q in qs {
+        match q.get {
+            Get::Scalar(_) => header.push(q.name.to_string()),
+            Get::Pair(_) => {
+                header.push(format!("{}_x", q.name));
+                header.push(format!("{}_y", q.name));
+                if q.magnitude {
+                    header.push(format!("{}_mag", q.name));
+                }
             }
         }
     }
-    if forces {
-        type FV = fn(&Forces) -> Vector;
-        let fv: [(&str, FV); 17] = [
-            ("R_A", |f| f.r_a),
-            ("R_B", |f| f.r_b),
-            ("R_C", |f| f.r_c),
-            ("R_O", |f| f.r_o),
-            ("R_An", |f| f.r_a_n),
-            ("R_At", |f| f.r_a_t),
-            ("R_Cn", |f| f.r_c_n),
-            ("R_Ct", |f| f.r_c_t),
-            ("Fi1", |f| f.fi1),
-            ("Fi21", |f| f.fi21),
-            ("Fi22", |f| f.fi22),
-            ("Fi3", |f| f.fi3),
-            ("F", |f| f.f_ext),
-            ("G1", |f| f.g1),
-            ("G21", |f| f.g21),
-            ("G22", |f| f.g22),
-            ("G3", |f| f.g3),
-        ];
-        for (n, g) in fv {
-            col(&format!("{n}_x"), Box::new(move |_, f| f.map_or(f64::NAN, |f| g(f).x)));
-            col(&format!("{n}_y"), Box::new(move |_, f| f.map_or(f64::NAN, |f| g(f).y)));
-            if matches!(n, "R_A" | "R_B" | "R_C" | "R_O") {
-                col(&format!("{n}_mag"), Box::new(move |_, f| f.map_or(f64::NAN, |f| g(f).norm())));
+    let mut csv = Csv::new(header);
+    let mut row = Vec::new();
+    for (i, p) in motion.positions.iter().enumerate() {
+        let f = forces_at(motion, i, forces);
+        row.clear();
+        for q in qs {
+            match q.get {
+                Get::Scalar(g) => row.push(g(p, f)),
+                Get::Pair(g) => {
+                    let v = g(p, f);
+                    row.extend([v.x, v.y]);
+                    if q.magnitude {
+                        row.push(v.norm());
+                    }
+                }
             }
         }
-        type FS = fn(&Forces) -> f64;
-        let fs: [(&str, FS); 5] =
-            [("Mi1", |f| f.mi1), ("Mi21", |f| f.mi21), ("Mi22", |f| f.mi22), ("Mi3", |f| f.mi3), ("Me1", |f| f.me1)];
-        for (n, g) in fs {
-            col(n, Box::new(move |_, f| f.map_or(f64::NAN, g)));
-        }
+        csv.row(row.iter().copied());
     }
-    c
+    csv
 }
 
-impl Table {
-    fn new(motion: &Motion, velocity: bool, acceleration: bool, forces: bool, _units: ModelUnits) -> Table {
-        let cols = columns(velocity, acceleration, forces);
-        let mut csv = Csv::new(cols.iter().map(|(n, _)| n.clone()));
-        for (i, p) in motion.positions.iter().enumerate() {
-            let f = if forces { motion.forces.get(i) } else { None };
-            csv.row(cols.iter().map(|(_, g)| g(p, f)));
+/// One position's JSON record: the quantities marked `json`, pairs as `[x, y]`.
+fn position_record(p: &Position, f: Option<&Forces>, qs: &[Quantity]) -> BTreeMap<String, Value> {
+    let mut r = BTreeMap::new();
+    for q in qs.iter().filter(|q| q.json) {
+        match q.get {
+            Get::Scalar(g) => {
+                r.insert(q.name.to_string(), json!(g(p, f)));
+            }
+            Get::Pair(g) => {
+                let v = g(p, f);
+                r.insert(q.name.to_string(), report::vector(v));
+                if q.magnitude {
+                    r.insert(format!("{}_mag", q.name), json!(v.norm()));
+                }
+            }
         }
-        Table { csv }
-    }
-}
-
-/// The JSON record of one position (design.md §4 names; points and vectors as [x, y]).
-fn position_record(p: &Position, f: Option<&Forces>, velocity: bool, acceleration: bool) -> Value {
-    let mut r = json!({
-        "phi1_deg": deg(p.phi1),
-        "A": report::point(p.a),
-        "B": report::point(p.b),
-        "M": report::point(p.m),
-        "phi2_deg": deg(p.phi2()),
-        "phi3_deg": deg(p.phi3()),
-        "transmission_deg": deg(p.transmission()),
-    });
-    let obj = r.as_object_mut().expect("json! object");
-    if let Some(k) = &p.kin {
-        if velocity {
-            obj.insert("omega2".into(), json!(k.omega2));
-            obj.insert("omega3".into(), json!(k.omega3));
-            obj.insert("vA".into(), report::vector(k.v_a));
-            obj.insert("vB".into(), report::vector(k.v_b));
-            obj.insert("vM".into(), report::vector(k.v_m));
-            obj.insert("vBA".into(), report::vector(k.v_ba));
-        }
-        if acceleration {
-            obj.insert("eps2".into(), json!(k.eps2));
-            obj.insert("eps3".into(), json!(k.eps3));
-            obj.insert("aA".into(), report::vector(k.a_a));
-            obj.insert("aB".into(), report::vector(k.a_b));
-            obj.insert("aM".into(), report::vector(k.a_m));
-        }
-    }
-    if let Some(f) = f {
-        for (n, v) in [("R_A", f.r_a), ("R_B", f.r_b), ("R_C", f.r_c), ("R_O", f.r_o)] {
-            obj.insert(n.into(), report::vector(v));
-            obj.insert(format!("{n}_mag"), json!(v.norm()));
-        }
-        obj.insert("Me1".into(), json!(f.me1));
     }
     r
 }
 
-fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, _table: &Table) -> Value {
+/// A drawing scale in the summary: the value per drawing millimetre and its unit.
+#[derive(Debug, Serialize)]
+struct ScaleRecord {
+    value: f64,
+    unit: String,
+}
+
+/// The scales of the polygons drawn (`null` for one not drawn).
+#[derive(Debug, Serialize)]
+struct Scales {
+    k_v: Option<ScaleRecord>,
+    k_a: Option<ScaleRecord>,
+    k_f: Option<ScaleRecord>,
+}
+
+/// The crank angles swept, degrees.
+#[derive(Debug, Serialize)]
+struct SweepRecord {
+    from_deg: f64,
+    to_deg: f64,
+    step_deg: f64,
+}
+
+/// The four-bar's JSON summary (docs/fourbar-output.md).
+#[derive(Debug, Serialize)]
+struct Summary<'a> {
+    kind: &'static str,
+    name: &'a str,
+    units: &'static str,
+    omega1: f64,
+    sweep: SweepRecord,
+    outputs: Vec<&'static str>,
+    grashof: crate::solve::fourbar::Grashof,
+    solved: usize,
+    gaps: &'a [crate::solve::fourbar::Gap],
+    dead_points: &'a [crate::solve::fourbar::DeadPoint],
+    scales: Scales,
+    positions: Vec<BTreeMap<String, Value>>,
+}
+
+fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantity]) -> Result<Value, Error> {
     let spec = &scene.spec;
     let o = &spec.outputs;
     let forces = layout.show.forces;
-    let positions: Vec<Value> = motion
+    let positions = motion
         .positions
         .iter()
         .enumerate()
-        .map(|(i, p)| {
-            let f = if forces { motion.forces.get(i) } else { None };
-            position_record(p, f, o.velocity || o.forces, o.acceleration || o.forces)
-        })
+        .map(|(i, p)| position_record(p, forces_at(motion, i, forces), qs))
         .collect();
-    let mut outputs = vec!["position"];
-    if o.velocity {
-        outputs.push("velocity");
-    }
-    if o.acceleration {
-        outputs.push("acceleration");
-    }
-    if o.forces {
-        outputs.push("forces");
-    }
+    let outputs =
+        [("position", true), ("velocity", o.velocity), ("acceleration", o.acceleration), ("forces", o.forces)]
+            .into_iter()
+            .filter_map(|(n, on)| on.then_some(n))
+            .collect();
     let len = layout.units.length;
     let scale = |s: Option<(crate::figure::fourbar::Scale, Point)>, unit: String| {
-        s.map(|(s, _)| json!({ "value": s.per_mm, "unit": unit })).unwrap_or(Value::Null)
+        s.map(|(s, _)| ScaleRecord { value: s.per_mm, unit })
     };
-    json!({
-        "kind": "fourbar",
-        "name": scene.name,
-        "units": len,
-        "omega1": spec.omega1,
-        "sweep": { "from_deg": spec.sweep.from_deg, "to_deg": spec.sweep.to_deg, "step_deg": spec.sweep.step_deg },
-        "outputs": outputs,
-        "grashof": motion.grashof,
-        "solved": motion.positions.len(),
-        "gaps": motion.gaps,
-        "dead_points": motion.dead_points,
-        "scales": {
-            "k_v": scale(layout.velocity, format!("({len}/s)/mm")),
-            "k_a": scale(layout.acceleration, format!("({len}/s²)/mm")),
-            "k_f": scale(layout.forces, "N/mm".to_string()),
+    let s = Summary {
+        kind: "fourbar",
+        name: &scene.name,
+        units: len,
+        omega1: spec.omega1,
+        sweep: SweepRecord { from_deg: spec.sweep.from_deg, to_deg: spec.sweep.to_deg, step_deg: spec.sweep.step_deg },
+        outputs,
+        grashof: motion.grashof,
+        solved: motion.positions.len(),
+        gaps: &motion.gaps,
+        dead_points: &motion.dead_points,
+        scales: Scales {
+            k_v: scale(layout.velocity, format!("({len}/s)/mm")),
+            k_a: scale(layout.acceleration, format!("({len}/s²)/mm")),
+            k_f: scale(layout.forces, "N/mm".to_string()),
         },
-        "positions": positions,
-    })
+        positions,
+    };
+    products::summary_value(&s, &scene.name)
 }
 
 fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String {
@@ -481,80 +535,22 @@ fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String
     s
 }
 
-/// The diagrams (file stem, diagram) the scene's outputs ask for: angles always; angular
-/// velocities and |vM| with velocities; angular accelerations and |aM| with accelerations;
-/// |R_A|, |R_B|, |R_C|, |R_O| and Me1 with forces.
+/// The diagrams of the reported quantities that have one, against φ1 (curves broken over
+/// skipped angles).
 fn diagrams(
     motion: &Motion,
     step_deg: f64,
+    qs: &[Quantity],
     forces: bool,
-    o: &crate::solve::fourbar::Outputs,
     units: ModelUnits,
 ) -> Vec<(String, Diagram)> {
-    let len = units.length;
-    let moment = if len == "m" { "N·m".to_string() } else { format!("N·{len}") };
-    let velocity = o.velocity || o.forces;
-    let acceleration = o.acceleration || o.forces;
-    type Q = Box<dyn Fn(&Position, Option<&Forces>) -> f64>;
-    let mut list: Vec<(&str, String, String, Q)> = vec![
-        ("phi2", "Coupler angle φ2".into(), "φ2 [°]".into(), Box::new(|p, _| deg(p.phi2()))),
-        ("phi3", "Rocker angle φ3".into(), "φ3 [°]".into(), Box::new(|p, _| deg(p.phi3()))),
-    ];
-    if velocity {
-        list.push((
-            "omega2",
-            "Angular velocity of the coupler ω2".into(),
-            "ω2 [rad/s]".into(),
-            Box::new(|p, _| kin_of(p).omega2),
-        ));
-        list.push((
-            "omega3",
-            "Angular velocity of the rocker ω3".into(),
-            "ω3 [rad/s]".into(),
-            Box::new(|p, _| kin_of(p).omega3),
-        ));
-        list.push((
-            "vM",
-            "Speed of the coupler point M".into(),
-            format!("|vM| [{len}/s]"),
-            Box::new(|p, _| kin_of(p).v_m.norm()),
-        ));
-    }
-    if acceleration {
-        list.push((
-            "eps2",
-            "Angular acceleration of the coupler ε2".into(),
-            "ε2 [rad/s²]".into(),
-            Box::new(|p, _| kin_of(p).eps2),
-        ));
-        list.push((
-            "eps3",
-            "Angular acceleration of the rocker ε3".into(),
-            "ε3 [rad/s²]".into(),
-            Box::new(|p, _| kin_of(p).eps3),
-        ));
-        list.push((
-            "aM",
-            "Acceleration of the coupler point M".into(),
-            format!("|aM| [{len}/s²]"),
-            Box::new(|p, _| kin_of(p).a_m.norm()),
-        ));
-    }
-    if forces {
-        let mag = |g: fn(&Forces) -> Vector| -> Q { Box::new(move |_, f| f.map_or(f64::NAN, |f| g(f).norm())) };
-        list.push(("R_A", "Reaction in A (link 1 on link 2)".into(), "|R_A| [N]".into(), mag(|f| f.r_a)));
-        list.push(("R_B", "Reaction in B (link 3 on link 2)".into(), "|R_B| [N]".into(), mag(|f| f.r_b)));
-        list.push(("R_C", "Reaction in C (ground on link 3)".into(), "|R_C| [N]".into(), mag(|f| f.r_c)));
-        list.push(("R_O", "Reaction in O1 (ground on link 1)".into(), "|R_O| [N]".into(), mag(|f| f.r_o)));
-        list.push((
-            "Me1",
-            "Balancing moment on the crank (CCW positive)".into(),
-            format!("Me1 [{moment}]"),
-            Box::new(|_, f| f.map_or(f64::NAN, |f| f.me1)),
-        ));
-    }
-    list.into_iter()
-        .map(|(file, title, y_label, q)| {
+    qs.iter()
+        .filter_map(|q| q.diagram.map(|d| (q, d)))
+        .map(|(q, (title, symbol))| {
+            let y_label = match q.get {
+                Get::Scalar(_) => format!("{symbol} [{}]", q.unit.text(units)),
+                Get::Pair(_) => format!("|{symbol}| [{}]", q.unit.text(units)),
+            };
             // NaN between runs breaks the curve over skipped angles.
             let mut x = Vec::with_capacity(motion.positions.len() + 4);
             let mut y = Vec::with_capacity(motion.positions.len() + 4);
@@ -566,40 +562,15 @@ fn diagrams(
                     y.push(f64::NAN);
                 }
                 x.push(d);
-                y.push(q(p, if forces { motion.forces.get(i) } else { None }));
+                let f = forces_at(motion, i, forces);
+                y.push(match q.get {
+                    Get::Scalar(g) => g(p, f),
+                    Get::Pair(g) => g(p, f).norm(),
+                });
                 prev = Some(d);
             }
-            let series = vec![Series { label: file.to_string(), x, y }];
-            (file.to_string(), Diagram { title, x_label: "φ1 [°]".into(), y_label, series })
+            let series = vec![Series { label: q.name.to_string(), x, y }];
+            (q.name.to_string(), Diagram { title: title.to_string(), x_label: "φ1 [°]".into(), y_label, series })
         })
         .collect()
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::Scene;
-
-    #[test]
-    fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
-        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
-        let over: Vec<crate::scene::Override> = vec!["phi1_deg.step=45".parse().unwrap()];
-        let loaded = crate::scene::load(&path, &over).unwrap();
-        let Scene::Fourbar(scene) = &loaded.scene else { panic!("not a four-bar") };
-        let motion = solve_motion(&scene.spec).unwrap();
-        let show = Show { velocity: true, acceleration: true, forces: true };
-        let geom = &scene.spec.geometry;
-        let layout = Layout::new(geom, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
-        let base = layout.base(geom, &runs(&motion.positions, 45.0, |p| p.m));
-        let opts = SvgOptions { window: Some(layout.window), ..SvgOptions::default() };
-        let base_svg = svg::to_string(&base, &opts);
-        for (p, f) in motion.positions.iter().zip(&motion.forces) {
-            let m = layout.moving(geom, p, Some(f));
-            let whole = svg::to_string(&layout.frame(&base, &m), &opts);
-            assert_eq!(svg::splice(&base_svg, &svg::to_string(&m, &opts)).as_deref(), Some(whole.as_str()));
-        }
-        // Different windows: no splice.
-        let other = SvgOptions { width_px: 10, ..opts };
-        assert!(svg::splice(&base_svg, &svg::to_string(&base, &other)).is_none());
-    }
 }

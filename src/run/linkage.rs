@@ -3,15 +3,13 @@
 //! DXF (a layer per position), SVG frames with the HTML viewer, diagrams, CSV and JSON.
 //! With `--drag`, the dragged configuration is written instead of the motion.
 
-use rayon::prelude::*;
 use serde_json::{Map, Value, json};
 
-use super::output::Output;
-use super::{Outcome, RunOptions, solve_err};
+use super::products::{self, Picture, PositionsSource, Products};
+use super::solve_err;
 use crate::Error;
-use crate::draw::svg::{self, SvgOptions, to_string as svg_string};
-use crate::draw::viewer::{Frame, html};
-use crate::draw::{Aci, Drawing, LineType};
+use crate::draw::{Aci, LineType};
+use crate::figure::animation::Animation;
 use crate::figure::linkage::{self as fig, Style};
 use crate::figure::plot::{Diagram, Series, diagram};
 use crate::geom::{Point, deg};
@@ -107,14 +105,6 @@ fn near_singular_warning(n: &NearSingular) -> String {
     )
 }
 
-fn export(what: &str) -> impl FnOnce(String) -> Error + '_ {
-    move |message| Error::Export { what: what.to_string(), message }
-}
-
-fn dxf_bytes(d: &Drawing) -> Result<Vec<u8>, Error> {
-    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default()).map_err(|e| export("DXF")(e.to_string()))
-}
-
 /// Parses `BODY.POINT=x,y`.
 fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error> {
     let bad = |message: String| Error::Option { option: format!("--drag {spec}"), message };
@@ -130,14 +120,14 @@ fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error
     Ok((anchor, Point::new(nums[0], nums[1])))
 }
 
-pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Result<Products, Error> {
     let serr = solve_err(file);
     let mut solver = match Solver::new(scene.mechanism.clone()) {
         Ok(s) => s,
         Err(e) => return Err(serr(e.into())),
     };
-    if !opts.drag.is_empty() {
-        return run_drag(scene, file, opts, solver);
+    if !drag.is_empty() {
+        return drag_products(scene, file, drag, solver);
     }
     let states = solver.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?;
     let cols = columns(scene, &states);
@@ -228,80 +218,57 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
         mean_iter
     );
 
-    let Some(dir) = &opts.out_dir else {
-        return Ok(Outcome { summary, report, warnings, written: Vec::new() });
-    };
-    super::check_drawn(file, "time.steps", states.len(), "use fewer steps")?;
-    let mut out = Output::new(dir)?;
     let style = Style::for_length(mech.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let spans = fig::guide_spans(scene, &motion, &style);
-
-    // DXF: every position on its own layer, the paths on TRAJECTORY.
-    let all = fig::all_positions(scene, &motion, &spans, &style);
-    out.write(format!("{}.dxf", scene.name), dxf_bytes(&all)?)?;
-    let window = all.bounds();
-
-    // The first position with the paths, as the scene's picture.
-    let frame_drawing = |q: &[f64]| fig::frame(scene, &motion, q, &spans, &style);
-    let svg_opts = SvgOptions { window, ..SvgOptions::default() };
-    out.write(format!("{}.svg", scene.name), svg_string(&frame_drawing(motion[0]), &svg_opts))?;
-
-    if !opts.no_frames {
-        // The paths are written once; each frame is its mechanism appended to them.
-        let base_svg = svg_string(&fig::frame_base(scene, &motion, &style), &svg_opts);
-        let frames: Vec<Frame> = states
-            .par_iter()
-            .map(|s| {
-                let moving = svg_string(&fig::frame_moving(scene, &s.q, &spans, &style), &svg_opts);
-                let svg =
-                    svg::splice(&base_svg, &moving).unwrap_or_else(|| svg_string(&frame_drawing(&s.q), &svg_opts));
-                Frame { label: format!("t = {:.4} s", s.t), svg }
-            })
-            .collect();
-        let files: Vec<(std::path::PathBuf, &[u8])> = frames
-            .iter()
-            .enumerate()
-            .map(|(k, f)| (format!("frames/{}/pos_{k:03}.svg", scene.name).into(), f.svg.as_bytes()))
-            .collect();
-        out.write_many(&files)?;
-        out.write(format!("{}.html", scene.name), html(&scene.name, &frames))?;
-    }
+    let base = fig::frame_base(scene, &motion, &style);
+    let window = fig::all_positions(scene, &motion, &spans, &style).bounds().or_else(|| base.bounds());
+    let window = window.unwrap_or(crate::draw::Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
+    let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
+    let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
     // Diagrams, one per measured column.
     let t: Vec<f64> = states.iter().map(|s| s.t).collect();
-    for c in &cols {
-        let d = diagram(&Diagram {
-            title: format!("{} — {}", c.name, c.title),
-            x_label: "t [s]".into(),
-            y_label: format!("{} [{}]", c.name, c.unit),
-            series: vec![Series { label: c.name.clone(), x: t.clone(), y: c.values.clone() }],
-        });
-        let svg = svg_string(&d, &SvgOptions::default());
-        if opts.png {
-            let png = crate::draw::raster::to_png(&svg, 1000).map_err(|e| export("PNG")(e.to_string()))?;
-            out.write(format!("diagrams/{}/{}.png", scene.name, c.name), png)?;
-        }
-        out.write(format!("diagrams/{}/{}.svg", scene.name, c.name), svg)?;
-    }
+    let diagrams = cols
+        .iter()
+        .map(|c| products::Diagram {
+            stem: c.name.clone(),
+            drawing: diagram(&Diagram {
+                title: format!("{} — {}", c.name, c.title),
+                x_label: "t [s]".into(),
+                y_label: format!("{} [{}]", c.name, c.unit),
+                series: vec![Series { label: c.name.clone(), x: t.clone(), y: c.values.clone() }],
+            }),
+        })
+        .collect();
 
     // CSV.
     let mut csv = Csv::new(std::iter::once("t".to_string()).chain(cols.iter().map(|c| c.name.clone())));
     for (k, s) in states.iter().enumerate() {
         csv.row(std::iter::once(s.t).chain(cols.iter().map(|c| c.values[k])));
     }
-    out.write(format!("{}.csv", scene.name), csv.to_bytes())?;
-    out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
-    let written = out.commit()?;
-    Ok(Outcome { summary, report, warnings, written })
+
+    let qs: Vec<Vec<f64>> = states.into_iter().map(|s| s.q).collect();
+    let owned = scene.clone();
+    let pose = move |k: usize| fig::frame_moving(&owned, &qs[k], &spans, &style);
+    Ok(Products {
+        name: scene.name.clone(),
+        picture: Picture::Motion(Animation::new(scene.name.clone(), base, window, names, labels, pose)),
+        positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
+        diagrams,
+        tables: vec![products::Table { suffix: String::new(), csv }],
+        summary,
+        report,
+        warnings,
+    })
 }
 
-fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Solver) -> Result<Outcome, Error> {
-    let requests: Vec<(Anchor, Point)> = opts.drag.iter().map(|s| parse_drag(scene, s)).collect::<Result<_, _>>()?;
+fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: Solver) -> Result<Products, Error> {
+    let requests: Vec<(Anchor, Point)> = drag.iter().map(|s| parse_drag(scene, s)).collect::<Result<_, _>>()?;
     let t0 = scene.times[0];
     let mut state = solver.assemble(t0).map_err(|e| solve_err(file)(e.into()))?;
     let mut records = Vec::new();
-    for ((anchor, target), spec) in requests.iter().zip(&opts.drag) {
+    for ((anchor, target), spec) in requests.iter().zip(drag) {
         state = solver.drag(&state, *anchor, *target).map_err(|e| solve_err(file)(e.into()))?;
         let reached = state.point(*anchor);
         records.push(json!({
@@ -347,48 +314,20 @@ fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Sol
         })
         .collect::<Vec<_>>()
         .join("\n");
-    let Some(dir) = &opts.out_dir else {
-        return Ok(Outcome { summary, report, warnings: Vec::new(), written: Vec::new() });
-    };
-    let mut out = Output::new(dir)?;
     let style = Style::for_length(mech.length_scale);
     let motion = [state.q.as_slice()];
     let spans = fig::guide_spans(scene, &motion, &style);
     let mut d = fig::new_drawing(&style);
     let layer = d.layer("DRAG", Aci::BLACK, LineType::Continuous);
     fig::mechanism(&mut d, layer, scene, &state.q, &spans, &style);
-    out.write(format!("{}.dxf", scene.name), dxf_bytes(&d)?)?;
-    out.write(format!("{}.svg", scene.name), svg_string(&d, &SvgOptions::default()))?;
-    out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
-    let written = out.commit()?;
-    Ok(Outcome { summary, report, warnings: Vec::new(), written })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::scene::Scene;
-
-    #[test]
-    fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
-        for template in ["shaper", "fourbar-linkage", "triad-driven"] {
-            let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("templates/{template}.toml"));
-            let over: Vec<crate::scene::Override> = vec!["time.steps=8".parse().unwrap()];
-            let loaded = crate::scene::load(&path, &over).unwrap();
-            let Scene::Linkage(scene) = &loaded.scene else { panic!("{template} is not a linkage") };
-            let states = Solver::new(scene.mechanism.clone()).unwrap().run(&scene.times).unwrap();
-            let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
-            let style = Style::for_length(scene.mechanism.length_scale);
-            let spans = fig::guide_spans(scene, &motion, &style);
-            // One window for every frame, as the run has (else the headers differ).
-            let base = fig::frame_base(scene, &motion, &style);
-            let opts = SvgOptions { window: base.bounds(), ..SvgOptions::default() };
-            let base_svg = svg_string(&base, &opts);
-            for q in &motion {
-                let whole = svg_string(&fig::frame(scene, &motion, q, &spans, &style), &opts);
-                let moving = svg_string(&fig::frame_moving(scene, q, &spans, &style), &opts);
-                assert_eq!(svg::splice(&base_svg, &moving).as_deref(), Some(whole.as_str()), "{template}");
-            }
-        }
-    }
+    Ok(Products {
+        name: scene.name.clone(),
+        picture: Picture::Still(d),
+        positions: None,
+        diagrams: Vec::new(),
+        tables: Vec::new(),
+        summary,
+        report,
+        warnings: Vec::new(),
+    })
 }

@@ -1,13 +1,17 @@
-//! One scene through the pipeline: scene → solve → figure → writers, and a report.
-//! Each kind has its own pipeline file; this module holds what they share: the options,
-//! the outcome and the dispatch. Nothing is written unless everything could be
-//! (see [`output::Output`]).
+//! One scene through the pipeline: scene → solve → figure → [`Products`] → bytes → files.
+//! Each kind has its own `products()` (solve, figures, tables, summary, report: no file
+//! names, no writers); [`bytes`] is the one place that turns products into named byte
+//! buffers, and [`output`] the one that puts them on disk, all or nothing.
 
+pub mod bytes;
 mod chain;
 mod fourbar;
 mod linkage;
 pub mod output;
+pub mod products;
 mod triad;
+
+pub use products::Products;
 
 use std::path::PathBuf;
 
@@ -42,8 +46,8 @@ pub struct Outcome {
     pub written: Vec<PathBuf>,
 }
 
-/// Solves `loaded` and writes its outputs as `opts` asks.
-pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
+/// Solves `loaded` and builds what a run of it produces, without writing anything.
+pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
     let file = loaded.path.display().to_string();
     if !opts.drag.is_empty() && !matches!(loaded.scene, Scene::Linkage(_)) {
         return Err(Error::Option {
@@ -52,12 +56,57 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
         });
     }
     match &loaded.scene {
-        Scene::Triad(s) => triad::run(s, &file, opts),
-        Scene::Fourbar(s) => fourbar::run(s, &file, opts),
-        Scene::Linkage(s) => linkage::run(s, &file, opts),
-        Scene::Chain(s) => chain::run(s, &file, opts),
+        Scene::Triad(s) => triad::products(s, &file),
+        Scene::Fourbar(s) => fourbar::products(s, &file),
+        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag),
+        Scene::Chain(s) => chain::products(s, &file),
     }
 }
+
+/// Solves `loaded` and writes its outputs as `opts` asks.
+pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
+    let p = products(loaded, opts)?;
+    let Some(dir) = &opts.out_dir else {
+        return Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written: Vec::new() });
+    };
+    if let (products::Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
+        check_drawn(&loaded.path.display().to_string(), source.field, a.len(), source.advice)?;
+    }
+    let mut out = output::Output::new(dir)?;
+    let frames = match &p.picture {
+        products::Picture::Motion(a) if !opts.no_frames => a.len(),
+        _ => 0,
+    };
+    let bar = progress_bar(opts.progress, frames);
+    let tick = || {
+        if let Some(b) = &bar {
+            b.inc(1);
+        }
+    };
+    let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: Default::default() };
+    let order = bytes::write(&p, &wopts, &tick, &out)?;
+    if let Some(b) = &bar {
+        b.finish_and_clear();
+    }
+    out.record_paths(order.into_iter().map(PathBuf::from));
+    let written = out.commit()?;
+    Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })
+}
+
+/// A terminal progress bar over `n` frames, when asked for and there are frames.
+fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
+    if !on || n == 0 {
+        return None;
+    }
+    let bar = indicatif::ProgressBar::new(n as u64);
+    if let Ok(style) = indicatif::ProgressStyle::with_template("frames {bar:40.cyan/blue} {pos}/{len} {elapsed}") {
+        bar.set_style(style);
+    }
+    Some(bar)
+}
+
+/// Width of every PNG a run writes with `--png` (pictures and diagrams alike), pixels.
+pub const PNG_WIDTH_PX: u32 = 1600;
 
 /// Most positions a run draws: each is a DXF layer and an SVG frame (~20 KB each for the
 /// four-bar, and a linkage frame also carries the whole paths, so its frames grow with the
@@ -67,7 +116,7 @@ pub const MAX_DRAWN_POSITIONS: usize = 3600;
 
 /// Refuses to draw more than [`MAX_DRAWN_POSITIONS`] positions, naming the field that sets
 /// their number (so that a mistyped step does not fill the disk).
-pub(crate) fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
+fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
     if count <= MAX_DRAWN_POSITIONS {
         return Ok(());
     }

@@ -91,6 +91,12 @@ impl Output {
         self.files.extend(staged.0);
     }
 
+    /// Lists files already staged (through [`super::bytes::Sink::put`]) among the run's
+    /// files, in this order.
+    pub fn record_paths(&mut self, rels: impl IntoIterator<Item = PathBuf>) {
+        self.files.extend(rels);
+    }
+
     /// Moves every staged file into the output directory. Directories are merged, except a
     /// staged directory that holds only files (e.g. `frames/<name>/`): it replaces the old
     /// one whole, so no stale frames of an earlier run remain while other scenes' outputs in
@@ -124,6 +130,15 @@ fn move_tree(from: &Path, to: &Path) -> Result<(), Error> {
         std::fs::rename(&source, &target).map_err(io(&target))?;
     }
     Ok(())
+}
+
+impl super::bytes::Sink for Output {
+    fn put(&self, files: &[super::bytes::File<'_>]) -> Result<(), Error> {
+        let files: Vec<(PathBuf, &[u8])> = files.iter().map(|(n, b)| (PathBuf::from(n), *b)).collect();
+        // Listed by the caller, in the canonical order (see `record_paths`).
+        let _ = self.stage(&files)?;
+        Ok(())
+    }
 }
 
 impl Drop for Output {

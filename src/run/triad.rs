@@ -4,11 +4,9 @@
 
 use serde_json::{Value, json};
 
-use super::output::Output;
-use super::{Outcome, RunOptions, solve_err};
+use super::products::{Picture, Products};
+use super::solve_err;
 use crate::Error;
-use crate::draw::dxf::{self, DxfOptions};
-use crate::draw::svg::{self, SvgOptions};
 use crate::figure::triad::{TriadFigure, drawing};
 use crate::geom::{Point, deg};
 use crate::report::point;
@@ -243,23 +241,16 @@ pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
     })
 }
 
-pub(super) fn run(scene: &TriadScene, file: &str, opts: &RunOptions) -> Result<Outcome, Error> {
+pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error> {
     let results = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
-    let summary = summary(scene, &results);
-    let report = report(scene, &results);
-    let mut written = Vec::new();
-    if let Some(dir) = &opts.out_dir {
-        let d = figure(scene, &results);
-        let svg_text = svg::to_string(&d, &SvgOptions::default());
-        let dxf_bytes = dxf::to_bytes(&d, &DxfOptions::default())
-            .map_err(|e| Error::Export { what: format!("{}.dxf", scene.name), message: e.to_string() })?;
-        let json_text = serde_json::to_string_pretty(&summary)
-            .map_err(|e| Error::Export { what: "the JSON summary".into(), message: e.to_string() })?;
-        let mut out = Output::new(dir)?;
-        out.write(format!("{}.dxf", scene.name), dxf_bytes)?;
-        out.write(format!("{}.svg", scene.name), svg_text)?;
-        out.write(format!("{}.json", scene.name), json_text + "\n")?;
-        written = out.commit()?;
-    }
-    Ok(Outcome { summary, report, warnings: results.warnings, written })
+    Ok(Products {
+        name: scene.name.clone(),
+        picture: Picture::Still(figure(scene, &results)),
+        positions: None,
+        diagrams: Vec::new(),
+        tables: Vec::new(),
+        summary: summary(scene, &results),
+        report: report(scene, &results),
+        warnings: results.warnings,
+    })
 }

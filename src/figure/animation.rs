@@ -1,0 +1,103 @@
+//! A mechanism's motion as drawings: what every position shares (the base: ground,
+//! paths, panel titles) and what moves (one drawing per position), with the fixed window
+//! that every frame shows. The four-bar and the linkage hand their motion over as one
+//! [`Animation`]; the writers turn it into one DXF with a layer per position, SVG frames and
+//! the HTML viewer, without knowing which mechanism it is.
+//!
+//! The moving drawings are made on demand ([`Animation::pose`]), in any order and on any
+//! thread, so an animation of many positions costs nothing until it is drawn.
+
+use crate::draw::{Bounds, Drawing};
+
+/// Draws position `k` of an animation (its moving part only).
+pub type PoseFn = Box<dyn Fn(usize) -> Drawing + Send + Sync>;
+
+/// A motion ready to be drawn.
+pub struct Animation {
+    /// A title for the viewer (e.g. `fourbar-chebyshev: four-bar, 360 positions`).
+    pub title: String,
+    /// What every position shares, on its content layers.
+    pub base: Drawing,
+    /// The model-space window of every frame (so that the picture does not jump).
+    pub window: Bounds,
+    /// One name per position: its DXF layer (`POS_000`, …); the frame file is the name in
+    /// lower case.
+    pub names: Vec<String>,
+    /// One label per position, shown with the viewer's slider (`φ1 = 90°`, `t = 0.2500 s`).
+    pub labels: Vec<String>,
+    /// Draws the moving part of position `k` (`k < names.len()`).
+    pose: PoseFn,
+}
+
+impl std::fmt::Debug for Animation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Animation")
+            .field("title", &self.title)
+            .field("window", &self.window)
+            .field("positions", &self.names.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl Animation {
+    /// An animation of `names.len()` positions; `labels` has one label per name and
+    /// `pose(k)` draws position `k`'s moving part on the content layers.
+    ///
+    /// # Panics
+    /// When `labels` and `names` differ in length (a bug in the caller, not user input).
+    pub fn new(
+        title: String,
+        base: Drawing,
+        window: Bounds,
+        names: Vec<String>,
+        labels: Vec<String>,
+        pose: impl Fn(usize) -> Drawing + Send + Sync + 'static,
+    ) -> Animation {
+        assert_eq!(names.len(), labels.len(), "one label per position");
+        Animation { title, base, window, names, labels, pose: Box::new(pose) }
+    }
+
+    /// Number of positions.
+    pub fn len(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Whether there is no position to draw.
+    pub fn is_empty(&self) -> bool {
+        self.names.is_empty()
+    }
+
+    /// The moving part of position `k`.
+    pub fn pose(&self, k: usize) -> Drawing {
+        (self.pose)(k)
+    }
+
+    /// One frame: the base with `pose` (a result of [`Animation::pose`]) on top.
+    pub fn frame_of(&self, pose: &Drawing) -> Drawing {
+        let mut d = self.base.clone();
+        d.append(pose);
+        d
+    }
+
+    /// Every position's moving part, drawn in parallel.
+    pub fn poses(&self) -> Vec<Drawing> {
+        use rayon::prelude::*;
+        (0..self.len()).into_par_iter().map(|k| self.pose(k)).collect()
+    }
+
+    /// The whole motion in one drawing: [`Animation::all_positions`] of [`Animation::poses`].
+    pub fn whole(&self) -> Drawing {
+        self.all_positions(&self.poses())
+    }
+
+    /// The whole motion in one drawing (for the DXF): the base on its content layers and
+    /// each position on its own layer ([`Animation::names`]), every entity keeping its
+    /// colour and line type. `poses[k]` is position `k`'s moving part.
+    pub fn all_positions(&self, poses: &[Drawing]) -> Drawing {
+        let mut d = self.base.clone();
+        for (name, pose) in self.names.iter().zip(poses) {
+            d.append_on_layer(pose, name);
+        }
+        d
+    }
+}

@@ -1,0 +1,235 @@
+//! [`Products`] to named byte buffers: the one place that calls the DXF, SVG, viewer and
+//! PNG writers and names the files. It needs no file system and no terminal: the files go
+//! to a [`Sink`] (the output directory's staging, or memory for a download), and progress
+//! is reported through a callback.
+//!
+//! File names, relative to the output directory (`<name>` is the scene's name):
+//!
+//! | file | from |
+//! |---|---|
+//! | `<name>.dxf` | the picture; a motion with one layer per position |
+//! | `<name>.svg` (and `<name>.png` with `--png`) | the picture; a motion's first position |
+//! | `<name><suffix>.csv` | each table |
+//! | `<name>.json` | the summary, pretty, with a final newline |
+//! | `diagrams/<name>/<stem>.svg` (and `.png`) | each diagram |
+//! | `frames/<name>/<position>.svg`, `<name>.html` | a motion's frames and viewer (unless `--no-frames`) |
+//!
+//! A motion's DXF is built on one core while the frames, the diagrams and the viewer are
+//! built on the others, and the frames are handed to the sink while the diagrams and the
+//! viewer are still being built.
+
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+
+use super::products::{Diagram, Picture, Products};
+use crate::Error;
+use crate::draw::dxf::{self, DxfOptions};
+use crate::draw::svg::{self, SvgOptions};
+use crate::draw::{Drawing, raster, viewer};
+use crate::figure::animation::Animation;
+
+/// Width of the SVG frames and pictures, pixels (their viewBox is in model units).
+pub const FRAME_WIDTH_PX: u32 = 1000;
+
+/// How the products become bytes.
+#[derive(Debug, Clone, Default)]
+pub struct WriteOptions {
+    /// PNG copies of the picture and the diagrams ([`super::PNG_WIDTH_PX`] wide).
+    pub png: bool,
+    /// Skip a motion's per-position frames and its HTML viewer.
+    pub no_frames: bool,
+    /// The DXF writer's options.
+    pub dxf: DxfOptions,
+}
+
+/// One file: its path relative to the output directory (`/`-separated) and its bytes.
+pub type File<'a> = (String, &'a [u8]);
+
+/// Where files go as they are made. `put` may be called from any thread, in any order;
+/// [`write`] returns the files' canonical order.
+pub trait Sink: Sync {
+    /// Takes a batch of files.
+    fn put(&self, files: &[File<'_>]) -> Result<(), Error>;
+}
+
+/// Files kept in memory (e.g. for a download), owned.
+#[derive(Debug, Default)]
+pub struct Memory(Mutex<Vec<(String, Vec<u8>)>>);
+
+impl Sink for Memory {
+    fn put(&self, files: &[File<'_>]) -> Result<(), Error> {
+        let mut v = self.0.lock().map_err(|_| Error::Export {
+            what: "files in memory".into(),
+            message: "a writer thread panicked".into(),
+        })?;
+        v.extend(files.iter().map(|(n, b)| (n.clone(), b.to_vec())));
+        Ok(())
+    }
+}
+
+/// The products as named byte buffers, in the canonical order of [`write`].
+pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8>)>, Error> {
+    let memory = Memory::default();
+    let order = write(p, opts, &|| {}, &memory)?;
+    let mut files = memory.0.into_inner().unwrap_or_default();
+    let rank: std::collections::HashMap<&str, usize> = order.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
+    files.sort_by_key(|(n, _)| rank.get(n.as_str()).copied().unwrap_or(usize::MAX));
+    Ok(files)
+}
+
+/// Writes every file of `p` into `sink`; `tick` is called once per frame made (for a
+/// progress bar). Returns the names of the files in their canonical order: the picture
+/// (DXF, SVG, PNG), the tables, the JSON, the diagrams, the frames, the viewer.
+pub fn write(
+    p: &Products,
+    opts: &WriteOptions,
+    tick: &(dyn Fn() + Sync),
+    sink: &dyn Sink,
+) -> Result<Vec<String>, Error> {
+    let name = &p.name;
+    let mut head: Vec<(String, Vec<u8>)> = Vec::new();
+    let mut tail: Vec<(String, Vec<u8>)> = Vec::new();
+    let mut frame_names = Vec::new();
+    let diagrams = match &p.picture {
+        Picture::Still(d) => {
+            head.push((format!("{name}.dxf"), dxf_bytes(d, &opts.dxf, name)?));
+            let svg = svg::to_string(d, &SvgOptions { width_px: FRAME_WIDTH_PX, ..SvgOptions::default() });
+            picture_files(&mut head, name, svg, opts.png)?;
+            diagram_files(&p.diagrams, name, opts.png)?
+        }
+        Picture::Motion(a) => {
+            let m = motion(a, p, opts, tick, sink)?;
+            head.push((format!("{name}.dxf"), m.dxf));
+            picture_files(&mut head, name, m.picture, opts.png)?;
+            frame_names = m.frame_names;
+            if let Some(html) = m.html {
+                tail.push((format!("{name}.html"), html.into_bytes()));
+            }
+            m.diagrams
+        }
+    };
+    for t in &p.tables {
+        head.push((format!("{name}{}.csv", t.suffix), t.csv.to_bytes()));
+    }
+    let json = serde_json::to_string_pretty(&p.summary)
+        .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
+    head.push((format!("{name}.json"), (json + "\n").into_bytes()));
+    head.extend(diagrams);
+
+    sink.put(&view(&head))?;
+    sink.put(&view(&tail))?;
+    let mut order: Vec<String> = head.into_iter().map(|(n, _)| n).collect();
+    order.extend(frame_names);
+    order.extend(tail.into_iter().map(|(n, _)| n));
+    Ok(order)
+}
+
+/// Borrowed views of owned files, for [`Sink::put`].
+fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
+    v.iter().map(|(n, b)| (n.clone(), b.as_slice())).collect()
+}
+
+/// The picture's SVG, and its PNG when asked for.
+fn picture_files(files: &mut Vec<(String, Vec<u8>)>, name: &str, svg: String, png: bool) -> Result<(), Error> {
+    let png = if png { Some(png_bytes(&svg, &format!("{name}.png"))?) } else { None };
+    files.push((format!("{name}.svg"), svg.into_bytes()));
+    if let Some(png) = png {
+        files.push((format!("{name}.png"), png));
+    }
+    Ok(())
+}
+
+/// Each diagram's SVG (and PNG), built in parallel.
+fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
+    let per: Vec<Vec<(String, Vec<u8>)>> = diagrams
+        .par_iter()
+        .map(|d| {
+            let stem = format!("diagrams/{name}/{}", d.stem);
+            let s = svg::to_string(&d.drawing, &SvgOptions::default());
+            let mut v = Vec::with_capacity(2);
+            if png {
+                let png = png_bytes(&s, &format!("{stem}.png"))?;
+                v.push((format!("{stem}.svg"), s.into_bytes()));
+                v.push((format!("{stem}.png"), png));
+            } else {
+                v.push((format!("{stem}.svg"), s.into_bytes()));
+            }
+            Ok(v)
+        })
+        .collect::<Result<_, Error>>()?;
+    Ok(per.into_iter().flatten().collect())
+}
+
+fn png_bytes(svg: &str, what: &str) -> Result<Vec<u8>, Error> {
+    raster::to_png(svg, super::PNG_WIDTH_PX)
+        .map_err(|e| Error::Export { what: what.to_string(), message: e.to_string() })
+}
+
+fn dxf_bytes(d: &Drawing, opts: &DxfOptions, name: &str) -> Result<Vec<u8>, Error> {
+    dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+}
+
+/// What a motion gives besides the frames handed to the sink.
+struct MotionFiles {
+    dxf: Vec<u8>,
+    picture: String,
+    frame_names: Vec<String>,
+    html: Option<String>,
+    diagrams: Vec<(String, Vec<u8>)>,
+}
+
+fn motion(
+    a: &Animation,
+    p: &Products,
+    opts: &WriteOptions,
+    tick: &(dyn Fn() + Sync),
+    sink: &dyn Sink,
+) -> Result<MotionFiles, Error> {
+    let name = &p.name;
+    let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window), ..SvgOptions::default() };
+    // Each position drawn once (in parallel), for the DXF layer and the frame.
+    let poses = a.poses();
+    let want_frames = !opts.no_frames;
+    let (dxf, rest) = rayon::join(
+        || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),
+        || -> Result<_, Error> {
+            let frames = if want_frames { frames(a, &poses, &svg_opts, tick) } else { Vec::new() };
+            let names: Vec<String> =
+                a.names.iter().take(frames.len()).map(|n| format!("frames/{name}/{}.svg", n.to_lowercase())).collect();
+            let files: Vec<File<'_>> = names.iter().zip(&frames).map(|(n, f)| (n.clone(), f.svg.as_bytes())).collect();
+            let (staged, (diagrams, html)) = rayon::join(
+                || sink.put(&files),
+                || {
+                    let diagrams = diagram_files(&p.diagrams, name, opts.png);
+                    let html = want_frames.then(|| viewer::html(&a.title, &frames));
+                    (diagrams, html)
+                },
+            );
+            staged?;
+            let picture = match (frames.first(), poses.first()) {
+                (Some(f), _) => f.svg.clone(),
+                (None, Some(first)) => svg::to_string(&a.frame_of(first), &svg_opts),
+                (None, None) => svg::to_string(&a.base, &svg_opts),
+            };
+            Ok((picture, names, html, diagrams?))
+        },
+    );
+    let (picture, frame_names, html, diagrams) = rest?;
+    Ok(MotionFiles { dxf: dxf?, picture, frame_names, html, diagrams })
+}
+
+/// The SVG frames (in parallel): the base written once, each position spliced onto it.
+fn frames(a: &Animation, poses: &[Drawing], svg_opts: &SvgOptions, tick: &(dyn Fn() + Sync)) -> Vec<viewer::Frame> {
+    let base_svg = svg::to_string(&a.base, svg_opts);
+    poses
+        .par_iter()
+        .zip(a.labels.par_iter())
+        .map(|(pose, label)| {
+            let s = svg::splice(&base_svg, &svg::to_string(pose, svg_opts))
+                .unwrap_or_else(|| svg::to_string(&a.frame_of(pose), svg_opts));
+            tick();
+            viewer::Frame { label: label.clone(), svg: s }
+        })
+        .collect()
+}

@@ -1,0 +1,76 @@
+//! What a run made, before any of it becomes bytes: one [`Products`] value per scene,
+//! whatever its kind. Each kind's `products()` solves and builds this; [`super::bytes`]
+//! turns it into named files (DXF, SVG, frames, viewer, PNG, CSV, JSON) and
+//! [`super::output`] puts those on disk. A kind never names a file or calls a writer.
+
+use serde::Serialize;
+
+use crate::Error;
+use crate::draw::Drawing;
+use crate::figure::animation::Animation;
+use crate::report::Csv;
+
+/// The scene's picture: one drawing, or a motion.
+#[derive(Debug)]
+pub enum Picture {
+    /// One drawing: `<name>.dxf` and `<name>.svg`.
+    Still(Drawing),
+    /// A motion: `<name>.dxf` with a layer per position, `<name>.svg` the first position,
+    /// and (unless `--no-frames`) one SVG frame per position and the HTML viewer.
+    Motion(Animation),
+}
+
+/// A diagram or chart beside the picture: `diagrams/<scene name>/<stem>.svg`.
+#[derive(Debug, Clone)]
+pub struct Diagram {
+    /// File stem (`omega2`, `E.vx`, `Z1-histogram`).
+    pub stem: String,
+    /// The diagram, drawn.
+    pub drawing: Drawing,
+}
+
+/// A CSV table: `<scene name><suffix>.csv`.
+#[derive(Debug, Clone)]
+pub struct Table {
+    /// Appended to the scene name: `""` for the main table, `"-contributions"`, …
+    pub suffix: String,
+    /// The table.
+    pub csv: Csv,
+}
+
+/// Where the number of drawn positions comes from, to name it when a run would draw more
+/// than [`super::MAX_DRAWN_POSITIONS`].
+#[derive(Debug, Clone, Copy)]
+pub struct PositionsSource {
+    /// The scene field that sets the number (`phi1_deg.step`, `time.steps`).
+    pub field: &'static str,
+    /// What to do instead (`use a larger step`).
+    pub advice: &'static str,
+}
+
+/// Everything one scene's run produced.
+#[derive(Debug)]
+pub struct Products {
+    /// The scene's name: the stem of every file.
+    pub name: String,
+    /// The picture.
+    pub picture: Picture,
+    /// Where the number of positions of a [`Picture::Motion`] comes from.
+    pub positions: Option<PositionsSource>,
+    /// Diagrams, in order.
+    pub diagrams: Vec<Diagram>,
+    /// CSV tables, in order.
+    pub tables: Vec<Table>,
+    /// The JSON summary (`<name>.json`, and `--json` on stdout).
+    pub summary: serde_json::Value,
+    /// A short human-readable report for the terminal.
+    pub report: String,
+    /// Warnings (skipped positions, dead points, ...), one line each.
+    pub warnings: Vec<String>,
+}
+
+/// A typed summary as the JSON value the products carry (keys in the order serde_json
+/// keeps them: sorted).
+pub fn summary_value(summary: &impl Serialize, name: &str) -> Result<serde_json::Value, Error> {
+    serde_json::to_value(summary).map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })
+}
