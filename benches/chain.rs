@@ -6,9 +6,7 @@
 //! dimension based on the previous one, paths up to 1,000 dimensions long: the worst case).
 
 use criterion::{Criterion, criterion_group, criterion_main};
-use mechdraw::scene::Units;
-use mechdraw::scene::chain::{ChainScene, Dependent, Dimension, Distribution, Form, Stackup};
-use mechdraw::solve::chain::{analyse, monte_carlo};
+use mechdraw::solve::chain::{Chain, Dependent, Dimension, Distribution, Form, analyse, monte_carlo};
 
 /// A deterministic generator (splitmix64) so the bench needs no seed file.
 struct Mix(u64);
@@ -25,7 +23,7 @@ impl Mix {
     }
 }
 
-fn chain(n: usize, serial: bool, dependents: usize) -> ChainScene {
+fn chain(n: usize, serial: bool, dependents: usize) -> Chain {
     let mut rng = Mix(12345);
     let dimensions = (0..n)
         .map(|i| {
@@ -44,24 +42,10 @@ fn chain(n: usize, serial: bool, dependents: usize) -> ChainScene {
             spec: None,
         })
         .collect();
-    ChainScene {
-        name: "bench".into(),
-        units: Units::Mm,
-        form: Form::Named,
-        features: (0..=n).map(|i| format!("F{i}")).collect(),
-        dimensions,
-        dependent,
-        stackup: Stackup {
-            mrss_factor: 1.5,
-            distribution: Distribution::Normal,
-            samples: 1_000_000,
-            seed: 1,
-            bins: 40,
-        },
-    }
+    Chain { form: Form::Named, features: (0..=n).map(|i| format!("F{i}")).collect(), dimensions, dependent }
 }
 
-fn check_and_functions(s: &ChainScene) -> usize {
+fn check_and_functions(s: &Chain) -> usize {
     let a = analyse(s);
     s.dependent.iter().map(|z| a.function(s, z).map_or(0, |f| f.terms.len())).sum()
 }

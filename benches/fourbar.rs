@@ -18,8 +18,8 @@ use std::time::Duration;
 
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main, measurement::WallTime};
 use mechdraw::scene::{self, Scene};
+use mechdraw::solve::fourbar::forces;
 use mechdraw::solve::fourbar::{MotionSpec, Outputs, Prepared, kinematics, solve_motion};
-use mechdraw::solve::kinetostatics::forces;
 
 fn template() -> MotionSpec {
     match scene::parse(include_str!("../templates/fourbar-chebyshev.toml"), "template", &[]) {

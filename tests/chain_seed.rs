@@ -4,13 +4,13 @@
 
 mod common;
 
-use mechdraw::scene::chain::ChainScene;
 use mechdraw::scene::{self, Scene};
-use mechdraw::solve::chain::{Analysis, Function, Term, analyse};
+use mechdraw::solve::chain::{Analysis, Chain, Function, Term, analyse};
 
-fn load(text: &str) -> ChainScene {
+/// The checked scene's chain: the solver's input.
+fn load(text: &str) -> Chain {
     match scene::parse(text, "t.toml", &[]).unwrap() {
-        Scene::Chain(c) => c,
+        Scene::Chain(c) => c.chain,
         _ => unreachable!(),
     }
 }
@@ -24,7 +24,7 @@ fn sorted(mut v: Vec<f64>) -> Vec<f64> {
     v
 }
 
-fn functions(s: &ChainScene, a: &Analysis) -> Vec<Function> {
+fn functions(s: &Chain, a: &Analysis) -> Vec<Function> {
     s.dependent.iter().map(|z| a.function(s, z).unwrap()).collect()
 }
 

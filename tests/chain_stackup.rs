@@ -4,18 +4,17 @@
 
 mod common;
 
-use mechdraw::scene::chain::{ChainScene, Distribution};
 use mechdraw::scene::{self, Override, Scene};
-use mechdraw::solve::chain::{analyse, monte_carlo, stack};
+use mechdraw::solve::chain::{Chain, Distribution, analyse, monte_carlo, stack};
 
 const TOLS: [f64; 8] = [0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08];
 
-fn seed_2_with_tolerances(extra: &[&str]) -> ChainScene {
+fn seed_2_with_tolerances(extra: &[&str]) -> Chain {
     let text = std::fs::read_to_string(common::root().join("templates/chain-humienny-2.toml")).unwrap();
     let mut sets: Vec<Override> = vec!["tol=[0.01, 0.02, 0.03, 0.04, 0.05, 0.06, 0.07, 0.08]".parse().unwrap()];
     sets.extend(extra.iter().map(|s| s.parse::<Override>().unwrap()));
     match scene::parse(&text, "t.toml", &sets).unwrap() {
-        Scene::Chain(c) => c,
+        Scene::Chain(c) => c.chain,
         _ => unreachable!(),
     }
 }
@@ -124,7 +123,7 @@ distribution = "uniform"
 samples = 200000
 "#;
     let s = match scene::parse(text, "t.toml", &[]).unwrap() {
-        Scene::Chain(c) => c,
+        Scene::Chain(c) => c.chain,
         _ => unreachable!(),
     };
     let a = analyse(&s);

@@ -4,8 +4,8 @@
 
 use mechdraw::geom::{Point, Side, Vector, cross};
 use mechdraw::scene::{self, Scene};
+use mechdraw::solve::fourbar::{CrankRange, Dynamics, Forces, forces_newton_euler};
 use mechdraw::solve::fourbar::{Kinematics, MotionSpec, Position, position, solve_motion};
-use mechdraw::solve::kinetostatics::{CrankRange, Dynamics, Forces, forces_newton_euler};
 
 const TEMPLATE: &str = include_str!("../templates/fourbar-chebyshev.toml");
 
@@ -48,7 +48,7 @@ fn loads(spec: &MotionSpec, p: &Position, k: &Kinematics) -> Loads {
 
 /// The external forces acting at `p` (point, value, velocity of the point).
 fn external(d: &Dynamics, p: &Position, k: &Kinematics) -> Vec<(Point, Vector, Vector)> {
-    use mechdraw::solve::kinetostatics::ForcePoint;
+    use mechdraw::solve::fourbar::ForcePoint;
     d.forces
         .iter()
         .filter(|f| f.range.is_none_or(|r| r.contains_deg(p.phi1.to_degrees())))

@@ -7,6 +7,7 @@
 //! against the method itself. Times are medians over batches, in nanoseconds per solve.
 
 pub mod basins;
+pub mod chart;
 pub mod reference;
 pub mod suite;
 pub mod timing;
@@ -249,12 +250,11 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let strips = basins::triad_basins(&triad, &modes, BASIN_STARTS);
 
     let mut out = Output::new(&opts.out_dir)?;
-    let chart = crate::figure::bench::speed_accuracy_chart("Time per solve against error", &methods);
-    let chart_svg = svg::to_string(&chart, &SvgOptions::default());
+    let speed_chart = chart::speed_accuracy_chart("Time per solve against error", &methods);
+    let chart_svg = svg::to_string(&speed_chart, &SvgOptions::default());
     out.write("chart.png", png(&chart_svg, "chart.png")?)?;
     out.write("chart.svg", chart_svg)?;
-    let basin_chart =
-        crate::figure::bench::basins_chart("Triad (seed 000): where each start phi1 converges", &strips, &modes);
+    let basin_chart = chart::basins_chart("Triad (seed 000): where each start phi1 converges", &strips, &modes);
     let basin_svg = svg::to_string(&basin_chart, &SvgOptions::default());
     out.write("basins.png", png(&basin_svg, "basins.png")?)?;
     out.write("basins.svg", basin_svg)?;

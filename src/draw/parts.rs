@@ -60,7 +60,7 @@ fn char_advance(c: char) -> f64 {
 }
 
 /// Estimated width (model units) of `text` drawn `height` high (cap height): the sum of
-/// [`char_advance`]s over [`CAP_HEIGHT_EM`]. The writers leave the glyphs to the reader's
+/// `char_advance`s over [`CAP_HEIGHT_EM`]. The writers leave the glyphs to the reader's
 /// font, so this is an estimate (exact for DejaVu Sans digits and signs), the same for both
 /// writers.
 pub fn text_width(text: &str, height: f64) -> f64 {

@@ -11,9 +11,8 @@
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign, parts};
 use crate::figure::plot::{self, Histogram};
 use crate::geom::Point;
-use crate::scene::chain::{ChainScene, Dimension};
 use crate::solve::chain::graph::{Analysis, fmt_value};
-use crate::solve::chain::{MonteCarlo, Stack};
+use crate::solve::chain::{Dimension, MonteCarlo, Stack};
 
 /// Text height as a fraction of the chain's length.
 const TEXT_FRACTION: f64 = 1.0 / 60.0;
@@ -71,8 +70,9 @@ pub fn pack_rows(intervals: &[(f64, f64)]) -> Vec<usize> {
     row
 }
 
-/// The chain drawing.
-pub fn chain(scene: &ChainScene, analysis: &Analysis, dependents: &[DependentMark]) -> Drawing {
+/// The chain drawing: the `dimensions` of the chain that `analysis` was made of, the
+/// dependent dimensions to mark, and the length unit for the axis label (`mm`).
+pub fn chain(dimensions: &[Dimension], analysis: &Analysis, dependents: &[DependentMark], units: &str) -> Drawing {
     let xs: Vec<f64> = analysis.features.iter().map(|f| f.x).collect();
     let xmin = xs.iter().cloned().fold(f64::INFINITY, f64::min);
     let xmax = xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -90,7 +90,7 @@ pub fn chain(scene: &ChainScene, analysis: &Analysis, dependents: &[DependentMar
     // Independent (and redundant) dimensions above the axis.
     let x_of = |f: usize| analysis.features[analysis.node_of[f]].x;
     let mut items: Vec<(f64, f64, String, bool)> = Vec::new();
-    for (i, d) in scene.dimensions.iter().enumerate() {
+    for (i, d) in dimensions.iter().enumerate() {
         let (a, b) = (x_of(d.from), x_of(d.to));
         let value = fmt_value(d.nominal.abs());
         let text = if analysis.in_tree[i] { format!("{value}{}", tolerance_text(d)) } else { format!("({value})") };
@@ -126,7 +126,7 @@ pub fn chain(scene: &ChainScene, analysis: &Analysis, dependents: &[DependentMar
         Shape::Text {
             at: Point::new(xmax + margin + 0.5 * th, 0.0),
             height: th,
-            value: format!("x [{}]", scene.units.length()),
+            value: format!("x [{units}]"),
             halign: HAlign::Left,
             valign: VAlign::Middle,
             rotation: 0.0,

@@ -13,8 +13,8 @@
 
 use crate::draw::{Aci, Drawing, Entity, Shape};
 use crate::geom::{Point, Vector, perp};
+use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::Position;
-use crate::solve::kinetostatics::Forces;
 
 use super::fourbar::{Scale, Sizes, layer_of, layers, vector};
 use super::labels;

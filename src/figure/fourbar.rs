@@ -1,4 +1,4 @@
-//! Four-bar figures (seed 003 and its reference [8]): what the graph-analytical method
+//! Four-bar figures (seed 003 and its reference \[8\]): what the graph-analytical method
 //! draws for each crank angle — the mechanism with its ground pivots, joints, letters and
 //! the coupler curve of M; the velocity polygon (pole p, vectors pa, pb, pm, relative ab);
 //! the acceleration polygon (pole π, a′, the normal and tangential components of a_BA and
@@ -26,8 +26,8 @@
 
 use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
+use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
-use crate::solve::kinetostatics::Forces;
 
 use super::{forces, labels};
 

@@ -3,7 +3,6 @@
 //! [`crate::draw::Drawing`]; they never write files.
 
 pub mod animation;
-pub mod bench;
 pub mod chain;
 pub mod forces;
 pub mod fourbar;

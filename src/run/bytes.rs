@@ -47,7 +47,7 @@ pub struct WriteOptions {
 pub type File<'a> = (String, &'a [u8]);
 
 /// Where files go as they are made. `put` may be called from any thread, in any order;
-/// [`write`] returns the files' canonical order.
+/// [`write`](fn@write) returns the files' canonical order.
 pub trait Sink: Sync {
     /// Takes a batch of files.
     fn put(&self, files: &[File<'_>]) -> Result<(), Error>;
@@ -68,7 +68,7 @@ impl Sink for Memory {
     }
 }
 
-/// The products as named byte buffers, in the canonical order of [`write`].
+/// The products as named byte buffers, in the canonical order of [`write`](fn@write).
 pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8>)>, Error> {
     let memory = Memory::default();
     let order = write(p, opts, &|| {}, &memory)?;

@@ -27,13 +27,13 @@ pub struct DependentResult {
 
 /// Analysis plus every dependent dimension's function and stack-up.
 pub fn solve(scene: &ChainScene) -> Result<(Analysis, Vec<DependentResult>), crate::solve::chain::ChainError> {
-    let analysis = analyse(scene);
+    let analysis = analyse(&scene.chain);
     let s = &scene.stackup;
-    let mut results = Vec::with_capacity(scene.dependent.len());
-    for (index, z) in scene.dependent.iter().enumerate() {
-        let function = analysis.function(scene, z)?;
-        let st = stack(&function, &scene.dimensions, s.mrss_factor, s.distribution);
-        let mc = monte_carlo(&function, &scene.dimensions, s.distribution, s.samples, s.seed, s.bins, z.spec);
+    let mut results = Vec::with_capacity(scene.chain.dependent.len());
+    for (index, z) in scene.chain.dependent.iter().enumerate() {
+        let function = analysis.function(&scene.chain, z)?;
+        let st = stack(&function, &scene.chain.dimensions, s.mrss_factor, s.distribution);
+        let mc = monte_carlo(&function, &scene.chain.dimensions, s.distribution, s.samples, s.seed, s.bins, z.spec);
         results.push(DependentResult { index, function, stack: st, monte_carlo: mc });
     }
     Ok((analysis, results))
@@ -41,7 +41,7 @@ pub fn solve(scene: &ChainScene) -> Result<(Analysis, Vec<DependentResult>), cra
 
 pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error> {
     let (analysis, results) = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
-    let dims = &scene.dimensions;
+    let dims = &scene.chain.dimensions;
     let units = scene.units.length();
 
     // Check: the seed's coincidence test and the graph's redundancy.
@@ -115,7 +115,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         ));
     }
     for r in &results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         let s = &r.stack;
         let (mcm, mcs) = r.monte_carlo.as_ref().map_or(("-".into(), "-".into()), |m| (fmt4(m.mean), fmt4(m.sigma)));
         report.push_str(&format!(
@@ -132,7 +132,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         ));
     }
     for r in &results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         report.push_str(&format!("  {}\n", r.function.equation(&z.name, dims)));
         let contrib: Vec<String> = r
             .stack
@@ -164,7 +164,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
     let marks: Vec<DependentMark> = results
         .iter()
         .map(|r| {
-            let z = &scene.dependent[r.index];
+            let z = &scene.chain.dependent[r.index];
             let (l, p) =
                 (analysis.features[analysis.node_of[z.left]].x, analysis.features[analysis.node_of[z.right]].x);
             let tol =
@@ -178,11 +178,11 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
             DependentMark { left_x: l, right_x: p, text }
         })
         .collect();
-    let drawing = fig::chain(scene, &analysis, &marks);
+    let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, units);
     let diagrams = results
         .iter()
         .filter_map(|r| {
-            let z = &scene.dependent[r.index];
+            let z = &scene.chain.dependent[r.index];
             r.monte_carlo.as_ref().map(|m| products::Diagram {
                 stem: format!("{}-histogram", z.name),
                 drawing: fig::histogram(
@@ -371,7 +371,7 @@ fn finite(v: Option<f64>) -> Option<f64> {
 
 /// The JSON summary (keys documented in docs/chain.md).
 fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Result<serde_json::Value, Error> {
-    let dims = &scene.dimensions;
+    let dims = &scene.chain.dimensions;
     let fname = |f: usize| a.features[a.node_of[f]].name.as_str();
     let terms = |ts: &[crate::solve::chain::graph::Term]| -> Vec<TermRecord<'_>> {
         ts.iter().map(|t| TermRecord { dimension: &dims[t.dim].name, coef: t.coef }).collect()
@@ -410,7 +410,7 @@ fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Res
     let dependent = results
         .iter()
         .map(|r| {
-            let z = &scene.dependent[r.index];
+            let z = &scene.chain.dependent[r.index];
             let s = &r.stack;
             let monte_carlo = r.monte_carlo.as_ref().map(|m| MonteCarloRecord {
                 distribution: scene.stackup.distribution.name(),
@@ -461,7 +461,7 @@ fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Res
         kind: "chain",
         name: &scene.name,
         units: scene.units.length(),
-        form: match scene.form {
+        form: match scene.chain.form {
             Form::Matrix => "matrix",
             Form::Named => "named",
         },
@@ -511,14 +511,14 @@ pub fn dependent_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv {
     ]);
     let num = |v: Option<f64>| v.filter(|x| x.is_finite()).map_or(String::new(), |x| format!("{x}"));
     for r in results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         let s = &r.stack;
         let m = r.monte_carlo.as_ref();
         let pct = |p: f64| m.and_then(|m| m.percentiles.iter().find(|(q, _)| *q == p).map(|(_, v)| *v));
         csv.row_text([
             z.name.clone(),
             z.label.clone(),
-            r.function.names(&scene.dimensions),
+            r.function.names(&scene.chain.dimensions),
             num(Some(s.nominal)),
             num(Some(s.mean)),
             num(Some(s.worst_case)),
@@ -558,9 +558,9 @@ pub fn contributions_csv(scene: &ChainScene, results: &[DependentResult]) -> Csv
         "pct_variance",
     ]);
     for r in results {
-        let z = &scene.dependent[r.index];
+        let z = &scene.chain.dependent[r.index];
         for c in &r.stack.contributions {
-            let d = &scene.dimensions[c.dim];
+            let d = &scene.chain.dimensions[c.dim];
             csv.row_text([
                 z.name.clone(),
                 d.name.clone(),

@@ -19,8 +19,8 @@ use crate::geom::{Point, Vector, deg};
 use crate::report::{self, Csv};
 use crate::scene::Units;
 use crate::scene::fourbar::FourbarScene;
+use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::{Motion, Position, solve_motion};
-use crate::solve::kinetostatics::Forces;
 
 /// A jump of more than this many sweep steps between consecutive solved positions is a
 /// gap (skipped angles): curves break there.

@@ -15,6 +15,7 @@
 use serde::Deserialize;
 
 use super::{FieldError, Units};
+pub use crate::solve::chain::{Chain, Dependent, Dimension, Distribution, Form};
 
 /// Largest Monte Carlo sample count accepted per dependent dimension (memory: 8 bytes each).
 pub const MAX_SAMPLES: u64 = 20_000_000;
@@ -84,39 +85,6 @@ pub struct RawDimension {
     pub lower: Option<f64>,
 }
 
-/// Statistical distribution of each dimension inside its tolerance band.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, Default)]
-#[serde(rename_all = "lowercase")]
-pub enum Distribution {
-    /// Normal with 3σ = half the tolerance band (not truncated).
-    #[default]
-    Normal,
-    /// Uniform over the tolerance band.
-    Uniform,
-    /// Symmetric triangular over the tolerance band, peak at its middle.
-    Triangular,
-}
-
-impl Distribution {
-    /// Standard deviation of a deviation with half-band `t` under this distribution.
-    pub fn sigma(self, t: f64) -> f64 {
-        match self {
-            Distribution::Normal => t / 3.0,
-            Distribution::Uniform => t / 3f64.sqrt(),
-            Distribution::Triangular => t / 6f64.sqrt(),
-        }
-    }
-
-    /// The name as written in scene files.
-    pub fn name(self) -> &'static str {
-        match self {
-            Distribution::Normal => "normal",
-            Distribution::Uniform => "uniform",
-            Distribution::Triangular => "triangular",
-        }
-    }
-}
-
 /// `[stackup]` as written.
 #[derive(Debug, Clone, Deserialize, Default)]
 #[serde(deny_unknown_fields)]
@@ -161,63 +129,6 @@ pub struct RawChainScene {
     pub stackup: RawStackup,
 }
 
-/// One independent dimension: an edge from feature `from` to feature `to`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Dimension {
-    /// Name (`w1`... or as given).
-    pub name: String,
-    /// Index of the base feature.
-    pub from: usize,
-    /// Index of the end feature.
-    pub to: usize,
-    /// Nominal x_to − x_from (signed).
-    pub nominal: f64,
-    /// Upper deviation of the size |x_to − x_from| (≥ lower).
-    pub upper: f64,
-    /// Lower deviation of the size.
-    pub lower: f64,
-}
-
-impl Dimension {
-    /// Middle of the tolerance band (the mean shift of the size).
-    pub fn mid(&self) -> f64 {
-        0.5 * (self.upper + self.lower)
-    }
-    /// Half the tolerance band (the symmetric tolerance about `mid`).
-    pub fn half(&self) -> f64 {
-        0.5 * (self.upper - self.lower)
-    }
-    /// +1 when the dimension points along the axis (x_to > x_from), −1 otherwise.
-    pub fn sign(&self) -> f64 {
-        if self.nominal < 0.0 { -1.0 } else { 1.0 }
-    }
-}
-
-/// Where a feature came from (matrix form features are end points of dimensions).
-#[derive(Debug, Clone, PartialEq)]
-pub enum Form {
-    /// The seed's matrix N. `end_of[i]` is the feature index at the end of `W[i]`;
-    /// features are not merged yet: feature 0 is the zero point, feature i+1 the end of W[i].
-    Matrix,
-    /// Named features.
-    Named,
-}
-
-/// A dependent dimension Z = x_right − x_left.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Dependent {
-    /// Name (`Z1`...).
-    pub name: String,
-    /// Left end feature index (b_l).
-    pub left: usize,
-    /// Right end feature index (b_p).
-    pub right: usize,
-    /// How the ends were written (for reports): `[25, 80]` or `[A, B]`.
-    pub label: String,
-    /// Specification limits [LSL, USL].
-    pub spec: Option<[f64; 2]>,
-}
-
 /// Checked stack-up settings.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Stackup {
@@ -233,22 +144,16 @@ pub struct Stackup {
     pub bins: u32,
 }
 
-/// A checked `chain` scene: features, dimensions between them, dependent dimensions.
+/// A checked `chain` scene: the solver's chain (features, dimensions between them,
+/// dependent dimensions) with its name, units and stack-up settings.
 #[derive(Debug, Clone)]
 pub struct ChainScene {
     /// Output file stem.
     pub name: String,
     /// Length units.
     pub units: Units,
-    /// Which input form the scene used.
-    pub form: Form,
-    /// Feature names (matrix form: `0` for the zero point, else the value of the
-    /// dimension ending there).
-    pub features: Vec<String>,
-    /// Independent dimensions.
-    pub dimensions: Vec<Dimension>,
-    /// Dependent dimensions.
-    pub dependent: Vec<Dependent>,
+    /// The solver's input: form, features, dimensions, dependent dimensions.
+    pub chain: Chain,
     /// Stack-up settings.
     pub stackup: Stackup,
 }
@@ -295,7 +200,7 @@ pub fn check(raw: RawChainScene) -> Result<ChainScene, FieldError> {
             (Form::Named, features, dims, dependent)
         }
     };
-    Ok(ChainScene { name, units: raw.units, form, features, dimensions, dependent, stackup })
+    Ok(ChainScene { name, units: raw.units, chain: Chain { form, features, dimensions, dependent }, stackup })
 }
 
 fn check_stackup(raw: &RawStackup) -> Result<Stackup, FieldError> {
@@ -596,10 +501,10 @@ mod tests {
     fn matrix_bases_resolve_to_the_end_points_of_dimensions_by_value() {
         let c = chain("kind='chain'\nname='c'\nunits='mm'\nB=[0,0,-38]\nW=[-38,25,80]\ntol=0.1\ndependent=[[25,80]]")
             .unwrap();
-        assert_eq!(c.dimensions[2].from, 1); // based on the end of -38 (feature 1)
-        assert_eq!(c.dependent[0].left, 2);
-        assert_eq!(c.dependent[0].right, 3);
-        assert_eq!(c.features, ["0", "-38", "25", "80"]);
+        assert_eq!(c.chain.dimensions[2].from, 1); // based on the end of -38 (feature 1)
+        assert_eq!(c.chain.dependent[0].left, 2);
+        assert_eq!(c.chain.dependent[0].right, 3);
+        assert_eq!(c.chain.features, ["0", "-38", "25", "80"]);
     }
 
     #[test]
@@ -634,8 +539,8 @@ mod tests {
             "kind='chain'\nname='c'\nunits='mm'\nfeatures=['A','B']\n[[dimension]]\nfrom='A'\nto='B'\nnominal=10\nupper=0.1\nlower=-0.05",
         )
         .unwrap();
-        assert_eq!((c.dimensions[0].upper, c.dimensions[0].lower), (0.1, -0.05));
-        assert!((c.dimensions[0].mid() - 0.025).abs() < 1e-15);
+        assert_eq!((c.chain.dimensions[0].upper, c.chain.dimensions[0].lower), (0.1, -0.05));
+        assert!((c.chain.dimensions[0].mid() - 0.025).abs() < 1e-15);
         let e = chain(
             "kind='chain'\nname='c'\nunits='mm'\nfeatures=['A','B']\n[[dimension]]\nfrom='A'\nto='C'\nnominal=10",
         )

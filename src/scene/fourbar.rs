@@ -8,7 +8,7 @@ use serde::Deserialize;
 use super::{FieldError, Units, finite, finite_point, positive};
 use crate::geom::{Side, Vector};
 use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
-use crate::solve::kinetostatics::{CrankRange, Dynamics, ExternalForce, ForcePoint};
+use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint};
 
 /// Standard gravity in m/s², the default `dynamics.g` of an SI scene (mm scenes: ×1000).
 pub const STANDARD_GRAVITY: f64 = 9.80665;

@@ -351,37 +351,64 @@ fn resolve(spec: &str, ground: &[(String, Point)], bodies: &[Body]) -> Result<An
     }
 }
 
-/// Validates the raw scene.
+/// Validates the raw scene: the time range, the ground points, the bodies, the joints, the
+/// drivers against the degrees of freedom, the measures, in that order (the first field in
+/// error is reported).
 pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let name = super::check_name(&raw.name)?;
-    // Time.
-    let from = finite("time.from", raw.time.from)?;
-    let to = finite("time.to", raw.time.to)?;
+    let times = check_time(&raw.time)?;
+    let ground_points = check_ground(&raw.ground)?;
+    let bodies = check_bodies(&raw.body)?;
+    let length_scale = length_scale(&ground_points, &bodies)?;
+    let joints = check_joints(&raw.joint, &ground_points, &bodies, length_scale)?;
+    let drivers = check_drivers(&raw.driver, &bodies, &joints)?;
+    check_degrees_of_freedom(&bodies, &joints, &drivers)?;
+    let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
+    Ok(LinkageScene {
+        name,
+        units: raw.units,
+        times,
+        ground_points,
+        mechanism: Mechanism { bodies, joints, drivers, length_scale },
+        measures,
+    })
+}
+
+/// `time = { from, to, steps }`: the sample times, s (steps + 1 of them).
+fn check_time(raw: &RawTime) -> Result<Vec<f64>, FieldError> {
+    let from = finite("time.from", raw.from)?;
+    let to = finite("time.to", raw.to)?;
     if to <= from {
         return Err(FieldError::new("time.to", format!("must be later than time.from ({from}), got {to}")));
     }
-    if raw.time.steps == 0 || raw.time.steps > MAX_STEPS {
-        return Err(FieldError::new("time.steps", format!("must be 1 to {MAX_STEPS}, got {}", raw.time.steps)));
+    if raw.steps == 0 || raw.steps > MAX_STEPS {
+        return Err(FieldError::new("time.steps", format!("must be 1 to {MAX_STEPS}, got {}", raw.steps)));
     }
-    let steps = raw.time.steps;
-    let times: Vec<f64> = (0..=steps).map(|k| from + (to - from) * k as f64 / steps as f64).collect();
+    let steps = raw.steps;
+    Ok((0..=steps).map(|k| from + (to - from) * k as f64 / steps as f64).collect())
+}
 
-    // Ground points.
+/// `[ground] points`: named, finite, in file order.
+fn check_ground(raw: &RawGround) -> Result<Vec<(String, Point)>, FieldError> {
     let mut ground_points = Vec::new();
-    for (pname, p) in &raw.ground.points.0 {
+    for (pname, p) in &raw.points.0 {
         let field = format!("ground.points.{pname}");
         if !valid_ident(pname) {
             return Err(FieldError::new(field, "point names use letters, digits, '_' and '-'"));
         }
         ground_points.push((pname.clone(), finite_point(&field, *p)?));
     }
+    Ok(ground_points)
+}
 
-    // Bodies.
-    if raw.body.is_empty() {
+/// `[[body]]`: at least one; unique names (not `ground`); named, finite points; the
+/// initial placement.
+fn check_bodies(raw: &[RawBody]) -> Result<Vec<Body>, FieldError> {
+    if raw.is_empty() {
         return Err(FieldError::new("body", "at least one [[body]] is needed"));
     }
     let mut bodies: Vec<Body> = Vec::new();
-    for (i, b) in raw.body.iter().enumerate() {
+    for (i, b) in raw.iter().enumerate() {
         let field = format!("body[{i}]");
         if !valid_ident(&b.name) || b.name == "ground" {
             return Err(FieldError::new(
@@ -407,10 +434,14 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         let angle = rad(finite(&format!("{field}.angle_deg"), b.angle_deg)?);
         bodies.push(Body { name: b.name.clone(), points, at, angle });
     }
+    Ok(bodies)
+}
 
-    // Characteristic length: extent of every point in the initial placement.
+/// Characteristic length: extent of every point in the initial placement (and of every
+/// body point from its body's origin). Refuses a mechanism with no size.
+fn length_scale(ground_points: &[(String, Point)], bodies: &[Body]) -> Result<f64, FieldError> {
     let mut all: Vec<Point> = ground_points.iter().map(|(_, p)| *p).collect();
-    for b in &bodies {
+    for b in bodies {
         all.extend(b.points.iter().map(|(_, v)| b.at + rotate(*v, b.angle)));
     }
     let (mut lo, mut hi) = (all[0], all[0]);
@@ -419,7 +450,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         hi = Point::new(hi.x.max(p.x), hi.y.max(p.y));
     }
     let mut length_scale = (hi - lo).norm();
-    for b in &bodies {
+    for b in bodies {
         for (_, v) in &b.points {
             length_scale = length_scale.max(v.norm());
         }
@@ -427,61 +458,29 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     if length_scale <= 0.0 || !length_scale.is_finite() {
         return Err(FieldError::new("body", "every point is at the same place: the mechanism has no size"));
     }
-    let tiny = crate::geom::tol::LENGTH_REL * length_scale;
+    Ok(length_scale)
+}
 
-    // Joints.
+/// `[[joint]]`: unique names (default `J1`, `J2`, …), each exactly one of a revolute or a
+/// prismatic joint between two bodies.
+fn check_joints(
+    raw: &[RawJoint],
+    ground_points: &[(String, Point)],
+    bodies: &[Body],
+    length_scale: f64,
+) -> Result<Vec<Joint>, FieldError> {
+    let tiny = crate::geom::tol::LENGTH_REL * length_scale;
     let mut joints: Vec<Joint> = Vec::new();
-    for (k, j) in raw.joint.iter().enumerate() {
+    for (k, j) in raw.iter().enumerate() {
         let field = format!("joint[{k}]");
         let name = j.name.clone().unwrap_or_else(|| format!("J{}", k + 1));
         if joints.iter().any(|x| x.name == name) {
             return Err(FieldError::new(format!("{field}.name"), format!("a joint named `{name}` already exists")));
         }
-        let res = |f: String, spec: &str| resolve(spec, &ground_points, &bodies).map_err(|m| FieldError::new(f, m));
+        let res = |f: String, spec: &str| resolve(spec, ground_points, bodies).map_err(|m| FieldError::new(f, m));
         let kind = match (&j.revolute, &j.prismatic) {
-            (Some(pair), None) => {
-                let a = res(format!("{field}.revolute[0]"), &pair[0])?;
-                let b = res(format!("{field}.revolute[1]"), &pair[1])?;
-                if a.body == b.body {
-                    return Err(FieldError::new(
-                        format!("{field}.revolute"),
-                        "both points are on the same body: a revolute joint connects two bodies",
-                    ));
-                }
-                JointKind::Revolute { a, b }
-            }
-            (None, Some(p)) => {
-                let point = res(format!("{field}.prismatic.point"), &p.point)?;
-                let q1 = res(format!("{field}.prismatic.line[0]"), &p.line[0])?;
-                let q2 = res(format!("{field}.prismatic.line[1]"), &p.line[1])?;
-                if q1.body != q2.body {
-                    return Err(FieldError::new(
-                        format!("{field}.prismatic.line"),
-                        "the two points of the line must be on the same body (the guide)",
-                    ));
-                }
-                if (q2.local - q1.local).norm() <= tiny {
-                    return Err(FieldError::new(
-                        format!("{field}.prismatic.line"),
-                        "the two points of the line coincide: they must be distinct to give a direction",
-                    ));
-                }
-                if point.body == q1.body {
-                    return Err(FieldError::new(
-                        format!("{field}.prismatic"),
-                        "the point and the line are on the same body: a prismatic joint connects two bodies",
-                    ));
-                }
-                let phi = |a: Attach| match a {
-                    Attach::Ground => 0.0,
-                    Attach::Body(i) => bodies[i].angle,
-                };
-                let angle = match p.angle_deg {
-                    Some(d) => rad(finite(&format!("{field}.prismatic.angle_deg"), d)?),
-                    None => phi(point.body) - phi(q1.body),
-                };
-                JointKind::Prismatic { point, q1, q2, angle }
-            }
+            (Some(pair), None) => check_revolute(&field, pair, res)?,
+            (None, Some(p)) => check_prismatic(&field, p, bodies, tiny, res)?,
             _ => {
                 return Err(FieldError::new(
                     field,
@@ -491,10 +490,74 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         };
         joints.push(Joint { name, kind });
     }
+    Ok(joints)
+}
 
-    // Drivers.
+/// `revolute = ["body.P", "body.Q"]`: two points on two different bodies. `res` resolves
+/// a point reference, naming the field in its error.
+fn check_revolute(
+    field: &str,
+    pair: &[String; 2],
+    res: impl Fn(String, &str) -> Result<Anchor, FieldError>,
+) -> Result<JointKind, FieldError> {
+    let a = res(format!("{field}.revolute[0]"), &pair[0])?;
+    let b = res(format!("{field}.revolute[1]"), &pair[1])?;
+    if a.body == b.body {
+        return Err(FieldError::new(
+            format!("{field}.revolute"),
+            "both points are on the same body: a revolute joint connects two bodies",
+        ));
+    }
+    Ok(JointKind::Revolute { a, b })
+}
+
+/// `prismatic = { point, line, angle_deg }`: a point of one body on a line through two
+/// distinct points (farther apart than `tiny`) of another; the locked relative angle
+/// defaults to its value in the initial placement.
+fn check_prismatic(
+    field: &str,
+    p: &RawPrismatic,
+    bodies: &[Body],
+    tiny: f64,
+    res: impl Fn(String, &str) -> Result<Anchor, FieldError>,
+) -> Result<JointKind, FieldError> {
+    let point = res(format!("{field}.prismatic.point"), &p.point)?;
+    let q1 = res(format!("{field}.prismatic.line[0]"), &p.line[0])?;
+    let q2 = res(format!("{field}.prismatic.line[1]"), &p.line[1])?;
+    if q1.body != q2.body {
+        return Err(FieldError::new(
+            format!("{field}.prismatic.line"),
+            "the two points of the line must be on the same body (the guide)",
+        ));
+    }
+    if (q2.local - q1.local).norm() <= tiny {
+        return Err(FieldError::new(
+            format!("{field}.prismatic.line"),
+            "the two points of the line coincide: they must be distinct to give a direction",
+        ));
+    }
+    if point.body == q1.body {
+        return Err(FieldError::new(
+            format!("{field}.prismatic"),
+            "the point and the line are on the same body: a prismatic joint connects two bodies",
+        ));
+    }
+    let phi = |a: Attach| match a {
+        Attach::Ground => 0.0,
+        Attach::Body(i) => bodies[i].angle,
+    };
+    let angle = match p.angle_deg {
+        Some(d) => rad(finite(&format!("{field}.prismatic.angle_deg"), d)?),
+        None => phi(point.body) - phi(q1.body),
+    };
+    Ok(JointKind::Prismatic { point, q1, q2, angle })
+}
+
+/// `[[driver]]`: a law that parses, on exactly one of a body (absolute angle) or a joint
+/// (relative angle across a revolute, distance along a prismatic).
+fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result<Vec<Driver>, FieldError> {
     let mut drivers = Vec::new();
-    for (k, d) in raw.driver.iter().enumerate() {
+    for (k, d) in raw.iter().enumerate() {
         let field = format!("driver[{k}]");
         let law = Expr::parse(&d.law)
             .map_err(|e| FieldError::new(format!("{field}.law"), format!("cannot parse the law: {e}")))?;
@@ -530,8 +593,12 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         };
         drivers.push(Driver { name: d.name.clone().unwrap_or(default_name), target, law });
     }
+    Ok(drivers)
+}
 
-    // Degrees of freedom against drivers, before any solving.
+/// Degrees of freedom (3 per body, −2 per joint) against the number of drivers, before any
+/// solving; the message says what to add or remove.
+fn check_degrees_of_freedom(bodies: &[Body], joints: &[Joint], drivers: &[Driver]) -> Result<(), FieldError> {
     let dof = 3 * bodies.len() as i64 - 2 * joints.len() as i64;
     if dof != drivers.len() as i64 {
         return Err(FieldError::new(
@@ -551,15 +618,22 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
             ),
         ));
     }
+    Ok(())
+}
 
-    // Measures.
+/// `[[measure]]`: exactly one of a point or a body, a unique label (default: the point's
+/// or body's name), and at least one quantity valid for that target.
+fn check_measures(
+    raw: &[RawMeasure],
+    ground_points: &[(String, Point)],
+    bodies: &[Body],
+) -> Result<Vec<Measure>, FieldError> {
     let mut measures: Vec<Measure> = Vec::new();
-    for (k, m) in raw.measure.iter().enumerate() {
+    for (k, m) in raw.iter().enumerate() {
         let field = format!("measure[{k}]");
         let (target, default_label, table) = match (&m.point, &m.body) {
             (Some(p), None) => {
-                let a =
-                    resolve(p, &ground_points, &bodies).map_err(|e| FieldError::new(format!("{field}.point"), e))?;
+                let a = resolve(p, ground_points, bodies).map_err(|e| FieldError::new(format!("{field}.point"), e))?;
                 let label = p.split_once('.').map_or(p.as_str(), |(_, n)| n).to_string();
                 (MeasureTarget::Point(a), label, POINT_QUANTITIES)
             }
@@ -579,35 +653,33 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
                 format!("the label `{label}` is already used by another measure: give this one its own `label`"),
             ));
         }
-        let mut quantities = Vec::new();
-        for (qi, q) in m.quantities.iter().enumerate() {
-            match table.iter().find(|(n, _)| n == q) {
-                Some((_, v)) => quantities.push(*v),
-                None => {
-                    return Err(FieldError::new(
-                        format!("{field}.quantities[{qi}]"),
-                        format!(
-                            "unknown quantity `{q}`; valid here: {}",
-                            table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
-                        ),
-                    ));
-                }
-            }
-        }
-        if quantities.is_empty() {
-            return Err(FieldError::new(format!("{field}.quantities"), "list at least one quantity"));
-        }
+        let quantities = check_quantities(&field, &m.quantities, table)?;
         measures.push(Measure { label, target, quantities });
     }
+    Ok(measures)
+}
 
-    Ok(LinkageScene {
-        name,
-        units: raw.units,
-        times,
-        ground_points,
-        mechanism: Mechanism { bodies, joints, drivers, length_scale },
-        measures,
-    })
+/// The quantities of one measure, each looked up in `table` (the point's or the body's).
+fn check_quantities(field: &str, raw: &[String], table: &[(&str, Quantity)]) -> Result<Vec<Quantity>, FieldError> {
+    let mut quantities = Vec::new();
+    for (qi, q) in raw.iter().enumerate() {
+        match table.iter().find(|(n, _)| n == q) {
+            Some((_, v)) => quantities.push(*v),
+            None => {
+                return Err(FieldError::new(
+                    format!("{field}.quantities[{qi}]"),
+                    format!(
+                        "unknown quantity `{q}`; valid here: {}",
+                        table.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
+                    ),
+                ));
+            }
+        }
+    }
+    if quantities.is_empty() {
+        return Err(FieldError::new(format!("{field}.quantities"), "list at least one quantity"));
+    }
+    Ok(quantities)
 }
 
 #[cfg(test)]

@@ -3,7 +3,6 @@
 pub mod chain;
 pub mod expr;
 pub mod fourbar;
-pub mod kinetostatics;
 pub mod linkage;
 pub mod triad;
 

@@ -11,9 +11,8 @@
 //! replaced by the coordinate it stands for ("all bases zero"), and end points that
 //! coincide are one feature. p coinciding end points are p − 1 redundant dimensions.
 
-use crate::scene::chain::{ChainScene, Dependent, Dimension, Form};
-
 use super::ChainError;
+use super::model::{Chain, Dependent, Dimension, Form};
 
 /// Two matrix-form end points closer than this (model units) are one feature: below the
 /// 0.0001 mm by which the seed perturbs equal nominal values.
@@ -136,7 +135,7 @@ pub fn fmt_value(v: f64) -> String {
 pub struct Analysis {
     /// Features (merged nodes), the zero point first.
     pub features: Vec<Feature>,
-    /// Node of each scene feature (matrix form: coinciding end points share one).
+    /// Node of each input feature (matrix form: coinciding end points share one).
     pub node_of: Vec<usize>,
     /// Whether each dimension is in the spanning tree (independent, not redundant).
     pub in_tree: Vec<bool>,
@@ -176,7 +175,7 @@ impl UnionFind {
     }
 }
 
-/// Matrix form: coordinates of the scene features with every base made zero (the seed's
+/// Matrix form: coordinates of the input features with every base made zero (the seed's
 /// transformation); `None` for end points whose bases never reach the zero point.
 fn matrix_coordinates(n_features: usize, dims: &[Dimension]) -> Vec<Option<f64>> {
     let mut children: Vec<Vec<usize>> = vec![Vec::new(); n_features];
@@ -199,15 +198,15 @@ fn matrix_coordinates(n_features: usize, dims: &[Dimension]) -> Vec<Option<f64>>
     x
 }
 
-/// Builds the graph of `scene` and finds coordinates, redundant dimensions and untied groups.
-pub fn analyse(scene: &ChainScene) -> Analysis {
-    let dims = &scene.dimensions;
-    let nf = scene.features.len();
+/// Builds the graph of `chain` and finds coordinates, redundant dimensions and untied groups.
+pub fn analyse(chain: &Chain) -> Analysis {
+    let dims = &chain.dimensions;
+    let nf = chain.features.len();
     // Merge coinciding end points (matrix form).
     let mut node_of: Vec<usize> = (0..nf).collect();
     let mut coincident = Vec::new();
     let mut node_names: Vec<(String, Vec<String>)>;
-    if scene.form == Form::Matrix {
+    if chain.form == Form::Matrix {
         let x = matrix_coordinates(nf, dims);
         let mut order: Vec<usize> = (0..nf).filter(|&f| x[f].is_some()).collect();
         order.sort_by(|&a, &b| x[a].unwrap_or(0.0).total_cmp(&x[b].unwrap_or(0.0)).then(a.cmp(&b)));
@@ -232,7 +231,7 @@ pub fn analyse(scene: &ChainScene) -> Analysis {
             k = j;
         }
         coincident.sort();
-        // Number the nodes by the lowest scene feature in each.
+        // Number the nodes by the lowest input feature in each.
         let mut id = vec![usize::MAX; nf];
         let mut next = 0;
         node_names = Vec::new();
@@ -241,14 +240,14 @@ pub fn analyse(scene: &ChainScene) -> Analysis {
             if id[r] == usize::MAX {
                 id[r] = next;
                 next += 1;
-                node_names.push((scene.features[f].clone(), Vec::new()));
-            } else if !node_names[id[r]].1.contains(&scene.features[f]) && node_names[id[r]].0 != scene.features[f] {
-                node_names[id[r]].1.push(scene.features[f].clone());
+                node_names.push((chain.features[f].clone(), Vec::new()));
+            } else if !node_names[id[r]].1.contains(&chain.features[f]) && node_names[id[r]].0 != chain.features[f] {
+                node_names[id[r]].1.push(chain.features[f].clone());
             }
             node_of[f] = id[r];
         }
     } else {
-        node_names = scene.features.iter().map(|n| (n.clone(), Vec::new())).collect();
+        node_names = chain.features.iter().map(|n| (n.clone(), Vec::new())).collect();
     }
     let nn = node_names.len();
 
@@ -373,8 +372,9 @@ impl Analysis {
         n_dims + self.components - self.features.len()
     }
 
-    /// The dimensional function of a dependent dimension Z = x_right − x_left.
-    pub fn function(&self, scene: &ChainScene, z: &Dependent) -> Result<Function, ChainError> {
+    /// The dimensional function of a dependent dimension Z = x_right − x_left of `chain`
+    /// (the chain this analysis was made of).
+    pub fn function(&self, chain: &Chain, z: &Dependent) -> Result<Function, ChainError> {
         let (l, r) = (self.node_of[z.left], self.node_of[z.right]);
         if self.component[l] != self.component[r] {
             return Err(ChainError::NotDetermined {
@@ -390,8 +390,8 @@ impl Analysis {
                 ),
             });
         }
-        let terms = self.tree_path(l, r, &scene.dimensions);
-        let nominal = terms.iter().map(|t| t.coef * scene.dimensions[t.dim].nominal).sum();
+        let terms = self.tree_path(l, r, &chain.dimensions);
+        let nominal = terms.iter().map(|t| t.coef * chain.dimensions[t.dim].nominal).sum();
         Ok(Function { terms, nominal })
     }
 
@@ -413,22 +413,17 @@ impl Analysis {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scene::Units;
-    use crate::scene::chain::Stackup;
 
     fn dim(name: &str, from: usize, to: usize, nominal: f64) -> Dimension {
         Dimension { name: name.into(), from, to, nominal, upper: 0.1, lower: -0.1 }
     }
 
-    fn named(features: &[&str], dims: Vec<Dimension>) -> ChainScene {
-        ChainScene {
-            name: "t".into(),
-            units: Units::Mm,
+    fn named(features: &[&str], dims: Vec<Dimension>) -> Chain {
+        Chain {
             form: Form::Named,
             features: features.iter().map(|s| s.to_string()).collect(),
             dimensions: dims,
             dependent: vec![],
-            stackup: Stackup { mrss_factor: 1.5, distribution: Default::default(), samples: 0, seed: 1, bins: 10 },
         }
     }
 
@@ -468,10 +463,16 @@ mod tests {
         // B = [0, -38, 0, 25], W = [-38, 38, 25, -25]: w2 = 38 from the end of -38 returns to
         // 0 (coincides with the zero point); w4 = -25 from the end of 25 returns to 0 as well.
         // Three points at 0 (zero point, ends of w2 and w4): p = 3, p − 1 = 2 redundant.
-        let text = "kind='chain'\nname='c'\nunits='mm'\nB=[0,-38,0,25]\nW=[-38,38,25,-25]";
-        let s = match crate::scene::parse(text, "t", &[]).unwrap() {
-            crate::scene::Scene::Chain(c) => c,
-            _ => unreachable!(),
+        let s = Chain {
+            form: Form::Matrix,
+            features: ["0", "-38", "38", "25", "-25"].iter().map(|s| s.to_string()).collect(),
+            dimensions: vec![
+                dim("w1", 0, 1, -38.0),
+                dim("w2", 1, 2, 38.0),
+                dim("w3", 0, 3, 25.0),
+                dim("w4", 3, 4, -25.0),
+            ],
+            dependent: vec![],
         };
         let a = analyse(&s);
         assert_eq!(a.coincident, vec![vec![1, 3]]);

@@ -1,5 +1,7 @@
 //! Dimensional chains (seed 001, Humienny 1989): numbers only.
 //!
+//! - [`model`]: the solver's input, [`Chain`] (features, dimensions, dependent dimensions)
+//!   and the Monte Carlo [`Distribution`]; a `chain` scene is checked into these.
 //! - [`graph`]: the chain as a graph (features = nodes, dimensions = edges): feature
 //!   coordinates, the seed's over-dimensioning check, redundant dimensions with the loop each
 //!   one closes (a plain repeat or a contradiction), groups of features not tied to the
@@ -9,9 +11,11 @@
 //!   modified RSS, mean shift of asymmetric tolerances, seeded Monte Carlo.
 
 pub mod graph;
+pub mod model;
 pub mod stackup;
 
 pub use graph::{Analysis, Function, Redundant, Term, analyse};
+pub use model::{Chain, Dependent, Dimension, Distribution, Form};
 pub use stackup::{Contribution, MonteCarlo, Stack, monte_carlo, stack};
 
 /// Why a chain question cannot be answered.

@@ -19,7 +19,7 @@ use rand_distr::StandardNormal;
 use rayon::prelude::*;
 
 use super::graph::Function;
-use crate::scene::chain::{Dimension, Distribution};
+use super::model::{Dimension, Distribution};
 
 /// Samples drawn from one random stream; stream k of the seed draws chunk k, so the
 /// result does not depend on the number of threads.

@@ -2,9 +2,9 @@
 //! three circles, A_i on the circle of radius R_i about the ground pivot O_i (seed 000).
 //!
 //! Three methods, numbers only:
-//! - [`pattern`]: the seed's "pattern method", a secant iteration on phi1 with two
+//! - [`pattern`](mod@pattern): the seed's "pattern method", a secant iteration on phi1 with two
 //!   circle intersections per step (one assembly mode, chosen by branch).
-//! - [`newton`]: Newton–Raphson on the three-angle system (phi1, phi2, phi3) from a start,
+//! - [`newton`](mod@newton): Newton–Raphson on the three-angle system (phi1, phi2, phi3) from a start,
 //!   the seed's analytic reference.
 //! - [`modes`]: every assembly mode, from a degree-6 polynomial in tan(phi1/2) whose real
 //!   roots are isolated exactly (derivative sequence), then polished by Newton.

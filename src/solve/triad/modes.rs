@@ -18,7 +18,7 @@
 //! orientation. F is turned into two degree-6 polynomials, in tan(phi1/2) for
 //! |phi1| ≤ 100° and in tan((phi1 − π)/2) for the rest (with overlap, so every root is
 //! interior to one chart and no coefficient blows up near phi1 = π), and their real roots
-//! are isolated exactly by the derivative sequence ([`super::poly`]); critical points
+//! are isolated exactly by the derivative sequence (the private module `poly`); critical points
 //! where F vanishes to rounding are kept, so double roots (two modes merging) and very
 //! close pairs are not lost. Each root is completed geometrically (both intersections for
 //! A2, the one that closes the triangle kept), polished by Newton–Raphson on the

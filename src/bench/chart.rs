@@ -1,8 +1,10 @@
-//! The speed-against-accuracy chart of `mechdraw bench`: time per solve (log x) against
-//! error (log y), one series per method and problem, each point labelled by its setting.
+//! The charts of `mechdraw bench`, drawn from its measurements: speed against accuracy
+//! (time per solve, log x, against error, log y; one series per method and problem, each
+//! point labelled by its setting) and the triad's basins of attraction. They live with the
+//! bench, not in `figure/`, so that figures know nothing of the bench.
 
-use crate::bench::Measurement;
-use crate::bench::basins::{Basin, Strip};
+use super::Measurement;
+use super::basins::{Basin, Strip};
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::Point;
 use crate::solve::triad::Configuration;

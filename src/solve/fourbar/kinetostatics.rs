@@ -20,7 +20,8 @@
 
 use nalgebra::{SMatrix, SVector};
 
-use super::fourbar::{FourbarError, Geometry, Kinematics, Position, SINGULAR_SIN, singular};
+use super::kinematics::{Kinematics, Position, singular};
+use super::{ANGLE_EPS_DEG, FourbarError, Geometry, SINGULAR_SIN};
 use crate::geom::{self, Point, Vector, cross, perp};
 
 /// Point of the coupler (link 2) where an external force acts.
@@ -46,7 +47,7 @@ impl ForcePoint {
 }
 
 /// A closed range of crank angles, degrees, running counter-clockwise from `from_deg` to
-/// `to_deg`, both ends included (within [`super::fourbar::ANGLE_EPS_DEG`]), compared modulo
+/// `to_deg`, both ends included (within [`ANGLE_EPS_DEG`]), compared modulo
 /// 360°: `[80, 280]` holds 80° … 280°; `[300, 60]` holds 300° … 360° and 0° … 60°; a range
 /// with `to_deg − from_deg ≥ 360` holds every angle; `from_deg = to_deg` one angle.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,7 +61,7 @@ pub struct CrankRange {
 impl CrankRange {
     /// Whether the crank angle `phi1_deg` (any real, degrees) lies in the range.
     pub fn contains_deg(&self, phi1_deg: f64) -> bool {
-        let eps = super::fourbar::ANGLE_EPS_DEG;
+        let eps = ANGLE_EPS_DEG;
         if self.to_deg - self.from_deg >= 360.0 - eps {
             return true;
         }
