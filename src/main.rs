@@ -33,7 +33,7 @@ enum Command {
         /// Print the JSON summary on stdout.
         #[arg(long)]
         json: bool,
-        /// Also write PNG copies of the diagrams.
+        /// Also write PNG copies (1600 px wide) of the picture and of the diagrams.
         #[arg(long)]
         png: bool,
         /// Do not write per-position SVG frames and the HTML viewer.

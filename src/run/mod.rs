@@ -23,7 +23,7 @@ use crate::scene::{Loaded, Scene};
 pub struct RunOptions {
     /// Output directory; `None` solves and reports without writing files.
     pub out_dir: Option<PathBuf>,
-    /// Also write PNG copies of the diagrams.
+    /// Also write PNG copies of the picture and of the diagrams.
     pub png: bool,
     /// Skip the per-position SVG frames and the HTML viewer.
     pub no_frames: bool,
