@@ -308,3 +308,48 @@ fn inertia_of_the_rocker_includes_its_mass() {
         assert!(f.fi1.dot(&(p.a - spec.geometry.o1)) >= 0.0);
     }
 }
+
+/// Issue 14 (units): the template written in millimetres gives the same reactions in N as
+/// the SI template (forces are N and masses kg in every scene; g is m/s²), and its moments
+/// are the SI ones in N·mm (×1000). Before, a mm scene's forces came out in mN labelled N.
+#[test]
+fn a_mm_scene_gives_the_si_scenes_forces_in_newtons() {
+    let si = solve_motion(&template_spec()).unwrap();
+    let mm_text = TEMPLATE
+        .replace("units = \"SI\"", "units = \"mm\"")
+        .replace("c = [0.08, 0.0]", "c = [80.0, 0.0]")
+        .replace("l1 = 0.04", "l1 = 40.0")
+        .replace("l_ab = 0.10", "l_ab = 100.0")
+        .replace("l_bm = 0.10", "l_bm = 100.0")
+        .replace("l_bc = 0.10", "l_bc = 100.0");
+    assert!(mm_text.contains("units = \"mm\"") && mm_text.contains("l_bc = 100.0"), "template changed: {mm_text}");
+    let mm = solve_motion(&spec_from(&mm_text)).unwrap();
+    assert_eq!(si.forces.len(), 360);
+    assert_eq!(mm.forces.len(), si.forces.len());
+    let rel = |a: f64, b: f64, scale: f64| (a - b).abs() <= 1e-9 * scale;
+    let mut max_force: f64 = 0.0;
+    for (s, m) in si.forces.iter().zip(&mm.forces) {
+        let scale = s.r_a.norm().max(s.r_c.norm()).max(1.0);
+        max_force = max_force.max(m.r_a.norm());
+        for (a, b, what) in [(s.r_a, m.r_a, "R_A"), (s.r_b, m.r_b, "R_B"), (s.r_c, m.r_c, "R_C"), (s.r_o, m.r_o, "R_O")]
+        {
+            assert!(rel(a.x, b.x, scale) && rel(a.y, b.y, scale), "{what}: SI {a:?} N vs mm {b:?} N");
+        }
+        assert!(rel(s.fi21.x, m.fi21.x, scale) && rel(s.g3.y, m.g3.y, scale), "loads in N");
+        // Moments: N·m in the SI scene, N·mm in the mm scene.
+        let me_scale = s.me1.abs().max(1e-3) * 1000.0;
+        assert!(rel(1000.0 * s.me1, m.me1, me_scale), "Me1: SI {} N·m vs mm {} N·mm", s.me1, m.me1);
+        assert!(rel(1000.0 * s.mi21, m.mi21, me_scale.max(1.0)), "Mi21");
+    }
+    // The 50 N load is felt as 50 N (tens of newtons of reaction), not as 50 mN.
+    assert!(max_force > 20.0, "largest |R_A| {max_force} N");
+}
+
+/// A mm scene's g in mm/s² (as written before forces were N everywhere) is refused by name.
+#[test]
+fn a_mm_scenes_g_in_mm_per_s2_is_refused_by_name() {
+    let text = TEMPLATE.replace("units = \"SI\"", "units = \"mm\"").replace("g = 9.8", "g = 9806.65");
+    assert!(text.contains("g = 9806.65"), "template changed");
+    let err = scene::parse(&text, "old.toml", &[]).unwrap_err().to_string();
+    assert!(err.contains("old.toml") && err.contains("dynamics.g") && err.contains("m/s²"), "{err}");
+}

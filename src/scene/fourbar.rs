@@ -10,8 +10,14 @@ use crate::geom::{Side, Vector};
 use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
 use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint};
 
-/// Standard gravity in m/s², the default `dynamics.g` of an SI scene (mm scenes: ×1000).
+/// Standard gravity in m/s², the default `dynamics.g` (in every scene: g is in m/s²
+/// whatever the length unit).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
+
+/// Largest `dynamics.g` accepted in a mm scene, m/s² (about 100 g). Before forces were
+/// read in N everywhere, a mm scene's g was in mm/s² (9806.65); such a value is refused
+/// with a message saying so, instead of being read as 1000 g.
+pub const MAX_G_MM_SCENE: f64 = 1000.0;
 
 /// The scene as written in the file (`kind` removed).
 #[derive(Debug, Clone, Deserialize)]
@@ -192,13 +198,20 @@ fn check_sweep(s: &RawSweep) -> Result<Sweep, FieldError> {
 }
 
 fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError> {
-    let default_g = match units {
-        Units::Si => STANDARD_GRAVITY,
-        Units::Mm => STANDARD_GRAVITY * 1000.0,
-    };
-    let g = finite("dynamics.g", d.g.unwrap_or(default_g))?;
+    let g = finite("dynamics.g", d.g.unwrap_or(STANDARD_GRAVITY))?;
     if g < 0.0 {
-        return Err(FieldError::new("dynamics.g", format!("must be ≥ 0 (gravity acts along −y), got {g}")));
+        return Err(FieldError::new("dynamics.g", format!("must be ≥ 0 in m/s² (gravity acts along −y), got {g}")));
+    }
+    if units == Units::Mm && g > MAX_G_MM_SCENE {
+        return Err(FieldError::new(
+            "dynamics.g",
+            format!(
+                "is in m/s² in every scene, mm scenes too (forces are in N, masses in kg); {g} m/s² is {:.0} g. \
+                 For standard gravity write {STANDARD_GRAVITY} or leave g out (a value in mm/s² such as 9806.65 \
+                 is from before this rule: divide it by 1000)",
+                g / STANDARD_GRAVITY
+            ),
+        ));
     }
     let mass = |field: &str, v: f64| {
         if v.is_finite() && v >= 0.0 {
@@ -234,6 +247,10 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
         forces.push(ExternalForce { at, value: Vector::new(v.x, v.y), range });
     }
     Ok(Dynamics {
+        length_unit_m: match units {
+            Units::Si => 1.0,
+            Units::Mm => 0.001,
+        },
         g,
         m1: mass("dynamics.m1", d.m1)?,
         m21: mass("dynamics.m21", d.m21)?,

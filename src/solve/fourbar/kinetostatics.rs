@@ -76,16 +76,22 @@ impl CrankRange {
 pub struct ExternalForce {
     /// Where it acts.
     pub at: ForcePoint,
-    /// The force, N (SI scenes).
+    /// The force, N (in every scene, whatever its length unit).
     pub value: Vector,
     /// Crank angles where it acts; `None`: at every angle.
     pub range: Option<CrankRange>,
 }
 
-/// Masses, gravity and external forces.
+/// Masses, gravity and external forces, in the units engineers write whatever the scene's
+/// length unit: kg, m/s², N. Lengths, velocities and accelerations are in the scene's length
+/// unit; the results are forces in N and moments in N·(length unit): N·m in an SI scene,
+/// N·mm in a mm scene.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Dynamics {
-    /// Gravitational acceleration (length units/s²), acting along −y; ≥ 0.
+    /// Metres per length unit of the geometry (1 for SI, 0.001 for mm): a mass times an
+    /// acceleration in length units/s² is `length_unit_m` times a force in N.
+    pub length_unit_m: f64,
+    /// Gravitational acceleration, m/s², acting along −y; ≥ 0.
     pub g: f64,
     /// Mass of the crank O1A, kg.
     pub m1: f64,
@@ -206,6 +212,9 @@ pub struct Loads {
 /// The applied loads at `pos` (crank angle `pos.phi1`).
 pub fn loads(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynamics) -> Loads {
     let d = dynamics;
+    // Weights m·g in N (g in m/s²); inertia forces m·a and moments J·eps with a in length
+    // units/s² and J in kg·(length unit)², times length_unit_m: N and N·(length unit).
+    let k = d.length_unit_m;
     let down = Vector::new(0.0, -d.g);
     let phi1_deg = geom::deg(pos.phi1);
     let mut f_ext = Vector::zeros();
@@ -216,9 +225,9 @@ pub fn loads(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynam
             f_ext_moment_b += cross(f.at.at(pos) - pos.b, f.value);
         }
     }
-    let j21 = d.m21 * geom.l_ab * geom.l_ab / 12.0;
-    let j22 = d.m22 * geom.l_bm * geom.l_bm / 12.0;
-    let j3 = d.m3 * geom.l_bc * geom.l_bc / 12.0;
+    let j21 = k * d.m21 * geom.l_ab * geom.l_ab / 12.0;
+    let j22 = k * d.m22 * geom.l_bm * geom.l_bm / 12.0;
+    let j3 = k * d.m3 * geom.l_bc * geom.l_bc / 12.0;
     Loads {
         g1_at: geom.o1 + (pos.a - geom.o1) * 0.5,
         g21_at: pos.a + (pos.b - pos.a) * 0.5,
@@ -228,10 +237,10 @@ pub fn loads(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynam
         w21: down * d.m21,
         w22: down * d.m22,
         w3: down * d.m3,
-        fi1: -kin.a_g1 * d.m1,
-        fi21: -kin.a_g21 * d.m21,
-        fi22: -kin.a_g22 * d.m22,
-        fi3: -kin.a_g3 * d.m3,
+        fi1: -kin.a_g1 * (k * d.m1),
+        fi21: -kin.a_g21 * (k * d.m21),
+        fi22: -kin.a_g22 * (k * d.m22),
+        fi3: -kin.a_g3 * (k * d.m3),
         mi1: 0.0, // constant omega1: eps1 = 0
         mi21: -j21 * kin.eps2,
         mi22: -j22 * kin.eps2,
@@ -330,6 +339,9 @@ pub fn forces_newton_euler(
 ) -> Result<Reactions, FourbarError> {
     let d = dynamics;
     let l = loads(geom, pos, kin, dynamics);
+    // Masses as [`loads`] uses them: m·a in N (see [`Dynamics::length_unit_m`]).
+    let k = d.length_unit_m;
+    let (m1, m21, m22, m3) = (k * d.m1, k * d.m21, k * d.m22, k * d.m3);
     let (o1, a, b, c) = (geom.o1, pos.a, pos.b, geom.c);
     // Unknown order: R_Ax, R_Ay, R_Bx, R_By, R_Cx, R_Cy, R_Ox, R_Oy, Me1.
     let mut m = SMatrix::<f64, 9, 9>::zeros();
@@ -345,25 +357,25 @@ pub fn forces_newton_euler(
         m[(i, 6 + i)] = 1.0;
         m[(i, i)] = -1.0;
     }
-    rhs[0] = d.m1 * kin.a_g1.x - l.w1.x;
-    rhs[1] = d.m1 * kin.a_g1.y - l.w1.y;
+    rhs[0] = m1 * kin.a_g1.x - l.w1.x;
+    rhs[1] = m1 * kin.a_g1.y - l.w1.y;
     // Link 1 about O1: Me1 + (A−O1) × (−R_A) + (G1−O1) × G1 = (G1−O1) × m1·a_G1 + J1·eps1.
     m[(2, 8)] = 1.0;
     moment(&mut m, 2, 0, a - o1, -1.0);
-    rhs[2] = cross(l.g1_at - o1, kin.a_g1 * d.m1) - cross(l.g1_at - o1, l.w1);
+    rhs[2] = cross(l.g1_at - o1, kin.a_g1 * m1) - cross(l.g1_at - o1, l.w1);
     // Link 2: R_A + R_B + G21 + G22 + F = m21·a_G21 + m22·a_G22.
     for i in 0..2 {
         m[(3 + i, i)] = 1.0;
         m[(3 + i, 2 + i)] = 1.0;
     }
-    let lin2 = kin.a_g21 * d.m21 + kin.a_g22 * d.m22 - l.w21 - l.w22 - l.f_ext;
+    let lin2 = kin.a_g21 * m21 + kin.a_g22 * m22 - l.w21 - l.w22 - l.f_ext;
     rhs[3] = lin2.x;
     rhs[4] = lin2.y;
     // Link 2 about A: (B−A) × R_B + Σ (r−A) × (G, F) = Σ (G−A) × m·a_G + (J21 + J22)·eps2.
     moment(&mut m, 5, 2, b - a, 1.0);
-    let j2 = (d.m21 * geom.l_ab * geom.l_ab + d.m22 * geom.l_bm * geom.l_bm) / 12.0;
+    let j2 = (m21 * geom.l_ab * geom.l_ab + m22 * geom.l_bm * geom.l_bm) / 12.0;
     let ext_a = l.f_ext_moment_b + cross(b - a, l.f_ext); // moment about A = about B + (B−A) × ΣF
-    rhs[5] = cross(l.g21_at - a, kin.a_g21 * d.m21) + cross(l.g22_at - a, kin.a_g22 * d.m22) + j2 * kin.eps2
+    rhs[5] = cross(l.g21_at - a, kin.a_g21 * m21) + cross(l.g22_at - a, kin.a_g22 * m22) + j2 * kin.eps2
         - cross(l.g21_at - a, l.w21)
         - cross(l.g22_at - a, l.w22)
         - ext_a;
@@ -372,12 +384,12 @@ pub fn forces_newton_euler(
         m[(6 + i, 4 + i)] = 1.0;
         m[(6 + i, 2 + i)] = -1.0;
     }
-    rhs[6] = d.m3 * kin.a_g3.x - l.w3.x;
-    rhs[7] = d.m3 * kin.a_g3.y - l.w3.y;
+    rhs[6] = m3 * kin.a_g3.x - l.w3.x;
+    rhs[7] = m3 * kin.a_g3.y - l.w3.y;
     // Link 3 about C: (B−C) × (−R_B) + (G3−C) × G3 = (G3−C) × m3·a_G3 + J3·eps3.
     moment(&mut m, 8, 2, b - c, -1.0);
-    let j3 = d.m3 * geom.l_bc * geom.l_bc / 12.0;
-    rhs[8] = cross(l.g3_at - c, kin.a_g3 * d.m3) + j3 * kin.eps3 - cross(l.g3_at - c, l.w3);
+    let j3 = m3 * geom.l_bc * geom.l_bc / 12.0;
+    rhs[8] = cross(l.g3_at - c, kin.a_g3 * m3) + j3 * kin.eps3 - cross(l.g3_at - c, l.w3);
     let s = cross(b - a, b - c);
     if s.abs() <= SINGULAR_SIN * geom.l_ab * geom.l_bc {
         return Err(singular(pos));
