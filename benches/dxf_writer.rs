@@ -52,13 +52,9 @@ fn drawing(position_layers: usize) -> Drawing {
 /// The DXF drawing a run writes for a template (a motion: every position on its own
 /// layer), built through the products seam as `mechdraw run` builds it.
 fn template_drawing(template: &str) -> Drawing {
-    use mechdraw::run::{RunOptions, products::Picture};
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("templates/{template}.toml"));
     let loaded = mechdraw::scene::load(&path, &[]).expect("template loads");
-    match mechdraw::run::products(&loaded, &RunOptions::default()).expect("solves").picture {
-        Picture::Motion(a) => a.whole(),
-        Picture::Still(d) => d,
-    }
+    mechdraw::run::products(&loaded, &Default::default()).expect("solves").picture.drawing()
 }
 
 fn bench(c: &mut Criterion) {

@@ -20,6 +20,17 @@ pub enum Picture {
     Motion(Animation),
 }
 
+impl Picture {
+    /// The drawing the DXF is written from: the still drawing, or a motion with every
+    /// position on its own layer ([`Animation::whole`]).
+    pub fn drawing(&self) -> Drawing {
+        match self {
+            Picture::Still(d) => d.clone(),
+            Picture::Motion(a) => a.whole(),
+        }
+    }
+}
+
 /// A diagram or chart beside the picture: `diagrams/<scene name>/<stem>.svg`.
 #[derive(Debug, Clone)]
 pub struct Diagram {

@@ -120,9 +120,9 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
     Ok(TriadResults { triad, modes, pattern, start, newton_start, newton, primary, warnings })
 }
 
-/// A configuration of the triad in the JSON summary.
+/// Where a configuration puts the triad: its angles, its vertices and their orientation.
 #[derive(Debug, Serialize)]
-struct ConfigurationRecord {
+struct PlacementRecord {
     phi1_deg: f64,
     phi2_deg: f64,
     phi3_deg: f64,
@@ -133,15 +133,13 @@ struct ConfigurationRecord {
     #[serde(rename = "A3")]
     a3: [f64; 2],
     orientation: &'static str,
-    /// Relative residual of the six constraint equations.
-    residual: f64,
 }
 
-impl ConfigurationRecord {
-    fn of(c: &Configuration) -> ConfigurationRecord {
+impl PlacementRecord {
+    fn of(c: &Configuration) -> PlacementRecord {
         let [phi1_deg, phi2_deg, phi3_deg] = c.phi_deg();
         let p = |i: usize| [c.a[i].x, c.a[i].y];
-        ConfigurationRecord {
+        PlacementRecord {
             phi1_deg,
             phi2_deg,
             phi3_deg,
@@ -149,8 +147,22 @@ impl ConfigurationRecord {
             a2: p(1),
             a3: p(2),
             orientation: c.orientation.name(),
-            residual: c.residual,
         }
+    }
+}
+
+/// A configuration of the triad in the JSON summary.
+#[derive(Debug, Serialize)]
+struct ConfigurationRecord {
+    #[serde(flatten)]
+    placement: PlacementRecord,
+    /// Relative residual of the six constraint equations.
+    residual: f64,
+}
+
+impl ConfigurationRecord {
+    fn of(c: &Configuration) -> ConfigurationRecord {
+        ConfigurationRecord { placement: PlacementRecord::of(c), residual: c.residual }
     }
 }
 
@@ -159,16 +171,8 @@ impl ConfigurationRecord {
 #[serde(untagged)]
 enum PatternRecord {
     Solved {
-        phi1_deg: f64,
-        phi2_deg: f64,
-        phi3_deg: f64,
-        #[serde(rename = "A1")]
-        a1: [f64; 2],
-        #[serde(rename = "A2")]
-        a2: [f64; 2],
-        #[serde(rename = "A3")]
-        a3: [f64; 2],
-        orientation: &'static str,
+        #[serde(flatten)]
+        placement: PlacementRecord,
         /// |R3 − O3A3|, scene units (the method's own measure).
         residual: f64,
         /// Relative residual of the six constraint equations.
@@ -225,23 +229,14 @@ struct Summary<'a> {
 pub fn summary(scene: &TriadScene, r: &TriadResults) -> Result<serde_json::Value, Error> {
     let phi1_start_deg = deg(scene.pattern.phi1_start);
     let pattern = match &r.pattern {
-        Ok(p) => {
-            let c = ConfigurationRecord::of(&p.configuration);
-            PatternRecord::Solved {
-                phi1_deg: c.phi1_deg,
-                phi2_deg: c.phi2_deg,
-                phi3_deg: c.phi3_deg,
-                a1: c.a1,
-                a2: c.a2,
-                a3: c.a3,
-                orientation: c.orientation,
-                residual: p.residual,
-                relative_residual: c.residual,
-                iterations: p.iterations,
-                evaluations: p.evaluations,
-                phi1_start_deg,
-            }
-        }
+        Ok(p) => PatternRecord::Solved {
+            placement: PlacementRecord::of(&p.configuration),
+            residual: p.residual,
+            relative_residual: p.configuration.residual,
+            iterations: p.iterations,
+            evaluations: p.evaluations,
+            phi1_start_deg,
+        },
         Err(e) => PatternRecord::Failed { error: e.to_string(), phi1_start_deg },
     };
     let start_deg = r.newton_start.map(deg);
