@@ -59,20 +59,22 @@ pub struct Memory(Mutex<Vec<(String, Vec<u8>)>>);
 
 impl Sink for Memory {
     fn put(&self, files: &[File<'_>]) -> Result<(), Error> {
-        let mut v = self.0.lock().map_err(|_| Error::Export {
-            what: "files in memory".into(),
-            message: "a writer thread panicked".into(),
-        })?;
+        let mut v = self.0.lock().map_err(|_| poisoned())?;
         v.extend(files.iter().map(|(n, b)| (n.clone(), b.to_vec())));
         Ok(())
     }
+}
+
+/// A writer thread panicked while holding the in-memory files.
+fn poisoned() -> Error {
+    Error::Export { what: "files in memory".into(), message: "a writer thread panicked".into() }
 }
 
 /// The products as named byte buffers, in the canonical order of [`write`](fn@write).
 pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8>)>, Error> {
     let memory = Memory::default();
     let order = write(p, opts, &|| {}, &memory)?;
-    let mut files = memory.0.into_inner().unwrap_or_default();
+    let mut files = memory.0.into_inner().map_err(|_| poisoned())?;
     let rank: std::collections::HashMap<&str, usize> = order.iter().enumerate().map(|(i, n)| (n.as_str(), i)).collect();
     files.sort_by_key(|(n, _)| rank.get(n.as_str()).copied().unwrap_or(usize::MAX));
     Ok(files)
