@@ -1,0 +1,221 @@
+//! The drawing vocabulary every mechanism figure shares: scales and their texts, the size
+//! table, the content layers, and the symbols the graph-analytical method draws — ground
+//! pivot, joint, link, named vector with its arrowhead and letter. A figure for a new
+//! mechanism is built from these; nothing here knows a mechanism's fields.
+//!
+//! All sizes are model units (the model is drawn 1:1); a scale turns a physical vector
+//! (m/s, m/s², N …) into a drawn one.
+
+use crate::draw::{Drawing, HAlign, Shape, VAlign};
+use crate::geom::{Point, Vector};
+
+/// Length unit of the model, for scale texts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModelUnits {
+    /// Symbol of the length unit (`m` or `mm`); velocities are in `<unit>/s`.
+    pub length: &'static str,
+    /// Drawing millimetres per model unit (1000 for metres, 1 for millimetres).
+    pub mm_per_unit: f64,
+}
+
+impl ModelUnits {
+    /// Metres (SI scenes).
+    pub const SI: ModelUnits = ModelUnits { length: "m", mm_per_unit: 1000.0 };
+    /// Millimetres.
+    pub const MM: ModelUnits = ModelUnits { length: "mm", mm_per_unit: 1.0 };
+}
+
+/// A drawing scale: `per_mm` physical units per drawing millimetre.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scale {
+    /// Physical units (m/s, m/s², N …) per drawing millimetre.
+    pub per_mm: f64,
+    /// Model units per drawing millimetre (1/`mm_per_unit`).
+    unit_per_mm: f64,
+}
+
+impl Scale {
+    /// `per_mm` physical units per drawing millimetre, for a model in `units`.
+    pub fn new(per_mm: f64, units: ModelUnits) -> Scale {
+        Scale { per_mm, unit_per_mm: 1.0 / units.mm_per_unit }
+    }
+    /// The drawn vector (model units) for a physical vector.
+    pub fn draw(&self, v: Vector) -> Vector {
+        v * (self.unit_per_mm / self.per_mm)
+    }
+}
+
+/// A "nice" scale (1, 2, 2.5 or 5 × 10ᵏ) at least `raw`; 1 for a zero or non-finite `raw`.
+pub fn nice_scale(raw: f64) -> f64 {
+    if !(raw.is_finite() && raw > 0.0) {
+        return 1.0;
+    }
+    let mag = 10f64.powf(raw.log10().floor());
+    for m in [1.0, 2.0, 2.5, 5.0, 10.0] {
+        if m * mag >= raw * (1.0 - 1e-12) {
+            return m * mag;
+        }
+    }
+    10.0 * mag
+}
+
+/// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
+pub fn scale_text(v: f64) -> String {
+    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
+        let s = format!("{v:e}");
+        return s;
+    }
+    let s = format!("{v:.6}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// Content layers of a mechanism figure with polygons: name, colour, line type.
+pub mod layers {
+    use crate::draw::{Aci, LineType};
+    /// A layer: name, colour, line type.
+    pub type Layer = (&'static str, Aci, LineType);
+    /// Links, joints, ground, letters.
+    pub const MECHANISM: Layer = ("MECHANISM", Aci::BLACK, LineType::Continuous);
+    /// The path of a traced point (the four-bar's coupler curve of M).
+    pub const COUPLER_CURVE: Layer = ("COUPLER_CURVE", Aci::CYAN, LineType::Continuous);
+    /// Velocity polygon.
+    pub const VELOCITY: Layer = ("VELOCITY", Aci::GREEN, LineType::Continuous);
+    /// Acceleration polygon.
+    pub const ACCELERATION: Layer = ("ACCELERATION", Aci::BLUE, LineType::Continuous);
+    /// Force polygons and reactions on the mechanism.
+    pub const FORCES: Layer = ("FORCES", Aci::MAGENTA, LineType::Continuous);
+    /// Construction lines (components, directions), dashed.
+    pub const CONSTRUCTION: Layer = ("CONSTRUCTION", Aci::DARK_GREY, LineType::Dashed);
+    /// Titles and scales.
+    pub const DIMENSIONS: Layer = ("DIMENSIONS", Aci::BLACK, LineType::Continuous);
+    /// Per-position text (the crank angle).
+    pub const TEXT: Layer = ("TEXT", Aci::BLACK, LineType::Continuous);
+    /// Every content layer, in drawing order (later on top).
+    pub const ALL: [Layer; 8] =
+        [COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
+}
+
+/// A drawing with the content layers created in drawing order.
+pub fn content_drawing(dim: crate::draw::DimStyle) -> Drawing {
+    let mut d = Drawing::new(dim);
+    for (name, color, lt) in layers::ALL {
+        d.layer(name, color, lt);
+    }
+    d
+}
+
+/// Index of a content layer in a [`content_drawing`] (0 when the drawing lacks it).
+pub fn layer_of(d: &Drawing, l: layers::Layer) -> usize {
+    d.layers.iter().position(|x| x.name == l.0).unwrap_or(0)
+}
+
+/// Sizes of drawn details, model units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sizes {
+    /// Cap height of letters.
+    pub text: f64,
+    /// Arrowhead length.
+    pub head: f64,
+    /// Width of link polylines.
+    pub link: f64,
+    /// Radius of joint circles.
+    pub joint: f64,
+}
+
+impl Sizes {
+    /// Sizes for a mechanism whose drawing spans `size` model units (the extent of its
+    /// motion): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius.
+    pub fn for_size(size: f64) -> Sizes {
+        Sizes { text: 0.032 * size, head: 0.03 * size, link: 0.009 * size, joint: 0.013 * size }
+    }
+}
+
+/// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
+pub fn unit_or(v: Vector, fallback: Vector) -> Vector {
+    let n = v.norm();
+    if n > 0.0 && n.is_finite() { v / n } else { fallback }
+}
+
+/// A centred letter at `at`, nudged along `dir` (unit or zero) so it clears a line end.
+pub fn label(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, dir: Vector) {
+    let n = dir.norm();
+    let u = if n > 0.0 && n.is_finite() { dir / n } else { Vector::zeros() };
+    // Wider names sit further out sideways (about 0.6 letter heights per character).
+    let chars = s.chars().count().max(1) as f64;
+    let nudge = 0.8 * h + 0.3 * h * (chars - 1.0) * u.x.abs();
+    d.add(
+        layer,
+        Shape::Text {
+            at: at + u * nudge,
+            height: h,
+            value: s.to_string(),
+            halign: HAlign::Center,
+            valign: VAlign::Middle,
+            rotation: 0.0,
+        },
+    );
+}
+
+/// A named vector: an arrow from `from` by `v` (drawn units) with its letter `name` at the
+/// tip (none when empty); nothing for a vector shorter than a hundredth of the arrowhead.
+pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, name: &str, s: Sizes) {
+    if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
+        return;
+    }
+    d.add(layer, Shape::Arrow { from, to: from + v, head: s.head });
+    if !name.is_empty() {
+        label(d, layer, from + v, s.text, name, v);
+    }
+}
+
+/// A link: a wide polyline through `points` (closed for a rigid body of three or more
+/// points drawn as a plate).
+pub fn link(d: &mut Drawing, layer: usize, points: Vec<Point>, closed: bool, s: Sizes) {
+    d.add(layer, Shape::Polyline { points, closed, width: s.link });
+}
+
+/// A joint: a circle of the joint radius at `p`.
+pub fn joint(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
+    d.add(layer, Shape::Circle { center: p, radius: s.joint });
+}
+
+/// The ground pivot at `p`: a support triangle, a base line and hatch strokes under it, and
+/// the joint circle.
+pub fn ground(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
+    let r = s.joint;
+    let h = 2.6 * r;
+    let base_y = p.y - h;
+    d.add(
+        layer,
+        Shape::Polyline {
+            points: vec![p, Point::new(p.x - 1.4 * r, base_y), Point::new(p.x + 1.4 * r, base_y)],
+            closed: true,
+            width: 0.0,
+        },
+    );
+    let half = 2.6 * r;
+    d.add(layer, Shape::Line { from: Point::new(p.x - half, base_y), to: Point::new(p.x + half, base_y) });
+    let n = 6;
+    for i in 0..n {
+        let x = p.x - half + (i as f64 + 0.5) * (2.0 * half / n as f64);
+        d.add(layer, Shape::Line { from: Point::new(x, base_y), to: Point::new(x - 0.8 * r, base_y - 0.8 * r) });
+    }
+    d.add(layer, Shape::Circle { center: p, radius: r });
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_scales_round_up_to_1_2_2_5_5() {
+        for (raw, nice) in [(0.7, 1.0), (1.3, 2.0), (2.1, 2.5), (3.0, 5.0), (7.0, 10.0), (0.013, 0.02)] {
+            assert!((nice_scale(raw) - nice).abs() < 1e-12 * nice, "{raw} -> {}", nice_scale(raw));
+        }
+        assert_eq!(nice_scale(0.0), 1.0);
+        assert_eq!(nice_scale(f64::NAN), 1.0);
+        assert_eq!(scale_text(0.01), "0.01");
+        assert_eq!(scale_text(2.5), "2.5");
+        assert_eq!(scale_text(2e-5), "2e-5");
+    }
+}
