@@ -428,8 +428,14 @@ fn shaper_positions() -> Drawing {
     let states = solver.run(&scene.times).expect("solves");
     let style = fig::Style::for_length(scene.mechanism.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
-    let spans = fig::guide_spans(scene, &motion, &style);
-    fig::all_positions(scene, &motion, &spans, &style)
+    // The figure as the linkage run builds it: the point names, the measured points traced.
+    let traced = scene.measures.iter().filter_map(|m| match m.target {
+        mechdraw::scene::linkage::MeasureTarget::Point(a) => Some(a),
+        mechdraw::scene::linkage::MeasureTarget::Body(_) => None,
+    });
+    let figure = fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced.collect());
+    let spans = fig::guide_spans(&figure, &motion, &style);
+    fig::all_positions(&figure, &motion, &spans, &style)
 }
 
 /// The hand-written R12 path gives the crate path's bytes for real drawings (the triad,

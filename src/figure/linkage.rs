@@ -2,12 +2,85 @@
 //! bodies as polylines between their points (closed for three or more), revolute joints
 //! as small circles, sliders as small rectangles along their guide, guides fixed to the
 //! ground as lines with hatching, ground pivots with the ground symbol (triangle, base
-//! line, hatch), point names, and the paths of the measured points.
+//! line, hatch), point names, and the paths of the traced points.
+//!
+//! What it draws is a [`LinkageFigure`], built from the solver's [`Mechanism`] and the
+//! names of its points (the run builds it from the scene), so that the figure knows no
+//! scene file.
 
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
-use crate::scene::linkage::{LinkageScene, MeasureTarget};
-use crate::solve::linkage::{Anchor, Attach, JointKind, place};
+use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
+
+/// A body as drawn: its named points in body coordinates, in the order its outline joins
+/// them (closed for three or more).
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyOutline {
+    /// Named points, body coordinates.
+    pub points: Vec<(String, Vector)>,
+}
+
+/// A joint as drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub enum JointSymbol {
+    /// A revolute joint: a circle at `at`, with the ground symbol when `grounded`.
+    Pin {
+        /// Where it is (a point of either body).
+        at: Anchor,
+        /// Whether one of its bodies is the ground.
+        grounded: bool,
+        /// The name written beside it.
+        name: String,
+    },
+    /// A prismatic joint: a block at `point` along the guide line `q1 → q2`; a guide fixed
+    /// to the ground (`q1` on the ground) is drawn as a hatched line over the motion.
+    Slider {
+        /// The sliding point.
+        point: Anchor,
+        /// First point of the guide line.
+        q1: Anchor,
+        /// Second point of the guide line.
+        q2: Anchor,
+        /// The name written beside the block, when the point has one.
+        name: Option<String>,
+    },
+}
+
+/// What the linkage figure draws: bodies (by index, as the solver's
+/// [`Attach::Body`]), joints, and the points whose paths are drawn.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkageFigure {
+    /// The moving bodies, in the solver's order.
+    pub bodies: Vec<BodyOutline>,
+    /// The joints, in the solver's order.
+    pub joints: Vec<JointSymbol>,
+    /// Points whose paths over the motion are drawn (points on the ground are skipped).
+    pub traced: Vec<Anchor>,
+}
+
+impl LinkageFigure {
+    /// The figure of `mechanism`: `name_of` gives a point's name (`None` for an unnamed
+    /// point; a revolute joint without named points is called by the joint's own name);
+    /// `traced` are the points whose paths are drawn.
+    pub fn new<'a>(mechanism: &Mechanism, name_of: impl Fn(Anchor) -> Option<&'a str>, traced: Vec<Anchor>) -> Self {
+        let bodies = mechanism.bodies.iter().map(|b| BodyOutline { points: b.points.clone() }).collect();
+        let joints = mechanism
+            .joints
+            .iter()
+            .map(|j| match j.kind {
+                JointKind::Revolute { a, b } => JointSymbol::Pin {
+                    at: a,
+                    grounded: a.body == Attach::Ground || b.body == Attach::Ground,
+                    name: name_of(b).or_else(|| name_of(a)).unwrap_or(&j.name).to_string(),
+                },
+                JointKind::Prismatic { point, q1, q2, .. } => {
+                    JointSymbol::Slider { point, q1, q2, name: name_of(point).map(str::to_string) }
+                }
+            })
+            .collect();
+        LinkageFigure { bodies, joints, traced }
+    }
+}
 
 /// Sizes of the symbols, model units (from the mechanism's size).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -50,13 +123,11 @@ fn anchor_at(q: &[f64], a: Anchor) -> Point {
 /// Extent of each ground-fixed guide over a motion: for each prismatic joint whose line
 /// is on the ground, the segment of the guide line the slider covers (plus the slider's
 /// length and the line's own points). `None` for guides on moving bodies.
-pub fn guide_spans(scene: &LinkageScene, motion: &[&[f64]], style: &Style) -> Vec<Option<(Point, Point)>> {
-    scene
-        .mechanism
-        .joints
+pub fn guide_spans(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Vec<Option<(Point, Point)>> {
+    fig.joints
         .iter()
-        .map(|j| match j.kind {
-            JointKind::Prismatic { point, q1, q2, .. } if q1.body == Attach::Ground => {
+        .map(|j| match *j {
+            JointSymbol::Slider { point, q1, q2, .. } if q1.body == Attach::Ground => {
                 let (a, b) = (Point::from(q1.local), Point::from(q2.local));
                 let u = (b - a).normalize();
                 let mut lo: f64 = 0.0;
@@ -107,12 +178,11 @@ fn ground_symbol(d: &mut Drawing, layer: usize, p: Point, style: &Style) {
 pub fn mechanism(
     d: &mut Drawing,
     layer: usize,
-    scene: &LinkageScene,
+    fig: &LinkageFigure,
     q: &[f64],
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) {
-    let mech = &scene.mechanism;
     // Guides fixed to the ground.
     for span in spans.iter().flatten() {
         d.add(layer, Shape::Line { from: span.0, to: span.1 });
@@ -121,7 +191,7 @@ pub fn mechanism(
         hatch(d, layer, span.0 + off, span.1 + off, style.ground_size);
     }
     // Bodies.
-    for (i, b) in mech.bodies.iter().enumerate() {
+    for (i, b) in fig.bodies.iter().enumerate() {
         let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
         if pts.len() >= 2 {
             d.add_colored(
@@ -134,23 +204,23 @@ pub fn mechanism(
     // Joints.
     let mut labelled: Vec<Point> = Vec::new();
     // Sliders first, so that their names sit beside the block rather than on it.
-    let order = mech
+    let order = fig
         .joints
         .iter()
-        .filter(|j| matches!(j.kind, JointKind::Prismatic { .. }))
-        .chain(mech.joints.iter().filter(|j| matches!(j.kind, JointKind::Revolute { .. })));
+        .filter(|j| matches!(j, JointSymbol::Slider { .. }))
+        .chain(fig.joints.iter().filter(|j| matches!(j, JointSymbol::Pin { .. })));
     for j in order {
-        match j.kind {
-            JointKind::Revolute { a, b } => {
-                let p = anchor_at(q, a);
+        match j {
+            JointSymbol::Pin { at, grounded, name } => {
+                let p = anchor_at(q, *at);
                 d.add(layer, Shape::Circle { center: p, radius: style.joint_radius });
-                if a.body == Attach::Ground || b.body == Attach::Ground {
+                if *grounded {
                     ground_symbol(d, layer, p, style);
                 }
-                let name = scene.point_name(b).or_else(|| scene.point_name(a)).unwrap_or(&j.name);
                 label(d, layer, p, name, style, &mut labelled);
             }
-            JointKind::Prismatic { point, q1, q2, .. } => {
+            JointSymbol::Slider { point, q1, q2, name } => {
+                let (point, q1, q2) = (*point, *q1, *q2);
                 let p = anchor_at(q, point);
                 let dir = anchor_at(q, q2) - anchor_at(q, q1);
                 let u = dir.normalize();
@@ -158,7 +228,7 @@ pub fn mechanism(
                 let (hl, hh) = (0.5 * style.slider_length, 0.5 * style.slider_height);
                 let corners = vec![p - u * hl - n * hh, p + u * hl - n * hh, p + u * hl + n * hh, p - u * hl + n * hh];
                 d.add(layer, Shape::Polyline { points: corners, closed: true, width: 0.0 });
-                if let Some(name) = scene.point_name(point) {
+                if let Some(name) = name {
                     // Beside the block, clear of its outline.
                     let at = p + u * hl + n * (hh + 0.3 * style.text_height);
                     if !labelled.iter().any(|x| (x - p).norm() <= style.joint_radius) {
@@ -180,7 +250,7 @@ pub fn mechanism(
         }
     }
     // Names of body points not at a joint (coupler points, tips).
-    for (i, b) in mech.bodies.iter().enumerate() {
+    for (i, b) in fig.bodies.iter().enumerate() {
         for (name, v) in &b.points {
             let p = place(q, Attach::Body(i), *v);
             label(d, layer, p, name, style, &mut labelled);
@@ -217,16 +287,14 @@ fn label(d: &mut Drawing, layer: usize, p: Point, name: &str, style: &Style, don
     );
 }
 
-/// Paths of the measured points over the motion, on layer `layer` (dashed grey).
-pub fn trajectories(d: &mut Drawing, layer: usize, scene: &LinkageScene, motion: &[&[f64]]) {
-    for m in &scene.measures {
-        if let MeasureTarget::Point(a) = m.target {
-            if a.body == Attach::Ground || motion.len() < 2 {
-                continue;
-            }
-            let pts: Vec<Point> = motion.iter().map(|q| anchor_at(q, a)).collect();
-            d.add(layer, Shape::Polyline { points: pts, closed: false, width: 0.0 });
+/// Paths of the traced points over the motion, on layer `layer` (dashed grey).
+pub fn trajectories(d: &mut Drawing, layer: usize, fig: &LinkageFigure, motion: &[&[f64]]) {
+    for &a in &fig.traced {
+        if a.body == Attach::Ground || motion.len() < 2 {
+            continue;
         }
+        let pts: Vec<Point> = motion.iter().map(|q| anchor_at(q, a)).collect();
+        d.add(layer, Shape::Polyline { points: pts, closed: false, width: 0.0 });
     }
 }
 
@@ -249,50 +317,50 @@ pub fn position_layer(d: &mut Drawing, k: usize) -> usize {
 /// of the measured points over `motion` on `TRAJECTORY` ([`frame_base`], then
 /// [`frame_moving`]).
 pub fn frame(
-    scene: &LinkageScene,
+    fig: &LinkageFigure,
     motion: &[&[f64]],
     q: &[f64],
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) -> Drawing {
-    let mut d = frame_base(scene, motion, style);
-    moving_part(&mut d, scene, q, spans, style);
+    let mut d = frame_base(fig, motion, style);
+    moving_part(&mut d, fig, q, spans, style);
     d
 }
 
 /// The DXF drawing of a whole motion: the paths on `TRAJECTORY` ([`frame_base`]) and the
 /// mechanism at every position of `motion` on its own layer `POS_kkk`.
 pub fn all_positions(
-    scene: &LinkageScene,
+    fig: &LinkageFigure,
     motion: &[&[f64]],
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) -> Drawing {
-    let mut all = frame_base(scene, motion, style);
+    let mut all = frame_base(fig, motion, style);
     for (k, q) in motion.iter().enumerate() {
         let layer = position_layer(&mut all, k);
-        mechanism(&mut all, layer, scene, q, spans, style);
+        mechanism(&mut all, layer, fig, q, spans, style);
     }
     all
 }
 
 /// What every frame shares: the paths of the measured points over `motion`.
-pub fn frame_base(scene: &LinkageScene, motion: &[&[f64]], style: &Style) -> Drawing {
+pub fn frame_base(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Drawing {
     let mut d = new_drawing(style);
     let tl = trajectory_layer(&mut d);
-    trajectories(&mut d, tl, scene, motion);
+    trajectories(&mut d, tl, fig, motion);
     d
 }
 
 /// What changes from frame to frame: the mechanism at `q` on layer `MECHANISM` (to be
 /// written after [`frame_base`], see `draw::svg::splice`).
-pub fn frame_moving(scene: &LinkageScene, q: &[f64], spans: &[Option<(Point, Point)>], style: &Style) -> Drawing {
+pub fn frame_moving(fig: &LinkageFigure, q: &[f64], spans: &[Option<(Point, Point)>], style: &Style) -> Drawing {
     let mut d = new_drawing(style);
-    moving_part(&mut d, scene, q, spans, style);
+    moving_part(&mut d, fig, q, spans, style);
     d
 }
 
-fn moving_part(d: &mut Drawing, scene: &LinkageScene, q: &[f64], spans: &[Option<(Point, Point)>], style: &Style) {
+fn moving_part(d: &mut Drawing, fig: &LinkageFigure, q: &[f64], spans: &[Option<(Point, Point)>], style: &Style) {
     let layer = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
-    mechanism(d, layer, scene, q, spans, style);
+    mechanism(d, layer, fig, q, spans, style);
 }

@@ -235,25 +235,26 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
     let mut out = Output::new(dir)?;
     let style = Style::for_length(mech.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
-    let spans = fig::guide_spans(scene, &motion, &style);
+    let figure = figure_of(scene);
+    let spans = fig::guide_spans(&figure, &motion, &style);
 
     // DXF: every position on its own layer, the paths on TRAJECTORY.
-    let all = fig::all_positions(scene, &motion, &spans, &style);
+    let all = fig::all_positions(&figure, &motion, &spans, &style);
     out.write(format!("{}.dxf", scene.name), dxf_bytes(&all)?)?;
     let window = all.bounds();
 
     // The first position with the paths, as the scene's picture.
-    let frame_drawing = |q: &[f64]| fig::frame(scene, &motion, q, &spans, &style);
+    let frame_drawing = |q: &[f64]| fig::frame(&figure, &motion, q, &spans, &style);
     let svg_opts = SvgOptions { window, ..SvgOptions::default() };
     out.write(format!("{}.svg", scene.name), svg_string(&frame_drawing(motion[0]), &svg_opts))?;
 
     if !opts.no_frames {
         // The paths are written once; each frame is its mechanism appended to them.
-        let base_svg = svg_string(&fig::frame_base(scene, &motion, &style), &svg_opts);
+        let base_svg = svg_string(&fig::frame_base(&figure, &motion, &style), &svg_opts);
         let frames: Vec<Frame> = states
             .par_iter()
             .map(|s| {
-                let moving = svg_string(&fig::frame_moving(scene, &s.q, &spans, &style), &svg_opts);
+                let moving = svg_string(&fig::frame_moving(&figure, &s.q, &spans, &style), &svg_opts);
                 let svg =
                     svg::splice(&base_svg, &moving).unwrap_or_else(|| svg_string(&frame_drawing(&s.q), &svg_opts));
                 Frame { label: format!("t = {:.4} s", s.t), svg }
@@ -353,15 +354,31 @@ fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Sol
     let mut out = Output::new(dir)?;
     let style = Style::for_length(mech.length_scale);
     let motion = [state.q.as_slice()];
-    let spans = fig::guide_spans(scene, &motion, &style);
+    let figure = figure_of(scene);
+    let spans = fig::guide_spans(&figure, &motion, &style);
     let mut d = fig::new_drawing(&style);
     let layer = d.layer("DRAG", Aci::BLACK, LineType::Continuous);
-    fig::mechanism(&mut d, layer, scene, &state.q, &spans, &style);
+    fig::mechanism(&mut d, layer, &figure, &state.q, &spans, &style);
     out.write(format!("{}.dxf", scene.name), dxf_bytes(&d)?)?;
     out.write(format!("{}.svg", scene.name), svg_string(&d, &SvgOptions::default()))?;
     out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
     let written = out.commit()?;
     Ok(Outcome { summary, report, warnings: Vec::new(), written })
+}
+
+/// The figure-side description of a linkage scene: the solver's bodies and joints, the
+/// scene's point names (a revolute joint is named by its second point's name, else its
+/// first's, else the joint's name), and the measured points as the traced paths.
+pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
+    let traced = scene
+        .measures
+        .iter()
+        .filter_map(|m| match m.target {
+            MeasureTarget::Point(a) => Some(a),
+            MeasureTarget::Body(_) => None,
+        })
+        .collect();
+    fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced)
 }
 
 #[cfg(test)]
@@ -379,14 +396,15 @@ mod tests {
             let states = Solver::new(scene.mechanism.clone()).unwrap().run(&scene.times).unwrap();
             let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
             let style = Style::for_length(scene.mechanism.length_scale);
-            let spans = fig::guide_spans(scene, &motion, &style);
+            let figure = figure_of(scene);
+            let spans = fig::guide_spans(&figure, &motion, &style);
             // One window for every frame, as the run has (else the headers differ).
-            let base = fig::frame_base(scene, &motion, &style);
+            let base = fig::frame_base(&figure, &motion, &style);
             let opts = SvgOptions { window: base.bounds(), ..SvgOptions::default() };
             let base_svg = svg_string(&base, &opts);
             for q in &motion {
-                let whole = svg_string(&fig::frame(scene, &motion, q, &spans, &style), &opts);
-                let moving = svg_string(&fig::frame_moving(scene, q, &spans, &style), &opts);
+                let whole = svg_string(&fig::frame(&figure, &motion, q, &spans, &style), &opts);
+                let moving = svg_string(&fig::frame_moving(&figure, q, &spans, &style), &opts);
                 assert_eq!(svg::splice(&base_svg, &moving).as_deref(), Some(whole.as_str()), "{template}");
             }
         }
