@@ -12,6 +12,8 @@ use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
+use super::vocab::{self, Sizes};
+
 /// A body as drawn: its named points in body coordinates, in the order its outline joins
 /// them (closed for three or more).
 #[derive(Debug, Clone, PartialEq)]
@@ -98,6 +100,19 @@ pub struct Style {
 }
 
 impl Style {
+    /// The shared vocabulary's sizes for these.
+    fn sizes(&self) -> Sizes {
+        Sizes {
+            text: self.text_height,
+            head: self.text_height,
+            link: 0.3 * self.joint_radius,
+            joint: self.joint_radius,
+            ground: self.ground_size,
+            slider_length: self.slider_length,
+            slider_height: self.slider_height,
+        }
+    }
+
     /// Sizes for a mechanism of characteristic length `l`.
     pub fn for_length(l: f64) -> Style {
         Style {
@@ -145,35 +160,6 @@ pub fn guide_spans(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Vec
         .collect()
 }
 
-/// Hatch strokes on the `side` of the segment a→b (the side opposite to `perp(b − a)`).
-fn hatch(d: &mut Drawing, layer: usize, a: Point, b: Point, size: f64) {
-    let len = (b - a).norm();
-    if len <= 0.0 {
-        return;
-    }
-    let u = (b - a) / len;
-    let down = -perp(u);
-    let step = 0.5 * size;
-    let count = (len / step).floor() as usize;
-    for k in 0..=count {
-        let p = a + u * (k as f64 * step);
-        d.add(layer, Shape::Line { from: p, to: p + (down - u) * (0.6 * size) });
-    }
-}
-
-/// The ground symbol under a pivot: a triangle from the pivot down to a base line, with
-/// hatch under the base.
-fn ground_symbol(d: &mut Drawing, layer: usize, p: Point, style: &Style) {
-    let s = style.ground_size;
-    let r = style.joint_radius;
-    let l = p + Vector::new(-0.6 * s, -s - r);
-    let rr = p + Vector::new(0.6 * s, -s - r);
-    d.add(layer, Shape::Polyline { points: vec![p + Vector::new(0.0, -r), l, rr], closed: true, width: 0.0 });
-    let (bl, br) = (l + Vector::new(-0.4 * s, 0.0), rr + Vector::new(0.4 * s, 0.0));
-    d.add(layer, Shape::Line { from: bl, to: br });
-    hatch(d, layer, bl, br, 0.5 * s);
-}
-
 /// Draws the mechanism at coordinates `q` on layer `layer` of `d`.
 pub fn mechanism(
     d: &mut Drawing,
@@ -183,12 +169,10 @@ pub fn mechanism(
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) {
+    let s = style.sizes();
     // Guides fixed to the ground.
     for span in spans.iter().flatten() {
-        d.add(layer, Shape::Line { from: span.0, to: span.1 });
-        let u = (span.1 - span.0).normalize();
-        let off = -perp(u) * (0.5 * style.slider_height);
-        hatch(d, layer, span.0 + off, span.1 + off, style.ground_size);
+        vocab::guide(d, layer, span.0, span.1, s);
     }
     // Bodies.
     for (i, b) in fig.bodies.iter().enumerate() {
@@ -213,9 +197,10 @@ pub fn mechanism(
         match j {
             JointSymbol::Pin { at, grounded, name } => {
                 let p = anchor_at(q, *at);
-                d.add(layer, Shape::Circle { center: p, radius: style.joint_radius });
                 if *grounded {
-                    ground_symbol(d, layer, p, style);
+                    vocab::ground(d, layer, p, s);
+                } else {
+                    vocab::joint(d, layer, p, s);
                 }
                 label(d, layer, p, name, style, &mut labelled);
             }
@@ -225,9 +210,7 @@ pub fn mechanism(
                 let dir = anchor_at(q, q2) - anchor_at(q, q1);
                 let u = dir.normalize();
                 let n = perp(u);
-                let (hl, hh) = (0.5 * style.slider_length, 0.5 * style.slider_height);
-                let corners = vec![p - u * hl - n * hh, p + u * hl - n * hh, p + u * hl + n * hh, p - u * hl + n * hh];
-                d.add(layer, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+                let (hl, hh) = vocab::slider(d, layer, p, u, s);
                 if let Some(name) = name {
                     // Beside the block, clear of its outline.
                     let at = p + u * hl + n * (hh + 0.3 * style.text_height);

@@ -13,6 +13,8 @@ use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Triad};
 
+use super::vocab;
+
 /// What to draw.
 #[derive(Debug, Clone, Copy)]
 pub struct TriadFigure<'a> {
@@ -42,6 +44,19 @@ struct Sizes {
 }
 
 impl Sizes {
+    /// The shared vocabulary's sizes for the pivots' symbols.
+    fn symbols(&self) -> vocab::Sizes {
+        vocab::Sizes {
+            text: self.text,
+            head: 0.75 * self.text,
+            link: self.link_width,
+            joint: self.pivot,
+            ground: self.ground,
+            slider_length: 0.0,
+            slider_height: 0.0,
+        }
+    }
+
     fn for_scale(scale: f64) -> Sizes {
         let k = scale / 100.0;
         Sizes {
@@ -93,26 +108,6 @@ fn label(d: &mut Drawing, layer: usize, p: Point, dir: f64, distance: f64, heigh
     );
 }
 
-/// Ground symbol under a pivot: a small triangle standing on a hatched ground line.
-fn ground(d: &mut Drawing, layer: usize, o: Point, s: &Sizes) {
-    let h = s.ground;
-    let base = o + Vector::new(0.0, -h);
-    let left = base + Vector::new(-0.6 * h, 0.0);
-    let right = base + Vector::new(0.6 * h, 0.0);
-    let top_l = o + Vector::new(-s.pivot * 0.6, -s.pivot * 0.8);
-    let top_r = o + Vector::new(s.pivot * 0.6, -s.pivot * 0.8);
-    d.add(layer, Shape::Line { from: top_l, to: left });
-    d.add(layer, Shape::Line { from: top_r, to: right });
-    let g0 = base + Vector::new(-h, 0.0);
-    let g1 = base + Vector::new(h, 0.0);
-    d.add(layer, Shape::Line { from: g0, to: g1 });
-    for i in 0..5 {
-        let x = -h + 0.5 * h * i as f64 + 0.4 * h;
-        let top = base + Vector::new(x, 0.0);
-        d.add(layer, Shape::Line { from: top, to: top + Vector::new(-0.4 * h, -0.4 * h) });
-    }
-}
-
 /// The seed's Fig. 3 for `f`.
 pub fn drawing(f: &TriadFigure) -> Drawing {
     let t = f.triad;
@@ -161,8 +156,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     }
     d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.triangle_width });
     for o in t.o {
-        ground(&mut d, mechanism, o, &s);
-        d.add(mechanism, Shape::Circle { center: o, radius: s.pivot });
+        vocab::ground(&mut d, mechanism, o, s.symbols());
     }
     for p in a {
         d.add(mechanism, Shape::Circle { center: p, radius: s.joint });

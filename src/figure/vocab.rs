@@ -7,7 +7,7 @@
 //! (m/s, m/s², N …) into a drawn one.
 
 use crate::draw::{Drawing, HAlign, Shape, VAlign};
-use crate::geom::{Point, Vector};
+use crate::geom::{Point, Vector, perp};
 
 /// Length unit of the model, for scale texts.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -120,13 +120,28 @@ pub struct Sizes {
     pub link: f64,
     /// Radius of joint circles.
     pub joint: f64,
+    /// Height of the ground symbol under a pivot; the spacing of ground hatch.
+    pub ground: f64,
+    /// Length of a slider's block along its guide.
+    pub slider_length: f64,
+    /// Height of a slider's block across its guide.
+    pub slider_height: f64,
 }
 
 impl Sizes {
     /// Sizes for a mechanism whose drawing spans `size` model units (the extent of its
-    /// motion): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius.
+    /// motion): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius,
+    /// ground symbols 3.5 % high, slider blocks 7 % by 4 %.
     pub fn for_size(size: f64) -> Sizes {
-        Sizes { text: 0.032 * size, head: 0.03 * size, link: 0.009 * size, joint: 0.013 * size }
+        Sizes {
+            text: 0.032 * size,
+            head: 0.03 * size,
+            link: 0.009 * size,
+            joint: 0.013 * size,
+            ground: 0.035 * size,
+            slider_length: 0.07 * size,
+            slider_height: 0.04 * size,
+        }
     }
 }
 
@@ -179,28 +194,56 @@ pub fn joint(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
     d.add(layer, Shape::Circle { center: p, radius: s.joint });
 }
 
-/// The ground pivot at `p`: a support triangle, a base line and hatch strokes under it, and
-/// the joint circle.
+/// The ground pivot at `p`: the joint circle, a support triangle from the circle's foot
+/// down to a base line wider than it, and hatch strokes under the base (the symbol is
+/// [`Sizes::ground`] high).
 pub fn ground(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
-    let r = s.joint;
-    let h = 2.6 * r;
-    let base_y = p.y - h;
-    d.add(
-        layer,
-        Shape::Polyline {
-            points: vec![p, Point::new(p.x - 1.4 * r, base_y), Point::new(p.x + 1.4 * r, base_y)],
-            closed: true,
-            width: 0.0,
-        },
-    );
-    let half = 2.6 * r;
-    d.add(layer, Shape::Line { from: Point::new(p.x - half, base_y), to: Point::new(p.x + half, base_y) });
-    let n = 6;
-    for i in 0..n {
-        let x = p.x - half + (i as f64 + 0.5) * (2.0 * half / n as f64);
-        d.add(layer, Shape::Line { from: Point::new(x, base_y), to: Point::new(x - 0.8 * r, base_y - 0.8 * r) });
-    }
+    let (g, r) = (s.ground, s.joint);
     d.add(layer, Shape::Circle { center: p, radius: r });
+    let l = p + Vector::new(-0.6 * g, -g - r);
+    let rr = p + Vector::new(0.6 * g, -g - r);
+    d.add(layer, Shape::Polyline { points: vec![p + Vector::new(0.0, -r), l, rr], closed: true, width: 0.0 });
+    let (bl, br) = (l + Vector::new(-0.4 * g, 0.0), rr + Vector::new(0.4 * g, 0.0));
+    d.add(layer, Shape::Line { from: bl, to: br });
+    hatch(d, layer, bl, br, 0.5 * g);
+}
+
+/// Hatch strokes along the segment `a → b`, on its right-hand side (opposite to
+/// `perp(b − a)`): the ground under a base line or a fixed guide; `size` sets the
+/// strokes' spacing (half of it) and length.
+pub fn hatch(d: &mut Drawing, layer: usize, a: Point, b: Point, size: f64) {
+    let len = (b - a).norm();
+    if len <= 0.0 {
+        return;
+    }
+    let u = (b - a) / len;
+    let down = -perp(u);
+    let step = 0.5 * size;
+    let count = (len / step).floor() as usize;
+    for k in 0..=count {
+        let p = a + u * (k as f64 * step);
+        d.add(layer, Shape::Line { from: p, to: p + (down - u) * (0.6 * size) });
+    }
+}
+
+/// A guide fixed to the ground from `a` to `b`: the line, and hatch on its right-hand side
+/// half a slider's height off it (under the slider's block).
+pub fn guide(d: &mut Drawing, layer: usize, a: Point, b: Point, s: Sizes) {
+    d.add(layer, Shape::Line { from: a, to: b });
+    let u = (b - a).normalize();
+    let off = -perp(u) * (0.5 * s.slider_height);
+    hatch(d, layer, a + off, b + off, s.ground);
+}
+
+/// A slider's block at `p` along the unit direction `u` of its guide: a rectangle
+/// [`Sizes::slider_length`] by [`Sizes::slider_height`]. Returns its half length and half
+/// height along `u` and across it.
+pub fn slider(d: &mut Drawing, layer: usize, p: Point, u: Vector, s: Sizes) -> (f64, f64) {
+    let n = perp(u);
+    let (hl, hh) = (0.5 * s.slider_length, 0.5 * s.slider_height);
+    let corners = vec![p - u * hl - n * hh, p + u * hl - n * hh, p + u * hl + n * hh, p - u * hl + n * hh];
+    d.add(layer, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+    (hl, hh)
 }
 
 #[cfg(test)]
