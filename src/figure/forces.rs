@@ -230,7 +230,7 @@ mod tests {
     #[test]
     fn every_vector_is_an_arrow_with_its_name() {
         let poly = hanging_weight();
-        let s = Sizes::for_size(100.0);
+        let s = Sizes::for_length(100.0);
         let mut d = content_drawing(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head });
         // 0.1 N per drawn mm: W is 100 mm long, far longer than a letter.
         draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s);

@@ -115,7 +115,7 @@ impl Layout {
         let mech = Extent::of(pts.chain([geom.o1.coords, geom.c.coords]))
             .unwrap_or(Extent { min: Vector::zeros(), max: Vector::new(1.0, 1.0) });
         let size = mech.size().max(geom.l1.max(geom.l_bc)).max(f64::MIN_POSITIVE);
-        let sizes = Sizes::for_size(size);
+        let sizes = Sizes::for_length(size);
         // Room for the ground symbols and letters around the mechanism.
         let pad = 3.5 * sizes.joint + 1.6 * sizes.text;
         let mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint);

@@ -84,46 +84,9 @@ impl LinkageFigure {
     }
 }
 
-/// Sizes of the symbols, model units (from the mechanism's size).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Style {
-    /// Radius of a joint circle.
-    pub joint_radius: f64,
-    /// Height of point names.
-    pub text_height: f64,
-    /// Slider rectangle length (along the guide).
-    pub slider_length: f64,
-    /// Slider rectangle height (across the guide).
-    pub slider_height: f64,
-    /// Size of a ground symbol.
-    pub ground_size: f64,
-}
-
-impl Style {
-    /// The shared vocabulary's sizes for these.
-    fn sizes(&self) -> Sizes {
-        Sizes {
-            text: self.text_height,
-            head: self.text_height,
-            link: 0.3 * self.joint_radius,
-            joint: self.joint_radius,
-            ground: self.ground_size,
-            slider_length: self.slider_length,
-            slider_height: self.slider_height,
-        }
-    }
-
-    /// Sizes for a mechanism of characteristic length `l`.
-    pub fn for_length(l: f64) -> Style {
-        Style {
-            joint_radius: 0.012 * l,
-            text_height: 0.028 * l,
-            slider_length: 0.07 * l,
-            slider_height: 0.04 * l,
-            ground_size: 0.035 * l,
-        }
-    }
-}
+/// Sizes of the symbols: the shared table, [`Sizes::for_length`] of the mechanism's
+/// characteristic length.
+pub type Style = Sizes;
 
 /// Colour of the i-th body's outline.
 fn body_color(i: usize) -> Aci {
@@ -169,7 +132,7 @@ pub fn mechanism(
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) {
-    let s = style.sizes();
+    let s = *style;
     // Guides fixed to the ground.
     for span in spans.iter().flatten() {
         vocab::guide(d, layer, span.0, span.1, s);
@@ -181,7 +144,7 @@ pub fn mechanism(
             d.add_colored(
                 layer,
                 body_color(i),
-                Shape::Polyline { points: pts, closed: b.points.len() >= 3, width: 0.3 * style.joint_radius },
+                Shape::Polyline { points: pts, closed: b.points.len() >= 3, width: style.link },
             );
         }
     }
@@ -213,14 +176,14 @@ pub fn mechanism(
                 let (hl, hh) = vocab::slider(d, layer, p, u, s);
                 if let Some(name) = name {
                     // Beside the block, clear of its outline.
-                    let at = p + u * hl + n * (hh + 0.3 * style.text_height);
-                    if !labelled.iter().any(|x| (x - p).norm() <= style.joint_radius) {
+                    let at = p + u * hl + n * (hh + 0.3 * style.text);
+                    if !labelled.iter().any(|x| (x - p).norm() <= style.joint) {
                         labelled.push(p);
                         d.add(
                             layer,
                             Shape::Text {
                                 at,
-                                height: style.text_height,
+                                height: style.text,
                                 value: name.to_string(),
                                 halign: HAlign::Left,
                                 valign: VAlign::Baseline,
@@ -243,25 +206,25 @@ pub fn mechanism(
 
 /// A point name beside `p`, once per place.
 fn label(d: &mut Drawing, layer: usize, p: Point, name: &str, style: &Style, done: &mut Vec<Point>) {
-    if done.iter().any(|x| (x - p).norm() <= style.joint_radius) {
+    if done.iter().any(|x| (x - p).norm() <= style.joint) {
         return;
     }
     // A labelled point close on the right: put this name on the left, so they don't overlap.
     let crowded = done.iter().any(|x| {
         let dx = x.x - p.x;
-        dx >= 0.0 && dx <= 3.0 * style.text_height && (x.y - p.y).abs() <= 1.5 * style.text_height
+        dx >= 0.0 && dx <= 3.0 * style.text && (x.y - p.y).abs() <= 1.5 * style.text
     });
     done.push(p);
     let (off, halign) = if crowded {
-        (Vector::new(-1.8, 1.2) * style.joint_radius, HAlign::Right)
+        (Vector::new(-1.8, 1.2) * style.joint, HAlign::Right)
     } else {
-        (Vector::new(1.8, 1.2) * style.joint_radius, HAlign::Left)
+        (Vector::new(1.8, 1.2) * style.joint, HAlign::Left)
     };
     d.add(
         layer,
         Shape::Text {
             at: p + off,
-            height: style.text_height,
+            height: style.text,
             value: name.to_string(),
             halign,
             valign: VAlign::Baseline,
@@ -283,7 +246,7 @@ pub fn trajectories(d: &mut Drawing, layer: usize, fig: &LinkageFigure, motion: 
 
 /// A new drawing with the dimension style of the mechanism's size.
 pub fn new_drawing(style: &Style) -> Drawing {
-    Drawing::new(DimStyle { text_height: style.text_height, arrow_size: style.text_height })
+    Drawing::new(DimStyle { text_height: style.text, arrow_size: style.head })
 }
 
 /// Layer of the paths of measured points.

@@ -181,7 +181,7 @@ mod tests {
     #[test]
     fn sides_are_drawn_by_their_kind_with_one_letter_per_point() {
         let poly = triangle();
-        let s = Sizes::for_size(10.0);
+        let s = Sizes::for_length(10.0);
         let mut d = content_drawing(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head });
         let scale = Scale::new(0.5, ModelUnits::MM);
         draw(&mut d, &poly, layers::VELOCITY, scale, Point::new(0.0, 0.0), s);

@@ -6,14 +6,14 @@
 //!
 //! Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM` (exact
 //! position, pivots, joints), `MODES` (other assembly modes), `DIMENSIONS`, `TEXT`.
-//! Sizes are model lengths chosen for a drawing in millimetres, scaled with the triad so a
-//! triad in metres looks the same.
+//! Sizes are the shared table's ([`Sizes::for_length`]) for the triad's size, so a triad in
+//! metres looks the same as one in millimetres.
 
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Triad};
 
-use super::vocab;
+use super::vocab::{self, Sizes};
 
 /// What to draw.
 #[derive(Debug, Clone, Copy)]
@@ -30,46 +30,8 @@ pub struct TriadFigure<'a> {
     pub caption: &'a [String],
 }
 
-/// Drawing sizes for a triad whose [`Triad::scale`] is `scale`: text and symbols are
-/// designed for a ~100-unit triad in millimetres (3.5 mm labels) and scale with it.
-#[derive(Debug, Clone, Copy)]
-struct Sizes {
-    text: f64,
-    small_text: f64,
-    pivot: f64,
-    joint: f64,
-    ground: f64,
-    link_width: f64,
-    triangle_width: f64,
-}
-
-impl Sizes {
-    /// The shared vocabulary's sizes for the pivots' symbols.
-    fn symbols(&self) -> vocab::Sizes {
-        vocab::Sizes {
-            text: self.text,
-            head: 0.75 * self.text,
-            link: self.link_width,
-            joint: self.pivot,
-            ground: self.ground,
-            slider_length: 0.0,
-            slider_height: 0.0,
-        }
-    }
-
-    fn for_scale(scale: f64) -> Sizes {
-        let k = scale / 100.0;
-        Sizes {
-            text: 3.5 * k,
-            small_text: 2.8 * k,
-            pivot: 1.6 * k,
-            joint: 1.2 * k,
-            ground: 4.0 * k,
-            link_width: 0.35 * k,
-            triangle_width: 0.5 * k,
-        }
-    }
-}
+/// Height of the small texts (mode numbers, φ names, caption), in letter heights.
+const SMALL_TEXT: f64 = 0.8;
 
 /// Direction (radians) in the middle of the widest gap between the `occupied` directions.
 fn free_direction(occupied: &[f64]) -> f64 {
@@ -111,7 +73,8 @@ fn label(d: &mut Drawing, layer: usize, p: Point, dir: f64, distance: f64, heigh
 /// The seed's Fig. 3 for `f`.
 pub fn drawing(f: &TriadFigure) -> Drawing {
     let t = f.triad;
-    let s = Sizes::for_scale(t.scale());
+    let s = Sizes::for_length(t.scale());
+    let small_text = SMALL_TEXT * s.text;
     let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
     let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
     let modes = d.layer("MODES", Aci::LIGHT_GREY, LineType::Continuous);
@@ -136,7 +99,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             Aci::DARK_GREY,
             Shape::Text {
                 at: centroid,
-                height: s.small_text,
+                height: small_text,
                 value: n.to_string(),
                 halign: HAlign::Center,
                 valign: VAlign::Middle,
@@ -152,11 +115,11 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     // The exact position.
     let a = f.exact.a;
     for (o, p) in t.o.iter().zip(a) {
-        d.add(mechanism, Shape::Polyline { points: vec![*o, p], closed: false, width: s.link_width });
+        d.add(mechanism, Shape::Polyline { points: vec![*o, p], closed: false, width: s.link });
     }
-    d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.triangle_width });
+    d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.link });
     for o in t.o {
-        vocab::ground(&mut d, mechanism, o, s.symbols());
+        vocab::ground(&mut d, mechanism, o, s);
     }
     for p in a {
         d.add(mechanism, Shape::Circle { center: p, radius: s.joint });
@@ -171,7 +134,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             dimensions,
             Shape::AngularDimension {
                 vertex: *o,
-                first: o + Vector::new(s.pivot + 0.3 * s.text, 0.0),
+                first: o + Vector::new(s.joint + 0.3 * s.text, 0.0),
                 second: p,
                 radius,
                 text: format!("{:.2}°", phi.to_degrees()),
@@ -182,7 +145,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             dimensions,
             Shape::Text {
                 at: name_at,
-                height: s.small_text,
+                height: small_text,
                 value: format!("φ{}", i + 1),
                 halign: HAlign::Center,
                 valign: VAlign::Middle,
@@ -199,7 +162,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
         occupied.extend([-std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
         let dir = free_direction(&occupied);
-        label(&mut d, text, t.o[i], dir, s.pivot + 0.6 * s.text, s.text, &format!("O{}", i + 1));
+        label(&mut d, text, t.o[i], dir, s.joint + 0.6 * s.text, s.text, &format!("O{}", i + 1));
         // At A_i: the link back to O_i and the two sides.
         let occupied = [angle_of(t.o[i] - a[i]), angle_of(a[(i + 1) % 3] - a[i]), angle_of(a[(i + 2) % 3] - a[i])];
         let dir = free_direction(&occupied);
@@ -215,14 +178,14 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
                     text,
                     Shape::Text {
                         at: Point::new(b.min.x, y),
-                        height: s.small_text,
+                        height: small_text,
                         value: line.clone(),
                         halign: HAlign::Left,
                         valign: VAlign::Baseline,
                         rotation: 0.0,
                     },
                 );
-                y -= 1.8 * s.small_text;
+                y -= 1.8 * small_text;
             }
         }
     }

@@ -129,10 +129,11 @@ pub struct Sizes {
 }
 
 impl Sizes {
-    /// Sizes for a mechanism whose drawing spans `size` model units (the extent of its
-    /// motion): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius,
+    /// The one size table: sizes for a mechanism of characteristic length `size` (model
+    /// units: the extent of the four-bar's motion, the linkage's length scale, the triad's
+    /// size): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius,
     /// ground symbols 3.5 % high, slider blocks 7 % by 4 %.
-    pub fn for_size(size: f64) -> Sizes {
+    pub fn for_length(size: f64) -> Sizes {
         Sizes {
             text: 0.032 * size,
             head: 0.03 * size,
