@@ -9,6 +9,7 @@
 //! Sizes are the shared table's ([`Sizes::for_length`]) for the triad's size, so a triad in
 //! metres looks the same as one in millimetres.
 
+use crate::draw::parts::text_width;
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Triad};
@@ -54,7 +55,7 @@ fn free_direction(occupied: &[f64]) -> f64 {
 /// A label centred at `distance` from `p` in direction `dir`, pushed further out along
 /// `dir` by half the label's extent in that direction.
 fn label(d: &mut Drawing, layer: usize, p: Point, dir: f64, distance: f64, height: f64, text: &str) {
-    let w = 0.7 * height * text.chars().count() as f64;
+    let w = text_width(text, height);
     let u = Vector::new(dir.cos(), dir.sin());
     let reach = 0.5 * (w * u.x.abs() + height * u.y.abs());
     d.add(

@@ -6,6 +6,7 @@
 //! All sizes are model units (the model is drawn 1:1); a scale turns a physical vector
 //! (m/s, m/s², N …) into a drawn one.
 
+use crate::draw::parts::text_width;
 use crate::draw::{Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
 
@@ -156,9 +157,9 @@ pub fn unit_or(v: Vector, fallback: Vector) -> Vector {
 pub fn label(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, dir: Vector) {
     let n = dir.norm();
     let u = if n > 0.0 && n.is_finite() { dir / n } else { Vector::zeros() };
-    // Wider names sit further out sideways (about 0.6 letter heights per character).
-    let chars = s.chars().count().max(1) as f64;
-    let nudge = 0.8 * h + 0.3 * h * (chars - 1.0) * u.x.abs();
+    // Wider names sit further out sideways: by half their width beyond the first letter.
+    let first = s.chars().next().map_or(0.0, |c| text_width(c.encode_utf8(&mut [0; 4]), h));
+    let nudge = 0.8 * h + 0.5 * (text_width(s, h) - first) * u.x.abs();
     d.add(
         layer,
         Shape::Text {
