@@ -13,7 +13,7 @@
 use crate::draw::{Aci, Drawing, Entity, Shape};
 use crate::geom::{Point, Vector, perp};
 
-use super::labels;
+use super::labels::{self, TextBox};
 use super::vocab::{Scale, Sizes, layer_of, layers, vector};
 
 /// Colour of the resultants inside a polygon (the reactions found from it).
@@ -185,13 +185,36 @@ fn arrow_named(
 }
 
 /// Reactions drawn on the mechanism (seed, last section): each named vector at its point,
-/// at the force scale, on the `FORCES` layer; the arrows turn with the reactions as the
-/// mechanism moves.
-pub fn reactions_on_mechanism(d: &mut Drawing, reactions: &[(Point, NamedVector)], scale: Scale, s: Sizes) {
+/// at the force scale, on the `FORCES` layer, its name at its tip placed by
+/// [`labels::Polygon`] clear of the boxes `keep_off` (the mechanism's letters and symbols)
+/// and preferably off the segments `avoid` (its links); the arrows turn with the reactions
+/// as the mechanism moves.
+pub fn reactions_on_mechanism(
+    d: &mut Drawing,
+    reactions: &[(Point, NamedVector)],
+    scale: Scale,
+    s: Sizes,
+    keep_off: &[TextBox],
+    avoid: &[(Point, Point)],
+) {
     let l = layer_of(d, layers::FORCES);
-    for (at, nv) in reactions {
-        vector(d, l, *at, scale.draw(nv.v), &nv.name, s);
+    let mut names = labels::Polygon::of_names();
+    for b in keep_off {
+        names.keep_off(*b);
     }
+    for (a, b) in avoid {
+        names.segment(*a, *b);
+    }
+    for (at, nv) in reactions {
+        let v = scale.draw(nv.v);
+        if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
+            continue;
+        }
+        vector(d, l, *at, v, s);
+        names.segment(*at, *at + v);
+        names.letter(*at + v, &nv.name, s.text, v, None);
+    }
+    names.draw(d, l);
 }
 #[cfg(test)]
 mod tests {

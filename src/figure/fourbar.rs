@@ -30,9 +30,10 @@ use crate::solve::fourbar::{Geometry, Kinematics, Position};
 use crate::solve::kinetostatics::Forces;
 
 use super::forces::{self, Branch, ForcePolygon, NamedVector, Resultant};
+use super::labels::{self, TextBox};
 use super::polygon::{self, Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
-use super::vocab::{content_drawing, ground, joint, label, layer_of, layers, link, unit_or};
+use super::vocab::{content_drawing, ground, ground_extent, joint, layer_of, layers, link, unit_or};
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -273,7 +274,16 @@ impl Layout {
             },
         );
         let _ = ll;
-        mechanism(&mut d, geom, pos, s);
+        // The reactions R_A, R_B drawn on the mechanism, for its letters to keep off.
+        let (reacts, arrows) = match (force, self.forces) {
+            (Some(f), Some((scale, _))) => {
+                let r = reactions(pos, f);
+                let arrows: Vec<(Point, Point)> = r.iter().map(|(at, nv)| (*at, *at + scale.draw(nv.v))).collect();
+                (r.to_vec(), arrows)
+            }
+            _ => (Vec::new(), Vec::new()),
+        };
+        let placed = mechanism(&mut d, geom, pos, &arrows, s);
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.velocity) {
             polygon::draw(&mut d, &velocity_polygon(k), layers::VELOCITY, scale, pole, s);
         }
@@ -282,7 +292,7 @@ impl Layout {
         }
         if let (Some(f), Some((scale, pole))) = (force, self.forces) {
             forces::draw(&mut d, &force_polygon(f), scale, pole, s);
-            forces::reactions_on_mechanism(&mut d, &reactions(pos, f), scale, s);
+            forces::reactions_on_mechanism(&mut d, &reacts, scale, s, &placed.0, &placed.1);
         }
         d
     }
@@ -337,8 +347,17 @@ pub fn angle_text(deg: f64) -> String {
     if s == "-0" { "0".to_string() } else { s.to_string() }
 }
 
-/// Links (wide polylines), joints (circles), letters A, B, M.
-fn mechanism(d: &mut Drawing, geom: &Geometry, pos: &Position, s: Sizes) {
+/// Links (wide polylines), joints (circles), letters O1, C, A, B, M placed by
+/// [`labels::Polygon`] clear of the joints, the links, the ground symbols and the arrows
+/// `arrows` drawn on the mechanism (the reactions). Returns what later letters should keep
+/// off: the letters' and the ground symbols' boxes, and the links.
+fn mechanism(
+    d: &mut Drawing,
+    geom: &Geometry,
+    pos: &Position,
+    arrows: &[(Point, Point)],
+    s: Sizes,
+) -> (Vec<TextBox>, Vec<(Point, Point)>) {
     let mech = layer_of(d, layers::MECHANISM);
     let straight = (geom.alpha - std::f64::consts::PI).abs() < 1e-9;
     link(d, mech, vec![geom.o1, pos.a], false, s);
@@ -348,24 +367,34 @@ fn mechanism(d: &mut Drawing, geom: &Geometry, pos: &Position, s: Sizes) {
         joint(d, mech, p, s);
     }
     d.add(mech, Shape::Circle { center: pos.m, radius: 0.6 * s.joint });
-    // Letters outside the linkage: A away from O1, B away from the mid-point of A and C,
-    // M along B→M.
-    let off = 1.8 * s.joint;
+    let mut letters = labels::Polygon::of_names();
+    let links = [(geom.o1, pos.a), (pos.a, pos.b), (pos.b, pos.m), (geom.c, pos.b)];
+    for (a, b) in links.iter().chain(arrows) {
+        letters.segment(*a, *b);
+    }
+    let grounds = [ground_extent(geom.o1, s), ground_extent(geom.c, s)];
+    for g in grounds {
+        letters.keep_off(g);
+    }
+    // Preferred sides, outside the linkage: A away from O1, the pivots opposite to their
+    // links (but not down into the ground symbol), B away from the mid-point of A and C,
+    // M along B→M turned a little.
     let ua = unit_or(pos.a - geom.o1, Vector::new(0.0, 1.0));
-    label(d, mech, pos.a + ua * off, s.text, "A", ua);
-    // The pivots' letters opposite to their links, so no link runs over them, but never
-    // down into the ground symbol.
+    letters.letter_clear(pos.a, "A", s.text, ua, s.joint);
     let level = |v: Vector, fallback: Vector| unit_or(Vector::new(v.x, v.y.max(0.0)), fallback);
     let uo = level(unit_or(geom.o1 - pos.a, Vector::zeros()), Vector::new(-1.0, 0.0));
-    label(d, mech, geom.o1 + uo * (1.8 * s.joint), s.text, "O1", uo);
+    letters.letter_clear(geom.o1, "O1", s.text, uo, s.joint);
     let uc = level(unit_or(geom.c - pos.b, Vector::zeros()), Vector::new(1.0, 0.0));
-    label(d, mech, geom.c + uc * (1.8 * s.joint), s.text, "C", uc);
+    letters.letter_clear(geom.c, "C", s.text, uc, s.joint);
     let mid_ac = Point::from((pos.a.coords + geom.c.coords) / 2.0);
     let ub = unit_or(pos.b - mid_ac, Vector::new(0.0, 1.0));
-    label(d, mech, pos.b + ub * off, s.text, "B", ub);
+    letters.letter_clear(pos.b, "B", s.text, ub, s.joint);
     let um = unit_or(pos.m - pos.b, Vector::new(1.0, 0.0));
     let um = unit_or(um + perp(um) * 0.6, um);
-    label(d, mech, pos.m + um * off, s.text, "M", um);
+    letters.letter_clear(pos.m, "M", s.text, um, s.joint);
+    let mut boxes = letters.draw(d, mech);
+    boxes.extend(grounds);
+    (boxes, links.to_vec())
 }
 
 /// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm (the

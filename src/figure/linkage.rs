@@ -8,10 +8,11 @@
 //! names of its points (the run builds it from the scene), so that the figure knows no
 //! scene file.
 
-use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Aci, DimStyle, Drawing, LineType, Shape};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
+use super::labels::{self, TextBox};
 use super::vocab::{self, Sizes};
 
 /// A body as drawn: its named points in body coordinates, in the order its outline joins
@@ -133,13 +134,22 @@ pub fn mechanism(
     style: &Style,
 ) {
     let s = *style;
+    // The names go through the letter placer, clear of the joints, the bodies' outlines,
+    // the guides, the ground symbols and the sliders' blocks; one name a place.
+    let mut letters = labels::Polygon::of_names();
     // Guides fixed to the ground.
     for span in spans.iter().flatten() {
         vocab::guide(d, layer, span.0, span.1, s);
+        letters.segment(span.0, span.1);
     }
     // Bodies.
     for (i, b) in fig.bodies.iter().enumerate() {
         let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+        let n = pts.len();
+        let sides = if n >= 3 { n } else { n.saturating_sub(1) };
+        for k in 0..sides {
+            letters.segment(pts[k], pts[(k + 1) % n]);
+        }
         if pts.len() >= 2 {
             d.add_colored(
                 layer,
@@ -150,22 +160,30 @@ pub fn mechanism(
     }
     // Joints.
     let mut labelled: Vec<Point> = Vec::new();
+    let mut name_at = |letters: &mut labels::Polygon, p: Point, name: &str, dir: Vector, clear: f64| {
+        if !labelled.iter().any(|x| (x - p).norm() <= s.joint) {
+            labelled.push(p);
+            letters.letter_clear(p, name, s.text, dir, clear);
+        }
+    };
     // Sliders first, so that their names sit beside the block rather than on it.
     let order = fig
         .joints
         .iter()
         .filter(|j| matches!(j, JointSymbol::Slider { .. }))
         .chain(fig.joints.iter().filter(|j| matches!(j, JointSymbol::Pin { .. })));
+    let up_right = Vector::new(1.8, 1.2);
     for j in order {
         match j {
             JointSymbol::Pin { at, grounded, name } => {
                 let p = anchor_at(q, *at);
                 if *grounded {
                     vocab::ground(d, layer, p, s);
+                    letters.keep_off(vocab::ground_extent(p, s));
                 } else {
                     vocab::joint(d, layer, p, s);
                 }
-                label(d, layer, p, name, style, &mut labelled);
+                name_at(&mut letters, p, name, up_right, s.joint);
             }
             JointSymbol::Slider { point, q1, q2, name } => {
                 let (point, q1, q2) = (*point, *q1, *q2);
@@ -174,23 +192,12 @@ pub fn mechanism(
                 let u = dir.normalize();
                 let n = perp(u);
                 let (hl, hh) = vocab::slider(d, layer, p, u, s);
+                // The block's box, axis-aligned.
+                let half = Vector::new(hl * u.x.abs() + hh * n.x.abs(), hl * u.y.abs() + hh * n.y.abs());
+                letters.keep_off(TextBox { min: p - half, max: p + half });
                 if let Some(name) = name {
-                    // Beside the block, clear of its outline.
-                    let at = p + u * hl + n * (hh + 0.3 * style.text);
-                    if !labelled.iter().any(|x| (x - p).norm() <= style.joint) {
-                        labelled.push(p);
-                        d.add(
-                            layer,
-                            Shape::Text {
-                                at,
-                                height: style.text,
-                                value: name.to_string(),
-                                halign: HAlign::Left,
-                                valign: VAlign::Baseline,
-                                rotation: 0.0,
-                            },
-                        );
-                    }
+                    // Beside the block, preferably across the guide from its middle.
+                    name_at(&mut letters, p, name, n, hh);
                 }
             }
         }
@@ -199,38 +206,10 @@ pub fn mechanism(
     for (i, b) in fig.bodies.iter().enumerate() {
         for (name, v) in &b.points {
             let p = place(q, Attach::Body(i), *v);
-            label(d, layer, p, name, style, &mut labelled);
+            name_at(&mut letters, p, name, up_right, s.joint);
         }
     }
-}
-
-/// A point name beside `p`, once per place.
-fn label(d: &mut Drawing, layer: usize, p: Point, name: &str, style: &Style, done: &mut Vec<Point>) {
-    if done.iter().any(|x| (x - p).norm() <= style.joint) {
-        return;
-    }
-    // A labelled point close on the right: put this name on the left, so they don't overlap.
-    let crowded = done.iter().any(|x| {
-        let dx = x.x - p.x;
-        dx >= 0.0 && dx <= 3.0 * style.text && (x.y - p.y).abs() <= 1.5 * style.text
-    });
-    done.push(p);
-    let (off, halign) = if crowded {
-        (Vector::new(-1.8, 1.2) * style.joint, HAlign::Right)
-    } else {
-        (Vector::new(1.8, 1.2) * style.joint, HAlign::Left)
-    };
-    d.add(
-        layer,
-        Shape::Text {
-            at: p + off,
-            height: style.text,
-            value: name.to_string(),
-            halign,
-            valign: VAlign::Baseline,
-            rotation: 0.0,
-        },
-    );
+    letters.draw(d, layer);
 }
 
 /// Paths of the traced points over the motion, on layer `layer` (dashed grey).

@@ -127,8 +127,8 @@ pub fn draw(d: &mut Drawing, poly: &PointPolygon, layer: layers::Layer, scale: S
     for side in &poly.sides {
         let (from, to) = (pts[side.from], pts[side.to]);
         match side.kind {
-            SideKind::Vector => vector(d, l, from, to - from, "", s),
-            SideKind::Component => vector(d, c, from, to - from, "", s),
+            SideKind::Vector => vector(d, l, from, to - from, s),
+            SideKind::Component => vector(d, c, from, to - from, s),
             SideKind::Image => d.add(l, Shape::Line { from, to }),
         }
         letters.segment(from, to);

@@ -9,11 +9,11 @@
 //! Sizes are the shared table's ([`Sizes::for_length`]) for the triad's size, so a triad in
 //! metres looks the same as one in millimetres.
 
-use crate::draw::parts::text_width;
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Triad};
 
+use super::labels::{self, TextBox};
 use super::vocab::{self, Sizes};
 
 /// What to draw.
@@ -50,25 +50,6 @@ fn free_direction(occupied: &[f64]) -> f64 {
         }
     }
     best.1
-}
-
-/// A label centred at `distance` from `p` in direction `dir`, pushed further out along
-/// `dir` by half the label's extent in that direction.
-fn label(d: &mut Drawing, layer: usize, p: Point, dir: f64, distance: f64, height: f64, text: &str) {
-    let w = text_width(text, height);
-    let u = Vector::new(dir.cos(), dir.sin());
-    let reach = 0.5 * (w * u.x.abs() + height * u.y.abs());
-    d.add(
-        layer,
-        Shape::Text {
-            at: p + u * (distance + reach),
-            height,
-            value: text.to_string(),
-            halign: HAlign::Center,
-            valign: VAlign::Middle,
-            rotation: 0.0,
-        },
-    );
 }
 
 /// The seed's Fig. 3 for `f`.
@@ -126,6 +107,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         d.add(mechanism, Shape::Circle { center: p, radius: s.joint });
     }
 
+    let mut phi_names: Vec<(Point, String, f64)> = Vec::new();
     // Angular dimensions phi_i at O_i from +x (value on the dimension, the name φi inside
     // the angle, as a draughtsman writes it).
     for (i, (o, p)) in t.o.iter().zip(a).enumerate() {
@@ -142,6 +124,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             },
         );
         let name_at = polar(*o, 0.62 * radius, 0.5 * phi);
+        phi_names.push((name_at, format!("φ{}", i + 1), small_text));
         d.add(
             dimensions,
             Shape::Text {
@@ -155,7 +138,18 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         );
     }
 
-    // Labels: each in the widest free direction around its point.
+    // Labels: each preferably in the widest free direction around its point, placed by the
+    // letter placer clear of the joint, the links, the ground symbols and the φ names.
+    let mut letters = labels::Polygon::of_names();
+    for i in 0..3 {
+        letters.segment(t.o[i], a[i]);
+        letters.segment(a[i], a[(i + 1) % 3]);
+        letters.keep_off(vocab::ground_extent(t.o[i], s));
+    }
+    for (at, value, height) in &phi_names {
+        letters.keep_off(TextBox::centred(*at, value, *height));
+    }
+    let toward = |dir: f64| Vector::new(dir.cos(), dir.sin());
     for i in 0..3 {
         let phi = f.exact.phi[i];
         // At O_i: the link, the +x reference line, the dimensioned sector between them and
@@ -163,12 +157,13 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
         occupied.extend([-std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
         let dir = free_direction(&occupied);
-        label(&mut d, text, t.o[i], dir, s.joint + 0.6 * s.text, s.text, &format!("O{}", i + 1));
+        letters.letter_clear(t.o[i], &format!("O{}", i + 1), s.text, toward(dir), s.joint);
         // At A_i: the link back to O_i and the two sides.
         let occupied = [angle_of(t.o[i] - a[i]), angle_of(a[(i + 1) % 3] - a[i]), angle_of(a[(i + 2) % 3] - a[i])];
         let dir = free_direction(&occupied);
-        label(&mut d, text, a[i], dir, s.joint + 0.4 * s.text, s.text, &format!("A{}", i + 1));
+        letters.letter_clear(a[i], &format!("A{}", i + 1), s.text, toward(dir), s.joint);
     }
+    letters.draw(&mut d, text);
 
     // Caption under everything drawn so far.
     if !f.caption.is_empty() {

@@ -6,8 +6,8 @@
 //! All sizes are model units (the model is drawn 1:1); a scale turns a physical vector
 //! (m/s, m/s², N …) into a drawn one.
 
-use crate::draw::parts::text_width;
-use crate::draw::{Drawing, HAlign, Shape, VAlign};
+use super::labels::TextBox;
+use crate::draw::{Drawing, Shape};
 use crate::geom::{Point, Vector, perp};
 
 /// Length unit of the model, for scale texts.
@@ -153,36 +153,14 @@ pub fn unit_or(v: Vector, fallback: Vector) -> Vector {
     if n > 0.0 && n.is_finite() { v / n } else { fallback }
 }
 
-/// A centred letter at `at`, nudged along `dir` (unit or zero) so it clears a line end.
-pub fn label(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, dir: Vector) {
-    let n = dir.norm();
-    let u = if n > 0.0 && n.is_finite() { dir / n } else { Vector::zeros() };
-    // Wider names sit further out sideways: by half their width beyond the first letter.
-    let first = s.chars().next().map_or(0.0, |c| text_width(c.encode_utf8(&mut [0; 4]), h));
-    let nudge = 0.8 * h + 0.5 * (text_width(s, h) - first) * u.x.abs();
-    d.add(
-        layer,
-        Shape::Text {
-            at: at + u * nudge,
-            height: h,
-            value: s.to_string(),
-            halign: HAlign::Center,
-            valign: VAlign::Middle,
-            rotation: 0.0,
-        },
-    );
-}
-
-/// A named vector: an arrow from `from` by `v` (drawn units) with its letter `name` at the
-/// tip (none when empty); nothing for a vector shorter than a hundredth of the arrowhead.
-pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, name: &str, s: Sizes) {
+/// A vector: an arrow from `from` by `v` (drawn units); nothing for a vector shorter than
+/// a hundredth of the arrowhead. Its name, if any, goes through the letter placer
+/// ([`super::labels::Polygon`]) with the other letters of the drawing.
+pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, s: Sizes) {
     if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
         return;
     }
     d.add(layer, Shape::Arrow { from, to: from + v, head: s.head });
-    if !name.is_empty() {
-        label(d, layer, from + v, s.text, name, v);
-    }
 }
 
 /// A link: a wide polyline through `points` (closed for a rigid body of three or more
@@ -208,6 +186,13 @@ pub fn ground(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
     let (bl, br) = (l + Vector::new(-0.4 * g, 0.0), rr + Vector::new(0.4 * g, 0.0));
     d.add(layer, Shape::Line { from: bl, to: br });
     hatch(d, layer, bl, br, 0.5 * g);
+}
+
+/// The box the ground symbol at `p` ([`ground`]) covers under its joint circle, hatch
+/// included: for letters to keep off.
+pub fn ground_extent(p: Point, s: Sizes) -> TextBox {
+    let (g, r) = (s.ground, s.joint);
+    TextBox { min: p + Vector::new(-1.3 * g, -r - 1.3 * g), max: p + Vector::new(g, -r) }
 }
 
 /// Hatch strokes along the segment `a → b`, on its right-hand side (opposite to
