@@ -14,7 +14,7 @@ use crate::draw::{Aci, Drawing, Entity, Shape};
 use crate::geom::{Point, Vector, perp};
 
 use super::labels::{self, TextBox};
-use super::vocab::{Scale, Sizes, layer_of, layers, vector};
+use super::vocab::{self, Scale, Sizes, layer_of, layers, vector};
 
 /// Colour of the resultants inside a polygon (the reactions found from it).
 const RESULTANT: Aci = Aci::RED;
@@ -123,7 +123,7 @@ pub fn draw(d: &mut Drawing, poly: &ForcePolygon, scale: Scale, pole: Point, s: 
     let mut names = labels::Polygon::of_names();
     let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
-    d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
+    vocab::pole(d, l, pole, s);
     names.letter(pole, &poly.pole, s.text, pole - centroid, None);
     for (i, nv) in poly.chain.iter().enumerate() {
         arrow_named(d, &mut names, l, None, (pts[i], pts[i + 1]), &nv.name, 0.5, centroid, s);

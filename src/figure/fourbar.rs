@@ -33,7 +33,7 @@ use super::forces::{self, Branch, ForcePolygon, NamedVector, Resultant};
 use super::labels::{self, TextBox};
 use super::polygon::{self, Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
-use super::vocab::{content_drawing, ground, ground_extent, joint, layer_of, layers, link, unit_or};
+use super::vocab::{content_drawing, ground, ground_extent, joint, layer_of, layers, link, path, unit_or};
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -231,9 +231,7 @@ impl Layout {
         let dims = layer_of(&d, layers::DIMENSIONS);
         let cc = layer_of(&d, layers::COUPLER_CURVE);
         for run in curve {
-            if run.len() >= 2 {
-                d.add(cc, Shape::Polyline { points: run.clone(), closed: false, width: 0.0 });
-            }
+            path(&mut d, cc, run.clone());
         }
         for p in [geom.o1, geom.c] {
             ground(&mut d, mech, p, self.sizes);
@@ -360,9 +358,9 @@ fn mechanism(
 ) -> (Vec<TextBox>, Vec<(Point, Point)>) {
     let mech = layer_of(d, layers::MECHANISM);
     let straight = (geom.alpha - std::f64::consts::PI).abs() < 1e-9;
-    link(d, mech, vec![geom.o1, pos.a], false, s);
-    link(d, mech, vec![pos.a, pos.b, pos.m], !straight, s);
-    link(d, mech, vec![geom.c, pos.b], false, s);
+    link(d, mech, vec![geom.o1, pos.a], false, None, s);
+    link(d, mech, vec![pos.a, pos.b, pos.m], !straight, None, s);
+    link(d, mech, vec![geom.c, pos.b], false, None, s);
     for p in [pos.a, pos.b] {
         joint(d, mech, p, s);
     }

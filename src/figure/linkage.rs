@@ -8,7 +8,7 @@
 //! names of its points (the run builds it from the scene), so that the figure knows no
 //! scene file.
 
-use crate::draw::{Aci, DimStyle, Drawing, LineType, Shape};
+use crate::draw::{Aci, DimStyle, Drawing, LineType};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
@@ -151,11 +151,7 @@ pub fn mechanism(
             letters.segment(pts[k], pts[(k + 1) % n]);
         }
         if pts.len() >= 2 {
-            d.add_colored(
-                layer,
-                body_color(i),
-                Shape::Polyline { points: pts, closed: b.points.len() >= 3, width: style.link },
-            );
+            vocab::link(d, layer, pts, b.points.len() >= 3, Some(body_color(i)), s);
         }
     }
     // Joints.
@@ -215,11 +211,10 @@ pub fn mechanism(
 /// Paths of the traced points over the motion, on layer `layer` (dashed grey).
 pub fn trajectories(d: &mut Drawing, layer: usize, fig: &LinkageFigure, motion: &[&[f64]]) {
     for &a in &fig.traced {
-        if a.body == Attach::Ground || motion.len() < 2 {
+        if a.body == Attach::Ground {
             continue;
         }
-        let pts: Vec<Point> = motion.iter().map(|q| anchor_at(q, a)).collect();
-        d.add(layer, Shape::Polyline { points: pts, closed: false, width: 0.0 });
+        vocab::path(d, layer, motion.iter().map(|q| anchor_at(q, a)).collect());
     }
 }
 

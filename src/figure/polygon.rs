@@ -12,7 +12,7 @@ use crate::draw::{Drawing, Shape};
 use crate::geom::{Point, Vector};
 
 use super::labels;
-use super::vocab::{Scale, Sizes, layer_of, layers, unit_or, vector};
+use super::vocab::{self, Scale, Sizes, layer_of, layers, unit_or, vector};
 
 /// The number of the pole among a polygon's points.
 pub const POLE: usize = 0;
@@ -133,7 +133,7 @@ pub fn draw(d: &mut Drawing, poly: &PointPolygon, layer: layers::Layer, scale: S
         }
         letters.segment(from, to);
     }
-    d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
+    vocab::pole(d, l, pole, s);
     let mut away = poly.pole_away.iter().map(|&i| pole - pts[i]);
     let first = away.next().unwrap_or_else(Vector::zeros);
     letters.letter(pole, &poly.pole, s.text, away.fold(first, |acc, v| acc + v), None);

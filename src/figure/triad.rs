@@ -97,14 +97,14 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     // The exact position.
     let a = f.exact.a;
     for (o, p) in t.o.iter().zip(a) {
-        d.add(mechanism, Shape::Polyline { points: vec![*o, p], closed: false, width: s.link });
+        vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
     }
-    d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.link });
+    vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
     for o in t.o {
         vocab::ground(&mut d, mechanism, o, s);
     }
     for p in a {
-        d.add(mechanism, Shape::Circle { center: p, radius: s.joint });
+        vocab::joint(&mut d, mechanism, p, s);
     }
 
     let mut phi_names: Vec<(Point, String, f64)> = Vec::new();

@@ -7,7 +7,7 @@
 //! (m/s, m/s², N …) into a drawn one.
 
 use super::labels::TextBox;
-use crate::draw::{Drawing, Shape};
+use crate::draw::{Aci, Drawing, Entity, Shape};
 use crate::geom::{Point, Vector, perp};
 
 /// Length unit of the model, for scale texts.
@@ -164,9 +164,22 @@ pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, s: Sizes) {
 }
 
 /// A link: a wide polyline through `points` (closed for a rigid body of three or more
-/// points drawn as a plate).
-pub fn link(d: &mut Drawing, layer: usize, points: Vec<Point>, closed: bool, s: Sizes) {
-    d.add(layer, Shape::Polyline { points, closed, width: s.link });
+/// points drawn as a plate), in `color` or the layer's.
+pub fn link(d: &mut Drawing, layer: usize, points: Vec<Point>, closed: bool, color: Option<Aci>, s: Sizes) {
+    d.push(Entity { layer, color, linetype: None, shape: Shape::Polyline { points, closed, width: s.link } });
+}
+
+/// The pole of a polygon: a small circle (a quarter of a joint's radius).
+pub fn pole(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
+    d.add(layer, Shape::Circle { center: p, radius: 0.25 * s.joint });
+}
+
+/// The path of a traced point over the motion: a thin open polyline (nothing for fewer
+/// than two points).
+pub fn path(d: &mut Drawing, layer: usize, points: Vec<Point>) {
+    if points.len() >= 2 {
+        d.add(layer, Shape::Polyline { points, closed: false, width: 0.0 });
+    }
 }
 
 /// A joint: a circle of the joint radius at `p`.
@@ -179,7 +192,7 @@ pub fn joint(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
 /// [`Sizes::ground`] high).
 pub fn ground(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
     let (g, r) = (s.ground, s.joint);
-    d.add(layer, Shape::Circle { center: p, radius: r });
+    joint(d, layer, p, s);
     let l = p + Vector::new(-0.6 * g, -g - r);
     let rr = p + Vector::new(0.6 * g, -g - r);
     d.add(layer, Shape::Polyline { points: vec![p + Vector::new(0.0, -r), l, rr], closed: true, width: 0.0 });
