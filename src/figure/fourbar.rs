@@ -1,10 +1,13 @@
-//! Four-bar figures (seed 003 and its reference [8]): what the graph-analytical method
+//! Four-bar figures (seed 003 and its reference \[8\]): what the graph-analytical method
 //! draws for each crank angle — the mechanism with its ground pivots, joints, letters and
 //! the coupler curve of M; the velocity polygon (pole p, vectors pa, pb, pm, relative ab);
 //! the acceleration polygon (pole π, a′, the normal and tangential components of a_BA and
 //! of a_B about C, image points b′, m′); and, with forces, the force polygons of the dyad
-//! and of the crank (see [`super::forces`]). The polygons' letters are placed by
-//! [`super::labels`], so that they stay readable in a small polygon.
+//! and of the crank. This file only adapts the four-bar's results to the shared
+//! vocabulary: small adapters build the polygons as named points
+//! ([`super::polygon::PointPolygon`]) and named vectors
+//! ([`super::forces::ForcePolygon`]) from `Kinematics` and `Forces`; the drawing code
+//! knows no four-bar field. Every letter is placed by [`super::labels`].
 //!
 //! # Layout and scales
 //! One [`Layout`] is computed per run from every position, so all frames share one window
