@@ -5,6 +5,7 @@
 
 use super::Measurement;
 use super::basins::{Basin, Strip};
+use crate::draw::parts::text_width;
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::Point;
 use crate::solve::triad::Configuration;
@@ -145,7 +146,7 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
         let mut prev: Option<(Point, bool)> = None;
         for (p, text) in groups {
             let below = prev.is_some_and(|(q, was_below)| {
-                !was_below && (p.y - q.y).abs() < 3.0 && (p.x - q.x).abs() < 0.45 * TEXT * text.chars().count() as f64
+                !was_below && (p.y - q.y).abs() < 3.0 && (p.x - q.x).abs() < text_width(&text, 0.65 * TEXT)
             });
             prev = Some((p, below));
             let offset = if below { crate::geom::Vector::new(1.2, -2.6) } else { crate::geom::Vector::new(1.2, 1.0) };

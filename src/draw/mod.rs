@@ -430,8 +430,8 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
         }
         Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
         Shape::Text { at, height, value, halign, .. } => {
-            // Rough width: 0.7 cap heights a character.
-            let w = 0.7 * height * value.chars().count() as f64;
+            // The writers' width estimate (DejaVu Sans advances).
+            let w = parts::text_width(value, *height);
             let x0 = match halign {
                 HAlign::Left => at.x,
                 HAlign::Center => at.x - w / 2.0,

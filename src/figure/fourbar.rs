@@ -3,8 +3,11 @@
 //! the coupler curve of M; the velocity polygon (pole p, vectors pa, pb, pm, relative ab);
 //! the acceleration polygon (pole π, a′, the normal and tangential components of a_BA and
 //! of a_B about C, image points b′, m′); and, with forces, the force polygons of the dyad
-//! and of the crank (see [`super::forces`]). The polygons' letters are placed by
-//! [`super::labels`], so that they stay readable in a small polygon.
+//! and of the crank. This file only adapts the four-bar's results to the shared
+//! vocabulary: small adapters build the polygons as named points
+//! ([`super::polygon::PointPolygon`]) and named vectors
+//! ([`super::forces::ForcePolygon`]) from `Kinematics` and `Forces`; the drawing code
+//! knows no four-bar field. Every letter is placed by [`super::labels`].
 //!
 //! # Layout and scales
 //! One [`Layout`] is computed per run from every position, so all frames share one window
@@ -24,12 +27,16 @@
 //! its own layer `POS_000`…`POS_359`, keeping the content's colour and line type on each
 //! entity, so that a CAD user switches positions by layer and tells contents by colour.
 
-use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
-use super::{forces, labels};
+use super::forces::{self, Branch, ForcePolygon, NamedVector, Resultant};
+use super::labels::{self, TextBox};
+use super::polygon::{self, Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
+pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
+use super::vocab::{content_drawing, ground, ground_extent, joint, layer_of, layers, link, path, unit_or};
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -40,116 +47,6 @@ pub struct Show {
     pub acceleration: bool,
     /// The force polygons and the reactions R_A, R_B on the mechanism.
     pub forces: bool,
-}
-
-/// Length unit of the model, for scale texts.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ModelUnits {
-    /// Symbol of the length unit (`m` or `mm`); velocities are in `<unit>/s`.
-    pub length: &'static str,
-    /// Drawing millimetres per model unit (1000 for metres, 1 for millimetres).
-    pub mm_per_unit: f64,
-}
-
-impl ModelUnits {
-    /// Metres (SI scenes).
-    pub const SI: ModelUnits = ModelUnits { length: "m", mm_per_unit: 1000.0 };
-    /// Millimetres.
-    pub const MM: ModelUnits = ModelUnits { length: "mm", mm_per_unit: 1.0 };
-}
-
-/// A drawing scale: `value` physical units per drawing millimetre.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Scale {
-    /// Physical units (m/s, m/s², N …) per drawing millimetre.
-    pub per_mm: f64,
-    /// Model units per drawing millimetre (1/`mm_per_unit`).
-    unit_per_mm: f64,
-}
-
-impl Scale {
-    fn new(per_mm: f64, units: ModelUnits) -> Scale {
-        Scale { per_mm, unit_per_mm: 1.0 / units.mm_per_unit }
-    }
-    /// The drawn vector (model units) for a physical vector.
-    pub fn draw(&self, v: Vector) -> Vector {
-        v * (self.unit_per_mm / self.per_mm)
-    }
-}
-
-/// A "nice" scale (1, 2, 2.5 or 5 × 10ᵏ) at least `raw`; 1 for a zero or non-finite `raw`.
-pub fn nice_scale(raw: f64) -> f64 {
-    if !(raw.is_finite() && raw > 0.0) {
-        return 1.0;
-    }
-    let mag = 10f64.powf(raw.log10().floor());
-    for m in [1.0, 2.0, 2.5, 5.0, 10.0] {
-        if m * mag >= raw * (1.0 - 1e-12) {
-            return m * mag;
-        }
-    }
-    10.0 * mag
-}
-
-/// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
-pub fn scale_text(v: f64) -> String {
-    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
-        let s = format!("{v:e}");
-        return s;
-    }
-    let s = format!("{v:.6}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
-}
-
-/// Content layers: name, colour, line type.
-pub(crate) mod layers {
-    use crate::draw::{Aci, LineType};
-    /// Links, joints, ground, letters.
-    pub const MECHANISM: (&str, Aci, LineType) = ("MECHANISM", Aci::BLACK, LineType::Continuous);
-    /// The coupler curve of M.
-    pub const COUPLER_CURVE: (&str, Aci, LineType) = ("COUPLER_CURVE", Aci::CYAN, LineType::Continuous);
-    /// Velocity polygon.
-    pub const VELOCITY: (&str, Aci, LineType) = ("VELOCITY", Aci::GREEN, LineType::Continuous);
-    /// Acceleration polygon.
-    pub const ACCELERATION: (&str, Aci, LineType) = ("ACCELERATION", Aci::BLUE, LineType::Continuous);
-    /// Force polygons and reactions on the mechanism.
-    pub const FORCES: (&str, Aci, LineType) = ("FORCES", Aci::MAGENTA, LineType::Continuous);
-    /// Construction lines (components, directions), dashed.
-    pub const CONSTRUCTION: (&str, Aci, LineType) = ("CONSTRUCTION", Aci::DARK_GREY, LineType::Dashed);
-    /// Titles and scales.
-    pub const DIMENSIONS: (&str, Aci, LineType) = ("DIMENSIONS", Aci::BLACK, LineType::Continuous);
-    /// Per-position text (the crank angle).
-    pub const TEXT: (&str, Aci, LineType) = ("TEXT", Aci::BLACK, LineType::Continuous);
-    /// Every content layer, in drawing order (later on top).
-    pub const ALL: [(&str, Aci, LineType); 8] =
-        [COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
-}
-
-/// A drawing with the content layers created in drawing order.
-pub(crate) fn content_drawing(dim: DimStyle) -> Drawing {
-    let mut d = Drawing::new(dim);
-    for (name, color, lt) in layers::ALL {
-        d.layer(name, color, lt);
-    }
-    d
-}
-
-/// Index of a content layer in a [`content_drawing`].
-pub(crate) fn layer_of(d: &Drawing, l: (&str, Aci, LineType)) -> usize {
-    d.layers.iter().position(|x| x.name == l.0).unwrap_or(0)
-}
-
-/// Sizes of drawn details, model units.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Sizes {
-    /// Cap height of letters.
-    pub text: f64,
-    /// Arrowhead length.
-    pub head: f64,
-    /// Width of link polylines.
-    pub link: f64,
-    /// Radius of joint circles.
-    pub joint: f64,
 }
 
 /// Panel placement and scales for one run: computed once from every position.
@@ -207,16 +104,6 @@ impl Extent {
     }
 }
 
-/// Points of the velocity polygon relative to the pole p: a, b, m (physical).
-fn velocity_points(k: &Kinematics) -> [Vector; 4] {
-    [Vector::zeros(), k.v_a, k.v_b, k.v_m]
-}
-
-/// Points of the acceleration polygon relative to the pole π: a′, n_BA, b′, m′, n_BC.
-fn acceleration_points(k: &Kinematics) -> [Vector; 6] {
-    [Vector::zeros(), k.a_a, k.a_a + k.a_ba_n, k.a_b, k.a_m, k.a_bc_n]
-}
-
 impl Layout {
     /// The layout for a run: `positions` are the assembled positions (in order),
     /// `forces[i]` the forces at `positions[i]` when `show.forces`.
@@ -232,14 +119,14 @@ impl Layout {
         let mech = Extent::of(pts.chain([geom.o1.coords, geom.c.coords]))
             .unwrap_or(Extent { min: Vector::zeros(), max: Vector::new(1.0, 1.0) });
         let size = mech.size().max(geom.l1.max(geom.l_bc)).max(f64::MIN_POSITIVE);
-        let sizes = Sizes { text: 0.032 * size, head: 0.03 * size, link: 0.009 * size, joint: 0.013 * size };
+        let sizes = Sizes::for_length(size);
         // Room for the ground symbols and letters around the mechanism.
         let pad = 3.5 * sizes.joint + 1.6 * sizes.text;
         let mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint);
         let mech_max = Point::from(mech.max) + Vector::new(pad, pad);
         let target_mm = size * units.mm_per_unit;
 
-        let kins: Vec<&Kinematics> = positions.iter().filter_map(|p| p.kin.as_ref()).collect();
+        let kins: Vec<(&Position, &Kinematics)> = positions.iter().filter_map(|p| Some((p, p.kin.as_ref()?))).collect();
         let show = Show {
             velocity: show.velocity && !kins.is_empty(),
             acceleration: show.acceleration && !kins.is_empty(),
@@ -252,12 +139,16 @@ impl Layout {
         // Panels: (title, physical extent, scale) for each polygon shown.
         let mut polys: Vec<(String, Scale, Extent, usize)> = Vec::new();
         if show.velocity {
-            let e = kins.iter().map(|k| Extent::of(velocity_points(k))).fold(None, Extent::union);
+            let e =
+                kins.iter().map(|(_, k)| Extent::of(velocity_polygon(k).physical_points())).fold(None, Extent::union);
             let (s, e) = scale_for(e);
             polys.push((format!("Velocity polygon   k_v = {} ({}/s)/mm", scale_text(s.per_mm), units.length), s, e, 0));
         }
         if show.acceleration {
-            let e = kins.iter().map(|k| Extent::of(acceleration_points(k))).fold(None, Extent::union);
+            let e = kins
+                .iter()
+                .map(|(p, k)| Extent::of(acceleration_polygon(p, geom.c, k).physical_points()))
+                .fold(None, Extent::union);
             let (s, e) = scale_for(e);
             polys.push((
                 format!("Acceleration polygon   k_a = {} ({}/s²)/mm", scale_text(s.per_mm), units.length),
@@ -267,8 +158,11 @@ impl Layout {
             ));
         }
         if show.forces {
-            let e =
-                forces.unwrap_or(&[]).iter().map(|f| Extent::of(forces::polygon_points(f))).fold(None, Extent::union);
+            let e = forces
+                .unwrap_or(&[])
+                .iter()
+                .map(|f| Extent::of(force_polygon(f).physical_points()))
+                .fold(None, Extent::union);
             let (s, e) = scale_for(e);
             polys.push((format!("Force polygons   k_f = {} N/mm", scale_text(s.per_mm),), s, e, 2));
         }
@@ -340,9 +234,7 @@ impl Layout {
         let dims = layer_of(&d, layers::DIMENSIONS);
         let cc = layer_of(&d, layers::COUPLER_CURVE);
         for run in curve {
-            if run.len() >= 2 {
-                d.add(cc, Shape::Polyline { points: run.clone(), closed: false, width: 0.0 });
-            }
+            path(&mut d, cc, run.clone());
         }
         for p in [geom.o1, geom.c] {
             ground(&mut d, mech, p, self.sizes);
@@ -383,16 +275,25 @@ impl Layout {
             },
         );
         let _ = ll;
-        mechanism(&mut d, geom, pos, s);
+        // The reactions R_A, R_B drawn on the mechanism, for its letters to keep off.
+        let (reacts, arrows) = match (force, self.forces) {
+            (Some(f), Some((scale, _))) => {
+                let r = reactions(pos, f);
+                let arrows: Vec<(Point, Point)> = r.iter().map(|(at, nv)| (*at, *at + scale.draw(nv.v))).collect();
+                (r.to_vec(), arrows)
+            }
+            _ => (Vec::new(), Vec::new()),
+        };
+        let placed = mechanism(&mut d, geom, pos, &arrows, s);
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.velocity) {
-            velocity_polygon(&mut d, k, scale, pole, s);
+            polygon::draw(&mut d, &velocity_polygon(k), layers::VELOCITY, scale, pole, s);
         }
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.acceleration) {
-            acceleration_polygon(&mut d, pos, geom.c, k, scale, pole, s);
+            polygon::draw(&mut d, &acceleration_polygon(pos, geom.c, k), layers::ACCELERATION, scale, pole, s);
         }
         if let (Some(f), Some((scale, pole))) = (force, self.forces) {
-            forces::polygons(&mut d, f, scale, pole, s);
-            forces::reactions_on_mechanism(&mut d, pos, f, scale, s);
+            forces::draw(&mut d, &force_polygon(f), scale, pole, s);
+            forces::reactions_on_mechanism(&mut d, &reacts, scale, s, &placed.0, &placed.1);
         }
         d
     }
@@ -400,42 +301,8 @@ impl Layout {
     /// One animation frame: `base` with `moving` on top.
     pub fn frame(&self, base: &Drawing, moving: &Drawing) -> Drawing {
         let mut d = base.clone();
-        append(&mut d, moving, |name| name.to_string(), false);
+        d.append(moving);
         d
-    }
-
-    /// The whole motion in one drawing (for the DXF): `base` on its content layers, and each
-    /// position's entities on its own layer (`(layer name, moving drawing)`), with the
-    /// content's colour and line type kept on every entity.
-    pub fn animation<'a>(
-        &self,
-        base: &Drawing,
-        positions: impl IntoIterator<Item = (&'a str, &'a Drawing)>,
-    ) -> Drawing {
-        let mut d = base.clone();
-        for (layer, moving) in positions {
-            append(&mut d, moving, |_| layer.to_string(), true);
-        }
-        d
-    }
-}
-
-/// Appends `src`'s entities to `dst`, on the layers named by `rename(src layer name)`.
-/// With `keep_style`, each entity gets its source layer's colour and line type as its own.
-fn append(dst: &mut Drawing, src: &Drawing, rename: impl Fn(&str) -> String, keep_style: bool) {
-    let map: Vec<usize> = src
-        .layers
-        .iter()
-        .map(|l| {
-            let (color, lt) = if keep_style { (Aci::BLACK, LineType::Continuous) } else { (l.color, l.linetype) };
-            dst.layer(&rename(&l.name), color, lt)
-        })
-        .collect();
-    dst.entities.reserve(src.entities.len());
-    for e in &src.entities {
-        let (color, linetype) =
-            if keep_style { (Some(src.color_of(e)), Some(src.linetype_of(e))) } else { (e.color, e.linetype) };
-        dst.entities.push(Entity { layer: map[e.layer], color, linetype, shape: e.shape.clone() });
     }
 }
 
@@ -447,116 +314,72 @@ pub fn angle_text(deg: f64) -> String {
     if s == "-0" { "0".to_string() } else { s.to_string() }
 }
 
-/// A centred letter at `at`, nudged along `dir` (unit or zero) so it clears a line end.
-pub(crate) fn label(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, dir: Vector) {
-    let n = dir.norm();
-    let u = if n > 0.0 && n.is_finite() { dir / n } else { Vector::zeros() };
-    // Wider names sit further out sideways (about 0.6 letter heights per character).
-    let chars = s.chars().count().max(1) as f64;
-    let nudge = 0.8 * h + 0.3 * h * (chars - 1.0) * u.x.abs();
-    d.add(
-        layer,
-        Shape::Text {
-            at: at + u * nudge,
-            height: h,
-            value: s.to_string(),
-            halign: HAlign::Center,
-            valign: VAlign::Middle,
-            rotation: 0.0,
-        },
-    );
-}
-
-/// A vector arrow from `from` by `v` (drawn units) with a letter at its tip; nothing for a
-/// vector shorter than a hundredth of the arrowhead.
-pub(crate) fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, name: &str, s: Sizes) {
-    if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
-        return;
-    }
-    d.add(layer, Shape::Arrow { from, to: from + v, head: s.head });
-    if !name.is_empty() {
-        label(d, layer, from + v, s.text, name, v);
-    }
-}
-
-/// The ground symbol under a fixed pivot: a support triangle, a base line and hatch strokes.
-fn ground(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
-    let r = s.joint;
-    let h = 2.6 * r;
-    let base_y = p.y - h;
-    d.add(
-        layer,
-        Shape::Polyline {
-            points: vec![p, Point::new(p.x - 1.4 * r, base_y), Point::new(p.x + 1.4 * r, base_y)],
-            closed: true,
-            width: 0.0,
-        },
-    );
-    let half = 2.6 * r;
-    d.add(layer, Shape::Line { from: Point::new(p.x - half, base_y), to: Point::new(p.x + half, base_y) });
-    let n = 6;
-    for i in 0..n {
-        let x = p.x - half + (i as f64 + 0.5) * (2.0 * half / n as f64);
-        d.add(layer, Shape::Line { from: Point::new(x, base_y), to: Point::new(x - 0.8 * r, base_y - 0.8 * r) });
-    }
-    d.add(layer, Shape::Circle { center: p, radius: r });
-}
-
-/// Links (wide polylines), joints (circles), letters A, B, M.
-fn mechanism(d: &mut Drawing, geom: &Geometry, pos: &Position, s: Sizes) {
+/// Links (wide polylines), joints (circles), letters O1, C, A, B, M placed by
+/// [`labels::Polygon`] clear of the joints, the links, the ground symbols and the arrows
+/// `arrows` drawn on the mechanism (the reactions). Returns what later letters should keep
+/// off: the letters' and the ground symbols' boxes, and the links.
+fn mechanism(
+    d: &mut Drawing,
+    geom: &Geometry,
+    pos: &Position,
+    arrows: &[(Point, Point)],
+    s: Sizes,
+) -> (Vec<TextBox>, Vec<(Point, Point)>) {
     let mech = layer_of(d, layers::MECHANISM);
-    let w = s.link;
     let straight = (geom.alpha - std::f64::consts::PI).abs() < 1e-9;
-    d.add(mech, Shape::Polyline { points: vec![geom.o1, pos.a], closed: false, width: w });
-    d.add(mech, Shape::Polyline { points: vec![pos.a, pos.b, pos.m], closed: !straight, width: w });
-    d.add(mech, Shape::Polyline { points: vec![geom.c, pos.b], closed: false, width: w });
+    link(d, mech, vec![geom.o1, pos.a], false, None, s);
+    link(d, mech, vec![pos.a, pos.b, pos.m], !straight, None, s);
+    link(d, mech, vec![geom.c, pos.b], false, None, s);
     for p in [pos.a, pos.b] {
-        d.add(mech, Shape::Circle { center: p, radius: s.joint });
+        joint(d, mech, p, s);
     }
     d.add(mech, Shape::Circle { center: pos.m, radius: 0.6 * s.joint });
-    // Letters outside the linkage: A away from O1, B away from the mid-point of A and C,
-    // M along B→M.
-    let off = 1.8 * s.joint;
+    let mut letters = labels::Polygon::of_names();
+    let links = [(geom.o1, pos.a), (pos.a, pos.b), (pos.b, pos.m), (geom.c, pos.b)];
+    for (a, b) in links.iter().chain(arrows) {
+        letters.segment(*a, *b);
+    }
+    let grounds = [ground_extent(geom.o1, s), ground_extent(geom.c, s)];
+    for g in grounds {
+        letters.keep_off(g);
+    }
+    // Preferred sides, outside the linkage: A away from O1, the pivots opposite to their
+    // links (but not down into the ground symbol), B away from the mid-point of A and C,
+    // M along B→M turned a little.
     let ua = unit_or(pos.a - geom.o1, Vector::new(0.0, 1.0));
-    label(d, mech, pos.a + ua * off, s.text, "A", ua);
-    // The pivots' letters opposite to their links, so no link runs over them, but never
-    // down into the ground symbol.
+    letters.letter_clear(pos.a, "A", s.text, ua, s.joint);
     let level = |v: Vector, fallback: Vector| unit_or(Vector::new(v.x, v.y.max(0.0)), fallback);
     let uo = level(unit_or(geom.o1 - pos.a, Vector::zeros()), Vector::new(-1.0, 0.0));
-    label(d, mech, geom.o1 + uo * (1.8 * s.joint), s.text, "O1", uo);
+    letters.letter_clear(geom.o1, "O1", s.text, uo, s.joint);
     let uc = level(unit_or(geom.c - pos.b, Vector::zeros()), Vector::new(1.0, 0.0));
-    label(d, mech, geom.c + uc * (1.8 * s.joint), s.text, "C", uc);
+    letters.letter_clear(geom.c, "C", s.text, uc, s.joint);
     let mid_ac = Point::from((pos.a.coords + geom.c.coords) / 2.0);
     let ub = unit_or(pos.b - mid_ac, Vector::new(0.0, 1.0));
-    label(d, mech, pos.b + ub * off, s.text, "B", ub);
+    letters.letter_clear(pos.b, "B", s.text, ub, s.joint);
     let um = unit_or(pos.m - pos.b, Vector::new(1.0, 0.0));
     let um = unit_or(um + perp(um) * 0.6, um);
-    label(d, mech, pos.m + um * off, s.text, "M", um);
+    letters.letter_clear(pos.m, "M", s.text, um, s.joint);
+    let mut boxes = letters.draw(d, mech);
+    boxes.extend(grounds);
+    (boxes, links.to_vec())
 }
 
-fn unit_or(v: Vector, fallback: Vector) -> Vector {
-    let n = v.norm();
-    if n > 0.0 && n.is_finite() { v / n } else { fallback }
-}
-
-/// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm. The
-/// letters are placed by [`labels::Polygon`] so that they stay apart in a small polygon.
-fn velocity_polygon(d: &mut Drawing, k: &Kinematics, scale: Scale, pole: Point, s: Sizes) {
-    let l = layer_of(d, layers::VELOCITY);
-    let (a, b, m) = (pole + scale.draw(k.v_a), pole + scale.draw(k.v_b), pole + scale.draw(k.v_m));
-    let mut letters = labels::Polygon::of_points();
-    // pa, pb, pm, then the relative velocities: v_BA from a to b, v_MB from b to m (the
-    // image of the coupler).
-    for (from, to) in [(pole, a), (pole, b), (pole, m), (a, b), (b, m)] {
-        vector(d, l, from, to - from, "", s);
-        letters.segment(from, to);
+/// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm (the
+/// image of the coupler).
+fn velocity_polygon(k: &Kinematics) -> PointPolygon {
+    let (a, b, m) = (1, 2, 3);
+    let vector = |from, to| Side { from, to, kind: SideKind::Vector };
+    PointPolygon {
+        pole: "p".into(),
+        pole_away: vec![a, b],
+        points: vec![
+            NamedPoint { name: "a".into(), from: POLE, v: k.v_a },
+            NamedPoint { name: "b".into(), from: POLE, v: k.v_b },
+            NamedPoint { name: "m".into(), from: POLE, v: k.v_m },
+        ],
+        directions: vec![],
+        sides: vec![vector(POLE, a), vector(POLE, b), vector(POLE, m), vector(a, b), vector(b, m)],
     }
-    d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
-    letters.letter(pole, "p", s.text, -(a - pole) - (b - pole), None);
-    for (at, name) in [(a, "a"), (b, "b"), (m, "m")] {
-        letters.letter(at, name, s.text, at - pole, None);
-    }
-    letters.draw(d, l);
 }
 
 /// The acceleration polygon as the graph-analytical construction draws it:
@@ -564,57 +387,85 @@ fn velocity_polygon(d: &mut Drawing, k: &Kinematics, scale: Scale, pole: Point, 
 /// tangential direction (perpendicular to AB, dashed) to b′; from π the normal component
 /// of a_B about C (parallel to BC) to n_BC, then the tangential direction (perpendicular to
 /// BC, dashed) to b′; π → b′, π → m′, and the image a′b′m′ of the coupler.
-fn acceleration_polygon(
-    d: &mut Drawing,
-    pos: &Position,
-    c_pivot: Point,
-    k: &Kinematics,
-    scale: Scale,
-    pole: Point,
-    s: Sizes,
-) {
-    let l = layer_of(d, layers::ACCELERATION);
-    let c = layer_of(d, layers::CONSTRUCTION);
-    let a1 = pole + scale.draw(k.a_a);
-    let n_ba = a1 + scale.draw(k.a_ba_n);
-    let b1 = pole + scale.draw(k.a_b);
-    let n_bc = pole + scale.draw(k.a_bc_n);
-    let m1 = pole + scale.draw(k.a_m);
-    // Tangential directions: full dashed lines through n_BA ⊥ AB and n_BC ⊥ BC, reaching a
-    // little past b′ on both sides.
-    let reach = 4.0 * s.head;
-    let mut letters = labels::Polygon::of_points();
-    for (n, dir) in [(n_ba, perp(pos.b - pos.a)), (n_bc, perp(pos.b - c_pivot))] {
-        let u = unit_or(dir, Vector::new(1.0, 0.0));
-        let t0 = (b1 - n).dot(&u);
-        let (lo, hi) = (t0.min(0.0) - reach, t0.max(0.0) + reach);
-        d.add(c, Shape::Line { from: n + u * lo, to: n + u * hi });
-        letters.segment(n + u * lo, n + u * hi);
+fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
+    let (a1, b1, m1, n_ba, n_bc) = (1, 2, 3, 4, 5);
+    let side = |from, to, kind| Side { from, to, kind };
+    PointPolygon {
+        pole: "π".into(),
+        pole_away: vec![a1, b1],
+        // The points first, then the ends of the normal components.
+        points: vec![
+            NamedPoint { name: "a'".into(), from: POLE, v: k.a_a },
+            NamedPoint { name: "b'".into(), from: POLE, v: k.a_b },
+            NamedPoint { name: "m'".into(), from: POLE, v: k.a_m },
+            NamedPoint { name: "nBA".into(), from: a1, v: k.a_ba_n },
+            NamedPoint { name: "nBC".into(), from: POLE, v: k.a_bc_n },
+        ],
+        // Tangential directions: ⊥AB through n_BA, ⊥BC through n_BC.
+        directions: vec![
+            Direction { through: n_ba, dir: perp(pos.b - pos.a), reaches: b1 },
+            Direction { through: n_bc, dir: perp(pos.b - c_pivot), reaches: b1 },
+        ],
+        // Components: normal parts solid, tangential parts as dashed arrows; then the
+        // accelerations of the points and the image of the coupler: a′b′ (a_BA) and b′m′.
+        sides: vec![
+            side(a1, n_ba, SideKind::Vector),
+            side(POLE, n_bc, SideKind::Vector),
+            side(n_ba, b1, SideKind::Component),
+            side(n_bc, b1, SideKind::Component),
+            side(POLE, a1, SideKind::Vector),
+            side(POLE, b1, SideKind::Vector),
+            side(POLE, m1, SideKind::Vector),
+            side(a1, b1, SideKind::Image),
+            side(b1, m1, SideKind::Image),
+        ],
     }
-    // Components: normal parts solid, tangential parts as dashed arrows.
-    vector(d, l, a1, n_ba - a1, "", s);
-    vector(d, l, pole, n_bc - pole, "", s);
-    vector(d, c, n_ba, b1 - n_ba, "", s);
-    vector(d, c, n_bc, b1 - n_bc, "", s);
-    vector(d, l, pole, a1 - pole, "", s);
-    vector(d, l, pole, b1 - pole, "", s);
-    vector(d, l, pole, m1 - pole, "", s);
-    // Image of the coupler: a′b′ (a_BA) and b′m′.
-    d.add(l, Shape::Line { from: a1, to: b1 });
-    d.add(l, Shape::Line { from: b1, to: m1 });
-    d.add(l, Shape::Circle { center: pole, radius: 0.25 * s.joint });
-    for (from, to) in [(a1, n_ba), (pole, n_bc), (n_ba, b1), (n_bc, b1), (pole, a1), (pole, b1), (pole, m1), (a1, b1)] {
-        letters.segment(from, to);
+}
+
+/// The force polygons of seed 003 (Figs. 4 and 5). The dyad's chain from the pole f, in
+/// the seed's order (eq. 5): R_A^n, G21, F_i21, G22, F_i22, F, G3, F_i3, R_C^n, then R_C^t
+/// (along BC) and R_A^t (along AB), which close it at the intersection point `int`
+/// (vertex 10). In it, R_A runs from `int` to the end of R_A^n, R_C from the end of F_i3 to
+/// `int`, and R_B (seed eq. 7) from the end of F to `int`; R_B and R_C are often nearly the
+/// same segment (a light rocker), so their names start from different places along it. The
+/// crank's polygon (Fig. 5) starts at `int` (−R_A): F_i1, G1, and R_O back to the end of
+/// R_A^n.
+fn force_polygon(f: &Forces) -> ForcePolygon {
+    let nv = NamedVector::new;
+    let (p_ran, p_f, p_fi3, int) = (1, 6, 8, 10);
+    let resultant = |name: &str, from, to, name_at| Resultant { name: name.into(), from, to, name_at };
+    ForcePolygon {
+        pole: "f".into(),
+        chain: vec![
+            nv("RAn", f.r_a_n),
+            nv("G21", f.g21),
+            nv("Fi21", f.fi21),
+            nv("G22", f.g22),
+            nv("Fi22", f.fi22),
+            nv("F", f.f_ext),
+            nv("G3", f.g3),
+            nv("Fi3", f.fi3),
+            nv("RCn", f.r_c_n),
+            nv("RCt", f.r_c_t),
+            nv("RAt", f.r_a_t),
+        ],
+        resultants: vec![
+            resultant("RA", int, p_ran, 0.5),
+            resultant("RB", p_f, int, 0.7),
+            resultant("RC", p_fi3, int, 0.3),
+        ],
+        branches: vec![Branch {
+            from: int,
+            vectors: vec![nv("Fi1", f.fi1), nv("G1", f.g1)],
+            closing: "RO".into(),
+            closes_at: p_ran,
+        }],
     }
-    letters.segment(b1, m1);
-    // The points first, then the ends of the normal components.
-    letters.letter(pole, "π", s.text, -(a1 - pole) - (b1 - pole), None);
-    for (at, name) in [(a1, "a'"), (b1, "b'"), (m1, "m'")] {
-        letters.letter(at, name, s.text, at - pole, None);
-    }
-    letters.letter(n_ba, "nBA", s.text, n_ba - a1, None);
-    letters.letter(n_bc, "nBC", s.text, n_bc - pole, None);
-    letters.draw(d, l);
+}
+
+/// R_A at A and R_B at B on the mechanism (seed, last section).
+fn reactions(pos: &Position, f: &Forces) -> [(Point, NamedVector); 2] {
+    [(pos.a, NamedVector::new("RA", f.r_a)), (pos.b, NamedVector::new("RB", f.r_b))]
 }
 
 #[cfg(test)]
@@ -899,16 +750,103 @@ pub(crate) mod tests {
         assert!(checked > 360 * 10, "{checked}");
     }
 
+    /// Forces for the figure tests, by the seed's route written out here (not the library's
+    /// solver): inertia of the bars, moments about B for the normal components, the
+    /// intersection of the two bar directions for the tangential ones.
+    pub(crate) fn seed_route(pos: &Position, g: &Geometry) -> Forces {
+        let k = pos.kin.unwrap();
+        let (m1, m21, m22, m3, gr) = (0.05, 0.125, 0.125, 0.125, 9.8);
+        let w = |m: f64| Vector::new(0.0, -m * gr);
+        let f_ext =
+            if (80.0..=280.0).contains(&pos.phi1.to_degrees()) { Vector::new(0.0, -50.0) } else { Vector::zeros() };
+        let (fi21, fi22, fi3, fi1) = (-k.a_g21 * m21, -k.a_g22 * m22, -k.a_g3 * m3, -k.a_g1 * m1);
+        let (mi21, mi22, mi3) = (
+            -m21 * g.l_ab * g.l_ab / 12.0 * k.eps2,
+            -m22 * g.l_bm * g.l_bm / 12.0 * k.eps2,
+            -m3 * g.l_bc * g.l_bc / 12.0 * k.eps3,
+        );
+        let (c21, c22, c3) = (
+            Point::from((pos.a.coords + pos.b.coords) / 2.0),
+            Point::from((pos.b.coords + pos.m.coords) / 2.0),
+            Point::from((pos.b.coords + g.c.coords) / 2.0),
+        );
+        // Moments about B of link 2 (without R_B): R_A^n ⊥ AB.
+        let u2 = (pos.b - pos.a) / g.l_ab;
+        let n2 = perp(u2);
+        let mom2 = cross(c21 - pos.b, w(m21) + fi21)
+            + cross(c22 - pos.b, w(m22) + fi22)
+            + cross(pos.m - pos.b, f_ext)
+            + mi21
+            + mi22;
+        // cross(A − B, s·n2) + mom2 = 0
+        let s2 = -mom2 / cross(pos.a - pos.b, n2);
+        let r_a_n = n2 * s2;
+        let u3 = (pos.b - g.c) / g.l_bc;
+        let n3 = perp(u3);
+        let mom3 = cross(c3 - pos.b, w(m3) + fi3) + mi3;
+        let s3 = -mom3 / cross(g.c - pos.b, n3);
+        let r_c_n = n3 * s3;
+        let rest = r_a_n + w(m21) + fi21 + w(m22) + fi22 + f_ext + w(m3) + fi3 + r_c_n;
+        // rest + t3·u3 + t2·u2 = 0
+        let det = cross(u3, u2);
+        let t3 = cross(-rest, u2) / det;
+        let t2 = cross(u3, -rest) / det;
+        let (r_c_t, r_a_t) = (u3 * t3, u2 * t2);
+        let r_a = r_a_n + r_a_t;
+        let r_b = -(r_a + w(m21) + fi21 + w(m22) + fi22 + f_ext);
+        let r_o = r_a - fi1 - w(m1);
+        Forces {
+            g21: w(m21),
+            g22: w(m22),
+            g3: w(m3),
+            g1: w(m1),
+            fi21,
+            fi22,
+            fi3,
+            fi1,
+            mi21,
+            mi22,
+            mi3,
+            mi1: 0.0,
+            f_ext,
+            r_a_n,
+            r_a_t,
+            r_c_n,
+            r_c_t,
+            r_a,
+            r_b,
+            r_c: r_c_n + r_c_t,
+            r_o,
+            me1: 0.0,
+        }
+    }
+
     #[test]
-    fn preview_frames_for_people() {
-        // Writes target/fourbar-preview-*.png to look at while developing.
-        let (lay, frames) = run(Show { velocity: true, acceleration: true, forces: false });
-        let opts = crate::draw::svg::SvgOptions { window: Some(lay.window), ..Default::default() };
-        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target");
-        for (f, n) in frames.iter().zip([0, 90, 180]) {
-            let svg = crate::draw::svg::to_string(f, &opts);
-            let png = crate::draw::raster::to_png(&svg, 1200).unwrap();
-            std::fs::write(dir.join(format!("fourbar-preview-{n}.png")), png).unwrap();
+    fn the_chain_closes_and_the_resultants_are_the_reactions() {
+        let g = chebyshev();
+        for deg in [0.0f64, 90.0, 180.0, 271.0] {
+            let pos = closed_form(&g, deg.to_radians(), 20.0);
+            let f = seed_route(&pos, &g);
+            let poly = force_polygon(&f);
+            let v = poly.vertices();
+            let scale = f.r_a.norm().max(1.0);
+            assert!(v[11].norm() < 1e-12 * scale, "chain does not close at {deg}°");
+            // R_A drawn from int to the end of R_A^n; R_B from the end of F to int; R_C from
+            // the end of F_i3 to int.
+            for r in &poly.resultants {
+                let reaction = match r.name.as_str() {
+                    "RA" => f.r_a,
+                    "RB" => f.r_b,
+                    "RC" => f.r_c,
+                    other => panic!("unexpected resultant {other}"),
+                };
+                assert!(((v[r.to] - v[r.from]) - reaction).norm() < 1e-12 * scale, "{} at {deg}°", r.name);
+            }
+            // The crank's polygon closes with R_O.
+            let b = &poly.branches[0];
+            let end = b.vectors.iter().fold(v[b.from], |p, nv| p + nv.v);
+            assert_eq!(b.closing, "RO");
+            assert!(((v[b.closes_at] - end) - f.r_o).norm() < 1e-12 * scale, "R_O at {deg}°");
         }
     }
 }

@@ -1,5 +1,7 @@
 //! Letters of a polygon (velocity, acceleration, force) placed so that a reader can read
-//! them when the polygon is small.
+//! them when the polygon is small; and, by the same rules, the letters of a mechanism
+//! (joints, pivots, points), which keep a clearance from their point (the joint circle)
+//! and off the symbols drawn around it ([`Polygon::keep_off`]).
 //!
 //! Each letter goes to the first free spot among candidate positions around its point:
 //! sixteen directions, in the order preferred direction, ±22.5°, ±45°, … 180° from it,
@@ -7,8 +9,8 @@
 //! (1.5, 2, 2.5, 3 times that distance; eight directions and three rings left a crowded
 //! force polygon of the template with overlapping names at 40 positions). "Free"
 //! means that the letter's estimated box (width [`label_width`], one text height tall)
-//! overlaps no letter already placed in the same polygon and, preferably, crosses none of
-//! the polygon's segments. When no candidate is free, the one with the fewest overlapping
+//! overlaps no letter already placed in the same polygon nor a box kept off, and,
+//! preferably, crosses none of the polygon's segments. When no candidate is free, the one with the fewest overlapping
 //! letters, then the fewest crossed segments, wins (the earliest on a tie). Letters are
 //! placed in the order they are added, so the first ones get their preferred spots.
 //!
@@ -102,6 +104,8 @@ struct Letter {
     dir: Vector,
     height: f64,
     color: Option<Aci>,
+    /// Extra clear distance from the point (a joint circle's radius).
+    clear: f64,
 }
 
 /// The letters of one polygon and the segments they should keep off; [`Polygon::draw`]
@@ -110,6 +114,7 @@ struct Letter {
 pub struct Polygon {
     letters: Vec<Letter>,
     segments: Vec<(Point, Point)>,
+    obstacles: Vec<TextBox>,
     merge: bool,
 }
 
@@ -127,10 +132,25 @@ impl Polygon {
     /// A letter `text` (`height` high, entity colour `color` or the layer's) for the point
     /// `at`, preferably on the side `dir` (any length; zero means above).
     pub fn letter(&mut self, at: Point, text: &str, height: f64, dir: Vector, color: Option<Aci>) {
-        if text.is_empty() || !(at.x.is_finite() && at.y.is_finite()) {
-            return;
+        self.push(Letter { at, text: text.to_string(), dir, height, color, clear: 0.0 });
+    }
+
+    /// A letter `text` for the point `at` that keeps `clear` (model units, such as a joint
+    /// circle's radius) more than [`LABEL_GAP`] between the point and its box, preferably
+    /// on the side `dir`.
+    pub fn letter_clear(&mut self, at: Point, text: &str, height: f64, dir: Vector, clear: f64) {
+        self.push(Letter { at, text: text.to_string(), dir, height, color: None, clear });
+    }
+
+    fn push(&mut self, l: Letter) {
+        if !l.text.is_empty() && l.at.x.is_finite() && l.at.y.is_finite() {
+            self.letters.push(l);
         }
-        self.letters.push(Letter { at, text: text.to_string(), dir, height, color });
+    }
+
+    /// A box letters must not overlap (a symbol: a ground support, a slider's block).
+    pub fn keep_off(&mut self, b: TextBox) {
+        self.obstacles.push(b);
     }
 
     /// A segment of the polygon that letters should not cover.
@@ -148,9 +168,9 @@ impl Polygon {
         for l in &letters {
             let mut best: Option<((usize, usize), Point, TextBox)> = None;
             let half = TextBox::half_size(&l.text, l.height);
-            for c in candidates(l.at, &l.text, l.height, l.dir) {
+            for c in candidates_clear(l.at, &l.text, l.height, l.dir, l.clear) {
                 let bx = TextBox::around(c, half);
-                let hits = boxes.iter().filter(|b| b.overlaps(&bx)).count();
+                let hits = boxes.iter().chain(&self.obstacles).filter(|b| b.overlaps(&bx)).count();
                 let crossed = self.segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
                 let score = (hits, crossed);
                 if best.as_ref().is_none_or(|(s, _, _)| score < *s) {
@@ -170,14 +190,18 @@ impl Polygon {
 
     /// Places the letters and adds them to `d` on `layer` as centred texts: a polygon's
     /// letters take the layer's style; names beside sides (force polygons) carry their
-    /// colour (when given) and a continuous line type on the entity.
-    pub fn draw(&self, d: &mut Drawing, layer: usize) {
+    /// colour (when given) and a continuous line type on the entity. Returns the letters'
+    /// boxes (for letters drawn later to keep off).
+    pub fn draw(&self, d: &mut Drawing, layer: usize) -> Vec<TextBox> {
         let linetype = if self.merge { None } else { Some(LineType::Continuous) };
-        for (at, value, height, color) in self.place() {
+        let placed = self.place();
+        let boxes = placed.iter().map(|(at, value, height, _)| TextBox::centred(*at, value, *height)).collect();
+        for (at, value, height, color) in placed {
             let shape =
                 Shape::Text { at, height, value, halign: HAlign::Center, valign: VAlign::Middle, rotation: 0.0 };
             d.push(Entity { layer, color, linetype, shape });
         }
+        boxes
     }
 }
 
@@ -215,6 +239,11 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
+    candidates_clear(at, text, height, dir, 0.0)
+}
+
+/// [`candidates`] for a letter whose box keeps `clear` more from its point.
+fn candidates_clear(at: Point, text: &str, height: f64, dir: Vector, clear: f64) -> impl Iterator<Item = Point> {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
     let base = u0.y.atan2(u0.x);
     let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
@@ -226,7 +255,7 @@ pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Itera
             let u = Vector::new(a.cos(), a.sin());
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
-            at + u * (ring * (LABEL_GAP * height + reach))
+            at + u * (ring * (LABEL_GAP * height + clear + reach))
         })
     })
 }
@@ -303,5 +332,23 @@ mod tests {
         for p in &c {
             assert!(p.coords.norm() <= max_distance("nBA", 1.0) + 1e-12);
         }
+    }
+
+    #[test]
+    fn a_mechanism_letter_keeps_its_clearance_and_off_kept_boxes() {
+        // A joint of radius 0.5 at the origin: the letter's box starts LABEL_GAP + 0.5 from
+        // it, straight above when nothing is in the way.
+        let mut p = Polygon::of_names();
+        p.letter_clear(Point::new(0.0, 0.0), "A", 1.0, Vector::new(0.0, 1.0), 0.5);
+        let placed = p.place();
+        assert!((placed[0].0 - Point::new(0.0, LABEL_GAP + 0.5 + 0.5)).norm() < 1e-12);
+        // A symbol above the joint: the letter goes elsewhere, clear of it.
+        let symbol = TextBox { min: Point::new(-2.0, 0.2), max: Point::new(2.0, 3.0) };
+        let mut q = Polygon::of_names();
+        q.keep_off(symbol);
+        q.letter_clear(Point::new(0.0, 0.0), "A", 1.0, Vector::new(0.0, 1.0), 0.5);
+        let (c, t, h, _) = &q.place()[0];
+        assert!(!TextBox::centred(*c, t, *h).overlaps(&symbol), "{c:?}");
+        assert!(c.coords.norm() >= LABEL_GAP + 0.5 + 0.5 - 1e-12);
     }
 }

@@ -9,4 +9,6 @@ pub mod fourbar;
 pub mod labels;
 pub mod linkage;
 pub mod plot;
+pub mod polygon;
 pub mod triad;
+pub mod vocab;

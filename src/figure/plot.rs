@@ -13,6 +13,7 @@
 //! Layers: `PLOT_FRAME` (frame and ticks), `PLOT_GRID` (light grid), `PLOT_TEXT` (title,
 //! labels, numbers, legend), `PLOT_DATA` (the curves, one colour per series; bars).
 
+use crate::draw::parts::text_width;
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::Point;
 
@@ -229,7 +230,7 @@ fn axes(
         d.add(l.frame, Shape::Line { from: p, to: Point::new(p.x, -TICK) });
         text(d, l.text, Point::new(p.x, -TICK - 1.0), TEXT_H, &tick_label(x, xd), (HAlign::Center, VAlign::Top), 0.0);
     }
-    let mut widest = 0usize;
+    let mut widest = 0.0f64;
     for y in yt.values() {
         let p = map(xt.lo, y);
         if p.y > 1e-9 && p.y < PLOT_HEIGHT - 1e-9 {
@@ -237,7 +238,7 @@ fn axes(
         }
         d.add(l.frame, Shape::Line { from: p, to: Point::new(-TICK, p.y) });
         let s = tick_label(y, yd);
-        widest = widest.max(s.chars().count());
+        widest = widest.max(text_width(&s, TEXT_H));
         text(d, l.text, Point::new(-TICK - 1.0, p.y), TEXT_H, &s, (HAlign::Right, VAlign::Middle), 0.0);
     }
     // A zero line when zero is inside the y range.
@@ -260,7 +261,7 @@ fn axes(
     );
     let label_y = -TICK - 2.6 * TEXT_H - 1.0;
     text(d, l.text, Point::new(PLOT_WIDTH / 2.0, label_y), TEXT_H, x_label, (HAlign::Center, VAlign::Top), 0.0);
-    let label_x = -TICK - 1.0 - 0.62 * TEXT_H * widest as f64 - 2.0 * TEXT_H;
+    let label_x = -TICK - 1.0 - widest - 2.0 * TEXT_H;
     text(
         d,
         l.text,

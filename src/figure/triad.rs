@@ -6,12 +6,15 @@
 //!
 //! Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM` (exact
 //! position, pivots, joints), `MODES` (other assembly modes), `DIMENSIONS`, `TEXT`.
-//! Sizes are model lengths chosen for a drawing in millimetres, scaled with the triad so a
-//! triad in metres looks the same.
+//! Sizes are the shared table's ([`Sizes::for_length`]) for the triad's size, so a triad in
+//! metres looks the same as one in millimetres.
 
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Triad};
+
+use super::labels::{self, TextBox};
+use super::vocab::{self, Sizes};
 
 /// What to draw.
 #[derive(Debug, Clone, Copy)]
@@ -28,33 +31,8 @@ pub struct TriadFigure<'a> {
     pub caption: &'a [String],
 }
 
-/// Drawing sizes for a triad whose [`Triad::scale`] is `scale`: text and symbols are
-/// designed for a ~100-unit triad in millimetres (3.5 mm labels) and scale with it.
-#[derive(Debug, Clone, Copy)]
-struct Sizes {
-    text: f64,
-    small_text: f64,
-    pivot: f64,
-    joint: f64,
-    ground: f64,
-    link_width: f64,
-    triangle_width: f64,
-}
-
-impl Sizes {
-    fn for_scale(scale: f64) -> Sizes {
-        let k = scale / 100.0;
-        Sizes {
-            text: 3.5 * k,
-            small_text: 2.8 * k,
-            pivot: 1.6 * k,
-            joint: 1.2 * k,
-            ground: 4.0 * k,
-            link_width: 0.35 * k,
-            triangle_width: 0.5 * k,
-        }
-    }
-}
+/// Height of the small texts (mode numbers, φ names, caption), in letter heights.
+const SMALL_TEXT: f64 = 0.8;
 
 /// Direction (radians) in the middle of the widest gap between the `occupied` directions.
 fn free_direction(occupied: &[f64]) -> f64 {
@@ -74,49 +52,11 @@ fn free_direction(occupied: &[f64]) -> f64 {
     best.1
 }
 
-/// A label centred at `distance` from `p` in direction `dir`, pushed further out along
-/// `dir` by half the label's extent in that direction.
-fn label(d: &mut Drawing, layer: usize, p: Point, dir: f64, distance: f64, height: f64, text: &str) {
-    let w = 0.7 * height * text.chars().count() as f64;
-    let u = Vector::new(dir.cos(), dir.sin());
-    let reach = 0.5 * (w * u.x.abs() + height * u.y.abs());
-    d.add(
-        layer,
-        Shape::Text {
-            at: p + u * (distance + reach),
-            height,
-            value: text.to_string(),
-            halign: HAlign::Center,
-            valign: VAlign::Middle,
-            rotation: 0.0,
-        },
-    );
-}
-
-/// Ground symbol under a pivot: a small triangle standing on a hatched ground line.
-fn ground(d: &mut Drawing, layer: usize, o: Point, s: &Sizes) {
-    let h = s.ground;
-    let base = o + Vector::new(0.0, -h);
-    let left = base + Vector::new(-0.6 * h, 0.0);
-    let right = base + Vector::new(0.6 * h, 0.0);
-    let top_l = o + Vector::new(-s.pivot * 0.6, -s.pivot * 0.8);
-    let top_r = o + Vector::new(s.pivot * 0.6, -s.pivot * 0.8);
-    d.add(layer, Shape::Line { from: top_l, to: left });
-    d.add(layer, Shape::Line { from: top_r, to: right });
-    let g0 = base + Vector::new(-h, 0.0);
-    let g1 = base + Vector::new(h, 0.0);
-    d.add(layer, Shape::Line { from: g0, to: g1 });
-    for i in 0..5 {
-        let x = -h + 0.5 * h * i as f64 + 0.4 * h;
-        let top = base + Vector::new(x, 0.0);
-        d.add(layer, Shape::Line { from: top, to: top + Vector::new(-0.4 * h, -0.4 * h) });
-    }
-}
-
 /// The seed's Fig. 3 for `f`.
 pub fn drawing(f: &TriadFigure) -> Drawing {
     let t = f.triad;
-    let s = Sizes::for_scale(t.scale());
+    let s = Sizes::for_length(t.scale());
+    let small_text = SMALL_TEXT * s.text;
     let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
     let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
     let modes = d.layer("MODES", Aci::LIGHT_GREY, LineType::Continuous);
@@ -141,7 +81,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             Aci::DARK_GREY,
             Shape::Text {
                 at: centroid,
-                height: s.small_text,
+                height: small_text,
                 value: n.to_string(),
                 halign: HAlign::Center,
                 valign: VAlign::Middle,
@@ -157,17 +97,17 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     // The exact position.
     let a = f.exact.a;
     for (o, p) in t.o.iter().zip(a) {
-        d.add(mechanism, Shape::Polyline { points: vec![*o, p], closed: false, width: s.link_width });
+        vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
     }
-    d.add(mechanism, Shape::Polyline { points: a.to_vec(), closed: true, width: s.triangle_width });
+    vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
     for o in t.o {
-        ground(&mut d, mechanism, o, &s);
-        d.add(mechanism, Shape::Circle { center: o, radius: s.pivot });
+        vocab::ground(&mut d, mechanism, o, s);
     }
     for p in a {
-        d.add(mechanism, Shape::Circle { center: p, radius: s.joint });
+        vocab::joint(&mut d, mechanism, p, s);
     }
 
+    let mut phi_names: Vec<(Point, String, f64)> = Vec::new();
     // Angular dimensions phi_i at O_i from +x (value on the dimension, the name φi inside
     // the angle, as a draughtsman writes it).
     for (i, (o, p)) in t.o.iter().zip(a).enumerate() {
@@ -177,18 +117,19 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             dimensions,
             Shape::AngularDimension {
                 vertex: *o,
-                first: o + Vector::new(s.pivot + 0.3 * s.text, 0.0),
+                first: o + Vector::new(s.joint + 0.3 * s.text, 0.0),
                 second: p,
                 radius,
                 text: format!("{:.2}°", phi.to_degrees()),
             },
         );
         let name_at = polar(*o, 0.62 * radius, 0.5 * phi);
+        phi_names.push((name_at, format!("φ{}", i + 1), small_text));
         d.add(
             dimensions,
             Shape::Text {
                 at: name_at,
-                height: s.small_text,
+                height: small_text,
                 value: format!("φ{}", i + 1),
                 halign: HAlign::Center,
                 valign: VAlign::Middle,
@@ -197,7 +138,18 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         );
     }
 
-    // Labels: each in the widest free direction around its point.
+    // Labels: each preferably in the widest free direction around its point, placed by the
+    // letter placer clear of the joint, the links, the ground symbols and the φ names.
+    let mut letters = labels::Polygon::of_names();
+    for i in 0..3 {
+        letters.segment(t.o[i], a[i]);
+        letters.segment(a[i], a[(i + 1) % 3]);
+        letters.keep_off(vocab::ground_extent(t.o[i], s));
+    }
+    for (at, value, height) in &phi_names {
+        letters.keep_off(TextBox::centred(*at, value, *height));
+    }
+    let toward = |dir: f64| Vector::new(dir.cos(), dir.sin());
     for i in 0..3 {
         let phi = f.exact.phi[i];
         // At O_i: the link, the +x reference line, the dimensioned sector between them and
@@ -205,12 +157,13 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
         occupied.extend([-std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
         let dir = free_direction(&occupied);
-        label(&mut d, text, t.o[i], dir, s.pivot + 0.6 * s.text, s.text, &format!("O{}", i + 1));
+        letters.letter_clear(t.o[i], &format!("O{}", i + 1), s.text, toward(dir), s.joint);
         // At A_i: the link back to O_i and the two sides.
         let occupied = [angle_of(t.o[i] - a[i]), angle_of(a[(i + 1) % 3] - a[i]), angle_of(a[(i + 2) % 3] - a[i])];
         let dir = free_direction(&occupied);
-        label(&mut d, text, a[i], dir, s.joint + 0.4 * s.text, s.text, &format!("A{}", i + 1));
+        letters.letter_clear(a[i], &format!("A{}", i + 1), s.text, toward(dir), s.joint);
     }
+    letters.draw(&mut d, text);
 
     // Caption under everything drawn so far.
     if !f.caption.is_empty() {
@@ -221,14 +174,14 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
                     text,
                     Shape::Text {
                         at: Point::new(b.min.x, y),
-                        height: s.small_text,
+                        height: small_text,
                         value: line.clone(),
                         halign: HAlign::Left,
                         valign: VAlign::Baseline,
                         rotation: 0.0,
                     },
                 );
-                y -= 1.8 * s.small_text;
+                y -= 1.8 * small_text;
             }
         }
     }

@@ -227,10 +227,15 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
 
     let style = Style::for_length(mech.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
-    let spans = fig::guide_spans(scene, &motion, &style);
-    let base = fig::frame_base(scene, &motion, &style);
-    let window = fig::all_positions(scene, &motion, &spans, &style).bounds().or_else(|| base.bounds());
-    let window = window.unwrap_or(crate::draw::Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
+    let figure = figure_of(scene);
+    let spans = fig::guide_spans(&figure, &motion, &style);
+    let base = fig::frame_base(&figure, &motion, &style);
+    // The window: the paths and the mechanism at every position.
+    let mut all = base.clone();
+    for q in &motion {
+        all.append(&fig::frame_moving(&figure, q, &spans, &style));
+    }
+    let window = all.bounds().unwrap_or(crate::draw::Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
     let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
@@ -256,8 +261,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     }
 
     let qs: Vec<Vec<f64>> = states.into_iter().map(|s| s.q).collect();
-    let owned = scene.clone();
-    let pose = move |k: usize| fig::frame_moving(&owned, &qs[k], &spans, &style);
+    let pose = move |k: usize| fig::frame_moving(&figure, &qs[k], &spans, &style);
     Ok(Products {
         name: scene.name.clone(),
         picture: Picture::Motion(Animation::new(scene.name.clone(), base, window, names, labels, pose)),
@@ -330,10 +334,11 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
     )?;
     let style = Style::for_length(mech.length_scale);
     let motion = [state.q.as_slice()];
-    let spans = fig::guide_spans(scene, &motion, &style);
+    let figure = figure_of(scene);
+    let spans = fig::guide_spans(&figure, &motion, &style);
     let mut d = fig::new_drawing(&style);
     let layer = d.layer("DRAG", Aci::BLACK, LineType::Continuous);
-    fig::mechanism(&mut d, layer, scene, &state.q, &spans, &style);
+    fig::mechanism(&mut d, layer, &figure, &state.q, &spans, &style);
     Ok(Products {
         name: scene.name.clone(),
         picture: Picture::Still(d),
@@ -344,6 +349,21 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         report,
         warnings: Vec::new(),
     })
+}
+
+/// The figure-side description of a linkage scene: the solver's bodies and joints, the
+/// scene's point names (a revolute joint is named by its second point's name, else its
+/// first's, else the joint's name), and the measured points as the traced paths.
+pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
+    let traced = scene
+        .measures
+        .iter()
+        .filter_map(|m| match m.target {
+            MeasureTarget::Point(a) => Some(a),
+            MeasureTarget::Body(_) => None,
+        })
+        .collect();
+    fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced)
 }
 
 /// One sample of the JSON summary: t, every measured column, and a flag at near-singular

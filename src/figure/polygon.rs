@@ -1,0 +1,205 @@
+//! Velocity and acceleration polygons, typed on named points: a pole and points reached
+//! from it (each by a physical vector from the pole or from an earlier point), the sides
+//! to draw between them, and the construction lines of the graph-analytical method. Any
+//! mechanism describes its polygons this way (the four-bar does in its figure); the code
+//! here draws them without knowing which mechanism they come from.
+//!
+//! Points are numbered: [`POLE`] (0) is the pole, `i + 1` the `i`-th of
+//! [`PointPolygon::points`]. The letters are placed by [`super::labels`], so that they stay
+//! readable in a small polygon.
+
+use crate::draw::{Drawing, Shape};
+use crate::geom::{Point, Vector};
+
+use super::labels;
+use super::vocab::{self, Scale, Sizes, layer_of, layers, unit_or, vector};
+
+/// The number of the pole among a polygon's points.
+pub const POLE: usize = 0;
+
+/// A named point of a polygon: its letter and where it is.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NamedPoint {
+    /// The letter (`a`, `b'`, `nBA` …).
+    pub name: String,
+    /// The point it is reached from ([`POLE`] for a velocity or acceleration of a point;
+    /// another point for a component: n_BA is reached from a′ by a_BA^n).
+    pub from: usize,
+    /// The physical vector (m/s, m/s² …) from `from` to this point. Its letter sits on the
+    /// side away from `from`.
+    pub v: Vector,
+}
+
+/// How a side of a polygon is drawn.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum SideKind {
+    /// A vector: an arrow on the polygon's layer.
+    Vector,
+    /// A component found by construction (a tangential acceleration): a dashed arrow on
+    /// the construction layer.
+    Component,
+    /// A line without arrowhead (the image of a link, such as a′b′).
+    Image,
+}
+
+/// A side of a polygon: from one point to another.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Side {
+    /// Start point's number.
+    pub from: usize,
+    /// End point's number.
+    pub to: usize,
+    /// How it is drawn.
+    pub kind: SideKind,
+}
+
+/// A construction line: the known direction of an unknown component, drawn dashed through a
+/// point along `dir`, reaching a little past the point it finds (`reaches`) on both sides.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Direction {
+    /// The point the line passes through.
+    pub through: usize,
+    /// Its direction (any length; model directions such as ⊥AB).
+    pub dir: Vector,
+    /// The point found on it.
+    pub reaches: usize,
+}
+
+/// A velocity or acceleration polygon.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PointPolygon {
+    /// The pole's letter (`p`, `π`).
+    pub pole: String,
+    /// The points whose directions the pole's letter points away from.
+    pub pole_away: Vec<usize>,
+    /// The named points, in the order their letters are placed (the first get their
+    /// preferred places).
+    pub points: Vec<NamedPoint>,
+    /// Construction lines, drawn first.
+    pub directions: Vec<Direction>,
+    /// Sides, drawn in order.
+    pub sides: Vec<Side>,
+}
+
+impl PointPolygon {
+    /// Every point relative to the pole (physical units), the pole first: for sizing a
+    /// panel over a whole motion.
+    pub fn physical_points(&self) -> Vec<Vector> {
+        let mut out: Vec<Vector> = Vec::with_capacity(self.points.len() + 1);
+        out.push(Vector::zeros());
+        for p in &self.points {
+            let v = if p.from == POLE { p.v } else { out[p.from] + p.v };
+            out.push(v);
+        }
+        out
+    }
+
+    /// Every point as drawn with the pole at `pole` at `scale`, the pole first.
+    pub fn drawn_points(&self, scale: Scale, pole: Point) -> Vec<Point> {
+        let mut out: Vec<Point> = Vec::with_capacity(self.points.len() + 1);
+        out.push(pole);
+        for p in &self.points {
+            let at = out[p.from] + scale.draw(p.v);
+            out.push(at);
+        }
+        out
+    }
+}
+
+/// Draws `poly` on `layer` (its construction lines and components on `CONSTRUCTION`) with
+/// the pole at `pole`, at `scale`.
+pub fn draw(d: &mut Drawing, poly: &PointPolygon, layer: layers::Layer, scale: Scale, pole: Point, s: Sizes) {
+    let l = layer_of(d, layer);
+    let c = layer_of(d, layers::CONSTRUCTION);
+    let pts = poly.drawn_points(scale, pole);
+    let mut letters = labels::Polygon::of_points();
+    // Directions: full dashed lines through their point, reaching a little past the point
+    // found on both sides.
+    let reach = 4.0 * s.head;
+    for dir in &poly.directions {
+        let (n, found) = (pts[dir.through], pts[dir.reaches]);
+        let u = unit_or(dir.dir, Vector::new(1.0, 0.0));
+        let t0 = (found - n).dot(&u);
+        let (lo, hi) = (t0.min(0.0) - reach, t0.max(0.0) + reach);
+        d.add(c, Shape::Line { from: n + u * lo, to: n + u * hi });
+        letters.segment(n + u * lo, n + u * hi);
+    }
+    for side in &poly.sides {
+        let (from, to) = (pts[side.from], pts[side.to]);
+        match side.kind {
+            SideKind::Vector => vector(d, l, from, to - from, s),
+            SideKind::Component => vector(d, c, from, to - from, s),
+            SideKind::Image => d.add(l, Shape::Line { from, to }),
+        }
+        letters.segment(from, to);
+    }
+    vocab::pole(d, l, pole, s);
+    let mut away = poly.pole_away.iter().map(|&i| pole - pts[i]);
+    let first = away.next().unwrap_or_else(Vector::zeros);
+    letters.letter(pole, &poly.pole, s.text, away.fold(first, |acc, v| acc + v), None);
+    for (i, p) in poly.points.iter().enumerate() {
+        let at = pts[i + 1];
+        letters.letter(at, &p.name, s.text, at - pts[p.from], None);
+    }
+    letters.draw(d, l);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::figure::vocab::{ModelUnits, content_drawing};
+
+    /// A triangle polygon: p → a, p → b, a → b, with b also reached as a component.
+    fn triangle() -> PointPolygon {
+        PointPolygon {
+            pole: "p".into(),
+            pole_away: vec![1, 2],
+            points: vec![
+                NamedPoint { name: "a".into(), from: POLE, v: Vector::new(2.0, 0.0) },
+                NamedPoint { name: "b".into(), from: 1, v: Vector::new(0.0, 1.0) },
+            ],
+            directions: vec![Direction { through: 1, dir: Vector::new(0.0, 3.0), reaches: 2 }],
+            sides: vec![
+                Side { from: POLE, to: 1, kind: SideKind::Vector },
+                Side { from: 1, to: 2, kind: SideKind::Component },
+                Side { from: POLE, to: 2, kind: SideKind::Image },
+            ],
+        }
+    }
+
+    #[test]
+    fn points_are_reached_from_their_points_at_the_scale() {
+        let poly = triangle();
+        let phys = poly.physical_points();
+        assert_eq!(phys, vec![Vector::zeros(), Vector::new(2.0, 0.0), Vector::new(2.0, 1.0)]);
+        // 0.5 units per drawn mm, model in mm: a vector of 2 is 4 mm long.
+        let scale = Scale::new(0.5, ModelUnits::MM);
+        let drawn = poly.drawn_points(scale, Point::new(10.0, 10.0));
+        assert_eq!(drawn, vec![Point::new(10.0, 10.0), Point::new(14.0, 10.0), Point::new(14.0, 12.0)]);
+    }
+
+    #[test]
+    fn sides_are_drawn_by_their_kind_with_one_letter_per_point() {
+        let poly = triangle();
+        let s = Sizes::for_length(10.0);
+        let mut d = content_drawing(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head });
+        let scale = Scale::new(0.5, ModelUnits::MM);
+        draw(&mut d, &poly, layers::VELOCITY, scale, Point::new(0.0, 0.0), s);
+        let (vel, con) = (layer_of(&d, layers::VELOCITY), layer_of(&d, layers::CONSTRUCTION));
+        let on =
+            |layer: usize, f: fn(&Shape) -> bool| d.entities.iter().filter(|e| e.layer == layer && f(&e.shape)).count();
+        assert_eq!(on(vel, |s| matches!(s, Shape::Arrow { .. })), 1);
+        assert_eq!(on(con, |s| matches!(s, Shape::Arrow { .. })), 1);
+        assert_eq!(on(con, |s| matches!(s, Shape::Line { .. })), 1);
+        assert_eq!(on(vel, |s| matches!(s, Shape::Line { .. })), 1);
+        let texts: Vec<&str> = d
+            .entities
+            .iter()
+            .filter_map(|e| match &e.shape {
+                Shape::Text { value, .. } => Some(value.as_str()),
+                _ => None,
+            })
+            .collect();
+        assert_eq!(texts, ["p", "a", "b"]);
+    }
+}

@@ -1,0 +1,264 @@
+//! The drawing vocabulary every mechanism figure shares: scales and their texts, the size
+//! table, the content layers, and the symbols the graph-analytical method draws — ground
+//! pivot, joint, link, named vector with its arrowhead and letter. A figure for a new
+//! mechanism is built from these; nothing here knows a mechanism's fields.
+//!
+//! All sizes are model units (the model is drawn 1:1); a scale turns a physical vector
+//! (m/s, m/s², N …) into a drawn one.
+
+use super::labels::TextBox;
+use crate::draw::{Aci, Drawing, Entity, Shape};
+use crate::geom::{Point, Vector, perp};
+
+/// Length unit of the model, for scale texts.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModelUnits {
+    /// Symbol of the length unit (`m` or `mm`); velocities are in `<unit>/s`.
+    pub length: &'static str,
+    /// Drawing millimetres per model unit (1000 for metres, 1 for millimetres).
+    pub mm_per_unit: f64,
+}
+
+impl ModelUnits {
+    /// Metres (SI scenes).
+    pub const SI: ModelUnits = ModelUnits { length: "m", mm_per_unit: 1000.0 };
+    /// Millimetres.
+    pub const MM: ModelUnits = ModelUnits { length: "mm", mm_per_unit: 1.0 };
+}
+
+/// A drawing scale: `per_mm` physical units per drawing millimetre.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scale {
+    /// Physical units (m/s, m/s², N …) per drawing millimetre.
+    pub per_mm: f64,
+    /// Model units per drawing millimetre (1/`mm_per_unit`).
+    unit_per_mm: f64,
+}
+
+impl Scale {
+    /// `per_mm` physical units per drawing millimetre, for a model in `units`.
+    pub fn new(per_mm: f64, units: ModelUnits) -> Scale {
+        Scale { per_mm, unit_per_mm: 1.0 / units.mm_per_unit }
+    }
+    /// The drawn vector (model units) for a physical vector.
+    pub fn draw(&self, v: Vector) -> Vector {
+        v * (self.unit_per_mm / self.per_mm)
+    }
+}
+
+/// A "nice" scale (1, 2, 2.5 or 5 × 10ᵏ) at least `raw`; 1 for a zero or non-finite `raw`.
+pub fn nice_scale(raw: f64) -> f64 {
+    if !(raw.is_finite() && raw > 0.0) {
+        return 1.0;
+    }
+    let mag = 10f64.powf(raw.log10().floor());
+    for m in [1.0, 2.0, 2.5, 5.0, 10.0] {
+        if m * mag >= raw * (1.0 - 1e-12) {
+            return m * mag;
+        }
+    }
+    10.0 * mag
+}
+
+/// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
+pub fn scale_text(v: f64) -> String {
+    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
+        let s = format!("{v:e}");
+        return s;
+    }
+    let s = format!("{v:.6}");
+    s.trim_end_matches('0').trim_end_matches('.').to_string()
+}
+
+/// Content layers of a mechanism figure with polygons: name, colour, line type.
+pub mod layers {
+    use crate::draw::{Aci, LineType};
+    /// A layer: name, colour, line type.
+    pub type Layer = (&'static str, Aci, LineType);
+    /// Links, joints, ground, letters.
+    pub const MECHANISM: Layer = ("MECHANISM", Aci::BLACK, LineType::Continuous);
+    /// The path of a traced point (the four-bar's coupler curve of M).
+    pub const COUPLER_CURVE: Layer = ("COUPLER_CURVE", Aci::CYAN, LineType::Continuous);
+    /// Velocity polygon.
+    pub const VELOCITY: Layer = ("VELOCITY", Aci::GREEN, LineType::Continuous);
+    /// Acceleration polygon.
+    pub const ACCELERATION: Layer = ("ACCELERATION", Aci::BLUE, LineType::Continuous);
+    /// Force polygons and reactions on the mechanism.
+    pub const FORCES: Layer = ("FORCES", Aci::MAGENTA, LineType::Continuous);
+    /// Construction lines (components, directions), dashed.
+    pub const CONSTRUCTION: Layer = ("CONSTRUCTION", Aci::DARK_GREY, LineType::Dashed);
+    /// Titles and scales.
+    pub const DIMENSIONS: Layer = ("DIMENSIONS", Aci::BLACK, LineType::Continuous);
+    /// Per-position text (the crank angle).
+    pub const TEXT: Layer = ("TEXT", Aci::BLACK, LineType::Continuous);
+    /// Every content layer, in drawing order (later on top).
+    pub const ALL: [Layer; 8] =
+        [COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
+}
+
+/// A drawing with the content layers created in drawing order.
+pub fn content_drawing(dim: crate::draw::DimStyle) -> Drawing {
+    let mut d = Drawing::new(dim);
+    for (name, color, lt) in layers::ALL {
+        d.layer(name, color, lt);
+    }
+    d
+}
+
+/// Index of a content layer in a [`content_drawing`] (0 when the drawing lacks it).
+pub fn layer_of(d: &Drawing, l: layers::Layer) -> usize {
+    d.layers.iter().position(|x| x.name == l.0).unwrap_or(0)
+}
+
+/// Sizes of drawn details, model units.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sizes {
+    /// Cap height of letters.
+    pub text: f64,
+    /// Arrowhead length.
+    pub head: f64,
+    /// Width of link polylines.
+    pub link: f64,
+    /// Radius of joint circles.
+    pub joint: f64,
+    /// Height of the ground symbol under a pivot; the spacing of ground hatch.
+    pub ground: f64,
+    /// Length of a slider's block along its guide.
+    pub slider_length: f64,
+    /// Height of a slider's block across its guide.
+    pub slider_height: f64,
+}
+
+impl Sizes {
+    /// The one size table: sizes for a mechanism of characteristic length `size` (model
+    /// units: the extent of the four-bar's motion, the linkage's length scale, the triad's
+    /// size): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius,
+    /// ground symbols 3.5 % high, slider blocks 7 % by 4 %.
+    pub fn for_length(size: f64) -> Sizes {
+        Sizes {
+            text: 0.032 * size,
+            head: 0.03 * size,
+            link: 0.009 * size,
+            joint: 0.013 * size,
+            ground: 0.035 * size,
+            slider_length: 0.07 * size,
+            slider_height: 0.04 * size,
+        }
+    }
+}
+
+/// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
+pub fn unit_or(v: Vector, fallback: Vector) -> Vector {
+    let n = v.norm();
+    if n > 0.0 && n.is_finite() { v / n } else { fallback }
+}
+
+/// A vector: an arrow from `from` by `v` (drawn units); nothing for a vector shorter than
+/// a hundredth of the arrowhead. Its name, if any, goes through the letter placer
+/// ([`super::labels::Polygon`]) with the other letters of the drawing.
+pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, s: Sizes) {
+    if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
+        return;
+    }
+    d.add(layer, Shape::Arrow { from, to: from + v, head: s.head });
+}
+
+/// A link: a wide polyline through `points` (closed for a rigid body of three or more
+/// points drawn as a plate), in `color` or the layer's.
+pub fn link(d: &mut Drawing, layer: usize, points: Vec<Point>, closed: bool, color: Option<Aci>, s: Sizes) {
+    d.push(Entity { layer, color, linetype: None, shape: Shape::Polyline { points, closed, width: s.link } });
+}
+
+/// The pole of a polygon: a small circle (a quarter of a joint's radius).
+pub fn pole(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
+    d.add(layer, Shape::Circle { center: p, radius: 0.25 * s.joint });
+}
+
+/// The path of a traced point over the motion: a thin open polyline (nothing for fewer
+/// than two points).
+pub fn path(d: &mut Drawing, layer: usize, points: Vec<Point>) {
+    if points.len() >= 2 {
+        d.add(layer, Shape::Polyline { points, closed: false, width: 0.0 });
+    }
+}
+
+/// A joint: a circle of the joint radius at `p`.
+pub fn joint(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
+    d.add(layer, Shape::Circle { center: p, radius: s.joint });
+}
+
+/// The ground pivot at `p`: the joint circle, a support triangle from the circle's foot
+/// down to a base line wider than it, and hatch strokes under the base (the symbol is
+/// [`Sizes::ground`] high).
+pub fn ground(d: &mut Drawing, layer: usize, p: Point, s: Sizes) {
+    let (g, r) = (s.ground, s.joint);
+    joint(d, layer, p, s);
+    let l = p + Vector::new(-0.6 * g, -g - r);
+    let rr = p + Vector::new(0.6 * g, -g - r);
+    d.add(layer, Shape::Polyline { points: vec![p + Vector::new(0.0, -r), l, rr], closed: true, width: 0.0 });
+    let (bl, br) = (l + Vector::new(-0.4 * g, 0.0), rr + Vector::new(0.4 * g, 0.0));
+    d.add(layer, Shape::Line { from: bl, to: br });
+    hatch(d, layer, bl, br, 0.5 * g);
+}
+
+/// The box the ground symbol at `p` ([`ground`]) covers under its joint circle, hatch
+/// included: for letters to keep off.
+pub fn ground_extent(p: Point, s: Sizes) -> TextBox {
+    let (g, r) = (s.ground, s.joint);
+    TextBox { min: p + Vector::new(-1.3 * g, -r - 1.3 * g), max: p + Vector::new(g, -r) }
+}
+
+/// Hatch strokes along the segment `a → b`, on its right-hand side (opposite to
+/// `perp(b − a)`): the ground under a base line or a fixed guide; `size` sets the
+/// strokes' spacing (half of it) and length.
+pub fn hatch(d: &mut Drawing, layer: usize, a: Point, b: Point, size: f64) {
+    let len = (b - a).norm();
+    if len <= 0.0 {
+        return;
+    }
+    let u = (b - a) / len;
+    let down = -perp(u);
+    let step = 0.5 * size;
+    let count = (len / step).floor() as usize;
+    for k in 0..=count {
+        let p = a + u * (k as f64 * step);
+        d.add(layer, Shape::Line { from: p, to: p + (down - u) * (0.6 * size) });
+    }
+}
+
+/// A guide fixed to the ground from `a` to `b`: the line, and hatch on its right-hand side
+/// half a slider's height off it (under the slider's block).
+pub fn guide(d: &mut Drawing, layer: usize, a: Point, b: Point, s: Sizes) {
+    d.add(layer, Shape::Line { from: a, to: b });
+    let u = (b - a).normalize();
+    let off = -perp(u) * (0.5 * s.slider_height);
+    hatch(d, layer, a + off, b + off, s.ground);
+}
+
+/// A slider's block at `p` along the unit direction `u` of its guide: a rectangle
+/// [`Sizes::slider_length`] by [`Sizes::slider_height`]. Returns its half length and half
+/// height along `u` and across it.
+pub fn slider(d: &mut Drawing, layer: usize, p: Point, u: Vector, s: Sizes) -> (f64, f64) {
+    let n = perp(u);
+    let (hl, hh) = (0.5 * s.slider_length, 0.5 * s.slider_height);
+    let corners = vec![p - u * hl - n * hh, p + u * hl - n * hh, p + u * hl + n * hh, p - u * hl + n * hh];
+    d.add(layer, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+    (hl, hh)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nice_scales_round_up_to_1_2_2_5_5() {
+        for (raw, nice) in [(0.7, 1.0), (1.3, 2.0), (2.1, 2.5), (3.0, 5.0), (7.0, 10.0), (0.013, 0.02)] {
+            assert!((nice_scale(raw) - nice).abs() < 1e-12 * nice, "{raw} -> {}", nice_scale(raw));
+        }
+        assert_eq!(nice_scale(0.0), 1.0);
+        assert_eq!(nice_scale(f64::NAN), 1.0);
+        assert_eq!(scale_text(0.01), "0.01");
+        assert_eq!(scale_text(2.5), "2.5");
+        assert_eq!(scale_text(2e-5), "2e-5");
+    }
+}
