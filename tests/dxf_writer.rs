@@ -319,7 +319,9 @@ fn sample_drawing_audits_clean_and_reads_back() {
             Shape::AngularDimension { vertex, first, second, text, .. } => {
                 let a1 = (first - vertex).y.atan2((first - vertex).x).to_degrees();
                 let a2 = (second - vertex).y.atan2((second - vertex).x).to_degrees();
-                Some((5, (a2 - a1).rem_euclid(360.0), text.clone()))
+                let sweep = (a2 - a1).rem_euclid(360.0);
+                // 2-line angular under 180° (the form LibreCAD draws), 3-point from 180° on.
+                Some((if sweep < 180.0 { 2 } else { 5 }, sweep, text.clone()))
             }
             Shape::LinearDimension { p1, p2, angle, text, .. } => {
                 let u = Vector::new(angle.cos(), angle.sin());
@@ -356,7 +358,9 @@ fn sample_drawing_audits_clean_and_reads_back() {
 #[test]
 fn r2000_audits_clean_too() {
     let path = out_dir().join("many_layers_r2000.dxf");
-    let bytes = dxf::to_bytes(&many_layers_drawing(), &DxfOptions { version: DxfVersion::R2000 }).unwrap();
+    let bytes =
+        dxf::to_bytes(&many_layers_drawing(), &DxfOptions { version: DxfVersion::R2000, ..DxfOptions::default() })
+            .unwrap();
     std::fs::write(&path, bytes).unwrap();
     common::assert_ezdxf_clean(&[&path]);
     let info = inspect(&path);
@@ -371,7 +375,7 @@ fn empty_drawing_audits_clean() {
     let mut paths = Vec::new();
     for (name, version) in [("empty_r12.dxf", DxfVersion::R12), ("empty_r2000.dxf", DxfVersion::R2000)] {
         let path = out_dir().join(name);
-        std::fs::write(&path, dxf::to_bytes(&d, &DxfOptions { version }).unwrap()).unwrap();
+        std::fs::write(&path, dxf::to_bytes(&d, &DxfOptions { version, ..DxfOptions::default() }).unwrap()).unwrap();
         paths.push(path);
     }
     common::assert_ezdxf_clean(&paths.iter().map(|p| p.as_path()).collect::<Vec<_>>());

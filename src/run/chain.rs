@@ -196,7 +196,7 @@ pub(super) fn run(scene: &ChainScene, file: &str, opts: &RunOptions) -> Result<O
         let mut out = Output::new(dir)?;
         let chain_svg = svg::to_string(&drawing, &SvgOptions::default());
         out.write(format!("{}.svg", scene.name), &chain_svg)?;
-        let dxf = crate::draw::dxf::to_bytes(&drawing, &crate::draw::dxf::DxfOptions::default())
+        let dxf = crate::draw::dxf::to_bytes(&drawing, &opts.dxf_for(scene.units))
             .map_err(|e| Error::Export { what: format!("{}.dxf", scene.name), message: e.to_string() })?;
         out.write(format!("{}.dxf", scene.name), dxf)?;
         for r in &results {

@@ -84,7 +84,13 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
     let want_frames = !opts.no_frames;
     let out_ref = &out;
     let (dxf, (frames, staged, html, rendered)) = rayon::join(
-        || dxf_bytes(&layout.animation(&base, names.iter().map(String::as_str).zip(&moving)), name),
+        || {
+            dxf_bytes(
+                &layout.animation(&base, names.iter().map(String::as_str).zip(&moving)),
+                name,
+                &opts.dxf_for(scene.units),
+            )
+        },
         || {
             let frames = if want_frames {
                 frame_svgs(&layout, &base, &moving, &motion.positions, &svg_opts, opts.progress)
@@ -151,9 +157,9 @@ pub(super) fn run(scene: &FourbarScene, file: &str, opts: &RunOptions) -> Result
 /// A diagram's file stem, its SVG and (with `--png`) its PNG.
 type RenderedDiagram = (String, String, Option<Vec<u8>>);
 
-/// The DXF of the whole motion (R12, the writer's default).
-fn dxf_bytes(d: &Drawing, name: &str) -> Result<Vec<u8>, Error> {
-    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default())
+/// The DXF of the whole motion.
+fn dxf_bytes(d: &Drawing, name: &str, opts: &crate::draw::dxf::DxfOptions) -> Result<Vec<u8>, Error> {
+    crate::draw::dxf::to_bytes(d, opts)
         .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
 }
 

@@ -111,8 +111,8 @@ fn export(what: &str) -> impl FnOnce(String) -> Error + '_ {
     move |message| Error::Export { what: what.to_string(), message }
 }
 
-fn dxf_bytes(d: &Drawing) -> Result<Vec<u8>, Error> {
-    crate::draw::dxf::to_bytes(d, &crate::draw::dxf::DxfOptions::default()).map_err(|e| export("DXF")(e.to_string()))
+fn dxf_bytes(d: &Drawing, opts: &crate::draw::dxf::DxfOptions) -> Result<Vec<u8>, Error> {
+    crate::draw::dxf::to_bytes(d, opts).map_err(|e| export("DXF")(e.to_string()))
 }
 
 /// Parses `BODY.POINT=x,y`.
@@ -239,7 +239,7 @@ pub(super) fn run(scene: &LinkageScene, file: &str, opts: &RunOptions) -> Result
 
     // DXF: every position on its own layer, the paths on TRAJECTORY.
     let all = fig::all_positions(scene, &motion, &spans, &style);
-    out.write(format!("{}.dxf", scene.name), dxf_bytes(&all)?)?;
+    out.write(format!("{}.dxf", scene.name), dxf_bytes(&all, &opts.dxf_for(scene.units))?)?;
     let window = all.bounds();
 
     // The first position with the paths, as the scene's picture.
@@ -357,7 +357,7 @@ fn run_drag(scene: &LinkageScene, file: &str, opts: &RunOptions, mut solver: Sol
     let mut d = fig::new_drawing(&style);
     let layer = d.layer("DRAG", Aci::BLACK, LineType::Continuous);
     fig::mechanism(&mut d, layer, scene, &state.q, &spans, &style);
-    out.write(format!("{}.dxf", scene.name), dxf_bytes(&d)?)?;
+    out.write(format!("{}.dxf", scene.name), dxf_bytes(&d, &opts.dxf_for(scene.units))?)?;
     out.write(format!("{}.svg", scene.name), svg_string(&d, &SvgOptions::default()))?;
     out.write(format!("{}.json", scene.name), serde_json::to_vec_pretty(&summary).unwrap_or_default())?;
     let written = out.commit()?;

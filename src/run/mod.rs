@@ -27,6 +27,20 @@ pub struct RunOptions {
     pub progress: bool,
     /// `--drag BODY.POINT=x,y` requests (general linkages).
     pub drag: Vec<String>,
+    /// DXF version and dimension encoding (`--dxf-version`, `--dxf-dimensions`); the scale
+    /// is set per scene from its units (see [`RunOptions::dxf_for`]).
+    pub dxf: crate::draw::dxf::DxfOptions,
+}
+
+impl RunOptions {
+    /// The DXF options for a scene in `units`: its model units written as millimetres.
+    pub(crate) fn dxf_for(&self, units: crate::scene::Units) -> crate::draw::dxf::DxfOptions {
+        let mm_per_unit = match units {
+            crate::scene::Units::Mm => 1.0,
+            crate::scene::Units::Si => 1000.0,
+        };
+        crate::draw::dxf::DxfOptions { mm_per_unit, ..self.dxf }
+    }
 }
 
 /// What a run produced.

@@ -7,7 +7,7 @@ use serde_json::{Value, json};
 use super::output::Output;
 use super::{Outcome, RunOptions, solve_err};
 use crate::Error;
-use crate::draw::dxf::{self, DxfOptions};
+use crate::draw::dxf;
 use crate::draw::svg::{self, SvgOptions};
 use crate::figure::triad::{TriadFigure, drawing};
 use crate::geom::{Point, deg};
@@ -251,7 +251,7 @@ pub(super) fn run(scene: &TriadScene, file: &str, opts: &RunOptions) -> Result<O
     if let Some(dir) = &opts.out_dir {
         let d = figure(scene, &results);
         let svg_text = svg::to_string(&d, &SvgOptions::default());
-        let dxf_bytes = dxf::to_bytes(&d, &DxfOptions::default())
+        let dxf_bytes = dxf::to_bytes(&d, &opts.dxf_for(scene.units))
             .map_err(|e| Error::Export { what: format!("{}.dxf", scene.name), message: e.to_string() })?;
         let json_text = serde_json::to_string_pretty(&summary)
             .map_err(|e| Error::Export { what: "the JSON summary".into(), message: e.to_string() })?;
