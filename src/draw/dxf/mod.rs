@@ -1586,6 +1586,44 @@ mod tests {
         }
     }
 
+    /// FreeCAD reads no R12 LAYER record without a handle (issue 13): every table record has
+    /// one (DIMSTYLE in group 105), unique, below $HANDSEED.
+    #[test]
+    fn r12_table_records_have_handles() {
+        let mut d = drawing();
+        d.layer("LINKS", Aci::BLUE, LineType::Continuous);
+        d.layer("PATH", Aci::RED, LineType::Dashed);
+        let p = write(&d);
+        let mut seen = std::collections::HashSet::new();
+        for kind in ["LAYER", "LTYPE", "STYLE", "VPORT", "APPID", "DIMSTYLE"] {
+            let code = if kind == "DIMSTYLE" { 105 } else { 5 };
+            for r in records(&p, kind).into_iter().filter(|r| r.len() > 2) {
+                let h = get(&r, code);
+                assert_eq!(h.len(), 1, "{kind} {:?}", get(&r, 2));
+                assert!(seen.insert(u64::from_str_radix(h[0], 16).unwrap()), "{kind}: handle {} used twice", h[0]);
+            }
+        }
+        let layer_records = records(&p, "LAYER");
+        let layers: Vec<&str> = layer_records.iter().filter_map(|r| get(r, 2).first().copied()).collect();
+        assert_eq!(layers, ["0", "LINKS", "PATH"]);
+        let i = p.iter().position(|(c, v)| *c == 9 && v == "$HANDSEED").unwrap();
+        let seed = u64::from_str_radix(&p[i + 1].1, 16).unwrap();
+        assert!(seen.iter().all(|h| *h < seed));
+    }
+
+    #[test]
+    fn the_scale_must_be_positive_and_finite() {
+        let d = drawing();
+        for k in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let opts = DxfOptions { mm_per_unit: k, ..DxfOptions::default() };
+            assert!(matches!(to_bytes(&d, &opts), Err(DxfError::BadScale { .. })), "{k}");
+        }
+        let mut d = drawing();
+        d.add(0, Shape::Circle { center: Point::new(1e306, 0.0), radius: 1.0 });
+        let opts = DxfOptions { mm_per_unit: 1000.0, ..DxfOptions::default() };
+        assert!(matches!(to_bytes(&d, &opts), Err(DxfError::NonFinite { .. })), "overflow to infinity");
+    }
+
     #[test]
     fn bad_input_is_an_error_not_a_panic() {
         let mut d = drawing();
