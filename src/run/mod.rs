@@ -28,7 +28,7 @@ pub struct RunOptions {
     /// `--drag BODY.POINT=x,y` requests (general linkages).
     pub drag: Vec<String>,
     /// DXF version and dimension encoding (`--dxf-version`, `--dxf-dimensions`); the scale
-    /// is set per scene from its units (see [`RunOptions::dxf_for`]).
+    /// is set per scene from its units (`RunOptions::dxf_for`).
     pub dxf: crate::draw::dxf::DxfOptions,
 }
 

@@ -1,5 +1,10 @@
-//! DXF writer: AutoCAD R12 (AC1009) by default, the version every CAD program reads. See
-//! `../shared/dxf-notes.md` for what was measured.
+//! DXF writer: AutoCAD R12 (AC1009) by default, the version every CAD program reads; R2000
+//! and R2007 on request. See `../shared/dxf-notes.md` and `docs/dxf.md` (what each reader
+//! shows) for what was measured.
+//!
+//! Every file is in millimetres: [`to_bytes`] first scales the drawing by
+//! [`DxfOptions::mm_per_unit`] (a scene in metres: 1000). Dimensions are DIMENSION entities
+//! with their blocks, or with [`Dimensions::Exploded`] the blocks' entities in model space.
 //!
 //! How it is written: HEADER and TABLES (small) through the `dxf` crate, then the fix-up
 //! pass below; for R12 the BLOCKS and ENTITIES sections by hand (`r12.rs`), straight into the
@@ -7,35 +12,40 @@
 //! route (a struct per entity, a `String` per value, a re-parse of the whole text) took
 //! about 185 ms for the four-bar run's 8 MB animation drawing against about 15 ms by hand.
 //! The crate route stays as the reference, [`to_bytes_via_crate`], and the tests compare
-//! the two byte for byte; R2000 is written entirely by the crate.
+//! the two byte for byte; R2000 and R2007 are written entirely by the crate.
 //!
 //! What is written (R12):
 //! - HEADER: fixed, no timestamps (`$TDCREATE`/`$TDUPDATE` = 2415021.0, i.e. 1 Jan 1900, the
 //!   DXF epoch), `$EXTMIN/$EXTMAX` from [`Drawing::bounds`], `$LIMMIN/$LIMMAX` and
-//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin and `$PINSBASE` = −`$PLIMMIN`
+//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin grown to at least A4 ([`MIN_SHEET_MM`])
+//!   and `$PINSBASE` = −`$PLIMMIN`
 //!   (LibreCAD prints the sheet `$PLIMMIN`–`$PLIMMAX` with the drawing's origin at `$PINSBASE`),
 //!   `$DIMTXT`, `$DIMASZ` (and `$DIMEXO`, `$DIMEXE`, `$DIMGAP`, `$DIMTAD`) from
-//!   [`Drawing::dim_style`] as [`parts::explode_dimension`] draws them, `$LTSCALE` = 1.
-//!   R12 has no `$INSUNITS`: the drawing is in the scene's units.
+//!   [`Drawing::dim_style`] as [`parts::explode_dimension`] draws them, `$LTSCALE` = 1,
+//!   `$TEXTSTYLE` and `$DIMTXSTY` = [`TEXT_STYLE`]. R12 has no `$INSUNITS`/`$MEASUREMENT`
+//!   (R2000+ states mm and metric).
 //! - TABLES: LTYPE `CONTINUOUS` and `DASHED` (pattern from [`parts::dash_pattern`], scaled to
-//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD`;
-//!   DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`; VPORT `*ACTIVE`
-//!   centred on the drawing.
+//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD` and
+//!   [`TEXT_STYLE`]; DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`;
+//!   VPORT `*ACTIVE` centred on the drawing. Every record has its handle (group 5; 105 in
+//!   DIMSTYLE, where 5 is `$DIMBLK`): FreeCAD reads no LAYER without one.
 //! - BLOCKS: one anonymous block `*D1`, `*D2`, … per dimension holding its exploded geometry
 //!   ([`parts::explode_dimension`]: lines, arc, SOLID arrowheads, TEXT) on the dimension's
 //!   layer in its colour.
 //! - ENTITIES in drawing order: CIRCLE, ARC (degrees, counter-clockwise), LINE, POLYLINE +
 //!   VERTEX (start and end widths, closed flag) + SEQEND, SOLID (for `Filled`; quads in SOLID's
 //!   1-2-4-3 vertex order), arrows as LINE + SOLID ([`parts::arrow`], as in the SVG), TEXT
-//!   (alignment groups 72/73 with the alignment point 11/21 when not left/baseline, rotation
-//!   in degrees), DIMENSION (3-point angular, type 5; rotated linear, type 0; both with flags
+//!   (style [`TEXT_STYLE`]; alignment groups 72/73 with the alignment point 11/21 when not
+//!   left/baseline and 10/20 the start of the text, rotation in degrees), DIMENSION (2-line
+//!   angular, type 2, under 180°, else 3-point, type 5; rotated linear, type 0; all with flags
 //!   32 "block used by this dimension only" and 128 "text at a user-defined location", the
 //!   drawing's text as override and the definition points readers measure from).
-//!   Entities carry their own ACI colour and line type when they have one, else BYLAYER.
+//!   Entities carry their own ACI colour and line type when they have one (DASHED also
+//!   when their layer is dashed), else BYLAYER.
 //!
-//! Text: R12 files are code-page based; every non-ASCII character is written as a `\U+XXXX`
-//! escape (the crate does this for R12–R2004), which AutoCAD, ezdxf and LibreCAD decode
-//! (`φ1 = 75.77°` is written `\U+03C61 = 75.77\U+00B0`).
+//! Text: R12 and R2000 files are code-page based; every non-ASCII character is written as a
+//! `\U+XXXX` escape (the crate does this for R12–R2004), which AutoCAD, ezdxf, LibreCAD and
+//! Inkscape decode (`φ1 = 75.77°` is written `\U+03C61 = 75.77\U+00B0`); R2007 is UTF-8.
 //!
 //! Determinism: handles are assigned in a fixed order (tables, then blocks, then entities),
 //! floats are written with at most 12 decimals (trailing zeros trimmed, `-0`
@@ -46,18 +56,19 @@
 //! A small pass over the crate's text output (`fix_up`) fixes what its API cannot express:
 //! VERTEX and SEQEND on the POLYLINE's layer (the crate writes them on layer 0), the
 //! alignment point 11/21 of justified text at (0, 0) (the crate omits a zero point, and
-//! ezdxf's renderer then fails), `$PINSBASE` in R12, and for R12 the removal of subclass
-//! markers (group 100, R13+ only) and of table-record handles (R12 table entries have none;
-//! in DIMSTYLE group 5 would be read as the arrow block `$DIMBLK`).
+//! ezdxf's renderer then fails), `$PINSBASE` and `$DIMTXSTY` in R12, for R12 the removal of
+//! subclass markers (group 100, R13+ only), and DIMSTYLE handles in group 105.
 //!
-//! [`DxfVersion::R2000`] (AC1015) is there for programs that insist on a newer file. It is
-//! less portable and less tested than R12 (checked with ezdxf and LibreCAD only). Polylines
-//! stay POLYLINE/VERTEX. The crate's R2000 faults are repaired: lineweight BYLAYER (−1)
-//! instead of 0 mm on every entity, opaque transparency, and in the text pass handles for
-//! the TABLE heads (ezdxf fix code 110, AutoCAD LT's "Bad handle 0"), own handles for
-//! ENDBLK (the crate repeats the BLOCK's), DIMSTYLE handles in group 105, `$HANDSEED` after
-//! them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot). GUIDs are nil. Group 42
-//! (actual measurement) is not written: readers recompute it from the definition points.
+//! [`DxfVersion::R2000`] (AC1015) and [`DxfVersion::R2007`] (AC1021) are there for programs
+//! that want a newer file (R2007: UTF-8 text, which GDAL, dxf-parser, dxfgrabber and FreeCAD
+//! need to show the letters). Polylines stay POLYLINE/VERTEX. The crate's R2000+ faults are
+//! repaired: lineweight BYLAYER (−1) instead of 0 mm on every entity, opaque transparency
+//! (the vertices too), and in the text pass handles for the TABLE heads (ezdxf fix code 110,
+//! AutoCAD LT's "Bad handle 0"), own handles for ENDBLK (the crate repeats the BLOCK's),
+//! `$HANDSEED` after them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot), the
+//! subclass marker of the 2-line angular dimension (the crate writes it as its 3-point
+//! struct). GUIDs are nil. Group 42 (actual measurement) is not written: readers recompute
+//! it from the definition points.
 
 use std::borrow::Cow;
 use std::io::Write;

@@ -11,6 +11,8 @@
 //! a dimension's BLOCK takes one, its (R12-unwritten) BLOCK_RECORD the next, its entities the
 //! following ones, the DIMENSION the next; a polyline's vertices come before the POLYLINE,
 //! its SEQEND after. `$HANDSEED` is patched to the next free handle.
+//! With [`super::Dimensions::Exploded`] a dimension's parts are written as entities in
+//! drawing order instead (no BLOCK, no DIMENSION), as the crate path adds them.
 
 use std::io::Write;
 
