@@ -586,15 +586,18 @@ fn shaper_positions() -> Drawing {
 /// chain and three-position four-bar files are also pinned by their golden tests).
 #[test]
 fn fast_r12_path_equals_the_crate_path_on_real_drawings() {
-    let opts = DxfOptions::default();
-    for (name, d) in [
-        ("sample", sample_drawing()),
-        ("fourbar animation", fourbar_animation()),
-        ("shaper positions", shaper_positions()),
+    // The four-bar is in metres: written at 1000 mm per unit, as `run` writes it.
+    for (name, d, mm_per_unit) in [
+        ("sample", sample_drawing(), 1.0),
+        ("fourbar animation", fourbar_animation(), 1000.0),
+        ("shaper positions", shaper_positions(), 1.0),
     ] {
-        let fast = dxf::to_bytes(&d, &opts).unwrap();
-        let reference = dxf::to_bytes_via_crate(&d, &opts).unwrap();
-        assert!(fast.len() > 1000, "{name}");
-        assert!(fast == reference, "{name}: the fast R12 bytes differ from the crate path's");
+        for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
+            let opts = DxfOptions { dimensions, mm_per_unit, ..DxfOptions::default() };
+            let fast = dxf::to_bytes(&d, &opts).unwrap();
+            let reference = dxf::to_bytes_via_crate(&d, &opts).unwrap();
+            assert!(fast.len() > 1000, "{name}");
+            assert!(fast == reference, "{name}, {opts:?}: the fast R12 bytes differ from the crate path's");
+        }
     }
 }

@@ -1456,15 +1456,20 @@ mod tests {
     }
 
     /// The fast R12 path and the crate path give the same bytes.
+    /// (With dimensions as entities and exploded, at 1 mm per unit and scaled by 25.4.)
     fn same_as_crate(d: &Drawing) {
-        let opts = DxfOptions::default();
-        let fast = to_bytes(d, &opts).unwrap();
-        let reference = to_bytes_via_crate(d, &opts).unwrap();
-        if fast != reference {
-            let (f, r) = (String::from_utf8_lossy(&fast), String::from_utf8_lossy(&reference));
-            let at = f.lines().zip(r.lines()).position(|(a, b)| a != b).unwrap_or(0);
-            let show = |s: &str| s.lines().skip(at.saturating_sub(12)).take(16).collect::<Vec<_>>().join("|");
-            panic!("differ at line {at}:\nfast: {}\ncrate: {}", show(&f), show(&r));
+        for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
+            for mm_per_unit in [1.0, 25.4] {
+                let opts = DxfOptions { dimensions, mm_per_unit, ..DxfOptions::default() };
+                let fast = to_bytes(d, &opts).unwrap();
+                let reference = to_bytes_via_crate(d, &opts).unwrap();
+                if fast != reference {
+                    let (f, r) = (String::from_utf8_lossy(&fast), String::from_utf8_lossy(&reference));
+                    let at = f.lines().zip(r.lines()).position(|(a, b)| a != b).unwrap_or(0);
+                    let show = |s: &str| s.lines().skip(at.saturating_sub(12)).take(16).collect::<Vec<_>>().join("|");
+                    panic!("{opts:?}: differ at line {at}:\nfast: {}\ncrate: {}", show(&f), show(&r));
+                }
+            }
         }
     }
 
