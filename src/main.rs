@@ -5,6 +5,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
+use mechdraw::draw::dxf::{Dimensions, DxfOptions, DxfVersion};
 use mechdraw::run::RunOptions;
 use mechdraw::scene::{self, Override};
 
@@ -43,6 +44,14 @@ enum Command {
         /// write that configuration, e.g. `--drag crank.A=10,20`.
         #[arg(long, value_name = "BODY.POINT=X,Y")]
         drag: Vec<String>,
+        /// DXF version: R12 (the default: every CAD program reads it), R2000 or R2007
+        /// (text in UTF-8). See docs/dxf.md for what each reader shows.
+        #[arg(long, value_name = "VERSION", default_value = "R12")]
+        dxf_version: DxfVersion,
+        /// DXF dimensions: `entities` (DIMENSION entities with their blocks, the default) or
+        /// `exploded` (plain lines, arcs, arrowheads and text that every reader shows).
+        #[arg(long, value_name = "HOW", default_value = "entities")]
+        dxf_dimensions: Dimensions,
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
@@ -95,7 +104,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Run { scene, out, set, json, png, no_frames, drag, quiet } => {
+        Command::Run { scene, out, set, json, png, no_frames, drag, dxf_version, dxf_dimensions, quiet } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
             let opts = RunOptions {
                 out_dir: Some(out),
@@ -103,6 +112,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 no_frames,
                 progress: !quiet && std::io::stderr().is_terminal(),
                 drag,
+                dxf: DxfOptions { version: dxf_version, dimensions: dxf_dimensions, ..DxfOptions::default() },
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

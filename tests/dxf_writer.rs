@@ -8,7 +8,7 @@ use std::f64::consts::PI;
 use std::path::PathBuf;
 use std::process::Command;
 
-use mechdraw::draw::dxf::{self, DxfOptions, DxfVersion};
+use mechdraw::draw::dxf::{self, Dimensions, DxfOptions, DxfVersion};
 use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign, svg};
 use mechdraw::geom::{Point, Vector};
 use serde_json::Value;
@@ -306,6 +306,23 @@ fn sample_drawing_audits_clean_and_reads_back() {
             "{value}: {pl:?}"
         );
         assert!(close(t["rotation"].as_f64().unwrap(), *rot, 1e-9), "{value}");
+        // The insertion point (10/20) is where the text starts (left end of the baseline,
+        // from the estimated width), for readers that ignore the alignment.
+        let height = t["height"].as_f64().unwrap();
+        let width = mechdraw::draw::parts::text_width(value, height);
+        let along = [0.0, 0.5, 1.0][*h as usize] * width;
+        let up = match v {
+            2 => 0.5 * height,
+            3 => height,
+            _ => 0.0,
+        };
+        let r = rot.to_radians();
+        let start = (at.x - along * r.cos() + up * r.sin(), at.y - along * r.sin() - up * r.cos());
+        let ins = t["insert"].as_array().unwrap();
+        assert!(
+            close(ins[0].as_f64().unwrap(), start.0, 1e-9) && close(ins[1].as_f64().unwrap(), start.1, 1e-9),
+            "{value}: insertion point {ins:?}, expected {start:?}"
+        );
     }
 
     // Dimensions: measurements equal the true angle or distance computed here from the
@@ -319,7 +336,9 @@ fn sample_drawing_audits_clean_and_reads_back() {
             Shape::AngularDimension { vertex, first, second, text, .. } => {
                 let a1 = (first - vertex).y.atan2((first - vertex).x).to_degrees();
                 let a2 = (second - vertex).y.atan2((second - vertex).x).to_degrees();
-                Some((5, (a2 - a1).rem_euclid(360.0), text.clone()))
+                let sweep = (a2 - a1).rem_euclid(360.0);
+                // 2-line angular under 180° (the form LibreCAD draws), 3-point from 180° on.
+                Some((if sweep < 180.0 { 2 } else { 5 }, sweep, text.clone()))
             }
             Shape::LinearDimension { p1, p2, angle, text, .. } => {
                 let u = Vector::new(angle.cos(), angle.sin());
@@ -356,7 +375,9 @@ fn sample_drawing_audits_clean_and_reads_back() {
 #[test]
 fn r2000_audits_clean_too() {
     let path = out_dir().join("many_layers_r2000.dxf");
-    let bytes = dxf::to_bytes(&many_layers_drawing(), &DxfOptions { version: DxfVersion::R2000 }).unwrap();
+    let bytes =
+        dxf::to_bytes(&many_layers_drawing(), &DxfOptions { version: DxfVersion::R2000, ..DxfOptions::default() })
+            .unwrap();
     std::fs::write(&path, bytes).unwrap();
     common::assert_ezdxf_clean(&[&path]);
     let info = inspect(&path);
@@ -365,13 +386,142 @@ fn r2000_audits_clean_too() {
     assert_eq!(info["dimensions"][1]["measurement"].as_f64().map(|m| m > 180.0), Some(true));
 }
 
+/// Every version with every dimension encoding audits clean (0 errors, 0 fixes) and reads
+/// back: the dimensions as DIMENSIONs or as their parts, the text style, the units.
+#[test]
+fn every_version_and_dimension_encoding_audits_clean() {
+    let d = many_layers_drawing();
+    let mut paths = Vec::new();
+    for version in DxfVersion::ALL {
+        for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
+            let opts = DxfOptions { version, dimensions, ..DxfOptions::default() };
+            let path = out_dir().join(format!("many_layers_{}_{}.dxf", version.name(), dimensions.name()));
+            std::fs::write(&path, dxf::to_bytes(&d, &opts).unwrap()).unwrap();
+            paths.push((path, version, dimensions));
+        }
+    }
+    common::assert_ezdxf_clean(&paths.iter().map(|(p, ..)| p.as_path()).collect::<Vec<_>>());
+    let dims = d
+        .entities
+        .iter()
+        .filter(|e| matches!(e.shape, Shape::AngularDimension { .. } | Shape::LinearDimension { .. }))
+        .count() as u64;
+    for (path, version, dimensions) in &paths {
+        let info = inspect(path);
+        let what = format!("{} {}", version.name(), dimensions.name());
+        let expected = match version {
+            DxfVersion::R12 => "AC1009",
+            DxfVersion::R2000 => "AC1015",
+            DxfVersion::R2007 => "AC1021",
+        };
+        assert_eq!(info["version"], expected, "{what}");
+        let n = |t: &str| info["counts"][t].as_u64().unwrap_or(0);
+        // Exploded: each dimension's block content (lines, an arc, 2 SOLIDs, a TEXT) in
+        // model space instead of the DIMENSION.
+        match dimensions {
+            Dimensions::Entities => assert_eq!((n("DIMENSION"), n("TEXT")), (dims, 13), "{what}"),
+            Dimensions::Exploded => {
+                assert_eq!((n("DIMENSION"), n("TEXT"), n("SOLID")), (0, 13 + dims, 9 + 2 * dims), "{what}")
+            }
+        }
+        // Every text in the AZOMIX style, the one LibreCAD draws Greek letters in.
+        assert_eq!(info["header"]["$TEXTSTYLE"], dxf::TEXT_STYLE, "{what}");
+        assert_eq!(info["styles"][dxf::TEXT_STYLE], dxf::TEXT_FONT_FILE, "{what}");
+        for t in info["texts"].as_array().unwrap() {
+            assert_eq!(t["style"], dxf::TEXT_STYLE, "{what}");
+        }
+        // Greek letters read back whatever the encoding (escapes, or UTF-8 in R2007).
+        assert!(info["texts"].as_array().unwrap().iter().any(|t| t["text"] == "ε3 ≈ π/2"), "{what}");
+        // Millimetres stated where the version has the variables (R2000+).
+        if *version != DxfVersion::R12 {
+            assert_eq!(info["header"]["$INSUNITS"].as_i64(), Some(4), "{what}: $INSUNITS = mm");
+            assert_eq!(info["header"]["$MEASUREMENT"].as_i64(), Some(1), "{what}: metric");
+            assert_eq!(info["header"]["$DIMTXSTY"], dxf::TEXT_STYLE, "{what}");
+        }
+    }
+}
+
+/// A drawing in metres written with 1000 mm per unit: every coordinate, length and text
+/// height × 1000 (read back by ezdxf), dimension measurements in mm, the limits a real sheet.
+#[test]
+fn metres_are_written_as_millimetres() {
+    let mut d = Drawing::new(DimStyle { text_height: 0.004, arrow_size: 0.003 });
+    let l = d.layer("LINKS", Aci::BLUE, LineType::Continuous);
+    d.add(l, Shape::Polyline { points: vec![p(0.0, 0.0), p(0.04, 0.03)], closed: false, width: 0.001 });
+    d.add(l, Shape::Circle { center: p(0.08, 0.0), radius: 0.002 });
+    d.text(l, p(0.01, 0.05), 0.005, "B");
+    d.add(
+        l,
+        Shape::LinearDimension {
+            p1: p(0.0, 0.0),
+            p2: p(0.08, 0.0),
+            line_at: p(0.0, -0.02),
+            angle: 0.0,
+            text: "80".into(),
+        },
+    );
+    let opts = DxfOptions { mm_per_unit: 1000.0, ..DxfOptions::default() };
+    let path = out_dir().join("metres.dxf");
+    std::fs::write(&path, dxf::to_bytes(&d, &opts).unwrap()).unwrap();
+    common::assert_ezdxf_clean(&[&path]);
+    let info = inspect(&path);
+    let poly = &info["polylines"][0];
+    assert_eq!(poly["points"][1][0].as_f64(), Some(40.0));
+    assert_eq!(poly["points"][1][1].as_f64(), Some(30.0));
+    assert!(close(poly["widths"][0][0].as_f64().unwrap(), 1.0, 1e-12));
+    assert!(close(info["texts"][0]["height"].as_f64().unwrap(), 5.0, 1e-12));
+    assert!(close(info["dimensions"][0]["measurement"].as_f64().unwrap(), 80.0, 1e-9));
+    assert!(close(info["header"]["$DIMTXT"].as_f64().unwrap(), 4.0, 1e-12));
+    assert!(close(info["extmax"][0].as_f64().unwrap(), 82.0, 1e-9), "the circle's right edge");
+    // The sheet: at least A4 landscape about the drawing.
+    let (lmin, lmax) = (&info["limmin"], &info["limmax"]);
+    let w = lmax[0].as_f64().unwrap() - lmin[0].as_f64().unwrap();
+    let h = lmax[1].as_f64().unwrap() - lmin[1].as_f64().unwrap();
+    assert!(close(w, 297.0, 1e-9) && close(h, 210.0, 1e-9), "sheet {w} × {h}");
+    // The same drawing scaled by hand and written at 1 mm per unit gives the same file.
+    let by_hand = Drawing {
+        entities: d
+            .entities
+            .iter()
+            .map(|e| {
+                let mut e = e.clone();
+                let k = |q: &mut Point| *q = Point::from(q.coords * 1000.0);
+                match &mut e.shape {
+                    Shape::Polyline { points, width, .. } => {
+                        points.iter_mut().for_each(k);
+                        *width *= 1000.0;
+                    }
+                    Shape::Circle { center, radius } => {
+                        k(center);
+                        *radius *= 1000.0;
+                    }
+                    Shape::Text { at, height, .. } => {
+                        k(at);
+                        *height *= 1000.0;
+                    }
+                    Shape::LinearDimension { p1, p2, line_at, .. } => {
+                        k(p1);
+                        k(p2);
+                        k(line_at);
+                    }
+                    other => panic!("not in this drawing: {other:?}"),
+                }
+                e
+            })
+            .collect(),
+        dim_style: DimStyle { text_height: 4.0, arrow_size: 3.0 },
+        ..d.clone()
+    };
+    assert_eq!(dxf::to_bytes(&by_hand, &DxfOptions::default()).unwrap(), dxf::to_bytes(&d, &opts).unwrap());
+}
+
 #[test]
 fn empty_drawing_audits_clean() {
     let d = Drawing::new(DimStyle { text_height: 2.5, arrow_size: 2.5 });
     let mut paths = Vec::new();
     for (name, version) in [("empty_r12.dxf", DxfVersion::R12), ("empty_r2000.dxf", DxfVersion::R2000)] {
         let path = out_dir().join(name);
-        std::fs::write(&path, dxf::to_bytes(&d, &DxfOptions { version }).unwrap()).unwrap();
+        std::fs::write(&path, dxf::to_bytes(&d, &DxfOptions { version, ..DxfOptions::default() }).unwrap()).unwrap();
         paths.push(path);
     }
     common::assert_ezdxf_clean(&paths.iter().map(|p| p.as_path()).collect::<Vec<_>>());
@@ -404,15 +554,18 @@ fn template_drawing(template: &str) -> Drawing {
 /// chain and three-position four-bar files are also pinned by their golden tests).
 #[test]
 fn fast_r12_path_equals_the_crate_path_on_real_drawings() {
-    let opts = DxfOptions::default();
-    for (name, d) in [
-        ("sample", sample_drawing()),
-        ("fourbar animation", template_drawing("fourbar-chebyshev")),
-        ("shaper positions", template_drawing("shaper")),
+    // The four-bar is in metres: written at 1000 mm per unit, as `run` writes it.
+    for (name, d, mm_per_unit) in [
+        ("sample", sample_drawing(), 1.0),
+        ("fourbar animation", template_drawing("fourbar-chebyshev"), 1000.0),
+        ("shaper positions", template_drawing("shaper"), 1.0),
     ] {
-        let fast = dxf::to_bytes(&d, &opts).unwrap();
-        let reference = dxf::to_bytes_via_crate(&d, &opts).unwrap();
-        assert!(fast.len() > 1000, "{name}");
-        assert!(fast == reference, "{name}: the fast R12 bytes differ from the crate path's");
+        for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
+            let opts = DxfOptions { dimensions, mm_per_unit, ..DxfOptions::default() };
+            let fast = dxf::to_bytes(&d, &opts).unwrap();
+            let reference = dxf::to_bytes_via_crate(&d, &opts).unwrap();
+            assert!(fast.len() > 1000, "{name}");
+            assert!(fast == reference, "{name}, {opts:?}: the fast R12 bytes differ from the crate path's");
+        }
     }
 }

@@ -18,7 +18,9 @@ def xy(v):
 
 out = {
     "version": doc.dxfversion,
-    "header": {k: doc.header.get(k) for k in ("$DIMTXT", "$DIMASZ", "$LTSCALE")},
+    "header": {k: doc.header.get(k) for k in ("$DIMTXT", "$DIMASZ", "$LTSCALE", "$INSUNITS", "$MEASUREMENT",
+                                              "$TEXTSTYLE", "$DIMTXSTY")},
+    "styles": {s.dxf.name: s.dxf.font for s in doc.styles},
     "extmin": xy(doc.header["$EXTMIN"]),
     "extmax": xy(doc.header["$EXTMAX"]),
     "limmin": xy(doc.header["$LIMMIN"]),
@@ -61,6 +63,7 @@ for e in msp:
             "placement": xy(e.get_placement()[1]),
             "rotation": e.dxf.get("rotation", 0.0),
             "height": e.dxf.height,
+            "style": e.dxf.get("style", "Standard"),
         })
     elif e.dxftype() == "DIMENSION":
         name = e.dxf.geometry

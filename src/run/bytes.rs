@@ -39,7 +39,7 @@ pub struct WriteOptions {
     pub png: bool,
     /// Skip a motion's per-position frames and its HTML viewer.
     pub no_frames: bool,
-    /// The DXF writer's options.
+    /// The DXF writer's options (its scale is the products' [`Products::mm_per_unit`]).
     pub dxf: DxfOptions,
 }
 
@@ -90,6 +90,7 @@ pub fn write(
     sink: &dyn Sink,
 ) -> Result<Vec<String>, Error> {
     let name = &p.name;
+    let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
     let mut head: Vec<(String, Vec<u8>)> = Vec::new();
     let mut tail: Vec<(String, Vec<u8>)> = Vec::new();
     let mut frame_names = Vec::new();

@@ -203,6 +203,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
     ];
     Ok(Products {
         name: scene.name.clone(),
+        mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Still(drawing),
         positions: None,
         diagrams,

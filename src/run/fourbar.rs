@@ -66,6 +66,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
     let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
     Ok(Products {
         name: name.clone(),
+        mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Motion(Animation::new(title, base, window, names, labels, pose)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
         diagrams,

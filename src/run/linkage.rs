@@ -264,6 +264,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     let pose = move |k: usize| fig::frame_moving(&figure, &qs[k], &spans, &style);
     Ok(Products {
         name: scene.name.clone(),
+        mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Motion(Animation::new(scene.name.clone(), base, window, names, labels, pose)),
         positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
         diagrams,
@@ -341,6 +342,7 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
     fig::mechanism(&mut d, layer, &figure, &state.q, &spans, &style);
     Ok(Products {
         name: scene.name.clone(),
+        mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Still(d),
         positions: None,
         diagrams: Vec::new(),

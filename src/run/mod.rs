@@ -31,6 +31,18 @@ pub struct RunOptions {
     pub progress: bool,
     /// `--drag BODY.POINT=x,y` requests (general linkages).
     pub drag: Vec<String>,
+    /// DXF version and dimension encoding (`--dxf-version`, `--dxf-dimensions`); the scale
+    /// to millimetres comes from the scene's units ([`Products::mm_per_unit`]).
+    pub dxf: crate::draw::dxf::DxfOptions,
+}
+
+/// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
+/// DXF is written in millimetres).
+pub(crate) fn mm_per_unit(units: crate::scene::Units) -> f64 {
+    match units {
+        crate::scene::Units::Mm => 1.0,
+        crate::scene::Units::Si => 1000.0,
+    }
 }
 
 /// What a run produced.
@@ -83,7 +95,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
             b.inc(1);
         }
     };
-    let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: Default::default() };
+    let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: opts.dxf };
     let order = bytes::write(&p, &wopts, &tick, &out)?;
     if let Some(b) = &bar {
         b.finish_and_clear();

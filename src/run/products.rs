@@ -66,6 +66,9 @@ pub struct Products {
     pub name: String,
     /// The picture.
     pub picture: Picture,
+    /// Millimetres per model unit of the drawings (1000 for a scene in metres): the DXF is
+    /// written in millimetres.
+    pub mm_per_unit: f64,
     /// Where the number of positions of a [`Picture::Motion`] comes from.
     pub positions: Option<PositionsSource>,
     /// Diagrams, in order.

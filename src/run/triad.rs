@@ -336,6 +336,7 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
     let results = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
     Ok(Products {
         name: scene.name.clone(),
+        mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Still(figure(scene, &results)),
         positions: None,
         diagrams: Vec::new(),

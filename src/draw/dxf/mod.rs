@@ -1,5 +1,10 @@
-//! DXF writer: AutoCAD R12 (AC1009) by default, the version every CAD program reads. See
-//! `../shared/dxf-notes.md` for what was measured.
+//! DXF writer: AutoCAD R12 (AC1009) by default, the version every CAD program reads; R2000
+//! and R2007 on request. See `../shared/dxf-notes.md` and `docs/dxf.md` (what each reader
+//! shows) for what was measured.
+//!
+//! Every file is in millimetres: [`to_bytes`] first scales the drawing by
+//! [`DxfOptions::mm_per_unit`] (a scene in metres: 1000). Dimensions are DIMENSION entities
+//! with their blocks, or with [`Dimensions::Exploded`] the blocks' entities in model space.
 //!
 //! How it is written: HEADER and TABLES (small) through the `dxf` crate, then the fix-up
 //! pass below; for R12 the BLOCKS and ENTITIES sections by hand (`r12.rs`), straight into the
@@ -7,35 +12,40 @@
 //! route (a struct per entity, a `String` per value, a re-parse of the whole text) took
 //! about 185 ms for the four-bar run's 8 MB animation drawing against about 15 ms by hand.
 //! The crate route stays as the reference, [`to_bytes_via_crate`], and the tests compare
-//! the two byte for byte; R2000 is written entirely by the crate.
+//! the two byte for byte; R2000 and R2007 are written entirely by the crate.
 //!
 //! What is written (R12):
 //! - HEADER: fixed, no timestamps (`$TDCREATE`/`$TDUPDATE` = 2415021.0, i.e. 1 Jan 1900, the
 //!   DXF epoch), `$EXTMIN/$EXTMAX` from [`Drawing::bounds`], `$LIMMIN/$LIMMAX` and
-//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin and `$PINSBASE` = −`$PLIMMIN`
+//!   `$PLIMMIN/$PLIMMAX` from the bounds with a 5 % margin grown to at least A4 ([`MIN_SHEET_MM`])
+//!   and `$PINSBASE` = −`$PLIMMIN`
 //!   (LibreCAD prints the sheet `$PLIMMIN`–`$PLIMMAX` with the drawing's origin at `$PINSBASE`),
 //!   `$DIMTXT`, `$DIMASZ` (and `$DIMEXO`, `$DIMEXE`, `$DIMGAP`, `$DIMTAD`) from
-//!   [`Drawing::dim_style`] as [`parts::explode_dimension`] draws them, `$LTSCALE` = 1.
-//!   R12 has no `$INSUNITS`: the drawing is in the scene's units.
+//!   [`Drawing::dim_style`] as [`parts::explode_dimension`] draws them, `$LTSCALE` = 1,
+//!   `$TEXTSTYLE` and `$DIMTXSTY` = [`TEXT_STYLE`]. R12 has no `$INSUNITS`/`$MEASUREMENT`
+//!   (R2000+ states mm and metric).
 //! - TABLES: LTYPE `CONTINUOUS` and `DASHED` (pattern from [`parts::dash_pattern`], scaled to
-//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD`;
-//!   DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`; VPORT `*ACTIVE`
-//!   centred on the drawing.
+//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD` and
+//!   [`TEXT_STYLE`]; DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`;
+//!   VPORT `*ACTIVE` centred on the drawing. Every record has its handle (group 5; 105 in
+//!   DIMSTYLE, where 5 is `$DIMBLK`): FreeCAD reads no LAYER without one.
 //! - BLOCKS: one anonymous block `*D1`, `*D2`, … per dimension holding its exploded geometry
 //!   ([`parts::explode_dimension`]: lines, arc, SOLID arrowheads, TEXT) on the dimension's
 //!   layer in its colour.
 //! - ENTITIES in drawing order: CIRCLE, ARC (degrees, counter-clockwise), LINE, POLYLINE +
 //!   VERTEX (start and end widths, closed flag) + SEQEND, SOLID (for `Filled`; quads in SOLID's
 //!   1-2-4-3 vertex order), arrows as LINE + SOLID ([`parts::arrow`], as in the SVG), TEXT
-//!   (alignment groups 72/73 with the alignment point 11/21 when not left/baseline, rotation
-//!   in degrees), DIMENSION (3-point angular, type 5; rotated linear, type 0; both with flags
+//!   (style [`TEXT_STYLE`]; alignment groups 72/73 with the alignment point 11/21 when not
+//!   left/baseline and 10/20 the start of the text, rotation in degrees), DIMENSION (2-line
+//!   angular, type 2, under 180°, else 3-point, type 5; rotated linear, type 0; all with flags
 //!   32 "block used by this dimension only" and 128 "text at a user-defined location", the
 //!   drawing's text as override and the definition points readers measure from).
-//!   Entities carry their own ACI colour and line type when they have one, else BYLAYER.
+//!   Entities carry their own ACI colour and line type when they have one (DASHED also
+//!   when their layer is dashed), else BYLAYER.
 //!
-//! Text: R12 files are code-page based; every non-ASCII character is written as a `\U+XXXX`
-//! escape (the crate does this for R12–R2004), which AutoCAD, ezdxf and LibreCAD decode
-//! (`φ1 = 75.77°` is written `\U+03C61 = 75.77\U+00B0`).
+//! Text: R12 and R2000 files are code-page based; every non-ASCII character is written as a
+//! `\U+XXXX` escape (the crate does this for R12–R2004), which AutoCAD, ezdxf, LibreCAD and
+//! Inkscape decode (`φ1 = 75.77°` is written `\U+03C61 = 75.77\U+00B0`); R2007 is UTF-8.
 //!
 //! Determinism: handles are assigned in a fixed order (tables, then blocks, then entities),
 //! floats are written with at most 12 decimals (trailing zeros trimmed, `-0`
@@ -46,18 +56,19 @@
 //! A small pass over the crate's text output (`fix_up`) fixes what its API cannot express:
 //! VERTEX and SEQEND on the POLYLINE's layer (the crate writes them on layer 0), the
 //! alignment point 11/21 of justified text at (0, 0) (the crate omits a zero point, and
-//! ezdxf's renderer then fails), `$PINSBASE` in R12, and for R12 the removal of subclass
-//! markers (group 100, R13+ only) and of table-record handles (R12 table entries have none;
-//! in DIMSTYLE group 5 would be read as the arrow block `$DIMBLK`).
+//! ezdxf's renderer then fails), `$PINSBASE` and `$DIMTXSTY` in R12, for R12 the removal of
+//! subclass markers (group 100, R13+ only), and DIMSTYLE handles in group 105.
 //!
-//! [`DxfVersion::R2000`] (AC1015) is there for programs that insist on a newer file. It is
-//! less portable and less tested than R12 (checked with ezdxf and LibreCAD only). Polylines
-//! stay POLYLINE/VERTEX. The crate's R2000 faults are repaired: lineweight BYLAYER (−1)
-//! instead of 0 mm on every entity, opaque transparency, and in the text pass handles for
-//! the TABLE heads (ezdxf fix code 110, AutoCAD LT's "Bad handle 0"), own handles for
-//! ENDBLK (the crate repeats the BLOCK's), DIMSTYLE handles in group 105, `$HANDSEED` after
-//! them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot). GUIDs are nil. Group 42
-//! (actual measurement) is not written: readers recompute it from the definition points.
+//! [`DxfVersion::R2000`] (AC1015) and [`DxfVersion::R2007`] (AC1021) are there for programs
+//! that want a newer file (R2007: UTF-8 text, which GDAL, dxf-parser, dxfgrabber and FreeCAD
+//! need to show the letters). Polylines stay POLYLINE/VERTEX. The crate's R2000+ faults are
+//! repaired: lineweight BYLAYER (−1) instead of 0 mm on every entity, opaque transparency
+//! (the vertices too), and in the text pass handles for the TABLE heads (ezdxf fix code 110,
+//! AutoCAD LT's "Bad handle 0"), own handles for ENDBLK (the crate repeats the BLOCK's),
+//! `$HANDSEED` after them, `$PSVPSCALE` = 1 (LibreCAD draws the default 0 as a dot), the
+//! subclass marker of the 2-line angular dimension (the crate writes it as its 3-point
+//! struct). GUIDs are nil. Group 42 (actual measurement) is not written: readers recompute
+//! it from the definition points.
 
 use std::borrow::Cow;
 use std::io::Write;
@@ -71,6 +82,7 @@ use dxf::tables::{Layer as DxfLayer, LineType as DxfLineType};
 use dxf::{Block, Color, Point as DxfPoint};
 
 mod r12;
+mod scale;
 
 use super::parts::{self, arrow, explode_dimension};
 use super::{Aci, Bounds, Drawing, HAlign, LineType, Shape, VAlign};
@@ -83,6 +95,22 @@ pub const CONTINUOUS: &str = "CONTINUOUS";
 /// Margin added around the drawing's bounds for the limits, as a fraction of its larger
 /// extent (the SVG uses the same).
 pub const LIMITS_MARGIN: f64 = 0.05;
+/// An angular dimension is written 2-line (type 2) when its sweep lies between this and
+/// 180° minus this (radians); nearer 0° or 180° the two lines are almost parallel, and
+/// from 180° on two lines cannot hold the angle: 3-point (type 5) then.
+pub const TWO_LINE_MARGIN: f64 = 1e-6;
+/// The smallest sheet (limits) written, width × height in mm: A4 landscape.
+pub const MIN_SHEET_MM: (f64, f64) = (297.0, 210.0);
+/// The text style of every TEXT and of dimension text. LibreCAD takes a text's font from
+/// its style *name* (not the font file): `AZOMIX` is its font with every letter mechdraw
+/// writes (φ π ω ε ≡ → ′ ° ± ²; its default font has no Greek). Other programs take the
+/// font file, [`TEXT_FONT_FILE`].
+pub const TEXT_STYLE: &str = "AZOMIX";
+/// The font file of [`TEXT_STYLE`]: a TrueType font with Greek letters that Windows CAD
+/// programs have (ezdxf and others substitute a font of their own when it is missing).
+pub const TEXT_FONT_FILE: &str = "arial.ttf";
+/// Transparency "opaque" (group 440, R2004+): the flag 0x02000000 with alpha 255.
+const OPAQUE: i32 = 0x0200_00FF;
 /// Values smaller than this in magnitude are written as 0, so that rounding noise such as
 /// `cos(π/2) = 6e-17` does not appear as `-0.0` or `0.000000000000` in the file.
 pub const ZERO_SNAP: f64 = 5e-13;
@@ -91,17 +119,100 @@ pub const ZERO_SNAP: f64 = 5e-13;
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum DxfVersion {
     /// AutoCAD R12 (AC1009): read by every CAD program; audits clean with ezdxf. The default.
+    /// Non-ASCII text as `\U+XXXX` escapes; no `$INSUNITS`.
     #[default]
     R12,
-    /// AutoCAD 2000 (AC1015): less portable (see the module documentation).
+    /// AutoCAD 2000 (AC1015): `$INSUNITS` = mm and `$MEASUREMENT` = metric in the header;
+    /// non-ASCII text as `\U+XXXX` escapes.
     R2000,
+    /// AutoCAD 2007 (AC1021): as R2000, with text in UTF-8 (readers that leave `\U+XXXX`
+    /// escapes literal show the letters).
+    R2007,
 }
 
-/// Options of the DXF writer.
+impl DxfVersion {
+    /// Every version, in the order of the `--dxf-version` help.
+    pub const ALL: [DxfVersion; 3] = [DxfVersion::R12, DxfVersion::R2000, DxfVersion::R2007];
+
+    /// The name on the command line and in the docs (`R12`, `R2000`, `R2007`).
+    pub fn name(self) -> &'static str {
+        match self {
+            DxfVersion::R12 => "R12",
+            DxfVersion::R2000 => "R2000",
+            DxfVersion::R2007 => "R2007",
+        }
+    }
+}
+
+impl std::str::FromStr for DxfVersion {
+    type Err = String;
+
+    /// `R12`, `R2000` or `R2007` (any case; `AC1009`, `AC1015`, `AC1021` too).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_uppercase().as_str() {
+            "R12" | "AC1009" => Ok(DxfVersion::R12),
+            "R2000" | "AC1015" => Ok(DxfVersion::R2000),
+            "R2007" | "AC1021" => Ok(DxfVersion::R2007),
+            _ => Err(format!("unknown DXF version {s:?}: use R12, R2000 or R2007")),
+        }
+    }
+}
+
+/// How dimensions are written.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Dimensions {
+    /// DIMENSION entities (a 2-line angular one for angles under 180°, else 3-point; rotated
+    /// linear), each with its anonymous `*D` block holding what it looks like: AutoCAD, ezdxf
+    /// and LibreCAD show them as dimensions the user can edit. The default.
+    #[default]
+    Entities,
+    /// Exploded into plain LINE, ARC, SOLID (arrowheads) and TEXT entities on the dimension's
+    /// layer: every reader shows them (FreeCAD, dxfgrabber and `dxf` (npm) drop or change
+    /// DIMENSION entities), but they are no longer dimensions.
+    Exploded,
+}
+
+impl Dimensions {
+    /// The name on the command line (`entities`, `exploded`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Dimensions::Entities => "entities",
+            Dimensions::Exploded => "exploded",
+        }
+    }
+}
+
+impl std::str::FromStr for Dimensions {
+    type Err = String;
+
+    /// `entities` or `exploded` (any case).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        match s.to_ascii_lowercase().as_str() {
+            "entities" => Ok(Dimensions::Entities),
+            "exploded" => Ok(Dimensions::Exploded),
+            _ => Err(format!("unknown dimension encoding {s:?}: use entities or exploded")),
+        }
+    }
+}
+
+/// Options of the DXF writer. Build with struct update syntax from the default:
+/// `DxfOptions { version: DxfVersion::R2000, ..DxfOptions::default() }`.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct DxfOptions {
     /// File version; [`DxfVersion::R12`] by default.
     pub version: DxfVersion,
+    /// How dimensions are written; [`Dimensions::Entities`] by default.
+    pub dimensions: Dimensions,
+    /// Millimetres per model unit (1 for a drawing in mm, 1000 for one in metres; > 0). The
+    /// file is always in millimetres: the writer scales every coordinate, length and text
+    /// height by this factor.
+    pub mm_per_unit: f64,
+}
+
+impl Default for DxfOptions {
+    fn default() -> Self {
+        DxfOptions { version: DxfVersion::R12, dimensions: Dimensions::Entities, mm_per_unit: 1.0 }
+    }
 }
 
 /// Errors of the DXF writer. All but [`DxfError::Io`] mean the [`Drawing`] holds something
@@ -141,6 +252,12 @@ pub enum DxfError {
         /// Shape kind.
         kind: &'static str,
     },
+    /// The model-unit-to-millimetre factor is not a positive finite number (e.g. 0 or NaN).
+    #[error("the DXF scale {mm_per_unit} mm per model unit is not a positive finite number")]
+    BadScale {
+        /// The factor given in [`DxfOptions::mm_per_unit`].
+        mm_per_unit: f64,
+    },
     /// A shape DXF cannot draw (too few vertices, non-positive radius or text height,
     /// negative width).
     #[error("entity {entity} ({kind}) cannot be written: {reason}")]
@@ -154,15 +271,16 @@ pub enum DxfError {
     },
 }
 
-/// Writes `drawing` as DXF into a byte vector (CRLF line ends, ASCII only).
+/// Writes `drawing` as DXF into a byte vector (CRLF line ends; ASCII for R12 and R2000,
+/// UTF-8 for R2007), in millimetres (the drawing scaled by [`DxfOptions::mm_per_unit`]).
 ///
 /// R12 is written by `r12.rs` (BLOCKS and ENTITIES by hand, HEADER and TABLES through the
-/// crate); R2000 entirely through the crate.
+/// crate); R2000 and R2007 entirely through the crate.
 pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
-    validate(drawing)?;
+    let drawing = prepare(drawing, opts)?;
     match opts.version {
-        DxfVersion::R12 => r12::to_bytes(drawing),
-        DxfVersion::R2000 => crate_bytes(drawing, opts),
+        DxfVersion::R12 => r12::to_bytes(&drawing, opts),
+        DxfVersion::R2000 | DxfVersion::R2007 => crate_bytes(&drawing, opts),
     }
 }
 
@@ -171,14 +289,30 @@ pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfErro
 /// [`to_bytes`] for R12; kept to check the hand-written R12 path against (tests and
 /// benchmarks).
 pub fn to_bytes_via_crate(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    let drawing = prepare(drawing, opts)?;
+    crate_bytes(&drawing, opts)
+}
+
+/// The validated drawing in millimetres (borrowed when it already is).
+fn prepare<'a>(drawing: &'a Drawing, opts: &DxfOptions) -> Result<Cow<'a, Drawing>, DxfError> {
+    let k = opts.mm_per_unit;
+    if !(k.is_finite() && k > 0.0) {
+        return Err(DxfError::BadScale { mm_per_unit: k });
+    }
     validate(drawing)?;
-    crate_bytes(drawing, opts)
+    if k == 1.0 {
+        return Ok(Cow::Borrowed(drawing));
+    }
+    let scaled = scale::scaled(drawing, k);
+    // Scaling can overflow a huge finite coordinate to infinity.
+    validate(&scaled)?;
+    Ok(Cow::Owned(scaled))
 }
 
 /// The crate path of a validated drawing.
 fn crate_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
     let mut doc = build_head(drawing, opts);
-    add_entities(&mut doc, drawing);
+    add_entities(&mut doc, drawing, opts);
     let mut raw = Vec::new();
     doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
     let limits_min = doc.header.paperspace_minimum_drawing_limits.clone();
@@ -340,17 +474,26 @@ fn build_head(drawing: &Drawing, opts: &DxfOptions) -> dxf::Drawing {
 }
 
 /// Adds the blocks and entities of `drawing` to the crate's drawing (the reference path).
-fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing) {
+fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions) {
     let style = drawing.dim_style;
     let mut dim_count = 0usize;
     for e in &drawing.entities {
         let common = Common {
             layer: drawing.layers[e.layer].name.clone(),
             color: e.color.map(aci).unwrap_or_else(Color::by_layer),
-            linetype: e.linetype.map(linetype_name).unwrap_or("BYLAYER"),
+            linetype: entity_linetype(drawing, e).unwrap_or("BYLAYER"),
         };
         match &e.shape {
             Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
+                if opts.dimensions == Dimensions::Exploded {
+                    let part_common = Common { linetype: CONTINUOUS, ..common };
+                    for part in explode_dimension(&e.shape, &style) {
+                        for specific in simple_entities(doc, &part) {
+                            doc.add_entity(part_common.entity(specific));
+                        }
+                    }
+                    continue;
+                }
                 dim_count += 1;
                 let block_name = format!("*D{dim_count}");
                 add_dimension_block(doc, &block_name, &e.shape, drawing, &common);
@@ -367,13 +510,32 @@ fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing) {
     }
 }
 
+/// The line type an entity is written with: its own, else `DASHED` when its layer is dashed
+/// (Inkscape draws an entity that takes DASHED from its layer solid), else BYLAYER (`None`).
+fn entity_linetype(drawing: &Drawing, e: &super::Entity) -> Option<&'static str> {
+    match e.linetype {
+        Some(lt) => Some(linetype_name(lt)),
+        None => match drawing.layers.get(e.layer).map(|l| l.linetype) {
+            Some(LineType::Dashed) => Some(DASHED),
+            _ => None,
+        },
+    }
+}
+
 fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bounds: &Bounds, extent: f64) {
     let h = &mut doc.header;
     h.version = match opts.version {
         DxfVersion::R12 => AcadVersion::R12,
         DxfVersion::R2000 => AcadVersion::R2000,
+        DxfVersion::R2007 => AcadVersion::R2007,
     };
     h.handles_enabled = true;
+    // The file is in millimetres (stated from R2000 on; R12 has no such variables).
+    h.default_drawing_units = dxf::enums::Units::Millimeters;
+    h.drawing_units = dxf::enums::DrawingUnits::Metric;
+    h.text_style = TEXT_STYLE.to_string();
+    // R13+ here; R12 gets it in fix_up (LibreCAD draws dimension text in this style).
+    h.dimension_text_style = TEXT_STYLE.to_string();
     h.creation_date = epoch_local();
     h.update_date = epoch_local();
     h.creation_date_universal = epoch_utc();
@@ -385,8 +547,8 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
     h.version_guid = Default::default();
     h.minimum_drawing_extents = pt(bounds.min);
     h.maximum_drawing_extents = pt(bounds.max);
-    let m = Vector::new(LIMITS_MARGIN * extent, LIMITS_MARGIN * extent);
-    let (lim_min, lim_max) = (pt(bounds.min - m), pt(bounds.max + m));
+    let (lim_min, lim_max) = sheet(bounds, extent);
+    let (lim_min, lim_max) = (pt(lim_min), pt(lim_max));
     h.minimum_drawing_limits = lim_min.clone();
     h.maximum_drawing_limits = lim_max.clone();
     h.paperspace_minimum_drawing_limits = lim_min;
@@ -409,6 +571,18 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
     h.dimension_text_outside_horizontal = false;
 }
 
+/// The sheet (limits): the drawing's bounds with a [`LIMITS_MARGIN`] margin, grown about
+/// its centre to at least [`MIN_SHEET_MM`] (landscape, or portrait for a tall drawing), so
+/// that a small drawing still prints on a real page (LibreCAD prints the limits at 1:1).
+fn sheet(bounds: &Bounds, extent: f64) -> (Point, Point) {
+    let m = Vector::new(LIMITS_MARGIN * extent, LIMITS_MARGIN * extent);
+    let (lo, hi) = (bounds.min - m, bounds.max + m);
+    let (w, h) = (hi.x - lo.x, hi.y - lo.y);
+    let (min_w, min_h) = if h > w { (MIN_SHEET_MM.1, MIN_SHEET_MM.0) } else { MIN_SHEET_MM };
+    let grow = Vector::new(0.5 * (min_w - w).max(0.0), 0.5 * (min_h - h).max(0.0));
+    (lo - grow, hi + grow)
+}
+
 fn setup_tables(doc: &mut dxf::Drawing, drawing: &Drawing, bounds: &Bounds, extent: f64) {
     // R12 knows none of the annotative items the crate adds; keep only what R12 has.
     let remove_named = |names: Vec<String>, keep: &dyn Fn(&str) -> bool| -> Vec<usize> {
@@ -425,6 +599,11 @@ fn setup_tables(doc: &mut dxf::Drawing, drawing: &Drawing, bounds: &Bounds, exte
     for i in remove_named(doc.styles().map(|a| a.name.clone()).collect(), &|n| n == "STANDARD") {
         doc.remove_style(i);
     }
+    doc.add_style(dxf::tables::Style {
+        name: TEXT_STYLE.to_string(),
+        primary_font_file_name: TEXT_FONT_FILE.to_string(),
+        ..Default::default()
+    });
 
     let (dash, gap) = parts::dash_pattern(extent);
     doc.add_line_type(DxfLineType {
@@ -492,7 +671,7 @@ impl Common {
         // R2000+: BYLAYER lineweight (the crate's default 0 means 0 mm) and opaque (the
         // crate's 0 is an invalid transparency); neither is written to R12.
         e.common.lineweight_enum_value = -1;
-        e.common.transparency = 0x0200_00FF;
+        e.common.transparency = OPAQUE;
         e.common.layer = self.layer.clone();
         e.common.color = self.color.clone();
         e.common.line_type_name = self.linetype.to_string();
@@ -514,8 +693,10 @@ enum Prim<'a> {
     Polyline { points: &'a [Point], closed: bool, width: f64 },
     /// SOLID, corners in the order written (1-2-3-4).
     Solid([Point; 4]),
-    /// TEXT, rotation in degrees (snapped).
-    Text { at: Point, height: f64, value: &'a str, halign: HAlign, valign: VAlign, rotation_deg: f64 },
+    /// TEXT, rotation in degrees (snapped): `at` the alignment point (11/21, written for
+    /// justified text), `insert` the left end of the baseline (10/20) computed from the
+    /// estimated text width ([`text_insertion`]).
+    Text { at: Point, insert: Point, height: f64, value: &'a str, halign: HAlign, valign: VAlign, rotation_deg: f64 },
 }
 
 /// Calls `f` with the DXF entities of a shape other than a dimension, in order. A filled
@@ -554,6 +735,7 @@ fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
         }
         Shape::Text { at, height, value, halign, valign, rotation } => f(Prim::Text {
             at: *at,
+            insert: text_insertion(*at, *height, value, *halign, *valign, *rotation),
             height: *height,
             value,
             halign: *halign,
@@ -562,6 +744,27 @@ fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
         }),
         Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
     }
+}
+
+/// The left end of the baseline of a text aligned `halign`/`valign` at `at`: where a reader
+/// that ignores the alignment (Inkscape, for one) starts it. The width is the estimate of
+/// [`parts::text_width`]; readers that honour the alignment use the alignment point.
+fn text_insertion(at: Point, height: f64, value: &str, halign: HAlign, valign: VAlign, rotation: f64) -> Point {
+    let along = match halign {
+        HAlign::Left => 0.0,
+        HAlign::Center => 0.5 * parts::text_width(value, height),
+        HAlign::Right => parts::text_width(value, height),
+    };
+    let up = match valign {
+        VAlign::Baseline => 0.0,
+        VAlign::Middle => 0.5 * height,
+        VAlign::Top => height,
+    };
+    if along == 0.0 && up == 0.0 {
+        return at;
+    }
+    let (sin, cos) = rotation.sin_cos();
+    Point::new(at.x - along * cos + up * sin, at.y - along * sin - up * cos)
 }
 
 /// The crate's entity for a [`Prim`] (polyline vertices take their handles from `doc` here,
@@ -584,12 +787,13 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
             EntityType::Polyline(poly)
         }
         Prim::Solid([a, b, c, d]) => EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d))),
-        Prim::Text { at, height, value, halign, valign, rotation_deg } => {
+        Prim::Text { at, insert, height, value, halign, valign, rotation_deg } => {
             let mut t = Text {
-                location: pt(at),
+                location: pt(insert),
                 text_height: height,
                 value: value.to_string(),
                 rotation: rotation_deg,
+                text_style_name: TEXT_STYLE.to_string(),
                 horizontal_text_justification: match halign {
                     HAlign::Left => HorizontalTextJustification::Left,
                     HAlign::Center => HorizontalTextJustification::Center,
@@ -604,7 +808,7 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
             };
             if halign != HAlign::Left || valign != VAlign::Baseline {
                 // Readers place justified text by the alignment point (11/21); the insertion
-                // point is what AutoCAD would recompute from it and is given the same value.
+                // point (10/20) is where the text starts, for readers that ignore alignment.
                 t.second_alignment_point = pt(at);
             }
             EntityType::Text(t)
@@ -639,8 +843,13 @@ fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, shape: &Shape, drawin
 /// The definition points of a DIMENSION entity, as both writers write them.
 #[derive(Debug, Clone, Copy)]
 enum DimPrim {
-    /// 3-point angular (type 5): 10 and 16 on the arc, 13/14 the ray points, 15 the vertex.
-    Angular { on_arc: Point, text_at: Point, first: Point, second: Point, vertex: Point },
+    /// Angular, `defs` the points 13, 14, 15, 16 in that order, `def1` the point 10.
+    /// 2-line (type 2, `two_line`; what AutoCAD's DIMANGULAR makes when two lines are
+    /// picked, and the only angular dimension LibreCAD 2.2 draws): the first line 13→14
+    /// (vertex → first ray point), the second 15→10 (vertex → second ray point), 16 on the
+    /// arc. 3-point (type 5, for angles of 180° and more, which two lines cannot hold): 13/14
+    /// the ray points, 15 the vertex, 10 and 16 on the arc.
+    Angular { two_line: bool, def1: Point, text_at: Point, defs: [Point; 4] },
     /// Rotated linear (type 0): 10 on the dimension line, 13/14 the feature points, 50 the
     /// angle in degrees (snapped).
     Rotated { on_line: Point, text_mid: Point, p1: Point, p2: Point, angle_deg: f64 },
@@ -655,7 +864,12 @@ fn dimension_prim(shape: &Shape, style: &super::DimStyle) -> Option<DimPrim> {
             let on_arc = polar(*vertex, *radius, a1 + 0.5 * sweep);
             // Where the exploded block draws the text.
             let text_at = parts::angular_text_mid(*vertex, *first, *second, *radius, text, style);
-            Some(DimPrim::Angular { on_arc, text_at, first: *first, second: *second, vertex: *vertex })
+            let two_line = sweep > TWO_LINE_MARGIN && sweep < std::f64::consts::PI - TWO_LINE_MARGIN;
+            Some(if two_line {
+                DimPrim::Angular { two_line, def1: *second, text_at, defs: [*vertex, *first, *vertex, on_arc] }
+            } else {
+                DimPrim::Angular { two_line, def1: on_arc, text_at, defs: [*first, *second, *vertex, on_arc] }
+            })
         }
         Shape::LinearDimension { p1, p2, line_at, angle, text } => {
             // The text's middle where the exploded block draws it (inside or beside an
@@ -690,13 +904,16 @@ fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) ->
         ..Default::default()
     };
     Some(match dimension_prim(shape, style)? {
-        DimPrim::Angular { on_arc, text_at, first, second, vertex } => {
+        DimPrim::Angular { two_line, def1, text_at, defs: [p13, p14, p15, p16] } => {
+            // The crate has no 2-line angular type; the 3-point one has the same groups (its
+            // R2000 subclass marker is renamed in fix_up).
+            let kind = if two_line { DimensionType::Angular } else { DimensionType::AngularThreePoint };
             EntityType::AngularThreePointDimension(AngularThreePointDimension {
-                dimension_base: base(on_arc, text_at, DimensionType::AngularThreePoint),
-                definition_point_2: pt(first),
-                definition_point_3: pt(second),
-                definition_point_4: pt(vertex),
-                definition_point_5: pt(on_arc),
+                dimension_base: base(def1, text_at, kind),
+                definition_point_2: pt(p13),
+                definition_point_3: pt(p14),
+                definition_point_4: pt(p15),
+                definition_point_5: pt(p16),
             })
         }
         DimPrim::Rotated { on_line, text_mid, p1, p2, angle_deg } => EntityType::RotatedDimension(RotatedDimension {
@@ -771,7 +988,7 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
 
     // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
     // BLOCK's), numbered after the highest handle the crate assigned. (R12 needs neither.)
-    let (mut next_handle, handle_seed) = if version == DxfVersion::R2000 {
+    let (mut next_handle, handle_seed) = if version != DxfVersion::R12 {
         let (mut highest, mut extra) = (0u64, 0u64);
         for p in pairs() {
             match p.code {
@@ -807,6 +1024,14 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
         }
         let is_header = kind == "SECTION" && record.get(1).is_some_and(|p| p.value == "HEADER");
         if version == DxfVersion::R12 && is_header {
+            // $DIMTXSTY (the crate writes it from R13 on): LibreCAD draws the dimension
+            // text it regenerates in this style.
+            if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$TEXTSTYLE") {
+                let var = [("  9", "$DIMTXSTY".to_string()), ("  7", TEXT_STYLE.to_string())];
+                for (k, (c, v)) in var.into_iter().enumerate() {
+                    record.insert(at + 2 + k, Pair::owned(c, v));
+                }
+            }
             // $PINSBASE (the crate writes it from R14 on): where the drawing's origin lies on
             // the sheet $PLIMMIN–$PLIMMAX. LibreCAD prints that sheet with the drawing on it.
             if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$PLIMMAX") {
@@ -819,7 +1044,14 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
                 }
             }
         }
-        if version == DxfVersion::R2000 {
+        // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
+        if kind == "DIMSTYLE" && section == "TABLES" {
+            for pair in record.iter_mut().filter(|p| p.code == 5) {
+                pair.code_text = Cow::Borrowed("105");
+                pair.code = 105;
+            }
+        }
+        if version != DxfVersion::R12 {
             if is_header {
                 if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED") {
                     if let Some(pair) = record.get_mut(at + 1) {
@@ -841,28 +1073,37 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
                     }
                     next_handle += 1;
                 }
-                // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
-                "DIMSTYLE" if section == "TABLES" => {
-                    for pair in record.iter_mut().filter(|p| p.code == 5) {
-                        pair.code_text = Cow::Borrowed("105");
-                        pair.code = 105;
+                // The 2-line angular dimension, written as the crate's 3-point one.
+                "DIMENSION" => {
+                    let two_line =
+                        record.iter().any(|p| p.code == 70 && p.value.trim().parse::<i32>().is_ok_and(|v| v & 7 == 2));
+                    if two_line {
+                        for pair in
+                            record.iter_mut().filter(|p| p.code == 100 && p.value == "AcDb3PointAngularDimension")
+                        {
+                            pair.value = Cow::Borrowed("AcDb2LineAngularDimension");
+                        }
                     }
                 }
                 // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
+                // ... and opaque (R2007: the crate's 0 is an invalid transparency).
                 "VERTEX" => {
-                    for pair in record.iter_mut().filter(|p| p.code == 370) {
-                        pair.value = format!("{:>6}", -1).into();
+                    for pair in record.iter_mut() {
+                        match pair.code {
+                            370 => pair.value = format!("{:>6}", -1).into(),
+                            440 => pair.value = format!("{:>9}", OPAQUE).into(),
+                            _ => {}
+                        }
                     }
                 }
                 _ => {}
             }
         }
         if version == DxfVersion::R12 {
-            // R12 has no subclass markers, and its table records have no handles.
+            // R12 has no subclass markers. Its table records keep their handles (group 5,
+            // 105 in DIMSTYLE), as R12 allows with $HANDLING = 1: FreeCAD cannot read a
+            // LAYER record without one ("no layer name").
             record.retain(|p| p.code != 100);
-            if section == "TABLES" && kind != "TABLE" && kind != "ENDTAB" && kind != "SECTION" {
-                record.retain(|p| p.code != 5);
-            }
         }
         match kind.as_ref() {
             "POLYLINE" => poly_layer = record.iter().find(|p| p.code == 8).map(|p| p.value.to_string()),
@@ -1011,12 +1252,19 @@ mod tests {
         let names: Vec<&str> = dims.iter().map(|r| get(r, 2)[0]).collect();
         assert_eq!(names, ["*D1", "*D2", "*D3"]);
         assert!(!p.iter().any(|(_, v)| v == "*MODEL_SPACE"));
-        // Types 5 (3-point angular) and 0 (rotated), each with flags 32 + 128.
+        // Types 2 (2-line angular: the 90° angles) and 0 (rotated), each with flags 32 + 128.
         let types: Vec<i32> = dims.iter().map(|r| get(r, 70)[0].trim().parse().unwrap()).collect();
-        assert_eq!(types, [5 | 32 | 128, 5 | 32 | 128, 32 | 128]);
+        assert_eq!(types, [2 | 32 | 128, 2 | 32 | 128, 32 | 128]);
         assert_eq!(get(&dims[1], 1), ["b"]);
-        // 3-point angular: 13/14 the ray points, 15 the vertex.
-        assert_eq!((f(&dims[0], 13), f(&dims[0], 24), f(&dims[0], 15)), (vec![1.0], vec![1.0], vec![0.0]));
+        // 2-line angular: the first line 13→14 from the vertex to the first ray point, the
+        // second 15→10 from the vertex to the second ray point, 16 on the arc (radius 5, 45°).
+        let xy = |r: &[(i32, String)], c: i32| (f(r, c)[0], f(r, c + 10)[0]);
+        assert_eq!(
+            [xy(&dims[0], 13), xy(&dims[0], 14), xy(&dims[0], 15), xy(&dims[0], 10)],
+            [(0.0, 0.0), (1.0, 0.0), (0.0, 0.0), (0.0, 1.0)]
+        );
+        let (x16, y16) = xy(&dims[0], 16);
+        assert!((x16 - 5.0 / 2f64.sqrt()).abs() < 1e-12 && (y16 - 5.0 / 2f64.sqrt()).abs() < 1e-12);
         // Rotated: 13/14 the feature points, 50 the angle in degrees, 10 on the dimension line.
         assert_eq!((f(&dims[2], 14), f(&dims[2], 50), f(&dims[2], 20)), (vec![10.0], vec![0.0], vec![-5.0]));
         let blocks = records(&p, "BLOCK");
@@ -1039,6 +1287,30 @@ mod tests {
         };
         assert_eq!(header_value("$DIMTXT"), 2.5);
         assert_eq!(header_value("$DIMASZ"), 3.0);
+    }
+
+    #[test]
+    fn angles_of_180_degrees_and_more_are_3_point_dimensions() {
+        let mut d = drawing();
+        let o = Point::new(0.0, 0.0);
+        for (second, text) in [(Point::new(-1.0, 0.0), "180"), (Point::new(0.0, -1.0), "270")] {
+            d.add(
+                0,
+                Shape::AngularDimension {
+                    vertex: o,
+                    first: Point::new(1.0, 0.0),
+                    second,
+                    radius: 5.0,
+                    text: text.into(),
+                },
+            );
+        }
+        let p = write(&d);
+        for dim in records(&p, "DIMENSION") {
+            assert_eq!(get(&dim, 70)[0].trim(), format!("{}", 5 | 32 | 128), "{:?}", get(&dim, 1));
+            // 13/14 the ray points, 15 the vertex.
+            assert_eq!((f(&dim, 13), f(&dim, 23), f(&dim, 15)), (vec![1.0], vec![0.0], vec![0.0]));
+        }
     }
 
     #[test]
@@ -1161,7 +1433,7 @@ mod tests {
             0,
             Shape::Polyline { points: vec![Point::new(0.0, 0.0), Point::new(1.0, 1.0)], closed: false, width: 0.2 },
         );
-        let opts = DxfOptions { version: DxfVersion::R2000 };
+        let opts = DxfOptions { version: DxfVersion::R2000, ..DxfOptions::default() };
         let a = to_bytes(&d, &opts).unwrap();
         std::thread::sleep(std::time::Duration::from_millis(1100));
         assert_eq!(a, to_bytes(&d, &opts).unwrap());
@@ -1184,15 +1456,20 @@ mod tests {
     }
 
     /// The fast R12 path and the crate path give the same bytes.
+    /// (With dimensions as entities and exploded, at 1 mm per unit and scaled by 25.4.)
     fn same_as_crate(d: &Drawing) {
-        let opts = DxfOptions::default();
-        let fast = to_bytes(d, &opts).unwrap();
-        let reference = to_bytes_via_crate(d, &opts).unwrap();
-        if fast != reference {
-            let (f, r) = (String::from_utf8_lossy(&fast), String::from_utf8_lossy(&reference));
-            let at = f.lines().zip(r.lines()).position(|(a, b)| a != b).unwrap_or(0);
-            let show = |s: &str| s.lines().skip(at.saturating_sub(12)).take(16).collect::<Vec<_>>().join("|");
-            panic!("differ at line {at}:\nfast: {}\ncrate: {}", show(&f), show(&r));
+        for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
+            for mm_per_unit in [1.0, 25.4] {
+                let opts = DxfOptions { dimensions, mm_per_unit, ..DxfOptions::default() };
+                let fast = to_bytes(d, &opts).unwrap();
+                let reference = to_bytes_via_crate(d, &opts).unwrap();
+                if fast != reference {
+                    let (f, r) = (String::from_utf8_lossy(&fast), String::from_utf8_lossy(&reference));
+                    let at = f.lines().zip(r.lines()).position(|(a, b)| a != b).unwrap_or(0);
+                    let show = |s: &str| s.lines().skip(at.saturating_sub(12)).take(16).collect::<Vec<_>>().join("|");
+                    panic!("{opts:?}: differ at line {at}:\nfast: {}\ncrate: {}", show(&f), show(&r));
+                }
+            }
         }
     }
 
@@ -1323,6 +1600,44 @@ mod tests {
         for e in &d.entities {
             same_as_crate(&Drawing { entities: vec![e.clone()], ..d.clone() });
         }
+    }
+
+    /// FreeCAD reads no R12 LAYER record without a handle (issue 13): every table record has
+    /// one (DIMSTYLE in group 105), unique, below $HANDSEED.
+    #[test]
+    fn r12_table_records_have_handles() {
+        let mut d = drawing();
+        d.layer("LINKS", Aci::BLUE, LineType::Continuous);
+        d.layer("PATH", Aci::RED, LineType::Dashed);
+        let p = write(&d);
+        let mut seen = std::collections::HashSet::new();
+        for kind in ["LAYER", "LTYPE", "STYLE", "VPORT", "APPID", "DIMSTYLE"] {
+            let code = if kind == "DIMSTYLE" { 105 } else { 5 };
+            for r in records(&p, kind).into_iter().filter(|r| r.len() > 2) {
+                let h = get(&r, code);
+                assert_eq!(h.len(), 1, "{kind} {:?}", get(&r, 2));
+                assert!(seen.insert(u64::from_str_radix(h[0], 16).unwrap()), "{kind}: handle {} used twice", h[0]);
+            }
+        }
+        let layer_records = records(&p, "LAYER");
+        let layers: Vec<&str> = layer_records.iter().filter_map(|r| get(r, 2).first().copied()).collect();
+        assert_eq!(layers, ["0", "LINKS", "PATH"]);
+        let i = p.iter().position(|(c, v)| *c == 9 && v == "$HANDSEED").unwrap();
+        let seed = u64::from_str_radix(&p[i + 1].1, 16).unwrap();
+        assert!(seen.iter().all(|h| *h < seed));
+    }
+
+    #[test]
+    fn the_scale_must_be_positive_and_finite() {
+        let d = drawing();
+        for k in [0.0, -1.0, f64::NAN, f64::INFINITY] {
+            let opts = DxfOptions { mm_per_unit: k, ..DxfOptions::default() };
+            assert!(matches!(to_bytes(&d, &opts), Err(DxfError::BadScale { .. })), "{k}");
+        }
+        let mut d = drawing();
+        d.add(0, Shape::Circle { center: Point::new(1e306, 0.0), radius: 1.0 });
+        let opts = DxfOptions { mm_per_unit: 1000.0, ..DxfOptions::default() };
+        assert!(matches!(to_bytes(&d, &opts), Err(DxfError::NonFinite { .. })), "overflow to infinity");
     }
 
     #[test]

@@ -11,20 +11,22 @@
 //! a dimension's BLOCK takes one, its (R12-unwritten) BLOCK_RECORD the next, its entities the
 //! following ones, the DIMENSION the next; a polyline's vertices come before the POLYLINE,
 //! its SEQEND after. `$HANDSEED` is patched to the next free handle.
+//! With [`super::Dimensions::Exploded`] a dimension's parts are written as entities in
+//! drawing order instead (no BLOCK, no DIMENSION), as the crate path adds them.
 
 use std::io::Write;
 
 use super::{
-    CONTINUOUS, DimPrim, DxfError, DxfOptions, DxfVersion, Prim, build_head, dimension_prim, fix_up, linetype_name,
-    prims, snap,
+    CONTINUOUS, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, build_head, dimension_prim,
+    entity_linetype, fix_up, prims, snap,
 };
 use crate::draw::parts::explode_dimension;
 use crate::draw::{Drawing, HAlign, Shape, VAlign};
 use crate::geom::Point;
 
-/// Writes a validated drawing as R12.
-pub(super) fn to_bytes(drawing: &Drawing) -> Result<Vec<u8>, DxfError> {
-    let opts = DxfOptions { version: DxfVersion::R12 };
+/// Writes a validated drawing (in mm) as R12.
+pub(super) fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    let opts = DxfOptions { version: DxfVersion::R12, ..*opts };
     let doc = build_head(drawing, &opts);
     let first_handle = doc.header.next_available_handle.0;
     let mut raw = Vec::new();
@@ -38,7 +40,7 @@ pub(super) fn to_bytes(drawing: &Drawing) -> Result<Vec<u8>, DxfError> {
     let seed_at = find(&head[..cut], seed_key).ok_or_else(|| broken("$HANDSEED"))? + seed_key.len();
     let seed_end = find(&head[seed_at..cut], b"\r\n").ok_or_else(|| broken("$HANDSEED value"))? + seed_at;
 
-    let mut body = Body::new(drawing, first_handle);
+    let mut body = Body::new(drawing, first_handle, opts.dimensions);
     body.write_all();
     let Body { blocks, entities, next, .. } = body;
 
@@ -73,6 +75,8 @@ struct Style<'a> {
 /// The BLOCKS and ENTITIES sections' contents being written, and the next handle.
 struct Body<'a> {
     drawing: &'a Drawing,
+    /// How dimensions are written.
+    dimensions: Dimensions,
     /// Layer names as written (escaped once per layer).
     layers: Vec<String>,
     blocks: Vec<u8>,
@@ -81,7 +85,7 @@ struct Body<'a> {
 }
 
 impl<'a> Body<'a> {
-    fn new(drawing: &'a Drawing, first_handle: u64) -> Body<'a> {
+    fn new(drawing: &'a Drawing, first_handle: u64, dimensions: Dimensions) -> Body<'a> {
         let layers = drawing
             .layers
             .iter()
@@ -93,6 +97,7 @@ impl<'a> Body<'a> {
             .collect();
         Body {
             drawing,
+            dimensions,
             layers,
             blocks: Vec::new(),
             entities: Vec::with_capacity(drawing.entities.len() * 160),
@@ -109,10 +114,20 @@ impl<'a> Body<'a> {
         for e in &drawing.entities {
             let style = Style {
                 layer: layers.get(e.layer).map_or("0", String::as_str),
-                linetype: e.linetype.map(linetype_name),
+                linetype: entity_linetype(drawing, e),
                 color: e.color.map(|c| c.0),
             };
             match &e.shape {
+                shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. })
+                    if self.dimensions == Dimensions::Exploded =>
+                {
+                    let part_style = Style { linetype: Some(CONTINUOUS), ..style };
+                    let next = &mut self.next;
+                    let out = &mut self.entities;
+                    for part in explode_dimension(shape, &drawing.dim_style) {
+                        prims(&part, |p| prim(out, next, p, part_style));
+                    }
+                }
                 shape @ (Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. }) => {
                     dim_count += 1;
                     name.clear();
@@ -156,7 +171,9 @@ impl<'a> Body<'a> {
         self.next += 1;
         string(o, b"  2", name);
         let (def1, text_mid, flags) = match dim {
-            DimPrim::Angular { on_arc, text_at, .. } => (on_arc, text_at, 5 | 32 | 128),
+            DimPrim::Angular { two_line, def1, text_at, .. } => {
+                (def1, text_at, if two_line { 2 } else { 5 } | 32 | 128)
+            }
             DimPrim::Rotated { on_line, text_mid, .. } => (on_line, text_mid, 32 | 128),
         };
         point(o, b" 10", b" 20", b" 30", def1);
@@ -165,11 +182,11 @@ impl<'a> Body<'a> {
         string(o, b"  1", text);
         o.extend_from_slice(b"  3\r\nSTANDARD\r\n");
         match dim {
-            DimPrim::Angular { on_arc, first, second, vertex, .. } => {
-                point(o, b" 13", b" 23", b" 33", first);
-                point(o, b" 14", b" 24", b" 34", second);
-                point(o, b" 15", b" 25", b" 35", vertex);
-                point(o, b" 16", b" 26", b" 36", on_arc);
+            DimPrim::Angular { defs: [p13, p14, p15, p16], .. } => {
+                point(o, b" 13", b" 23", b" 33", p13);
+                point(o, b" 14", b" 24", b" 34", p14);
+                point(o, b" 15", b" 25", b" 35", p15);
+                point(o, b" 16", b" 26", b" 36", p16);
             }
             DimPrim::Rotated { p1, p2, angle_deg, .. } => {
                 point(o, b" 13", b" 23", b" 33", p1);
@@ -236,14 +253,15 @@ fn prim(o: &mut Vec<u8>, next: &mut u64, p: Prim, style: Style) {
             handle(o, take(next));
             layer(o, style.layer);
         }
-        Prim::Text { at, height, value, halign, valign, rotation_deg } => {
+        Prim::Text { at, insert, height, value, halign, valign, rotation_deg } => {
             common(o, b"TEXT", take(next), style);
-            point(o, b" 10", b" 20", b" 30", at);
+            point(o, b" 10", b" 20", b" 30", insert);
             float(o, b" 40", height);
             string(o, b"  1", value);
             if rotation_deg != 0.0 {
                 float(o, b" 50", rotation_deg);
             }
+            string(o, b"  7", TEXT_STYLE);
             match halign {
                 HAlign::Left => {}
                 HAlign::Center => short(o, b" 72", 1),

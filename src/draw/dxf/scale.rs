@@ -1,0 +1,51 @@
+//! Model units to millimetres: the drawing scaled about the origin before it is written, so
+//! that every DXF mechdraw writes is in millimetres (a scene in metres is written × 1000).
+//! Figures keep drawing in model units; only the writer's output changes.
+
+use crate::draw::{DimStyle, Drawing, Entity, Shape};
+use crate::geom::Point;
+
+/// `d` with every coordinate, length, width, text height and dimension size multiplied by
+/// `k` (> 0); angles, texts, layers and colours unchanged.
+pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
+    let p = |q: &Point| Point::from(q.coords * k);
+    let shape = |s: &Shape| match s {
+        Shape::Circle { center, radius } => Shape::Circle { center: p(center), radius: radius * k },
+        Shape::Arc { center, radius, start, end } => {
+            Shape::Arc { center: p(center), radius: radius * k, start: *start, end: *end }
+        }
+        Shape::Line { from, to } => Shape::Line { from: p(from), to: p(to) },
+        Shape::Polyline { points, closed, width } => {
+            Shape::Polyline { points: points.iter().map(p).collect(), closed: *closed, width: width * k }
+        }
+        Shape::Filled { points } => Shape::Filled { points: points.iter().map(p).collect() },
+        Shape::Arrow { from, to, head } => Shape::Arrow { from: p(from), to: p(to), head: head * k },
+        Shape::Text { at, height, value, halign, valign, rotation } => Shape::Text {
+            at: p(at),
+            height: height * k,
+            value: value.clone(),
+            halign: *halign,
+            valign: *valign,
+            rotation: *rotation,
+        },
+        Shape::AngularDimension { vertex, first, second, radius, text } => Shape::AngularDimension {
+            vertex: p(vertex),
+            first: p(first),
+            second: p(second),
+            radius: radius * k,
+            text: text.clone(),
+        },
+        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+            Shape::LinearDimension { p1: p(p1), p2: p(p2), line_at: p(line_at), angle: *angle, text: text.clone() }
+        }
+    };
+    Drawing {
+        layers: d.layers.clone(),
+        entities: d
+            .entities
+            .iter()
+            .map(|e| Entity { layer: e.layer, color: e.color, linetype: e.linetype, shape: shape(&e.shape) })
+            .collect(),
+        dim_style: DimStyle { text_height: d.dim_style.text_height * k, arrow_size: d.dim_style.arrow_size * k },
+    }
+}

@@ -1,0 +1,228 @@
+//! What a LibreCAD user sees of our DXF (issue 13): `librecad dxf2pdf` of the triad and chain
+//! templates gives a real page (larger than 100 mm both ways), and the page shows the triad's
+//! angular dimensions φ2 = 102.23° and φ3 = 117.04° (these numbers appear nowhere else in
+//! the drawing: LibreCAD draws them only if it draws the DIMENSION) and the chain's "±0.1"
+//! tolerances.
+//!
+//! LibreCAD draws text as strokes, so `pdftotext` finds nothing: the page is read back with
+//! tesseract. An angular dimension's text is drawn along its arc, so each one is cropped
+//! from the page around the arc's middle (the DIMENSION's point 16; LibreCAD prints the
+//! limits at 1:1 in mm), turned level, thresholded (the light grey construction lines go)
+//! and thickened before OCR. Needs `librecad`, `pdfinfo`/`pdftoppm` (poppler-utils),
+//! `tesseract` and ImageMagick's `convert`; `.ci/test` installs them.
+
+mod common;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// Millimetres per PDF point.
+const MM_PER_PT: f64 = 25.4 / 72.0;
+/// The smallest page side accepted, mm.
+const MIN_PAGE_MM: f64 = 100.0;
+/// Resolution of the angular-dimension crops (the brief's `pdftoppm -r 600`).
+const CROP_DPI: f64 = 600.0;
+/// Half the side of a crop around an angular dimension's text, mm.
+const CROP_HALF_MM: f64 = 18.0;
+/// Resolution of the chain's whole page: its 4.3 mm dimension text is then about 70 px high.
+const PAGE_DPI: u32 = 400;
+
+fn on_path(tool: &str) -> bool {
+    std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(tool).is_file()))
+}
+
+fn require_tools() {
+    let missing: Vec<&str> =
+        ["librecad", "pdfinfo", "pdftoppm", "tesseract", "convert"].into_iter().filter(|t| !on_path(t)).collect();
+    assert!(
+        missing.is_empty(),
+        "missing {missing:?}: install Debian's librecad, poppler-utils, tesseract-ocr and imagemagick (bash .ci/test does)"
+    );
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = common::root().join("target/test-out/dxf_librecad").join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(d.join("home")).unwrap();
+    d
+}
+
+/// `mechdraw run templates/<scene>.toml` into `dir`, with extra options; the DXF's path.
+fn write_dxf(scene: &str, dir: &Path, extra: &[&str]) -> PathBuf {
+    let status = Command::new(env!("CARGO_BIN_EXE_mechdraw"))
+        .arg("run")
+        .arg(common::root().join("templates").join(format!("{scene}.toml")))
+        .args(["--out", dir.to_str().unwrap(), "--no-frames", "-q"])
+        .args(extra)
+        .status()
+        .expect("run mechdraw");
+    assert!(status.success(), "mechdraw run {scene} failed");
+    dir.join(format!("{scene}.dxf"))
+}
+
+/// `librecad dxf2pdf` of `dxf` (headless, its settings in `dir/home`); the PDF's path.
+fn dxf2pdf(dxf: &Path, dir: &Path) -> PathBuf {
+    let home = dir.join("home");
+    let out = Command::new("librecad")
+        .args(["dxf2pdf", "-t", dir.to_str().unwrap(), dxf.to_str().unwrap()])
+        .env("QT_QPA_PLATFORM", "offscreen")
+        .env("HOME", &home)
+        .env("XDG_CONFIG_HOME", home.join(".config"))
+        .env("XDG_RUNTIME_DIR", &home)
+        .output()
+        .expect("run librecad dxf2pdf");
+    let pdf = dir.join(dxf.with_extension("pdf").file_name().unwrap());
+    assert!(
+        out.status.success() && pdf.is_file(),
+        "librecad dxf2pdf {} failed: {}{}",
+        dxf.display(),
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+    pdf
+}
+
+/// The page size in mm (`pdfinfo`).
+fn page_mm(pdf: &Path) -> (f64, f64) {
+    let out = Command::new("pdfinfo").arg(pdf).output().expect("run pdfinfo");
+    let text = String::from_utf8_lossy(&out.stdout);
+    let line = text.lines().find(|l| l.starts_with("Page size:")).expect("pdfinfo prints the page size");
+    let nums: Vec<f64> = line.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+    assert!(nums.len() >= 2, "page size line {line:?}");
+    (nums[0] * MM_PER_PT, nums[1] * MM_PER_PT)
+}
+
+/// The DXF as (group code, value) pairs.
+fn pairs(dxf: &Path) -> Vec<(i32, String)> {
+    let text = String::from_utf8_lossy(&std::fs::read(dxf).unwrap()).into_owned();
+    let lines: Vec<&str> = text.lines().collect();
+    lines.chunks_exact(2).map(|c| (c[0].trim().parse().unwrap_or(-1), c[1].trim().to_string())).collect()
+}
+
+/// A header point variable (x, y).
+fn header_point(p: &[(i32, String)], name: &str) -> (f64, f64) {
+    let i = p.iter().position(|(c, v)| *c == 9 && v == name).unwrap_or_else(|| panic!("no {name}"));
+    (p[i + 1].1.parse().unwrap(), p[i + 2].1.parse().unwrap())
+}
+
+/// The DIMENSION entities of the ENTITIES section, each as its first value per group code.
+fn dimensions(p: &[(i32, String)]) -> Vec<HashMap<i32, String>> {
+    let start = p.iter().position(|(c, v)| *c == 2 && v == "ENTITIES").expect("ENTITIES section");
+    let mut dims = Vec::new();
+    let mut current: Option<HashMap<i32, String>> = None;
+    for (c, v) in &p[start..] {
+        if *c == 0 {
+            dims.extend(current.take());
+            current = (v == "DIMENSION").then(HashMap::new);
+        } else if let Some(d) = current.as_mut() {
+            d.entry(*c).or_insert_with(|| v.clone());
+        }
+    }
+    dims
+}
+
+/// tesseract's reading of an image after the clean-up that makes LibreCAD's thin strokes
+/// readable: `turn` degrees clockwise, grey (construction lines) to white, strokes
+/// thickened by `thicken` pixels. Returns the text.
+fn ocr(image: &Path, turn: f64, thicken: u32) -> String {
+    let clean = image.with_file_name(format!(
+        "{}.t{}.k{thicken}.png",
+        image.file_stem().unwrap().to_string_lossy(),
+        turn.round()
+    ));
+    let status = Command::new("convert")
+        .arg(image)
+        .args(["-background", "white", "-rotate", &format!("{turn}"), "-flatten", "-threshold", "60%"])
+        .args(["-morphology", "Erode", &format!("Disk:{thicken}")])
+        .arg(&clean)
+        .status()
+        .expect("run convert");
+    assert!(status.success(), "convert failed on {}", image.display());
+    let out = Command::new("tesseract").arg(&clean).args(["stdout", "--psm", "11"]).output().expect("run tesseract");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+/// OCR of the page around each angular DIMENSION whose text contains one of `wanted`;
+/// returns (text, what OCR read) for each.
+fn angular_texts_read(dxf: &Path, pdf: &Path, wanted: &[&str]) -> Vec<(String, String)> {
+    let p = pairs(dxf);
+    let (x0, _) = header_point(&p, "$PLIMMIN");
+    let (_, y1) = header_point(&p, "$PLIMMAX");
+    let px_per_mm = CROP_DPI / 25.4;
+    let num = |d: &HashMap<i32, String>, c: i32| d.get(&c).and_then(|v| v.parse::<f64>().ok()).unwrap_or(f64::NAN);
+    let mut found = Vec::new();
+    for (k, d) in dimensions(&p).iter().enumerate() {
+        let text = d.get(&1).cloned().unwrap_or_default();
+        let flags: i32 = d.get(&70).and_then(|v| v.parse().ok()).unwrap_or(0);
+        if flags & 7 != 2 || !wanted.iter().any(|w| text.contains(w)) {
+            continue;
+        }
+        // 2-line angular: 13 the vertex, 16 on the arc; LibreCAD writes the text along the
+        // arc at its middle, level when turned by (bisector − 90°) clockwise.
+        let (vx, vy, ax, ay) = (num(d, 13), num(d, 23), num(d, 16), num(d, 26));
+        let turn = (ay - vy).atan2(ax - vx).to_degrees() - 90.0;
+        let side = (2.0 * CROP_HALF_MM * px_per_mm).round() as i64;
+        let left = ((ax - CROP_HALF_MM - x0) * px_per_mm).round() as i64;
+        let top = ((y1 - ay - CROP_HALF_MM) * px_per_mm).round() as i64;
+        let base = pdf.with_file_name(format!("angular{k}"));
+        let status = Command::new("pdftoppm")
+            .args(["-gray", "-png", "-singlefile", "-r", &format!("{CROP_DPI}")])
+            .args(["-x", &left.to_string(), "-y", &top.to_string(), "-W", &side.to_string(), "-H", &side.to_string()])
+            .arg(pdf)
+            .arg(&base)
+            .status()
+            .expect("run pdftoppm");
+        assert!(status.success());
+        let image = base.with_extension("png");
+        let read: String = [2, 1].iter().map(|&t| ocr(&image, turn, t)).collect::<Vec<_>>().join(" | ");
+        found.push((text, read));
+    }
+    found
+}
+
+#[test]
+fn librecad_draws_the_triads_angular_dimensions_on_a_real_page() {
+    require_tools();
+    for version in ["R12", "R2000", "R2007"] {
+        let dir = out_dir(&format!("triad-{version}"));
+        let dxf = write_dxf("triad-popa", &dir, &["--dxf-version", version]);
+        let pdf = dxf2pdf(&dxf, &dir);
+        let (w, h) = page_mm(&pdf);
+        assert!(w > MIN_PAGE_MM && h > MIN_PAGE_MM, "{version}: page {w:.0} × {h:.0} mm");
+        let read = angular_texts_read(&dxf, &pdf, &["102.23", "117.04"]);
+        assert_eq!(read.len(), 2, "{version}: the two angular dimensions are 2-line DIMENSIONs");
+        for (text, ocr) in &read {
+            let digits = &text[..6];
+            assert!(ocr.contains(digits), "{version}: {digits} not on LibreCAD's page; OCR read {ocr:?}");
+        }
+    }
+}
+
+#[test]
+fn librecad_draws_the_chains_tolerances_on_a_real_page() {
+    require_tools();
+    let dir = out_dir("chain");
+    let dxf = write_dxf("chain-humienny-2", &dir, &[]);
+    let pdf = dxf2pdf(&dxf, &dir);
+    let (w, h) = page_mm(&pdf);
+    assert!(w > MIN_PAGE_MM && h > MIN_PAGE_MM, "page {w:.0} × {h:.0} mm");
+    let base = dir.join("page");
+    let status = Command::new("pdftoppm")
+        .args(["-gray", "-png", "-singlefile", "-r", &PAGE_DPI.to_string()])
+        .arg(&pdf)
+        .arg(&base)
+        .status()
+        .expect("run pdftoppm");
+    assert!(status.success());
+    let read = ocr(&base.with_extension("png"), 0.0, 2);
+    // The chain's eight "N ±0.1" dimensions; OCR reads ± as + and misses one now and then.
+    let wanted = ["38", "25", "80", "260", "100", "55", "65", "15"];
+    let words: Vec<&str> = read.split_whitespace().collect();
+    let seen: Vec<&str> = wanted
+        .iter()
+        .copied()
+        .filter(|n| words.windows(2).any(|w| w[0] == *n && (w[1] == "±0.1" || w[1] == "+0.1")))
+        .collect();
+    assert!(seen.len() >= 5, "only {seen:?} of {wanted:?} read with ±0.1 on LibreCAD's page; OCR read {read:?}");
+}
