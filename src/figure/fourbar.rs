@@ -23,7 +23,7 @@
 //! panel titles, scales) on the content layers `MECHANISM`, `COUPLER_CURVE`, `DIMENSIONS`.
 //! [`Layout::moving`] draws one position on the content layers `MECHANISM`, `VELOCITY`,
 //! `ACCELERATION`, `FORCES`, `CONSTRUCTION`, `TEXT`. An SVG frame is base + moving
-//! ([`Layout::frame`]); the DXF ([`Layout::animation`]) moves each position's entities onto
+//! ([`Layout::frame`]); the DXF ([`crate::figure::animation::Animation::all_positions`], from the run's animation) moves each position's entities onto
 //! its own layer `POS_000`…`POS_359`, keeping the content's colour and line type on each
 //! entity, so that a CAD user switches positions by layer and tells contents by colour.
 
