@@ -174,6 +174,9 @@ pub struct RawMeasure {
     pub body: Option<String>,
     /// Column prefix (default: the point's or body's name).
     pub label: Option<String>,
+    /// Subscript of the diagrams' symbols: s_E, v_E, a_E for a point, ψ3, ω3, ε3 for a
+    /// body (default: the label for a point, the body's number in the file for a body).
+    pub symbol: Option<String>,
     /// What to measure.
     pub quantities: Vec<String>,
 }
@@ -202,6 +205,27 @@ pub struct RawLinkageScene {
     /// Measured quantities.
     #[serde(default)]
     pub measure: Vec<RawMeasure>,
+    /// How the diagrams are drawn.
+    #[serde(default)]
+    pub diagrams: RawDiagrams,
+}
+
+/// `[diagrams]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDiagrams {
+    /// Abscissa: `"angle"` (the driver's angle φ, degrees) or `"t"` (time, s); default
+    /// `"angle"` when the mechanism has a single angular driver, else `"t"`.
+    pub x: Option<String>,
+}
+
+/// The abscissa of the diagrams.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiagramAxis {
+    /// The single angular driver's angle, degrees.
+    DriverAngle,
+    /// Time, s.
+    Time,
 }
 
 /// A measured quantity.
@@ -272,6 +296,8 @@ pub struct Measure {
     pub target: MeasureTarget,
     /// Quantities, in the order asked.
     pub quantities: Vec<Quantity>,
+    /// Subscript of the diagrams' symbols (`E` in s_E, `3` in ω3).
+    pub symbol: String,
 }
 
 /// A checked `linkage` scene.
@@ -289,6 +315,8 @@ pub struct LinkageScene {
     pub mechanism: Mechanism,
     /// Measures.
     pub measures: Vec<Measure>,
+    /// Abscissa of the diagrams.
+    pub diagram_axis: DiagramAxis,
 }
 
 impl LinkageScene {
@@ -364,14 +392,27 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let drivers = check_drivers(&raw.driver, &bodies, &joints)?;
     check_degrees_of_freedom(&bodies, &joints, &drivers)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
-    Ok(LinkageScene {
-        name,
-        units: raw.units,
-        times,
-        ground_points,
-        mechanism: Mechanism { bodies, joints, drivers, length_scale },
-        measures,
-    })
+    let mechanism = Mechanism { bodies, joints, drivers, length_scale };
+    let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism)?;
+    Ok(LinkageScene { name, units: raw.units, times, ground_points, mechanism, measures, diagram_axis })
+}
+
+/// `[diagrams] x`: `"angle"` needs a single angular driver (a body angle or a revolute
+/// joint's angle); the default is the angle when there is one, else time.
+fn check_diagram_axis(raw: &RawDiagrams, mechanism: &Mechanism) -> Result<DiagramAxis, FieldError> {
+    let angular = mechanism.angular_driver().is_some();
+    match raw.x.as_deref() {
+        None => Ok(if angular { DiagramAxis::DriverAngle } else { DiagramAxis::Time }),
+        Some("t") => Ok(DiagramAxis::Time),
+        Some("angle") if angular => Ok(DiagramAxis::DriverAngle),
+        Some("angle") => Err(FieldError::new(
+            "diagrams.x",
+            "\"angle\" needs a single driver that turns a body or a revolute joint; this mechanism has none: use \"t\"",
+        )),
+        Some(other) => {
+            Err(FieldError::new("diagrams.x", format!("unknown abscissa `{other}`; valid: \"angle\", \"t\"")))
+        }
+    }
 }
 
 /// `time = { from, to, steps }`: the sample times, s (steps + 1 of them).
@@ -654,7 +695,18 @@ fn check_measures(
             ));
         }
         let quantities = check_quantities(&field, &m.quantities, table)?;
-        measures.push(Measure { label, target, quantities });
+        let symbol = match (&m.symbol, target) {
+            (Some(s), _) => s.trim().to_string(),
+            (None, MeasureTarget::Body(Attach::Body(i))) => (i + 1).to_string(),
+            (None, _) => label.clone(),
+        };
+        if symbol.is_empty() || symbol.chars().any(char::is_whitespace) {
+            return Err(FieldError::new(
+                format!("{field}.symbol"),
+                "the symbol's subscript is one word without spaces, e.g. \"E\" (s_E) or \"3\" (ω3)",
+            ));
+        }
+        measures.push(Measure { label, target, quantities, symbol });
     }
     Ok(measures)
 }
