@@ -46,9 +46,13 @@
 //! [[measure]]
 //! point = "slider.B"                            # columns B.x, B.vx, B.ax
 //! quantities = ["x", "vx", "ax"]
+//! symbol = "B"                                  # diagrams sB, vB, aB (default: the label)
 //! [[measure]]
 //! body = "rod"                                  # columns rod.angle_deg, rod.omega, rod.eps
-//! quantities = ["angle", "omega", "eps"]
+//! quantities = ["angle", "omega", "eps"]        # diagrams ψ2, ω2, ε2 (the rod is body 2)
+//!
+//! [diagrams]
+//! x = "angle"                                   # abscissa φ1 (the driver's angle, °) or "t"
 //! ```
 
 use serde::Deserialize;

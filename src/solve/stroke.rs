@@ -60,7 +60,7 @@ pub enum NoCycle {
     /// The mechanism has no single angular driver (several drivers, or a distance driver):
     /// no period to take the strokes' times over.
     NoAngularDriver,
-    /// The driver's law turns back (its rate changes sign or is zero) within the motion.
+    /// The driver's law turns back (its rate changes sign) or stands still within the motion.
     DriverNotMonotonic,
     /// The motion covers less than one turn of the driver.
     LessThanOneTurn,
@@ -111,8 +111,13 @@ impl Stroke {
 pub fn driver_turn(mech: &Mechanism, times: &[f64]) -> Result<(f64, f64), NoCycle> {
     let (driver, _) = mech.angular_driver().ok_or(NoCycle::NoAngularDriver)?;
     let law = &driver.law;
-    let sign = law.eval(times[0]).d1.signum();
-    if sign == 0.0 || times.iter().any(|&t| law.eval(t).d1 * sign <= 0.0) {
+    // Turning one way: the law's samples strictly monotonic, its rate never of the other
+    // sign (a driver may start or pause at rest).
+    let values: Vec<f64> = times.iter().map(|&t| law.eval(t).value).collect();
+    let sign = (values[values.len() - 1] - values[0]).signum();
+    let one_way =
+        values.windows(2).all(|w| (w[1] - w[0]) * sign > 0.0) && times.iter().all(|&t| law.eval(t).d1 * sign >= 0.0);
+    if sign == 0.0 || !one_way {
         return Err(NoCycle::DriverNotMonotonic);
     }
     let t0 = times[0];
@@ -264,4 +269,54 @@ fn cycle(times: &[f64], d: &[f64], (t0, t1): (f64, f64), lo: &Extreme, hi: &Extr
     let (working_time, return_time) = (rising.max(falling), rising.min(falling));
     let k = working_time / return_time;
     Ok((Cycle { k, working_time, return_time, period }, falling > rising))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solve::expr::Expr;
+    use crate::solve::linkage::{Body, Driver, DriverTarget};
+
+    /// One body turned by `law` (no joints: `driver_turn` looks at the driver only).
+    fn turned_by(law: &str) -> Mechanism {
+        Mechanism {
+            bodies: vec![Body {
+                name: "crank".into(),
+                points: vec![("A".into(), Vector::new(1.0, 0.0))],
+                at: Point::origin(),
+                angle: 0.0,
+            }],
+            joints: Vec::new(),
+            drivers: vec![Driver {
+                name: "crank".into(),
+                target: DriverTarget::BodyAngle(0),
+                law: Expr::parse(law).unwrap(),
+            }],
+            length_scale: 1.0,
+        }
+    }
+
+    fn times(to: f64, steps: u32) -> Vec<f64> {
+        (0..=steps).map(|k| to * f64::from(k) / f64::from(steps)).collect()
+    }
+
+    #[test]
+    fn one_turn_of_a_non_uniform_or_clockwise_driver_is_found_on_its_law() {
+        // φ = π·t² turns once at t = √2, between samples.
+        let (t0, t1) = driver_turn(&turned_by("pi*t^2"), &times(2.0, 20)).unwrap();
+        assert_eq!(t0, 0.0);
+        assert!((t1 - 2f64.sqrt()).abs() < 1e-14, "{t1}");
+        // Clockwise: |Δφ| = 2π at t = 1.
+        let (_, t1) = driver_turn(&turned_by("-2*pi*t"), &times(1.5, 7)).unwrap();
+        assert!((t1 - 1.0).abs() < 1e-15, "{t1}");
+    }
+
+    #[test]
+    fn no_turn_says_why() {
+        assert_eq!(driver_turn(&turned_by("t"), &times(1.0, 10)), Err(NoCycle::LessThanOneTurn));
+        assert_eq!(driver_turn(&turned_by("8*sin(t)"), &times(3.0, 30)), Err(NoCycle::DriverNotMonotonic));
+        let mut two = turned_by("t");
+        two.drivers.push(two.drivers[0].clone());
+        assert_eq!(driver_turn(&two, &times(10.0, 10)), Err(NoCycle::NoAngularDriver));
+    }
 }
