@@ -176,6 +176,16 @@ fn the_abscissa_and_the_symbols_are_chosen_in_the_scene() {
         .replace("joint = \"O1\"\nlaw = \"2*pi*t\"", "joint = \"guide\"\nlaw = \"120 + 5*t\"");
     let e = load(&by_distance, &[]).unwrap_err().to_string();
     assert!(e.contains("diagrams.x") && e.contains("\"t\""), "{e}");
+    // A crank that swings back and forth: drawn against t by default (against its angle the
+    // curves would fold back), "angle" refused, no K.
+    let swinging = slider_crank("").replace("law = \"2*pi*t\"", "law = \"sin(2*pi*t)\"");
+    let p = products(&swinging, &[]);
+    assert!(texts(diagram(&p, "C.x")).iter().any(|t| t == "t [s]"));
+    assert_eq!(p.summary["strokes"]["C"]["K_not_reported"], "the driver turns back within the motion");
+    let e = load(&swinging.replacen("[[measure]]", "[diagrams]\nx = \"angle\"\n[[measure]]", 1), &[])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("diagrams.x") && e.contains("turns back"), "{e}");
     let e = load(&slider_crank("[diagrams]\nx = \"phi\""), &[]).unwrap_err().to_string();
     assert!(e.contains("diagrams.x") && e.contains("unknown abscissa `phi`"), "{e}");
     let e = load(&slider_crank("").replace("point = \"slider.C\"\n", "point = \"slider.C\"\nsymbol = \"C 1\"\n"), &[])

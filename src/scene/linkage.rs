@@ -397,25 +397,32 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     check_degrees_of_freedom(&bodies, &joints, &drivers)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
-    let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism)?;
+    let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
     Ok(LinkageScene { name, units: raw.units, times, ground_points, mechanism, measures, diagram_axis })
 }
 
 /// `[diagrams] x`: `"angle"` needs a single angular driver (a body angle or a revolute
-/// joint's angle); the default is the angle when there is one, else time.
-fn check_diagram_axis(raw: &RawDiagrams, mechanism: &Mechanism) -> Result<DiagramAxis, FieldError> {
-    let angular = mechanism.angular_driver().is_some();
+/// joint's angle) that turns one way over the motion (else the curves would fold back);
+/// the default is the angle when there is such a driver, else time.
+fn check_diagram_axis(raw: &RawDiagrams, mechanism: &Mechanism, times: &[f64]) -> Result<DiagramAxis, FieldError> {
+    let driver = mechanism.angular_driver();
+    let one_way = driver.is_some_and(|(d, _)| crate::solve::stroke::one_way(&d.law, times));
     match raw.x.as_deref() {
-        None => Ok(if angular { DiagramAxis::DriverAngle } else { DiagramAxis::Time }),
+        None => Ok(if one_way { DiagramAxis::DriverAngle } else { DiagramAxis::Time }),
         Some("t") => Ok(DiagramAxis::Time),
-        Some("angle") if angular => Ok(DiagramAxis::DriverAngle),
+        Some("angle") if one_way => Ok(DiagramAxis::DriverAngle),
         Some("angle") => Err(FieldError::new(
             "diagrams.x",
-            "\"angle\" needs a single driver that turns a body or a revolute joint; this mechanism has none: use \"t\"",
+            match driver {
+                Some((d, _)) => format!(
+                    "\"angle\" needs the driver's angle to turn one way over the motion, but `{}` = {} turns back or stands still: use \"t\"",
+                    d.name,
+                    d.law.source()
+                ),
+                None => "\"angle\" needs a single driver that turns a body or a revolute joint; this mechanism has none: use \"t\"".to_string(),
+            },
         )),
-        Some(other) => {
-            Err(FieldError::new("diagrams.x", format!("unknown abscissa `{other}`; valid: \"angle\", \"t\"")))
-        }
+        Some(other) => Err(FieldError::new("diagrams.x", format!("unknown abscissa `{other}`; valid: \"angle\", \"t\""))),
     }
 }
 

@@ -19,6 +19,7 @@
 //! the extreme at the guide's negative end, positive along u.
 
 use crate::geom::{Point, Vector};
+use crate::solve::expr::Expr;
 use crate::solve::linkage::{Anchor, LinkageError, Mechanism, Solver, State};
 
 /// Newton iterations allowed to refine one extreme.
@@ -111,17 +112,12 @@ impl Stroke {
 pub fn driver_turn(mech: &Mechanism, times: &[f64]) -> Result<(f64, f64), NoCycle> {
     let (driver, _) = mech.angular_driver().ok_or(NoCycle::NoAngularDriver)?;
     let law = &driver.law;
-    // Turning one way: the law's samples strictly monotonic, its rate never of the other
-    // sign (a driver may start or pause at rest).
-    let values: Vec<f64> = times.iter().map(|&t| law.eval(t).value).collect();
-    let sign = (values[values.len() - 1] - values[0]).signum();
-    let one_way =
-        values.windows(2).all(|w| (w[1] - w[0]) * sign > 0.0) && times.iter().all(|&t| law.eval(t).d1 * sign >= 0.0);
-    if sign == 0.0 || !one_way {
+    if !one_way(law, times) {
         return Err(NoCycle::DriverNotMonotonic);
     }
     let t0 = times[0];
     let phi0 = law.eval(t0).value;
+    let sign = (law.eval(times[times.len() - 1]).value - phi0).signum();
     let turned = |t: f64| (law.eval(t).value - phi0) * sign - std::f64::consts::TAU;
     let k = times.iter().position(|&t| turned(t) >= 0.0).ok_or(NoCycle::LessThanOneTurn)?;
     // Bisection, then Newton, on [times[k−1], times[k]] (turned is increasing there).
@@ -154,6 +150,17 @@ pub fn driver_turn(mech: &Mechanism, times: &[f64]) -> Result<(f64, f64), NoCycl
         t = next;
     }
     Ok((t0, t))
+}
+
+/// Whether `law` turns one way over `times` (two or more): its values at the samples
+/// strictly monotonic and its rate never of the other sign (it may start or pause at rest).
+pub fn one_way(law: &Expr, times: &[f64]) -> bool {
+    let values: Vec<f64> = times.iter().map(|&t| law.eval(t).value).collect();
+    let Some((first, last)) = values.first().zip(values.last()) else { return false };
+    let sign = (last - first).signum();
+    sign != 0.0
+        && values.windows(2).all(|w| (w[1] - w[0]) * sign > 0.0)
+        && times.iter().all(|&t| law.eval(t).d1 * sign >= 0.0)
 }
 
 /// The stroke of `point` moving along the unit direction `u` (its ground guide), from the
@@ -274,7 +281,6 @@ fn cycle(times: &[f64], d: &[f64], (t0, t1): (f64, f64), lo: &Extreme, hi: &Extr
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::solve::expr::Expr;
     use crate::solve::linkage::{Body, Driver, DriverTarget};
 
     /// One body turned by `law` (no joints: `driver_turn` looks at the driver only).
