@@ -1,6 +1,7 @@
-//! Golden image of one shaper frame (t = 0.125 s, crank at 45°): bodies, joints, the
-//! slider on the rocker, the ram on its hatched guide, ground pivots, names, and the
-//! path of E.
+//! Golden images of the shaper: one frame (t = 0.125 s, crank at 45°: bodies, joints, the
+//! slider on the rocker, the ram on its hatched guide, ground pivots, names, and the path
+//! of E), and the displacement diagram of the ram point E (sE against φ1, the seed's Fig. 9
+//! as a textbook draws it).
 
 mod common;
 
@@ -23,4 +24,13 @@ fn shaper_frame_045_golden_png() {
     let spans = guide_spans(&fig, &motion, &style);
     let d = frame(&fig, &motion, &states[45].q, &spans, &style);
     common::assert_golden_png("linkage/shaper_frame_045.png", &to_string(&d, &SvgOptions::default()));
+}
+
+#[test]
+fn shaper_e_displacement_diagram_golden_png() {
+    let loaded = scene::load(&common::root().join("templates/shaper.toml"), &[]).unwrap();
+    let p = mechdraw::run::products(&loaded, &mechdraw::run::RunOptions::default()).unwrap();
+    let d = &p.diagrams.iter().find(|d| d.stem == "E.x").expect("the E.x diagram").drawing;
+    // As the run writes it (run::bytes: the SVG writer's default options).
+    common::assert_golden_png("linkage/shaper_E_displacement.png", &to_string(d, &SvgOptions::default()));
 }

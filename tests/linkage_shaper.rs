@@ -1,7 +1,7 @@
 //! The shaper (seed 002, design.md §3) through the general linkage solver, against a
 //! closed-form solution of the same mechanism (mechdraw::bench::reference::shaper, shared
-//! with `mechdraw bench`), and its quick-return ratio
-//! against the analytic one.
+//! with `mechdraw bench`), and its stroke H and quick-return ratio K against the closed
+//! form.
 
 mod common;
 
@@ -50,31 +50,56 @@ fn shaper_matches_the_closed_form_at_every_step() {
     );
 }
 
+/// The shaper's stroke H and time ratio K as the run reports them (JSON `strokes.E`),
+/// against the closed form. The rocker O3B is at a limit where it is tangent to the crank
+/// circle (crank ⟂ rocker): its angle from the vertical O3O1 is ±α, α = asin(l1/O1O3), with
+/// the crank at φ1 = 180° + α and 360° − α; the crank angle between the limit positions is
+/// θ = 2α, so K = (180° + θ)/(180° − θ). B = l3·(cos ψ, sin ψ) has the same height at both
+/// limits (ψ = 90° ∓ α), so x_E − x_B is the same there; when x_E is monotonic in ψ over the
+/// swing (checked below for the template), E's extremes are the rocker's and
+/// H = x_B(90° − α) − x_B(90° + α) = 2·l3·sin α = 2·l3·l1/O1O3 = 500 mm.
 #[test]
-fn quick_return_ratio_matches_the_analytic_one() {
-    let (scene, states) = shaper();
-    let e = scene.anchor("ram.E").unwrap();
-    // Times where v_E changes sign (the stroke ends), by linear interpolation of samples.
-    let mut reversals = Vec::new();
-    for w in states.windows(2) {
-        let (v0, v1) = (w[0].velocity(e).x, w[1].velocity(e).x);
-        if v0 * v1 < 0.0 {
-            reversals.push(w[0].t + (w[1].t - w[0].t) * v0 / (v0 - v1));
-        }
+fn stroke_and_time_ratio_match_the_closed_form() {
+    use mechdraw::bench::reference::shaper::{L, LBE};
+    let loaded = scene::load(&common::root().join("templates/shaper.toml"), &[]).unwrap();
+    let p = mechdraw::run::products(&loaded, &mechdraw::run::RunOptions::default()).unwrap();
+    let e = &p.summary["strokes"]["E"];
+    let num = |v: &serde_json::Value| v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"));
+
+    let alpha = (R / H_PIVOT).asin();
+    // x_E is monotonic in the rocker angle ψ over [90° − α, 90° + α] (the guide is far
+    // enough from B's arc): dx_E/dψ = −l3·sin ψ + (y_ram − y_B)·l3·cos ψ / √(l4² − (y_ram − y_B)²) < 0.
+    for i in 0..=1000 {
+        let psi = std::f64::consts::FRAC_PI_2 - alpha + 2.0 * alpha * f64::from(i) / 1000.0;
+        let dy = Y_RAM - L * psi.sin();
+        let slope = -L * psi.sin() + dy * L * psi.cos() / (LBE * LBE - dy * dy).sqrt();
+        assert!(slope < 0.0, "x_E not monotonic in the rocker angle at ψ = {}°", psi.to_degrees());
     }
-    assert_eq!(reversals.len(), 2, "{reversals:?}");
-    let first = reversals[1] - reversals[0];
-    let second = 1.0 - first;
-    let ratio = first.max(second) / first.min(second);
-    // Analytic: the rocker's limits are where it touches the crank circle, alpha = asin(r/h);
-    // the crank turns 180° + 2α on one stroke and 180° − 2α on the other.
-    let alpha = (R / H_PIVOT).asin().to_degrees();
-    let analytic = (180.0 + 2.0 * alpha) / (180.0 - 2.0 * alpha);
-    eprintln!("quick-return ratio: from the motion {ratio:.5}, analytic {analytic:.5} (alpha = {alpha:.4}°)");
-    assert!((ratio - analytic).abs() <= 1e-3 * analytic, "{ratio} vs {analytic}");
-    // The strokes start where the crank is perpendicular to the rocker: t = −α and 180° + α.
-    let t_right = (360.0 - alpha) / 360.0;
-    let t_left = (180.0 + alpha) / 360.0;
-    let near = |t: f64| reversals.iter().any(|r| (r - t).abs() < 1e-4);
-    assert!(near(t_right) && near(t_left), "{reversals:?} vs {t_left}, {t_right}");
+    let h = 2.0 * L * R / H_PIVOT;
+    let theta = 2.0 * alpha.to_degrees();
+    let k = (180.0 + theta) / (180.0 - theta);
+    eprintln!(
+        "shaper stroke: H = {} mm (closed form {h}), K = {} (closed form {k}, θ = {theta:.6}°)",
+        num(&e["H"]),
+        num(&e["K"])
+    );
+    assert!((num(&e["H"]) - h).abs() <= 1e-9, "H {} vs {h}", e["H"]);
+    assert!((num(&e["K"]) - k).abs() <= 1e-9, "K {} vs {k}", e["K"]);
+    // The working stroke (the slower, crank turning 180° + θ) starts at the right extreme,
+    // crank at 360° − α, and runs towards −x to the left extreme, crank at 180° + α.
+    let (start, end) = (360.0 - alpha.to_degrees(), 180.0 + alpha.to_degrees());
+    assert!((num(&e["start"]["driver_deg"]) - start).abs() <= 1e-9, "{}", e["start"]);
+    assert!((num(&e["end"]["driver_deg"]) - end).abs() <= 1e-9, "{}", e["end"]);
+    assert!((num(&e["start"]["t"]) - start / 360.0).abs() <= 1e-9 && (num(&e["end"]["t"]) - end / 360.0).abs() <= 1e-9);
+    assert_eq!(e["direction"], serde_json::json!([-1.0, 0.0]));
+    // The extremes are where the closed form puts E at those times.
+    let (x_start, x_end) = (closed_form(start / 360.0).0[0], closed_form(end / 360.0).0[0]);
+    assert!((num(&e["start"]["at"][0]) - x_start).abs() <= 1e-9 && (num(&e["end"]["at"][0]) - x_end).abs() <= 1e-9);
+    assert!((x_start - x_end - h).abs() <= 1e-9);
+    // The strokes' times: (180° ± θ)/360° of the 1 s turn.
+    assert!((num(&e["working_time"]) - (180.0 + theta) / 360.0).abs() <= 1e-9);
+    assert!((num(&e["return_time"]) - (180.0 - theta) / 360.0).abs() <= 1e-9);
+    assert_eq!(num(&e["period"]), 1.0);
+    // The report says it too.
+    assert!(p.report.contains("stroke of E: H = 500.0000 mm, K = 1.7533"), "{}", p.report);
 }

@@ -16,18 +16,17 @@ use crate::figure::linkage::{self as fig, Style};
 use crate::figure::plot::{Diagram, Series, diagram};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
-use crate::scene::linkage::{LinkageScene, MeasureTarget, Quantity};
-use crate::solve::linkage::{Anchor, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State};
+use crate::scene::Units;
+use crate::scene::linkage::{DiagramAxis, LinkageScene, Measure, MeasureTarget, Quantity};
+use crate::solve::linkage::{Anchor, Attach, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State};
+use crate::solve::stroke::{self, Extreme, Stroke};
 
-/// One measured column: its name, unit and values over the motion.
+/// One measured column: its name and values over the motion (the CSV's and the JSON's;
+/// the diagrams draw them in textbook form, see `plot_of`).
 #[derive(Debug, Clone)]
 pub struct Column {
     /// `E.x`, `rocker.omega`, …
     pub name: String,
-    /// Unit for diagram labels.
-    pub unit: String,
-    /// Description for diagram titles.
-    pub title: String,
     /// One value per sample.
     pub values: Vec<f64>,
 }
@@ -65,31 +64,11 @@ pub fn quantity(state: &State, target: MeasureTarget, q: Quantity) -> f64 {
 
 /// The measured columns of a scene over `states`.
 pub fn columns(scene: &LinkageScene, states: &[State]) -> Vec<Column> {
-    let lu = scene.units.length();
     let mut out = Vec::new();
     for m in &scene.measures {
         for &q in &m.quantities {
-            let (unit, what) = match q {
-                Quantity::X => (lu.to_string(), "x"),
-                Quantity::Y => (lu.to_string(), "y"),
-                Quantity::Vx => (format!("{lu}/s"), "x-velocity"),
-                Quantity::Vy => (format!("{lu}/s"), "y-velocity"),
-                Quantity::V => (format!("{lu}/s"), "speed"),
-                Quantity::Ax => (format!("{lu}/s²"), "x-acceleration"),
-                Quantity::Ay => (format!("{lu}/s²"), "y-acceleration"),
-                Quantity::A => (format!("{lu}/s²"), "acceleration magnitude"),
-                Quantity::Angle => ("°".to_string(), "angle"),
-                Quantity::Omega => ("rad/s".to_string(), "angular velocity"),
-                Quantity::Eps => ("rad/s²".to_string(), "angular acceleration"),
-            };
-            let owner = match m.target {
-                MeasureTarget::Point(_) => "point",
-                MeasureTarget::Body(_) => "body",
-            };
             out.push(Column {
                 name: format!("{}.{}", m.label, q.column()),
-                unit,
-                title: format!("{what} of {owner} {}", m.label),
                 values: states.iter().map(|s| quantity(s, m.target, q)).collect(),
             });
         }
@@ -133,6 +112,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     }
     let states = solver.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?;
     let cols = columns(scene, &states);
+    let strokes = guided_strokes(scene, &mut solver, &states).map_err(|e| solve_err(file)(e.into()))?;
     let max_residual = states.iter().map(|s| s.residual).fold(0.0, f64::max);
     let max_iter = states.iter().skip(1).map(|s| s.iterations).max().unwrap_or(0);
     let mean_iter = if states.len() > 1 {
@@ -197,6 +177,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
             newton_iterations_mean: mean_iter,
             columns: cols.iter().map(|c| c.name.as_str()).collect(),
             extremes,
+            strokes: strokes.iter().map(|g| (g.measure.label.clone(), stroke_record(scene, &g.stroke))).collect(),
             near_singular: near_singular
                 .iter()
                 .map(|n| NearSingularRecord {
@@ -224,6 +205,11 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
         max_iter,
         mean_iter
     );
+    let mut report = report;
+    for g in &strokes {
+        report.push('\n');
+        report.push_str(&stroke_line(scene, g));
+    }
 
     let style = Style::for_length(mech.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
@@ -239,18 +225,22 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
-    // Diagrams, one per measured column.
-    let t: Vec<f64> = states.iter().map(|s| s.t).collect();
-    let diagrams = cols
-        .iter()
-        .map(|c| products::Diagram {
-            stem: c.name.clone(),
-            drawing: diagram(&Diagram {
-                title: format!("{} — {}", c.name, c.title),
-                x_label: "t [s]".into(),
-                y_label: format!("{} [{}]", c.name, c.unit),
-                series: vec![Series { label: c.name.clone(), x: t.clone(), y: c.values.clone() }],
-            }),
+    // Diagrams, one per measured column, as a textbook draws them.
+    let (x_label, x) = abscissa(scene, &states);
+    let plots = scene.measures.iter().flat_map(|m| m.quantities.iter().map(move |&q| (m, q)));
+    let diagrams = plots
+        .zip(&cols)
+        .map(|((m, q), c)| {
+            let p = plot_of(scene, m, q, &states, &strokes);
+            products::Diagram {
+                stem: c.name.clone(),
+                drawing: diagram(&Diagram {
+                    title: p.title,
+                    x_label: x_label.clone(),
+                    y_label: p.y_label,
+                    series: vec![Series { label: c.name.clone(), x: x.clone(), y: p.values }],
+                }),
+            }
         })
         .collect();
 
@@ -368,6 +358,215 @@ pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
     fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced)
 }
 
+/// A measured point on a body that slides on a ground guide, with its stroke.
+struct Guided<'a> {
+    measure: &'a Measure,
+    /// The guide's direction (q1 → q2, global, unit).
+    guide: crate::geom::Vector,
+    stroke: Stroke,
+}
+
+/// The stroke of every measured point whose body slides on a ground guide.
+fn guided_strokes<'a>(
+    scene: &'a LinkageScene,
+    solver: &mut Solver,
+    states: &[State],
+) -> Result<Vec<Guided<'a>>, LinkageError> {
+    let mut out = Vec::new();
+    for m in &scene.measures {
+        let MeasureTarget::Point(a) = m.target else { continue };
+        let Attach::Body(i) = a.body else { continue };
+        let Some((_, guide)) = scene.mechanism.ground_guide(i) else { continue };
+        let stroke = stroke::stroke(solver, states, a, guide)?;
+        out.push(Guided { measure: m, guide, stroke });
+    }
+    Ok(out)
+}
+
+/// Metres per length unit of the scene (velocities and accelerations are drawn in m/s and
+/// m/s², as textbooks print them, whatever the length unit).
+fn metres_per_unit(units: Units) -> f64 {
+    match units {
+        Units::Mm => 1e-3,
+        Units::Si => 1.0,
+    }
+}
+
+/// The diagrams' abscissa: the single angular driver's angle φ (degrees, the law's value
+/// over the motion) or t.
+fn abscissa(scene: &LinkageScene, states: &[State]) -> (String, Vec<f64>) {
+    match (scene.diagram_axis, scene.mechanism.angular_driver()) {
+        (DiagramAxis::DriverAngle, Some((driver, body))) => {
+            let sub = body_symbol(scene, body);
+            (format!("φ{sub} [°]"), states.iter().map(|s| deg(driver.law.eval(s.t).value)).collect())
+        }
+        _ => ("t [s]".into(), states.iter().map(|s| s.t).collect()),
+    }
+}
+
+/// A body's subscript: the `symbol` of a measure of that body, else its number in the
+/// scene (1, 2, …).
+fn body_symbol(scene: &LinkageScene, body: Attach) -> String {
+    let measured = scene.measures.iter().find(|m| m.target == MeasureTarget::Body(body));
+    match (measured, body) {
+        (Some(m), _) => m.symbol.clone(),
+        (None, Attach::Body(i)) => (i + 1).to_string(),
+        (None, Attach::Ground) => "0".into(),
+    }
+}
+
+/// One diagram's title, axis label and values.
+struct Plot {
+    title: String,
+    y_label: String,
+    values: Vec<f64>,
+}
+
+/// How one measured quantity is drawn: textbook symbol and title, velocities and
+/// accelerations in m/s and m/s². A guided point's quantity along its guide's main axis
+/// (x for a guide nearer the x axis) is drawn as s, v, a along the guide, s from the
+/// extreme where the working stroke starts (docs/linkage.md).
+fn plot_of(scene: &LinkageScene, m: &Measure, q: Quantity, states: &[State], strokes: &[Guided]) -> Plot {
+    let lu = scene.units.length();
+    let k = metres_per_unit(scene.units);
+    let sym = &m.symbol;
+    let raw: Vec<f64> = states.iter().map(|s| quantity(s, m.target, q)).collect();
+    let scaled = |f: f64| raw.iter().map(|v| v * f).collect::<Vec<f64>>();
+    match m.target {
+        MeasureTarget::Point(a) => {
+            let whose = format!("the {} point {sym}", scene.body_name(a.body));
+            let guided = strokes.iter().find(|g| g.measure.label == m.label);
+            let along = guided.filter(|g| {
+                let x_axis = g.guide.x.abs() >= g.guide.y.abs();
+                matches!(
+                    (q, x_axis),
+                    (Quantity::X | Quantity::Vx | Quantity::Ax, true)
+                        | (Quantity::Y | Quantity::Vy | Quantity::Ay, false)
+                )
+            });
+            if let Some(g) = along {
+                let w = g.stroke.direction;
+                let (title, y_label, values) = match q {
+                    Quantity::X | Quantity::Y => (
+                        "Displacement",
+                        format!("s{sym} [{lu}]"),
+                        states.iter().map(|s| g.stroke.s(s.point(a))).collect(),
+                    ),
+                    Quantity::Vx | Quantity::Vy => (
+                        "Velocity",
+                        format!("v{sym} [m/s]"),
+                        states.iter().map(|s| s.velocity(a).dot(&w) * k).collect(),
+                    ),
+                    _ => (
+                        "Acceleration",
+                        format!("a{sym} [m/s²]"),
+                        states.iter().map(|s| s.acceleration(a).dot(&w) * k).collect(),
+                    ),
+                };
+                return Plot { title: format!("{title} of {whose}"), y_label, values };
+            }
+            let (title, y_label, values) = match q {
+                Quantity::X => (format!("x-coordinate of {whose}"), format!("x{sym} [{lu}]"), raw),
+                Quantity::Y => (format!("y-coordinate of {whose}"), format!("y{sym} [{lu}]"), raw),
+                Quantity::Vx => (format!("Velocity of {whose}, x-component"), format!("v{sym}x [m/s]"), scaled(k)),
+                Quantity::Vy => (format!("Velocity of {whose}, y-component"), format!("v{sym}y [m/s]"), scaled(k)),
+                Quantity::V => (format!("Speed of {whose}"), format!("|v{sym}| [m/s]"), scaled(k)),
+                Quantity::Ax => (format!("Acceleration of {whose}, x-component"), format!("a{sym}x [m/s²]"), scaled(k)),
+                Quantity::Ay => (format!("Acceleration of {whose}, y-component"), format!("a{sym}y [m/s²]"), scaled(k)),
+                _ => (format!("Acceleration of {whose}, magnitude"), format!("|a{sym}| [m/s²]"), scaled(k)),
+            };
+            Plot { title, y_label, values }
+        }
+        MeasureTarget::Body(b) => {
+            let name = scene.body_name(b);
+            let driven = scene.mechanism.angular_driver().is_some_and(|(_, d)| d == b);
+            let angle = if driven { "φ" } else { "ψ" };
+            let (title, y_label) = match q {
+                Quantity::Angle => (format!("Angle of the {name}"), format!("{angle}{sym} [°]")),
+                Quantity::Omega => (format!("Angular velocity of the {name}"), format!("ω{sym} [rad/s]")),
+                _ => (format!("Angular acceleration of the {name}"), format!("ε{sym} [rad/s²]")),
+            };
+            Plot { title, y_label, values: raw }
+        }
+    }
+}
+
+/// The report's line for one guided point.
+fn stroke_line(scene: &LinkageScene, g: &Guided) -> String {
+    let st = &g.stroke;
+    let lu = scene.units.length();
+    let sym = &g.measure.symbol;
+    let mut s = format!("stroke of {sym}: H = {:.4} {lu}", st.h);
+    match &st.cycle {
+        Ok(c) => s.push_str(&format!(
+            ", K = {:.4} (working stroke {:.4} s from t = {:.4} s{}, return {:.4} s)",
+            c.k,
+            c.working_time,
+            st.start.t,
+            driver_text(scene, &st.start),
+            c.return_time
+        )),
+        Err(why) => s.push_str(&format!("; K not reported: {}", why.text())),
+    }
+    s
+}
+
+/// ", φ1 = 335.3757°" for an extreme when the driver is angular.
+fn driver_text(scene: &LinkageScene, e: &Extreme) -> String {
+    match (scene.mechanism.angular_driver(), e.driver) {
+        (Some((_, body)), Some(v)) => format!(", φ{} = {:.4}°", body_symbol(scene, body), deg(v)),
+        _ => String::new(),
+    }
+}
+
+/// The JSON record of a stroke (docs/linkage.md).
+fn stroke_record(scene: &LinkageScene, st: &Stroke) -> StrokeRecord {
+    let angular = scene.mechanism.angular_driver().is_some();
+    let ext =
+        |e: &Extreme| ExtremeRecord { t: e.t, at: [e.at.x, e.at.y], driver_deg: e.driver.filter(|_| angular).map(deg) };
+    StrokeRecord {
+        h: st.h,
+        k: st.cycle.as_ref().ok().map(|c| c.k),
+        k_not_reported: st.cycle.as_ref().err().map(|w| w.text()),
+        // + 0.0 turns −0 into 0.
+        direction: [st.direction.x + 0.0, st.direction.y + 0.0],
+        start: ext(&st.start),
+        end: ext(&st.end),
+        working_time: st.cycle.as_ref().ok().map(|c| c.working_time),
+        return_time: st.cycle.as_ref().ok().map(|c| c.return_time),
+        period: st.cycle.as_ref().ok().map(|c| c.period),
+    }
+}
+
+/// An extreme position in the JSON summary.
+#[derive(Debug, Serialize)]
+struct ExtremeRecord {
+    t: f64,
+    at: [f64; 2],
+    #[serde(skip_serializing_if = "Option::is_none")]
+    driver_deg: Option<f64>,
+}
+
+/// The stroke of a guided point in the JSON summary.
+#[derive(Debug, Serialize)]
+struct StrokeRecord {
+    #[serde(rename = "H")]
+    h: f64,
+    #[serde(rename = "K", skip_serializing_if = "Option::is_none")]
+    k: Option<f64>,
+    #[serde(rename = "K_not_reported", skip_serializing_if = "Option::is_none")]
+    k_not_reported: Option<&'static str>,
+    direction: [f64; 2],
+    start: ExtremeRecord,
+    end: ExtremeRecord,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    working_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    return_time: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    period: Option<f64>,
+}
+
 /// One sample of the JSON summary: t, every measured column, and a flag at near-singular
 /// steps.
 #[derive(Debug, Serialize)]
@@ -414,6 +613,7 @@ struct MotionSummary<'a> {
     newton_iterations_mean: f64,
     columns: Vec<&'a str>,
     extremes: BTreeMap<String, Extremes>,
+    strokes: BTreeMap<String, StrokeRecord>,
     near_singular: Vec<NearSingularRecord<'a>>,
     samples: Vec<Sample>,
 }

@@ -46,9 +46,13 @@
 //! [[measure]]
 //! point = "slider.B"                            # columns B.x, B.vx, B.ax
 //! quantities = ["x", "vx", "ax"]
+//! symbol = "B"                                  # diagrams sB, vB, aB (default: the label)
 //! [[measure]]
 //! body = "rod"                                  # columns rod.angle_deg, rod.omega, rod.eps
-//! quantities = ["angle", "omega", "eps"]
+//! quantities = ["angle", "omega", "eps"]        # diagrams ψ2, ω2, ε2 (the rod is body 2)
+//!
+//! [diagrams]
+//! x = "angle"                                   # abscissa φ1 (the driver's angle, °) or "t"
 //! ```
 
 use serde::Deserialize;
@@ -174,6 +178,9 @@ pub struct RawMeasure {
     pub body: Option<String>,
     /// Column prefix (default: the point's or body's name).
     pub label: Option<String>,
+    /// Subscript of the diagrams' symbols: s_E, v_E, a_E for a point, ψ3, ω3, ε3 for a
+    /// body (default: the label for a point, the body's number in the file for a body).
+    pub symbol: Option<String>,
     /// What to measure.
     pub quantities: Vec<String>,
 }
@@ -202,6 +209,27 @@ pub struct RawLinkageScene {
     /// Measured quantities.
     #[serde(default)]
     pub measure: Vec<RawMeasure>,
+    /// How the diagrams are drawn.
+    #[serde(default)]
+    pub diagrams: RawDiagrams,
+}
+
+/// `[diagrams]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDiagrams {
+    /// Abscissa: `"angle"` (the driver's angle φ, degrees) or `"t"` (time, s); default
+    /// `"angle"` when the mechanism has a single angular driver, else `"t"`.
+    pub x: Option<String>,
+}
+
+/// The abscissa of the diagrams.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DiagramAxis {
+    /// The single angular driver's angle, degrees.
+    DriverAngle,
+    /// Time, s.
+    Time,
 }
 
 /// A measured quantity.
@@ -272,6 +300,8 @@ pub struct Measure {
     pub target: MeasureTarget,
     /// Quantities, in the order asked.
     pub quantities: Vec<Quantity>,
+    /// Subscript of the diagrams' symbols (`E` in s_E, `3` in ω3).
+    pub symbol: String,
 }
 
 /// A checked `linkage` scene.
@@ -289,6 +319,8 @@ pub struct LinkageScene {
     pub mechanism: Mechanism,
     /// Measures.
     pub measures: Vec<Measure>,
+    /// Abscissa of the diagrams.
+    pub diagram_axis: DiagramAxis,
 }
 
 impl LinkageScene {
@@ -364,14 +396,34 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let drivers = check_drivers(&raw.driver, &bodies, &joints)?;
     check_degrees_of_freedom(&bodies, &joints, &drivers)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
-    Ok(LinkageScene {
-        name,
-        units: raw.units,
-        times,
-        ground_points,
-        mechanism: Mechanism { bodies, joints, drivers, length_scale },
-        measures,
-    })
+    let mechanism = Mechanism { bodies, joints, drivers, length_scale };
+    let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
+    Ok(LinkageScene { name, units: raw.units, times, ground_points, mechanism, measures, diagram_axis })
+}
+
+/// `[diagrams] x`: `"angle"` needs a single angular driver (a body angle or a revolute
+/// joint's angle) that turns one way over the motion (else the curves would fold back);
+/// the default is the angle when there is such a driver, else time.
+fn check_diagram_axis(raw: &RawDiagrams, mechanism: &Mechanism, times: &[f64]) -> Result<DiagramAxis, FieldError> {
+    let driver = mechanism.angular_driver();
+    let one_way = driver.is_some_and(|(d, _)| crate::solve::stroke::one_way(&d.law, times));
+    match raw.x.as_deref() {
+        None => Ok(if one_way { DiagramAxis::DriverAngle } else { DiagramAxis::Time }),
+        Some("t") => Ok(DiagramAxis::Time),
+        Some("angle") if one_way => Ok(DiagramAxis::DriverAngle),
+        Some("angle") => Err(FieldError::new(
+            "diagrams.x",
+            match driver {
+                Some((d, _)) => format!(
+                    "\"angle\" needs the driver's angle to turn one way over the motion, but `{}` = {} turns back or stands still: use \"t\"",
+                    d.name,
+                    d.law.source()
+                ),
+                None => "\"angle\" needs a single driver that turns a body or a revolute joint; this mechanism has none: use \"t\"".to_string(),
+            },
+        )),
+        Some(other) => Err(FieldError::new("diagrams.x", format!("unknown abscissa `{other}`; valid: \"angle\", \"t\""))),
+    }
 }
 
 /// `time = { from, to, steps }`: the sample times, s (steps + 1 of them).
@@ -654,7 +706,18 @@ fn check_measures(
             ));
         }
         let quantities = check_quantities(&field, &m.quantities, table)?;
-        measures.push(Measure { label, target, quantities });
+        let symbol = match (&m.symbol, target) {
+            (Some(s), _) => s.trim().to_string(),
+            (None, MeasureTarget::Body(Attach::Body(i))) => (i + 1).to_string(),
+            (None, _) => label.clone(),
+        };
+        if symbol.is_empty() || symbol.chars().any(char::is_whitespace) {
+            return Err(FieldError::new(
+                format!("{field}.symbol"),
+                "the symbol's subscript is one word without spaces, e.g. \"E\" (s_E) or \"3\" (ω3)",
+            ));
+        }
+        measures.push(Measure { label, target, quantities, symbol });
     }
     Ok(measures)
 }

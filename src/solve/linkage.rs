@@ -153,6 +153,46 @@ pub struct Mechanism {
     pub length_scale: f64,
 }
 
+impl Mechanism {
+    /// The direction (unit, global) along which `body` translates when a prismatic joint
+    /// ties it to the ground (either side: its point on a ground line, or its line over a
+    /// ground point), with the joint's index; `None` for any other body. The direction is
+    /// the guide line's q1 → q2 as placed in the ground (for a line carried by the body,
+    /// turned by the body's locked angle −`angle`).
+    pub fn ground_guide(&self, body: usize) -> Option<(usize, Vector)> {
+        self.joints.iter().enumerate().find_map(|(k, j)| match j.kind {
+            JointKind::Prismatic { point, q1, q2, angle } => {
+                let line = q2.local - q1.local;
+                let dir = if point.body == Attach::Body(body) && q1.body == Attach::Ground {
+                    line
+                } else if q1.body == Attach::Body(body) && point.body == Attach::Ground {
+                    rotate(line, -angle)
+                } else {
+                    return None;
+                };
+                let n = dir.norm();
+                (n > 0.0).then(|| (k, dir / n))
+            }
+            JointKind::Revolute { .. } => None,
+        })
+    }
+
+    /// The single angular driver (a body angle or a revolute joint's relative angle) and
+    /// the body it turns (the body, or the joint's second body; its first when the second
+    /// is the ground); `None` unless the mechanism has exactly one driver and it is angular.
+    pub fn angular_driver(&self) -> Option<(&Driver, Attach)> {
+        let [d] = self.drivers.as_slice() else { return None };
+        match d.target {
+            DriverTarget::BodyAngle(i) => Some((d, Attach::Body(i))),
+            DriverTarget::JointAngle(j) => match self.joints.get(j)?.kind {
+                JointKind::Revolute { a, b } => Some((d, if b.body == Attach::Ground { a.body } else { b.body })),
+                JointKind::Prismatic { .. } => None,
+            },
+            DriverTarget::JointDistance(_) => None,
+        }
+    }
+}
+
 /// Why a linkage cannot be solved.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LinkageError {
@@ -1083,6 +1123,22 @@ impl Solver {
         self.dt_prev = Some(dt);
         self.t = Some(t);
         Ok(it)
+    }
+
+    /// Resumes from `state` (a state this solver computed): the next [`Solver::step`]
+    /// starts from it, extrapolated to its time (second order), in its assembly mode. Used
+    /// to solve at a time between samples (e.g. to refine an extreme position).
+    pub fn resume(&mut self, state: &State) {
+        if state.q.len() != self.n || state.qd.len() != self.n || state.qdd.len() != self.n {
+            return;
+        }
+        self.q.copy_from_slice(&state.q);
+        self.qd.copy_from_slice(&state.qd);
+        self.qdd.copy_from_slice(&state.qdd);
+        self.qdd_prev.copy_from_slice(&state.qdd);
+        self.dt_prev = None;
+        self.t = Some(state.t);
+        self.near = state.near_singular.clone();
     }
 
     /// Solves at every time in `times` (the first assembles from the initial placement).

@@ -4,6 +4,7 @@ pub mod chain;
 pub mod expr;
 pub mod fourbar;
 pub mod linkage;
+pub mod stroke;
 pub mod triad;
 
 /// A solver failure, by mechanism kind.
