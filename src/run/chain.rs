@@ -205,6 +205,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         name: scene.name.clone(),
         picture: Picture::Still(drawing),
         positions: None,
+        sheets: Vec::new(),
         diagrams,
         tables,
         summary,

@@ -338,6 +338,7 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         name: scene.name.clone(),
         picture: Picture::Still(figure(scene, &results)),
         positions: None,
+        sheets: Vec::new(),
         diagrams: Vec::new(),
         tables: Vec::new(),
         summary: summary(scene, &results)?,
