@@ -315,11 +315,20 @@ fn model_units(scene: &TriadScene) -> ModelUnits {
 pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
     let mut caption = Vec::new();
     match &r.pattern {
+        Ok(p) if max_vertex_distance(&p.configuration.a, &r.modes[r.primary].a) <= SAME_POSITION_REL * r.triad.scale() => {
+            caption.push(format!(
+                "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}° in {} iterations (solid: mode {} of {}).",
+                deg(scene.pattern.phi1_start),
+                deg(p.configuration.phi[0]),
+                p.iterations,
+                r.primary + 1,
+                r.modes.len()
+            ))
+        }
         Ok(p) => caption.push(format!(
-            "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}° in {} iterations (solid: mode {} of {}).",
+            "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}°, not among the modes searched; drawn: mode {} of {}, the nearest to the start.",
             deg(scene.pattern.phi1_start),
             deg(p.configuration.phi[0]),
-            p.iterations,
             r.primary + 1,
             r.modes.len()
         )),
