@@ -1,8 +1,9 @@
 //! The products seam: every kind hands over one `Products` value and one module turns it
 //! into files. Checked here for every template, through the library: the files on disk are
 //! the in-memory bytes (what a browser download would get), listed in one order; the JSON
-//! ends with one newline; `--png` gives a PNG of the picture and of every diagram, all one
-//! width; a motion's frames (written as the shared part with each position spliced on) are
+//! ends with one newline; `--png` gives a PNG of the picture, of every extra sheet and of
+//! every diagram, all one width; each sheet is `<name>-<suffix>.dxf/.svg/.png`, right after
+//! the picture; a motion's frames (written as the shared part with each position spliced on) are
 //! the SVG writer's output for the whole frame.
 
 mod common;
@@ -12,7 +13,7 @@ use std::path::Path;
 
 use mechdraw::draw::svg::{self, SvgOptions};
 use mechdraw::run::bytes::{self, FRAME_WIDTH_PX, WriteOptions};
-use mechdraw::run::products::Picture;
+use mechdraw::run::products::{Picture, Sheet};
 use mechdraw::run::{PNG_WIDTH_PX, RunOptions};
 use mechdraw::scene::{self, Override};
 
@@ -98,6 +99,12 @@ fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
             let svg_name = n.replace(".png", ".svg");
             assert!(in_memory.contains(svg_name.as_str()), "{stem}: {n} has no SVG");
         }
+        for sh in &products.sheets {
+            for ext in ["dxf", "svg", "png"] {
+                let f = format!("{name}-{}.{ext}", sh.suffix);
+                assert!(in_memory.contains(f.as_str()), "{stem}: no sheet file {f}");
+            }
+        }
         for d in &products.diagrams {
             assert!(in_memory.contains(format!("diagrams/{name}/{}.svg", d.stem).as_str()), "{stem}: {}", d.stem);
             assert!(in_memory.contains(format!("diagrams/{name}/{}.png", d.stem).as_str()), "{stem}: {}", d.stem);
@@ -150,4 +157,29 @@ fn without_frames_a_motion_writes_no_frame_and_no_viewer() {
         &names[..4],
         ["fourbar-chebyshev.dxf", "fourbar-chebyshev.svg", "fourbar-chebyshev.csv", "fourbar-chebyshev.json"]
     );
+}
+
+#[test]
+fn sheets_are_written_like_the_picture_right_after_it() {
+    let (_, loaded) = templates().into_iter().find(|(s, _)| s.starts_with("chain")).unwrap();
+    let mut products = mechdraw::run::products(&loaded, &RunOptions::default()).unwrap();
+    let Picture::Still(d) = &products.picture else { panic!("a chain draws a still picture") };
+    let d = d.clone();
+    products.sheets = vec![
+        Sheet { suffix: "first".into(), drawing: d.clone() },
+        Sheet { suffix: "second".into(), drawing: d.clone() },
+    ];
+    let name = products.name.clone();
+    let files = bytes::to_files(&products, &WriteOptions { png: true, ..WriteOptions::default() }).unwrap();
+    let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+    let expected: Vec<String> = ["", "-first", "-second"]
+        .iter()
+        .flat_map(|s| ["dxf", "svg", "png"].map(|e| format!("{name}{s}.{e}")))
+        .collect();
+    assert_eq!(&names[..9], expected.iter().map(String::as_str).collect::<Vec<_>>().as_slice());
+    // A sheet's bytes are the picture's bytes for the same drawing.
+    for ext in ["dxf", "svg", "png"] {
+        let of = |n: String| &files.iter().find(|(f, _)| *f == n).unwrap().1;
+        assert!(of(format!("{name}.{ext}")) == of(format!("{name}-first.{ext}")), "{ext}");
+    }
 }

@@ -64,7 +64,7 @@ fn run_writes_dxf_svg_and_json_and_prints_the_summary() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    for f in ["triad-popa.dxf", "triad-popa.svg", "triad-popa.json"] {
+    for f in ["triad-popa.dxf", "triad-popa.svg", "triad-popa-modes.dxf", "triad-popa-modes.svg", "triad-popa.json"] {
         assert!(tmp.path().join(f).is_file(), "{f} missing");
     }
     let s: Value = serde_json::from_slice(&out.stdout).unwrap();

@@ -1,22 +1,35 @@
-//! Figure: the triad as the seed's Fig. 3 — the three circles, the approximate triangle at
-//! the pattern method's start angle (red, dashed), the exact position (closed polyline of
-//! width 0.5) with its links O_iA_i, ground pivots, angular dimensions of phi1, phi2, phi3
-//! measured at O1, O2, O3 from +x, point labels, and the other assembly modes, numbered,
-//! on their own lighter layer.
+//! Figures of the triad.
 //!
-//! Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM` (exact
-//! position, pivots, joints), `MODES` (other assembly modes), `DIMENSIONS`, `TEXT`.
-//! Sizes are the shared table's ([`Sizes::for_length`]) for the triad's size, so a triad in
-//! metres looks the same as one in millimetres.
+//! [`drawing`] is the seed's Fig. 3 alone: the three circles, the approximate triangle at
+//! the pattern method's start angle (red, dashed), the exact position (the triangle as the
+//! seed's closed polyline `PLine W 0.5`, the links O_iA_i as the same wide polyline),
+//! ground pivots, the angular dimensions of phi1, phi2, phi3 measured at O1, O2, O3 from
+//! +x, the point letters (clear of each other, of every line and of the dimensions) and a
+//! caption. Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM`
+//! (exact position, pivots, joints), `DIMENSIONS`, `TEXT`.
+//!
+//! [`modes_sheet`] draws every assembly mode as small multiples: one panel per mode, in
+//! the report's order, [`SHEET_COLUMNS`] to a row, each with the circles, the mode's
+//! triangle and links, its number, orientation and phi1, phi2, phi3; the mode drawn in
+//! Fig. 3 is marked. Layers: `PANELS` (panel frames), `CONSTRUCTION`, `MECHANISM`, `TEXT`.
+//!
+//! Sizes are the shared table's ([`Sizes::for_length`]): for Fig. 3 of the triad's size,
+//! for a panel of the panel's extent; so a triad in metres looks the same as one in
+//! millimetres.
 
-use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::draw::parts::explode_dimension;
+use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
-use crate::solve::triad::{Configuration, Triad};
+use crate::solve::triad::{Configuration, Orientation, Triad};
 
 use super::labels::{self, TextBox};
-use super::vocab::{self, Sizes};
+use super::vocab::{self, ModelUnits, Sizes};
 
-/// What to draw.
+/// Width of the seed's polylines (`Pline A1 "W" "0.5" "0.5" A2 A3 "Close"`), drawing
+/// millimetres.
+pub const SEED_PLINE_WIDTH_MM: f64 = 0.5;
+
+/// What Fig. 3 draws.
 #[derive(Debug, Clone, Copy)]
 pub struct TriadFigure<'a> {
     /// The triad's data.
@@ -25,14 +38,18 @@ pub struct TriadFigure<'a> {
     pub exact: &'a Configuration,
     /// The approximate triangle at the start angle (A1, A2, A3), if it exists.
     pub approximate: Option<[Point; 3]>,
-    /// The other assembly modes with their numbers (1-based).
-    pub others: &'a [(usize, Configuration)],
+    /// The model's length unit: the exact position's polylines are
+    /// [`SEED_PLINE_WIDTH_MM`] drawing millimetres wide.
+    pub units: ModelUnits,
     /// Caption lines under the drawing (may be empty).
     pub caption: &'a [String],
 }
 
-/// Height of the small texts (mode numbers, φ names, caption), in letter heights.
+/// Height of the small texts (caption, panel values), in letter heights.
 const SMALL_TEXT: f64 = 0.8;
+
+/// Chords a circle is cut into for the letter placer (3.75° each).
+const CIRCLE_CHORDS: usize = 96;
 
 /// Direction (radians) in the middle of the widest gap between the `occupied` directions.
 fn free_direction(occupied: &[f64]) -> f64 {
@@ -52,6 +69,61 @@ fn free_direction(occupied: &[f64]) -> f64 {
     best.1
 }
 
+/// The arc of radius `r` about `c` from `start` sweeping `sweep` (radians, ≥ 0) as chords,
+/// for texts to keep off.
+fn arc_segments(lines: &mut Vec<(Point, Point)>, c: Point, r: f64, start: f64, sweep: f64) {
+    let n = ((sweep / std::f64::consts::TAU * CIRCLE_CHORDS as f64).ceil() as usize).max(1);
+    let mut prev = polar(c, r, start);
+    for k in 1..=n {
+        let p = polar(c, r, start + sweep * k as f64 / n as f64);
+        lines.push((prev, p));
+        prev = p;
+    }
+}
+
+/// Everything a dimension draws (lines, arc, arrowheads, text) as segments and boxes that
+/// letters keep off.
+fn keep_letters_off_dimension(letters: &mut labels::Polygon, dim: &Shape, style: &DimStyle) {
+    for part in explode_dimension(dim, style) {
+        match part {
+            Shape::Line { from, to } => letters.segment(from, to),
+            Shape::Arc { center, radius, start, end } => {
+                let mut arc = Vec::new();
+                arc_segments(&mut arc, center, radius, start, normalize_angle(end - start));
+                arc.into_iter().for_each(|(a, b)| letters.segment(a, b));
+            }
+            Shape::Filled { points } => {
+                let (mut min, mut max) = (points[0], points[0]);
+                for p in &points {
+                    min = Point::new(min.x.min(p.x), min.y.min(p.y));
+                    max = Point::new(max.x.max(p.x), max.y.max(p.y));
+                }
+                letters.keep_off(TextBox { min, max });
+            }
+            Shape::Text { at, height, value, .. } => letters.keep_off(TextBox::centred(at, &value, height)),
+            _ => {}
+        }
+    }
+}
+
+/// The box of a dimension's text.
+fn dimension_text_box(dim: &Shape, style: &DimStyle) -> Option<TextBox> {
+    explode_dimension(dim, style).into_iter().find_map(|part| match part {
+        Shape::Text { at, height, value, .. } => Some(TextBox::centred(at, &value, height)),
+        _ => None,
+    })
+}
+
+/// Radii tried for an angular dimension, as multiples of its preferred radius, in order:
+/// the first whose text overlaps no earlier dimension's text and crosses no line is drawn,
+/// else the first that overlaps the fewest texts, then crosses the fewest lines.
+const DIMENSION_RADII: [f64; 12] = [1.0, 0.85, 1.15, 0.7, 1.3, 0.55, 1.45, 1.6, 1.75, 1.9, 2.05, 2.2];
+
+/// The text of the angular dimension of phi_i (`i` from 1), radians in.
+pub fn phi_text(i: usize, phi: f64) -> String {
+    format!("φ{i} = {:.2}°", phi.to_degrees())
+}
+
 /// The seed's Fig. 3 for `f`.
 pub fn drawing(f: &TriadFigure) -> Drawing {
     let t = f.triad;
@@ -59,132 +131,254 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     let small_text = SMALL_TEXT * s.text;
     let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
     let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
-    let modes = d.layer("MODES", Aci::LIGHT_GREY, LineType::Continuous);
     let approximate = d.layer("APPROXIMATE", Aci::RED, LineType::Dashed);
     let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
     let dimensions = d.layer("DIMENSIONS", Aci::BLUE, LineType::Continuous);
     let text = d.layer("TEXT", Aci::BLACK, LineType::Continuous);
+    // Every line drawn, for the dimension texts and the letters to keep off.
+    let mut lines: Vec<(Point, Point)> = Vec::new();
 
     for (o, r) in t.o.iter().zip(t.r) {
         d.add(construction, Shape::Circle { center: *o, radius: r });
-    }
-
-    // Other assembly modes first, so the exact position is drawn over them.
-    for (n, c) in f.others {
-        d.add(modes, Shape::Polyline { points: c.a.to_vec(), closed: true, width: 0.0 });
-        for i in 0..3 {
-            d.add(modes, Shape::Line { from: t.o[i], to: c.a[i] });
-        }
-        let centroid = Point::from((c.a[0].coords + c.a[1].coords + c.a[2].coords) / 3.0);
-        d.add_colored(
-            modes,
-            Aci::DARK_GREY,
-            Shape::Text {
-                at: centroid,
-                height: small_text,
-                value: n.to_string(),
-                halign: HAlign::Center,
-                valign: VAlign::Middle,
-                rotation: 0.0,
-            },
-        );
+        arc_segments(&mut lines, *o, r, 0.0, std::f64::consts::TAU);
     }
 
     if let Some(a) = f.approximate {
         d.add(approximate, Shape::Polyline { points: a.to_vec(), closed: true, width: 0.0 });
+        lines.extend((0..3).map(|i| (a[i], a[(i + 1) % 3])));
     }
 
-    // The exact position.
+    // The exact position: the seed's wide polyline for the triangle and the links.
     let a = f.exact.a;
+    let pline = Sizes { link: SEED_PLINE_WIDTH_MM / f.units.mm_per_unit, ..s };
     for (o, p) in t.o.iter().zip(a) {
-        vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
+        vocab::link(&mut d, mechanism, vec![*o, p], false, None, pline);
     }
-    vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
+    vocab::link(&mut d, mechanism, a.to_vec(), true, None, pline);
     for o in t.o {
         vocab::ground(&mut d, mechanism, o, s);
     }
     for p in a {
         vocab::joint(&mut d, mechanism, p, s);
     }
-
-    let mut phi_names: Vec<(Point, String, f64)> = Vec::new();
-    // Angular dimensions phi_i at O_i from +x (value on the dimension, the name φi inside
-    // the angle, as a draughtsman writes it).
-    for (i, (o, p)) in t.o.iter().zip(a).enumerate() {
-        let radius = 0.42 * t.r[i].min(0.3 * t.scale() + 0.1 * t.r[i]);
-        let phi = f.exact.phi[i];
-        d.add(
-            dimensions,
-            Shape::AngularDimension {
-                vertex: *o,
-                first: o + Vector::new(s.joint + 0.3 * s.text, 0.0),
-                second: p,
-                radius,
-                text: format!("{:.2}°", phi.to_degrees()),
-            },
-        );
-        let name_at = polar(*o, 0.62 * radius, 0.5 * phi);
-        phi_names.push((name_at, format!("φ{}", i + 1), small_text));
-        d.add(
-            dimensions,
-            Shape::Text {
-                at: name_at,
-                height: small_text,
-                value: format!("φ{}", i + 1),
-                halign: HAlign::Center,
-                valign: VAlign::Middle,
-                rotation: 0.0,
-            },
-        );
-    }
-
-    // Labels: each preferably in the widest free direction around its point, placed by the
-    // letter placer clear of the joint, the links, the ground symbols and the φ names.
-    let mut letters = labels::Polygon::of_names();
     for i in 0..3 {
-        letters.segment(t.o[i], a[i]);
-        letters.segment(a[i], a[(i + 1) % 3]);
-        letters.keep_off(vocab::ground_extent(t.o[i], s));
+        lines.push((t.o[i], a[i]));
+        lines.push((a[i], a[(i + 1) % 3]));
     }
-    for (at, value, height) in &phi_names {
-        letters.keep_off(TextBox::centred(*at, value, *height));
+
+    // Angular dimensions phi_i at O_i from +x (`φi = value`, as DIMANGULAR with its text
+    // edited), each at the first radius that keeps its text off every line and off the
+    // other dimensions' texts.
+    let mut letters = labels::Polygon::of_names();
+    let mut dimension_texts: Vec<TextBox> = Vec::new();
+    for (i, (o, p)) in t.o.iter().zip(a).enumerate() {
+        let preferred = 0.42 * t.r[i].min(0.3 * t.scale() + 0.1 * t.r[i]);
+        let dim_at = |radius: f64| Shape::AngularDimension {
+            vertex: *o,
+            first: o + Vector::new(s.joint + 0.3 * s.text, 0.0),
+            second: p,
+            radius,
+            text: phi_text(i + 1, f.exact.phi[i]),
+        };
+        // Lines crossed and texts overlapped by the dimension's text: the first radius with
+        // the fewest wins.
+        let crowding = |dim: &Shape| {
+            dimension_text_box(dim, &d.dim_style).map_or((0, 0), |b| {
+                let texts = dimension_texts.iter().filter(|o| o.overlaps(&b)).count();
+                (texts, lines.iter().filter(|(u, v)| b.crosses(*u, *v)).count())
+            })
+        };
+        let mut best: Option<((usize, usize), Shape)> = None;
+        for k in DIMENSION_RADII {
+            let dim = dim_at(k * preferred);
+            let score = crowding(&dim);
+            if best.as_ref().is_none_or(|(b, _)| score < *b) {
+                best = Some((score, dim));
+            }
+            if score == (0, 0) {
+                break;
+            }
+        }
+        let dim = best.map_or_else(|| dim_at(preferred), |(_, dim)| dim);
+        dimension_texts.extend(dimension_text_box(&dim, &d.dim_style));
+        keep_letters_off_dimension(&mut letters, &dim, &d.dim_style);
+        d.add(dimensions, dim);
+    }
+
+    // Letters: each preferably in the widest free direction around its point, placed by the
+    // letter placer clear of the joint, every line (circles, both triangles, links,
+    // dimensions), the ground symbols and the dimension texts.
+    for (u, v) in &lines {
+        letters.segment(*u, *v);
+    }
+    for o in t.o {
+        letters.keep_off(vocab::ground_extent(o, s));
     }
     let toward = |dir: f64| Vector::new(dir.cos(), dir.sin());
+    let half_pi = std::f64::consts::FRAC_PI_2;
     for i in 0..3 {
         let phi = f.exact.phi[i];
         // At O_i: the link, the +x reference line, the dimensioned sector between them and
         // the ground symbol below.
         let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
-        occupied.extend([-std::f64::consts::FRAC_PI_2 - 0.5, -std::f64::consts::FRAC_PI_2 + 0.5]);
+        occupied.extend([-half_pi - 0.5, -half_pi + 0.5]);
         let dir = free_direction(&occupied);
         letters.letter_clear(t.o[i], &format!("O{}", i + 1), s.text, toward(dir), s.joint);
-        // At A_i: the link back to O_i and the two sides.
-        let occupied = [angle_of(t.o[i] - a[i]), angle_of(a[(i + 1) % 3] - a[i]), angle_of(a[(i + 2) % 3] - a[i])];
+        // At A_i: the link back to O_i, the two sides and the circle through A_i.
+        let occupied = [
+            angle_of(t.o[i] - a[i]),
+            angle_of(a[(i + 1) % 3] - a[i]),
+            angle_of(a[(i + 2) % 3] - a[i]),
+            phi + half_pi,
+            phi - half_pi,
+        ];
         let dir = free_direction(&occupied);
         letters.letter_clear(a[i], &format!("A{}", i + 1), s.text, toward(dir), s.joint);
     }
     letters.draw(&mut d, text);
 
     // Caption under everything drawn so far.
-    if !f.caption.is_empty() {
-        if let Some(b) = d.bounds() {
-            let mut y = b.min.y - 2.0 * s.text;
-            for line in f.caption {
-                d.add(
-                    text,
-                    Shape::Text {
-                        at: Point::new(b.min.x, y),
-                        height: small_text,
-                        value: line.clone(),
-                        halign: HAlign::Left,
-                        valign: VAlign::Baseline,
-                        rotation: 0.0,
-                    },
-                );
-                y -= 1.8 * small_text;
-            }
+    if let Some(b) = d.bounds() {
+        caption(&mut d, text, Point::new(b.min.x, b.min.y - 2.0 * s.text), f.caption, small_text);
+    }
+    d
+}
+
+/// Left-aligned lines from `top_left` (the first line's baseline) downwards.
+fn caption(d: &mut Drawing, layer: usize, top_left: Point, lines: &[String], height: f64) {
+    let mut y = top_left.y;
+    for line in lines {
+        d.add(
+            layer,
+            Shape::Text {
+                at: Point::new(top_left.x, y),
+                height,
+                value: line.clone(),
+                halign: HAlign::Left,
+                valign: VAlign::Baseline,
+                rotation: 0.0,
+            },
+        );
+        y -= 1.8 * height;
+    }
+}
+
+/// Panels per row of the assembly-mode sheet.
+pub const SHEET_COLUMNS: usize = 2;
+
+/// What the assembly-mode sheet draws.
+#[derive(Debug, Clone, Copy)]
+pub struct ModesSheet<'a> {
+    /// The triad's data.
+    pub triad: &'a Triad,
+    /// Every assembly mode, in the report's order (numbered from 1).
+    pub modes: &'a [Configuration],
+    /// Index in `modes` of the mode drawn in Fig. 3 (its panel is marked).
+    pub drawn: usize,
+    /// Title lines above the panels (may be empty).
+    pub title: &'a [String],
+}
+
+/// The orientation of a mode as the sheet writes it: `counter-clockwise`, `clockwise`,
+/// `collinear`.
+pub fn orientation_text(o: Orientation) -> &'static str {
+    match o {
+        Orientation::Ccw => "counter-clockwise",
+        Orientation::Cw => "clockwise",
+        Orientation::Collinear => "collinear",
+    }
+}
+
+/// The heading of mode `number` (from 1) in its panel: `Mode 3 · clockwise`.
+pub fn mode_heading(number: usize, c: &Configuration, drawn: bool) -> String {
+    let mark = if drawn { " · drawn in Fig. 3" } else { "" };
+    format!("Mode {number} · {}{mark}", orientation_text(c.orientation))
+}
+
+/// The angles of a mode as a panel writes them: `φ1 = 75.77°, φ2 = …, φ3 = …` (commas: SVG collapses runs of spaces).
+pub fn mode_angles(c: &Configuration) -> String {
+    (0..3).map(|i| phi_text(i + 1, c.phi[i])).collect::<Vec<_>>().join(", ")
+}
+
+/// What a panel's content covers (the circles and the ground symbols), unshifted.
+fn panel_extent(t: &Triad, s: Sizes) -> Bounds {
+    let mut min = Point::new(f64::INFINITY, f64::INFINITY);
+    let mut max = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
+    for (o, r) in t.o.iter().zip(t.r) {
+        let g = vocab::ground_extent(*o, s);
+        for p in [o - Vector::new(r, r), o + Vector::new(r, r), g.min, g.max] {
+            min = Point::new(min.x.min(p.x), min.y.min(p.y));
+            max = Point::new(max.x.max(p.x), max.y.max(p.y));
         }
     }
+    Bounds { min, max }
+}
+
+/// Every assembly mode of `m` as small multiples (see the module docs).
+pub fn modes_sheet(m: &ModesSheet) -> Drawing {
+    let t = m.triad;
+    // The panel's sizes follow from its content's extent, as the size table sets them for
+    // a mechanism of that size.
+    let first = panel_extent(t, Sizes::for_length(t.scale()));
+    let s = Sizes::for_length(first.width().max(first.height()));
+    let content = panel_extent(t, s);
+    let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
+    let panels = d.layer("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
+    let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
+    let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
+    let text = d.layer("TEXT", Aci::BLACK, LineType::Continuous);
+
+    let small_text = SMALL_TEXT * s.text;
+    let pad = s.text;
+    let gap = s.text;
+    // Header: the heading and the angles, then the content.
+    let heading_base = pad + s.text;
+    let angles_base = heading_base + 1.8 * small_text;
+    let header = angles_base + pad;
+    let cell_w = content.width() + 2.0 * pad;
+    let cell_h = header + content.height() + pad;
+    let columns = SHEET_COLUMNS.min(m.modes.len()).max(1);
+
+    for (k, c) in m.modes.iter().enumerate() {
+        let (col, row) = (k % columns, k / columns);
+        let top_left = Point::new(col as f64 * (cell_w + gap), -(row as f64) * (cell_h + gap));
+        let off = Vector::new(top_left.x + pad - content.min.x, top_left.y - header - content.max.y);
+        let drawn = k == m.drawn;
+        let corners = vec![
+            top_left,
+            top_left + Vector::new(cell_w, 0.0),
+            top_left + Vector::new(cell_w, -cell_h),
+            top_left + Vector::new(0.0, -cell_h),
+        ];
+        let (color, width) = if drawn { (Some(Aci::BLACK), 0.5 * s.link) } else { (None, 0.0) };
+        d.push(Entity {
+            layer: panels,
+            color,
+            linetype: None,
+            shape: Shape::Polyline { points: corners, closed: true, width },
+        });
+        let o = t.o.map(|p| p + off);
+        let a = c.a.map(|p| p + off);
+        for (o, r) in o.iter().zip(t.r) {
+            d.add(construction, Shape::Circle { center: *o, radius: r });
+        }
+        for (o, p) in o.iter().zip(a) {
+            vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
+        }
+        vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
+        for p in o {
+            vocab::ground(&mut d, mechanism, p, s);
+        }
+        for p in a {
+            vocab::joint(&mut d, mechanism, p, s);
+        }
+        let x = top_left.x + pad;
+        d.text(text, Point::new(x, top_left.y - heading_base), s.text, mode_heading(k + 1, c, drawn));
+        d.text(text, Point::new(x, top_left.y - angles_base), small_text, mode_angles(c));
+    }
+    // The title above the first row, its last line's descent `gap` clear of the panels.
+    let lines = m.title.len().saturating_sub(1) as f64;
+    caption(&mut d, text, Point::new(0.0, gap + 0.3 * s.text + 1.8 * s.text * lines), m.title, s.text);
     d
 }
 
@@ -198,5 +392,17 @@ mod tests {
         assert!((d - 1.25 * std::f64::consts::PI).abs() < 1e-12);
         let d = free_direction(&[0.1]);
         assert!((normalize_angle(d) - (0.1 + std::f64::consts::PI)).abs() < 1e-12);
+    }
+
+    #[test]
+    fn texts_of_a_mode() {
+        let c = Configuration {
+            phi: [75.7692f64.to_radians(), 102.2287f64.to_radians(), 117.0448f64.to_radians()],
+            a: [Point::origin(); 3],
+            orientation: Orientation::Ccw,
+            residual: 0.0,
+        };
+        assert_eq!(mode_heading(1, &c, true), "Mode 1 · counter-clockwise · drawn in Fig. 3");
+        assert_eq!(mode_angles(&c), "φ1 = 75.77°, φ2 = 102.23°, φ3 = 117.04°");
     }
 }

@@ -9,6 +9,7 @@
 //! |---|---|
 //! | `<name>.dxf` | the picture; a motion with one layer per position |
 //! | `<name>.svg` (and `<name>.png` with `--png`) | the picture; a motion's first position |
+//! | `<name>-<suffix>.dxf`, `.svg` (and `.png`) | each extra sheet, written like a still picture |
 //! | `<name><suffix>.csv` | each table |
 //! | `<name>.json` | the summary, pretty, with a final newline |
 //! | `diagrams/<name>/<stem>.svg` (and `.png`) | each diagram |
@@ -22,7 +23,7 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use super::products::{Diagram, Picture, Products};
+use super::products::{Diagram, Picture, Products, Sheet};
 use crate::Error;
 use crate::draw::dxf::{self, DxfOptions};
 use crate::draw::svg::{self, SvgOptions};
@@ -82,7 +83,8 @@ pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8
 
 /// Writes every file of `p` into `sink`; `tick` is called once per frame made (for a
 /// progress bar). Returns the names of the files in their canonical order: the picture
-/// (DXF, SVG, PNG), the tables, the JSON, the diagrams, the frames, the viewer.
+/// (DXF, SVG, PNG), the sheets (each DXF, SVG, PNG), the tables, the JSON, the diagrams,
+/// the frames, the viewer.
 pub fn write(
     p: &Products,
     opts: &WriteOptions,
@@ -96,9 +98,7 @@ pub fn write(
     let mut frame_names = Vec::new();
     let diagrams = match &p.picture {
         Picture::Still(d) => {
-            head.push((format!("{name}.dxf"), dxf_bytes(d, &opts.dxf, name)?));
-            let svg = svg::to_string(d, &SvgOptions { width_px: FRAME_WIDTH_PX, ..SvgOptions::default() });
-            picture_files(&mut head, name, svg, opts.png)?;
+            still_files(&mut head, name, d, opts)?;
             diagram_files(&p.diagrams, name, opts.png)?
         }
         Picture::Motion(a) => {
@@ -112,6 +112,7 @@ pub fn write(
             m.diagrams
         }
     };
+    sheet_files(&mut head, name, &p.sheets, opts)?;
     for t in &p.tables {
         head.push((format!("{name}{}.csv", t.suffix), t.csv.to_bytes()));
     }
@@ -131,6 +132,32 @@ pub fn write(
 /// Borrowed views of owned files, for [`Sink::put`].
 fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
     v.iter().map(|(n, b)| (n.clone(), b.as_slice())).collect()
+}
+
+/// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
+fn still_files(files: &mut Vec<(String, Vec<u8>)>, stem: &str, d: &Drawing, opts: &WriteOptions) -> Result<(), Error> {
+    files.push((format!("{stem}.dxf"), dxf_bytes(d, &opts.dxf, stem)?));
+    let svg = svg::to_string(d, &SvgOptions { width_px: FRAME_WIDTH_PX, ..SvgOptions::default() });
+    picture_files(files, stem, svg, opts.png)
+}
+
+/// Each sheet as a still drawing named `<name>-<suffix>`, built in parallel.
+fn sheet_files(
+    files: &mut Vec<(String, Vec<u8>)>,
+    name: &str,
+    sheets: &[Sheet],
+    opts: &WriteOptions,
+) -> Result<(), Error> {
+    let per: Vec<Vec<(String, Vec<u8>)>> = sheets
+        .par_iter()
+        .map(|s| {
+            let mut v = Vec::with_capacity(3);
+            still_files(&mut v, &format!("{name}-{}", s.suffix), &s.drawing, opts)?;
+            Ok(v)
+        })
+        .collect::<Result<_, Error>>()?;
+    files.extend(per.into_iter().flatten());
+    Ok(())
 }
 
 /// The picture's SVG, and its PNG when asked for.

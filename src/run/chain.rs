@@ -206,6 +206,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Still(drawing),
         positions: None,
+        sheets: Vec::new(),
         diagrams,
         tables,
         summary,

@@ -69,6 +69,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
         mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Motion(Animation::new(title, base, window, names, labels, pose)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
+        sheets: Vec::new(),
         diagrams,
         tables: vec![products::Table { suffix: String::new(), csv }],
         summary,

@@ -40,6 +40,17 @@ pub struct Diagram {
     pub drawing: Drawing,
 }
 
+/// A sheet beside the picture, written like it: `<scene name>-<suffix>.dxf`, `.svg` (and
+/// `.png` with `--png`). The triad's assembly modes as small multiples are one
+/// (`triad-popa-modes.svg`).
+#[derive(Debug, Clone)]
+pub struct Sheet {
+    /// Appended to the scene name after a `-` (`modes`): letters, digits, `-`, `_`.
+    pub suffix: String,
+    /// The sheet, drawn.
+    pub drawing: Drawing,
+}
+
 /// A CSV table: `<scene name><suffix>.csv`.
 #[derive(Debug, Clone)]
 pub struct Table {
@@ -71,6 +82,8 @@ pub struct Products {
     pub mm_per_unit: f64,
     /// Where the number of positions of a [`Picture::Motion`] comes from.
     pub positions: Option<PositionsSource>,
+    /// Extra sheets, in order, each written as DXF, SVG (and PNG) like a still picture.
+    pub sheets: Vec<Sheet>,
     /// Diagrams, in order.
     pub diagrams: Vec<Diagram>,
     /// CSV tables, in order.

@@ -4,11 +4,13 @@
 
 use serde::Serialize;
 
-use super::products::{self, Picture, Products};
+use super::products::{self, Picture, Products, Sheet};
 use super::solve_err;
 use crate::Error;
-use crate::figure::triad::{TriadFigure, drawing};
+use crate::figure::triad::{ModesSheet, TriadFigure, drawing, modes_sheet, orientation_text};
+use crate::figure::vocab::ModelUnits;
 use crate::geom::{Point, deg};
+use crate::scene::Units;
 use crate::scene::triad::{OrientationChoice, Sense, TriadScene};
 use crate::solve::triad::pattern::construct;
 use crate::solve::triad::{
@@ -301,35 +303,72 @@ fn report(scene: &TriadScene, r: &TriadResults) -> String {
     s
 }
 
-/// The drawing of the results.
+/// The model's length unit, for the drawing.
+fn model_units(scene: &TriadScene) -> ModelUnits {
+    match scene.units {
+        Units::Mm => ModelUnits::MM,
+        Units::Si => ModelUnits::SI,
+    }
+}
+
+/// The seed's Fig. 3 of the results: the drawn mode alone with the pattern method's start.
 pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
-    let others: Vec<(usize, Configuration)> =
-        r.modes.iter().enumerate().filter(|(i, _)| *i != r.primary).map(|(i, c)| (i + 1, *c)).collect();
     let mut caption = Vec::new();
     match &r.pattern {
+        Ok(p) if max_vertex_distance(&p.configuration.a, &r.modes[r.primary].a) <= SAME_POSITION_REL * r.triad.scale() => {
+            caption.push(format!(
+                "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}° in {} iterations (solid: mode {} of {}).",
+                deg(scene.pattern.phi1_start),
+                deg(p.configuration.phi[0]),
+                p.iterations,
+                r.primary + 1,
+                r.modes.len()
+            ))
+        }
         Ok(p) => caption.push(format!(
-            "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}° in {} iterations (solid: mode {}).",
+            "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}°, not among the modes searched; drawn: mode {} of {}, the nearest to the start.",
             deg(scene.pattern.phi1_start),
             deg(p.configuration.phi[0]),
-            p.iterations,
-            r.primary + 1
+            r.primary + 1,
+            r.modes.len()
         )),
         Err(_) => caption.push(format!(
-            "Pattern method failed from φ1 = {:.2}°; drawn: mode {}.",
+            "Pattern method failed from φ1 = {:.2}°; drawn: mode {} of {}.",
             deg(scene.pattern.phi1_start),
-            r.primary + 1
+            r.primary + 1,
+            r.modes.len()
         )),
     }
-    if !others.is_empty() {
-        caption.push(format!("Other assembly modes (grey), numbered as in the report: {} in all.", r.modes.len()));
+    if r.modes.len() > 1 {
+        caption.push(format!("All {} assembly modes are drawn on the modes sheet.", r.modes.len()));
     }
     drawing(&TriadFigure {
         triad: &r.triad,
         exact: &r.modes[r.primary],
         approximate: r.start,
-        others: &others,
+        units: model_units(scene),
         caption: &caption,
     })
+}
+
+/// Every assembly mode as small multiples, the drawn one marked.
+pub fn modes_figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
+    let by_sense: Vec<String> = [Orientation::Ccw, Orientation::Cw, Orientation::Collinear]
+        .into_iter()
+        .map(|o| (o, r.modes.iter().filter(|c| c.orientation == o).count()))
+        .filter(|(_, n)| *n > 0)
+        .map(|(o, n)| format!("{n} {}", orientation_text(o)))
+        .collect();
+    let title = [
+        format!(
+            "{}: {} assembly modes ({}: the sense of A1 → A2 → A3)",
+            scene.name,
+            r.modes.len(),
+            by_sense.join(", ")
+        ),
+        format!("Fig. 3 draws mode {}. φ1, φ2, φ3: directions O1 → A1, O2 → A2, O3 → A3 from +x.", r.primary + 1),
+    ];
+    modes_sheet(&ModesSheet { triad: &r.triad, modes: &r.modes, drawn: r.primary, title: &title })
 }
 
 pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error> {
@@ -339,6 +378,7 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Still(figure(scene, &results)),
         positions: None,
+        sheets: vec![Sheet { suffix: "modes".into(), drawing: modes_figure(scene, &results) }],
         diagrams: Vec::new(),
         tables: Vec::new(),
         summary: summary(scene, &results)?,
