@@ -56,8 +56,19 @@ fn chain_humienny_2_dxf_is_audit_clean_and_matches_its_golden_file() {
     let dxf = out.join("chain-humienny-2.dxf");
     common::assert_ezdxf_clean(&[&dxf]);
     let text = std::fs::read_to_string(&dxf).unwrap();
-    // Twelve real DIMENSION entities: eight independent, four dependent.
-    assert_eq!(text.replace("\r\n", "\n").matches("\n  0\nDIMENSION\n").count(), 12);
+    // The dimensions are written as they are drawn (docs/chain.md, "Why the chain's
+    // dimensions are exploded"): no DIMENSION entity, and on layer DIMENSIONS the seed's
+    // notation survives: eight base circles and eight arrowheads, one per dimension.
+    let text_lf = text.replace("\r\n", "\n");
+    assert_eq!(text_lf.matches("\n  0\nDIMENSION\n").count(), 0);
+    let count = |entity: &str| {
+        text_lf
+            .split("\n  0\n")
+            .filter(|r| r.starts_with(&format!("{entity}\n")) && r.contains("\n  8\nDIMENSIONS\n"))
+            .count()
+    };
+    assert_eq!(count("CIRCLE"), 8);
+    assert_eq!(count("SOLID"), 8);
     common::assert_golden_text("chain-humienny-2.dxf", &text);
 }
 

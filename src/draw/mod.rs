@@ -230,6 +230,37 @@ pub enum Shape {
     },
 }
 
+/// How a linear dimension marks its two ends.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum DimEnds {
+    /// A filled arrowhead at each end: the drafting default, for a distance between two
+    /// features where neither is the reference.
+    #[default]
+    Arrows,
+    /// A dimension measured from a base (seed 001, Humienny 1989: "points where a dimension
+    /// starts are marked with a small circle, end points with an arrow"): a small open
+    /// circle ([`parts::BASE_CIRCLE_RADIUS`]) at the foot of the first definition point
+    /// (the base) and an arrowhead at the second's (the end), so the base and the sign of
+    /// `x_end − x_base` read off the drawing. AutoCAD draws the same with `DIMSAH` on and
+    /// `DIMBLK1` an open dot.
+    FromBase,
+}
+
+/// What a linear dimension draws beyond its [`Shape::LinearDimension`] geometry: the mark at
+/// each end and, optionally, where its text sits along the dimension line. The default is
+/// what `Shape::LinearDimension` draws by itself ([`parts::explode_dimension`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct LinearMarks {
+    /// The marks at the two ends.
+    pub ends: DimEnds,
+    /// Middle of the text, as a signed distance (model units) from the foot of the first
+    /// extension line along the direction the text reads ([`parts::LinearLayout::reading`]);
+    /// `None` places it as [`parts::linear_layout`] does (between the extension lines when it
+    /// fits, else beside one). A text placed elsewhere gets the dimension line extended
+    /// under it.
+    pub text_along: Option<f64>,
+}
+
 /// A shape on a layer, with optional colour and line type overrides.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Entity {

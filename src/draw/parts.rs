@@ -1,7 +1,7 @@
 //! Composite shapes (arrows, dimensions) broken into simple ones. Both writers use these,
 //! so the DXF dimension blocks and the SVG show the same geometry.
 
-use super::{DimStyle, HAlign, Shape, VAlign};
+use super::{DimEnds, DimStyle, HAlign, LinearMarks, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
 
 /// Half-width of an arrowhead relative to its length.
@@ -38,6 +38,9 @@ pub const LINEAR_ARROWS_FIT: f64 = 2.5;
 /// Length of the dimension line outside an extension line that carries an arrowhead
 /// pointing in, in arrow sizes.
 pub const LINEAR_ARROW_STUB: f64 = 2.0;
+/// Radius of the open circle at the base of a [`DimEnds::FromBase`] dimension, in arrow
+/// sizes (about the seed's "small circle": half an arrowhead across).
+pub const BASE_CIRCLE_RADIUS: f64 = 0.3;
 
 /// Font units per em of DejaVu Sans.
 const UNITS_PER_EM: f64 = 2048.0;
@@ -257,6 +260,21 @@ pub struct LinearLayout {
 /// line. Independently, the arrowheads point out from the middle when the dimension line is
 /// at least [`LINEAR_ARROWS_FIT`] arrow sizes long, else they sit outside pointing in.
 pub fn linear_layout(p1: Point, p2: Point, line_at: Point, angle: f64, text: &str, style: &DimStyle) -> LinearLayout {
+    linear_layout_placed(p1, p2, line_at, angle, text, None, style)
+}
+
+/// [`linear_layout`] with the text's middle at `text_along` (see
+/// [`LinearMarks::text_along`]) when given; `text_inside` then says whether the placed box
+/// lies between the extension lines.
+pub fn linear_layout_placed(
+    p1: Point,
+    p2: Point,
+    line_at: Point,
+    angle: f64,
+    text: &str,
+    text_along: Option<f64>,
+    style: &DimStyle,
+) -> LinearLayout {
     let th = style.text_height;
     let u = Vector::new(angle.cos(), angle.sin());
     let n = perp(u);
@@ -266,8 +284,25 @@ pub fn linear_layout(p1: Point, p2: Point, line_at: Point, angle: f64, text: &st
         if linear_text_flipped(angle) { (angle + std::f64::consts::PI, -u, -n) } else { (angle, u, n) };
     let len = (f2 - f1).norm();
     let w = text_width(text, th);
-    let text_inside = w + 2.0 * LINEAR_TEXT_FIT_GAP * th <= len;
     let arrows_inside = len >= LINEAR_ARROWS_FIT * style.arrow_size;
+    if let Some(s) = text_along {
+        let l2 = (f2 - f1).dot(&reading);
+        let text_inside = s - 0.5 * w >= l2.min(0.0) && s + 0.5 * w <= l2.max(0.0);
+        let text_at = f1 + reading * s + up * (LINEAR_TEXT_LIFT * th);
+        return LinearLayout {
+            f1,
+            f2,
+            reading,
+            up,
+            text_at,
+            rotation,
+            text_mid: text_at + up * (0.5 * th),
+            text_width: w,
+            text_inside,
+            arrows_inside,
+        };
+    }
+    let text_inside = w + 2.0 * LINEAR_TEXT_FIT_GAP * th <= len;
     let on_line = if text_inside {
         Point::from((f1.coords + f2.coords) / 2.0)
     } else {
@@ -324,8 +359,27 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
                 rotation: 0.0,
             });
         }
+        Shape::LinearDimension { .. } => explode_linear_into(shape, LinearMarks::default(), style, &mut out),
+        other => out.push(other.clone()),
+    }
+    out
+}
+
+/// A linear dimension broken into lines, arrowheads (and the base circle) and its text as
+/// `marks` asks ([`LinearMarks`]); any other shape is returned unchanged. With the default
+/// marks this is [`explode_dimension`].
+pub fn explode_linear(shape: &Shape, marks: LinearMarks, style: &DimStyle) -> Vec<Shape> {
+    let mut out = Vec::new();
+    explode_linear_into(shape, marks, style, &mut out);
+    out
+}
+
+fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out: &mut Vec<Shape>) {
+    let asz = style.arrow_size;
+    let th = style.text_height;
+    match shape {
         Shape::LinearDimension { p1, p2, line_at, angle, text } => {
-            let lay = linear_layout(*p1, *p2, *line_at, *angle, text, style);
+            let lay = linear_layout_placed(*p1, *p2, *line_at, *angle, text, marks.text_along, style);
             let (f1, f2) = (lay.f1, lay.f2);
             for (p, f) in [(p1, f1), (p2, f2)] {
                 let d = f - p;
@@ -345,23 +399,42 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
             // How far the dimension line runs on past each foot: under an outside text, and
             // under outside arrowheads.
             let mut beyond = [0.0f64; 2];
-            if !lay.text_inside {
+            if marks.text_along.is_some() {
+                // Under the placed text, wherever it is.
+                let half = 0.5 * lay.text_width;
+                beyond[0] = ((lay.text_at - f1).dot(&out1) + half).max(0.0);
+                beyond[1] = ((lay.text_at - f2).dot(&-out1) + half).max(0.0);
+            } else if !lay.text_inside {
                 let k = if out1.dot(&lay.reading) > 0.0 { 0 } else { 1 };
                 beyond[k] = LINEAR_TEXT_OUTSIDE_GAP * th + lay.text_width;
             }
+            let from_base = marks.ends == DimEnds::FromBase;
             if !lay.arrows_inside {
-                beyond = beyond.map(|b| b.max(LINEAR_ARROW_STUB * asz));
+                // A base circle needs no stub; an arrowhead pointing in does.
+                let k0 = if from_base { 1 } else { 0 };
+                for b in &mut beyond[k0..] {
+                    *b = b.max(LINEAR_ARROW_STUB * asz);
+                }
             }
-            let from = f1 + out1 * beyond[0];
+            let r = BASE_CIRCLE_RADIUS * asz;
+            // From the base circle's rim (towards the end), unless the line runs on past it.
+            let from =
+                if from_base && beyond[0] == 0.0 { f1 - out1 * r.min((f2 - f1).norm()) } else { f1 + out1 * beyond[0] };
             let to = f2 - out1 * beyond[1];
             out.push(Shape::Line { from, to });
+            if from_base {
+                out.push(Shape::Circle { center: f1, radius: r });
+            } else if lay.arrows_inside {
+                let mid = Point::from((f1.coords + f2.coords) / 2.0);
+                arrow_shapes(mid, f1, asz, out);
+            } else {
+                arrow_shapes(f1 + out1 * (LINEAR_ARROW_STUB * asz), f1, asz, out);
+            }
             if lay.arrows_inside {
                 let mid = Point::from((f1.coords + f2.coords) / 2.0);
-                arrow_shapes(mid, f1, asz, &mut out);
-                arrow_shapes(mid, f2, asz, &mut out);
+                arrow_shapes(mid, f2, asz, out);
             } else {
-                arrow_shapes(f1 + out1 * (LINEAR_ARROW_STUB * asz), f1, asz, &mut out);
-                arrow_shapes(f2 - out1 * (LINEAR_ARROW_STUB * asz), f2, asz, &mut out);
+                arrow_shapes(f2 - out1 * (LINEAR_ARROW_STUB * asz), f2, asz, out);
             }
             // Text above the dimension line, upright when read from below or the right.
             out.push(Shape::Text {
@@ -375,7 +448,6 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
         }
         other => out.push(other.clone()),
     }
-    out
 }
 
 #[cfg(test)]
@@ -561,6 +633,92 @@ mod tests {
                     assert_eq!(base_inside, arrows_inside);
                 }
             }
+        }
+    }
+
+    #[test]
+    fn a_dimension_from_its_base_has_a_circle_at_the_base_and_one_arrowhead_at_the_end() {
+        let style = DimStyle { text_height: 2.0, arrow_size: 1.8 };
+        // Both signs, long (arrowhead inside) and short (arrowhead outside, pointing in).
+        for (base, end) in [(10.0, 50.0), (50.0, 10.0), (0.0, 3.0), (3.0, 0.0)] {
+            let dim = Shape::LinearDimension {
+                p1: Point::new(base, 0.0),
+                p2: Point::new(end, 0.0),
+                line_at: Point::new(0.0, 7.0),
+                angle: 0.0,
+                text: "40".into(),
+            };
+            let marks = LinearMarks { ends: DimEnds::FromBase, text_along: None };
+            let parts = explode_linear(&dim, marks, &style);
+            let circles: Vec<(Point, f64)> = parts
+                .iter()
+                .filter_map(|s| match s {
+                    Shape::Circle { center, radius } => Some((*center, *radius)),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(circles, [(Point::new(base, 7.0), BASE_CIRCLE_RADIUS * 1.8)]);
+            let heads: Vec<&Vec<Point>> = parts
+                .iter()
+                .filter_map(|s| match s {
+                    Shape::Filled { points } => Some(points),
+                    _ => None,
+                })
+                .collect();
+            assert_eq!(heads.len(), 1);
+            assert_eq!(heads[0][0], Point::new(end, 7.0));
+            // The head points from the base side towards the end when it fits, from
+            // beyond the end back at it when it does not.
+            let back = heads[0][1].x - end;
+            let fits = (end - base).abs() >= LINEAR_ARROWS_FIT * 1.8;
+            assert_eq!(back.signum() == (base - end).signum(), fits, "{base} -> {end}");
+        }
+    }
+
+    #[test]
+    fn a_placed_text_sits_where_asked_with_the_dimension_line_run_on_under_it() {
+        let style = DimStyle { text_height: 2.0, arrow_size: 1.8 };
+        let dim = Shape::LinearDimension {
+            p1: Point::new(10.0, 0.0),
+            p2: Point::new(20.0, 0.0),
+            line_at: Point::new(0.0, 5.0),
+            angle: 0.0,
+            text: "10 ±0.1".into(),
+        };
+        let w = text_width("10 ±0.1", 2.0);
+        for along in [5.0, 30.0, -12.0] {
+            let marks = LinearMarks { ends: DimEnds::FromBase, text_along: Some(along) };
+            let parts = explode_linear(&dim, marks, &style);
+            let (at, _) = parts
+                .iter()
+                .find_map(|s| match s {
+                    Shape::Text { at, rotation, .. } => Some((*at, *rotation)),
+                    _ => None,
+                })
+                .unwrap();
+            assert!((at - Point::new(10.0 + along, 5.0 + LINEAR_TEXT_LIFT * 2.0)).norm() < 1e-12);
+            // The dimension line (the horizontal one) spans the text and the feet (from the
+            // base circle's rim).
+            let (lo, hi) = parts
+                .iter()
+                .find_map(|s| match s {
+                    Shape::Line { from, to } if from.y == to.y => Some((from.x.min(to.x), from.x.max(to.x))),
+                    _ => None,
+                })
+                .unwrap();
+            let (t0, t1) = (10.0 + along - 0.5 * w, 10.0 + along + 0.5 * w);
+            let rim = 10.0 + BASE_CIRCLE_RADIUS * 1.8;
+            assert!(lo <= t0.min(rim) + 1e-9 && hi >= t1.max(20.0) - 1e-9, "{along}: {lo}..{hi}");
+            let lay = linear_layout_placed(
+                Point::new(10.0, 0.0),
+                Point::new(20.0, 0.0),
+                Point::new(0.0, 5.0),
+                0.0,
+                "10 ±0.1",
+                Some(along),
+                &style,
+            );
+            assert_eq!(lay.text_inside, along == 5.0 && w <= 10.0);
         }
     }
 

@@ -8,11 +8,11 @@
 //! the dependent dimensions are below the axis on layer `DEPENDENT`, in red, with their
 //! worst-case tolerance.
 
-use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign, parts};
+use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, Shape, VAlign, parts};
 use crate::figure::plot::{self, Histogram};
 use crate::geom::Point;
 use crate::solve::chain::graph::{Analysis, fmt_value};
-use crate::solve::chain::{Dimension, MonteCarlo, Stack};
+use crate::solve::chain::{Dimension, Form, MonteCarlo, Stack};
 
 /// Text height as a fraction of the chain's length.
 const TEXT_FRACTION: f64 = 1.0 / 60.0;
@@ -20,6 +20,9 @@ const TEXT_FRACTION: f64 = 1.0 / 60.0;
 const ROW_GAP: f64 = 2.6;
 /// Approximate width of one character, in text heights (for packing the rows).
 const CHAR_WIDTH: f64 = 0.62;
+/// Clear space between a dimension's text and any feature's coordinate (where feature and
+/// extension lines run), in text heights.
+const TEXT_CLEAR: f64 = 0.4;
 
 /// A dependent dimension to draw below the axis.
 #[derive(Debug, Clone, PartialEq)]
@@ -70,9 +73,154 @@ pub fn pack_rows(intervals: &[(f64, f64)]) -> Vec<usize> {
     row
 }
 
+/// The names the drawing, the report and the JSON give the features, in the order of
+/// `analysis.features`. Named form: the scene's own names. Matrix form: `F0` for the zero
+/// point, then `F1`, `F2`, … in axis order (increasing x), features not tied to the zero
+/// point last, group by group, each group in axis order. The seed gives its features no
+/// order of their own (row B lists the bases "in any order", and a feature is known only
+/// by the value of a dimension ending there), so the axis is the order a reader checks
+/// with a ruler; it also names a feature the same in matrices (2) and (3) wherever the
+/// zero point is not involved, since (3) is (2) shifted.
+pub fn feature_labels(analysis: &Analysis, form: Form) -> Vec<String> {
+    let n = analysis.features.len();
+    if form == Form::Named {
+        return analysis.features.iter().map(|f| f.name.clone()).collect();
+    }
+    let group = |i: usize| analysis.untied.iter().position(|g| g.contains(&i)).map_or(0, |g| g + 1);
+    let mut order: Vec<usize> = (1..n).collect();
+    order.sort_by(|&i, &j| {
+        let (a, b) = (&analysis.features[i], &analysis.features[j]);
+        group(i).cmp(&group(j)).then(a.x.total_cmp(&b.x)).then(i.cmp(&j))
+    });
+    let mut labels = vec![String::new(); n];
+    if n > 0 {
+        labels[0] = "F0".into();
+    }
+    for (k, i) in order.into_iter().enumerate() {
+        labels[i] = format!("F{}", k + 1);
+    }
+    labels
+}
+
+/// The text under a feature's line: its label and coordinate (`F3  x = 42`).
+pub fn feature_text(label: &str, x: f64, tied: bool) -> String {
+    let suffix = if tied { "" } else { " (not tied)" };
+    format!("{label}  x = {}{suffix}", fmt_value(x))
+}
+
+/// Middle (x) of a dimension text `width` wide whose dimension spans `lo..hi`: as near the
+/// middle of the span as lets the text's box keep `clear` off every coordinate in
+/// `features` (each feature's line and every extension line run at a feature's coordinate,
+/// so no such line then crosses the text, whatever row it is in). Beyond the outermost
+/// features there is always room.
+/// With `base = Some((x_base, x_end))` the text stays on the end's side of the base (a
+/// dimension line run on past its base circle would read as a second dimension).
+pub fn text_centre(lo: f64, hi: f64, width: f64, clear: f64, features: &[f64], base: Option<(f64, f64)>) -> f64 {
+    let mut xs: Vec<f64> = features.iter().copied().filter(|x| x.is_finite()).collect();
+    xs.sort_by(f64::total_cmp);
+    let mid = 0.5 * (lo + hi);
+    let half = 0.5 * width;
+    // Free gaps between the features' clear zones, outermost ones unbounded.
+    let mut edges = vec![f64::NEG_INFINITY];
+    for x in &xs {
+        edges.push(x - clear);
+        edges.push(x + clear);
+    }
+    edges.push(f64::INFINITY);
+    let mut best = mid;
+    let mut best_d = f64::INFINITY;
+    for g in edges.chunks(2) {
+        let (mut a, mut b) = (g[0] + half, g[1] - half);
+        match base {
+            Some((x0, x1)) if x1 >= x0 => a = a.max(x0 + half),
+            Some((x0, _)) => b = b.min(x0 - half),
+            None => {}
+        }
+        if a > b {
+            continue;
+        }
+        let c = mid.clamp(a, b);
+        let d = (c - mid).abs();
+        if d < best_d {
+            best = c;
+            best_d = d;
+        }
+    }
+    best
+}
+
+/// One dimension of the chain drawing before it is put in a row.
+struct DimItem {
+    /// First definition point's x (the base, for a dimension with one).
+    x1: f64,
+    /// Second definition point's x (the end).
+    x2: f64,
+    text: String,
+    layer: usize,
+    marks: LinearMarks,
+}
+
+impl DimItem {
+    /// The dimension with its dimension line at height `y`.
+    fn shape(&self, y: f64) -> Shape {
+        Shape::LinearDimension {
+            p1: Point::new(self.x1, 0.0),
+            p2: Point::new(self.x2, 0.0),
+            line_at: Point::new(0.5 * (self.x1 + self.x2), y),
+            angle: 0.0,
+            text: self.text.clone(),
+        }
+    }
+}
+
+/// Least and greatest x of exploded dimension parts (texts by their estimated width).
+fn x_extent(parts: &[Shape]) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    let mut add = |x: f64| {
+        lo = lo.min(x);
+        hi = hi.max(x);
+    };
+    for s in parts {
+        match s {
+            Shape::Line { from, to } => {
+                add(from.x);
+                add(to.x);
+            }
+            Shape::Circle { center, radius } => {
+                add(center.x - radius);
+                add(center.x + radius);
+            }
+            Shape::Filled { points } => points.iter().for_each(|p| add(p.x)),
+            Shape::Text { at, height, value, .. } => {
+                let w = parts::text_width(value, *height);
+                add(at.x - 0.5 * w);
+                add(at.x + 0.5 * w);
+            }
+            _ => {}
+        }
+    }
+    (lo, hi)
+}
+
 /// The chain drawing: the `dimensions` of the chain that `analysis` was made of, the
-/// dependent dimensions to mark, and the length unit for the axis label (`mm`).
-pub fn chain(dimensions: &[Dimension], analysis: &Analysis, dependents: &[DependentMark], units: &str) -> Drawing {
+/// dependent dimensions to mark, the features' `labels` ([`feature_labels`]) and the length
+/// unit for the axis label (`mm`).
+///
+/// Each independent (and redundant) dimension is drawn in seed 001's notation
+/// ([`DimEnds::FromBase`]): a small circle at its base, an arrowhead at its end, so the
+/// matrix's row B and the sign of row W read off the drawing. Dependent dimensions Z =
+/// [b_l, b_p] have no base and keep an arrowhead at each end. Every text keeps clear of
+/// every feature's coordinate ([`text_centre`]), so no extension or feature line crosses
+/// it; rows are packed on the dimensions' whole drawn extent (line, stubs, circle, text).
+/// The dimensions are written exploded (lines, circle, arrowhead, text on their layer):
+/// `Shape::LinearDimension` cannot carry the marks yet, see docs/chain.md.
+pub fn chain(
+    dimensions: &[Dimension],
+    analysis: &Analysis,
+    dependents: &[DependentMark],
+    labels: &[String],
+    units: &str,
+) -> Drawing {
     let xs: Vec<f64> = analysis.features.iter().map(|f| f.x).collect();
     let xmin = xs.iter().cloned().fold(f64::INFINITY, f64::min);
     let xmax = xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
@@ -86,32 +234,48 @@ pub fn chain(dimensions: &[Dimension], analysis: &Analysis, dependents: &[Depend
     let dims_layer = dr.layer("DIMENSIONS", Aci::BLUE, LineType::Continuous);
     let redundant_layer = dr.layer("REDUNDANT", Aci::MAGENTA, LineType::Continuous);
     let dep_layer = dr.layer("DEPENDENT", Aci::RED, LineType::Continuous);
-
-    // Independent (and redundant) dimensions above the axis.
-    let x_of = |f: usize| analysis.features[analysis.node_of[f]].x;
-    let mut items: Vec<(f64, f64, String, bool)> = Vec::new();
-    for (i, d) in dimensions.iter().enumerate() {
-        let (a, b) = (x_of(d.from), x_of(d.to));
-        let value = fmt_value(d.nominal.abs());
-        let text = if analysis.in_tree[i] { format!("{value}{}", tolerance_text(d)) } else { format!("({value})") };
-        items.push((a.min(b), a.max(b), text, !analysis.in_tree[i]));
-    }
-    // A dimension's span in x with its text where the dimension puts it (between the
-    // extension lines, or beside one when it does not fit), half a character clear.
-    // Arrowheads outside the extension lines sit on stubs of the dimension line.
     let style = dr.dim_style;
-    let widen = |a: f64, b: f64, text: &str| {
-        let lay = parts::linear_layout(Point::new(a, 0.0), Point::new(b, 0.0), Point::new(a, 1.0), 0.0, text, &style);
-        let half = 0.5 * lay.text_width + 0.5 * CHAR_WIDTH * th;
-        let stub = if lay.arrows_inside { 0.0 } else { parts::LINEAR_ARROW_STUB * style.arrow_size };
-        ((a - stub).min(lay.text_at.x - half), (b + stub).max(lay.text_at.x + half))
+    let clear = TEXT_CLEAR * th;
+
+    // Independent (and redundant) dimensions above the axis, from base to end.
+    let x_of = |f: usize| analysis.features[analysis.node_of[f]].x;
+    let item = |x1: f64, x2: f64, text: String, layer: usize, ends: DimEnds| {
+        let w = parts::text_width(&text, th);
+        let base = (ends == DimEnds::FromBase).then_some((x1, x2));
+        let t = text_centre(x1.min(x2), x1.max(x2), w, clear, &xs, base);
+        DimItem { x1, x2, text, layer, marks: LinearMarks { ends, text_along: Some(t - x1) } }
     };
-    let intervals: Vec<(f64, f64)> = items.iter().map(|(a, b, t, _)| widen(*a, *b, t)).collect();
-    let rows = pack_rows(&intervals);
+    let above: Vec<DimItem> = dimensions
+        .iter()
+        .enumerate()
+        .map(|(i, d)| {
+            let value = fmt_value(d.nominal.abs());
+            let (text, layer) = if analysis.in_tree[i] {
+                (format!("{value}{}", tolerance_text(d)), dims_layer)
+            } else {
+                (format!("({value})"), redundant_layer)
+            };
+            item(x_of(d.from), x_of(d.to), text, layer, DimEnds::FromBase)
+        })
+        .collect();
+    let below: Vec<DimItem> = dependents
+        .iter()
+        .map(|m| item(m.left_x.min(m.right_x), m.left_x.max(m.right_x), m.text.clone(), dep_layer, DimEnds::Arrows))
+        .collect();
+    // Rows packed on what each dimension draws, half a character clear.
+    let rows_of = |items: &[DimItem]| {
+        let intervals: Vec<(f64, f64)> = items
+            .iter()
+            .map(|it| {
+                let (a, b) = x_extent(&parts::explode_linear(&it.shape(1.0), it.marks, &style));
+                (a - 0.5 * CHAR_WIDTH * th, b + 0.5 * CHAR_WIDTH * th)
+            })
+            .collect();
+        pack_rows(&intervals)
+    };
+    let rows = rows_of(&above);
     let n_rows = rows.iter().max().map_or(0, |r| r + 1);
-    let dep_intervals: Vec<(f64, f64)> =
-        dependents.iter().map(|m| widen(m.left_x.min(m.right_x), m.left_x.max(m.right_x), &m.text)).collect();
-    let dep_rows = pack_rows(&dep_intervals);
+    let dep_rows = rows_of(&below);
     let n_dep_rows = dep_rows.iter().max().map_or(0, |r| r + 1);
 
     let top = gap * (n_rows as f64 + 0.4);
@@ -133,50 +297,39 @@ pub fn chain(dimensions: &[Dimension], analysis: &Analysis, dependents: &[Depend
         },
     );
 
-    // Feature lines and their names below them.
-    for f in &analysis.features {
+    // Feature lines and, below them, each feature's label and coordinate.
+    for (i, f) in analysis.features.iter().enumerate() {
         dr.add(features, Shape::Line { from: Point::new(f.x, bottom), to: Point::new(f.x, top) });
-        let name = if f.tied { f.name.clone() } else { format!("{} (not tied)", f.name) };
+        let label = labels.get(i).map_or(f.name.as_str(), String::as_str);
+        let value = feature_text(label, f.x, f.tied);
+        // Reading up to just below the feature's line, inserted at its lower end (the
+        // drawing's bounds count a text by its unrotated box from the insertion point).
+        let h = 0.8 * th;
+        let w = parts::text_width(&value, h);
         dr.add(
             names,
             Shape::Text {
-                at: Point::new(f.x, bottom - 0.4 * th),
-                height: 0.8 * th,
-                value: name,
-                halign: HAlign::Right,
+                at: Point::new(f.x, bottom - 0.4 * th - w),
+                height: h,
+                value,
+                halign: HAlign::Left,
                 valign: VAlign::Middle,
                 rotation: std::f64::consts::FRAC_PI_2,
             },
         );
     }
 
-    for ((a, b, text, redundant), row) in items.into_iter().zip(rows) {
-        let layer = if redundant { redundant_layer } else { dims_layer };
+    for (it, row) in above.iter().zip(rows) {
         let y = gap * (row as f64 + 1.0) - 0.4 * gap;
-        dr.add(
-            layer,
-            Shape::LinearDimension {
-                p1: Point::new(a, 0.0),
-                p2: Point::new(b, 0.0),
-                line_at: Point::new(0.5 * (a + b), y),
-                angle: 0.0,
-                text,
-            },
-        );
+        for part in parts::explode_linear(&it.shape(y), it.marks, &style) {
+            dr.add(it.layer, part);
+        }
     }
-    for (m, row) in dependents.iter().zip(dep_rows) {
+    for (it, row) in below.iter().zip(dep_rows) {
         let y = -gap * (row as f64 + 1.0) + 0.2 * gap;
-        let (a, b) = (m.left_x.min(m.right_x), m.left_x.max(m.right_x));
-        dr.add(
-            dep_layer,
-            Shape::LinearDimension {
-                p1: Point::new(a, 0.0),
-                p2: Point::new(b, 0.0),
-                line_at: Point::new(0.5 * (a + b), y),
-                angle: 0.0,
-                text: m.text.clone(),
-            },
-        );
+        for part in parts::explode_linear(&it.shape(y), it.marks, &style) {
+            dr.add(it.layer, part);
+        }
     }
     dr
 }
@@ -229,6 +382,40 @@ mod tests {
             }
         }
         assert_eq!(rows[3], 2); // the longest outside
+    }
+
+    #[test]
+    fn text_keeps_off_every_feature_and_stays_on_the_end_side_of_its_base() {
+        let xs = [-38.0, 0.0, 25.0, 42.0, 122.0, 177.0, 187.0, 202.0, 222.0];
+        let (w, clear) = (24.0, 2.0);
+        let clear_of_all = |c: f64| xs.iter().all(|x| (c - 0.5 * w) >= x + clear || (c + 0.5 * w) <= x - clear);
+        // Fits between 42 and 122: centred.
+        assert_eq!(text_centre(42.0, 122.0, w, clear, &xs, None), 82.0);
+        // 187..202 is too narrow, and so is 202..222: beyond 222 on the end's side.
+        let c = text_centre(187.0, 202.0, w, clear, &xs, Some((187.0, 202.0)));
+        assert!(clear_of_all(c) && c - 0.5 * w >= 222.0 + clear - 1e-9, "{c}");
+        // Without a base it may go to the nearer side (before 177).
+        let c = text_centre(187.0, 202.0, w, clear, &xs, None);
+        assert!(clear_of_all(c) && c + 0.5 * w <= 177.0 - clear + 1e-9, "{c}");
+        // A negative dimension (base 222, end 122) keeps its text left of the base.
+        let c = text_centre(122.0, 222.0, w, clear, &xs, Some((222.0, 122.0)));
+        assert!(clear_of_all(c) && c + 0.5 * w <= 222.0, "{c}");
+    }
+
+    #[test]
+    fn features_are_named_f0_at_the_zero_point_then_along_the_axis() {
+        use crate::solve::chain::graph::Feature;
+        let f = |name: &str, x: f64| Feature { name: name.into(), aliases: vec![], x, tied: true };
+        let mut a = crate::solve::chain::analyse(&crate::solve::chain::Chain {
+            form: Form::Matrix,
+            features: vec!["0".into()],
+            dimensions: vec![],
+            dependent: vec![],
+        });
+        a.features = vec![f("0", 0.0), f("80", 42.0), f("-38", -38.0), f("25", 25.0)];
+        assert_eq!(feature_labels(&a, Form::Matrix), ["F0", "F3", "F1", "F2"]);
+        assert_eq!(feature_labels(&a, Form::Named), ["0", "80", "-38", "25"]);
+        assert_eq!(feature_text("F3", 42.0, true), "F3  x = 42");
     }
 
     #[test]

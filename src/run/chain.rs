@@ -101,9 +101,27 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
     if n_red == 0 && analysis.untied.is_empty() {
         report.push_str("  dimensioning correct: no over- or under-dimensioning\n");
     }
+    // Features by their labels (matrix form: F0 the zero point, then along the axis), each
+    // with the dimension value it is known by in the matrix.
+    let labels = fig::feature_labels(&analysis, scene.chain.form);
+    let mut by_label: Vec<usize> = (0..analysis.features.len()).collect();
+    if scene.chain.form == Form::Matrix {
+        by_label.sort_by_key(|&i| labels[i].trim_start_matches('F').parse::<usize>().unwrap_or(usize::MAX));
+    }
     report.push_str("  features: ");
     report.push_str(
-        &analysis.features.iter().map(|f| format!("{} at {}", f.name, fmt_value(f.x))).collect::<Vec<_>>().join(", "),
+        &by_label
+            .iter()
+            .map(|&i| {
+                let f = &analysis.features[i];
+                if labels[i] == f.name {
+                    format!("{} at {}", f.name, fmt_value(f.x))
+                } else {
+                    format!("{} ({}) at {}", labels[i], f.name, fmt_value(f.x))
+                }
+            })
+            .collect::<Vec<_>>()
+            .join(", "),
     );
     report.push('\n');
 
@@ -178,7 +196,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
             DependentMark { left_x: l, right_x: p, text }
         })
         .collect();
-    let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, units);
+    let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, &labels, units);
     let diagrams = results
         .iter()
         .filter_map(|r| {
@@ -230,6 +248,8 @@ struct TermRecord<'a> {
 #[derive(Debug, Serialize)]
 struct FeatureRecord<'a> {
     name: &'a str,
+    /// The label on the drawing: `F0`… in the matrix form, the name in the named form.
+    label: String,
     x: f64,
     aliases: &'a [String],
     tied: bool,
@@ -378,8 +398,13 @@ fn summary(scene: &ChainScene, a: &Analysis, results: &[DependentResult]) -> Res
     let terms = |ts: &[crate::solve::chain::graph::Term]| -> Vec<TermRecord<'_>> {
         ts.iter().map(|t| TermRecord { dimension: &dims[t.dim].name, coef: t.coef }).collect()
     };
-    let features =
-        a.features.iter().map(|f| FeatureRecord { name: &f.name, x: f.x, aliases: &f.aliases, tied: f.tied }).collect();
+    let labels = fig::feature_labels(a, scene.chain.form);
+    let features = a
+        .features
+        .iter()
+        .zip(labels)
+        .map(|(f, label)| FeatureRecord { name: &f.name, label, x: f.x, aliases: &f.aliases, tied: f.tied })
+        .collect();
     let dimensions = dims
         .iter()
         .enumerate()
