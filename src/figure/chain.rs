@@ -18,8 +18,9 @@ use crate::solve::chain::{Dimension, Form, MonteCarlo, Stack};
 const TEXT_FRACTION: f64 = 1.0 / 60.0;
 /// Distance between dimension rows, in text heights.
 const ROW_GAP: f64 = 2.6;
-/// Approximate width of one character, in text heights (for packing the rows).
-const CHAR_WIDTH: f64 = 0.62;
+/// Clear space kept between two dimensions packed on one row, each side, in text heights
+/// (text widths themselves come from `draw::parts::text_width`).
+const ROW_CLEARANCE: f64 = 0.31;
 /// Clear space between a dimension's text and any feature's coordinate (where feature and
 /// extension lines run), in text heights.
 const TEXT_CLEAR: f64 = 0.4;
@@ -262,13 +263,13 @@ pub fn chain(
         .iter()
         .map(|m| item(m.left_x.min(m.right_x), m.left_x.max(m.right_x), m.text.clone(), dep_layer, DimEnds::Arrows))
         .collect();
-    // Rows packed on what each dimension draws, half a character clear.
+    // Rows packed on what each dimension draws, ROW_CLEARANCE apart.
     let rows_of = |items: &[DimItem]| {
         let intervals: Vec<(f64, f64)> = items
             .iter()
             .map(|it| {
                 let (a, b) = x_extent(&parts::explode_linear(&it.shape(1.0), it.marks, &style));
-                (a - 0.5 * CHAR_WIDTH * th, b + 0.5 * CHAR_WIDTH * th)
+                (a - ROW_CLEARANCE * th, b + ROW_CLEARANCE * th)
             })
             .collect();
         pack_rows(&intervals)
