@@ -14,7 +14,7 @@
 //! letters, then the fewest crossed segments, wins (the earliest on a tie). Letters are
 //! placed in the order they are added, so the first ones get their preferred spots.
 //!
-//! Points that coincide (closer than [`COINCIDENT`] text heights) get one combined label,
+//! Points that coincide (equal to rounding: closer than [`COINCIDENT`] text heights) get one combined label,
 //! their letters joined by `≡` in the order they were added (`p≡b` where the rocker stands
 //! still), as textbooks of mechanisms write coincident points of a polygon, instead of
 //! letters stacked on each other.
@@ -31,8 +31,11 @@ pub const LABEL_GAP: f64 = 0.35;
 /// Distances tried, as multiples of the nearest distance (the letter's box [`LABEL_GAP`]
 /// from its point). The last one bounds how far a letter can move ([`max_distance`]).
 pub const RINGS: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
-/// Points closer than this many text heights share one label.
-pub const COINCIDENT: f64 = 0.3;
+/// Points closer than this many text heights share one label: points equal to rounding
+/// only (the text height is a fixed fraction of the drawing's size, so this is 1e-9 of the
+/// drawing relative). Points that are merely close get letters of their own, placed apart;
+/// `≡` on a drawing claims that two points coincide.
+pub const COINCIDENT: f64 = 1e-9;
 /// The separator between the letters of coincident points.
 pub const SAME_POINT: &str = "≡";
 /// Directions tried, in multiples of [`TURN`] from the preferred direction, in order.
@@ -309,13 +312,16 @@ mod tests {
 
     #[test]
     fn coincident_points_share_one_label() {
+        // p and b equal to rounding (as 0.1 + 0.2 and 0.3): one label p≡b. c only close to a
+        // (0.1 letter heights): its own letter, not "a≡c" (≡ claims the points coincide).
         let mut p = Polygon::of_points();
-        p.letter(Point::new(0.0, 0.0), "p", 1.0, Vector::new(-1.0, 0.0), None);
-        p.letter(Point::new(0.1, 0.0), "b", 1.0, Vector::new(1.0, 0.0), None);
+        p.letter(Point::new(0.3, 0.0), "p", 1.0, Vector::new(-1.0, 0.0), None);
+        p.letter(Point::new(0.1 + 0.2, 0.0), "b", 1.0, Vector::new(1.0, 0.0), None);
         p.letter(Point::new(3.0, 0.0), "a", 1.0, Vector::new(1.0, 0.0), None);
+        p.letter(Point::new(3.1, 0.0), "c", 1.0, Vector::new(1.0, 0.0), None);
         let placed = p.place();
         let texts: Vec<&str> = placed.iter().map(|l| l.1.as_str()).collect();
-        assert_eq!(texts, ["p≡b", "a"]);
+        assert_eq!(texts, ["p≡b", "a", "c"]);
         // Names beside sides are never combined.
         let mut q = Polygon::of_names();
         q.letter(Point::new(0.0, 0.0), "RB", 1.0, Vector::new(1.0, 0.0), None);
