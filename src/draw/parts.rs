@@ -285,30 +285,18 @@ pub fn linear_layout_placed(
     let len = (f2 - f1).norm();
     let w = text_width(text, th);
     let arrows_inside = len >= LINEAR_ARROWS_FIT * style.arrow_size;
-    if let Some(s) = text_along {
-        let l2 = (f2 - f1).dot(&reading);
-        let text_inside = s - 0.5 * w >= l2.min(0.0) && s + 0.5 * w <= l2.max(0.0);
-        let text_at = f1 + reading * s + up * (LINEAR_TEXT_LIFT * th);
-        return LinearLayout {
-            f1,
-            f2,
-            reading,
-            up,
-            text_at,
-            rotation,
-            text_mid: text_at + up * (0.5 * th),
-            text_width: w,
-            text_inside,
-            arrows_inside,
-        };
-    }
-    let text_inside = w + 2.0 * LINEAR_TEXT_FIT_GAP * th <= len;
-    let on_line = if text_inside {
-        Point::from((f1.coords + f2.coords) / 2.0)
-    } else {
+    let (text_inside, on_line) = match text_along {
+        // Placed by the caller, `s` along the dimension line from the first foot.
+        Some(s) => {
+            let l2 = (f2 - f1).dot(&reading);
+            (s - 0.5 * w >= l2.min(0.0) && s + 0.5 * w <= l2.max(0.0), f1 + reading * s)
+        }
+        None if w + 2.0 * LINEAR_TEXT_FIT_GAP * th <= len => (true, Point::from((f1.coords + f2.coords) / 2.0)),
         // Beyond the foot the text reads towards.
-        let end = if (f2 - f1).dot(&reading) >= 0.0 { f2 } else { f1 };
-        end + reading * (LINEAR_TEXT_OUTSIDE_GAP * th + 0.5 * w)
+        None => {
+            let end = if (f2 - f1).dot(&reading) >= 0.0 { f2 } else { f1 };
+            (false, end + reading * (LINEAR_TEXT_OUTSIDE_GAP * th + 0.5 * w))
+        }
     };
     let text_at = on_line + up * (LINEAR_TEXT_LIFT * th);
     LinearLayout {
