@@ -131,7 +131,7 @@ fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
         let Picture::Motion(a) = &products.picture else { continue };
         animated += 1;
         let files = bytes::to_files(&products, &WriteOptions::default()).unwrap();
-        let opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window), ..SvgOptions::default() };
+        let opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window(&a.poses())), ..SvgOptions::default() };
         assert!(!a.is_empty(), "{stem}: no positions");
         for k in 0..a.len() {
             let whole = svg::to_string(&a.frame_of(&a.pose(k)), &opts);

@@ -8,6 +8,7 @@
 //! thread, so an animation of many positions costs nothing until it is drawn.
 
 use crate::draw::{Bounds, Drawing};
+use crate::geom::Point;
 
 /// Draws position `k` of an animation (its moving part only).
 pub type PoseFn = Box<dyn Fn(usize) -> Drawing + Send + Sync>;
@@ -18,8 +19,9 @@ pub struct Animation {
     pub title: String,
     /// What every position shares, on its content layers.
     pub base: Drawing,
-    /// The model-space window of every frame (so that the picture does not jump).
-    pub window: Bounds,
+    /// The model-space window of every frame (so that the picture does not jump); `None`:
+    /// fitted to the base and every position ([`Animation::window`]).
+    pub fixed_window: Option<Bounds>,
     /// One name per position: its DXF layer (`POS_000`, …); the frame file is the name in
     /// lower case.
     pub names: Vec<String>,
@@ -33,7 +35,7 @@ impl std::fmt::Debug for Animation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Animation")
             .field("title", &self.title)
-            .field("window", &self.window)
+            .field("window", &self.fixed_window)
             .field("positions", &self.names.len())
             .finish_non_exhaustive()
     }
@@ -48,13 +50,13 @@ impl Animation {
     pub fn new(
         title: String,
         base: Drawing,
-        window: Bounds,
+        fixed_window: Option<Bounds>,
         names: Vec<String>,
         labels: Vec<String>,
         pose: impl Fn(usize) -> Drawing + Send + Sync + 'static,
     ) -> Animation {
         assert_eq!(names.len(), labels.len(), "one label per position");
-        Animation { title, base, window, names, labels, pose: Box::new(pose) }
+        Animation { title, base, fixed_window, names, labels, pose: Box::new(pose) }
     }
 
     /// Number of positions.
@@ -70,6 +72,21 @@ impl Animation {
     /// The moving part of position `k`.
     pub fn pose(&self, k: usize) -> Drawing {
         (self.pose)(k)
+    }
+
+    /// The window of every frame: the fixed one, or the bounds of the base and of `poses`
+    /// (every position's moving part, [`Animation::poses`]); a unit square for an empty
+    /// drawing.
+    pub fn window(&self, poses: &[Drawing]) -> Bounds {
+        if let Some(w) = self.fixed_window {
+            return w;
+        }
+        let all = std::iter::once(&self.base).chain(poses).filter_map(Drawing::bounds);
+        all.reduce(|a, b| Bounds {
+            min: Point::new(a.min.x.min(b.min.x), a.min.y.min(b.min.y)),
+            max: Point::new(a.max.x.max(b.max.x), a.max.y.max(b.max.y)),
+        })
+        .unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) })
     }
 
     /// One frame: the base with `pose` (a result of [`Animation::pose`]) on top.

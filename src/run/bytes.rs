@@ -217,9 +217,9 @@ fn motion(
     sink: &dyn Sink,
 ) -> Result<MotionFiles, Error> {
     let name = &p.name;
-    let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window), ..SvgOptions::default() };
-    // Each position drawn once (in parallel), for the DXF layer and the frame.
+    // Each position drawn once (in parallel), for the window, the DXF layer and the frame.
     let poses = a.poses();
+    let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window(&poses)), ..SvgOptions::default() };
     let want_frames = !opts.no_frames;
     let (dxf, rest) = rayon::join(
         || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),

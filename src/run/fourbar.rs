@@ -67,7 +67,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
     Ok(Products {
         name: name.clone(),
         mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(Animation::new(title, base, window, names, labels, pose)),
+        picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
         sheets: Vec::new(),
         diagrams,

@@ -216,12 +216,6 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     let figure = figure_of(scene);
     let spans = fig::guide_spans(&figure, &motion, &style);
     let base = fig::frame_base(&figure, &motion, &style);
-    // The window: the paths and the mechanism at every position.
-    let mut all = base.clone();
-    for q in &motion {
-        all.append(&fig::frame_moving(&figure, q, &spans, &style));
-    }
-    let window = all.bounds().unwrap_or(crate::draw::Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
     let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
@@ -255,7 +249,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     Ok(Products {
         name: scene.name.clone(),
         mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(Animation::new(scene.name.clone(), base, window, names, labels, pose)),
+        picture: Picture::Motion(Animation::new(scene.name.clone(), base, None, names, labels, pose)),
         positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
         sheets: Vec::new(),
         diagrams,
