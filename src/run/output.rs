@@ -6,11 +6,6 @@ use std::path::{Path, PathBuf};
 
 use crate::Error;
 
-/// Files written by [`Output::stage`], to be listed with [`Output::record`].
-#[derive(Debug)]
-#[must_use = "staged files are listed among the outputs only when recorded"]
-pub struct Staged(Vec<PathBuf>);
-
 /// Outputs of one run, staged until [`Output::commit`].
 #[derive(Debug)]
 pub struct Output {
@@ -54,23 +49,14 @@ impl Output {
         Ok(())
     }
 
-    /// Stages many files at once (`(rel, bytes)` as for [`Output::write`]): for the hundreds
-    /// of frames of an animation, where creating the files is a good part of a run's time.
-    /// Recorded in the given order.
-    pub fn write_many<B: AsRef<[u8]>>(&mut self, files: &[(PathBuf, B)]) -> Result<(), Error> {
-        let staged = self.stage(files)?;
-        self.record(staged);
-        Ok(())
-    }
-
-    /// Writes `files` into the staging directory through a shared reference, so that a batch
-    /// can be staged on one thread while the run builds its other outputs on another; the
-    /// returned [`Staged`] is handed to [`Output::record`] to list the files (and so to move
-    /// them into place at commit: staged files that are never recorded are still moved).
+    /// Writes `files` (`(rel, bytes)` as for [`Output::write`]) into the staging directory
+    /// through a shared reference, so that a batch (the frames of an animation) can be staged
+    /// on one thread while the run builds its other outputs on another. They are listed with
+    /// [`Output::record_paths`] (staged files never listed are still moved at commit).
     ///
     /// The files are written one after another: they go into one directory, whose lock
     /// serialises file creation anyway, and parallel writers only spin on it.
-    pub fn stage<B: AsRef<[u8]>>(&self, files: &[(PathBuf, B)]) -> Result<Staged, Error> {
+    fn stage(&self, files: &[super::bytes::File<'_>]) -> Result<(), Error> {
         let mut dirs: Vec<PathBuf> =
             files.iter().filter_map(|(rel, _)| self.staging.join(rel).parent().map(Path::to_path_buf)).collect();
         dirs.sort();
@@ -82,13 +68,7 @@ impl Output {
             let path = self.staging.join(rel);
             std::fs::write(&path, bytes).map_err(io(&path))?;
         }
-        Ok(Staged(files.iter().map(|(rel, _)| rel.clone()).collect()))
-    }
-
-    /// Lists a batch written by [`Output::stage`] among the run's files, at this point of
-    /// the order.
-    pub fn record(&mut self, staged: Staged) {
-        self.files.extend(staged.0);
+        Ok(())
     }
 
     /// Lists files already staged (through [`super::bytes::Sink::put`]) among the run's
@@ -134,10 +114,8 @@ fn move_tree(from: &Path, to: &Path) -> Result<(), Error> {
 
 impl super::bytes::Sink for Output {
     fn put(&self, files: &[super::bytes::File<'_>]) -> Result<(), Error> {
-        let files: Vec<(PathBuf, &[u8])> = files.iter().map(|(n, b)| (PathBuf::from(n), *b)).collect();
         // Listed by the caller, in the canonical order (see `record_paths`).
-        let _ = self.stage(&files)?;
-        Ok(())
+        self.stage(files)
     }
 }
 
@@ -175,9 +153,11 @@ mod tests {
     fn many_files_are_staged_in_order_and_land_at_commit() {
         let tmp = tempfile::tempdir().unwrap();
         let mut out = Output::new(tmp.path()).unwrap();
-        let files: Vec<(PathBuf, Vec<u8>)> =
-            (0..50).map(|i| (PathBuf::from(format!("frames/f{i:02}.svg")), format!("{i}").into_bytes())).collect();
-        out.write_many(&files).unwrap();
+        let files: Vec<(String, Vec<u8>)> =
+            (0..50).map(|i| (format!("frames/f{i:02}.svg"), format!("{i}").into_bytes())).collect();
+        let views: Vec<super::super::bytes::File<'_>> = files.iter().map(|(n, b)| (n.clone(), b.as_slice())).collect();
+        super::super::bytes::Sink::put(&out, &views).unwrap();
+        out.record_paths(files.iter().map(|(n, _)| PathBuf::from(n)));
         assert!(!tmp.path().join("frames").exists());
         let written = out.commit().unwrap();
         assert_eq!(written.len(), 50);
