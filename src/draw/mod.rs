@@ -292,6 +292,11 @@ pub struct Drawing {
     pub entities: Vec<Entity>,
     /// Dimension text and arrow sizes.
     pub dim_style: DimStyle,
+    /// Paper millimetres per model unit when the drawing is printed at its stated scale
+    /// (for a mechanism drawn at k_l = 0.002 m/mm in a scene in metres: 1/0.002 = 500);
+    /// `None` for a drawing with no paper scale. The SVG writer sizes the page in mm from it
+    /// (`width="…mm"`, viewBox in paper mm); the DXF ignores it (model space is true size).
+    pub paper_mm_per_unit: Option<f64>,
 }
 
 /// Axis-aligned bounding box in model units.
@@ -328,6 +333,7 @@ impl Drawing {
             layers: vec![Layer { name: "0".into(), color: Aci::BLACK, linetype: LineType::Continuous }],
             entities: Vec::new(),
             dim_style,
+            paper_mm_per_unit: None,
         }
     }
 

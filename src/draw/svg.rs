@@ -3,6 +3,12 @@
 //! The model's y axis points up (as in CAD); SVG's points down. The flip happens in one
 //! place, `Frame::pt`. The viewBox is fitted to the drawing's bounds with a margin.
 //! Line widths, dash lengths and font sizes follow the model units, so the SVG is to scale.
+//!
+//! A drawing with a paper scale ([`Drawing::paper_mm_per_unit`], or
+//! [`SvgOptions::paper_mm_per_unit`]) is written on paper: every coordinate and length is
+//! multiplied by the paper millimetres per model unit, the viewBox is in paper millimetres and
+//! the page is `width="…mm" height="…mm"`, so that printing at 100 % gives the stated scales
+//! and a ruler measures them. Without one, the page is [`SvgOptions::width_px`] pixels wide.
 
 use std::io::Write;
 
@@ -30,16 +36,22 @@ pub struct SvgOptions {
     /// Fixed model-space window (lower-left, upper-right) instead of the drawing's bounds:
     /// frames of an animation share one window so the picture doesn't jump.
     pub window: Option<Bounds>,
+    /// Paper millimetres per model unit, overriding the drawing's own
+    /// [`Drawing::paper_mm_per_unit`] (the frames of an animation take the base's).
+    pub paper_mm_per_unit: Option<f64>,
 }
 
 impl Default for SvgOptions {
     fn default() -> Self {
-        SvgOptions { width_px: 1000, margin: 0.05, hairline: 0.0015, window: None }
+        SvgOptions { width_px: 1000, margin: 0.05, hairline: 0.0015, window: None, paper_mm_per_unit: None }
     }
 }
 
-/// Maps model coordinates to SVG user units (y flipped) and fixes number formatting.
+/// Maps model coordinates to SVG user units (y flipped, scaled to paper) and fixes number
+/// formatting.
 struct Frame {
+    /// SVG user units per model unit: paper mm per model unit, or 1 without a paper scale.
+    k: f64,
     /// Stroke width of a hairline, model units.
     hairline: f64,
     /// Dash and gap of dashed lines, model units (the DXF writer's DASHED pattern).
@@ -49,7 +61,11 @@ struct Frame {
 impl Frame {
     /// The single y flip of the writer.
     fn pt(&self, p: Point) -> (f64, f64) {
-        (p.x, -p.y)
+        (self.k * p.x, -self.k * p.y)
+    }
+    /// A model length in SVG user units.
+    fn len(&self, l: f64) -> f64 {
+        self.k * l
     }
 }
 
@@ -78,17 +94,24 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
         .unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
     let extent = bounds.width().max(bounds.height()).max(f64::MIN_POSITIVE);
     let margin = opts.margin * extent;
-    let frame = Frame { hairline: opts.hairline * extent, dash: dash_pattern(extent) };
-    let (x0, y0) = (bounds.min.x - margin, -(bounds.max.y + margin));
+    let paper = opts.paper_mm_per_unit.or(drawing.paper_mm_per_unit).filter(|k| k.is_finite() && *k > 0.0);
+    let frame = Frame { k: paper.unwrap_or(1.0), hairline: opts.hairline * extent, dash: dash_pattern(extent) };
+    let (x0, y0) = frame.pt(Point::new(bounds.min.x - margin, bounds.max.y + margin));
     let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
-    let w = w.max(extent * 1e-3);
-    let h = h.max(extent * 1e-3);
-    let height_px = ((opts.width_px as f64) * h / w).round().max(1.0) as u32;
+    let w = frame.len(w.max(extent * 1e-3));
+    let h = frame.len(h.max(extent * 1e-3));
+    let (width, height) = match paper {
+        Some(_) => (format!("{}mm", num(w)), format!("{}mm", num(h))),
+        None => {
+            let height_px = ((opts.width_px as f64) * h / w).round().max(1.0) as u32;
+            (opts.width_px.to_string(), height_px.to_string())
+        }
+    };
 
     let mut doc = Document::new()
         .set("viewBox", format!("{} {} {} {}", num(x0), num(y0), num(w), num(h)))
-        .set("width", opts.width_px)
-        .set("height", height_px)
+        .set("width", width)
+        .set("height", height)
         .set("font-family", FONT_FAMILY)
         .add(
             Rectangle::new()
@@ -159,8 +182,8 @@ fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::No
     let color = rgb(drawing.color_of(e));
     let dashed = drawing.linetype_of(e) == LineType::Dashed;
     let mut nodes: Vec<Box<dyn svg::Node>> = Vec::new();
-    let stroke = |w: f64| -> (String, String) { (color.clone(), num(w.max(f.hairline))) };
-    let (dash, gap) = (num(f.dash.0), num(f.dash.1));
+    let stroke = |w: f64| -> (String, String) { (color.clone(), num(f.len(w.max(f.hairline)))) };
+    let (dash, gap) = (num(f.len(f.dash.0)), num(f.len(f.dash.1)));
     let styled = |mut el: svg::node::element::Element, w: f64| {
         let (c, sw) = stroke(w);
         el.assign("stroke", c);
@@ -174,7 +197,7 @@ fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::No
         Shape::Circle { center, radius } => {
             let (x, y) = f.pt(*center);
             let el: svg::node::element::Element =
-                Circle::new().set("cx", num(x)).set("cy", num(y)).set("r", num(*radius)).into();
+                Circle::new().set("cx", num(x)).set("cy", num(y)).set("r", num(f.len(*radius))).into();
             nodes.push(Box::new(styled(el, 0.0)));
         }
         Shape::Arc { center, radius, start, end } => {
@@ -265,12 +288,12 @@ fn text_node(
     };
     // Cap height ≈ 0.73 em for DejaVu Sans: font-size = height / 0.73. Vertical alignment is
     // done with an explicit shift (dominant-baseline is not rendered alike everywhere).
-    let size = height / 0.73;
-    let dy = match valign {
+    let size = f.len(height) / 0.73;
+    let dy = f.len(match valign {
         VAlign::Baseline => 0.0,
         VAlign::Middle => 0.5 * height,
         VAlign::Top => height,
-    };
+    });
     let mut t = Text::new(value)
         .set("x", num(x))
         .set("y", num(y))
@@ -300,7 +323,8 @@ fn arc_path(f: &Frame, center: Point, radius: f64, start: f64, end: f64) -> Stri
         let a = start + sweep * i as f64 / n as f64;
         let (x, y) = f.pt(polar(center, radius, a));
         // Counter-clockwise in the model = sweep-flag 0 in SVG's flipped frame.
-        d.push_str(&format!(" A{},{} 0 0 0 {},{}", num(radius), num(radius), num(x), num(y)));
+        let r = num(f.len(radius));
+        d.push_str(&format!(" A{r},{r} 0 0 0 {},{}", num(x), num(y)));
     }
     d
 }
@@ -331,6 +355,23 @@ mod tests {
         let pos = |x: &str| s.find(&format!(r#"x1="{x}""#)).unwrap();
         assert!(pos("1") < pos("2") && pos("2") < pos("3"), "{s}");
         assert_eq!(s.matches(r#"class="layer-A""#).count(), 2);
+    }
+
+    #[test]
+    fn a_paper_scale_sizes_the_page_in_mm() {
+        // A 0.1 m line at 500 paper mm per metre (k_l = 0.002 m/mm) is 50 mm on paper.
+        let mut d = Drawing::new(DimStyle { text_height: 0.01, arrow_size: 0.01 });
+        d.add(0, Shape::Line { from: Point::new(0.0, 0.0), to: Point::new(0.1, 0.0) });
+        d.text(0, Point::new(0.0, 0.02), 0.007, "A");
+        d.paper_mm_per_unit = Some(500.0);
+        let s = to_string(&d, &SvgOptions { margin: 0.0, ..Default::default() });
+        assert!(s.contains(r#"x2="50""#), "{s}");
+        assert!(s.contains(r#"width="50mm""#), "{s}");
+        // Text 3.5 mm high on paper: font-size 3.5 / 0.73.
+        assert!(s.contains(&format!(r#"font-size="{}""#, num(3.5 / 0.73))), "{s}");
+        // The options' scale wins over the drawing's.
+        let s = to_string(&d, &SvgOptions { margin: 0.0, paper_mm_per_unit: Some(1000.0), ..Default::default() });
+        assert!(s.contains(r#"width="100mm""#), "{s}");
     }
 
     #[test]

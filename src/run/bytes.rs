@@ -219,7 +219,13 @@ fn motion(
     let name = &p.name;
     // Each position drawn once (in parallel), for the window, the DXF layer and the frame.
     let poses = a.poses();
-    let svg_opts = SvgOptions { width_px: FRAME_WIDTH_PX, window: Some(a.window(&poses)), ..SvgOptions::default() };
+    let svg_opts = SvgOptions {
+        width_px: FRAME_WIDTH_PX,
+        window: Some(a.window(&poses)),
+        // Every frame on the base's paper, so that frames share the base's header.
+        paper_mm_per_unit: a.base.paper_mm_per_unit,
+        ..SvgOptions::default()
+    };
     let want_frames = !opts.no_frames;
     let (dxf, rest) = rayon::join(
         || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),

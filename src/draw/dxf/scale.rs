@@ -47,5 +47,6 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
             .map(|e| Entity { layer: e.layer, color: e.color, linetype: e.linetype, shape: shape(&e.shape) })
             .collect(),
         dim_style: DimStyle { text_height: d.dim_style.text_height * k, arrow_size: d.dim_style.arrow_size * k },
+        paper_mm_per_unit: d.paper_mm_per_unit.map(|p| p / k),
     }
 }
