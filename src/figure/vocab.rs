@@ -40,6 +40,13 @@ impl Scale {
     pub fn new(per_mm: f64, units: ModelUnits) -> Scale {
         Scale { per_mm, unit_per_mm: 1.0 / units.mm_per_unit }
     }
+    /// `per_mm` physical units per millimetre of paper, for a drawing printed at
+    /// `paper_mm_per_unit` paper millimetres per model unit (its
+    /// [`Drawing::paper_mm_per_unit`]; 1 for a sheet drawn in paper millimetres): the scale
+    /// a ruler on the printed page measures.
+    pub fn on_paper(per_mm: f64, paper_mm_per_unit: f64) -> Scale {
+        Scale { per_mm, unit_per_mm: 1.0 / paper_mm_per_unit }
+    }
     /// The drawn vector (model units) for a physical vector.
     pub fn draw(&self, v: Vector) -> Vector {
         v * (self.unit_per_mm / self.per_mm)
