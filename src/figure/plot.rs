@@ -296,10 +296,48 @@ fn is_degrees(label: &str) -> bool {
     label.contains('°') || label.contains("deg")
 }
 
+/// A horizontal reference line across a diagram (a design limit), dashed, labelled at its
+/// right end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Level {
+    /// Its ordinate (data units); the y axis is widened to show it.
+    pub y: f64,
+    /// Its label (`limit 40°`).
+    pub label: String,
+}
+
+/// A marked sample of a diagram (an extreme): a small circle and its label.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mark {
+    /// Abscissa (data units).
+    pub x: f64,
+    /// Ordinate (data units).
+    pub y: f64,
+    /// Its label (`γ_min = 23.07° at φ1 = 0°`).
+    pub label: String,
+}
+
+/// What a diagram marks besides its curves.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Marks {
+    /// Reference lines.
+    pub levels: Vec<Level>,
+    /// Marked samples.
+    pub points: Vec<Mark>,
+}
+
 /// Draws a line diagram: frame, grid, ticks with numbers, axis labels, title, one
 /// polyline per finite run of each series, and a legend when there is more than one
 /// series. Samples whose x or y is not finite are skipped and break the curve.
 pub fn diagram(d: &Diagram) -> Drawing {
+    diagram_marked(d, &Marks::default())
+}
+
+/// [`diagram`] with reference lines (dashed, on `PLOT_DATA` in dark grey, the y axis
+/// widened to show them) and marked samples (a circle twice the curve width and a label
+/// beside it, on the side away from the frame's nearer edges). Non-finite marks are
+/// left out.
+pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
     let (mut dr, l) = new_plot();
     let finite_pairs = |s: &Series| -> Vec<(f64, f64)> {
         s.x.iter().zip(&s.y).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect()
@@ -307,6 +345,8 @@ pub fn diagram(d: &Diagram) -> Drawing {
     let all: Vec<(f64, f64)> = d.series.iter().flat_map(finite_pairs).collect();
     let (x0, x1) = finite_range(all.iter().map(|p| p.0)).unwrap_or((0.0, 1.0));
     let (y0, y1) = finite_range(all.iter().map(|p| p.1)).unwrap_or((0.0, 1.0));
+    let levels: Vec<&Level> = marks.levels.iter().filter(|v| v.y.is_finite()).collect();
+    let (y0, y1) = levels.iter().fold((y0, y1), |(a, b), v| (a.min(v.y), b.max(v.y)));
     let xt = inner_ticks(x0, x1, MAX_TICKS + 4, is_degrees(&d.x_label));
     let yt = nice_ticks(y0, y1, MAX_TICKS, false);
     let map = axes(&mut dr, &l, &d.title, &d.x_label, &d.y_label, &xt, &yt);
@@ -334,6 +374,7 @@ pub fn diagram(d: &Diagram) -> Drawing {
         }
         flush(&mut run, &mut dr);
     }
+    draw_marks(&mut dr, &l, &levels, marks, &map);
     if d.series.len() > 1 {
         for (i, s) in d.series.iter().enumerate() {
             let color = SERIES_COLORS[i % SERIES_COLORS.len()];
@@ -352,6 +393,32 @@ pub fn diagram(d: &Diagram) -> Drawing {
         }
     }
     dr
+}
+
+/// The reference lines and marked samples of [`diagram_marked`].
+fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks, map: &impl Fn(f64, f64) -> Point) {
+    for v in levels {
+        let y = map(0.0, v.y).y;
+        dr.push(crate::draw::Entity {
+            layer: l.data,
+            color: Some(Aci::DARK_GREY),
+            linetype: Some(LineType::Dashed),
+            shape: Shape::Line { from: Point::new(0.0, y), to: Point::new(PLOT_WIDTH, y) },
+        });
+        let at = Point::new(PLOT_WIDTH - 1.0, y + 1.0);
+        text(dr, l.text, at, TEXT_H, &v.label, (HAlign::Right, VAlign::Baseline), 0.0);
+    }
+    for m in marks.points.iter().filter(|m| m.x.is_finite() && m.y.is_finite()) {
+        let p = map(m.x, m.y);
+        dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 2.0 * CURVE_W });
+        dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 4.0 * CURVE_W });
+        let right = p.x < PLOT_WIDTH / 2.0;
+        let up = p.y < PLOT_HEIGHT / 2.0;
+        let off = 4.0 * CURVE_W + 1.0;
+        let at = Point::new(p.x + if right { off } else { -off }, p.y + if up { off } else { -off - TEXT_H });
+        let halign = if right { HAlign::Left } else { HAlign::Right };
+        text(dr, l.text, at, TEXT_H, &m.label, (halign, VAlign::Baseline), 0.0);
+    }
 }
 
 /// Draws a histogram: one bar per bin (outlined, light fill), ticks, title, and dashed
