@@ -334,9 +334,9 @@ pub fn diagram(d: &Diagram) -> Drawing {
 }
 
 /// [`diagram`] with reference lines (dashed, on `PLOT_DATA` in dark grey, the y axis
-/// widened to show them) and marked samples (a circle twice the curve width and a label
-/// beside it, on the side away from the frame's nearer edges). Non-finite marks are
-/// left out.
+/// widened to show them) and marked samples (two red circles and a label level with the
+/// mark, an eighth of the frame towards its middle, with a red leader). Non-finite marks
+/// are left out.
 pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
     let (mut dr, l) = new_plot();
     let finite_pairs = |s: &Series| -> Vec<(f64, f64)> {
@@ -412,12 +412,19 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
         let p = map(m.x, m.y);
         dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 2.0 * CURVE_W });
         dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 4.0 * CURVE_W });
+        // At the mark's height, an eighth of the frame aside, with a leader: the curve leaves
+        // an extreme upwards (a minimum) or downwards (a maximum), so the space level with
+        // it is free once clear of the mark.
         let right = p.x < PLOT_WIDTH / 2.0;
-        let up = p.y < PLOT_HEIGHT / 2.0;
-        let off = 4.0 * CURVE_W + 1.0;
-        let at = Point::new(p.x + if right { off } else { -off }, p.y + if up { off } else { -off - TEXT_H });
+        let side = if right { 1.0 } else { -1.0 };
+        let at = Point::new(p.x + side * PLOT_WIDTH / 8.0, p.y);
+        dr.add_colored(
+            l.data,
+            Aci::RED,
+            Shape::Line { from: Point::new(p.x + side * 4.0 * CURVE_W, p.y), to: Point::new(at.x - side, p.y) },
+        );
         let halign = if right { HAlign::Left } else { HAlign::Right };
-        text(dr, l.text, at, TEXT_H, &m.label, (halign, VAlign::Baseline), 0.0);
+        text(dr, l.text, at, TEXT_H, &m.label, (halign, VAlign::Middle), 0.0);
     }
 }
 
@@ -467,6 +474,43 @@ pub fn histogram(h: &Histogram) -> Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_marked_diagram_shows_its_level_and_its_mark_inside_the_frame() {
+        let d = Diagram {
+            title: "γ".into(),
+            x_label: "φ1 [°]".into(),
+            y_label: "γ [°]".into(),
+            series: vec![Series { label: "γ".into(), x: vec![0.0, 180.0, 359.0], y: vec![50.0, 70.0, 52.0] }],
+        };
+        let marks = Marks {
+            levels: vec![Level { y: 40.0, label: "limit 40°".into() }],
+            points: vec![Mark { x: 0.0, y: 50.0, label: "min".into() }],
+        };
+        let dr = diagram_marked(&d, &marks);
+        // The dashed level lies inside the frame although every sample is above it.
+        let level = dr
+            .entities
+            .iter()
+            .find_map(|e| match e.shape {
+                Shape::Line { from, to } if e.linetype == Some(LineType::Dashed) => Some((from, to)),
+                _ => None,
+            })
+            .expect("a dashed level line");
+        assert!(level.0.y >= 0.0 && level.0.y <= PLOT_HEIGHT && level.0.y == level.1.y);
+        assert_eq!((level.0.x, level.1.x), (0.0, PLOT_WIDTH));
+        let texts: Vec<&str> = dr
+            .entities
+            .iter()
+            .filter_map(|e| match &e.shape {
+                Shape::Text { value, .. } => Some(value.as_str()),
+                _ => None,
+            })
+            .collect();
+        assert!(texts.contains(&"limit 40°") && texts.contains(&"min"));
+        // Without marks the diagram is the plain one.
+        assert_eq!(diagram_marked(&d, &Marks::default()), diagram(&d));
+    }
 
     fn is_nice(step: f64) -> bool {
         let mag = 10f64.powf(step.log10().floor());

@@ -27,7 +27,7 @@
 use super::Geometry;
 use super::kinematics::{Kinematics, Position};
 use super::kinetostatics::{Dynamics, ForcePoint, loads};
-use crate::geom::{self, Point, Vector, cross, perp};
+use crate::geom::{self, Vector, cross, perp};
 
 /// The velocity polygon's turn: 90° clockwise, `(x, y) → (y, −x)`.
 pub fn rotate(v: Vector) -> Vector {
@@ -151,16 +151,10 @@ pub fn image_point(lever: &Lever, name: &str) -> Option<Vector> {
     lever.points.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
 }
 
-/// The lever's point of application of `f` drawn at `pole` with `to_drawn` mapping
-/// velocity units to drawing units.
-pub fn applied_at(pole: Point, f: &LeverForce, to_drawn: impl Fn(Vector) -> Vector) -> Point {
-    pole + to_drawn(f.image)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::Side;
+    use crate::geom::{Point, Side};
     use crate::solve::fourbar::{CrankRange, ExternalForce, forces, kinematics, position};
 
     fn template() -> (Geometry, Dynamics) {
