@@ -41,6 +41,15 @@ impl Csv {
         self.rows.push(fields.into_iter().map(Into::into).collect());
     }
 
+    /// Appends a column `name` with one number per row (full precision, as [`Csv::row`]);
+    /// rows beyond `values` get an empty field.
+    pub fn column(&mut self, name: impl Into<String>, values: &[f64]) {
+        self.header.push(name.into());
+        for (i, r) in self.rows.iter_mut().enumerate() {
+            r.push(values.get(i).map_or(String::new(), |v| format!("{v}")));
+        }
+    }
+
     /// The table as CSV text (RFC 4180 quoting, `\n` line ends).
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());

@@ -349,8 +349,10 @@ fn template_branch_is_kept_and_continuous() {
 
 #[test]
 fn positions_only_scene_computes_no_kinematics() {
-    let text = TEMPLATE
-        .replace("outputs = [\"position\", \"velocity\", \"acceleration\", \"forces\"]", "outputs = [\"position\"]");
+    let text = TEMPLATE.replace(
+        "outputs = [\"position\", \"velocity\", \"acceleration\", \"forces\", \"centres\"]",
+        "outputs = [\"position\"]",
+    );
     assert_ne!(text, TEMPLATE);
     let spec = spec_from(&text).unwrap();
     assert_eq!(spec.outputs, Outputs::POSITIONS);
@@ -410,7 +412,8 @@ fn scene_fields_are_checked_by_name() {
     bad("l_bc = 0.10", "l_bc = -0.10", "l_bc");
     bad("step = 1.0", "step = 0.0", "phi1_deg.step");
     bad("to = 359.0", "to = -1.0", "phi1_deg.to");
-    bad("\"forces\"]", "\"force\"]", "outputs[3]");
+    bad("\"forces\",", "\"force\",", "outputs[3]");
+    bad("\"centres\"]", "\"centers\"]", "outputs[4]");
     bad("at = \"M\"", "at = \"Q\"", "dynamics.force[0].at");
     bad("m3 = 0.125", "m3 = -0.125", "dynamics.m3");
     bad("branch = \"left\"", "branch = \"up\"", "branch");
@@ -424,7 +427,7 @@ fn scene_fields_are_checked_by_name() {
     // Defaults: branch left, outputs without forces when there is no [dynamics].
     let text = TEMPLATE[..cut]
         .replace("branch = \"left\"", "")
-        .replace("outputs = [\"position\", \"velocity\", \"acceleration\", \"forces\"]", "");
+        .replace("outputs = [\"position\", \"velocity\", \"acceleration\", \"forces\", \"centres\"]", "");
     let spec = spec_from(&text).unwrap();
     assert_eq!(spec.geometry.branch, Side::Left);
     assert_eq!(spec.outputs, Outputs { velocity: true, acceleration: true, forces: false });

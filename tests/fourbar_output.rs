@@ -122,8 +122,10 @@ fn every_output_is_written() {
     }
     let frames = std::fs::read_dir(dir.join(format!("frames/{NAME}"))).unwrap().count();
     assert_eq!(frames, 360);
-    for q in ["phi2_deg", "phi3_deg", "omega2", "omega3", "eps2", "eps3", "vM", "aM", "R_A", "R_B", "R_C", "R_O", "Me1"]
-    {
+    for q in [
+        "phi2_deg", "phi3_deg", "gamma", "omega2", "omega3", "eps2", "eps3", "vM", "aM", "R_A", "R_B", "R_C", "R_O",
+        "Me1",
+    ] {
         let svg = dir.join(format!("diagrams/{NAME}/{q}.svg"));
         assert!(read(&svg).starts_with("<svg"), "{q}.svg");
         let png = std::fs::read(dir.join(format!("diagrams/{NAME}/{q}.png"))).unwrap();
@@ -197,6 +199,7 @@ const DOCUMENTED_COLUMNS: &[&str] = &[
     "phi2_deg",
     "phi3_deg",
     "transmission_deg",
+    "gamma_deg",
     "omega2",
     "omega3",
     "vA_x",
@@ -281,6 +284,7 @@ const DOCUMENTED_COLUMNS: &[&str] = &[
     "Mi22",
     "Mi3",
     "Me1",
+    "me1_joukowski",
 ];
 
 #[test]
@@ -363,6 +367,7 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
         "phi2_deg",
         "phi3_deg",
         "transmission_deg",
+        "gamma_deg",
         "omega2",
         "omega3",
         "eps2",
@@ -390,6 +395,7 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
         "aB_mag",
         "aM_mag",
         "Me1",
+        "me1_joukowski",
     ];
     for k in keys {
         assert!(doc.contains(&format!("`{k}`")), "position key {k} is not documented");

@@ -153,9 +153,19 @@ fn without_frames_a_motion_writes_no_frame_and_no_viewer() {
     let files = bytes::to_files(&products, &WriteOptions { no_frames: true, ..WriteOptions::default() }).unwrap();
     assert!(files.iter().all(|(n, _)| !n.starts_with("frames/") && !n.ends_with(".html")));
     let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+    // The picture, the sheets (the centres and Joukowski's lever), the table, the summary.
     assert_eq!(
-        &names[..4],
-        ["fourbar-chebyshev.dxf", "fourbar-chebyshev.svg", "fourbar-chebyshev.csv", "fourbar-chebyshev.json"]
+        &names[..8],
+        [
+            "fourbar-chebyshev.dxf",
+            "fourbar-chebyshev.svg",
+            "fourbar-chebyshev-centres.dxf",
+            "fourbar-chebyshev-centres.svg",
+            "fourbar-chebyshev-joukowski.dxf",
+            "fourbar-chebyshev-joukowski.svg",
+            "fourbar-chebyshev.csv",
+            "fourbar-chebyshev.json"
+        ]
     );
 }
 

@@ -318,7 +318,7 @@ pub fn angle_text(deg: f64) -> String {
 /// [`labels::Polygon`] clear of the joints, the links, the ground symbols and the arrows
 /// `arrows` drawn on the mechanism (the reactions). Returns what later letters should keep
 /// off: the letters' and the ground symbols' boxes, and the links.
-fn mechanism(
+pub(super) fn mechanism(
     d: &mut Drawing,
     geom: &Geometry,
     pos: &Position,

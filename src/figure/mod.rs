@@ -3,9 +3,11 @@
 //! [`crate::draw::Drawing`]; they never write files.
 
 pub mod animation;
+pub mod centres;
 pub mod chain;
 pub mod forces;
 pub mod fourbar;
+pub mod joukowski;
 pub mod labels;
 pub mod linkage;
 pub mod plot;

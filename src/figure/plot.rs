@@ -296,10 +296,48 @@ fn is_degrees(label: &str) -> bool {
     label.contains('°') || label.contains("deg")
 }
 
+/// A horizontal reference line across a diagram (a design limit), dashed, labelled at its
+/// right end.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Level {
+    /// Its ordinate (data units); the y axis is widened to show it.
+    pub y: f64,
+    /// Its label (`limit 40°`).
+    pub label: String,
+}
+
+/// A marked sample of a diagram (an extreme): a small circle and its label.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Mark {
+    /// Abscissa (data units).
+    pub x: f64,
+    /// Ordinate (data units).
+    pub y: f64,
+    /// Its label (`γ_min = 23.07° at φ1 = 0°`).
+    pub label: String,
+}
+
+/// What a diagram marks besides its curves.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Marks {
+    /// Reference lines.
+    pub levels: Vec<Level>,
+    /// Marked samples.
+    pub points: Vec<Mark>,
+}
+
 /// Draws a line diagram: frame, grid, ticks with numbers, axis labels, title, one
 /// polyline per finite run of each series, and a legend when there is more than one
 /// series. Samples whose x or y is not finite are skipped and break the curve.
 pub fn diagram(d: &Diagram) -> Drawing {
+    diagram_marked(d, &Marks::default())
+}
+
+/// [`diagram`] with reference lines (dashed, on `PLOT_DATA` in dark grey, the y axis
+/// widened to show them) and marked samples (two red circles and a label level with the
+/// mark, an eighth of the frame towards its middle, with a red leader). Non-finite marks
+/// are left out.
+pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
     let (mut dr, l) = new_plot();
     let finite_pairs = |s: &Series| -> Vec<(f64, f64)> {
         s.x.iter().zip(&s.y).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect()
@@ -307,6 +345,8 @@ pub fn diagram(d: &Diagram) -> Drawing {
     let all: Vec<(f64, f64)> = d.series.iter().flat_map(finite_pairs).collect();
     let (x0, x1) = finite_range(all.iter().map(|p| p.0)).unwrap_or((0.0, 1.0));
     let (y0, y1) = finite_range(all.iter().map(|p| p.1)).unwrap_or((0.0, 1.0));
+    let levels: Vec<&Level> = marks.levels.iter().filter(|v| v.y.is_finite()).collect();
+    let (y0, y1) = levels.iter().fold((y0, y1), |(a, b), v| (a.min(v.y), b.max(v.y)));
     let xt = inner_ticks(x0, x1, MAX_TICKS + 4, is_degrees(&d.x_label));
     let yt = nice_ticks(y0, y1, MAX_TICKS, false);
     let map = axes(&mut dr, &l, &d.title, &d.x_label, &d.y_label, &xt, &yt);
@@ -334,6 +374,7 @@ pub fn diagram(d: &Diagram) -> Drawing {
         }
         flush(&mut run, &mut dr);
     }
+    draw_marks(&mut dr, &l, &levels, marks, &map);
     if d.series.len() > 1 {
         for (i, s) in d.series.iter().enumerate() {
             let color = SERIES_COLORS[i % SERIES_COLORS.len()];
@@ -352,6 +393,39 @@ pub fn diagram(d: &Diagram) -> Drawing {
         }
     }
     dr
+}
+
+/// The reference lines and marked samples of [`diagram_marked`].
+fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks, map: &impl Fn(f64, f64) -> Point) {
+    for v in levels {
+        let y = map(0.0, v.y).y;
+        dr.push(crate::draw::Entity {
+            layer: l.data,
+            color: Some(Aci::DARK_GREY),
+            linetype: Some(LineType::Dashed),
+            shape: Shape::Line { from: Point::new(0.0, y), to: Point::new(PLOT_WIDTH, y) },
+        });
+        let at = Point::new(PLOT_WIDTH - 1.0, y + 1.0);
+        text(dr, l.text, at, TEXT_H, &v.label, (HAlign::Right, VAlign::Baseline), 0.0);
+    }
+    for m in marks.points.iter().filter(|m| m.x.is_finite() && m.y.is_finite()) {
+        let p = map(m.x, m.y);
+        dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 2.0 * CURVE_W });
+        dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 4.0 * CURVE_W });
+        // At the mark's height, an eighth of the frame aside, with a leader: the curve leaves
+        // an extreme upwards (a minimum) or downwards (a maximum), so the space level with
+        // it is free once clear of the mark.
+        let right = p.x < PLOT_WIDTH / 2.0;
+        let side = if right { 1.0 } else { -1.0 };
+        let at = Point::new(p.x + side * PLOT_WIDTH / 8.0, p.y);
+        dr.add_colored(
+            l.data,
+            Aci::RED,
+            Shape::Line { from: Point::new(p.x + side * 4.0 * CURVE_W, p.y), to: Point::new(at.x - side, p.y) },
+        );
+        let halign = if right { HAlign::Left } else { HAlign::Right };
+        text(dr, l.text, at, TEXT_H, &m.label, (halign, VAlign::Middle), 0.0);
+    }
 }
 
 /// Draws a histogram: one bar per bin (outlined, light fill), ticks, title, and dashed
@@ -400,6 +474,43 @@ pub fn histogram(h: &Histogram) -> Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_marked_diagram_shows_its_level_and_its_mark_inside_the_frame() {
+        let d = Diagram {
+            title: "γ".into(),
+            x_label: "φ1 [°]".into(),
+            y_label: "γ [°]".into(),
+            series: vec![Series { label: "γ".into(), x: vec![0.0, 180.0, 359.0], y: vec![50.0, 70.0, 52.0] }],
+        };
+        let marks = Marks {
+            levels: vec![Level { y: 40.0, label: "limit 40°".into() }],
+            points: vec![Mark { x: 0.0, y: 50.0, label: "min".into() }],
+        };
+        let dr = diagram_marked(&d, &marks);
+        // The dashed level lies inside the frame although every sample is above it.
+        let level = dr
+            .entities
+            .iter()
+            .find_map(|e| match e.shape {
+                Shape::Line { from, to } if e.linetype == Some(LineType::Dashed) => Some((from, to)),
+                _ => None,
+            })
+            .expect("a dashed level line");
+        assert!(level.0.y >= 0.0 && level.0.y <= PLOT_HEIGHT && level.0.y == level.1.y);
+        assert_eq!((level.0.x, level.1.x), (0.0, PLOT_WIDTH));
+        let texts: Vec<&str> = dr
+            .entities
+            .iter()
+            .filter_map(|e| match &e.shape {
+                Shape::Text { value, .. } => Some(value.as_str()),
+                _ => None,
+            })
+            .collect();
+        assert!(texts.contains(&"limit 40°") && texts.contains(&"min"));
+        // Without marks the diagram is the plain one.
+        assert_eq!(diagram_marked(&d, &Marks::default()), diagram(&d));
+    }
 
     fn is_nice(step: f64) -> bool {
         let mag = 10f64.powf(step.log10().floor());

@@ -9,6 +9,7 @@ use std::collections::BTreeMap;
 use serde::Serialize;
 use serde_json::{Value, json};
 
+use super::fourbar_teaching as teaching;
 use super::products::{self, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -20,6 +21,7 @@ use crate::report::{self, Csv};
 use crate::scene::Units;
 use crate::scene::fourbar::FourbarScene;
 use crate::solve::fourbar::Forces;
+use crate::solve::fourbar::transmission::{gamma, gamma_min};
 use crate::solve::fourbar::{Motion, Position, solve_motion};
 
 /// A jump of more than this many sweep steps between consecutive solved positions is a
@@ -41,19 +43,40 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
     let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units);
     let qs = reported(&spec.outputs, layout.show.forces);
-    let csv = table(&motion, &qs, layout.show.forces);
-    let summary = summary(scene, &motion, &layout, &qs)?;
+    let mut csv = table(&motion, &qs, layout.show.forces);
+    let mut summary = summary(scene, &motion, &layout, &qs)?;
     let mut warnings = motion.warnings();
     if motion.positions.is_empty() {
         warnings.push("no crank angle of the sweep could be assembled: nothing to draw".to_string());
     }
-    let report = report_text(scene, &motion, &layout);
+    let mut report = report_text(scene, &motion, &layout);
+    // Issue 14 item 10: γ_min, Joukowski's lever, the instantaneous centres.
+    let gamma_min = gamma_min(&motion.positions);
+    let levers = if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() };
+    teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
+    if let Some(m) = &gamma_min {
+        report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
+        warnings.extend(teaching::gamma_warning(m));
+    }
+    let mut sheets = Vec::new();
+    if scene.centres {
+        sheets.extend(teaching::centres(&spec.geometry, &motion.positions));
+    }
+    if layout.show.forces {
+        sheets.extend(teaching::joukowski(spec, &motion.positions, &motion.forces, &levers, units));
+    }
     let name = &scene.name;
     let step = spec.sweep.step_deg;
     let geom = spec.geometry;
     let diagrams = diagrams(&motion, step, &qs, layout.show.forces, units)
         .into_par_iter()
-        .map(|(stem, d)| products::Diagram { stem, drawing: plot::diagram(&d) })
+        .map(|(stem, d)| match stem.as_str() {
+            "gamma_deg" => products::Diagram {
+                stem: "gamma".into(),
+                drawing: plot::diagram_marked(&d, &teaching::gamma_marks(gamma_min)),
+            },
+            _ => products::Diagram { stem, drawing: plot::diagram(&d) },
+        })
         .collect();
     let mut curve = runs(&motion.positions, step, |p| p.m);
     close_full_turn(&mut curve, &motion.positions, step);
@@ -69,7 +92,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
         mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
-        sheets: Vec::new(),
+        sheets,
         diagrams,
         tables: vec![products::Table { suffix: String::new(), csv }],
         summary,
@@ -268,6 +291,15 @@ fn quantities() -> Vec<Quantity> {
             Some(("Rocker angle φ3", "φ3")),
         ),
         q("transmission_deg", G::Position, U::Degree, Get::Scalar(|p, _| deg(p.transmission())), false, true, None),
+        q(
+            "gamma_deg",
+            G::Position,
+            U::Degree,
+            Get::Scalar(|p, _| deg(gamma(p))),
+            false,
+            true,
+            Some(("Transmission angle γ (acute angle between AB and BC)", "γ")),
+        ),
         q(
             "omega2",
             G::Velocity,
@@ -488,11 +520,16 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         .enumerate()
         .map(|(i, p)| position_record(p, forces_at(motion, i, forces), qs))
         .collect();
-    let outputs =
-        [("position", true), ("velocity", o.velocity), ("acceleration", o.acceleration), ("forces", o.forces)]
-            .into_iter()
-            .filter_map(|(n, on)| on.then_some(n))
-            .collect();
+    let outputs = [
+        ("position", true),
+        ("velocity", o.velocity),
+        ("acceleration", o.acceleration),
+        ("forces", o.forces),
+        ("centres", scene.centres),
+    ]
+    .into_iter()
+    .filter_map(|(n, on)| on.then_some(n))
+    .collect();
     let len = layout.units.length;
     let scale = |s: Option<(crate::figure::fourbar::Scale, Point)>, unit: String| {
         s.map(|(s, _)| ScaleRecord { value: s.per_mm, unit })

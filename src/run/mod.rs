@@ -6,6 +6,7 @@
 pub mod bytes;
 mod chain;
 mod fourbar;
+mod fourbar_teaching;
 mod linkage;
 pub mod output;
 pub mod products;

@@ -110,9 +110,12 @@ pub struct FourbarScene {
     pub units: Units,
     /// The solver's input: geometry, omega1, sweep, outputs, dynamics.
     pub spec: MotionSpec,
+    /// `outputs` names "centres": draw the instantaneous centres with Kennedy's lines (a
+    /// sheet `<name>-centres`).
+    pub centres: bool,
 }
 
-const OUTPUT_NAMES: &str = "\"position\", \"velocity\", \"acceleration\", \"forces\"";
+const OUTPUT_NAMES: &str = "\"position\", \"velocity\", \"acceleration\", \"forces\", \"centres\"";
 
 /// Validates the raw scene.
 pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
@@ -152,6 +155,7 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
                     "velocity" => o.velocity = true,
                     "acceleration" => o.acceleration = true,
                     "forces" => o.forces = true,
+                    "centres" => {}
                     other => {
                         return Err(FieldError::new(
                             format!("outputs[{i}]"),
@@ -170,7 +174,13 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
         ));
     }
     let dynamics = raw.dynamics.as_ref().map(|d| check_dynamics(d, raw.units)).transpose()?;
-    Ok(FourbarScene { name, units: raw.units, spec: MotionSpec { geometry, omega1, sweep, outputs, dynamics } })
+    let centres = raw.outputs.as_ref().is_some_and(|l| l.iter().any(|s| s == "centres"));
+    Ok(FourbarScene {
+        name,
+        units: raw.units,
+        spec: MotionSpec { geometry, omega1, sweep, outputs, dynamics },
+        centres,
+    })
 }
 
 fn check_sweep(s: &RawSweep) -> Result<Sweep, FieldError> {

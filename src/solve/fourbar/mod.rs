@@ -22,9 +22,12 @@
 //! submodule imports from here and from the ones before it (kinematics ← kinetostatics ←
 //! motion), never back. Everything public is re-exported here.
 
+pub mod centres;
+pub mod joukowski;
 pub mod kinematics;
 pub mod kinetostatics;
 pub mod motion;
+pub mod transmission;
 
 pub use kinematics::{Kinematics, Position, Prepared, kinematics, position};
 pub use kinetostatics::{

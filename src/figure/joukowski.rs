@@ -1,0 +1,216 @@
+//! Joukowski's lever drawn: the velocity polygon turned 90° clockwise about its pole p,
+//! every load applied at the image of its point with its own direction, named, and the
+//! balancing force F_b at a (dashed, red) that the lever's moments about p give: a sheet
+//! `<name>-joukowski` with one panel per chosen position and, under each, the sum of the
+//! moments and Me1 = −Σ M_p(F_i)/ω1 beside the reactions route's Me1 (the numbers from
+//! [`crate::solve::fourbar::joukowski`]).
+//!
+//! The velocity scale is shared by the panels and nice (1, 2, 2.5, 5 × 10ᵏ), the turned
+//! polygon's largest image at most 0.55 of the panel width. The loads' arrows all have one length
+//! (they differ by two orders of magnitude): they show direction and point of application;
+//! a table under the panel gives each load's magnitude and moment about p.
+
+use crate::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::geom::{Point, Vector, perp};
+use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
+
+use super::fourbar::angle_text;
+use super::labels::{self};
+use super::vocab::{
+    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, nice_scale, pole, scale_text, unit_or, vector,
+};
+
+/// One panel of the sheet: a lever and what to print under it.
+#[derive(Debug, Clone)]
+pub struct LeverPanel<'a> {
+    /// Crank angle, degrees.
+    pub phi1_deg: f64,
+    /// The lever at that angle.
+    pub lever: &'a Lever,
+    /// Me1 by the reactions route, for comparison (same unit as the lever's).
+    pub me1_reactions: f64,
+    /// ω1, rad/s.
+    pub omega1: f64,
+}
+
+/// Units for the sheet's texts.
+#[derive(Debug, Clone, Copy)]
+pub struct LeverUnits {
+    /// The model's length unit (m or mm) and drawing millimetres per unit.
+    pub model: ModelUnits,
+    /// The moment unit (`N·m`, `N·mm`).
+    pub moment: &'static str,
+}
+
+/// `v` to four significant digits (no exponent for ordinary magnitudes).
+pub fn sig4(v: f64) -> String {
+    if v == 0.0 || !v.is_finite() {
+        return format!("{v}");
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if !(-4..6).contains(&mag) {
+        return format!("{v:.3e}");
+    }
+    let decimals = (3 - mag).max(0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".into() } else { s }
+}
+
+/// Length of a load's arrow on the lever, in panel sizes: the loads differ by two orders
+/// of magnitude (F = 50 N beside weights of 1.2 N in the template), so the arrows show
+/// directions and points of application and the table under the panel their magnitudes
+/// and moments.
+const ARROW: f64 = 0.12;
+
+/// Height of a panel's lever area, in panel widths.
+const LEVER_HEIGHT: f64 = 0.85;
+
+/// A text line of a panel.
+fn line(d: &mut Drawing, layer: usize, at: Point, height: f64, value: String, halign: HAlign) {
+    let shape = Shape::Text { at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
+    d.push(Entity { layer, color: None, linetype: None, shape });
+}
+
+/// The sheet: panels side by side, each `size` model units square for the lever, with
+/// the table of loads and the balance under it.
+pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> Drawing {
+    let s = Sizes::for_length(size);
+    let mut d = content_drawing(DimStyle { text_height: s.text, arrow_size: s.head });
+    let frame = d.layer("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
+    let (vel, frc, text) = (layer_of(&d, layers::VELOCITY), layer_of(&d, layers::FORCES), layer_of(&d, layers::TEXT));
+    let size_mm = size * units.model.mm_per_unit;
+    let max_image = panels.iter().flat_map(|p| p.lever.points.iter().map(|(_, v)| v.norm())).fold(0.0, f64::max);
+    let k_v = Scale::new(nice_scale(max_image / (0.55 * size_mm)), units.model);
+    let speed = format!("{}/s", units.model.length);
+    let small = 0.8 * s.text;
+    let row = 1.45 * small;
+    // One table row per load (and F_b), under a header.
+    let rows = panels.iter().map(|p| p.lever.forces.len() + 1).max().unwrap_or(0) + 1;
+    let summary_lines = 4.0;
+    let notes_room = (rows as f64 + summary_lines + 1.0) * row;
+    let title_room = 2.2 * s.text;
+    let gap = 2.0 * s.text;
+    let arrow = ARROW * size;
+    for (k, panel) in panels.iter().enumerate() {
+        let lever = panel.lever;
+        let x0 = k as f64 * (size + gap);
+        let (lo, hi) = (Point::new(x0, 0.0), Point::new(x0 + size, LEVER_HEIGHT * size));
+        let corners = vec![
+            Point::new(lo.x, lo.y - notes_room),
+            Point::new(hi.x, lo.y - notes_room),
+            Point::new(hi.x, hi.y + title_room),
+            Point::new(lo.x, hi.y + title_room),
+        ];
+        d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        let arrows: Vec<(&LeverForce, bool)> =
+            lever.forces.iter().map(|f| (f, false)).chain(lever.balancing.iter().map(|f| (f, true))).collect();
+        let dir = |f: &LeverForce| unit_or(f.force, Vector::zeros()) * arrow;
+        // Every drawn point relative to the pole, to centre the lever in its panel.
+        let mut ext_min = Vector::zeros();
+        let mut ext_max = Vector::zeros();
+        let mut grow = |v: Vector| {
+            ext_min = ext_min.inf(&v);
+            ext_max = ext_max.sup(&v);
+        };
+        for (_, v) in &lever.points {
+            grow(k_v.draw(*v));
+        }
+        for (f, _) in &arrows {
+            grow(k_v.draw(f.image) + dir(f));
+        }
+        let centre = Point::from((lo.coords + hi.coords) / 2.0);
+        let p0 = centre - (ext_min + ext_max) / 2.0;
+        let at = |v: Vector| p0 + k_v.draw(v);
+        let mut letters = labels::Polygon::of_points();
+        let mut names = labels::Polygon::of_names();
+        // The turned polygon: pa, pb, pm and the coupler's image a b m.
+        let img = |n: &str| image_point(lever, n).unwrap_or_else(Vector::zeros);
+        for (a, b) in [("p", "a"), ("p", "b"), ("p", "m"), ("a", "b"), ("b", "m")] {
+            let (pa, pb) = (at(img(a)), at(img(b)));
+            d.add(vel, Shape::Line { from: pa, to: pb });
+            letters.segment(pa, pb);
+            names.segment(pa, pb);
+        }
+        pole(&mut d, vel, p0, s);
+        let mid = at((img("a") + img("b") + img("m")) / 3.0);
+        for (n, v) in &lever.points {
+            let q = at(*v);
+            if n.starts_with('c') {
+                d.add(vel, Shape::Circle { center: q, radius: 0.25 * s.joint });
+            }
+            letters.letter(q, n, s.text, q - mid, None);
+        }
+        for (f, balancing) in &arrows {
+            let from = at(f.image);
+            let v = dir(f);
+            if *balancing {
+                d.push(Entity {
+                    layer: frc,
+                    color: Some(Aci::RED),
+                    linetype: Some(LineType::Dashed),
+                    shape: Shape::Arrow { from, to: from + v, head: s.head },
+                });
+            } else {
+                vector(&mut d, frc, from, v, s);
+            }
+            names.segment(from, from + v);
+        }
+        let boxes = letters.draw(&mut d, vel);
+        for b in boxes {
+            names.keep_off(b);
+        }
+        for (f, balancing) in &arrows {
+            let from = at(f.image);
+            let v = dir(f);
+            let color = balancing.then_some(Aci::RED);
+            names.letter(from + v * 0.6, &f.name, small, perp(v), color);
+        }
+        names.draw(&mut d, frc);
+        let title = format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg));
+        d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
+        // The table: load, its image point, |F| [N], M_p [N·(unit)/s].
+        let largest = arrows.iter().map(|(f, _)| f.moment.abs()).fold(0.0, f64::max);
+        let left = lo.x + 0.5 * s.text;
+        let top = lo.y - 0.3 * row;
+        let (at_x, f_x, m_x) = (left + 0.16 * size, left + 0.5 * size, left + 0.85 * size);
+        line(&mut d, text, Point::new(left, top), small, "load".into(), HAlign::Left);
+        line(&mut d, text, Point::new(at_x, top), small, "at".into(), HAlign::Left);
+        line(&mut d, text, Point::new(f_x, top), small, "|F| [N]".into(), HAlign::Right);
+        line(&mut d, text, Point::new(m_x, top), small, format!("M_p [N·{speed}]"), HAlign::Right);
+        for (i, (f, _)) in arrows.iter().enumerate() {
+            let y = top - (i + 1) as f64 * row;
+            line(&mut d, text, Point::new(left, y), small, f.name.clone(), HAlign::Left);
+            line(&mut d, text, Point::new(at_x, y), small, f.at.to_string(), HAlign::Left);
+            line(&mut d, text, Point::new(f_x, y), small, sig4(f.force.norm()), HAlign::Right);
+            // Rounding noise (a moment 1e-17 where an image point lies on the force's line).
+            let m = if f.moment.abs() < 1e-12 * largest { 0.0 } else { f.moment };
+            line(&mut d, text, Point::new(m_x, y), small, sig4(m), HAlign::Right);
+        }
+        let me1 = lever.me1.map_or("—".to_string(), sig4);
+        let lines = [
+            format!("polygon turned 90° clockwise; k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
+            format!("Σ M_p(F_i) = Σ F_i·v_i = {} N·{speed} (without F_b)", sig4(lever.moment)),
+            format!("Me1 = −Σ M_p(F_i) / ω1 = {me1} {}", units.moment),
+            format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),
+        ];
+        let y0 = top - (rows as f64 + 0.5) * row;
+        for (i, l) in lines.into_iter().enumerate() {
+            line(&mut d, text, Point::new(left, y0 - i as f64 * row), small, l, HAlign::Left);
+        }
+    }
+    d
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn four_significant_digits() {
+        assert_eq!(sig4(-1.49012), "-1.490");
+        assert_eq!(sig4(1490.12), "1490");
+        assert_eq!(sig4(0.0123456), "0.01235");
+        assert_eq!(sig4(0.0), "0");
+        assert_eq!(sig4(1.5e7), "1.500e7");
+    }
+}

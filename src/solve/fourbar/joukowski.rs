@@ -1,0 +1,225 @@
+//! Joukowski's lever: the balancing moment Me1 from the velocity polygon alone, as a
+//! graphical check of the reactions route ([`super::forces`]).
+//!
+//! The velocity polygon is turned 90° clockwise about its pole p: each point's image is
+//! `rot(v) = (v_y, −v_x)`, v its velocity. Every load is applied at the image of its point
+//! of application, with its own direction: the weights G and inertia forces F_i at the
+//! images of the centroids (c1, c21, c22, c3: the midpoints of pa, ab, bm, p c = p b/2,
+//! the velocity field of a rigid link being affine), the external forces at the images of
+//! their points (a, b, m). An inertia moment M_i of a link is replaced by a couple of two
+//! forces ±M_i/l² · perp(link) at its two joints (for the coupler at A and B, for the rocker
+//! at B and C, for the crank at A and O1), as the textbooks do.
+//!
+//! The moment of a force F applied at `rot(v)` about the pole is
+//! `rot(v) × F = v_y·F_y + v_x·F_x = F · v`: the power of F. The lever's moments about the
+//! pole sum to the power of all the loads, inertia forces included, and d'Alembert's
+//! principle (ideal joints: the reactions do no work) gives
+//!
+//! ```text
+//! Me1·ω1 + Σ M_p(F_i) = 0   ⇒   Me1_J = −Σ M_p(F_i) / ω1
+//! ```
+//!
+//! with Me1 counter-clockwise positive (design.md §4), ω1 in rad/s and the arms in the
+//! velocity unit (m/s in an SI scene: M_p in W = N·m/s, Me1_J in N·m; mm/s in a mm scene:
+//! N·mm). Me1 is equivalently a balancing force F_b = Me1/l1² · perp(A − O1) at A (its
+//! moment about O1 is Me1); on the lever at a it closes the sum: Σ M_p + M_p(F_b) = 0.
+
+use super::Geometry;
+use super::kinematics::{Kinematics, Position};
+use super::kinetostatics::{Dynamics, ForcePoint, loads};
+use crate::geom::{self, Vector, cross, perp};
+
+/// The velocity polygon's turn: 90° clockwise, `(x, y) → (y, −x)`.
+pub fn rotate(v: Vector) -> Vector {
+    Vector::new(v.y, -v.x)
+}
+
+/// One load on the lever.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LeverForce {
+    /// Its name (`G21`, `Fi3`, `F`, `FM2`, …).
+    pub name: String,
+    /// Name of the image point it is applied at (`a`, `c21`, …; `p` for a point at rest).
+    pub at: &'static str,
+    /// The image point, relative to the pole: the turned velocity of the point of
+    /// application (velocity units).
+    pub image: Vector,
+    /// The force, N, its own direction.
+    pub force: Vector,
+    /// Its moment about the pole, `image × force` = its power: N·(length unit)/s.
+    pub moment: f64,
+}
+
+/// Joukowski's lever at one position.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Lever {
+    /// The image points of the turned polygon relative to the pole p: `p`, `a`, `b`, `m`
+    /// and the centroids' images `c1`, `c21`, `c22`, `c3` (velocity units).
+    pub points: Vec<(&'static str, Vector)>,
+    /// The loads in order: weights, inertia forces, external forces, the couples of the
+    /// inertia moments.
+    pub forces: Vec<LeverForce>,
+    /// Σ M_p(F_i), N·(length unit)/s.
+    pub moment: f64,
+    /// Me1_J = −Σ M_p / ω1, N·(length unit), counter-clockwise positive; `None` when
+    /// ω1 = 0 (the lever has no length: the velocity polygon is a point).
+    pub me1: Option<f64>,
+    /// The balancing force at A equivalent to Me1_J (perpendicular to O1A), N.
+    pub balancing: Option<LeverForce>,
+}
+
+/// Joukowski's lever at `pos` for the crank turning at `omega1` (rad/s): the loads of
+/// [`loads`] (with `dynamics`), applied at the images of their points.
+pub fn lever(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynamics, omega1: f64) -> Lever {
+    let l = loads(geom, pos, kin, dynamics);
+    let (v_a, v_b, v_m) = (kin.v_a, kin.v_b, kin.v_m);
+    // Centroids: midpoints of O1A, AB, BM, CB (O1 and C at rest).
+    let (v_c1, v_c21, v_c22, v_c3) = (v_a * 0.5, (v_a + v_b) * 0.5, (v_b + v_m) * 0.5, v_b * 0.5);
+    let points = vec![
+        ("p", Vector::zeros()),
+        ("a", rotate(v_a)),
+        ("b", rotate(v_b)),
+        ("m", rotate(v_m)),
+        ("c1", rotate(v_c1)),
+        ("c21", rotate(v_c21)),
+        ("c22", rotate(v_c22)),
+        ("c3", rotate(v_c3)),
+    ];
+    let mut forces = Vec::new();
+    let mut push = |name: String, at: &'static str, v: Vector, force: Vector| {
+        let image = rotate(v);
+        forces.push(LeverForce { name, at, image, force, moment: cross(image, force) });
+    };
+    for (name, at, v, f) in [
+        ("G1", "c1", v_c1, l.w1),
+        ("G21", "c21", v_c21, l.w21),
+        ("G22", "c22", v_c22, l.w22),
+        ("G3", "c3", v_c3, l.w3),
+        ("Fi1", "c1", v_c1, l.fi1),
+        ("Fi21", "c21", v_c21, l.fi21),
+        ("Fi22", "c22", v_c22, l.fi22),
+        ("Fi3", "c3", v_c3, l.fi3),
+    ] {
+        if f != Vector::zeros() {
+            push(name.to_string(), at, v, f);
+        }
+    }
+    let phi1_deg = geom::deg(pos.phi1);
+    let acting: Vec<_> = dynamics.forces.iter().filter(|f| f.range.is_none_or(|r| r.contains_deg(phi1_deg))).collect();
+    for (k, f) in acting.iter().enumerate() {
+        let name = if acting.len() == 1 { "F".to_string() } else { format!("F{}", k + 1) };
+        let (at, v) = match f.at {
+            ForcePoint::A => ("a", v_a),
+            ForcePoint::B => ("b", v_b),
+            ForcePoint::M => ("m", v_m),
+        };
+        push(name, at, v, f.value);
+    }
+    // Inertia moments as couples at the links' joints: +F at the second joint, −F at the
+    // first, F = M/|r|²·perp(r), r from the first joint to the second: moment r × F = M.
+    let couple = |m: f64, r: Vector| perp(r) * (m / r.norm_squared());
+    let m2 = l.mi21 + l.mi22;
+    if m2 != 0.0 {
+        let f = couple(m2, pos.b - pos.a);
+        push("FM2".into(), "b", v_b, f);
+        push("FM2'".into(), "a", v_a, -f);
+    }
+    if l.mi3 != 0.0 {
+        let f = couple(l.mi3, pos.b - geom.c);
+        push("FM3".into(), "b", v_b, f);
+        push("FM3'".into(), "p", Vector::zeros(), -f);
+    }
+    if l.mi1 != 0.0 {
+        let f = couple(l.mi1, pos.a - geom.o1);
+        push("FM1".into(), "a", v_a, f);
+        push("FM1'".into(), "p", Vector::zeros(), -f);
+    }
+    // Summed in a fixed order: the same lever gives the same number.
+    let moment: f64 = forces.iter().map(|f| f.moment).sum();
+    let me1 = (omega1 != 0.0 && omega1.is_finite()).then(|| -moment / omega1);
+    let balancing = me1.map(|me1| {
+        let r1 = pos.a - geom.o1;
+        let force = perp(r1) * (me1 / r1.norm_squared());
+        let image = rotate(v_a);
+        LeverForce { name: "Fb".into(), at: "a", image, force, moment: cross(image, force) }
+    });
+    Lever { points, forces, moment, me1, balancing }
+}
+
+/// The image point named `name` of `lever` (relative to the pole), if it has one.
+pub fn image_point(lever: &Lever, name: &str) -> Option<Vector> {
+    lever.points.iter().find(|(n, _)| *n == name).map(|(_, v)| *v)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::geom::{Point, Side};
+    use crate::solve::fourbar::{CrankRange, ExternalForce, forces, kinematics, position};
+
+    fn template() -> (Geometry, Dynamics) {
+        let g = Geometry {
+            o1: Point::origin(),
+            c: Point::new(0.08, 0.0),
+            l1: 0.04,
+            l_ab: 0.10,
+            l_bm: 0.10,
+            alpha: std::f64::consts::PI,
+            l_bc: 0.10,
+            branch: Side::Left,
+        };
+        let d = Dynamics {
+            length_unit_m: 1.0,
+            g: 9.8,
+            m1: 0.05,
+            m21: 0.125,
+            m22: 0.125,
+            m3: 0.125,
+            forces: vec![ExternalForce {
+                at: ForcePoint::M,
+                value: Vector::new(0.0, -50.0),
+                range: Some(CrankRange { from_deg: 80.0, to_deg: 280.0 }),
+            }],
+        };
+        (g, d)
+    }
+
+    #[test]
+    fn a_moment_about_the_pole_is_the_power_of_the_force() {
+        let v = Vector::new(0.3, -1.7);
+        let f = Vector::new(-2.0, 5.0);
+        assert!((cross(rotate(v), f) - f.dot(&v)).abs() < 1e-15);
+        // Clockwise: +x turns to −y.
+        assert_eq!(rotate(Vector::new(1.0, 0.0)), Vector::new(0.0, -1.0));
+    }
+
+    #[test]
+    fn the_lever_gives_the_reactions_routes_me1_and_the_balancing_force_closes_it() {
+        let (g, d) = template();
+        let mut worst = 0.0f64;
+        let mut largest = 0.0f64;
+        for k in 0..360 {
+            let p = position(&g, f64::from(k).to_radians(), Side::Left).unwrap();
+            let kin = kinematics(&g, &p, 20.0).unwrap();
+            let me1 = forces(&g, &p, &kin, &d).unwrap().me1;
+            let lever = lever(&g, &p, &kin, &d, 20.0);
+            worst = worst.max((lever.me1.unwrap() - me1).abs());
+            largest = largest.max(me1.abs());
+            let b = lever.balancing.as_ref().unwrap();
+            assert!((lever.moment + b.moment).abs() <= 1e-12 * lever.moment.abs().max(1.0), "{k}°");
+            // F_b's moment about O1 is Me1.
+            assert!((cross(p.a - g.o1, b.force) - lever.me1.unwrap()).abs() < 1e-12, "{k}°");
+        }
+        assert!(worst <= 1e-9 * largest, "worst {worst} of {largest}");
+    }
+
+    #[test]
+    fn a_standing_crank_has_no_lever() {
+        let (g, d) = template();
+        let p = position(&g, 1.0, Side::Left).unwrap();
+        let kin = kinematics(&g, &p, 0.0).unwrap();
+        let lever = lever(&g, &p, &kin, &d, 0.0);
+        assert_eq!(lever.me1, None);
+        assert!(lever.balancing.is_none());
+    }
+}
