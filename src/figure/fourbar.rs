@@ -149,8 +149,8 @@ impl Layout {
         // Room for the ground symbols and letters around the mechanism, and for the scale
         // bar under it.
         let pad = 3.5 * sizes.joint + 1.6 * sizes.text;
-        let mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint + bar_room);
-        let mech_max = Point::from(mech.max) + Vector::new(pad, pad);
+        let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint + bar_room);
+        let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
         // Each polygon's panel about as large on paper as the mechanism.
         let target_mm = size * paper;
 
@@ -190,6 +190,17 @@ impl Layout {
                 .fold(None, Extent::union);
             let (s, e) = scale_for(e);
             polys.push((format!("Force polygons   k_f = {} N/mm", scale_text(s.per_mm),), s, e, 2, "N".into()));
+            // The reactions drawn on the mechanism, with their names, stay in its panel.
+            let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
+            for (pos, f) in positions.iter().zip(forces.unwrap_or(&[])) {
+                for (at, nv) in reactions(pos, f) {
+                    let tip = at + s.draw(nv.v);
+                    if tip.x.is_finite() && tip.y.is_finite() {
+                        mech_min = Point::from(mech_min.coords.inf(&(tip - room - Vector::new(0.0, bar_room)).coords));
+                        mech_max = Point::from(mech_max.coords.sup(&(tip + room).coords));
+                    }
+                }
+            }
         }
 
         // Grid: up to three panels in a row, four as 2 × 2.
