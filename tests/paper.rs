@@ -1,7 +1,8 @@
 //! Paper is real (issue 14 item 2): every SVG a run writes is sized in millimetres with its
 //! viewBox in paper millimetres, so that a length measured on the printed page times the
 //! printed scale is the value; and librsvg (rsvg-convert, which drew every letter of a
-//! metre-sized frame as a black box) renders the four-bar frame's text.
+//! metre-sized frame as a black box) and resvg render the four-bar frame's text (read back
+//! by tesseract).
 //!
 //! The measuring test reads only what a student with a ruler has: the frame SVG (lengths
 //! in viewBox millimetres) and the scales printed in the panel titles; the values it
@@ -201,8 +202,15 @@ fn a_length_measured_on_the_page_times_the_printed_scale_is_the_value() {
     assert_eq!(json["scales"]["k_v"]["value"].as_f64(), Some(k_v));
 }
 
+/// The words tesseract reads in the PNG `png`.
+fn ocr(png: &Path) -> String {
+    let out = Command::new("tesseract").arg(png).arg("stdout").output().expect("run tesseract");
+    assert!(out.status.success(), "tesseract: {}", String::from_utf8_lossy(&out.stderr));
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
 #[test]
-fn librsvg_renders_the_four_bar_frames_text() {
+fn librsvg_and_resvg_render_the_four_bar_frames_text() {
     let missing: Vec<&str> = ["rsvg-convert", "tesseract"]
         .into_iter()
         .filter(|t| {
@@ -225,10 +233,19 @@ fn librsvg_renders_the_four_bar_frames_text() {
         .output()
         .expect("run rsvg-convert");
     assert!(out.status.success(), "rsvg-convert: {}", String::from_utf8_lossy(&out.stderr));
-    let out = Command::new("tesseract").arg(&png).arg("stdout").output().expect("run tesseract");
-    assert!(out.status.success(), "tesseract: {}", String::from_utf8_lossy(&out.stderr));
-    let text = String::from_utf8_lossy(&out.stdout);
+    let text = ocr(&png);
     for word in ["Mechanism", "Velocity", "k_v"] {
         assert!(text.contains(word), "{word} not read from librsvg's render:\n{text}");
+    }
+    // The same frame through resvg (the library's rasteriser, with the bundled font), at
+    // the same 200 dpi.
+    let frame = std::fs::read_to_string(&svg).unwrap();
+    let (w_mm, _, _) = page(&frame);
+    let px = (w_mm / 25.4 * 200.0).round() as u32;
+    let png = dir.join("pos_090_resvg.png");
+    std::fs::write(&png, mechdraw::draw::raster::to_png(&frame, px).unwrap()).unwrap();
+    let text = ocr(&png);
+    for word in ["Mechanism", "Velocity", "k_v"] {
+        assert!(text.contains(word), "{word} not read from resvg's render:\n{text}");
     }
 }
