@@ -124,6 +124,9 @@ fn every_svg_of_every_template_is_sized_in_mm_with_a_viewbox_of_the_same_size() 
                 "{}: viewBox {vb:?}, page {w} × {h}",
                 f.display()
             );
+            // Every drawing of a mechanism or a chain (not the diagrams) prints its k_l.
+            let diagram = f.components().any(|c| c.as_os_str() == "diagrams");
+            assert!(diagram || svg.contains("k_l = "), "{}: no k_l printed", f.display());
             checked += 1;
         }
     }

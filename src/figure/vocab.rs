@@ -194,7 +194,8 @@ impl Sizes {
     pub fn small_text(&self) -> f64 {
         self.text * PAPER_SMALL_TEXT_MM / PAPER_TEXT_MM
     }
-    /// The one size table: sizes for a mechanism of characteristic length `size` (model
+    /// Sizes relative to a mechanism, for a drawing with no paper scale (the figures on
+    /// paper use [`Sizes::on_paper`]): sizes for a mechanism of characteristic length `size` (model
     /// units: the extent of the four-bar's motion, the linkage's length scale, the triad's
     /// size): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius,
     /// ground symbols 3.5 % high, slider blocks 7 % by 4 %.
