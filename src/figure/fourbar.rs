@@ -23,7 +23,7 @@
 //! chosen from the largest polygon over the motion. The mechanism panel's title prints k_l
 //! (`Mechanism   k_l = 0.002 m/mm`), each polygon's its scale, and every panel has a scale
 //! bar (`0 ├──┤ 0.05 m`, `0 ├──┤ 0.5 m/s` …) in a strip under its content. With the
-//! template's three polygons the page is about 250 mm square (A3 landscape, or A4 at 85 %).
+//! template's three polygons the page is about 255 × 265 mm (A3 landscape, or A4 at 80 %).
 //!
 //! # Layers
 //! [`Layout::base`] holds what is the same at every position (ground pivots, coupler curve,
