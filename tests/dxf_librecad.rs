@@ -21,12 +21,15 @@ use std::process::Command;
 const MM_PER_PT: f64 = 25.4 / 72.0;
 /// The smallest page side accepted, mm.
 const MIN_PAGE_MM: f64 = 100.0;
-/// Resolution of the angular-dimension crops (the brief's `pdftoppm -r 600`).
-const CROP_DPI: f64 = 600.0;
+/// Resolution of the angular-dimension crops: the triad's dimension text, 0.85 × 3.5 mm on
+/// paper at k_l = 2 mm/mm, is 6 mm high in model space (LibreCAD prints it 1:1), about
+/// 95 px at 400 dpi (the 4.1 mm text of the older size table was read at 600 dpi).
+const CROP_DPI: f64 = 400.0;
 /// Half the side of a crop around an angular dimension's text, mm.
-const CROP_HALF_MM: f64 = 18.0;
-/// Resolution of the chain's whole page: its 4.3 mm dimension text is then about 70 px high.
-const PAGE_DPI: u32 = 400;
+const CROP_HALF_MM: f64 = 26.0;
+/// Resolution of the chain's whole page: its 7 mm dimension text (3.5 mm on paper at
+/// k_l = 2 mm/mm) is then about 77 px high.
+const PAGE_DPI: u32 = 280;
 
 fn on_path(tool: &str) -> bool {
     std::env::var_os("PATH").is_some_and(|p| std::env::split_paths(&p).any(|d| d.join(tool).is_file()))

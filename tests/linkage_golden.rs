@@ -6,7 +6,7 @@
 mod common;
 
 use mechdraw::draw::svg::{SvgOptions, to_string};
-use mechdraw::figure::linkage::{LinkageFigure, Style, frame, guide_spans};
+use mechdraw::figure::linkage::{LinkageFigure, frame, guide_spans, paper_style};
 use mechdraw::scene::linkage::MeasureTarget;
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::linkage::Solver;
@@ -16,11 +16,11 @@ fn shaper_frame_045_golden_png() {
     let loaded = scene::load(&common::root().join("templates/shaper.toml"), &[]).unwrap();
     let Scene::Linkage(s) = loaded.scene else { panic!() };
     let states = Solver::new(s.mechanism.clone()).unwrap().run(&s.times).unwrap();
-    let style = Style::for_length(s.mechanism.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|st| st.q.as_slice()).collect();
     // The figure as the linkage run builds it: the point names, the measured points traced.
     let traced = s.measures.iter().filter_map(|m| if let MeasureTarget::Point(a) = m.target { Some(a) } else { None });
     let fig = LinkageFigure::new(&s.mechanism, |a| s.point_name(a), traced.collect());
+    let style = paper_style(&fig, &motion);
     let spans = guide_spans(&fig, &motion, &style);
     let d = frame(&fig, &motion, &states[45].q, &spans, &style);
     common::assert_golden_png("linkage/shaper_frame_045.png", &to_string(&d, &SvgOptions::default()));

@@ -121,3 +121,38 @@ fn viewer_moves_to_the_frame_asked_for_and_plays() {
     let png = std::fs::read(&shot).expect("screenshot written");
     assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
 }
+
+/// Chromium draws a paper-sized frame's text (issue 14 item 2: the metre-sized viewBox
+/// drew letters as boxes in some renderers): a screenshot of the 90° frame SVG, opened on
+/// its own at 2.5 device pixels per CSS pixel (3.5 mm letters about 33 px high), read back
+/// by tesseract (`.ci/test` installs tesseract-ocr).
+#[test]
+fn chromium_renders_a_frames_text() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = mechdraw()
+        .arg("run")
+        .arg(root().join("templates/fourbar-chebyshev.toml"))
+        .arg("--out")
+        .arg(dir.path())
+        .args(["--set", "phi1_deg.step=45", "-q"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let svg = dir.path().join(format!("frames/{NAME}/pos_090.svg"));
+    let shot = dir.path().join("frame.png");
+    browse(
+        &format!("file://{}", svg.display()),
+        &[
+            &format!("--screenshot={}", shot.display()),
+            "--window-size=800,1000",
+            "--force-device-scale-factor=2.5",
+            "--hide-scrollbars",
+        ],
+    );
+    let out = Command::new("tesseract").arg(&shot).arg("stdout").output().expect("run tesseract");
+    assert!(out.status.success(), "tesseract: {}", String::from_utf8_lossy(&out.stderr));
+    let text = String::from_utf8_lossy(&out.stdout);
+    for word in ["Mechanism", "Velocity", "k_v"] {
+        assert!(text.contains(word), "{word} not read from Chromium's render:\n{text}");
+    }
+}

@@ -10,12 +10,15 @@
 
 use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, Shape, VAlign, parts};
 use crate::figure::plot::{self, Histogram};
+use crate::figure::vocab::{self, Sizes};
 use crate::geom::Point;
 use crate::solve::chain::graph::{Analysis, fmt_value};
 use crate::solve::chain::{Dimension, Form, MonteCarlo, Stack};
 
-/// Text height as a fraction of the chain's length.
-const TEXT_FRACTION: f64 = 1.0 / 60.0;
+/// Largest extent of the chain's features on paper, millimetres: the length scale k_l is
+/// the nice value that draws them at most this long (a chain on A4 landscape); text is
+/// 3.5 mm high on paper ([`vocab::PAPER_TEXT_MM`]).
+pub const CHAIN_MM: f64 = 200.0;
 /// Distance between dimension rows, in text heights.
 const ROW_GAP: f64 = 2.6;
 /// Clear space kept between two dimensions packed on one row, each side, in text heights
@@ -226,9 +229,12 @@ pub fn chain(
     let xmin = xs.iter().cloned().fold(f64::INFINITY, f64::min);
     let xmax = xs.iter().cloned().fold(f64::NEG_INFINITY, f64::max);
     let span = (xmax - xmin).max(f64::EPSILON.sqrt());
-    let th = span * TEXT_FRACTION;
+    let k_l = vocab::length_scale(span, CHAIN_MM);
+    let sizes = Sizes::on_paper(k_l);
+    let th = sizes.text;
     let gap = ROW_GAP * th;
     let mut dr = Drawing::new(DimStyle { text_height: th, arrow_size: 0.9 * th });
+    dr.paper_mm_per_unit = Some(1.0 / k_l);
     let axis = dr.layer("AXIS", Aci::DARK_GREY, LineType::Continuous);
     let features = dr.layer("FEATURES", Aci::LIGHT_GREY, LineType::Continuous);
     let names = dr.layer("FEATURE_NAMES", Aci::BLACK, LineType::Continuous);
@@ -299,6 +305,7 @@ pub fn chain(
     );
 
     // Feature lines and, below them, each feature's label and coordinate.
+    let mut lowest = bottom;
     for (i, f) in analysis.features.iter().enumerate() {
         dr.add(features, Shape::Line { from: Point::new(f.x, bottom), to: Point::new(f.x, top) });
         let label = labels.get(i).map_or(f.name.as_str(), String::as_str);
@@ -307,6 +314,7 @@ pub fn chain(
         // drawing's bounds count a text by its unrotated box from the insertion point).
         let h = 0.8 * th;
         let w = parts::text_width(&value, h);
+        lowest = lowest.min(bottom - 0.4 * th - w);
         dr.add(
             names,
             Shape::Text {
@@ -332,6 +340,12 @@ pub fn chain(
             dr.add(it.layer, part);
         }
     }
+    // The length scale and its bar under the feature names, at the axis's start.
+    let at = Point::new(xmin - margin, lowest - 1.5 * th);
+    dr.text(axis, at, sizes.small_text(), format!("k_l = {} {units}/mm", vocab::scale_text(k_l)));
+    let value = vocab::bar_value(k_l);
+    let bar_at = at + Point::new(2.0 * sizes.small_text(), -2.0 * sizes.small_text()).coords;
+    vocab::scale_bar(&mut dr, axis, bar_at, value, &format!("{} {units}", vocab::scale_text(value)), sizes);
     dr
 }
 

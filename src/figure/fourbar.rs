@@ -11,12 +11,19 @@
 //!
 //! # Layout and scales
 //! One [`Layout`] is computed per run from every position, so all frames share one window
-//! and one set of scales and an animation does not jump. The mechanism panel is as large as
-//! the whole motion (all of O1, C, A, B, M over the run); each polygon gets a panel beside
-//! it, about as large, holding the polygon at every position. A scale is written as
-//! `k_v = 0.01 (m/s)/mm`: one millimetre of the drawing (the model drawn 1:1, so 1 m of an
-//! SI scene is 1000 mm) stands for 0.01 m/s. Scales are "nice" numbers (1, 2, 2.5, 5 × 10ᵏ)
-//! chosen from the largest polygon over the motion.
+//! and one set of scales and an animation does not jump. The page is real paper: the
+//! mechanism is drawn at a length scale k_l (model units per paper millimetre, a nice value
+//! 1, 2, 2.5, 5 × 10ᵏ) that makes the whole motion (all of O1, C, A, B, M over the run) at
+//! most [`MECHANISM_MM`] long on paper, and the drawing carries `paper_mm_per_unit = 1/k_l`,
+//! so the SVG is sized in millimetres and prints true at 100 %. Letters, arrowheads, joints
+//! and links are sized in paper millimetres ([`Sizes::on_paper`]: letters 3.5 mm). Each
+//! polygon gets a panel beside the mechanism, about as large, holding the polygon at every
+//! position, at a scale per printed millimetre: `k_v = 0.01 (m/s)/mm` means that one
+//! millimetre measured on the printed page stands for 0.01 m/s. Scales are nice numbers
+//! chosen from the largest polygon over the motion. The mechanism panel's title prints k_l
+//! (`Mechanism   k_l = 0.002 m/mm`), each polygon's its scale, and every panel has a scale
+//! bar (`0 ├──┤ 0.05 m`, `0 ├──┤ 0.5 m/s` …) in a strip under its content. With the
+//! template's three polygons the page is about 255 × 265 mm (A3 landscape, or A4 at 80 %).
 //!
 //! # Layers
 //! [`Layout::base`] holds what is the same at every position (ground pivots, coupler curve,
@@ -27,6 +34,7 @@
 //! its own layer `POS_000`…`POS_359`, keeping the content's colour and line type on each
 //! entity, so that a CAD user switches positions by layer and tells contents by colour.
 
+use crate::draw::parts::text_width;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::Forces;
@@ -36,7 +44,16 @@ use super::forces::{self, Branch, ForcePolygon, NamedVector, Resultant};
 use super::labels::{self, TextBox};
 use super::polygon::{self, Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
-use super::vocab::{content_drawing, ground, ground_extent, joint, layer_of, layers, link, path, unit_or};
+use super::vocab::{
+    bar_value, content_drawing, ground, ground_extent, joint, layer_of, layers, length_scale, length_scale_text, link,
+    path, scale_bar, scale_bar_room, unit_or,
+};
+
+/// Largest extent of the mechanism's motion on paper, millimetres: k_l is the nice value
+/// that draws it at most this long.
+pub const MECHANISM_MM: f64 = 100.0;
+/// Gap between panels on paper, millimetres.
+const PANEL_GAP_MM: f64 = 10.0;
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -56,7 +73,10 @@ pub struct Layout {
     pub units: ModelUnits,
     /// What is drawn.
     pub show: Show,
-    /// Sizes of letters, arrows, links and joints.
+    /// Length scale k_l: model units per paper millimetre (0.002 for a mechanism in metres
+    /// drawn at 0.002 m/mm, i.e. 1:2); the drawings' `paper_mm_per_unit` is 1/k_l.
+    pub k_l: f64,
+    /// Sizes of letters, arrows, links and joints (from paper millimetres at k_l).
     pub sizes: Sizes,
     /// Velocity scale and the pole p (when drawn).
     pub velocity: Option<(Scale, Point)>,
@@ -67,6 +87,9 @@ pub struct Layout {
     /// Lower-left corners and sizes of the panels with their titles:
     /// (title, lower-left, upper-right).
     pub panels: Vec<(String, Point, Point)>,
+    /// The scale bar of each panel: left end, length (model units), label (value and
+    /// unit), in the order of `panels`.
+    pub bars: Vec<(Point, f64, String)>,
     /// The fixed window of every frame.
     pub window: Bounds,
 }
@@ -119,12 +142,17 @@ impl Layout {
         let mech = Extent::of(pts.chain([geom.o1.coords, geom.c.coords]))
             .unwrap_or(Extent { min: Vector::zeros(), max: Vector::new(1.0, 1.0) });
         let size = mech.size().max(geom.l1.max(geom.l_bc)).max(f64::MIN_POSITIVE);
-        let sizes = Sizes::for_length(size);
-        // Room for the ground symbols and letters around the mechanism.
+        let k_l = length_scale(size, MECHANISM_MM);
+        let paper = 1.0 / k_l;
+        let sizes = Sizes::on_paper(k_l);
+        let bar_room = scale_bar_room(sizes);
+        // Room for the ground symbols and letters around the mechanism, and for the scale
+        // bar under it.
         let pad = 3.5 * sizes.joint + 1.6 * sizes.text;
-        let mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint);
-        let mech_max = Point::from(mech.max) + Vector::new(pad, pad);
-        let target_mm = size * units.mm_per_unit;
+        let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint + bar_room);
+        let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
+        // Each polygon's panel about as large on paper as the mechanism.
+        let target_mm = size * paper;
 
         let kins: Vec<(&Position, &Kinematics)> = positions.iter().filter_map(|p| Some((p, p.kin.as_ref()?))).collect();
         let show = Show {
@@ -134,15 +162,16 @@ impl Layout {
         };
         let scale_for = |e: Option<Extent>| -> (Scale, Extent) {
             let e = e.unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() });
-            (Scale::new(nice_scale(e.size() / target_mm), units), e)
+            (Scale::on_paper(nice_scale(e.size() / target_mm), paper), e)
         };
-        // Panels: (title, physical extent, scale) for each polygon shown.
-        let mut polys: Vec<(String, Scale, Extent, usize)> = Vec::new();
+        // Panels: (title, physical extent, scale, kind, unit of the bar) for each polygon.
+        let mut polys: Vec<(String, Scale, Extent, usize, String)> = Vec::new();
         if show.velocity {
             let e =
                 kins.iter().map(|(_, k)| Extent::of(velocity_polygon(k).physical_points())).fold(None, Extent::union);
             let (s, e) = scale_for(e);
-            polys.push((format!("Velocity polygon   k_v = {} ({}/s)/mm", scale_text(s.per_mm), units.length), s, e, 0));
+            let unit = format!("{}/s", units.length);
+            polys.push((format!("Velocity polygon   k_v = {} ({unit})/mm", scale_text(s.per_mm)), s, e, 0, unit));
         }
         if show.acceleration {
             let e = kins
@@ -150,12 +179,8 @@ impl Layout {
                 .map(|(p, k)| Extent::of(acceleration_polygon(p, geom.c, k).physical_points()))
                 .fold(None, Extent::union);
             let (s, e) = scale_for(e);
-            polys.push((
-                format!("Acceleration polygon   k_a = {} ({}/s²)/mm", scale_text(s.per_mm), units.length),
-                s,
-                e,
-                1,
-            ));
+            let unit = format!("{}/s²", units.length);
+            polys.push((format!("Acceleration polygon   k_a = {} ({unit})/mm", scale_text(s.per_mm)), s, e, 1, unit));
         }
         if show.forces {
             let e = forces
@@ -164,15 +189,35 @@ impl Layout {
                 .map(|f| Extent::of(force_polygon(f).physical_points()))
                 .fold(None, Extent::union);
             let (s, e) = scale_for(e);
-            polys.push((format!("Force polygons   k_f = {} N/mm", scale_text(s.per_mm),), s, e, 2));
+            polys.push((format!("Force polygons   k_f = {} N/mm", scale_text(s.per_mm),), s, e, 2, "N".into()));
+            // The reactions drawn on the mechanism, with their names, stay in its panel.
+            let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
+            for (pos, f) in positions.iter().zip(forces.unwrap_or(&[])) {
+                for (at, nv) in reactions(pos, f) {
+                    let tip = at + s.draw(nv.v);
+                    if tip.x.is_finite() && tip.y.is_finite() {
+                        mech_min = Point::from(mech_min.coords.inf(&(tip - room - Vector::new(0.0, bar_room)).coords));
+                        mech_max = Point::from(mech_max.coords.sup(&(tip + room).coords));
+                    }
+                }
+            }
         }
 
         // Grid: up to three panels in a row, four as 2 × 2.
         let title_room = 2.6 * sizes.text;
-        let gap = 0.12 * size;
-        let mut boxes: Vec<(String, Vector)> = vec![("Mechanism".to_string(), mech_max - mech_min)];
-        for (title, s, e, _) in &polys {
-            boxes.push((title.clone(), s.draw(e.max - e.min) + Vector::new(2.0 * sizes.text, 2.0 * sizes.text)));
+        let gap = PANEL_GAP_MM * k_l;
+        let mech_title = format!("Mechanism   {}", length_scale_text(k_l, units));
+        // Each panel at least as wide as its title (the mechanism's with the crank angle
+        // right of it) and its scale bar.
+        let wide_enough = |b: Vector, title: &str, extra: &str| {
+            let w = text_width(title, sizes.text) + text_width(extra, sizes.text) + 2.0 * sizes.text;
+            Vector::new(b.x.max(w), b.y)
+        };
+        let mut boxes: Vec<(String, Vector)> =
+            vec![(mech_title.clone(), wide_enough(mech_max - mech_min, &mech_title, "φ1 = 359.999°"))];
+        for (title, s, e, _, _) in &polys {
+            let room = Vector::new(2.0 * sizes.text, 2.0 * sizes.text + bar_room);
+            boxes.push((title.clone(), wide_enough(s.draw(e.max - e.min) + room, title, "")));
         }
         let cols = if boxes.len() == 4 { 2 } else { boxes.len() };
         let rows = boxes.len().div_ceil(cols);
@@ -200,12 +245,22 @@ impl Layout {
             p.1 += shift;
             p.2 += shift;
         }
+        // Scale bars at the foot of each panel: the mechanism's in the scene's length unit.
+        let bar_at = |ll: Point| ll + Vector::new(2.0 * sizes.small_text(), 0.5 * bar_room);
+        let length = bar_value(k_l);
+        let mut bars = vec![(bar_at(panels[0].1), length, format!("{} {}", scale_text(length), units.length))];
         let mut velocity = None;
         let mut acceleration = None;
         let mut force = None;
-        for (j, (_, s, e, kind)) in polys.iter().enumerate() {
-            let ll = origins[j + 1] + shift + Vector::new(sizes.text, sizes.text);
+        for (j, (_, s, e, kind, unit)) in polys.iter().enumerate() {
+            let ll = origins[j + 1] + shift + Vector::new(sizes.text, sizes.text + bar_room);
             let pole = ll - s.draw(e.min);
+            let value = bar_value(s.per_mm);
+            bars.push((
+                bar_at(panels[j + 1].1),
+                s.draw(Vector::new(value, 0.0)).x,
+                format!("{} {unit}", scale_text(value)),
+            ));
             match kind {
                 0 => velocity = Some((*s, pole)),
                 1 => acceleration = Some((*s, pole)),
@@ -217,7 +272,14 @@ impl Layout {
             window.min = Point::new(window.min.x.min(p.1.x), window.min.y.min(p.1.y));
             window.max = Point::new(window.max.x.max(p.2.x), window.max.y.max(p.2.y));
         }
-        Layout { units, show, sizes, velocity, acceleration, forces: force, panels, window }
+        Layout { units, show, k_l, sizes, velocity, acceleration, forces: force, panels, bars, window }
+    }
+
+    /// A drawing on the content layers, on this layout's paper (1/k_l paper mm per unit).
+    fn paper_drawing(&self) -> Drawing {
+        let mut d = content_drawing(self.dim_style());
+        d.paper_mm_per_unit = Some(1.0 / self.k_l);
+        d
     }
 
     fn dim_style(&self) -> DimStyle {
@@ -227,9 +289,9 @@ impl Layout {
     /// What every frame shares: the ground pivots with their hatch symbols (their letters
     /// move with the links, see [`Layout::moving`]), the coupler
     /// curve of M (`curve`: runs of consecutive positions; a gap in the motion breaks it),
-    /// the panel titles with the scales.
+    /// the panel titles with the scales, and each panel's scale bar.
     pub fn base(&self, geom: &Geometry, curve: &[Vec<Point>]) -> Drawing {
-        let mut d = content_drawing(self.dim_style());
+        let mut d = self.paper_drawing();
         let mech = layer_of(&d, layers::MECHANISM);
         let dims = layer_of(&d, layers::DIMENSIONS);
         let cc = layer_of(&d, layers::COUPLER_CURVE);
@@ -253,13 +315,16 @@ impl Layout {
                 },
             );
         }
+        for (at, length, label) in &self.bars {
+            scale_bar(&mut d, dims, *at, *length, label, self.sizes);
+        }
         d
     }
 
     /// One position on the content layers: the mechanism (with R_A, R_B when forces are
     /// shown), the crank-angle text, and the polygons asked for.
     pub fn moving(&self, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
-        let mut d = content_drawing(self.dim_style());
+        let mut d = self.paper_drawing();
         let s = self.sizes;
         let text = layer_of(&d, layers::TEXT);
         let (ll, ur) = (self.panels[0].1, self.panels[0].2);
@@ -575,7 +640,7 @@ pub(crate) mod tests {
         let p = closed_form(&g, 0.0, 20.0);
         let k = p.kin.unwrap();
         let (sv, pole) = lay.velocity.unwrap();
-        // v_A = ω1·l1 = 0.8 m/s; its arrow is 0.8 / k_v mm long = 0.8 / k_v / 1000 m.
+        // v_A = ω1·l1 = 0.8 m/s; its arrow is 0.8 / k_v paper mm long = 0.8 / k_v · k_l m.
         let d = &frames[0];
         let vel = layer_of(d, layers::VELOCITY);
         let pa = d
@@ -587,7 +652,12 @@ pub(crate) mod tests {
                 _ => None,
             })
             .unwrap();
-        assert!((pa.norm() - 0.8 / sv.per_mm / 1000.0).abs() < 1e-12, "{} {}", pa.norm(), sv.per_mm);
+        assert!((pa.norm() - 0.8 / sv.per_mm * lay.k_l).abs() < 1e-12, "{} {}", pa.norm(), sv.per_mm);
+        // k_l is nice, prints in the mechanism's title, and the drawing is on its paper.
+        assert_eq!(lay.panels[0].0, format!("Mechanism   k_l = {} m/mm", scale_text(lay.k_l)));
+        assert_eq!(d.paper_mm_per_unit, Some(1.0 / lay.k_l));
+        // Letters are 3.5 mm on paper.
+        assert!((lay.sizes.text / lay.k_l - 3.5).abs() < 1e-12);
         assert!((pa.normalize() - k.v_a.normalize()).norm() < 1e-12);
         // Panels do not overlap the mechanism panel.
         let mech = &lay.panels[0];

@@ -7,13 +7,22 @@
 //! What it draws is a [`LinkageFigure`], built from the solver's [`Mechanism`] and the
 //! names of its points (the run builds it from the scene), so that the figure knows no
 //! scene file.
+//!
+//! The figure is drawn on paper: [`paper_style`] chooses the length scale k_l (a nice
+//! value that draws the motion at most [`LINKAGE_MM`] long) and the sizes from paper
+//! millimetres; the drawings carry `paper_mm_per_unit = 1/k_l` and the base prints
+//! `k_l = 5 mm/mm` with a scale bar under the motion.
 
 use crate::draw::{Aci, DimStyle, Drawing, LineType};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
 use super::labels::{self, TextBox};
-use super::vocab::{self, Sizes};
+use super::vocab::{self, ModelUnits, Sizes};
+
+/// Largest extent of the motion (every body point over every position) on paper,
+/// millimetres.
+pub const LINKAGE_MM: f64 = 150.0;
 
 /// A body as drawn: its named points in body coordinates, in the order its outline joins
 /// them (closed for three or more).
@@ -59,6 +68,8 @@ pub struct LinkageFigure {
     pub joints: Vec<JointSymbol>,
     /// Points whose paths over the motion are drawn (points on the ground are skipped).
     pub traced: Vec<Anchor>,
+    /// The model's units, for the length scale's text (millimetres unless set).
+    pub units: ModelUnits,
 }
 
 impl LinkageFigure {
@@ -81,12 +92,44 @@ impl LinkageFigure {
                 }
             })
             .collect();
-        LinkageFigure { bodies, joints, traced }
+        LinkageFigure { bodies, joints, traced, units: ModelUnits::MM }
+    }
+
+    /// The figure with its model's units (for the printed length scale).
+    pub fn with_units(self, units: ModelUnits) -> Self {
+        LinkageFigure { units, ..self }
     }
 }
 
-/// Sizes of the symbols: the shared table, [`Sizes::for_length`] of the mechanism's
-/// characteristic length.
+/// Where every body point goes over `motion` (lower-left, upper-right), `None` for no point.
+fn motion_bounds(fig: &LinkageFigure, motion: &[&[f64]]) -> Option<(Point, Point)> {
+    let mut b: Option<(Point, Point)> = None;
+    for q in motion {
+        for (i, body) in fig.bodies.iter().enumerate() {
+            for (_, v) in &body.points {
+                let p = place(q, Attach::Body(i), *v);
+                if !(p.x.is_finite() && p.y.is_finite()) {
+                    continue;
+                }
+                b = Some(match b {
+                    None => (p, p),
+                    Some((lo, hi)) => (Point::from(lo.coords.inf(&p.coords)), Point::from(hi.coords.sup(&p.coords))),
+                });
+            }
+        }
+    }
+    b
+}
+
+/// Sizes for drawing `fig` over `motion` on paper: from paper millimetres at the length
+/// scale k_l that draws every body point's motion at most [`LINKAGE_MM`] long
+/// ([`Sizes::k_l`] gives it back).
+pub fn paper_style(fig: &LinkageFigure, motion: &[&[f64]]) -> Style {
+    let extent = motion_bounds(fig, motion).map_or(1.0, |(lo, hi)| (hi - lo).amax());
+    Sizes::on_paper(vocab::length_scale(extent.max(f64::MIN_POSITIVE), LINKAGE_MM))
+}
+
+/// Sizes of the symbols: the shared table from paper millimetres ([`paper_style`]).
 pub type Style = Sizes;
 
 /// Colour of the i-th body's outline.
@@ -218,9 +261,12 @@ pub fn trajectories(d: &mut Drawing, layer: usize, fig: &LinkageFigure, motion: 
     }
 }
 
-/// A new drawing with the dimension style of the mechanism's size.
+/// A new drawing with the dimension style of the sizes, on their paper
+/// (`paper_mm_per_unit = 1/k_l`).
 pub fn new_drawing(style: &Style) -> Drawing {
-    Drawing::new(DimStyle { text_height: style.text, arrow_size: style.head })
+    let mut d = Drawing::new(DimStyle { text_height: style.text, arrow_size: style.head });
+    d.paper_mm_per_unit = Some(1.0 / style.k_l());
+    d
 }
 
 /// Layer of the paths of measured points.
@@ -243,11 +289,22 @@ pub fn frame(
     d
 }
 
-/// What every frame shares: the paths of the measured points over `motion`.
+/// What every frame shares: the paths of the measured points over `motion`, and the length
+/// scale `k_l = …` with its scale bar under the motion (on layer `SCALE`).
 pub fn frame_base(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Drawing {
     let mut d = new_drawing(style);
     let tl = trajectory_layer(&mut d);
     trajectories(&mut d, tl, fig, motion);
+    if let Some((lo, _)) = motion_bounds(fig, motion) {
+        let scale = d.layer("SCALE", Aci::BLACK, LineType::Continuous);
+        let k_l = style.k_l();
+        let h = style.small_text();
+        let at = Point::new(lo.x, lo.y - 3.0 * style.ground - 2.0 * style.text);
+        d.text(scale, at, h, vocab::length_scale_text(k_l, fig.units));
+        let value = vocab::bar_value(k_l);
+        let label = format!("{} {}", vocab::scale_text(value), fig.units.length);
+        vocab::scale_bar(&mut d, scale, at + Vector::new(2.0 * h, -2.0 * h), value, &label, *style);
+    }
     d
 }
 

@@ -62,10 +62,12 @@ pub struct Histogram {
 pub const PLOT_WIDTH: f64 = 160.0;
 /// Height of the plot frame, paper millimetres.
 pub const PLOT_HEIGHT: f64 = 100.0;
-/// Cap height of tick numbers and axis labels.
-const TEXT_H: f64 = 3.2;
-/// Cap height of the title.
-const TITLE_H: f64 = 4.5;
+/// Cap height of axis labels and legend, paper mm (ISO 3098's 3.5 mm).
+const TEXT_H: f64 = 3.5;
+/// Cap height of tick numbers, paper mm (the 2.5 mm minimum).
+const NUMBER_H: f64 = 2.5;
+/// Cap height of the title, paper mm.
+const TITLE_H: f64 = 5.0;
 /// Tick mark length.
 const TICK: f64 = 1.8;
 /// Width of data curves (paper mm).
@@ -196,6 +198,8 @@ struct PlotLayers {
 
 fn new_plot() -> (Drawing, PlotLayers) {
     let mut d = Drawing::new(DimStyle { text_height: TEXT_H, arrow_size: 2.5 });
+    // The plot is drawn in paper millimetres: printed at 100 % it measures true.
+    d.paper_mm_per_unit = Some(1.0);
     let frame = d.layer("PLOT_FRAME", Aci::BLACK, LineType::Continuous);
     let grid = d.layer("PLOT_GRID", Aci(254), LineType::Continuous);
     let text = d.layer("PLOT_TEXT", Aci::BLACK, LineType::Continuous);
@@ -228,7 +232,7 @@ fn axes(
             d.add(l.grid, Shape::Line { from: p, to: Point::new(p.x, PLOT_HEIGHT) });
         }
         d.add(l.frame, Shape::Line { from: p, to: Point::new(p.x, -TICK) });
-        text(d, l.text, Point::new(p.x, -TICK - 1.0), TEXT_H, &tick_label(x, xd), (HAlign::Center, VAlign::Top), 0.0);
+        text(d, l.text, Point::new(p.x, -TICK - 1.0), NUMBER_H, &tick_label(x, xd), (HAlign::Center, VAlign::Top), 0.0);
     }
     let mut widest = 0.0f64;
     for y in yt.values() {
@@ -238,8 +242,8 @@ fn axes(
         }
         d.add(l.frame, Shape::Line { from: p, to: Point::new(-TICK, p.y) });
         let s = tick_label(y, yd);
-        widest = widest.max(text_width(&s, TEXT_H));
-        text(d, l.text, Point::new(-TICK - 1.0, p.y), TEXT_H, &s, (HAlign::Right, VAlign::Middle), 0.0);
+        widest = widest.max(text_width(&s, NUMBER_H));
+        text(d, l.text, Point::new(-TICK - 1.0, p.y), NUMBER_H, &s, (HAlign::Right, VAlign::Middle), 0.0);
     }
     // A zero line when zero is inside the y range.
     if yt.lo < 0.0 && yt.hi > 0.0 {
@@ -259,7 +263,7 @@ fn axes(
             width: 0.3,
         },
     );
-    let label_y = -TICK - 2.6 * TEXT_H - 1.0;
+    let label_y = -TICK - 1.6 * NUMBER_H - TEXT_H - 1.0;
     text(d, l.text, Point::new(PLOT_WIDTH / 2.0, label_y), TEXT_H, x_label, (HAlign::Center, VAlign::Top), 0.0);
     let label_x = -TICK - 1.0 - widest - 2.0 * TEXT_H;
     text(

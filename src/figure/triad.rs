@@ -13,9 +13,12 @@
 //! triangle and links, its number, orientation and phi1, phi2, phi3; the mode drawn in
 //! Fig. 3 is marked. Layers: `PANELS` (panel frames), `CONSTRUCTION`, `MECHANISM`, `TEXT`.
 //!
-//! Sizes are the shared table's ([`Sizes::for_length`]): for Fig. 3 of the triad's size,
-//! for a panel of the panel's extent; so a triad in metres looks the same as one in
-//! millimetres.
+//! Both are drawn on paper: a length scale k_l (model units per paper millimetre, a nice
+//! value) draws the three circles at most [`TRIAD_MM`] (Fig. 3, on A4) or [`PANEL_MM`]
+//! (a panel of the sheet) long, the drawing carries `paper_mm_per_unit = 1/k_l`, sizes are
+//! the shared table's from paper millimetres ([`Sizes::on_paper`]: letters 3.5 mm), and
+//! k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres looks the same
+//! as one in millimetres.
 
 use crate::draw::parts::explode_dimension;
 use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
@@ -28,6 +31,28 @@ use super::vocab::{self, ModelUnits, Sizes};
 /// Width of the seed's polylines (`Pline A1 "W" "0.5" "0.5" A2 A3 "Close"`), drawing
 /// millimetres.
 pub const SEED_PLINE_WIDTH_MM: f64 = 0.5;
+
+/// Largest extent of the three circles of Fig. 3 on paper, millimetres.
+pub const TRIAD_MM: f64 = 150.0;
+/// Largest extent of the three circles in a panel of the assembly-mode sheet on paper,
+/// millimetres.
+pub const PANEL_MM: f64 = 80.0;
+
+/// The extent of the three circles (model units), for the length scale.
+fn circles_extent(t: &Triad) -> f64 {
+    let lo = |k: usize| (0..3).map(|i| t.o[i][k] - t.r[i]).fold(f64::INFINITY, f64::min);
+    let hi = |k: usize| (0..3).map(|i| t.o[i][k] + t.r[i]).fold(f64::NEG_INFINITY, f64::max);
+    (hi(0) - lo(0)).max(hi(1) - lo(1)).max(f64::MIN_POSITIVE)
+}
+
+/// The scale lines a figure prints, and its scale bar under them: `k_l = 2 mm/mm`, then
+/// `0 ├──┤ 50 mm`, from `top_left` (the k_l line's baseline) down.
+fn length_scale_block(d: &mut Drawing, layer: usize, top_left: Point, k_l: f64, units: ModelUnits, s: Sizes) {
+    d.text(layer, top_left, s.small_text(), vocab::length_scale_text(k_l, units));
+    let value = vocab::bar_value(k_l);
+    let at = top_left + Vector::new(2.0 * s.small_text(), -2.0 * s.small_text());
+    vocab::scale_bar(d, layer, at, value, &format!("{} {}", vocab::scale_text(value), units.length), s);
+}
 
 /// What Fig. 3 draws.
 #[derive(Debug, Clone, Copy)]
@@ -127,9 +152,11 @@ pub fn phi_text(i: usize, phi: f64) -> String {
 /// The seed's Fig. 3 for `f`.
 pub fn drawing(f: &TriadFigure) -> Drawing {
     let t = f.triad;
-    let s = Sizes::for_length(t.scale());
+    let k_l = vocab::length_scale(circles_extent(t), TRIAD_MM);
+    let s = Sizes::on_paper(k_l);
     let small_text = SMALL_TEXT * s.text;
     let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
+    d.paper_mm_per_unit = Some(1.0 / k_l);
     let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
     let approximate = d.layer("APPROXIMATE", Aci::RED, LineType::Dashed);
     let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
@@ -237,9 +264,12 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     }
     letters.draw(&mut d, text);
 
-    // Caption under everything drawn so far.
+    // Caption under everything drawn so far, then the length scale and its bar.
     if let Some(b) = d.bounds() {
-        caption(&mut d, text, Point::new(b.min.x, b.min.y - 2.0 * s.text), f.caption, small_text);
+        let top = Point::new(b.min.x, b.min.y - 2.0 * s.text);
+        caption(&mut d, text, top, f.caption, small_text);
+        let below = top - Vector::new(0.0, 1.8 * small_text * f.caption.len() as f64);
+        length_scale_block(&mut d, text, below, k_l, f.units, s);
     }
     d
 }
@@ -277,6 +307,8 @@ pub struct ModesSheet<'a> {
     pub drawn: usize,
     /// Title lines above the panels (may be empty).
     pub title: &'a [String],
+    /// The model's units, for the length scale's text.
+    pub units: ModelUnits,
 }
 
 /// The orientation of a mode as the sheet writes it: `counter-clockwise`, `clockwise`,
@@ -317,12 +349,12 @@ fn panel_extent(t: &Triad, s: Sizes) -> Bounds {
 /// Every assembly mode of `m` as small multiples (see the module docs).
 pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let t = m.triad;
-    // The panel's sizes follow from its content's extent, as the size table sets them for
-    // a mechanism of that size.
-    let first = panel_extent(t, Sizes::for_length(t.scale()));
-    let s = Sizes::for_length(first.width().max(first.height()));
+    // Every panel at one length scale, its sizes from paper millimetres.
+    let k_l = vocab::length_scale(circles_extent(t), PANEL_MM);
+    let s = Sizes::on_paper(k_l);
     let content = panel_extent(t, s);
     let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
+    d.paper_mm_per_unit = Some(1.0 / k_l);
     let panels = d.layer("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
     let construction = d.layer("CONSTRUCTION", Aci::DARK_GREY, LineType::Continuous);
     let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
@@ -335,7 +367,12 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let heading_base = pad + s.text;
     let angles_base = heading_base + 1.8 * small_text;
     let header = angles_base + pad;
-    let cell_w = content.width() + 2.0 * pad;
+    // Each cell as wide as its content and as the widest heading or angles line.
+    let widest = m.modes.iter().enumerate().fold(0.0f64, |w, (k, c)| {
+        let heading = crate::draw::parts::text_width(&mode_heading(k + 1, c, k == m.drawn), s.text);
+        w.max(heading).max(crate::draw::parts::text_width(&mode_angles(c), small_text))
+    });
+    let cell_w = content.width().max(widest) + 2.0 * pad;
     let cell_h = header + content.height() + pad;
     let columns = SHEET_COLUMNS.min(m.modes.len()).max(1);
 
@@ -376,9 +413,13 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
         d.text(text, Point::new(x, top_left.y - heading_base), s.text, mode_heading(k + 1, c, drawn));
         d.text(text, Point::new(x, top_left.y - angles_base), small_text, mode_angles(c));
     }
-    // The title above the first row, its last line's descent `gap` clear of the panels.
+    // The length scale and its bar above the first row, the title above them, its last
+    // line's descent `gap` clear of the scale.
+    let scale_top = Point::new(0.0, gap + 3.0 * s.small_text());
+    length_scale_block(&mut d, text, scale_top, k_l, m.units, s);
     let lines = m.title.len().saturating_sub(1) as f64;
-    caption(&mut d, text, Point::new(0.0, gap + 0.3 * s.text + 1.8 * s.text * lines), m.title, s.text);
+    let title_base = scale_top.y + gap + 0.3 * s.text + 1.8 * s.text * lines;
+    caption(&mut d, text, Point::new(0.0, title_base), m.title, s.text);
     d
 }
 

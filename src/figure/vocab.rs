@@ -3,8 +3,11 @@
 //! pivot, joint, link, named vector with its arrowhead and letter. A figure for a new
 //! mechanism is built from these; nothing here knows a mechanism's fields.
 //!
-//! All sizes are model units (the model is drawn 1:1); a scale turns a physical vector
-//! (m/s, m/s², N …) into a drawn one.
+//! All sizes are model units. A figure printed on paper chooses its length scale k_l
+//! (model units per paper millimetre, a nice value: [`length_scale`]), builds its sizes from
+//! paper millimetres ([`Sizes::on_paper`]: letters 3.5 mm high on the printed page whatever
+//! the mechanism's size) and draws each physical vector (m/s, m/s², N …) at a scale per
+//! printed millimetre ([`Scale::on_paper`]); every panel carries a [`scale_bar`].
 
 use super::labels::TextBox;
 use crate::draw::{Aci, Drawing, Entity, Shape};
@@ -65,6 +68,35 @@ pub fn nice_scale(raw: f64) -> f64 {
         }
     }
     10.0 * mag
+}
+
+/// The length scale k_l of a figure, model units per paper millimetre: the nice value
+/// (1, 2, 2.5, 5 × 10ᵏ) that draws a model extent `extent` (model units) at most
+/// `target_mm` paper millimetres long (0.002 m/mm draws a 0.2 m mechanism 100 mm long).
+/// Its reciprocal is the drawing's [`Drawing::paper_mm_per_unit`].
+pub fn length_scale(extent: f64, target_mm: f64) -> f64 {
+    nice_scale(extent / target_mm)
+}
+
+/// The text of a length scale as a textbook writes it: `k_l = 0.002 m/mm` (model units per
+/// paper millimetre; `k_l = 2 mm/mm` for a scene in millimetres drawn at 1:2).
+pub fn length_scale_text(k_l: f64, units: ModelUnits) -> String {
+    format!("k_l = {} {}/mm", scale_text(k_l), units.length)
+}
+
+/// Cap height of letters on paper, millimetres (ISO 3098's 3.5 mm).
+pub const PAPER_TEXT_MM: f64 = 3.5;
+/// Cap height of small text on paper (scale-bar numbers, tick numbers), millimetres: the
+/// 2.5 mm minimum of ISO 3098.
+pub const PAPER_SMALL_TEXT_MM: f64 = 2.5;
+/// Length wanted for a scale bar on paper, millimetres: [`bar_value`] rounds it up to a
+/// nice value, so a bar is 20 to 50 mm long.
+pub const BAR_MM: f64 = 20.0;
+
+/// The value a scale bar stands for at `per_mm` units per paper millimetre: the nice value
+/// (1, 2, 2.5, 5 × 10ᵏ) at least [`BAR_MM`] paper millimetres long.
+pub fn bar_value(per_mm: f64) -> f64 {
+    nice_scale(per_mm * BAR_MM)
 }
 
 /// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
@@ -137,7 +169,33 @@ pub struct Sizes {
 }
 
 impl Sizes {
-    /// The one size table: sizes for a mechanism of characteristic length `size` (model
+    /// Sizes for a figure printed at `k_l` model units per paper millimetre, from paper
+    /// millimetres: letters [`PAPER_TEXT_MM`] (3.5 mm) high, arrowheads 3 mm, links 0.7 mm
+    /// wide, joints 1.5 mm in radius, ground symbols 4 mm high, slider blocks 8 mm by 5 mm.
+    /// In the model (and so in the DXF's model space) each is its paper size × k_l.
+    pub fn on_paper(k_l: f64) -> Sizes {
+        Sizes {
+            text: PAPER_TEXT_MM * k_l,
+            head: 3.0 * k_l,
+            link: 0.7 * k_l,
+            joint: 1.5 * k_l,
+            ground: 4.0 * k_l,
+            slider_length: 8.0 * k_l,
+            slider_height: 5.0 * k_l,
+        }
+    }
+    /// The length scale k_l (model units per paper millimetre) these sizes were built for
+    /// by [`Sizes::on_paper`].
+    pub fn k_l(&self) -> f64 {
+        self.text / PAPER_TEXT_MM
+    }
+    /// Cap height of small text (scale-bar and tick numbers): [`PAPER_SMALL_TEXT_MM`] for
+    /// [`PAPER_TEXT_MM`] letters.
+    pub fn small_text(&self) -> f64 {
+        self.text * PAPER_SMALL_TEXT_MM / PAPER_TEXT_MM
+    }
+    /// Sizes relative to a mechanism, for a drawing with no paper scale (the figures on
+    /// paper use [`Sizes::on_paper`]): sizes for a mechanism of characteristic length `size` (model
     /// units: the extent of the four-bar's motion, the linkage's length scale, the triad's
     /// size): letters 3.2 %, arrowheads 3 %, links 0.9 % wide, joints 1.3 % in radius,
     /// ground symbols 3.5 % high, slider blocks 7 % by 4 %.
@@ -253,6 +311,40 @@ pub fn slider(d: &mut Drawing, layer: usize, p: Point, u: Vector, s: Sizes) -> (
     (hl, hh)
 }
 
+/// A scale bar: `0 ├──────┤ 0.05 m`: a bar `length` long (model units) from `at` (its left
+/// end) to the right, with end ticks, `0` left of it and `label` (value and unit, e.g.
+/// `0.05 m`, `0.5 m/s`) right of it, in small text. Measured on the printed page, the bar
+/// is the printed scale times the value. Returns the box it covers, for letters to keep off.
+pub fn scale_bar(d: &mut Drawing, layer: usize, at: Point, length: f64, label: &str, s: Sizes) -> TextBox {
+    let h = s.small_text();
+    let tick = 0.5 * h;
+    let end = at + Vector::new(length, 0.0);
+    d.add(layer, Shape::Line { from: at, to: end });
+    for p in [at, end] {
+        d.add(layer, Shape::Line { from: p + Vector::new(0.0, -tick), to: p + Vector::new(0.0, tick) });
+    }
+    let gap = 0.5 * h;
+    let text = |value: &str, at: Point, halign| Shape::Text {
+        at,
+        height: h,
+        value: value.to_string(),
+        halign,
+        valign: crate::draw::VAlign::Middle,
+        rotation: 0.0,
+    };
+    d.add(layer, text("0", at - Vector::new(gap, 0.0), crate::draw::HAlign::Right));
+    d.add(layer, text(label, end + Vector::new(gap, 0.0), crate::draw::HAlign::Left));
+    let left = gap + crate::draw::parts::text_width("0", h);
+    let right = gap + crate::draw::parts::text_width(label, h);
+    TextBox { min: at + Vector::new(-left, -tick.max(0.5 * h)), max: end + Vector::new(right, tick.max(0.5 * h)) }
+}
+
+/// The strip a panel keeps for its [`scale_bar`] under its content, model units: two
+/// small-text heights (the bar drawn at its middle).
+pub fn scale_bar_room(s: Sizes) -> f64 {
+    2.0 * s.small_text()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -267,5 +359,32 @@ mod tests {
         assert_eq!(scale_text(0.01), "0.01");
         assert_eq!(scale_text(2.5), "2.5");
         assert_eq!(scale_text(2e-5), "2e-5");
+    }
+
+    #[test]
+    fn a_length_scale_is_nice_and_prints_as_a_textbook_writes_it() {
+        // A 0.23 m motion in 100 mm of paper: 0.0023 m/mm rounds up to 0.0025.
+        let k = length_scale(0.23, 100.0);
+        assert!((k - 0.0025).abs() < 1e-15, "{k}");
+        assert_eq!(length_scale_text(0.002, ModelUnits::SI), "k_l = 0.002 m/mm");
+        assert_eq!(length_scale_text(2.0, ModelUnits::MM), "k_l = 2 mm/mm");
+        // Letters 3.5 mm on paper are 3.5 × k_l in the model.
+        assert!((Sizes::on_paper(0.002).text - 0.007).abs() < 1e-15);
+        // A bar at 0.01 (m/s)/mm stands for 0.2 m/s (20 mm); at 0.02, for 0.5 m/s (25 mm).
+        assert!((bar_value(0.01) - 0.2).abs() < 1e-12);
+        assert!((bar_value(0.02) - 0.5).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_scale_bar_is_as_long_as_its_value_at_the_scale() {
+        let mut d = Drawing::new(crate::draw::DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        let s = Sizes::on_paper(1.0);
+        let b = scale_bar(&mut d, 0, Point::new(0.0, 0.0), 25.0, "0.5 m/s", s);
+        let bar = d.entities.iter().find_map(|e| match e.shape {
+            Shape::Line { from, to } if from.y == to.y => Some((to - from).norm()),
+            _ => None,
+        });
+        assert_eq!(bar, Some(25.0));
+        assert!(b.min.x < 0.0 && b.max.x > 25.0 + 2.5 * 5.0 * 0.5, "{b:?}");
     }
 }

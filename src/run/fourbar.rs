@@ -470,16 +470,18 @@ fn position_record(p: &Position, f: Option<&Forces>, qs: &[Quantity]) -> BTreeMa
     r
 }
 
-/// A drawing scale in the summary: the value per drawing millimetre and its unit.
+/// A drawing scale in the summary: the value per millimetre of printed paper and its unit.
 #[derive(Debug, Serialize)]
 struct ScaleRecord {
     value: f64,
     unit: String,
 }
 
-/// The scales of the polygons drawn (`null` for one not drawn).
+/// The length scale of the mechanism and the scales of the polygons drawn (`null` for one
+/// not drawn), per millimetre of printed paper.
 #[derive(Debug, Serialize)]
 struct Scales {
+    k_l: ScaleRecord,
     k_v: Option<ScaleRecord>,
     k_a: Option<ScaleRecord>,
     k_f: Option<ScaleRecord>,
@@ -546,6 +548,7 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         gaps: &motion.gaps,
         dead_points: &motion.dead_points,
         scales: Scales {
+            k_l: ScaleRecord { value: layout.k_l, unit: format!("{len}/mm") },
             k_v: scale(layout.velocity, format!("({len}/s)/mm")),
             k_a: scale(layout.acceleration, format!("({len}/s²)/mm")),
             k_f: scale(layout.forces, "N/mm".to_string()),
@@ -561,6 +564,8 @@ fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String
     if skipped > 0 {
         s.push_str(&format!(", {skipped} skipped"));
     }
+    let k_l = crate::figure::fourbar::scale_text(layout.k_l);
+    s.push_str(&format!("; k_l = {k_l} {}/mm", layout.units.length));
     for (n, sc, u) in [
         ("k_v", layout.velocity, format!("({}/s)/mm", layout.units.length)),
         ("k_a", layout.acceleration, format!("({}/s²)/mm", layout.units.length)),

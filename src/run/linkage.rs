@@ -12,7 +12,7 @@ use super::solve_err;
 use crate::Error;
 use crate::draw::{Aci, LineType};
 use crate::figure::animation::Animation;
-use crate::figure::linkage::{self as fig, Style};
+use crate::figure::linkage as fig;
 use crate::figure::plot::{Diagram, Series, diagram};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
@@ -211,9 +211,9 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
         report.push_str(&stroke_line(scene, g));
     }
 
-    let style = Style::for_length(mech.length_scale);
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let figure = figure_of(scene);
+    let style = fig::paper_style(&figure, &motion);
     let spans = fig::guide_spans(&figure, &motion, &style);
     let base = fig::frame_base(&figure, &motion, &style);
     let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
@@ -318,9 +318,9 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         },
         &scene.name,
     )?;
-    let style = Style::for_length(mech.length_scale);
     let motion = [state.q.as_slice()];
     let figure = figure_of(scene);
+    let style = fig::paper_style(&figure, &motion);
     let spans = fig::guide_spans(&figure, &motion, &style);
     let mut d = fig::new_drawing(&style);
     let layer = d.layer("DRAG", Aci::BLACK, LineType::Continuous);
@@ -351,7 +351,11 @@ pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
             MeasureTarget::Body(_) => None,
         })
         .collect();
-    fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced)
+    let units = match scene.units {
+        crate::scene::Units::Mm => crate::figure::vocab::ModelUnits::MM,
+        crate::scene::Units::Si => crate::figure::vocab::ModelUnits::SI,
+    };
+    fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced).with_units(units)
 }
 
 /// A measured point on a body that slides on a ground guide, with its stroke.

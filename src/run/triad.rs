@@ -368,7 +368,13 @@ pub fn modes_figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawin
         ),
         format!("Fig. 3 draws mode {}. φ1, φ2, φ3: directions O1 → A1, O2 → A2, O3 → A3 from +x.", r.primary + 1),
     ];
-    modes_sheet(&ModesSheet { triad: &r.triad, modes: &r.modes, drawn: r.primary, title: &title })
+    modes_sheet(&ModesSheet {
+        triad: &r.triad,
+        modes: &r.modes,
+        drawn: r.primary,
+        title: &title,
+        units: model_units(scene),
+    })
 }
 
 pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error> {
