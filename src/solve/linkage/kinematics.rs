@@ -104,12 +104,46 @@ impl State {
     pub fn angular(&self, body: Attach) -> (f64, f64, f64) {
         (pose(&self.q, body).phi, rate(&self.qd, body).1, rate(&self.qdd, body).1)
     }
+
+    /// The relative motion at a prismatic joint (`None` for a revolute joint): the sliding
+    /// point P against the point of the guide body under it at this instant,
+    /// a_P = a_P,guide + a_cor + a_rel (the textbook decomposition; see [`Sliding`]).
+    pub fn sliding(&self, joint: &JointKind) -> Option<Sliding> {
+        let JointKind::Prismatic { point, q1, .. } = *joint else { return None };
+        let guide = q1.body;
+        let g = pose(&self.q, guide);
+        let (vg, wg) = rate(&self.qd, guide);
+        let (ag, eg) = rate(&self.qdd, guide);
+        // P's position relative to the guide body's frame origin.
+        let d = self.point(point) - Point::from(g.r);
+        let v_guide = vg + perp(d) * wg;
+        let a_guide = ag + perp(d) * eg - d * (wg * wg);
+        let v_rel = self.velocity(point) - v_guide;
+        let a_cor = perp(v_rel) * (2.0 * wg);
+        let a_rel = self.acceleration(point) - a_guide - a_cor;
+        Some(Sliding { v_rel, a_rel, a_cor })
+    }
+}
+
+/// Relative motion at a prismatic joint, in the scene's length unit per s and per s²:
+/// the sliding point P of the slider body against the coincident point of the guide body
+/// (the body of the joint's line), so that v_P = v_P,guide + `v_rel` and
+/// a_P = a_P,guide + `a_cor` + `a_rel`. `v_rel` and `a_rel` lie along the guide;
+/// `a_cor` = 2·ω_guide × `v_rel` (ω_guide counter-clockwise positive), across it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Sliding {
+    /// Sliding velocity of P relative to the guide.
+    pub v_rel: Vector,
+    /// Sliding (relative) acceleration of P along the guide.
+    pub a_rel: Vector,
+    /// Coriolis acceleration 2·ω_guide × v_rel.
+    pub a_cor: Vector,
 }
 
 /// The Newton–Raphson solver of one mechanism, with every buffer sized once.
 #[derive(Debug, Clone)]
 pub struct Solver {
-    mech: Mechanism,
+    pub(super) mech: Mechanism,
     cons: Vec<Con>,
     /// Description of each row, for messages.
     row_names: Vec<String>,
@@ -117,22 +151,22 @@ pub struct Solver {
     row_scale: Vec<f64>,
     /// The length scale for x/y columns, 1 for φ columns.
     col_scale: Vec<f64>,
-    n: usize,
+    pub(super) n: usize,
     m: usize,
-    q: Vec<f64>,
-    qd: Vec<f64>,
-    qdd: Vec<f64>,
+    pub(super) q: Vec<f64>,
+    pub(super) qd: Vec<f64>,
+    pub(super) qdd: Vec<f64>,
     /// q̈ of the step before (for the third-order predictor).
     qdd_prev: Vec<f64>,
     /// Length of the previous step, when there was one.
     dt_prev: Option<f64>,
-    t: Option<f64>,
+    pub(super) t: Option<f64>,
     phi: Vec<f64>,
-    rhs: Vec<f64>,
+    pub(super) rhs: Vec<f64>,
     lu: Lu,
-    laws: Vec<(f64, f64, f64)>,
+    pub(super) laws: Vec<(f64, f64, f64)>,
     /// Poses of the bodies at the current q (refreshed by `residual`).
-    poses: Vec<Pose>,
+    pub(super) poses: Vec<Pose>,
     /// Newton stops when the largest relative residual is at or below this.
     newton_tol: f64,
     /// The near-singular report of the last step, if any.
@@ -505,6 +539,20 @@ impl Solver {
         self.lu.factor(norm)
     }
 
+    /// Solves Φqᵀ·λ = rhs[..n] in place with the factored J̃ (the kineto-statics' one
+    /// extra solve per sample): J̃ = D_r⁻¹·Φq·D_c, so Φqᵀ = D_c⁻¹·J̃ᵀ·D_r and
+    /// J̃ᵀ·(D_r·λ) = D_c·rhs.
+    pub(super) fn solve_transposed_in_place(&mut self) {
+        let n = self.n;
+        for c in 0..n {
+            self.rhs[c] *= self.col_scale[c];
+        }
+        self.lu.solve_transposed(&mut self.rhs[..n]);
+        for r in 0..n {
+            self.rhs[r] /= self.row_scale[r];
+        }
+    }
+
     /// Solves Φq·x = rhs[..n] in place with the factored J̃.
     fn solve_in_place(&mut self) {
         let n = self.n;
@@ -735,10 +783,21 @@ impl Solver {
 
     /// Solves at every time in `times` (the first assembles from the initial placement).
     pub fn run(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
+        self.run_each(times, |_| Ok(()))
+    }
+
+    /// [`Solver::run`], calling `each` after every step (the solver at that step, Φq
+    /// factored at its answer) before its state is stored.
+    pub(super) fn run_each(
+        &mut self,
+        times: &[f64],
+        mut each: impl FnMut(&mut Solver) -> Result<(), LinkageError>,
+    ) -> Result<Vec<State>, LinkageError> {
         let mut out = Vec::with_capacity(times.len());
         for &t in times {
             let iterations = self.step(t)?;
             self.residual();
+            each(self)?;
             out.push(State {
                 t,
                 q: self.q.clone(),

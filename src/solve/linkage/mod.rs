@@ -19,9 +19,11 @@
 //! r = R + A(φ)·s. The ground has R = 0, φ = 0: its points are global.
 
 mod kinematics;
+mod kinetostatics;
 mod lu;
 
-pub use kinematics::{NearSingular, Solver, State};
+pub use kinematics::{NearSingular, Sliding, Solver, State};
+pub use kinetostatics::{Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TimeWindow};
 
 use crate::geom::{Point, Vector, rotate};
 use crate::solve::expr::Expr;
@@ -274,6 +276,30 @@ pub enum LinkageError {
     #[error("invalid linkage model: {what}")]
     InvalidModel {
         /// What is inconsistent.
+        what: String,
+    },
+    /// A load's expression is not finite at a sample (outside a function's domain).
+    /// Example: `force = ["50/(t - 0.5)", 0]` at t = 0.5 s.
+    #[error("load `{load}`: its {what} `{expr}` is not finite at t = {t} s (value {value})")]
+    LoadNotFinite {
+        /// Load name.
+        load: String,
+        /// Which value: `force x`, `force y` or `torque`.
+        what: &'static str,
+        /// The expression's text.
+        expr: String,
+        /// Time.
+        t: f64,
+        /// Its value there.
+        value: f64,
+    },
+    /// The reactions came out non-finite (loads or speeds beyond f64 range, or a position
+    /// too close to a dead point for the multipliers).
+    #[error("the reactions are not finite at t = {t} s: {what}")]
+    ForcesNotFinite {
+        /// Time.
+        t: f64,
+        /// Which reaction or driver force.
         what: String,
     },
     /// A drag request does not converge.
