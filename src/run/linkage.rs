@@ -156,6 +156,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
                 scene.mechanism.drivers.iter().zip(&f[k].drivers).map(|(d, v)| (d.name.clone(), v + 0.0)).collect()
             }),
             power_residual: forces.as_ref().map(|f| f[k].power_residual),
+            sliding: sliding_records(scene, s),
         })
         .collect();
     let power_residual_max = forces.as_ref().map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max));
@@ -729,6 +730,33 @@ struct Sample {
     drivers: Option<BTreeMap<String, f64>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     power_residual: Option<f64>,
+    /// By prismatic joint name.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    sliding: BTreeMap<String, SlidingRecord>,
+}
+
+/// The relative motion at a prismatic joint in the JSON (scene length unit per s, per s²;
+/// see [`crate::solve::linkage::Sliding`]).
+#[derive(Debug, Serialize)]
+struct SlidingRecord {
+    v_rel: [f64; 2],
+    a_rel: [f64; 2],
+    a_cor: [f64; 2],
+}
+
+/// The relative motion at every prismatic joint of one sample, by joint name.
+fn sliding_records(scene: &LinkageScene, state: &State) -> BTreeMap<String, SlidingRecord> {
+    // + 0.0 turns −0 into 0.
+    let xy = |v: crate::geom::Vector| [v.x + 0.0, v.y + 0.0];
+    scene
+        .mechanism
+        .joints
+        .iter()
+        .filter_map(|j| {
+            let s = state.sliding(&j.kind)?;
+            Some((j.name.clone(), SlidingRecord { v_rel: xy(s.v_rel), a_rel: xy(s.a_rel), a_cor: xy(s.a_cor) }))
+        })
+        .collect()
 }
 
 /// A joint's reaction in the JSON: force N, couple N·m.
