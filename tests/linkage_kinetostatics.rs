@@ -360,3 +360,105 @@ fn a_prismatic_joint_reports_the_couple_about_its_point() {
     }
     assert!(cutting > 200);
 }
+
+/// The static slider-crank of `static_slider_crank_by_hand` the other way round: the
+/// piston held by a distance driver, the crank loaded by a torque.
+fn piston_driven(law: &str, crank_load: &str, units: &str, scale: f64) -> String {
+    let l = |v: f64| format!("{:?}", v * scale);
+    format!(
+        r#"
+kind = "linkage"
+name = "piston-driven"
+units = "{units}"
+time = {{ from = 0.0, to = 0.2, steps = 20 }}
+[ground]
+points = {{ O = [0.0, 0.0], G1 = [0.0, 0.0], G2 = [{g2}, 0.0] }}
+[[body]]
+name = "crank"
+points = {{ O = [0.0, 0.0], A = [{r}, 0.0] }}
+angle_deg = 60.0
+mass = 2.0
+[[body]]
+name = "rod"
+points = {{ A = [0.0, 0.0], B = [{rod}, 0.0] }}
+at = [{ax}, {ay}]
+angle_deg = -16.8
+mass = 1.5
+[[body]]
+name = "piston"
+points = {{ B = [0.0, 0.0] }}
+at = [{bx}, 0.0]
+mass = 0.8
+[[joint]]
+name = "O"
+revolute = ["ground.O", "crank.O"]
+[[joint]]
+name = "A"
+revolute = ["crank.A", "rod.A"]
+[[joint]]
+name = "B"
+revolute = ["rod.B", "piston.B"]
+[[joint]]
+name = "cylinder"
+prismatic = {{ point = "piston.B", line = ["ground.G1", "ground.G2"] }}
+[[driver]]
+joint = "cylinder"
+law = "{law}"
+[dynamics]
+g = [0.0, -9.81]
+[[load]]
+body = "crank"
+torque = {crank_load}
+"#,
+        g2 = l(1.0),
+        r = l(0.1),
+        rod = l(0.3),
+        ax = l(0.05),
+        ay = l(0.0866),
+        bx = l(0.337),
+    )
+}
+
+#[test]
+fn a_distance_driver_holds_the_piston_against_a_crank_torque() {
+    // At rest at crank 60°, with masses: drive the crank and push the piston with
+    // −100 N; the crank driver's torque holds it. Then swap: put that torque on the crank
+    // as a load and hold the piston with a distance driver: it must push with −100 N.
+    let a = Vector::new(0.05, 0.1 * 60f64.to_radians().sin());
+    let sb = -a.y / 0.3;
+    let x_b = a.x + 0.3 * (1.0 - sb * sb).sqrt();
+    // The torque on the crank that balances a −100 N push on the piston with these masses,
+    // from the crank-driven route of the same scene (its driver torque).
+    let crank_driven = piston_driven(&format!("{x_b:?}"), "0.0", "SI", 1.0)
+        .replace("joint = \"cylinder\"\nlaw", "body = \"crank\"\nlaw")
+        .replace(&format!("law = \"{x_b:?}\""), "law = \"pi/3\"")
+        + "[[load]]\nat = \"piston.B\"\nforce = [-100.0, 0.0]\n";
+    let s = linkage(&crank_driven);
+    assert!(matches!(s.mechanism.drivers[0].target, mechdraw::solve::linkage::DriverTarget::BodyAngle(0)));
+    let (_, f) = solve(&s);
+    let holding = f[0].drivers[0];
+    let s = linkage(&piston_driven(&format!("{x_b:?}"), &format!("{holding:?}"), "SI", 1.0));
+    let (states, f) = solve(&s);
+    assert!((states[0].angular(mechdraw::solve::linkage::Attach::Body(0)).0 - 60f64.to_radians()).abs() < 1e-12);
+    for x in &f {
+        assert!((x.drivers[0] - -100.0).abs() < 1e-9, "{}", x.drivers[0]);
+    }
+}
+
+#[test]
+fn a_moving_distance_driver_balances_the_virtual_power_in_mm_and_in_si() {
+    // The piston driven by x(t) = 0.33 − 0.1·t (m) while the crank carries a torque: the
+    // driver's power is force × ḟ with ḟ in length units/s, so a unit slip would show.
+    let law = |scale: f64| format!("{:?} - {:?}*t", 0.33 * scale, 0.1 * scale);
+    let si = linkage(&piston_driven(&law(1.0), "\"5*sin(10*t)\"", "SI", 1.0));
+    let mm = linkage(&piston_driven(&law(1000.0), "\"5*sin(10*t)\"", "mm", 1000.0));
+    let (_, f_si) = solve(&si);
+    let (_, f_mm) = solve(&mm);
+    for (a, b) in f_si.iter().zip(&f_mm) {
+        assert!(a.power_residual <= 1e-12 && b.power_residual <= 1e-12, "{} {}", a.power_residual, b.power_residual);
+        assert!((a.drivers[0] - b.drivers[0]).abs() <= 1e-10 * a.drivers[0].abs().max(1.0));
+        for (ra, rb) in a.reactions.iter().zip(&b.reactions) {
+            assert!(close(ra.force, rb.force, 1e-10, 1.0));
+        }
+    }
+}
