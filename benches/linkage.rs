@@ -1,23 +1,35 @@
 //! Speed of the general linkage solver on the shaper (templates/shaper.toml): one time
 //! step (positions by Newton–Raphson from the extrapolated previous step, then velocities
 //! and accelerations) and a whole turn of 360 steps. Targets: ≤ 5 µs per step, ≤ 2 ms
-//! per 360 steps.
+//! per 360 steps. Kineto-statics on templates/shaper-forces.toml: the forces of one
+//! sample alone (the transposed solve on the step's LU, the generalised forces, the
+//! reactions and the power balance: what forces add per sample, target ≤ 1 µs), and a
+//! step with its forces.
 
 use std::hint::black_box;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
+use mechdraw::scene::linkage::LinkageScene;
 use mechdraw::scene::{self, Scene};
-use mechdraw::solve::linkage::Solver;
+use mechdraw::solve::linkage::{Forces, Solver};
 
-fn shaper_solver() -> Solver {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/shaper.toml");
-    let Ok(loaded) = scene::load(&path, &[]) else { panic!("templates/shaper.toml does not load") };
+fn scene_of(template: &str) -> LinkageScene {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates").join(template);
+    let Ok(loaded) = scene::load(&path, &[]) else { panic!("templates/{template} does not load") };
     let Scene::Linkage(s) = loaded.scene else { panic!("not a linkage scene") };
-    let Ok(mut solver) = Solver::new(s.mechanism) else { panic!("shaper does not compile") };
+    s
+}
+
+fn solver_of(s: &LinkageScene) -> Solver {
+    let Ok(mut solver) = Solver::new(s.mechanism.clone()) else { panic!("{} does not compile", s.name) };
     if solver.assemble(0.0).is_err() {
-        panic!("shaper does not assemble");
+        panic!("{} does not assemble", s.name);
     }
     solver
+}
+
+fn shaper_solver() -> Solver {
+    solver_of(&scene_of("shaper.toml"))
 }
 
 fn bench(c: &mut Criterion) {
@@ -42,6 +54,24 @@ fn bench(c: &mut Criterion) {
             },
             BatchSize::SmallInput,
         )
+    });
+    let forces_scene = scene_of("shaper-forces.toml");
+    let Some(dynamics) = forces_scene.dynamics.clone() else { panic!("shaper-forces has no forces") };
+    let mut solver = solver_of(&forces_scene);
+    if solver.step(0.3).is_err() {
+        panic!("shaper-forces does not step");
+    }
+    let mut out = Forces::zeros(&forces_scene.mechanism);
+    c.bench_function("linkage/shaper-forces kineto-statics of one sample", |b| {
+        b.iter(|| black_box(solver.forces_into(black_box(&dynamics), &mut out).ok()))
+    });
+    let mut t = 0.3;
+    c.bench_function("linkage/shaper-forces step + kineto-statics", |b| {
+        b.iter(|| {
+            t += dt;
+            black_box(solver.step(black_box(t)).ok());
+            black_box(solver.forces_into(&dynamics, &mut out).ok())
+        })
     });
 }
 

@@ -121,3 +121,70 @@ fn a_time_step_too_coarse_for_the_motion_suggests_more_steps() {
     let e = run_bad(&shaper_text().replace("to = 1.0, steps = 360", "to = 1000.0, steps = 360"));
     assert!(e.contains("did not converge at t = 2.77") && e.contains("try more time steps"), "{e}");
 }
+
+fn forces_text() -> String {
+    std::fs::read_to_string(common::root().join("templates/shaper-forces.toml")).unwrap()
+}
+
+/// Replaces `from` (which must occur) in the shaper-forces template and runs it as a bad scene.
+fn run_bad_forces(from: &str, to: &str) -> String {
+    let text = forces_text();
+    assert!(text.contains(from), "`{from}` is not in the template");
+    run_bad(&text.replacen(from, to, 1))
+}
+
+#[test]
+fn negative_mass_or_inertia() {
+    let e = run_bad_forces("mass = 20.0", "mass = -20.0");
+    assert!(e.contains("field `body[2].mass`") && e.contains("≥ 0") && e.contains("-20"), "{e}");
+    let e = run_bad_forces("inertia = 0.35", "inertia = -0.35");
+    assert!(e.contains("field `body[0].inertia`") && e.contains("≥ 0"), "{e}");
+}
+
+#[test]
+fn inertia_missing_where_it_has_no_default() {
+    // A three-point body with a mass: the bar's m·l²/12 does not apply.
+    let e = run_bad_forces(
+        "points = { B = [0.0, 0.0], E = [150.0, 0.0] }",
+        "points = { B = [0.0, 0.0], E = [150.0, 0.0], K = [75.0, 20.0] }",
+    );
+    assert!(e.contains("field `body[3].inertia`") && e.contains("moment of inertia"), "{e}");
+}
+
+#[test]
+fn load_at_an_unknown_point_or_on_the_ground() {
+    let e = run_bad_forces("at = \"ram.T\"", "at = \"ram.X\"");
+    assert!(e.contains("field `load[0].at`") && e.contains("body `ram` has no point `X`; its points are: E, T"), "{e}");
+    let e = run_bad_forces("at = \"ram.T\"", "at = \"ground.O1\"");
+    assert!(e.contains("field `load[0].at`") && e.contains("on the ground does nothing"), "{e}");
+    let e = run_bad_forces("at = \"ram.T\"", "at = \"rame.T\"");
+    assert!(e.contains("unknown body `rame`"), "{e}");
+}
+
+#[test]
+fn load_expression_that_does_not_parse_shows_where() {
+    let e = run_bad_forces("force = [3000.0, 0.0]      # N", "force = [\"3000*(1 - t\", 0.0]");
+    assert!(e.contains("field `load[0].force[0]`") && e.contains("cannot parse the expression"), "{e}");
+    assert!(e.contains("  3000*(1 - t\n"), "{e}");
+}
+
+#[test]
+fn load_window_from_after_to() {
+    let e = run_bad_forces("t = [0.0, 0.568]", "t = [0.568, 0.0]");
+    assert!(e.contains("field `load[0].t`") && e.contains("from > to"), "{e}");
+}
+
+#[test]
+fn load_with_both_or_neither_of_force_and_torque() {
+    let e = run_bad_forces("force = [3000.0, 0.0]      # N", "force = [3000.0, 0.0]\nbody = \"ram\"\ntorque = 5.0");
+    assert!(e.contains("field `load[0]`") && e.contains("give either a force"), "{e}");
+    let e = run_bad_forces("force = [3000.0, 0.0]      # N", "");
+    assert!(e.contains("field `load[0]`") && e.contains("give either a force"), "{e}");
+}
+
+#[test]
+fn load_not_finite_while_solving() {
+    // Finite at parse time, infinite at the sample t = 0.5 s.
+    let e = run_bad_forces("force = [3000.0, 0.0]      # N", "force = [\"3000/(t - 0.5)\", 0.0]");
+    assert!(e.contains("load `cut`") && e.contains("not finite at t = 0.5 s"), "{e}");
+}

@@ -1,10 +1,12 @@
 //! The shaper (seed 002, design.md §3) through the general linkage solver, against a
 //! closed-form solution of the same mechanism (mechdraw::bench::reference::shaper, shared
 //! with `mechdraw bench`), and its stroke H and quick-return ratio K against the closed
-//! form.
+//! form; the relative motion at its prismatic joints (sliding velocity, relative and
+//! Coriolis accelerations).
 
 mod common;
 
+use mechdraw::geom::Vector;
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::linkage::{Attach, Solver, State};
 
@@ -102,4 +104,45 @@ fn stroke_and_time_ratio_match_the_closed_form() {
     assert_eq!(num(&e["period"]), 1.0);
     // The report says it too.
     assert!(p.report.contains("stroke of E: H = 500.0000 mm, K = 1.7533"), "{}", p.report);
+}
+
+#[test]
+fn sliding_velocity_relative_acceleration_and_coriolis_at_the_block() {
+    // The block's point A slides on the rocker O3B (O3 fixed at the origin). With d = A − O3,
+    // the distance along the rocker is s = |d|, so independently of the solver's split:
+    // ṡ = d·v/|d| and s̈ = (v·v + d·a)/|d| − (d·v)²/|d|³; the rocker turns at ω3.
+    let (scene, states) = shaper();
+    let slide = scene.mechanism.joints.iter().find(|j| j.name == "slide").unwrap();
+    let a = scene.anchor("block.A").unwrap();
+    let rocker = Attach::Body(scene.mechanism.bodies.iter().position(|b| b.name == "rocker").unwrap());
+    let amp_v = states.iter().map(|s| s.velocity(a).norm()).fold(0.0, f64::max);
+    let amp_a = states.iter().map(|s| s.acceleration(a).norm()).fold(0.0, f64::max);
+    for st in &states {
+        let sl = st.sliding(&slide.kind).unwrap();
+        let d = st.point(a).coords;
+        let (v, acc) = (st.velocity(a), st.acceleration(a));
+        let u = d / d.norm();
+        let s_dot = d.dot(&v) / d.norm();
+        let s_ddot = (v.dot(&v) + d.dot(&acc)) / d.norm() - d.dot(&v).powi(2) / d.norm().powi(3);
+        let (_, w3, _) = st.angular(rocker);
+        let t = st.t;
+        assert!((sl.v_rel - u * s_dot).norm() <= 1e-12 * amp_v, "t = {t}: v_rel {:?}", sl.v_rel);
+        assert!((sl.a_rel - u * s_ddot).norm() <= 1e-11 * amp_a, "t = {t}: a_rel {:?} vs {:?}", sl.a_rel, u * s_ddot);
+        // Coriolis: 2·ω3·|v_rel| in magnitude, v_rel turned 90° the way the rocker turns.
+        assert!((sl.a_cor.norm() - 2.0 * w3.abs() * sl.v_rel.norm()).abs() <= 1e-12 * amp_a, "t = {t}");
+        let turned = Vector::new(-sl.v_rel.y, sl.v_rel.x) * w3.signum();
+        assert!(sl.a_cor.dot(&turned) >= -1e-12 * amp_a * amp_v, "t = {t}: direction");
+        assert!(sl.a_cor.dot(&sl.v_rel).abs() <= 1e-9 * amp_a * amp_v, "t = {t}: across the guide");
+    }
+    // The ram slides on a fixed guide: no Coriolis component there.
+    let guide = scene.mechanism.joints.iter().find(|j| j.name == "ram-guide").unwrap();
+    assert!(states.iter().all(|s| s.sliding(&guide.kind).unwrap().a_cor == Vector::zeros()));
+    assert!(
+        scene
+            .mechanism
+            .joints
+            .iter()
+            .filter(|j| j.name != "slide" && j.name != "ram-guide")
+            .all(|j| states[0].sliding(&j.kind).is_none())
+    );
 }

@@ -18,7 +18,9 @@ use crate::geom::{Point, deg};
 use crate::report::Csv;
 use crate::scene::Units;
 use crate::scene::linkage::{DiagramAxis, LinkageScene, Measure, MeasureTarget, Quantity};
-use crate::solve::linkage::{Anchor, Attach, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State};
+use crate::solve::linkage::{
+    Anchor, Attach, DriverTarget, Forces, JointKind, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State,
+};
 use crate::solve::stroke::{self, Extreme, Stroke};
 
 /// One measured column: its name and values over the motion (the CSV's and the JSON's;
@@ -110,8 +112,15 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     if !drag.is_empty() {
         return drag_products(scene, file, drag, solver);
     }
-    let states = solver.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?;
+    let (states, forces) = match &scene.dynamics {
+        Some(d) => {
+            let (states, forces) = solver.run_kinetostatics(&scene.times, d).map_err(|e| solve_err(file)(e.into()))?;
+            (states, Some(forces))
+        }
+        None => (solver.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
+    };
     let cols = columns(scene, &states);
+    let force_cols = forces.as_ref().map(|f| force_columns(scene, f)).unwrap_or_default();
     let strokes = guided_strokes(scene, &mut solver, &states).map_err(|e| solve_err(file)(e.into()))?;
     let max_residual = states.iter().map(|s| s.residual).fold(0.0, f64::max);
     let max_iter = states.iter().skip(1).map(|s| s.iterations).max().unwrap_or(0);
@@ -142,8 +151,15 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
             t: s.t,
             values: cols.iter().map(|c| (c.name.clone(), c.values[k])).collect(),
             near_singular: s.near_singular.is_some().then_some(true),
+            reactions: forces.as_ref().map(|f| reaction_records(scene, &f[k])),
+            drivers: forces.as_ref().map(|f| {
+                scene.mechanism.drivers.iter().zip(&f[k].drivers).map(|(d, v)| (d.name.clone(), v + 0.0)).collect()
+            }),
+            power_residual: forces.as_ref().map(|f| f[k].power_residual),
+            sliding: sliding_records(scene, s),
         })
         .collect();
+    let power_residual_max = forces.as_ref().map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max));
     let extremes = cols
         .iter()
         .map(|c| {
@@ -178,6 +194,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
             columns: cols.iter().map(|c| c.name.as_str()).collect(),
             extremes,
             strokes: strokes.iter().map(|g| (g.measure.label.clone(), stroke_record(scene, &g.stroke))).collect(),
+            power_residual_max,
             near_singular: near_singular
                 .iter()
                 .map(|n| NearSingularRecord {
@@ -210,6 +227,10 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
         report.push('\n');
         report.push_str(&stroke_line(scene, g));
     }
+    if let (Some(f), Some(p)) = (&forces, power_residual_max) {
+        report.push('\n');
+        report.push_str(&forces_line(scene, f, p));
+    }
 
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let figure = figure_of(scene);
@@ -222,7 +243,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     // Diagrams, one per measured column, as a textbook draws them.
     let (x_label, x) = abscissa(scene, &states);
     let plots = scene.measures.iter().flat_map(|m| m.quantities.iter().map(move |&q| (m, q)));
-    let diagrams = plots
+    let mut diagrams: Vec<products::Diagram> = plots
         .zip(&cols)
         .map(|((m, q), c)| {
             let p = plot_of(scene, m, q, &states, &strokes);
@@ -237,11 +258,20 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
             }
         })
         .collect();
+    // And one per reaction and driver force, against the same abscissa.
+    if let Some(f) = &forces {
+        diagrams.extend(
+            force_diagrams(scene, f, &x_label, &x)
+                .into_iter()
+                .map(|(stem, d)| products::Diagram { stem, drawing: diagram(&d) }),
+        );
+    }
 
     // CSV.
-    let mut csv = Csv::new(std::iter::once("t".to_string()).chain(cols.iter().map(|c| c.name.clone())));
+    let all_cols = || cols.iter().chain(&force_cols);
+    let mut csv = Csv::new(std::iter::once("t".to_string()).chain(all_cols().map(|c| c.name.clone())));
     for (k, s) in states.iter().enumerate() {
-        csv.row(std::iter::once(s.t).chain(cols.iter().map(|c| c.values[k])));
+        csv.row(std::iter::once(s.t).chain(all_cols().map(|c| c.values[k])));
     }
 
     let qs: Vec<Vec<f64>> = states.into_iter().map(|s| s.q).collect();
@@ -356,6 +386,126 @@ pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
         crate::scene::Units::Si => crate::figure::vocab::ModelUnits::SI,
     };
     fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced).with_units(units)
+}
+
+/// The force columns of the CSV: `<joint>.Fx`, `<joint>.Fy` for every joint (N; the
+/// force of the joint's first body on its second, see [`crate::solve::linkage::Forces`]),
+/// `<joint>.M` for a prismatic joint (N·m), `drive.<driver>` for every driver (N·m or N),
+/// and `power_residual`.
+fn force_columns(scene: &LinkageScene, forces: &[Forces]) -> Vec<Column> {
+    let mech = &scene.mechanism;
+    let mut out = Vec::new();
+    // + 0.0 turns −0 into 0.
+    let col =
+        |name: String, f: &dyn Fn(&Forces) -> f64| Column { name, values: forces.iter().map(|x| f(x) + 0.0).collect() };
+    for (j, joint) in mech.joints.iter().enumerate() {
+        out.push(col(format!("{}.Fx", joint.name), &|f| f.reactions[j].force.x));
+        out.push(col(format!("{}.Fy", joint.name), &|f| f.reactions[j].force.y));
+        if matches!(joint.kind, JointKind::Prismatic { .. }) {
+            out.push(col(format!("{}.M", joint.name), &|f| f.reactions[j].torque));
+        }
+    }
+    for (d, driver) in mech.drivers.iter().enumerate() {
+        out.push(col(format!("drive.{}", driver.name), &|f| f.drivers[d]));
+    }
+    out.push(col("power_residual".into(), &|f| f.power_residual));
+    out
+}
+
+/// Which body acts on which in a joint's reaction: (acting, acted on).
+fn joint_bodies<'a>(scene: &'a LinkageScene, kind: &JointKind) -> (&'a str, &'a str) {
+    match *kind {
+        JointKind::Revolute { a, b } => (scene.body_name(a.body), scene.body_name(b.body)),
+        JointKind::Prismatic { point, q1, .. } => (scene.body_name(q1.body), scene.body_name(point.body)),
+    }
+}
+
+/// The JSON reactions of one sample, by joint name.
+fn reaction_records(scene: &LinkageScene, f: &Forces) -> BTreeMap<String, ReactionRecord> {
+    scene
+        .mechanism
+        .joints
+        .iter()
+        .zip(&f.reactions)
+        // + 0.0 turns −0 into 0.
+        .map(|(j, r)| {
+            (j.name.clone(), ReactionRecord { force: [r.force.x + 0.0, r.force.y + 0.0], torque: r.torque + 0.0 })
+        })
+        .collect()
+}
+
+/// Diagrams of the forces against the measures' abscissa (`x_label`, `x`), with their
+/// stems: every reaction's magnitude (`<joint>.R`), every prismatic joint's couple
+/// (`<joint>.M`) and every driver's force (`drive.<driver>`).
+fn force_diagrams(scene: &LinkageScene, forces: &[Forces], x_label: &str, x: &[f64]) -> Vec<(String, Diagram)> {
+    let mech = &scene.mechanism;
+    let mut out = Vec::new();
+    let plot = |stem: String, title: String, y_label: String, values: Vec<f64>| {
+        let series = vec![Series { label: stem.clone(), x: x.to_vec(), y: values }];
+        (stem, Diagram { title, x_label: x_label.to_string(), y_label, series })
+    };
+    for (j, joint) in mech.joints.iter().enumerate() {
+        let (by, on) = joint_bodies(scene, &joint.kind);
+        let name = &joint.name;
+        out.push(plot(
+            format!("{name}.R"),
+            format!("Reaction in joint {name} ({by} on {on})"),
+            format!("|R_{name}| [N]"),
+            forces.iter().map(|f| f.reactions[j].force.norm()).collect(),
+        ));
+        if let JointKind::Prismatic { point, .. } = joint.kind {
+            let about = scene.point_name(point).map_or(String::new(), |p| format!(", about {on}.{p}"));
+            out.push(plot(
+                format!("{name}.M"),
+                format!("Couple in joint {name} ({by} on {on}{about}, CCW positive)"),
+                format!("M_{name} [N·m]"),
+                forces.iter().map(|f| f.reactions[j].torque).collect(),
+            ));
+        }
+    }
+    for (d, driver) in mech.drivers.iter().enumerate() {
+        let name = &driver.name;
+        let (title, y_label) = match driver.target {
+            DriverTarget::JointDistance(_) => {
+                (format!("Driving force of driver {name} (along its guide)"), format!("F_{name} [N]"))
+            }
+            _ => (
+                format!("Driving torque of driver {name} (balancing moment, positive with the driver)"),
+                format!("M_{name} [N·m]"),
+            ),
+        };
+        out.push(plot(format!("drive.{name}"), title, y_label, forces.iter().map(|f| f.drivers[d]).collect()));
+    }
+    out
+}
+
+/// The report's line on the forces: the largest reaction and driver force, and the largest
+/// virtual-power residual.
+fn forces_line(scene: &LinkageScene, forces: &[Forces], power_residual_max: f64) -> String {
+    let mech = &scene.mechanism;
+    let mut s = String::from("forces:");
+    let largest = mech
+        .joints
+        .iter()
+        .enumerate()
+        .map(|(j, joint)| (joint.name.as_str(), forces.iter().map(|f| f.reactions[j].force.norm()).fold(0.0, f64::max)))
+        .fold(None, |acc: Option<(&str, f64)>, x| if acc.is_none_or(|a| x.1 > a.1) { Some(x) } else { acc });
+    if let Some((name, r)) = largest {
+        s.push_str(&format!(" largest reaction {r:.4} N in joint {name};"));
+    }
+    for (d, driver) in mech.drivers.iter().enumerate() {
+        let unit = match driver.target {
+            DriverTarget::JointDistance(_) => "N",
+            _ => "N·m",
+        };
+        let (lo, hi) = forces
+            .iter()
+            .map(|f| f.drivers[d])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| (lo.min(v), hi.max(v)));
+        s.push_str(&format!(" driver {} {lo:.4} … {hi:.4} {unit};", driver.name));
+    }
+    s.push_str(&format!(" virtual-power residual ≤ {power_residual_max:.1e}"));
+    s
 }
 
 /// A measured point on a body that slides on a ground guide, with its stroke.
@@ -576,6 +726,48 @@ struct Sample {
     values: BTreeMap<String, f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     near_singular: Option<bool>,
+    /// By joint name (scenes with forces).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    reactions: Option<BTreeMap<String, ReactionRecord>>,
+    /// By driver name (scenes with forces).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    drivers: Option<BTreeMap<String, f64>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    power_residual: Option<f64>,
+    /// By prismatic joint name.
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    sliding: BTreeMap<String, SlidingRecord>,
+}
+
+/// The relative motion at a prismatic joint in the JSON (scene length unit per s, per s²;
+/// see [`crate::solve::linkage::Sliding`]).
+#[derive(Debug, Serialize)]
+struct SlidingRecord {
+    v_rel: [f64; 2],
+    a_rel: [f64; 2],
+    a_cor: [f64; 2],
+}
+
+/// The relative motion at every prismatic joint of one sample, by joint name.
+fn sliding_records(scene: &LinkageScene, state: &State) -> BTreeMap<String, SlidingRecord> {
+    // + 0.0 turns −0 into 0.
+    let xy = |v: crate::geom::Vector| [v.x + 0.0, v.y + 0.0];
+    scene
+        .mechanism
+        .joints
+        .iter()
+        .filter_map(|j| {
+            let s = state.sliding(&j.kind)?;
+            Some((j.name.clone(), SlidingRecord { v_rel: xy(s.v_rel), a_rel: xy(s.a_rel), a_cor: xy(s.a_cor) }))
+        })
+        .collect()
+}
+
+/// A joint's reaction in the JSON: force N, couple N·m.
+#[derive(Debug, Serialize)]
+struct ReactionRecord {
+    force: [f64; 2],
+    torque: f64,
 }
 
 /// Smallest and largest value of a column, with their times.
@@ -611,6 +803,8 @@ struct MotionSummary<'a> {
     max_residual: f64,
     newton_iterations_max: usize,
     newton_iterations_mean: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    power_residual_max: Option<f64>,
     columns: Vec<&'a str>,
     extremes: BTreeMap<String, Extremes>,
     strokes: BTreeMap<String, StrokeRecord>,

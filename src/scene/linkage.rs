@@ -61,7 +61,10 @@ use serde::de::{MapAccess, Visitor};
 use super::{FieldError, Units, finite, finite_point};
 use crate::geom::{Point, Vector, rad, rotate};
 use crate::solve::expr::Expr;
-use crate::solve::linkage::{Anchor, Attach, Body, Driver, DriverTarget, Joint, JointKind, Mechanism};
+use crate::solve::linkage::{
+    Anchor, Attach, Body, Driver, DriverTarget, Dynamics, Joint, JointKind, Load, LoadAction, LoadValue,
+    MassProperties, Mechanism, TimeWindow,
+};
 
 /// Largest number of time steps a scene may ask for.
 pub const MAX_STEPS: u32 = 100_000;
@@ -126,6 +129,49 @@ pub struct RawBody {
     /// Initial placement: angle of the body frame, degrees (default 0).
     #[serde(default)]
     pub angle_deg: f64,
+    /// Mass, kg (default 0).
+    pub mass: Option<f64>,
+    /// Centroid in body coordinates, scene length units (default: the mean of the points).
+    pub centroid: Option<[f64; 2]>,
+    /// Moment of inertia about the centroid, kg·m² (default 0 for a one-point body,
+    /// m·l²/12 for a two-point body; required for other bodies with a mass).
+    pub inertia: Option<f64>,
+}
+
+/// `[dynamics]`.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDynamics {
+    /// Gravitational acceleration [gx, gy], m/s² (default: none).
+    pub g: Option<[f64; 2]>,
+}
+
+/// A load value as written: a number or an expression of t.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum RawLoadValue {
+    /// A number.
+    Number(f64),
+    /// An expression of t, parsed like the driver laws.
+    Expr(String),
+}
+
+/// One `[[load]]`: a force `at` a point, or a `torque` on a `body`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLoad {
+    /// Name for messages (default `L1`, `L2`, … by position).
+    pub name: Option<String>,
+    /// The point the force acts at, `body.point`.
+    pub at: Option<String>,
+    /// The force [fx, fy], N.
+    pub force: Option<[RawLoadValue; 2]>,
+    /// The body the torque acts on.
+    pub body: Option<String>,
+    /// The torque, N·m, counter-clockwise positive.
+    pub torque: Option<RawLoadValue>,
+    /// The closed range [from, to] of t where the load acts, s (default: always).
+    pub t: Option<[f64; 2]>,
 }
 
 /// `prismatic = { point, line, angle_deg }`.
@@ -212,6 +258,11 @@ pub struct RawLinkageScene {
     /// How the diagrams are drawn.
     #[serde(default)]
     pub diagrams: RawDiagrams,
+    /// Gravity.
+    pub dynamics: Option<RawDynamics>,
+    /// External forces and torques.
+    #[serde(default)]
+    pub load: Vec<RawLoad>,
 }
 
 /// `[diagrams]`.
@@ -321,6 +372,9 @@ pub struct LinkageScene {
     pub measures: Vec<Measure>,
     /// Abscissa of the diagrams.
     pub diagram_axis: DiagramAxis,
+    /// Masses, gravity and loads, when the scene has any (a body with a `mass` or an
+    /// `inertia`, a `[dynamics]` table or a `[[load]]`): then the run computes forces.
+    pub dynamics: Option<Dynamics>,
 }
 
 impl LinkageScene {
@@ -398,7 +452,167 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
-    Ok(LinkageScene { name, units: raw.units, times, ground_points, mechanism, measures, diagram_axis })
+    let dynamics = check_dynamics(&raw, raw.units, &ground_points, &mechanism)?;
+    Ok(LinkageScene { name, units: raw.units, times, ground_points, mechanism, measures, diagram_axis, dynamics })
+}
+
+/// Masses, gravity and loads: `None` when the scene has none of them (no body with a
+/// `mass` or an `inertia`, no `[dynamics]`, no `[[load]]`); else every body's mass
+/// properties (kg, centroid in body coordinates, kg·m²), g (m/s²) and the loads, checked.
+fn check_dynamics(
+    raw: &RawLinkageScene,
+    units: Units,
+    ground_points: &[(String, Point)],
+    mech: &Mechanism,
+) -> Result<Option<Dynamics>, FieldError> {
+    let any_mass = raw.body.iter().any(|b| b.mass.is_some() || b.inertia.is_some());
+    if !any_mass && raw.dynamics.is_none() && raw.load.is_empty() {
+        return Ok(None);
+    }
+    let length_unit_m = match units {
+        Units::Mm => 1e-3,
+        Units::Si => 1.0,
+    };
+    let mut bodies = Vec::new();
+    for (i, (rb, b)) in raw.body.iter().zip(&mech.bodies).enumerate() {
+        bodies.push(check_mass_properties(&format!("body[{i}]"), rb, b, length_unit_m)?);
+    }
+    let gravity = match raw.dynamics.as_ref().and_then(|d| d.g) {
+        Some(g) => finite_point("dynamics.g", g)?.coords,
+        None => Vector::zeros(),
+    };
+    let mut loads: Vec<Load> = Vec::new();
+    for (k, l) in raw.load.iter().enumerate() {
+        let load = check_load(&format!("load[{k}]"), k, l, ground_points, &mech.bodies)?;
+        if loads.iter().any(|x| x.name == load.name) {
+            return Err(FieldError::new(
+                format!("load[{k}].name"),
+                format!("a load named `{}` already exists: give this one its own `name`", load.name),
+            ));
+        }
+        loads.push(load);
+    }
+    Ok(Some(Dynamics { length_unit_m, gravity, bodies, loads }))
+}
+
+/// A body's `mass` (kg, ≥ 0, default 0), `centroid` (body coordinates, default the mean
+/// of its points) and `inertia` (kg·m² about the centroid, ≥ 0; default 0 for a one-point
+/// body, m·l²/12 for a two-point body of length l, required for other bodies with a mass).
+fn check_mass_properties(
+    field: &str,
+    raw: &RawBody,
+    body: &Body,
+    length_unit_m: f64,
+) -> Result<MassProperties, FieldError> {
+    let non_negative = |f: String, v: f64, unit: &str| {
+        if v.is_finite() && v >= 0.0 {
+            Ok(v)
+        } else {
+            Err(FieldError::new(f, format!("must be a finite number ≥ 0 {unit}, got {v}")))
+        }
+    };
+    let mass = match raw.mass {
+        Some(m) => non_negative(format!("{field}.mass"), m, "(kg)")?,
+        None => 0.0,
+    };
+    let centroid = match raw.centroid {
+        Some(c) => finite_point(&format!("{field}.centroid"), c)?.coords,
+        None => body.points.iter().map(|(_, p)| *p).sum::<Vector>() / body.points.len() as f64,
+    };
+    let inertia = match (raw.inertia, body.points.as_slice()) {
+        (Some(j), _) => non_negative(format!("{field}.inertia"), j, "(kg·m² about the centroid)")?,
+        (None, [_]) => 0.0,
+        (None, [(_, p1), (_, p2)]) => {
+            let l = (p2 - p1).norm() * length_unit_m;
+            mass * l * l / 12.0
+        }
+        (None, _) if mass == 0.0 => 0.0,
+        (None, points) => {
+            return Err(FieldError::new(
+                format!("{field}.inertia"),
+                format!(
+                    "body `{}` has a mass and {} points: give its moment of inertia about the centroid, kg·m² (the \
+                     default m·l²/12 is for a two-point body, a bar)",
+                    body.name,
+                    points.len()
+                ),
+            ));
+        }
+    };
+    Ok(MassProperties { mass, centroid, inertia })
+}
+
+/// One `[[load]]`: exactly one of a force `at` a point of a moving body or a `torque` on a
+/// moving body; values that are numbers or expressions of t that parse; a window
+/// `t = [from, to]` with from ≤ to.
+fn check_load(
+    field: &str,
+    k: usize,
+    raw: &RawLoad,
+    ground_points: &[(String, Point)],
+    bodies: &[Body],
+) -> Result<Load, FieldError> {
+    let name = raw.name.clone().unwrap_or_else(|| format!("L{}", k + 1));
+    if !valid_ident(&name) {
+        return Err(FieldError::new(format!("{field}.name"), "load names use letters, digits, '_' and '-'"));
+    }
+    let value = |f: String, v: &RawLoadValue| match v {
+        RawLoadValue::Number(x) => finite(&f, *x).map(LoadValue::Number),
+        RawLoadValue::Expr(text) => Expr::parse(text)
+            .map(LoadValue::Law)
+            .map_err(|e| FieldError::new(f, format!("cannot parse the expression: {e}"))),
+    };
+    let on_ground =
+        |f: String| FieldError::new(f, "a load on the ground does nothing: put it on a moving body".to_string());
+    let action = match (&raw.at, &raw.force, &raw.body, &raw.torque) {
+        (Some(at), Some(force), None, None) => {
+            let anchor = resolve(at, ground_points, bodies).map_err(|m| FieldError::new(format!("{field}.at"), m))?;
+            if anchor.body == Attach::Ground {
+                return Err(on_ground(format!("{field}.at")));
+            }
+            let fx = value(format!("{field}.force[0]"), &force[0])?;
+            let fy = value(format!("{field}.force[1]"), &force[1])?;
+            LoadAction::Force { at: anchor, force: [fx, fy] }
+        }
+        (None, None, Some(b), Some(torque)) => {
+            if b == "ground" {
+                return Err(on_ground(format!("{field}.body")));
+            }
+            let Some(i) = bodies.iter().position(|x| &x.name == b) else {
+                return Err(FieldError::new(
+                    format!("{field}.body"),
+                    format!(
+                        "unknown body `{b}`; the bodies are: {}",
+                        bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", ")
+                    ),
+                ));
+            };
+            LoadAction::Torque { body: i, torque: value(format!("{field}.torque"), torque)? }
+        }
+        _ => {
+            return Err(FieldError::new(
+                field,
+                "give either a force `at = \"body.P\"` with `force = [fx, fy]` (N), or a torque `body = \"...\"` with \
+                 `torque = M` (N·m)",
+            ));
+        }
+    };
+    let window = match raw.t {
+        None => None,
+        Some([from, to]) => {
+            let f = format!("{field}.t");
+            let from = finite(&f, from)?;
+            let to = finite(&f, to)?;
+            if from > to {
+                return Err(FieldError::new(
+                    f,
+                    format!("the window [from, to] = [{from}, {to}] has from > to: write the earlier time first"),
+                ));
+            }
+            Some(TimeWindow { from, to })
+        }
+    };
+    Ok(Load { name, action, window })
 }
 
 /// `[diagrams] x`: `"angle"` needs a single angular driver (a body angle or a revolute
@@ -606,7 +820,8 @@ fn check_prismatic(
 }
 
 /// `[[driver]]`: a law that parses, on exactly one of a body (absolute angle) or a joint
-/// (relative angle across a revolute, distance along a prismatic).
+/// (relative angle across a revolute, distance along a prismatic); unique names (default:
+/// the body or joint driven), which key the drivers' forces in the outputs.
 fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result<Vec<Driver>, FieldError> {
     let mut drivers = Vec::new();
     for (k, d) in raw.iter().enumerate() {
@@ -643,7 +858,14 @@ fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result
             },
             _ => return Err(FieldError::new(field, "give exactly one of `body = \"...\"` or `joint = \"...\"`")),
         };
-        drivers.push(Driver { name: d.name.clone().unwrap_or(default_name), target, law });
+        let name = d.name.clone().unwrap_or(default_name);
+        if drivers.iter().any(|x: &Driver| x.name == name) {
+            return Err(FieldError::new(
+                format!("{field}.name"),
+                format!("a driver named `{name}` already exists: give this one its own `name`"),
+            ));
+        }
+        drivers.push(Driver { name, target, law });
     }
     Ok(drivers)
 }
@@ -789,8 +1011,35 @@ mod tests {
         let bad = text.replace("name = \"rod\"", "name = \"crank\"");
         let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
         assert!(e.contains("body[1].name") && e.contains("already exists"), "{e}");
-        let bad = text.replace("angle_deg = 0.0\n", "angle_deg = 0.0\nmass = 1.0\n");
+        let bad = text.replace("angle_deg = 0.0\n", "angle_deg = 0.0\nmasse = 1.0\n");
         let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
-        assert!(e.contains("mass"), "{e}");
+        assert!(e.contains("body[0].masse") && e.contains("unknown field"), "{e}");
+        let bad = text
+            .replace("law = \"2*pi*t\"", "law = \"2*pi*t\"\n[[driver]]\njoint = \"guide\"\nname = \"O\"\nlaw = \"t\"");
+        let e = parse(&bad, "x.toml", &[]).unwrap_err().to_string();
+        assert!(e.contains("driver[1].name") && e.contains("a driver named `O` already exists"), "{e}");
+    }
+
+    #[test]
+    fn mass_properties_default_as_documented() {
+        let text = doc_example()
+            .replace(
+                "points = { O = [0.0, 0.0], A = [30.0, 0.0] }",
+                "points = { O = [0.0, 0.0], A = [30.0, 0.0] }\nmass = 2.0",
+            )
+            .replace("at = [130.0, 0.0]", "at = [130.0, 0.0]\nmass = 0.5")
+            + "\n[[load]]\nbody = \"rod\"\ntorque = \"sin(t)\"\n";
+        let Scene::Linkage(s) = parse(&text, "x.toml", &[]).unwrap() else { panic!() };
+        let d = s.dynamics.unwrap();
+        assert_eq!(d.length_unit_m, 1e-3);
+        assert_eq!(d.gravity, crate::geom::Vector::zeros());
+        // Crank: a two-point bar, 30 mm = 0.03 m: centroid mid-way, J = m·l²/12.
+        assert_eq!(d.bodies[0].centroid, crate::geom::Vector::new(15.0, 0.0));
+        assert!((d.bodies[0].inertia - 2.0 * 0.03 * 0.03 / 12.0).abs() < 1e-18);
+        // Rod: no mass; slider: one point, J = 0.
+        assert_eq!((d.bodies[1].mass, d.bodies[1].inertia), (0.0, 0.0));
+        assert_eq!((d.bodies[2].mass, d.bodies[2].inertia), (0.5, 0.0));
+        assert_eq!(d.loads[0].name, "L1");
+        assert!(d.loads[0].window.is_none());
     }
 }
