@@ -39,7 +39,8 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
         forces: spec.outputs.forces && !motion.forces.is_empty(),
     };
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
-    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units);
+    let external = spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
+    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units).with_drive(spec.omega1, external);
     let qs = reported(&spec.outputs, layout.show.forces);
     let csv = table(&motion, &qs, layout.show.forces);
     let summary = summary(scene, &motion, &layout, &qs)?;
