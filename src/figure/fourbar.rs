@@ -311,7 +311,7 @@ impl Layout {
     /// What every frame shares: the ground pivots with their hatch symbols (their letters
     /// move with the links, see [`Layout::moving`]), the coupler
     /// curve of M (`curve`: runs of consecutive positions; a gap in the motion breaks it),
-    /// the panel titles with the scales.
+    /// the panel titles with the scales, and the captions of the force figures.
     pub fn base(&self, geom: &Geometry, curve: &[Vec<Point>]) -> Drawing {
         let mut d = content_drawing(self.dim_style());
         let mech = layer_of(&d, layers::MECHANISM);
@@ -355,8 +355,9 @@ impl Layout {
         d
     }
 
-    /// One position on the content layers: the mechanism (with R_A, R_B when forces are
-    /// shown), the crank-angle text, and the polygons asked for.
+    /// One position on the content layers: the mechanism (with R_A, R_B, R_C, R_O and the
+    /// acting loads when forces are shown), the crank-angle text, the polygons asked for, and
+    /// with forces the table of magnitudes.
     pub fn moving(&self, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
         let mut d = content_drawing(self.dim_style());
         let s = self.sizes;
