@@ -34,7 +34,7 @@ pub const OFFSET: f64 = 0.5;
 /// Two drawn segments lie on one line when the sine of the angle between them is below
 /// this, each end of one is within [`OFFSET`]`/2` arrowheads of the other's line, and
 /// they share more than half an arrowhead of length.
-const COLLINEAR_SIN: f64 = 0.05;
+pub const COLLINEAR_SIN: f64 = 0.05;
 
 /// A named physical vector (N for forces).
 #[derive(Debug, Clone, PartialEq)]
