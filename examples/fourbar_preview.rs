@@ -1,10 +1,11 @@
 //! Preview frames of the four-bar figure to look at while developing the drawing
 //! vocabulary: the Chebyshev template (templates/fourbar-chebyshev.toml) solved through the
 //! public API, drawn at φ1 = 0°, 90° and 180° with its velocity and acceleration polygons,
-//! and rendered to PNG: `target/fourbar-preview-{0,90,180}.png`; with `--forces`, the force
-//! polygons and the reactions on the mechanism too: `target/forces-preview-{0,90,180}.png`.
+//! and rendered to PNG: `target/fourbar-preview-<deg>.png`; with `--forces`, the force
+//! polygons and the reactions on the mechanism too: `target/forces-preview-<deg>.png`.
 //!
-//! Run with `cargo run --release --example fourbar_preview [-- --forces]`.
+//! Run with `cargo run --release --example fourbar_preview [-- --forces] [--deg 0,90,132]`
+//! (`--deg`: the crank angles to draw, whole degrees; 0°, 90° and 180° by default).
 
 use mechdraw::draw::{raster, svg};
 use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
@@ -12,7 +13,13 @@ use mechdraw::scene::{self, Scene};
 use mechdraw::solve::fourbar::solve_motion;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let forces = std::env::args().skip(1).any(|a| a == "--forces");
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let forces = args.iter().any(|a| a == "--forces");
+    // Crank angles in degrees (`--deg 0,90,132`); 0°, 90° and 180° by default.
+    let degs: Vec<usize> = match args.iter().position(|a| a == "--deg").and_then(|i| args.get(i + 1)) {
+        Some(list) => list.split(',').map(|d| d.trim().parse()).collect::<Result<_, _>>()?,
+        None => vec![0, 90, 180],
+    };
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
     let Scene::Fourbar(s) = scene::load(&root.join("templates/fourbar-chebyshev.toml"), &[])?.scene else {
         return Err("not a four-bar scene".into());
@@ -21,14 +28,16 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let geom = &s.spec.geometry;
     let show = Show { velocity: true, acceleration: true, forces: forces && !motion.forces.is_empty() };
     let force_of = |i: usize| motion.forces.get(i).filter(|_| show.forces);
+    let external = s.spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
     let layout =
-        Layout::new(geom, &motion.positions, show.forces.then_some(motion.forces.as_slice()), show, ModelUnits::SI);
+        Layout::new(geom, &motion.positions, show.forces.then_some(motion.forces.as_slice()), show, ModelUnits::SI)
+            .with_drive(s.spec.omega1, external);
     let base = layout.base(geom, &[motion.positions.iter().map(|p| p.m).collect()]);
     let opts = svg::SvgOptions { window: Some(layout.window), ..Default::default() };
     let (stem, width) = if show.forces { ("forces-preview", 1400) } else { ("fourbar-preview", 1200) };
     let dir = root.join("target");
     std::fs::create_dir_all(&dir)?;
-    for deg in [0usize, 90, 180] {
+    for deg in degs {
         // The template turns the crank in 1° steps from 0°: position i is at i degrees.
         let Some(pos) = motion.positions.get(deg) else { continue };
         let frame = layout.frame(&base, &layout.moving(geom, pos, force_of(deg)));

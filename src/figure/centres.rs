@@ -15,7 +15,7 @@ use crate::solve::fourbar::{Geometry, Position};
 
 use super::fourbar::{angle_text, mechanism};
 use super::labels::{self, TextBox};
-use super::vocab::{Sizes, content_drawing, ground, layer_of, layers};
+use super::vocab::{ModelUnits, Sizes, content_drawing, ground, layer_of, layers, length_scale_text};
 
 /// Layer of the centres' circles and names.
 pub const CENTRES: layers::Layer = ("CENTRES", Aci::RED, LineType::Continuous);
@@ -102,9 +102,12 @@ const COLUMNS: usize = 2;
 
 /// The centres sheet: one panel per position of `positions`, [`COLUMNS`] to a row, each the
 /// mechanism inside `window` (model units, the same for every panel) with its centres,
-/// Kennedy's lines, its crank angle and the notes of centres not drawn.
-pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, s: Sizes) -> Drawing {
+/// Kennedy's lines, its crank angle and the notes of centres not drawn; on paper at `k_l`
+/// (model units per paper millimetre).
+pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k_l: f64, units: ModelUnits) -> Drawing {
+    let s = Sizes::on_paper(k_l);
     let mut d = content_drawing(DimStyle { text_height: s.text, arrow_size: s.head });
+    d.paper_mm_per_unit = Some(1.0 / k_l);
     d.layer(CENTRES.0, CENTRES.1, CENTRES.2);
     let frame = d.layer("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
     let text = layer_of(&d, layers::TEXT);
@@ -130,9 +133,9 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, s
         for q in [g.o1, g.c] {
             ground(&mut d, mech, q, s);
         }
-        let (boxes, _) = mechanism(&mut d, &g, &p, &[], s);
+        let boxes = mechanism(&mut d, &g, &p, &[], None, s);
         let notes = draw_centres(&mut d, &centres(&g, &p), &win, s, &boxes, off);
-        let title = format!("φ1 = {}°: instantaneous centres and Kennedy's lines", angle_text(pos.phi1.to_degrees()));
+        let title = format!("φ1 = {}°", angle_text(pos.phi1.to_degrees()));
         let at = Point::new(win.min.x + 0.5 * s.text, win.max.y + 0.6 * s.text);
         d.push(Entity {
             layer: text,
@@ -164,6 +167,20 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, s
             });
         }
     }
+    // The sheet's heading above the first row, with its length scale.
+    let heading = format!("Instantaneous centres and Kennedy's lines   {}", length_scale_text(k_l, units));
+    let at = Point::new(window.min.x, window.max.y + title_room + 1.0 * s.text);
+    d.add(
+        text,
+        Shape::Text {
+            at,
+            height: s.text,
+            value: heading,
+            halign: HAlign::Left,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        },
+    );
     d
 }
 

@@ -1,32 +1,40 @@
 //! Force figures (seed 003, Figs. 4 and 5 and its last section), typed on named vectors:
-//! a force polygon is a chain of named vectors from the pole f, head to tail, which closes
-//! at the pole when the forces balance; resultants drawn across it (the reactions found
-//! from it); and branches — further polygons that start at one of its vertices and close
-//! back on another (the crank's polygon with R_O). Reactions on the mechanism are named
-//! vectors at points, at the same force scale. Any mechanism describes its forces this way
-//! (the four-bar does in its figure); the code here draws them without knowing which
-//! mechanism they come from.
+//! a force polygon is a chain of named vectors from its pole, head to tail, and its
+//! resultants drawn across it (the reactions found from it, or the side that closes it).
+//! A mechanism draws one polygon per group it isolates (the four-bar: the dyad's, Fig. 4,
+//! and the crank's, Fig. 5, each with its own pole), a table of the magnitudes, and the
+//! reactions on the mechanism as named vectors at points, at the same force scale. The code
+//! here draws them without knowing which mechanism they come from.
 //!
-//! Each vector is an arrow with its name beside its middle, preferably on the outside of
-//! the polygon, placed clear of the other names by [`super::labels`].
+//! Every vector is named. A name goes beside its vector's middle, preferably on the outside
+//! of the polygon; a name that finds no free place there (a short vector among others in a
+//! small polygon) goes further out with a leader line to its vector's middle
+//! ([`super::labels::Polygon::name_with_leader`]), clear of the other names. A resultant
+//! that would lie on a side already drawn (R_B, R_C^t and R_C on one line when the rocker's
+//! loads are small) is drawn beside it, parallel, [`OFFSET`] arrowheads away, so both stay
+//! visible.
 
-use crate::draw::{Aci, Drawing, Entity, Shape};
-use crate::geom::{Point, Vector, perp};
+use crate::draw::parts::text_width;
+use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::geom::{Point, Vector, cross, perp};
 
 use super::labels::{self, TextBox};
-use super::vocab::{self, Scale, Sizes, layer_of, layers, vector};
+use super::vocab::{Scale, Sizes, layer_of, layers, unit_or};
 
-/// Colour of the resultants inside a polygon (the reactions found from it).
-const RESULTANT: Aci = Aci::RED;
-/// Colour of a branch polygon (the crank's F_i1, G1, R_O).
-const BRANCH: Aci = Aci::ORANGE;
-
-/// A vector shorter than this many letter heights gets no name: at the run's force scale
-/// the small weights crowd together, and their names would print over each other.
-const MIN_LABELLED: f64 = 0.6;
+/// Colour of the resultants of a polygon (the reactions found from it).
+pub const RESULTANT: Aci = Aci::RED;
 
 /// Height of a vector's name in the force polygons, in letter heights.
-const NAME_HEIGHT: f64 = 0.8;
+pub const NAME_HEIGHT: f64 = 0.8;
+
+/// How far a resultant lying on a side already drawn is moved beside it, in arrowhead
+/// lengths (per step: a second one on the same line goes twice as far).
+pub const OFFSET: f64 = 0.5;
+
+/// Two drawn segments lie on one line when the sine of the angle between them is below
+/// this, each end of one is within [`OFFSET`]`/2` arrowheads of the other's line, and
+/// they share more than half an arrowhead of length.
+pub const COLLINEAR_SIN: f64 = 0.05;
 
 /// A named physical vector (N for forces).
 #[derive(Debug, Clone, PartialEq)]
@@ -45,8 +53,7 @@ impl NamedVector {
 }
 
 /// A resultant drawn across a polygon: from one vertex to another, its name at the
-/// fraction `name_at` of its length (resultants along nearly the same segment keep their
-/// names apart by starting them from different places).
+/// fraction `name_at` of its length.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Resultant {
     /// Its name (`RA`).
@@ -59,21 +66,7 @@ pub struct Resultant {
     pub name_at: f64,
 }
 
-/// A further polygon starting at a vertex of the chain: `vectors` head to tail, then
-/// `closing` from the last end back to the vertex `closes_at`.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Branch {
-    /// Start vertex.
-    pub from: usize,
-    /// The known vectors.
-    pub vectors: Vec<NamedVector>,
-    /// The name of the closing vector (the unknown found by closing it: R_O).
-    pub closing: String,
-    /// The vertex it closes on.
-    pub closes_at: usize,
-}
-
-/// A force polygon: a chain of named vectors from the pole, its resultants and branches.
+/// A force polygon: a chain of named vectors from the pole, and its resultants.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ForcePolygon {
     /// The pole's letter (`f`).
@@ -82,13 +75,11 @@ pub struct ForcePolygon {
     pub chain: Vec<NamedVector>,
     /// Resultants drawn across it.
     pub resultants: Vec<Resultant>,
-    /// Branch polygons.
-    pub branches: Vec<Branch>,
 }
 
 impl ForcePolygon {
     /// Vertices of the chain relative to the pole (physical units): the pole, then the end
-    /// of each vector; the last is the pole again when the polygon closes.
+    /// of each vector; the last is the pole again when the chain closes.
     pub fn vertices(&self) -> Vec<Vector> {
         let mut pts = Vec::with_capacity(self.chain.len() + 1);
         let mut p = Vector::zeros();
@@ -100,176 +91,356 @@ impl ForcePolygon {
         pts
     }
 
-    /// Every point the polygon reaches, relative to the pole (physical units): the chain's
-    /// vertices and the ends of the branches' vectors. Used to size the force panel over a
-    /// whole motion.
+    /// Every point the polygon reaches, relative to the pole (physical units): used to size
+    /// its panel over a whole motion.
     pub fn physical_points(&self) -> Vec<Vector> {
-        let mut pts = self.vertices();
-        for b in &self.branches {
-            let mut p = pts[b.from];
-            for nv in &b.vectors {
-                p += nv.v;
-                pts.push(p);
-            }
-        }
-        pts
+        self.vertices()
+    }
+
+    /// The resultant named `name` as a physical vector (from its start vertex to its end).
+    pub fn resultant(&self, name: &str) -> Option<Vector> {
+        let v = self.vertices();
+        self.resultants.iter().find(|r| r.name == name).map(|r| v[r.to] - v[r.from])
     }
 }
 
-/// Draws `poly` with the pole at `pole`, at `scale`, on the `FORCES` layer. The names are
-/// placed by [`labels::Polygon`]: beside their vectors, apart from each other.
-pub fn draw(d: &mut Drawing, poly: &ForcePolygon, scale: Scale, pole: Point, s: Sizes) {
-    let l = layer_of(d, layers::FORCES);
-    let mut names = labels::Polygon::of_names();
-    let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
-    let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
-    vocab::pole(d, l, pole, s);
-    names.letter(pole, &poly.pole, s.text, pole - centroid, None);
-    for (i, nv) in poly.chain.iter().enumerate() {
-        arrow_named(d, &mut names, l, None, (pts[i], pts[i + 1]), &nv.name, 0.5, centroid, s);
-    }
-    for r in &poly.resultants {
-        arrow_named(d, &mut names, l, Some(RESULTANT), (pts[r.from], pts[r.to]), &r.name, r.name_at, centroid, s);
-    }
-    for b in &poly.branches {
-        // The branch's own centre: the closing vertex, the start, and each end.
-        let mut ends = Vec::with_capacity(b.vectors.len());
-        let mut p = pts[b.from];
-        for nv in &b.vectors {
-            p += scale.draw(nv.v);
-            ends.push(p);
-        }
-        let sum = ends.iter().fold(pts[b.closes_at].coords + pts[b.from].coords, |acc, e| acc + e.coords);
-        let centre = Point::from(sum / (ends.len() + 2) as f64);
-        let mut start = pts[b.from];
-        for (nv, end) in b.vectors.iter().zip(&ends) {
-            arrow_named(d, &mut names, l, Some(BRANCH), (start, *end), &nv.name, 0.5, centre, s);
-            start = *end;
-        }
-        arrow_named(d, &mut names, l, Some(BRANCH), (start, pts[b.closes_at]), &b.closing, 0.5, centre, s);
-    }
-    names.draw(d, l);
-}
-
-/// An arrow from `from` to `to`, and its `name` for `names` at the fraction `at` of its
-/// length, preferably on the side away from `inside`; nothing for a vector too short to see,
-/// no name for one shorter than [`MIN_LABELLED`].
-#[allow(clippy::too_many_arguments)]
-fn arrow_named(
+/// Draws `poly` with the pole at `pole`, at `scale`, on the `FORCES` layer: the chain's
+/// arrows, the resultants in [`RESULTANT`] red (moved beside a side they would lie on), and
+/// every vector's name placed by [`labels::Polygon`] clear of the boxes `keep_off` (texts
+/// drawn around it). Returns the names' boxes.
+pub fn draw(
     d: &mut Drawing,
-    names: &mut labels::Polygon,
-    layer: usize,
-    color: Option<Aci>,
-    (from, to): (Point, Point),
-    name: &str,
-    at: f64,
-    inside: Point,
-    s: Sizes,
-) {
-    let v = to - from;
-    let len = v.norm();
-    if len.is_nan() || len <= 0.01 * s.head {
-        return;
-    }
-    d.push(Entity { layer, color, linetype: None, shape: Shape::Arrow { from, to, head: s.head } });
-    names.segment(from, to);
-    if len < MIN_LABELLED * s.text {
-        return;
-    }
-    let mid = from + v * at;
-    let mut n = perp(v / len);
-    if n.dot(&(mid - inside)) < 0.0 {
-        n = -n;
-    }
-    names.letter(mid, name, NAME_HEIGHT * s.text, n, color);
-}
-
-/// Reactions drawn on the mechanism (seed, last section): each named vector at its point,
-/// at the force scale, on the `FORCES` layer, its name at its tip placed by
-/// [`labels::Polygon`] clear of the boxes `keep_off` (the mechanism's letters and symbols)
-/// and preferably off the segments `avoid` (its links); the arrows turn with the reactions
-/// as the mechanism moves.
-pub fn reactions_on_mechanism(
-    d: &mut Drawing,
-    reactions: &[(Point, NamedVector)],
+    poly: &ForcePolygon,
     scale: Scale,
+    pole: Point,
     s: Sizes,
     keep_off: &[TextBox],
-    avoid: &[(Point, Point)],
-) {
+) -> Vec<TextBox> {
     let l = layer_of(d, layers::FORCES);
     let mut names = labels::Polygon::of_names();
     for b in keep_off {
         names.keep_off(*b);
     }
-    for (a, b) in avoid {
-        names.segment(*a, *b);
+    let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
+    let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
+    super::vocab::pole(d, l, pole, s);
+    names.letter(pole, &poly.pole, s.text, pole - centroid, None);
+    // Every segment drawn so far, for resultants to keep off.
+    let mut drawn: Vec<(Point, Point)> = Vec::new();
+    for (i, nv) in poly.chain.iter().enumerate() {
+        let seg = (pts[i], pts[i + 1]);
+        if arrow(d, l, None, seg, s) {
+            drawn.push(seg);
+        }
+        names.segment(seg.0, seg.1);
+        name(&mut names, seg, &nv.name, nv.v, 0.5, centroid, None, s);
     }
-    for (at, nv) in reactions {
+    for r in &poly.resultants {
+        let seg = (pts[r.from], pts[r.to]);
+        let placed = beside(seg, &drawn, centroid, s);
+        if arrow(d, l, Some(RESULTANT), placed, s) {
+            drawn.push(placed);
+        }
+        names.segment(placed.0, placed.1);
+        let v = pts[r.to] - pts[r.from];
+        name(&mut names, placed, &r.name, v, r.name_at, centroid, Some(RESULTANT), s);
+    }
+    names.draw(d, l)
+}
+
+/// An arrow on `layer` in `color` (or the layer's); `false` (nothing drawn) for a vector
+/// too short to see.
+fn arrow(d: &mut Drawing, layer: usize, color: Option<Aci>, (from, to): (Point, Point), s: Sizes) -> bool {
+    let len = (to - from).norm();
+    if len.is_nan() || len <= 0.01 * s.head {
+        return false;
+    }
+    d.push(Entity { layer, color, linetype: None, shape: Shape::Arrow { from, to, head: s.head } });
+    true
+}
+
+/// The name of the drawn segment `from`–`to` (the physical vector `v`: a zero force is not
+/// named) for `names`, at the fraction `at` of its length, preferably on the side away from
+/// `inside`; a name that cannot sit beside its vector (a short one in a crowd) goes further
+/// out with a leader ([`labels::Polygon::name_with_leader`]).
+#[allow(clippy::too_many_arguments)]
+fn name(
+    names: &mut labels::Polygon,
+    (from, to): (Point, Point),
+    text: &str,
+    v: Vector,
+    at: f64,
+    inside: Point,
+    color: Option<Aci>,
+    s: Sizes,
+) {
+    if v.norm().is_nan() || v.norm() == 0.0 {
+        return;
+    }
+    let seg = to - from;
+    let len = seg.norm();
+    let mid = from + seg * at;
+    let h = NAME_HEIGHT * s.text;
+    // Outwards: across the segment, away from the polygon's centre (from the centre when
+    // the segment is too short to have a direction).
+    let mut n = if len > 0.0 { perp(seg / len) } else { unit_or(mid - inside, Vector::new(0.0, 1.0)) };
+    if n.dot(&(mid - inside)) < 0.0 {
+        n = -n;
+    }
+    names.name_with_leader(mid, text, h, n, color);
+}
+
+/// Where to draw the resultant `seg` so that it lies on none of the segments `drawn`:
+/// itself when it lies on none, else moved parallel by 1, 2, 3 or 4 × [`OFFSET`] arrowheads,
+/// first to the side away from `inside`, then to the other.
+fn beside(seg: (Point, Point), drawn: &[(Point, Point)], inside: Point, s: Sizes) -> (Point, Point) {
+    let step = OFFSET * s.head;
+    moved_off(seg, drawn, inside, (step, step), |a, b| on_one_line(a, b, s) || on_one_line(b, a, s))
+}
+
+/// `seg` itself when it lies on none of `drawn` (by `lies_on`), else moved parallel by
+/// `first`, then by `first` plus 1, 2, 3 `step`s, to the side away from `inside`, then to
+/// the other, until it lies on none (the last try on the first side when every place is
+/// taken).
+fn moved_off(
+    seg: (Point, Point),
+    drawn: &[(Point, Point)],
+    inside: Point,
+    (first, step): (f64, f64),
+    lies_on: impl Fn((Point, Point), (Point, Point)) -> bool,
+) -> (Point, Point) {
+    let v = seg.1 - seg.0;
+    let len = v.norm();
+    let clear = |x: (Point, Point)| !drawn.iter().any(|o| lies_on(x, *o));
+    if len.is_nan() || len == 0.0 || clear(seg) {
+        return seg;
+    }
+    let u = v / len;
+    let mut n = perp(u);
+    if n.dot(&(seg.0 + v * 0.5 - inside)) < 0.0 {
+        n = -n;
+    }
+    for side in [n, -n] {
+        for k in 0..4 {
+            let off = side * (first + step * k as f64);
+            let moved = (seg.0 + off, seg.1 + off);
+            if clear(moved) {
+                return moved;
+            }
+        }
+    }
+    let off = n * (first + 4.0 * step);
+    (seg.0 + off, seg.1 + off)
+}
+
+/// Whether the arrow `a` runs over the line `b` drawn `width` wide (a link, another arrow):
+/// the stretch of `a` within `width`/2 of `b`'s line and beside `b` is longer than an
+/// arrowhead.
+pub fn runs_over(a: (Point, Point), b: (Point, Point), width: f64, s: Sizes) -> bool {
+    let (v, w) = (a.1 - a.0, b.1 - b.0);
+    let (la, lb) = (v.norm(), w.norm());
+    if la.is_nan() || lb.is_nan() || la == 0.0 || lb == 0.0 {
+        return false;
+    }
+    let u = w / lb;
+    // Along `a` (t in [0, 1]): the distance across `b`'s line and the place along it, both
+    // linear in t; keep the t where |across| ≤ width/2 and 0 ≤ along ≤ |b|.
+    let (across0, across1) = (cross(u, a.0 - b.0), cross(u, v));
+    let (along0, along1) = ((a.0 - b.0).dot(&u), v.dot(&u));
+    let mut range = (0.0f64, 1.0f64);
+    for (c0, c1, lo, hi) in [(across0, across1, -0.5 * width, 0.5 * width), (along0, along1, 0.0, lb)] {
+        if c1.abs() < 1e-300 {
+            if c0 < lo || c0 > hi {
+                return false;
+            }
+        } else {
+            let (t0, t1) = ((lo - c0) / c1, (hi - c0) / c1);
+            range = (range.0.max(t0.min(t1)), range.1.min(t0.max(t1)));
+        }
+    }
+    (range.1 - range.0) * la > s.head
+}
+
+/// Whether the drawn segments `a` and `b` lie on one line over a common stretch (see
+/// [`COLLINEAR_SIN`]).
+pub fn on_one_line(a: (Point, Point), b: (Point, Point), s: Sizes) -> bool {
+    let (va, vb) = (a.1 - a.0, b.1 - b.0);
+    let (la, lb) = (va.norm(), vb.norm());
+    if !(la > 0.0 && lb > 0.0) {
+        return false;
+    }
+    let u = va / la;
+    if cross(u, vb / lb).abs() > COLLINEAR_SIN {
+        return false;
+    }
+    let tol = 0.5 * OFFSET * s.head;
+    if cross(u, b.0 - a.0).abs() > tol || cross(u, b.1 - a.0).abs() > tol {
+        return false;
+    }
+    let (t0, t1) = ((b.0 - a.0).dot(&u), (b.1 - a.0).dot(&u));
+    let shared = t0.max(t1).min(la) - t0.min(t1).max(0.0);
+    shared > 0.5 * s.head
+}
+
+/// One row of a table of magnitudes: a name, a value, its unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Magnitude {
+    /// The name (`RA`, `Me1`).
+    pub name: String,
+    /// The value (a force's magnitude; a moment signed, CCW positive).
+    pub value: f64,
+    /// Its unit (`N`, `N·m`).
+    pub unit: String,
+}
+
+/// The text of a value in a table of magnitudes: three decimals (`52.371 N`, `-1.490 N·m`).
+pub fn magnitude_text(value: f64, unit: &str) -> String {
+    let v = if value.abs() < 5e-4 { 0.0 } else { value };
+    format!("{v:.3} {unit}")
+}
+
+/// Height of a table's rows' text, in letter heights.
+pub const TABLE_TEXT: f64 = 0.8;
+/// Row pitch of a table, in its text heights.
+pub const TABLE_PITCH: f64 = 1.5;
+
+/// The size (width, height) of a table of `count` rows as [`table`] draws it, wide enough
+/// for every row of `rows` (the rows of every position of a motion).
+pub fn table_size(rows: &[Magnitude], count: usize, s: Sizes) -> Vector {
+    let h = TABLE_TEXT * s.text;
+    let name_w = rows.iter().map(|r| text_width(&r.name, h)).fold(0.0, f64::max);
+    let value_w = rows.iter().map(|r| text_width(&magnitude_text(r.value, &r.unit), h)).fold(0.0, f64::max);
+    Vector::new(name_w + 1.5 * h + value_w, TABLE_PITCH * h * count as f64)
+}
+
+/// A table of magnitudes with its upper-left corner at `top_left`, `width` wide: one row
+/// per magnitude, the name left, `value unit` right-aligned, on the `FORCES` layer.
+pub fn table(d: &mut Drawing, rows: &[Magnitude], top_left: Point, width: f64, s: Sizes) {
+    let l = layer_of(d, layers::FORCES);
+    let h = TABLE_TEXT * s.text;
+    for (i, r) in rows.iter().enumerate() {
+        let y = top_left.y - TABLE_PITCH * h * (i as f64 + 1.0) + 0.25 * h;
+        for (x, value, halign) in [
+            (top_left.x, r.name.clone(), HAlign::Left),
+            (top_left.x + width, magnitude_text(r.value, &r.unit), HAlign::Right),
+        ] {
+            let shape =
+                Shape::Text { at: Point::new(x, y), height: h, value, halign, valign: VAlign::Baseline, rotation: 0.0 };
+            d.push(Entity { layer: l, color: None, linetype: Some(LineType::Continuous), shape });
+        }
+    }
+}
+
+/// A force drawn on the mechanism: the named vector acting at a point, where its arrow is
+/// drawn (moved off a link it would lie on), for the letter placer.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForceArrow {
+    /// The point it acts at.
+    pub at: Point,
+    /// The force.
+    pub force: NamedVector,
+    /// The drawn arrow: tail and tip (model units).
+    pub arrow: (Point, Point),
+}
+
+/// The arrows of `forces` acting at points of the mechanism at `scale` (seed, last section):
+/// each from its point, or, when it would run over one of the `links` (R_A along the
+/// crank) or an arrow placed before it ([`runs_over`] them drawn a link's width plus an
+/// arrowhead's wide), moved beside it by 1.5 joint radii plus [`OFFSET`]
+/// arrowheads (and further by [`OFFSET`] steps when that place is taken), to the side away
+/// from the mechanism's centre `inside`. Forces too short to see are left out.
+pub fn arrows_on_mechanism(
+    forces: &[(Point, NamedVector)],
+    scale: Scale,
+    links: &[(Point, Point)],
+    inside: Point,
+    s: Sizes,
+) -> Vec<ForceArrow> {
+    let mut out = Vec::new();
+    let mut drawn = links.to_vec();
+    // A link's width and an arrowhead's, either side.
+    let band = s.link + 2.0 * crate::draw::parts::ARROW_HALF_WIDTH * s.head;
+    for (at, nv) in forces {
         let v = scale.draw(nv.v);
-        if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
+        let len = v.norm();
+        if len.is_nan() || len <= 0.01 * s.head {
             continue;
         }
-        vector(d, l, *at, v, s);
-        names.segment(*at, *at + v);
-        names.letter(*at + v, &nv.name, s.text, v, None);
+        let steps = (1.5 * s.joint + OFFSET * s.head, OFFSET * s.head);
+        let arrow = moved_off((*at, *at + v), &drawn, inside, steps, |a, b| runs_over(a, b, band, s));
+        drawn.push(arrow);
+        out.push(ForceArrow { at: *at, force: nv.clone(), arrow });
     }
-    names.draw(d, l);
+    out
 }
+
+/// Draws the arrows of [`arrows_on_mechanism`] on the `FORCES` layer, a moved one with a
+/// thin connector from its point to its tail; their names are placed with the mechanism's
+/// letters (see the four-bar's figure).
+pub fn draw_on_mechanism(d: &mut Drawing, arrows: &[ForceArrow], s: Sizes) {
+    let l = layer_of(d, layers::FORCES);
+    for a in arrows {
+        if a.arrow.0 != a.at {
+            d.add(l, Shape::Line { from: a.at, to: a.arrow.0 });
+        }
+        d.add(l, Shape::Arrow { from: a.arrow.0, to: a.arrow.1, head: s.head });
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::figure::vocab::{ModelUnits, content_drawing};
 
     /// A weight held by two ropes: W down, then the ropes' forces T1, T2 close the triangle;
-    /// a resultant T1 + T2 drawn across it; a branch from the end of W back to the pole.
+    /// a resultant T1 + T2 drawn across it, and a short force P.
     fn hanging_weight() -> ForcePolygon {
         ForcePolygon {
             pole: "f".into(),
             chain: vec![
                 NamedVector::new("W", Vector::new(0.0, -10.0)),
-                NamedVector::new("T1", Vector::new(4.0, 5.0)),
+                NamedVector::new("P", Vector::new(0.05, 0.0)),
+                NamedVector::new("T1", Vector::new(3.95, 5.0)),
                 NamedVector::new("T2", Vector::new(-4.0, 5.0)),
             ],
-            resultants: vec![Resultant { name: "T".into(), from: 1, to: 3, name_at: 0.5 }],
-            branches: vec![Branch {
-                from: 1,
-                vectors: vec![NamedVector::new("P", Vector::new(3.0, 0.0))],
-                closing: "Q".into(),
-                closes_at: 0,
-            }],
+            resultants: vec![Resultant { name: "T".into(), from: 2, to: 4, name_at: 0.5 }],
         }
+    }
+
+    fn drawing(s: Sizes) -> Drawing {
+        content_drawing(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head })
+    }
+
+    fn arrows(d: &Drawing) -> Vec<(Point, Point)> {
+        d.entities
+            .iter()
+            .filter_map(|e| match e.shape {
+                Shape::Arrow { from, to, .. } => Some((from, to)),
+                _ => None,
+            })
+            .collect()
     }
 
     #[test]
     fn the_chain_runs_head_to_tail_and_closes_at_the_pole() {
         let poly = hanging_weight();
         let v = poly.vertices();
-        assert_eq!(v, vec![Vector::zeros(), Vector::new(0.0, -10.0), Vector::new(4.0, -5.0), Vector::zeros()]);
-        // The branch's end is reached from its start vertex.
-        assert_eq!(poly.physical_points()[4], Vector::new(3.0, -10.0));
+        assert_eq!(v[1], Vector::new(0.0, -10.0));
+        assert!((v[4] - Vector::zeros()).norm() < 1e-12);
+        assert!((poly.resultant("T").unwrap() - Vector::new(-0.05, 10.0)).norm() < 1e-12);
     }
 
     #[test]
     fn every_vector_is_an_arrow_with_its_name() {
         let poly = hanging_weight();
         let s = Sizes::for_length(100.0);
-        let mut d = content_drawing(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head });
-        // 0.1 N per drawn mm: W is 100 mm long, far longer than a letter.
-        draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s);
-        let arrows: Vec<(Point, Point)> = d
-            .entities
-            .iter()
-            .filter_map(|e| match e.shape {
-                Shape::Arrow { from, to, .. } => Some((from, to)),
-                _ => None,
-            })
-            .collect();
-        // W, T1, T2, the resultant T, the branch's P and its closing Q.
-        assert_eq!(arrows.len(), 6);
-        assert_eq!(arrows[0], (Point::new(0.0, 0.0), Point::new(0.0, -100.0)));
-        assert_eq!(arrows[3], (Point::new(0.0, -100.0), Point::new(0.0, 0.0)));
-        assert_eq!(arrows[5], (Point::new(30.0, -100.0), Point::new(0.0, 0.0)));
+        let mut d = drawing(s);
+        // 0.1 N per drawn mm: W is 100 mm long, far longer than a letter; P 0.5 mm.
+        draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s, &[]);
+        let a = arrows(&d);
+        // W, P, T1, T2, the resultant T.
+        assert_eq!(a.len(), 5);
+        assert_eq!(a[0], (Point::new(0.0, 0.0), Point::new(0.0, -100.0)));
         let mut names: Vec<&str> = d
             .entities
             .iter()
@@ -279,6 +450,102 @@ mod tests {
             })
             .collect();
         names.sort_unstable();
-        assert_eq!(names, ["P", "Q", "T", "T1", "T2", "W", "f"]);
+        assert_eq!(names, ["P", "T", "T1", "T2", "W", "f"]);
+    }
+
+    #[test]
+    fn names_of_a_crowd_of_short_vectors_go_out_with_leaders() {
+        // Eight vectors a tenth of a letter long around one point, then a long one back: at
+        // most two names fit beside the crowd; the others go further out, each with a leader
+        // from its vector's middle, no two names overlapping.
+        let s = Sizes::for_length(100.0);
+        let mut chain: Vec<NamedVector> = (0..8)
+            .map(|i| {
+                let a = i as f64 * std::f64::consts::FRAC_PI_4;
+                NamedVector::new(&format!("G{i}"), Vector::new(a.cos(), a.sin()) * 0.03)
+            })
+            .collect();
+        chain.push(NamedVector::new("R", Vector::new(30.0, 0.0)));
+        let poly = ForcePolygon { pole: "f".into(), chain, resultants: vec![] };
+        let mut d = drawing(s);
+        let boxes = draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s, &[]);
+        assert_eq!(boxes.len(), 10);
+        for (i, a) in boxes.iter().enumerate() {
+            for b in &boxes[..i] {
+                assert!(!a.overlaps(b), "{a:?} {b:?}");
+            }
+        }
+        let leaders: Vec<(Point, Point)> = d
+            .entities
+            .iter()
+            .filter_map(|e| match e.shape {
+                Shape::Line { from, to } => Some((from, to)),
+                _ => None,
+            })
+            .collect();
+        assert!(leaders.len() >= 4, "{leaders:?}");
+        // Each leader starts at a short vector's middle and ends on a name's box.
+        let mids: Vec<Point> = {
+            let v = poly.vertices();
+            (0..8).map(|i| Point::from((v[i] + v[i + 1]) * 0.5 / 0.1)).collect()
+        };
+        for (from, to) in leaders {
+            assert!(mids.iter().any(|m| (from - m).norm() < 1e-9), "{from:?}");
+            let on_edge = boxes.iter().any(|b| {
+                let inside = to.x >= b.min.x - 1e-9
+                    && to.x <= b.max.x + 1e-9
+                    && to.y >= b.min.y - 1e-9
+                    && to.y <= b.max.y + 1e-9;
+                let edge =
+                    [to.x - b.min.x, b.max.x - to.x, to.y - b.min.y, b.max.y - to.y].iter().any(|d| d.abs() < 1e-9);
+                inside && edge
+            });
+            assert!(on_edge, "{to:?}");
+        }
+    }
+
+    #[test]
+    fn a_resultant_on_a_side_is_drawn_beside_it() {
+        // T runs from the end of P back to the pole: along W (backwards) within 0.5 mm.
+        let poly = hanging_weight();
+        let s = Sizes::for_length(100.0);
+        let mut d = drawing(s);
+        draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s, &[]);
+        let t = arrows(&d)[4];
+        // Parallel to its true place (from (0.5, −100) to (0, 0)), OFFSET arrowheads or more away.
+        let true_seg = (Point::new(0.5, -100.0), Point::new(0.0, 0.0));
+        let u = (true_seg.1 - true_seg.0).normalize();
+        let off = cross(u, t.0 - true_seg.0);
+        assert!(off.abs() >= OFFSET * s.head - 1e-9, "{off}");
+        assert!((cross(u, t.1 - true_seg.0) - off).abs() < 1e-9);
+        assert!(!on_one_line(t, (Point::new(0.0, 0.0), Point::new(0.0, -100.0)), s));
+    }
+
+    #[test]
+    fn a_force_along_a_link_is_moved_off_it() {
+        let s = Sizes::for_length(100.0);
+        let scale = Scale::new(1.0, ModelUnits::MM);
+        let link = (Point::new(0.0, 0.0), Point::new(40.0, 0.0));
+        // Along the link (towards its other end) and across it.
+        let along = (Point::new(40.0, 0.0), NamedVector::new("RA", Vector::new(-30.0, 0.0)));
+        let across = (Point::new(40.0, 0.0), NamedVector::new("RB", Vector::new(0.0, 30.0)));
+        let a = arrows_on_mechanism(&[along, across], scale, &[link], Point::new(20.0, -10.0), s);
+        assert_eq!(a[1].arrow, (Point::new(40.0, 0.0), Point::new(40.0, 30.0)));
+        let moved = a[0].arrow;
+        assert!((moved.0.y - (1.5 * s.joint + OFFSET * s.head)).abs() < 1e-12, "{moved:?}");
+        assert!((moved.1 - moved.0 - Vector::new(-30.0, 0.0)).norm() < 1e-12);
+        let original = (Point::new(40.0, 0.0), Point::new(10.0, 0.0));
+        assert!(runs_over(original, link, s.link, s) && !runs_over(moved, link, s.link, s));
+        // A force a few degrees off the link still runs over it: moved too.
+        let skew = (Point::new(40.0, 0.0), NamedVector::new("RA", Vector::new(-30.0, 1.5)));
+        let b = arrows_on_mechanism(&[skew], scale, &[link], Point::new(20.0, -10.0), s);
+        assert_ne!(b[0].arrow.0, Point::new(40.0, 0.0));
+    }
+
+    #[test]
+    fn magnitudes_print_with_three_decimals() {
+        assert_eq!(magnitude_text(52.3714, "N"), "52.371 N");
+        assert_eq!(magnitude_text(-1.49, "N·m"), "-1.490 N·m");
+        assert_eq!(magnitude_text(-1e-5, "N"), "0.000 N");
     }
 }

@@ -36,17 +36,17 @@
 
 use crate::draw::parts::text_width;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
-use crate::geom::{Point, Vector, perp};
-use crate::solve::fourbar::Forces;
+use crate::geom::{Point, Vector, cross, perp};
+use crate::solve::fourbar::{ExternalForce, Forces};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
-use super::forces::{self, Branch, ForcePolygon, NamedVector, Resultant};
-use super::labels::{self, TextBox};
+use super::forces::{self, ForcePolygon, NamedVector, Resultant};
+use super::labels;
 use super::polygon::{self, Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
 use super::vocab::{
     bar_value, content_drawing, ground, ground_extent, joint, layer_of, layers, length_scale, length_scale_text, link,
-    path, scale_bar, scale_bar_room, unit_or,
+    path, scale_bar, scale_bar_room, turn_arrow, unit_or,
 };
 
 /// Largest extent of the mechanism's motion on paper, millimetres: k_l is the nice value
@@ -62,7 +62,8 @@ pub struct Show {
     pub velocity: bool,
     /// The acceleration polygon.
     pub acceleration: bool,
-    /// The force polygons and the reactions R_A, R_B on the mechanism.
+    /// The force polygons (the dyad's and the crank's), the table of magnitudes, and the
+    /// reactions R_A, R_B, R_C, R_O and the load F on the mechanism.
     pub forces: bool,
 }
 
@@ -82,8 +83,16 @@ pub struct Layout {
     pub velocity: Option<(Scale, Point)>,
     /// Acceleration scale and the pole π (when drawn).
     pub acceleration: Option<(Scale, Point)>,
-    /// Force scale and the pole f (when drawn).
+    /// Force scale and the pole f of the dyad's polygon (seed Fig. 4), when drawn.
     pub forces: Option<(Scale, Point)>,
+    /// The rest of the force panel (the crank's polygon, captions, the table), when drawn.
+    pub force_figures: Option<ForceFigures>,
+    /// The crank's angular velocity (rad/s, CCW positive) for the ω1 arrow
+    /// ([`Layout::with_drive`]); without it the arrow follows the sign of the kinematics'.
+    pub omega1: Option<f64>,
+    /// The external forces on the coupler, drawn on the mechanism where they act
+    /// ([`Layout::with_drive`]).
+    pub external: Vec<ExternalForce>,
     /// Lower-left corners and sizes of the panels with their titles:
     /// (title, lower-left, upper-right).
     pub panels: Vec<(String, Point, Point)>,
@@ -93,6 +102,51 @@ pub struct Layout {
     /// The fixed window of every frame.
     pub window: Bounds,
 }
+
+/// The force panel beside the dyad's polygon (whose pole is [`Layout::forces`]): the crank's
+/// polygon (seed Fig. 5) with its own pole, a caption over each figure, and the table of
+/// magnitudes, all at the run's force scale.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForceFigures {
+    /// Pole of the crank's polygon.
+    pub crank_pole: Point,
+    /// Upper-left corner of the table of magnitudes.
+    pub table_at: Point,
+    /// Width of the table (values right-aligned at its right edge).
+    pub table_width: f64,
+    /// Captions: text and the left end of its baseline.
+    pub captions: Vec<(String, Point)>,
+    /// Unit of moments in the table (`N·m`, `N·mm`).
+    pub moment_unit: String,
+}
+
+impl ForceFigures {
+    /// The boxes of the captions and of the table (for the polygons' names to keep off).
+    fn text_boxes(&self, s: Sizes) -> Vec<labels::TextBox> {
+        let h = forces::NAME_HEIGHT * s.text;
+        let mut out: Vec<labels::TextBox> = self
+            .captions
+            .iter()
+            .map(|(t, at)| labels::TextBox {
+                min: *at,
+                max: *at + Vector::new(crate::draw::parts::text_width(t, h), h),
+            })
+            .collect();
+        let table_h = forces::TABLE_PITCH * forces::TABLE_TEXT * s.text * MAGNITUDE_ROWS as f64;
+        out.push(labels::TextBox {
+            min: self.table_at - Vector::new(0.0, table_h),
+            max: self.table_at + Vector::new(self.table_width, 0.0),
+        });
+        out
+    }
+}
+
+/// Caption of the dyad's force polygon.
+pub const DYAD_CAPTION: &str = "Dyad 2–3 (Fig. 4)";
+/// Caption of the crank's force polygon.
+pub const CRANK_CAPTION: &str = "Crank 1 (Fig. 5)";
+/// Caption of the table of magnitudes.
+pub const TABLE_CAPTION: &str = "Magnitudes";
 
 /// Bounding box of physical vectors.
 #[derive(Debug, Clone, Copy)]
@@ -182,18 +236,23 @@ impl Layout {
             let unit = format!("{}/s²", units.length);
             polys.push((format!("Acceleration polygon   k_a = {} ({unit})/mm", scale_text(s.per_mm)), s, e, 1, unit));
         }
+        let mut force_panel = None;
         if show.forces {
-            let e = forces
-                .unwrap_or(&[])
-                .iter()
-                .map(|f| Extent::of(force_polygon(f).physical_points()))
-                .fold(None, Extent::union);
-            let (s, e) = scale_for(e);
+            let fs = forces.unwrap_or(&[]);
+            let dyad = fs.iter().map(|f| Extent::of(dyad_polygon(f).physical_points())).fold(None, Extent::union);
+            let crank = fs.iter().map(|f| Extent::of(crank_polygon(f).physical_points())).fold(None, Extent::union);
+            let larger = if crank.is_some_and(|c| dyad.is_none_or(|d| c.size() > d.size())) { crank } else { dyad };
+            let (s, _) = scale_for(larger);
+            let moment_unit = format!("N·{}", units.length);
+            let rows: Vec<forces::Magnitude> = fs.iter().flat_map(|f| magnitudes(f, &moment_unit)).collect();
+            let (e, panel) =
+                ForcePanel::arrange(s, dyad, crank, forces::table_size(&rows, MAGNITUDE_ROWS, sizes), sizes);
+            force_panel = Some((panel, moment_unit));
             polys.push((format!("Force polygons   k_f = {} N/mm", scale_text(s.per_mm),), s, e, 2, "N".into()));
-            // The reactions drawn on the mechanism, with their names, stay in its panel.
+            // The forces drawn on the mechanism, with their names, stay in its panel.
             let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
-            for (pos, f) in positions.iter().zip(forces.unwrap_or(&[])) {
-                for (at, nv) in reactions(pos, f) {
+            for (pos, f) in positions.iter().zip(fs) {
+                for (at, nv) in on_mechanism(geom, pos, f, &[]) {
                     let tip = at + s.draw(nv.v);
                     if tip.x.is_finite() && tip.y.is_finite() {
                         mech_min = Point::from(mech_min.coords.inf(&(tip - room - Vector::new(0.0, bar_room)).coords));
@@ -252,6 +311,7 @@ impl Layout {
         let mut velocity = None;
         let mut acceleration = None;
         let mut force = None;
+        let mut force_figures = None;
         for (j, (_, s, e, kind, unit)) in polys.iter().enumerate() {
             let ll = origins[j + 1] + shift + Vector::new(sizes.text, sizes.text + bar_room);
             let pole = ll - s.draw(e.min);
@@ -266,13 +326,39 @@ impl Layout {
                 1 => acceleration = Some((*s, pole)),
                 _ => force = Some((*s, pole)),
             }
+            if let (2, Some((panel, unit))) = (kind, &force_panel) {
+                force_figures = Some(panel.place(pole, unit));
+            }
         }
         let mut window = Bounds { min: panels[0].1, max: panels[0].2 };
         for p in &panels {
             window.min = Point::new(window.min.x.min(p.1.x), window.min.y.min(p.1.y));
             window.max = Point::new(window.max.x.max(p.2.x), window.max.y.max(p.2.y));
         }
-        Layout { units, show, k_l, sizes, velocity, acceleration, forces: force, panels, bars, window }
+        Layout {
+            units,
+            show,
+            k_l,
+            sizes,
+            velocity,
+            acceleration,
+            forces: force,
+            force_figures,
+            omega1: None,
+            external: Vec::new(),
+            panels,
+            bars,
+            window,
+        }
+    }
+
+    /// The layout with the crank's angular velocity `omega1` (rad/s, CCW positive: the ω1
+    /// arrow's sense) and the scene's external forces (drawn on the mechanism at the force
+    /// scale where and when they act).
+    pub fn with_drive(mut self, omega1: f64, external: &[ExternalForce]) -> Layout {
+        self.omega1 = Some(omega1);
+        self.external = external.to_vec();
+        self
     }
 
     /// A drawing on the content layers, on this layout's paper (1/k_l paper mm per unit).
@@ -289,7 +375,8 @@ impl Layout {
     /// What every frame shares: the ground pivots with their hatch symbols (their letters
     /// move with the links, see [`Layout::moving`]), the coupler
     /// curve of M (`curve`: runs of consecutive positions; a gap in the motion breaks it),
-    /// the panel titles with the scales, and each panel's scale bar.
+    /// the panel titles with the scales, each panel's scale bar, and the captions of the
+    /// force figures.
     pub fn base(&self, geom: &Geometry, curve: &[Vec<Point>]) -> Drawing {
         let mut d = self.paper_drawing();
         let mech = layer_of(&d, layers::MECHANISM);
@@ -318,11 +405,27 @@ impl Layout {
         for (at, length, label) in &self.bars {
             scale_bar(&mut d, dims, *at, *length, label, self.sizes);
         }
+        if let Some(ff) = &self.force_figures {
+            let h = forces::NAME_HEIGHT * self.sizes.text;
+            for (caption, at) in &ff.captions {
+                let value = caption.clone();
+                let shape = Shape::Text {
+                    at: *at,
+                    height: h,
+                    value,
+                    halign: HAlign::Left,
+                    valign: VAlign::Baseline,
+                    rotation: 0.0,
+                };
+                d.add(dims, shape);
+            }
+        }
         d
     }
 
-    /// One position on the content layers: the mechanism (with R_A, R_B when forces are
-    /// shown), the crank-angle text, and the polygons asked for.
+    /// One position on the content layers: the mechanism (with R_A, R_B, R_C, R_O and the
+    /// acting loads when forces are shown), the crank-angle text, the polygons asked for, and
+    /// with forces the table of magnitudes.
     pub fn moving(&self, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
         let mut d = self.paper_drawing();
         let s = self.sizes;
@@ -340,25 +443,31 @@ impl Layout {
             },
         );
         let _ = ll;
-        // The reactions R_A, R_B drawn on the mechanism, for its letters to keep off.
-        let (reacts, arrows) = match (force, self.forces) {
+        // The reactions and the loads drawn on the mechanism, for its letters to keep off.
+        let arrows = match (force, self.forces) {
             (Some(f), Some((scale, _))) => {
-                let r = reactions(pos, f);
-                let arrows: Vec<(Point, Point)> = r.iter().map(|(at, nv)| (*at, *at + scale.draw(nv.v))).collect();
-                (r.to_vec(), arrows)
+                let links = links_of(geom, pos);
+                let inside = Point::from((geom.o1.coords + pos.a.coords + pos.b.coords + geom.c.coords) / 4.0);
+                forces::arrows_on_mechanism(&on_mechanism(geom, pos, f, &self.external), scale, &links, inside, s)
             }
-            _ => (Vec::new(), Vec::new()),
+            _ => Vec::new(),
         };
-        let placed = mechanism(&mut d, geom, pos, &arrows, s);
+        let omega1 = self.omega1.or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
+        forces::draw_on_mechanism(&mut d, &arrows, s);
+        let _ = mechanism(&mut d, geom, pos, &arrows, omega1, s);
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.velocity) {
-            polygon::draw(&mut d, &velocity_polygon(k), layers::VELOCITY, scale, pole, s);
+            polygon::draw(&mut d, &velocity_figure(pos, geom.c, k), layers::VELOCITY, scale, pole, s);
         }
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.acceleration) {
             polygon::draw(&mut d, &acceleration_polygon(pos, geom.c, k), layers::ACCELERATION, scale, pole, s);
         }
-        if let (Some(f), Some((scale, pole))) = (force, self.forces) {
-            forces::draw(&mut d, &force_polygon(f), scale, pole, s);
-            forces::reactions_on_mechanism(&mut d, &reacts, scale, s, &placed.0, &placed.1);
+        if let (Some(f), Some((scale, pole)), Some(ff)) = (force, self.forces, &self.force_figures) {
+            // The names keep off the captions, the table and the other figure's names.
+            let mut keep_off = ff.text_boxes(s);
+            let dyad = forces::draw(&mut d, &dyad_polygon(f), scale, pole, s, &keep_off);
+            keep_off.extend(dyad);
+            forces::draw(&mut d, &crank_polygon(f), scale, ff.crank_pole, s, &keep_off);
+            forces::table(&mut d, &magnitudes(f, &ff.moment_unit), ff.table_at, ff.table_width, s);
         }
         d
     }
@@ -379,18 +488,113 @@ pub fn angle_text(deg: f64) -> String {
     if s == "-0" { "0".to_string() } else { s.to_string() }
 }
 
-/// Links (wide polylines), joints (circles), letters O1, C, A, B, M placed by
-/// [`labels::Polygon`] clear of the joints, the links, the ground symbols and the arrows
-/// `arrows` drawn on the mechanism (the reactions). Returns what later letters should keep
-/// off: the letters' and the ground symbols' boxes, and the links.
+/// How the force panel is arranged: the dyad's polygon, the crank's, the table, side by
+/// side under their captions, at one force scale (drawn units from the panel's lower-left).
+#[derive(Debug, Clone, Copy)]
+struct ForcePanel {
+    scale: Scale,
+    /// The physical point drawn at the panel's lower-left (the grid's extent's minimum).
+    e_min: Vector,
+    /// The crank polygon's physical extent's minimum.
+    crank_min: Vector,
+    /// Drawn height of the crank's polygon.
+    crank_h: f64,
+    /// Drawn offsets of the crank's column and of the table's.
+    crank_x: f64,
+    table_x: f64,
+    table_w: f64,
+    /// Drawn height of the figures (the captions go above).
+    fig_h: f64,
+    /// Caption text height.
+    caption_h: f64,
+}
+
+impl ForcePanel {
+    /// The panel for polygons of physical extents `dyad` and `crank` and a table of drawn
+    /// size `table`, at `scale`; returns the physical extent the grid sizes the panel by
+    /// (its minimum drawn at the panel's lower-left puts the dyad's pole in place).
+    fn arrange(
+        scale: Scale,
+        dyad: Option<Extent>,
+        crank: Option<Extent>,
+        table: Vector,
+        sizes: Sizes,
+    ) -> (Extent, ForcePanel) {
+        let zero = Extent { min: Vector::zeros(), max: Vector::zeros() };
+        let (dyad, crank) = (dyad.unwrap_or(zero), crank.unwrap_or(zero));
+        let (d4, d5) = (scale.draw(dyad.max - dyad.min), scale.draw(crank.max - crank.min));
+        let caption_h = forces::NAME_HEIGHT * sizes.text;
+        let width = |caption: &str, w: f64| w.max(crate::draw::parts::text_width(caption, caption_h));
+        let (col4, col5, col_t) =
+            (width(DYAD_CAPTION, d4.x), width(CRANK_CAPTION, d5.x), width(TABLE_CAPTION, table.x));
+        let gap = 2.0 * sizes.text;
+        let fig_h = d4.y.max(d5.y).max(table.y);
+        let total = Vector::new(col4 + gap + col5 + gap + col_t, fig_h + 2.0 * caption_h);
+        // Drawn units per physical unit.
+        let k = scale.draw(Vector::new(1.0, 0.0)).x;
+        // The dyad hangs from the top of its column.
+        let e_min = dyad.min - Vector::new(0.0, (fig_h - d4.y) / k);
+        let e = Extent { min: e_min, max: e_min + total / k };
+        let panel = ForcePanel {
+            scale,
+            e_min,
+            crank_min: crank.min,
+            crank_h: d5.y,
+            crank_x: col4 + gap,
+            table_x: col4 + gap + col5 + gap,
+            table_w: col_t,
+            fig_h,
+            caption_h,
+        };
+        (e, panel)
+    }
+
+    /// The figures around the dyad's pole `pole` as the grid placed it.
+    fn place(&self, pole: Point, moment_unit: &str) -> ForceFigures {
+        let origin = pole + self.scale.draw(self.e_min);
+        let crank_pole =
+            origin + Vector::new(self.crank_x, self.fig_h - self.crank_h) - self.scale.draw(self.crank_min);
+        let y = origin.y + self.fig_h + 0.8 * self.caption_h;
+        ForceFigures {
+            crank_pole,
+            table_at: origin + Vector::new(self.table_x, self.fig_h),
+            table_width: self.table_w,
+            captions: vec![
+                (DYAD_CAPTION.to_string(), Point::new(origin.x, y)),
+                (CRANK_CAPTION.to_string(), Point::new(origin.x + self.crank_x, y)),
+                (TABLE_CAPTION.to_string(), Point::new(origin.x + self.table_x, y)),
+            ],
+            moment_unit: moment_unit.to_string(),
+        }
+    }
+}
+
+/// The links as segments: crank O1A, coupler AB and BM, rocker CB.
+fn links_of(geom: &Geometry, pos: &Position) -> [(Point, Point); 4] {
+    [(geom.o1, pos.a), (pos.a, pos.b), (pos.b, pos.m), (geom.c, pos.b)]
+}
+
+/// Radius of the ω1 arrow about O1, in joint radii.
+const OMEGA_RADIUS: f64 = 3.5;
+/// The ω1 arrow's arc: from 30° to 150° above O1 (clear of the ground symbol below).
+const OMEGA_ARC_DEG: (f64, f64) = (30.0, 150.0);
+
+/// Links (wide polylines), joints (circles), the ω1 arrow at O1 (when `omega1` is known:
+/// its sign gives the sense), the link numbers 1, 2, 3 in circles, and the letters O1, C, A,
+/// B, M, the numbers, ω1 and the names of the forces `arrows` drawn on the mechanism, all
+/// placed by one [`labels::Polygon`]: clear of each other, the joints, the ground symbols,
+/// and preferably off the links and the arrows. Returns the boxes of the placed texts, for
+/// later texts to keep off.
 pub(super) fn mechanism(
     d: &mut Drawing,
     geom: &Geometry,
     pos: &Position,
-    arrows: &[(Point, Point)],
+    arrows: &[forces::ForceArrow],
+    omega1: Option<f64>,
     s: Sizes,
-) -> (Vec<TextBox>, Vec<(Point, Point)>) {
+) -> Vec<labels::TextBox> {
     let mech = layer_of(d, layers::MECHANISM);
+    let frc = layer_of(d, layers::FORCES);
     let straight = (geom.alpha - std::f64::consts::PI).abs() < 1e-9;
     link(d, mech, vec![geom.o1, pos.a], false, None, s);
     link(d, mech, vec![pos.a, pos.b, pos.m], !straight, None, s);
@@ -400,14 +604,29 @@ pub(super) fn mechanism(
     }
     d.add(mech, Shape::Circle { center: pos.m, radius: 0.6 * s.joint });
     let mut letters = labels::Polygon::of_names();
-    let links = [(geom.o1, pos.a), (pos.a, pos.b), (pos.b, pos.m), (geom.c, pos.b)];
-    for (a, b) in links.iter().chain(arrows) {
+    let links = links_of(geom, pos);
+    for (a, b) in links.iter().chain(arrows.iter().map(|a| &a.arrow)) {
         letters.segment(*a, *b);
     }
-    let grounds = [ground_extent(geom.o1, s), ground_extent(geom.c, s)];
-    for g in grounds {
+    for a in arrows.iter().filter(|a| a.arrow.0 != a.at) {
+        letters.segment(a.at, a.arrow.0);
+    }
+    for g in [ground_extent(geom.o1, s), ground_extent(geom.c, s)] {
         letters.keep_off(g);
     }
+    // The ω1 arrow: an arc above O1, its head in the sense of rotation.
+    let omega_mid = omega1.filter(|w| *w != 0.0 && w.is_finite()).map(|w| {
+        let (a0, a1) = (OMEGA_ARC_DEG.0.to_radians(), OMEGA_ARC_DEG.1.to_radians());
+        let (from, sweep) = if w > 0.0 { (a0, a1 - a0) } else { (a1, a0 - a1) };
+        let r = OMEGA_RADIUS * s.joint;
+        let mid = turn_arrow(d, mech, geom.o1, r, from, sweep, s);
+        // The arc for the letters, as chords.
+        let at = |t: f64| geom.o1 + Vector::new((from + t * sweep).cos(), (from + t * sweep).sin()) * r;
+        for i in 0..6 {
+            letters.segment(at(i as f64 / 6.0), at((i + 1) as f64 / 6.0));
+        }
+        mid
+    });
     // Preferred sides, outside the linkage: A away from O1, the pivots opposite to their
     // links (but not down into the ground symbol), B away from the mid-point of A and C,
     // M along B→M turned a little.
@@ -424,9 +643,31 @@ pub(super) fn mechanism(
     let um = unit_or(pos.m - pos.b, Vector::new(1.0, 0.0));
     let um = unit_or(um + perp(um) * 0.6, um);
     letters.letter_clear(pos.m, "M", s.text, um, s.joint);
-    let mut boxes = letters.draw(d, mech);
-    boxes.extend(grounds);
-    (boxes, links.to_vec())
+    // Link numbers beside the middles of the crank, of AB and of the rocker, outwards.
+    let inside = Point::from((geom.o1.coords + pos.a.coords + pos.b.coords + geom.c.coords) / 4.0);
+    for (number, (p, q)) in [("1", links[0]), ("2", links[1]), ("3", links[3])] {
+        let mid = p + (q - p) * 0.5;
+        let mut n = perp(unit_or(q - p, Vector::new(1.0, 0.0)));
+        if n.dot(&(mid - inside)) < 0.0 {
+            n = -n;
+        }
+        letters.circled(mid, number, s.text, n, 0.5 * s.link);
+    }
+    if let Some(mid) = omega_mid {
+        letters.letter(mid, "ω1", s.text, mid - geom.o1, None);
+    }
+    for a in arrows {
+        let v = a.arrow.1 - a.arrow.0;
+        letters.letter(a.arrow.1, &a.force.name, s.text, v, None);
+    }
+    // Letters and numbers on the mechanism's layer, force names on the forces' layer.
+    let placed = letters.place();
+    let on_mechanism = placed.len() - arrows.len();
+    for (i, p) in placed.iter().enumerate() {
+        let layer = if i < on_mechanism { mech } else { frc };
+        labels::draw_placed(d, layer, p, Some(crate::draw::LineType::Continuous));
+    }
+    placed.iter().map(labels::Placed::bounds).collect()
 }
 
 /// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm (the
@@ -444,27 +685,76 @@ fn velocity_polygon(k: &Kinematics) -> PointPolygon {
         ],
         directions: vec![],
         sides: vec![vector(POLE, a), vector(POLE, b), vector(POLE, m), vector(a, b), vector(b, m)],
+        marks: vec![],
     }
+}
+
+/// Whether the coupler A–B–M is a ternary plate (M off the line AB), so that its images
+/// abm and a′b′m′ are triangles.
+fn ternary(pos: &Position) -> bool {
+    let (ab, bm) = (pos.b - pos.a, pos.m - pos.b);
+    cross(ab, bm).abs() > 1e-9 * ab.norm() * bm.norm()
+}
+
+/// The velocity polygon as the graph-analytical construction draws it: the polygon of
+/// [`velocity_polygon`] with the directions that locate b dashed (⊥AB through a, for v_BA;
+/// ⊥BC through p, for v_B), and the image abm of a ternary coupler closed (am).
+fn velocity_figure(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
+    let (a, b, m) = (1, 2, 3);
+    let mut poly = velocity_polygon(k);
+    poly.directions = vec![
+        Direction { through: a, dir: perp(pos.b - pos.a), reaches: b },
+        Direction { through: POLE, dir: perp(pos.b - c_pivot), reaches: b },
+    ];
+    if ternary(pos) {
+        poly.sides.push(Side { from: a, to: m, kind: SideKind::Image });
+    }
+    poly
 }
 
 /// The acceleration polygon as the graph-analytical construction draws it:
 /// π → a′ (a_A); from a′ the normal component a_BA^n (parallel to BA) to n_BA, then the
 /// tangential direction (perpendicular to AB, dashed) to b′; from π the normal component
 /// of a_B about C (parallel to BC) to n_BC, then the tangential direction (perpendicular to
-/// BC, dashed) to b′; π → b′, π → m′, and the image a′b′m′ of the coupler.
+/// BC, dashed) to b′; π → b′, π → m′, the image a′b′m′ of the coupler (closed when it is a
+/// ternary plate); and the images of the centroids (seed Fig. 1, from which the inertia
+/// forces come): c1′ (middle of πa′), c21′ (of a′b′), c22′ (of b′m′), c3′ (of πb′), marked,
+/// with π → c21′ and π → c22′.
 fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
     let (a1, b1, m1, n_ba, n_bc) = (1, 2, 3, 4, 5);
+    let (c1, c21, c22, c3) = (6, 7, 8, 9);
     let side = |from, to, kind| Side { from, to, kind };
+    let mut sides = vec![
+        side(a1, n_ba, SideKind::Vector),
+        side(POLE, n_bc, SideKind::Vector),
+        side(n_ba, b1, SideKind::Component),
+        side(n_bc, b1, SideKind::Component),
+        side(POLE, a1, SideKind::Vector),
+        side(POLE, b1, SideKind::Vector),
+        side(POLE, m1, SideKind::Vector),
+        side(a1, b1, SideKind::Image),
+        side(b1, m1, SideKind::Image),
+    ];
+    if ternary(pos) {
+        sides.push(side(a1, m1, SideKind::Image));
+    }
+    sides.push(side(POLE, c21, SideKind::Vector));
+    sides.push(side(POLE, c22, SideKind::Vector));
+    let point = |name: &str, from, v| NamedPoint { name: name.into(), from, v };
     PointPolygon {
         pole: "π".into(),
         pole_away: vec![a1, b1],
-        // The points first, then the ends of the normal components.
+        // The points first, then the ends of the normal components, then the centroids.
         points: vec![
-            NamedPoint { name: "a'".into(), from: POLE, v: k.a_a },
-            NamedPoint { name: "b'".into(), from: POLE, v: k.a_b },
-            NamedPoint { name: "m'".into(), from: POLE, v: k.a_m },
-            NamedPoint { name: "nBA".into(), from: a1, v: k.a_ba_n },
-            NamedPoint { name: "nBC".into(), from: POLE, v: k.a_bc_n },
+            point("a'", POLE, k.a_a),
+            point("b'", POLE, k.a_b),
+            point("m'", POLE, k.a_m),
+            point("nBA", a1, k.a_ba_n),
+            point("nBC", POLE, k.a_bc_n),
+            point("c1'", POLE, k.a_g1),
+            point("c21'", POLE, k.a_g21),
+            point("c22'", POLE, k.a_g22),
+            point("c3'", POLE, k.a_g3),
         ],
         // Tangential directions: ⊥AB through n_BA, ⊥BC through n_BC.
         directions: vec![
@@ -473,29 +763,19 @@ fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> Point
         ],
         // Components: normal parts solid, tangential parts as dashed arrows; then the
         // accelerations of the points and the image of the coupler: a′b′ (a_BA) and b′m′.
-        sides: vec![
-            side(a1, n_ba, SideKind::Vector),
-            side(POLE, n_bc, SideKind::Vector),
-            side(n_ba, b1, SideKind::Component),
-            side(n_bc, b1, SideKind::Component),
-            side(POLE, a1, SideKind::Vector),
-            side(POLE, b1, SideKind::Vector),
-            side(POLE, m1, SideKind::Vector),
-            side(a1, b1, SideKind::Image),
-            side(b1, m1, SideKind::Image),
-        ],
+        sides,
+        marks: vec![c1, c21, c22, c3],
     }
 }
 
-/// The force polygons of seed 003 (Figs. 4 and 5). The dyad's chain from the pole f, in
-/// the seed's order (eq. 5): R_A^n, G21, F_i21, G22, F_i22, F, G3, F_i3, R_C^n, then R_C^t
-/// (along BC) and R_A^t (along AB), which close it at the intersection point `int`
-/// (vertex 10). In it, R_A runs from `int` to the end of R_A^n, R_C from the end of F_i3 to
-/// `int`, and R_B (seed eq. 7) from the end of F to `int`; R_B and R_C are often nearly the
-/// same segment (a light rocker), so their names start from different places along it. The
-/// crank's polygon (Fig. 5) starts at `int` (−R_A): F_i1, G1, and R_O back to the end of
-/// R_A^n.
-fn force_polygon(f: &Forces) -> ForcePolygon {
+/// The dyad's force polygon (seed Fig. 4), chain from the pole f in the seed's order
+/// (eq. 5): R_A^n, G21, F_i21, G22, F_i22, F, G3, F_i3, R_C^n, then R_C^t (along BC) and
+/// R_A^t (along AB), which close it at the intersection point `int` (vertex 10). In it, R_A
+/// runs from `int` to the end of R_A^n, R_C from the end of F_i3 to `int`, and R_B (seed
+/// eq. 7) from the end of F to `int`; R_B and R_C are often nearly the same segment (a
+/// light rocker): the resultants are drawn beside a side they would lie on
+/// ([`forces::draw`]) and their names start from different places along them.
+fn dyad_polygon(f: &Forces) -> ForcePolygon {
     let nv = NamedVector::new;
     let (p_ran, p_f, p_fi3, int) = (1, 6, 8, 10);
     let resultant = |name: &str, from, to, name_at| Resultant { name: name.into(), from, to, name_at };
@@ -519,18 +799,64 @@ fn force_polygon(f: &Forces) -> ForcePolygon {
             resultant("RB", p_f, int, 0.7),
             resultant("RC", p_fi3, int, 0.3),
         ],
-        branches: vec![Branch {
-            from: int,
-            vectors: vec![nv("Fi1", f.fi1), nv("G1", f.g1)],
-            closing: "RO".into(),
-            closes_at: p_ran,
-        }],
     }
 }
 
-/// R_A at A and R_B at B on the mechanism (seed, last section).
-fn reactions(pos: &Position, f: &Forces) -> [(Point, NamedVector); 2] {
-    [(pos.a, NamedVector::new("RA", f.r_a)), (pos.b, NamedVector::new("RB", f.r_b))]
+/// The crank's force polygon (seed Fig. 5), with its own pole f1 (the seed's pRAn): the
+/// load of the coupler on the crank −R_A, then F_i1 and G1; R_O closes it back to the pole
+/// (seed eq. 8: −R_A + F_i1 + G1 + R_O = 0).
+fn crank_polygon(f: &Forces) -> ForcePolygon {
+    let nv = NamedVector::new;
+    ForcePolygon {
+        pole: "f1".into(),
+        chain: vec![nv("−RA", -f.r_a), nv("Fi1", f.fi1), nv("G1", f.g1)],
+        resultants: vec![Resultant { name: "RO".into(), from: 3, to: 0, name_at: 0.5 }],
+    }
+}
+
+/// The number of rows of [`magnitudes`].
+const MAGNITUDE_ROWS: usize = 9;
+
+/// The table of magnitudes: |R_A^n|, |R_A^t|, |R_C^n|, |R_C^t|, |R_A|, |R_B|, |R_C|, |R_O|
+/// in N, and Me1 (signed, CCW positive) in `moment_unit`.
+fn magnitudes(f: &Forces, moment_unit: &str) -> Vec<forces::Magnitude> {
+    let row = |name: &str, value: f64, unit: &str| forces::Magnitude { name: name.into(), value, unit: unit.into() };
+    let mut rows: Vec<forces::Magnitude> = [
+        ("RAn", f.r_a_n),
+        ("RAt", f.r_a_t),
+        ("RCn", f.r_c_n),
+        ("RCt", f.r_c_t),
+        ("RA", f.r_a),
+        ("RB", f.r_b),
+        ("RC", f.r_c),
+        ("RO", f.r_o),
+    ]
+    .iter()
+    .map(|(n, v)| row(n, v.norm(), "N"))
+    .collect();
+    rows.push(row("Me1", f.me1, moment_unit));
+    rows
+}
+
+/// The forces drawn on the mechanism (seed, last section; design.md §4's conventions): R_A
+/// at A (of the crank on the coupler), R_B at B (of the rocker on the coupler), R_C at C (of
+/// the ground on the rocker), R_O at O1 (of the ground on the crank), and each external
+/// force where it acts when it acts (`F`; `F1`, `F2` … when there are several).
+fn on_mechanism(geom: &Geometry, pos: &Position, f: &Forces, external: &[ExternalForce]) -> Vec<(Point, NamedVector)> {
+    let mut out = vec![
+        (pos.a, NamedVector::new("RA", f.r_a)),
+        (pos.b, NamedVector::new("RB", f.r_b)),
+        (geom.c, NamedVector::new("RC", f.r_c)),
+        (geom.o1, NamedVector::new("RO", f.r_o)),
+    ];
+    let phi1_deg = pos.phi1.to_degrees();
+    for (i, e) in external.iter().enumerate() {
+        if e.range.is_none_or(|r| r.contains_deg(phi1_deg)) {
+            let name = if external.len() == 1 { "F".to_string() } else { format!("F{}", i + 1) };
+            out.push((e.at.at(pos), NamedVector { name, v: e.value }));
+        }
+    }
+    out
 }
 
 #[cfg(test)]
@@ -710,7 +1036,8 @@ pub(crate) mod tests {
         d.entities
             .iter()
             .filter_map(|e| match &e.shape {
-                Shape::Text { at, height, value, .. } => {
+                // Letters and names are centred on their place (the table's texts are not).
+                Shape::Text { at, height, value, halign: HAlign::Center, .. } => {
                     let poly = if e.layer == vel {
                         0
                     } else if e.layer == acc {
@@ -768,7 +1095,7 @@ pub(crate) mod tests {
 
     #[test]
     fn polygon_letters_stay_near_their_points_over_the_template_motion() {
-        use super::super::labels::{COINCIDENT, SAME_POINT, max_distance};
+        use super::super::labels::{COINCIDENT, SAME_POINT, max_distance, max_leader_distance};
         let (g, motion, lay) = template_motion();
         let (sv, pv) = lay.velocity.unwrap();
         let (sa, pa) = lay.acceleration.unwrap();
@@ -788,7 +1115,11 @@ pub(crate) mod tests {
                 })
                 .collect();
             for (poly, at, text, h) in polygon_letters(&lay, &d) {
-                let reach = max_distance(&text, h) + COINCIDENT * h + 1e-9 * h;
+                // Force names and the centroids' letters may go further out, with a leader.
+                let leader = poly == 2 || text.starts_with('c');
+                let reach = if leader { max_leader_distance(&text, h) } else { max_distance(&text, h) }
+                    + COINCIDENT * h
+                    + 1e-9 * h;
                 for name in text.split(SAME_POINT) {
                     let dist = match (poly, name) {
                         (0, "p") => (at - pv).norm(),
@@ -801,6 +1132,10 @@ pub(crate) mod tests {
                         (1, "m'") => (at - (pa + sa.draw(k.a_m))).norm(),
                         (1, "nBA") => (at - (pa + sa.draw(k.a_a + k.a_ba_n))).norm(),
                         (1, "nBC") => (at - (pa + sa.draw(k.a_bc_n))).norm(),
+                        (1, "c1'") => (at - (pa + sa.draw(k.a_g1))).norm(),
+                        (1, "c21'") => (at - (pa + sa.draw(k.a_g21))).norm(),
+                        (1, "c22'") => (at - (pa + sa.draw(k.a_g22))).norm(),
+                        (1, "c3'") => (at - (pa + sa.draw(k.a_g3))).norm(),
                         (2, _) => sides
                             .iter()
                             .map(|&(a, b)| {
@@ -897,26 +1232,18 @@ pub(crate) mod tests {
         for deg in [0.0f64, 90.0, 180.0, 271.0] {
             let pos = closed_form(&g, deg.to_radians(), 20.0);
             let f = seed_route(&pos, &g);
-            let poly = force_polygon(&f);
+            let poly = dyad_polygon(&f);
             let v = poly.vertices();
             let scale = f.r_a.norm().max(1.0);
             assert!(v[11].norm() < 1e-12 * scale, "chain does not close at {deg}°");
             // R_A drawn from int to the end of R_A^n; R_B from the end of F to int; R_C from
             // the end of F_i3 to int.
-            for r in &poly.resultants {
-                let reaction = match r.name.as_str() {
-                    "RA" => f.r_a,
-                    "RB" => f.r_b,
-                    "RC" => f.r_c,
-                    other => panic!("unexpected resultant {other}"),
-                };
-                assert!(((v[r.to] - v[r.from]) - reaction).norm() < 1e-12 * scale, "{} at {deg}°", r.name);
+            for (name, reaction) in [("RA", f.r_a), ("RB", f.r_b), ("RC", f.r_c)] {
+                assert!((poly.resultant(name).unwrap() - reaction).norm() < 1e-12 * scale, "{name} at {deg}°");
             }
             // The crank's polygon closes with R_O.
-            let b = &poly.branches[0];
-            let end = b.vectors.iter().fold(v[b.from], |p, nv| p + nv.v);
-            assert_eq!(b.closing, "RO");
-            assert!(((v[b.closes_at] - end) - f.r_o).norm() < 1e-12 * scale, "R_O at {deg}°");
+            let crank = crank_polygon(&f);
+            assert!((crank.resultant("RO").unwrap() - f.r_o).norm() < 1e-12 * scale, "R_O at {deg}°");
         }
     }
 }

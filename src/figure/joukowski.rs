@@ -17,7 +17,8 @@ use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
 use super::fourbar::angle_text;
 use super::labels::{self};
 use super::vocab::{
-    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, nice_scale, pole, scale_text, unit_or, vector,
+    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, scale_text, unit_or,
+    vector,
 };
 
 /// One panel of the sheet: a lever and what to print under it.
@@ -62,6 +63,9 @@ pub fn sig4(v: f64) -> String {
 /// and moments.
 const ARROW: f64 = 0.12;
 
+/// Width of a lever panel on paper, millimetres (k_l is the nice value that draws it so).
+const LEVER_PANEL_MM: f64 = 110.0;
+
 /// Height of a panel's lever area, in panel widths.
 const LEVER_HEIGHT: f64 = 0.85;
 
@@ -74,19 +78,22 @@ fn line(d: &mut Drawing, layer: usize, at: Point, height: f64, value: String, ha
 /// The sheet: panels side by side, each `size` model units square for the lever, with
 /// the table of loads and the balance under it.
 pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> Drawing {
-    let s = Sizes::for_length(size);
+    // On paper: each lever panel about LEVER_PANEL_MM wide at a nice k_l.
+    let k_l = length_scale(size, LEVER_PANEL_MM);
+    let s = Sizes::on_paper(k_l);
     let mut d = content_drawing(DimStyle { text_height: s.text, arrow_size: s.head });
+    d.paper_mm_per_unit = Some(1.0 / k_l);
     let frame = d.layer("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
     let (vel, frc, text) = (layer_of(&d, layers::VELOCITY), layer_of(&d, layers::FORCES), layer_of(&d, layers::TEXT));
-    let size_mm = size * units.model.mm_per_unit;
+    let size_mm = size / k_l;
     let max_image = panels.iter().flat_map(|p| p.lever.points.iter().map(|(_, v)| v.norm())).fold(0.0, f64::max);
-    let k_v = Scale::new(nice_scale(max_image / (0.55 * size_mm)), units.model);
+    let k_v = Scale::on_paper(nice_scale(max_image / (0.55 * size_mm)), 1.0 / k_l);
     let speed = format!("{}/s", units.model.length);
     let small = 0.8 * s.text;
-    let row = 1.45 * small;
+    let row = 1.6 * small;
     // One table row per load (and F_b), under a header.
     let rows = panels.iter().map(|p| p.lever.forces.len() + 1).max().unwrap_or(0) + 1;
-    let summary_lines = 4.0;
+    let summary_lines = 5.0;
     let notes_room = (rows as f64 + summary_lines + 1.0) * row;
     let title_room = 2.2 * s.text;
     let gap = 2.0 * s.text;
@@ -188,7 +195,8 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         }
         let me1 = lever.me1.map_or("—".to_string(), sig4);
         let lines = [
-            format!("polygon turned 90° clockwise; k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
+            "velocity polygon turned 90° clockwise".to_string(),
+            format!("k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
             format!("Σ M_p(F_i) = Σ F_i·v_i = {} N·{speed} (without F_b)", sig4(lever.moment)),
             format!("Me1 = −Σ M_p(F_i) / ω1 = {me1} {}", units.moment),
             format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),

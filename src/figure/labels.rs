@@ -19,6 +19,15 @@
 //! still), as textbooks of mechanisms write coincident points of a polygon, instead of
 //! letters stacked on each other.
 //!
+//! A name that cannot sit beside its point (a force too short for its name in a crowded
+//! force polygon) is placed with a leader ([`Polygon::name_with_leader`]): it may go
+//! further out ([`LEADER_RINGS`]), and a thin line runs from the point to its box. Its
+//! candidates are ranked by the letters their box overlaps, then the letters their leader
+//! crosses, then the segments their box crosses; letters placed after it keep off its
+//! leader as off the polygon's segments.
+//! A link number ([`Polygon::circled`]) is a letter in a circle, placed the same way with
+//! the circle as its box.
+//!
 //! Everything here is deterministic: the same polygon gives the same letters in the same
 //! places.
 
@@ -36,6 +45,17 @@ pub const RINGS: [f64; 5] = [1.0, 1.5, 2.0, 2.5, 3.0];
 /// drawing relative). Points that are merely close get letters of their own, placed apart;
 /// `≡` on a drawing claims that two points coincide.
 pub const COINCIDENT: f64 = 1e-9;
+/// Distances tried for a name with a leader ([`Polygon::name_with_leader`]), as multiples
+/// of the nearest distance: further out than [`RINGS`], since the leader ties the name to
+/// its point.
+pub const LEADER_RINGS: [f64; 9] = [1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 5.0, 6.0];
+/// A leader shorter than this many text heights is not drawn: the name sits beside its
+/// point anyway.
+pub const LEADER_MIN: f64 = 0.5;
+/// Colour of leader lines: grey, so that a leader does not read as a vector.
+pub const LEADER_COLOR: Aci = Aci::DARK_GREY;
+/// Radius of a link number's circle ([`Polygon::circled`]), in text heights.
+pub const CIRCLE_RADIUS: f64 = 0.75;
 /// The separator between the letters of coincident points.
 pub const SAME_POINT: &str = "≡";
 /// Directions tried, in multiples of [`TURN`] from the preferred direction, in order.
@@ -99,6 +119,12 @@ impl TextBox {
     }
 }
 
+/// A candidate's score, lower is better: letters its box overlaps, letters its leader
+/// crosses, segments its box crosses.
+type Score = (usize, usize, usize);
+/// A segment: its two ends.
+type Segment = (Point, Point);
+
 /// One letter waiting to be placed.
 #[derive(Debug, Clone)]
 struct Letter {
@@ -109,6 +135,50 @@ struct Letter {
     color: Option<Aci>,
     /// Extra clear distance from the point (a joint circle's radius).
     clear: f64,
+    /// Whether it may go further out, tied to its point by a leader line.
+    leader: bool,
+    /// Whether it is drawn in a circle (a link number).
+    circled: bool,
+}
+
+impl Letter {
+    /// Half the width and half the height of its box.
+    fn half(&self) -> Vector {
+        if self.circled {
+            Vector::new(CIRCLE_RADIUS * self.height, CIRCLE_RADIUS * self.height)
+        } else {
+            TextBox::half_size(&self.text, self.height)
+        }
+    }
+}
+
+/// A placed label: where its text's centre goes, and what is drawn with it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Placed {
+    /// Centre of the text (and of its circle).
+    pub centre: Point,
+    /// The text.
+    pub text: String,
+    /// Its height.
+    pub height: f64,
+    /// Entity colour, or the layer's.
+    pub color: Option<Aci>,
+    /// A leader line from the point to the box's edge, when drawn.
+    pub leader: Option<(Point, Point)>,
+    /// Whether a circle of [`CIRCLE_RADIUS`] heights surrounds the text.
+    pub circled: bool,
+}
+
+impl Placed {
+    /// The box it covers: the text's estimated box, or the circle's square.
+    pub fn bounds(&self) -> TextBox {
+        if self.circled {
+            let r = CIRCLE_RADIUS * self.height;
+            TextBox::around(self.centre, Vector::new(r, r))
+        } else {
+            TextBox::centred(self.centre, &self.text, self.height)
+        }
+    }
 }
 
 /// The letters of one polygon and the segments they should keep off; [`Polygon::draw`]
@@ -135,14 +205,37 @@ impl Polygon {
     /// A letter `text` (`height` high, entity colour `color` or the layer's) for the point
     /// `at`, preferably on the side `dir` (any length; zero means above).
     pub fn letter(&mut self, at: Point, text: &str, height: f64, dir: Vector, color: Option<Aci>) {
-        self.push(Letter { at, text: text.to_string(), dir, height, color, clear: 0.0 });
+        self.push(Letter { at, text: text.to_string(), dir, height, color, clear: 0.0, leader: false, circled: false });
+    }
+
+    /// A name for the point `at` (a short force's middle) that may go up to
+    /// [`LEADER_RINGS`] out, preferably on the side `dir`, with a leader line from `at` to
+    /// its box when it does not sit beside the point.
+    pub fn name_with_leader(&mut self, at: Point, text: &str, height: f64, dir: Vector, color: Option<Aci>) {
+        self.push(Letter { at, text: text.to_string(), dir, height, color, clear: 0.0, leader: true, circled: false });
+    }
+
+    /// A link number `text` in a circle of [`CIRCLE_RADIUS`] heights, for the point `at`
+    /// (a link's middle), keeping `clear` more than [`LABEL_GAP`] from it (half the link's
+    /// width), preferably on the side `dir`.
+    pub fn circled(&mut self, at: Point, text: &str, height: f64, dir: Vector, clear: f64) {
+        self.push(Letter { at, text: text.to_string(), dir, height, color: None, clear, leader: false, circled: true });
     }
 
     /// A letter `text` for the point `at` that keeps `clear` (model units, such as a joint
     /// circle's radius) more than [`LABEL_GAP`] between the point and its box, preferably
     /// on the side `dir`.
     pub fn letter_clear(&mut self, at: Point, text: &str, height: f64, dir: Vector, clear: f64) {
-        self.push(Letter { at, text: text.to_string(), dir, height, color: None, clear });
+        self.push(Letter {
+            at,
+            text: text.to_string(),
+            dir,
+            height,
+            color: None,
+            clear,
+            leader: false,
+            circled: false,
+        });
     }
 
     fn push(&mut self, l: Letter) {
@@ -163,29 +256,43 @@ impl Polygon {
         }
     }
 
-    /// The labels: (centre, text, height, colour), after combining coincident points.
-    pub fn place(&self) -> Vec<(Point, String, f64, Option<Aci>)> {
+    /// The labels, in the order added, after combining coincident points.
+    pub fn place(&self) -> Vec<Placed> {
         let letters = if self.merge { combine(&self.letters) } else { self.letters.clone() };
         let mut boxes: Vec<TextBox> = Vec::with_capacity(letters.len());
+        // Leaders drawn so far: later letters keep off them as off the polygon's segments.
+        let mut leaders: Vec<(Point, Point)> = Vec::new();
         let mut out = Vec::with_capacity(letters.len());
         for l in &letters {
-            let mut best: Option<((usize, usize), Point, TextBox)> = None;
-            let half = TextBox::half_size(&l.text, l.height);
-            for c in candidates_clear(l.at, &l.text, l.height, l.dir, l.clear) {
+            let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
+            let half = l.half();
+            let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
                 let bx = TextBox::around(c, half);
+                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
                 let hits = boxes.iter().chain(&self.obstacles).filter(|b| b.overlaps(&bx)).count();
-                let crossed = self.segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
-                let score = (hits, crossed);
-                if best.as_ref().is_none_or(|(s, _, _)| score < *s) {
-                    best = Some((score, c, bx));
+                let through =
+                    leader.map_or(0, |(a, b)| boxes.iter().chain(&self.obstacles).filter(|x| x.crosses(a, b)).count());
+                let crossed = self.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
+                let score = (hits, through, crossed);
+                if best.as_ref().is_none_or(|(s, ..)| score < *s) {
+                    best = Some((score, c, bx, leader));
                 }
-                if score == (0, 0) {
+                if score == (0, 0, 0) {
                     break;
                 }
             }
-            if let Some((_, c, bx)) = best {
+            if let Some((_, c, bx, leader)) = best {
                 boxes.push(bx);
-                out.push((c, l.text.clone(), l.height, l.color));
+                leaders.extend(leader);
+                out.push(Placed {
+                    centre: c,
+                    text: l.text.clone(),
+                    height: l.height,
+                    color: l.color,
+                    leader,
+                    circled: l.circled,
+                });
             }
         }
         out
@@ -198,14 +305,47 @@ impl Polygon {
     pub fn draw(&self, d: &mut Drawing, layer: usize) -> Vec<TextBox> {
         let linetype = if self.merge { None } else { Some(LineType::Continuous) };
         let placed = self.place();
-        let boxes = placed.iter().map(|(at, value, height, _)| TextBox::centred(*at, value, *height)).collect();
-        for (at, value, height, color) in placed {
-            let shape =
-                Shape::Text { at, height, value, halign: HAlign::Center, valign: VAlign::Middle, rotation: 0.0 };
-            d.push(Entity { layer, color, linetype, shape });
+        for p in &placed {
+            draw_placed(d, layer, p, linetype);
         }
-        boxes
+        placed.iter().map(Placed::bounds).collect()
     }
+}
+
+/// Adds a placed label to `d` on `layer`: its text centred at its place, its leader line
+/// and its circle (in the label's colour, with `linetype` on each entity).
+pub fn draw_placed(d: &mut Drawing, layer: usize, p: &Placed, linetype: Option<LineType>) {
+    let color = p.color;
+    if let Some((from, to)) = p.leader {
+        let color = Some(LEADER_COLOR);
+        d.push(Entity { layer, color, linetype: Some(LineType::Continuous), shape: Shape::Line { from, to } });
+    }
+    if p.circled {
+        let shape = Shape::Circle { center: p.centre, radius: CIRCLE_RADIUS * p.height };
+        d.push(Entity { layer, color, linetype, shape });
+    }
+    let shape = Shape::Text {
+        at: p.centre,
+        height: p.height,
+        value: p.text.clone(),
+        halign: HAlign::Center,
+        valign: VAlign::Middle,
+        rotation: 0.0,
+    };
+    d.push(Entity { layer, color, linetype, shape });
+}
+
+/// The leader from `at` to the edge of the box of half-sizes `half` centred at `centre`
+/// (along the line between them), or `None` when shorter than [`LEADER_MIN`] heights.
+fn leader_line(at: Point, centre: Point, half: Vector, height: f64) -> Option<(Point, Point)> {
+    let v = at - centre;
+    // From the centre to the box's edge towards `at`.
+    let t = (half.x / v.x.abs().max(1e-300)).min(half.y / v.y.abs().max(1e-300));
+    if t >= 1.0 {
+        return None;
+    }
+    let edge = centre + v * t;
+    ((at - edge).norm() >= LEADER_MIN * height).then_some((at, edge))
 }
 
 /// Letters whose points lie within [`COINCIDENT`] heights of an earlier letter's point join
@@ -242,17 +382,25 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
-    candidates_clear(at, text, height, dir, 0.0)
+    candidates_in(at, TextBox::half_size(text, height), height, dir, 0.0, &RINGS)
 }
 
-/// [`candidates`] for a letter whose box keeps `clear` more from its point.
-fn candidates_clear(at: Point, text: &str, height: f64, dir: Vector, clear: f64) -> impl Iterator<Item = Point> {
+/// Candidate centres for a box of half-sizes `half` whose edge keeps `clear` more than
+/// [`LABEL_GAP`] from `at`, at the distances `rings`.
+fn candidates_in(
+    at: Point,
+    half: Vector,
+    height: f64,
+    dir: Vector,
+    clear: f64,
+    rings: &[f64],
+) -> impl Iterator<Item = Point> + '_ {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
     let base = u0.y.atan2(u0.x);
-    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
+    let (hw, hh) = (half.x, half.y);
     // Lazy: most letters take their first candidate, so the directions are not computed
     // ahead (a run places some ten thousand letters).
-    RINGS.into_iter().flat_map(move |ring| {
+    rings.iter().flat_map(move |&ring| {
         TURNS.into_iter().map(move |turn| {
             let a = base + turn * TURN;
             let u = Vector::new(a.cos(), a.sin());
@@ -268,6 +416,12 @@ fn candidates_clear(at: Point, text: &str, height: f64, dir: Vector, clear: f64)
 pub fn max_distance(text: &str, height: f64) -> f64 {
     let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
     RINGS[RINGS.len() - 1] * (LABEL_GAP * height + hw.hypot(hh))
+}
+
+/// The farthest a name with a leader ([`Polygon::name_with_leader`]) can be from its point.
+pub fn max_leader_distance(text: &str, height: f64) -> f64 {
+    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
+    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + hw.hypot(hh))
 }
 
 #[cfg(test)]
@@ -299,7 +453,7 @@ mod tests {
         p.segment(Point::new(0.0, 0.0), Point::new(0.8, 0.0));
         let placed = p.place();
         assert_eq!(placed.len(), 3);
-        let boxes: Vec<TextBox> = placed.iter().map(|(c, t, h, _)| TextBox::centred(*c, t, *h)).collect();
+        let boxes: Vec<TextBox> = placed.iter().map(Placed::bounds).collect();
         for i in 0..3 {
             for j in 0..i {
                 assert!(!boxes[i].overlaps(&boxes[j]), "{i} {j}: {placed:?}");
@@ -307,7 +461,7 @@ mod tests {
             assert!(!boxes[i].crosses(Point::new(0.0, 0.0), Point::new(0.8, 0.0)));
         }
         // The first keeps its preferred place: straight above, LABEL_GAP clear.
-        assert!((placed[0].0 - Point::new(0.0, (LABEL_GAP + 0.5) * h)).norm() < 1e-12);
+        assert!((placed[0].centre - Point::new(0.0, (LABEL_GAP + 0.5) * h)).norm() < 1e-12);
     }
 
     #[test]
@@ -320,7 +474,7 @@ mod tests {
         p.letter(Point::new(3.0, 0.0), "a", 1.0, Vector::new(1.0, 0.0), None);
         p.letter(Point::new(3.1, 0.0), "c", 1.0, Vector::new(1.0, 0.0), None);
         let placed = p.place();
-        let texts: Vec<&str> = placed.iter().map(|l| l.1.as_str()).collect();
+        let texts: Vec<&str> = placed.iter().map(|l| l.text.as_str()).collect();
         assert_eq!(texts, ["p≡b", "a", "c"]);
         // Names beside sides are never combined.
         let mut q = Polygon::of_names();
@@ -347,14 +501,14 @@ mod tests {
         let mut p = Polygon::of_names();
         p.letter_clear(Point::new(0.0, 0.0), "A", 1.0, Vector::new(0.0, 1.0), 0.5);
         let placed = p.place();
-        assert!((placed[0].0 - Point::new(0.0, LABEL_GAP + 0.5 + 0.5)).norm() < 1e-12);
+        assert!((placed[0].centre - Point::new(0.0, LABEL_GAP + 0.5 + 0.5)).norm() < 1e-12);
         // A symbol above the joint: the letter goes elsewhere, clear of it.
         let symbol = TextBox { min: Point::new(-2.0, 0.2), max: Point::new(2.0, 3.0) };
         let mut q = Polygon::of_names();
         q.keep_off(symbol);
         q.letter_clear(Point::new(0.0, 0.0), "A", 1.0, Vector::new(0.0, 1.0), 0.5);
-        let (c, t, h, _) = &q.place()[0];
-        assert!(!TextBox::centred(*c, t, *h).overlaps(&symbol), "{c:?}");
+        let Placed { centre: c, .. } = &q.place()[0];
+        assert!(!q.place()[0].bounds().overlaps(&symbol), "{c:?}");
         assert!(c.coords.norm() >= LABEL_GAP + 0.5 + 0.5 - 1e-12);
     }
 }

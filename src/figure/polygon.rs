@@ -14,6 +14,9 @@ use crate::geom::{Point, Vector};
 use super::labels;
 use super::vocab::{self, Scale, Sizes, layer_of, layers, unit_or, vector};
 
+/// Radius of a marked point's dot ([`PointPolygon::marks`]), in joint radii.
+pub const MARK_RADIUS: f64 = 0.35;
+
 /// The number of the pole among a polygon's points.
 pub const POLE: usize = 0;
 
@@ -79,6 +82,9 @@ pub struct PointPolygon {
     pub directions: Vec<Direction>,
     /// Sides, drawn in order.
     pub sides: Vec<Side>,
+    /// Points marked with a dot (images of centroids, which no side ends at); their letters
+    /// may go further out with a leader ([`labels::Polygon::name_with_leader`]).
+    pub marks: Vec<usize>,
 }
 
 impl PointPolygon {
@@ -133,13 +139,20 @@ pub fn draw(d: &mut Drawing, poly: &PointPolygon, layer: layers::Layer, scale: S
         }
         letters.segment(from, to);
     }
+    for &m in &poly.marks {
+        d.add(l, Shape::Circle { center: pts[m], radius: MARK_RADIUS * s.joint });
+    }
     vocab::pole(d, l, pole, s);
     let mut away = poly.pole_away.iter().map(|&i| pole - pts[i]);
     let first = away.next().unwrap_or_else(Vector::zeros);
     letters.letter(pole, &poly.pole, s.text, away.fold(first, |acc, v| acc + v), None);
     for (i, p) in poly.points.iter().enumerate() {
         let at = pts[i + 1];
-        letters.letter(at, &p.name, s.text, at - pts[p.from], None);
+        if poly.marks.contains(&(i + 1)) {
+            letters.name_with_leader(at, &p.name, s.text, at - pts[p.from], None);
+        } else {
+            letters.letter(at, &p.name, s.text, at - pts[p.from], None);
+        }
     }
     letters.draw(d, l);
 }
@@ -164,6 +177,7 @@ mod tests {
                 Side { from: 1, to: 2, kind: SideKind::Component },
                 Side { from: POLE, to: 2, kind: SideKind::Image },
             ],
+            marks: vec![],
         }
     }
 

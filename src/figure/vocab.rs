@@ -228,6 +228,25 @@ pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, s: Sizes) {
     d.add(layer, Shape::Arrow { from, to: from + v, head: s.head });
 }
 
+/// An angular velocity's arrow (ω1 at a crank's pivot): an arc about `centre` of radius
+/// `radius`, from the angle `from` sweeping `sweep` radians (positive counter-clockwise),
+/// with a filled arrowhead at its end pointing along the turn. Returns the arc's middle
+/// point (for its letter).
+pub fn turn_arrow(d: &mut Drawing, layer: usize, centre: Point, radius: f64, from: f64, sweep: f64, s: Sizes) -> Point {
+    let to = from + sweep;
+    let (start, end) = if sweep >= 0.0 { (from, to) } else { (to, from) };
+    d.add(layer, Shape::Arc { center: centre, radius, start, end });
+    let at = |a: f64| centre + Vector::new(a.cos(), a.sin()) * radius;
+    let tip = at(to);
+    // Tangent at the tip, along the turn.
+    let t = Vector::new(-to.sin(), to.cos()) * sweep.signum();
+    let h = s.head.min(0.5 * radius * sweep.abs());
+    let base = tip - t * h;
+    let n = perp(t) * (h * crate::draw::parts::ARROW_HALF_WIDTH);
+    d.add(layer, Shape::Filled { points: vec![tip, base + n, base - n] });
+    at(from + 0.5 * sweep)
+}
+
 /// A link: a wide polyline through `points` (closed for a rigid body of three or more
 /// points drawn as a plate), in `color` or the layer's.
 pub fn link(d: &mut Drawing, layer: usize, points: Vec<Point>, closed: bool, color: Option<Aci>, s: Sizes) {

@@ -41,7 +41,8 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
         forces: spec.outputs.forces && !motion.forces.is_empty(),
     };
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
-    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units);
+    let external = spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
+    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units).with_drive(spec.omega1, external);
     let qs = reported(&spec.outputs, layout.show.forces);
     let mut csv = table(&motion, &qs, layout.show.forces);
     let mut summary = summary(scene, &motion, &layout, &qs)?;
@@ -60,7 +61,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
     }
     let mut sheets = Vec::new();
     if scene.centres {
-        sheets.extend(teaching::centres(&spec.geometry, &motion.positions));
+        sheets.extend(teaching::centres(&spec.geometry, &motion.positions, units));
     }
     if layout.show.forces {
         sheets.extend(teaching::joukowski(spec, &motion.positions, &motion.forces, &levers, units));

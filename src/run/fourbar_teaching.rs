@@ -13,7 +13,7 @@ use crate::figure::centres::centres_sheet;
 use crate::figure::fourbar::{ModelUnits, angle_text};
 use crate::figure::joukowski::{LeverPanel, LeverUnits, joukowski_sheet};
 use crate::figure::plot::{Level, Mark, Marks};
-use crate::figure::vocab::Sizes;
+use crate::figure::vocab::length_scale;
 use crate::geom::{Point, Vector, deg};
 use crate::report::Csv;
 use crate::solve::fourbar::joukowski::{Lever, lever};
@@ -105,6 +105,9 @@ fn nearest(positions: &[Position], angles: &[f64]) -> Vec<usize> {
     out
 }
 
+/// Largest extent of the mechanism's motion in a centres panel, paper millimetres.
+const CENTRES_PANEL_MM: f64 = 80.0;
+
 /// The mechanism's extent over the motion (O1, C and every A, B, M), padded for letters.
 fn mechanism_window(geom: &Geometry, positions: &[Position]) -> (Bounds, f64) {
     let mut min = geom.o1.coords.inf(&geom.c.coords);
@@ -121,13 +124,13 @@ fn mechanism_window(geom: &Geometry, positions: &[Position]) -> (Bounds, f64) {
 }
 
 /// The centres sheet (`<name>-centres`) at [`CENTRE_ANGLES_DEG`].
-pub fn centres(geom: &Geometry, positions: &[Position]) -> Option<Sheet> {
+pub fn centres(geom: &Geometry, positions: &[Position], units: ModelUnits) -> Option<Sheet> {
     if positions.is_empty() {
         return None;
     }
     let (window, size) = mechanism_window(geom, positions);
     let chosen: Vec<&Position> = nearest(positions, &CENTRE_ANGLES_DEG).into_iter().map(|i| &positions[i]).collect();
-    let drawing = centres_sheet(geom, &chosen, window, Sizes::for_length(size));
+    let drawing = centres_sheet(geom, &chosen, window, length_scale(size, CENTRES_PANEL_MM), units);
     Some(Sheet { suffix: "centres".into(), drawing })
 }
 
