@@ -318,7 +318,7 @@ pub fn angle_text(deg: f64) -> String {
 /// [`labels::Polygon`] clear of the joints, the links, the ground symbols and the arrows
 /// `arrows` drawn on the mechanism (the reactions). Returns what later letters should keep
 /// off: the letters' and the ground symbols' boxes, and the links.
-fn mechanism(
+pub(crate) fn mechanism(
     d: &mut Drawing,
     geom: &Geometry,
     pos: &Position,
@@ -366,7 +366,7 @@ fn mechanism(
 
 /// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm (the
 /// image of the coupler).
-fn velocity_polygon(k: &Kinematics) -> PointPolygon {
+pub(crate) fn velocity_polygon(k: &Kinematics) -> PointPolygon {
     let (a, b, m) = (1, 2, 3);
     let vector = |from, to| Side { from, to, kind: SideKind::Vector };
     PointPolygon {
@@ -387,7 +387,7 @@ fn velocity_polygon(k: &Kinematics) -> PointPolygon {
 /// tangential direction (perpendicular to AB, dashed) to b′; from π the normal component
 /// of a_B about C (parallel to BC) to n_BC, then the tangential direction (perpendicular to
 /// BC, dashed) to b′; π → b′, π → m′, and the image a′b′m′ of the coupler.
-fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
+pub(crate) fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
     let (a1, b1, m1, n_ba, n_bc) = (1, 2, 3, 4, 5);
     let side = |from, to, kind| Side { from, to, kind };
     PointPolygon {
@@ -430,7 +430,7 @@ fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> Point
 /// same segment (a light rocker), so their names start from different places along it. The
 /// crank's polygon (Fig. 5) starts at `int` (−R_A): F_i1, G1, and R_O back to the end of
 /// R_A^n.
-fn force_polygon(f: &Forces) -> ForcePolygon {
+pub(crate) fn force_polygon(f: &Forces) -> ForcePolygon {
     let nv = NamedVector::new;
     let (p_ran, p_f, p_fi3, int) = (1, 6, 8, 10);
     let resultant = |name: &str, from, to, name_at| Resultant { name: name.into(), from, to, name_at };
