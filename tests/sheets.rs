@@ -3,7 +3,8 @@
 //! φ1 (read back with poppler's `pdftotext`); every sheet SVG is 297 × 210 mm (420 × 297);
 //! every polygon fills at least half of its panel's area, measured on the sheet's drawing;
 //! the value table's numbers are the solver's (the JSON records') to the printed digits;
-//! the files on disk are the in-memory bytes; a golden PNG of the page at φ1 = 90°.
+//! a length measured on a sheet times the scale printed in its panel is the value (k_v × mm
+//! = |v|); the files on disk are the in-memory bytes; a golden PNG of the page at φ1 = 90°.
 
 mod common;
 
@@ -292,4 +293,54 @@ fn golden_sheet_at_90_degrees() {
     let svg = &files.iter().find(|(n, _)| *n == format!("sheets/{NAME}/pos_090.svg")).unwrap().1;
     assert_eq!(page.window, Paper::A4.bounds());
     common::assert_golden_png("fourbar/sheet_a4_090.png", std::str::from_utf8(svg).unwrap());
+}
+
+/// The scale printed in the title of the panel named `title` (`k_v = 0.02 (m/s)/mm` → 0.02).
+fn printed_scale(d: &Drawing, title: &str) -> f64 {
+    d.entities
+        .iter()
+        .find_map(|e| match &e.shape {
+            Shape::Text { value, .. } if value.starts_with(title) => {
+                let after = value.split(" = ").nth(1)?;
+                after.split(' ').next()?.parse().ok()
+            }
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no panel titled {title}"))
+}
+
+/// The longest arrow drawn from the pole (the layer's small circle) on `layer`, paper mm.
+fn longest_from_pole(d: &Drawing, layer: &str) -> f64 {
+    let l = d.layers.iter().position(|x| x.name == layer).unwrap();
+    let on: Vec<&Shape> = d.entities.iter().filter(|e| e.layer == l).map(|e| &e.shape).collect();
+    let pole = on
+        .iter()
+        .find_map(|s| match s {
+            Shape::Circle { center, .. } => Some(*center),
+            _ => None,
+        })
+        .unwrap();
+    on.iter()
+        .filter_map(|s| match s {
+            Shape::Arrow { from, to, .. } if (*from - pole).norm() < 1e-9 => Some((*to - *from).norm()),
+            _ => None,
+        })
+        .fold(0.0, f64::max)
+}
+
+#[test]
+fn a_length_measured_on_the_sheet_times_its_printed_scale_is_the_value() {
+    let (_, p) = products(Paper::A4);
+    let records = p.summary["positions"].as_array().unwrap();
+    for (page, rec) in p.pages.iter().zip(records) {
+        let d = &page.drawing;
+        let largest =
+            |keys: [&str; 3]| keys.iter().map(|k| rec[format!("{k}_mag")].as_f64().unwrap()).fold(0.0, f64::max);
+        let k_v = printed_scale(d, "Velocity polygon");
+        let v = largest(["vA", "vB", "vM"]);
+        assert!((longest_from_pole(d, "VELOCITY") * k_v - v).abs() < 1e-9 * v, "{}: k_v × mm ≠ |v|", page.stem);
+        let k_a = printed_scale(d, "Acceleration polygon");
+        let a = largest(["aA", "aB", "aM"]);
+        assert!((longest_from_pole(d, "ACCELERATION") * k_a - a).abs() < 1e-9 * a, "{}: k_a × mm ≠ |a|", page.stem);
+    }
 }
