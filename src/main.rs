@@ -6,6 +6,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use mechdraw::draw::dxf::{Dimensions, DxfOptions, DxfVersion};
+use mechdraw::figure::sheet::Paper;
 use mechdraw::run::RunOptions;
 use mechdraw::scene::{self, Override};
 
@@ -40,6 +41,12 @@ enum Command {
         /// Do not write per-position SVG frames and the HTML viewer.
         #[arg(long)]
         no_frames: bool,
+        /// Four-bar scenes: also one printed sheet per position on `a4` (297 × 210 mm) or
+        /// `a3` (420 × 297 mm) landscape — border, title block (φ1, ω1, k_l, k_v, k_a, k_f),
+        /// the position's values, the mechanism and each polygon at its own nice scale — as
+        /// DIR/sheets/<name>/<position>.svg and one PDF, DIR/<name>-sheets.pdf, to print at 100 %.
+        #[arg(long, value_name = "PAPER")]
+        sheets: Option<Paper>,
         /// Linkage scenes: move BODY.POINT as close as the constraints allow to (x, y) and
         /// write that configuration, e.g. `--drag crank.A=10,20`.
         #[arg(long, value_name = "BODY.POINT=X,Y")]
@@ -104,7 +111,7 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Run { scene, out, set, json, png, no_frames, drag, dxf_version, dxf_dimensions, quiet } => {
+        Command::Run { scene, out, set, json, png, no_frames, sheets, drag, dxf_version, dxf_dimensions, quiet } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
             let opts = RunOptions {
                 out_dir: Some(out),
@@ -113,6 +120,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 progress: !quiet && std::io::stderr().is_terminal(),
                 drag,
                 dxf: DxfOptions { version: dxf_version, dimensions: dxf_dimensions, ..DxfOptions::default() },
+                sheets,
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

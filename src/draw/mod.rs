@@ -1,7 +1,8 @@
 //! The neutral drawing: a flat list of absolute primitives in model units, grouped on
 //! named layers. Figures (in `crate::figure`) build a [`Drawing`]; the writers translate
 //! it and know nothing about mechanisms:
-//! [`dxf`] (R12 DXF for any CAD program), [`svg`] (SVG, y axis up as in CAD),
+//! [`dxf`] (R12 DXF for any CAD program), [`svg`] (SVG, y axis up as in CAD), [`pdf`]
+//! (pages of drawings as one PDF),
 //! [`raster`] (SVG to PNG with resvg and the bundled font), [`viewer`] (the HTML viewer).
 //!
 //! Coordinates are model coordinates (the scene's units), y up. Angles are radians,
@@ -10,6 +11,7 @@
 
 pub mod dxf;
 pub mod parts;
+pub mod pdf;
 pub mod raster;
 pub mod svg;
 pub mod viewer;

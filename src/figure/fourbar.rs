@@ -585,7 +585,7 @@ const OMEGA_ARC_DEG: (f64, f64) = (30.0, 150.0);
 /// placed by one [`labels::Polygon`]: clear of each other, the joints, the ground symbols,
 /// and preferably off the links and the arrows. Returns the boxes of the placed texts, for
 /// later texts to keep off.
-pub(super) fn mechanism(
+pub(crate) fn mechanism(
     d: &mut Drawing,
     geom: &Geometry,
     pos: &Position,
@@ -672,7 +672,7 @@ pub(super) fn mechanism(
 
 /// The velocity polygon: pole p; pa, pb, pm; the relative velocity ab (v_BA) and bm (the
 /// image of the coupler).
-fn velocity_polygon(k: &Kinematics) -> PointPolygon {
+pub(crate) fn velocity_polygon(k: &Kinematics) -> PointPolygon {
     let (a, b, m) = (1, 2, 3);
     let vector = |from, to| Side { from, to, kind: SideKind::Vector };
     PointPolygon {
@@ -720,7 +720,7 @@ fn velocity_figure(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolyg
 /// ternary plate); and the images of the centroids (seed Fig. 1, from which the inertia
 /// forces come): c1′ (middle of πa′), c21′ (of a′b′), c22′ (of b′m′), c3′ (of πb′), marked,
 /// with π → c21′ and π → c22′.
-fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
+pub(crate) fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> PointPolygon {
     let (a1, b1, m1, n_ba, n_bc) = (1, 2, 3, 4, 5);
     let (c1, c21, c22, c3) = (6, 7, 8, 9);
     let side = |from, to, kind| Side { from, to, kind };
@@ -775,7 +775,7 @@ fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematics) -> Point
 /// eq. 7) from the end of F to `int`; R_B and R_C are often nearly the same segment (a
 /// light rocker): the resultants are drawn beside a side they would lie on
 /// ([`forces::draw`]) and their names start from different places along them.
-fn dyad_polygon(f: &Forces) -> ForcePolygon {
+pub(crate) fn dyad_polygon(f: &Forces) -> ForcePolygon {
     let nv = NamedVector::new;
     let (p_ran, p_f, p_fi3, int) = (1, 6, 8, 10);
     let resultant = |name: &str, from, to, name_at| Resultant { name: name.into(), from, to, name_at };
@@ -805,7 +805,7 @@ fn dyad_polygon(f: &Forces) -> ForcePolygon {
 /// The crank's force polygon (seed Fig. 5), with its own pole f1 (the seed's pRAn): the
 /// load of the coupler on the crank −R_A, then F_i1 and G1; R_O closes it back to the pole
 /// (seed eq. 8: −R_A + F_i1 + G1 + R_O = 0).
-fn crank_polygon(f: &Forces) -> ForcePolygon {
+pub(crate) fn crank_polygon(f: &Forces) -> ForcePolygon {
     let nv = NamedVector::new;
     ForcePolygon {
         pole: "f1".into(),

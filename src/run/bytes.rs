@@ -14,6 +14,7 @@
 //! | `<name>.json` | the summary, pretty, with a final newline |
 //! | `diagrams/<name>/<stem>.svg` (and `.png`) | each diagram |
 //! | `frames/<name>/<position>.svg`, `<name>.html` | a motion's frames and viewer (unless `--no-frames`) |
+//! | `<name>-sheets.pdf`, `sheets/<name>/<position>.svg` | the printed pages, one per position (`--sheets`) |
 //!
 //! A motion's DXF is built on one core while the frames, the diagrams and the viewer are
 //! built on the others, and the frames are handed to the sink while the diagrams and the
@@ -23,11 +24,11 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
-use super::products::{Diagram, Picture, Products, Sheet};
+use super::products::{Diagram, Page, Picture, Products, Sheet};
 use crate::Error;
 use crate::draw::dxf::{self, DxfOptions};
 use crate::draw::svg::{self, SvgOptions};
-use crate::draw::{Drawing, raster, viewer};
+use crate::draw::{Drawing, pdf, raster, viewer};
 use crate::figure::animation::Animation;
 
 /// Width of the SVG frames and pictures, pixels (their viewBox is in model units).
@@ -84,7 +85,7 @@ pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8
 /// Writes every file of `p` into `sink`; `tick` is called once per frame made (for a
 /// progress bar). Returns the names of the files in their canonical order: the picture
 /// (DXF, SVG, PNG), the sheets (each DXF, SVG, PNG), the tables, the JSON, the diagrams,
-/// the frames, the viewer.
+/// the printed pages' PDF and SVGs, the frames, the viewer.
 pub fn write(
     p: &Products,
     opts: &WriteOptions,
@@ -120,6 +121,7 @@ pub fn write(
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
     head.push((format!("{name}.json"), (json + "\n").into_bytes()));
     head.extend(diagrams);
+    head.extend(page_files(name, &p.pages)?);
 
     sink.put(&view(&head))?;
     sink.put(&view(&tail))?;
@@ -189,6 +191,44 @@ fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<(Str
         })
         .collect::<Result<_, Error>>()?;
     Ok(per.into_iter().flatten().collect())
+}
+
+/// The printed pages: `<name>-sheets.pdf` with every page, then each page's SVG
+/// `sheets/<name>/<stem>.svg` (true size: `width="297mm"`, viewBox in paper mm); nothing
+/// without pages. The SVGs are built in parallel with the PDF.
+fn page_files(name: &str, pages: &[Page]) -> Result<Vec<(String, Vec<u8>)>, Error> {
+    if pages.is_empty() {
+        return Ok(Vec::new());
+    }
+    let pdf_name = format!("{name}-sheets.pdf");
+    let (doc, svgs) = rayon::join(
+        || {
+            let v: Vec<pdf::Page<'_>> = pages
+                .iter()
+                .map(|p| pdf::Page { drawing: &p.drawing, window: p.window, hairline_mm: p.hairline_mm })
+                .collect();
+            pdf::to_bytes(&v).map_err(|e| Error::Export { what: pdf_name.clone(), message: e.to_string() })
+        },
+        || {
+            pages
+                .par_iter()
+                .map(|p| {
+                    let extent = p.window.width().max(p.window.height()).max(f64::MIN_POSITIVE);
+                    let opts = SvgOptions {
+                        margin: 0.0,
+                        hairline: p.hairline_mm / extent,
+                        window: Some(p.window),
+                        paper_mm_per_unit: Some(1.0),
+                        ..SvgOptions::default()
+                    };
+                    (format!("sheets/{name}/{}.svg", p.stem), svg::to_string(&p.drawing, &opts).into_bytes())
+                })
+                .collect::<Vec<_>>()
+        },
+    );
+    let mut files = vec![(pdf_name, doc?)];
+    files.extend(svgs);
+    Ok(files)
 }
 
 fn png_bytes(svg: &str, what: &str) -> Result<Vec<u8>, Error> {

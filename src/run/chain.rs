@@ -225,6 +225,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         picture: Picture::Still(drawing),
         positions: None,
         sheets: Vec::new(),
+        pages: Vec::new(),
         diagrams,
         tables,
         summary,

@@ -15,7 +15,9 @@ use super::solve_err;
 use crate::Error;
 use crate::figure::animation::Animation;
 use crate::figure::fourbar::{Layout, ModelUnits, Show, angle_text};
+use crate::figure::fourbar_sheet::FourbarSheets;
 use crate::figure::plot::{self, Diagram, Series};
+use crate::figure::sheet::{self, Paper};
 use crate::geom::{Point, Vector, deg};
 use crate::report::{self, Csv};
 use crate::scene::Units;
@@ -28,7 +30,7 @@ use crate::solve::fourbar::{Motion, Position, solve_motion};
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
 
-pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Error> {
+pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -> Result<Products, Error> {
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
     let units = match scene.units {
@@ -84,6 +86,10 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
     let base = layout.base(&geom, &curve);
     let names = position_names(&motion.positions, spec.sweep.from_deg, step);
     let labels = motion.positions.iter().map(|p| format!("φ1 = {}°", angle_text(deg(p.phi1)))).collect();
+    let pages = match paper {
+        Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names),
+        None => Vec::new(),
+    };
     let title = format!("{name}: four-bar, {} positions", motion.positions.len());
     let window = layout.window;
     let Motion { positions, forces, .. } = motion;
@@ -94,6 +100,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str) -> Result<Products, Err
         picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
         sheets,
+        pages,
         diagrams,
         tables: vec![products::Table { suffix: String::new(), csv }],
         summary,
@@ -616,6 +623,106 @@ fn diagrams(
             }
             let series = vec![Series { label: q.name.to_string(), x, y }];
             (q.name.to_string(), Diagram { title: title.to_string(), x_label: "φ1 [°]".into(), y_label, series })
+        })
+        .collect()
+}
+
+/// Quantities on a sheet besides those of the JSON records: the force polygon's sides.
+const SHEET_EXTRA: [&str; 9] = ["R_An", "R_At", "R_Cn", "R_Ct", "Fi1", "Fi21", "Fi22", "Fi3", "F"];
+
+/// A quantity's name as a textbook writes it (`omega2` → `ω2`, `phi1_deg` → `φ1`).
+fn symbol(name: &str) -> String {
+    let name = name.strip_suffix("_deg").unwrap_or(name);
+    match name {
+        // The angle between BA and BC in [0°, 180°], and γ, the same folded to 0–90°.
+        "transmission" => return "∠ABC".to_string(),
+        "gamma" => return "γ".to_string(),
+        _ => {}
+    }
+    for (from, to) in [("phi", "φ"), ("omega", "ω"), ("eps", "ε")] {
+        if let Some(rest) = name.strip_prefix(from) {
+            return format!("{to}{rest}");
+        }
+    }
+    name.to_string()
+}
+
+/// One position's values for its sheet: a row per quantity (the JSON records' and the
+/// force polygon's sides), pairs as x, y and magnitude (positions without one), scalars in
+/// the value column; 4 significant digits ([`sheet::number`]). A value below 1e-9 of the
+/// largest of its unit on the page is rounding noise (x_A = 2.4e-18 m at φ1 = 90°) and
+/// prints as 0.
+fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUnits) -> sheet::Table {
+    let header = ["", "x", "y", "value", "unit"].map(String::from).to_vec();
+    let raw: Vec<(&Quantity, [Option<f64>; 3])> = qs
+        .iter()
+        .filter(|q| q.json || SHEET_EXTRA.contains(&q.name))
+        .map(|q| {
+            let cells = match q.get {
+                Get::Scalar(g) => [None, None, Some(g(p, f))],
+                Get::Pair(g) => {
+                    let v = g(p, f);
+                    [Some(v.x), Some(v.y), (q.group != Group::Position).then(|| v.norm())]
+                }
+            };
+            (q, cells)
+        })
+        .collect();
+    let largest = |unit: Unit| {
+        raw.iter()
+            .filter(|(q, _)| q.unit == unit)
+            .flat_map(|(_, c)| c.iter().flatten().map(|v| v.abs()))
+            .filter(|v| v.is_finite())
+            .fold(0.0, f64::max)
+    };
+    let rows = raw
+        .iter()
+        .map(|(q, cells)| {
+            let noise = 1e-9 * largest(q.unit);
+            let mut row = vec![symbol(q.name)];
+            row.extend(cells.iter().map(|c| match c {
+                Some(v) if v.abs() < noise => "0".to_string(),
+                Some(v) => sheet::number(*v),
+                None => String::new(),
+            }));
+            row.push(q.unit.text(units));
+            row
+        })
+        .collect();
+    sheet::Table { header, rows }
+}
+
+/// The printed pages, one per position (in parallel): `sheets/<name>/<position>.svg` and
+/// the PDF.
+#[allow(clippy::too_many_arguments)]
+fn sheet_pages(
+    paper: Paper,
+    scene: &FourbarScene,
+    motion: &Motion,
+    curve: &[Vec<Point>],
+    qs: &[Quantity],
+    show: Show,
+    units: ModelUnits,
+    names: &[String],
+) -> Vec<products::Page> {
+    let geom = scene.spec.geometry;
+    let sheets =
+        FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units);
+    let n = motion.positions.len();
+    motion
+        .positions
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let f = forces_at(motion, i, show.forces);
+            let table = sheet_table(p, f, qs, units);
+            let (drawing, _) = sheets.page(&geom, p, f, &table, (i + 1, n));
+            products::Page {
+                stem: names[i].to_lowercase(),
+                drawing,
+                window: paper.bounds(),
+                hairline_mm: sheet::HAIRLINE_MM,
+            }
         })
         .collect()
 }

@@ -35,6 +35,9 @@ pub struct RunOptions {
     /// DXF version and dimension encoding (`--dxf-version`, `--dxf-dimensions`); the scale
     /// to millimetres comes from the scene's units ([`Products::mm_per_unit`]).
     pub dxf: crate::draw::dxf::DxfOptions,
+    /// `--sheets a4|a3`: one printed page per position (`sheets/<name>/<position>.svg`)
+    /// and `<name>-sheets.pdf` (four-bar scenes).
+    pub sheets: Option<crate::figure::sheet::Paper>,
 }
 
 /// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
@@ -68,9 +71,18 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             message: format!("only a linkage scene can be dragged; {file} is a {} scene", loaded.scene.kind()),
         });
     }
+    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_)) {
+        return Err(Error::Option {
+            option: "--sheets".into(),
+            message: format!(
+                "per-position sheets are drawn for four-bar scenes only so far; {file} is a {} scene",
+                loaded.scene.kind()
+            ),
+        });
+    }
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
-        Scene::Fourbar(s) => fourbar::products(s, &file),
+        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets),
         Scene::Linkage(s) => linkage::products(s, &file, &opts.drag),
         Scene::Chain(s) => chain::products(s, &file),
     }

@@ -6,7 +6,7 @@
 use serde::Serialize;
 
 use crate::Error;
-use crate::draw::Drawing;
+use crate::draw::{Bounds, Drawing};
 use crate::figure::animation::Animation;
 use crate::report::Csv;
 
@@ -51,6 +51,20 @@ pub struct Sheet {
     pub drawing: Drawing,
 }
 
+/// A printed page of a run's per-position sheets (`--sheets a4|a3`): written as
+/// `sheets/<scene name>/<stem>.svg` and as one page of `<scene name>-sheets.pdf`.
+#[derive(Debug, Clone)]
+pub struct Page {
+    /// File stem: the position's name (`pos_090`).
+    pub stem: String,
+    /// The page, drawn in paper millimetres ([`Drawing::paper_mm_per_unit`] 1).
+    pub drawing: Drawing,
+    /// The paper (0, 0 to its width and height, mm).
+    pub window: Bounds,
+    /// Thinnest stroke, paper mm.
+    pub hairline_mm: f64,
+}
+
 /// A CSV table: `<scene name><suffix>.csv`.
 #[derive(Debug, Clone)]
 pub struct Table {
@@ -84,6 +98,8 @@ pub struct Products {
     pub positions: Option<PositionsSource>,
     /// Extra sheets, in order, each written as DXF, SVG (and PNG) like a still picture.
     pub sheets: Vec<Sheet>,
+    /// Per-position printed pages, in order (empty unless asked for with `--sheets`).
+    pub pages: Vec<Page>,
     /// Diagrams, in order.
     pub diagrams: Vec<Diagram>,
     /// CSV tables, in order.

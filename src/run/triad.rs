@@ -385,6 +385,7 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         picture: Picture::Still(figure(scene, &results)),
         positions: None,
         sheets: vec![Sheet { suffix: "modes".into(), drawing: modes_figure(scene, &results) }],
+        pages: Vec::new(),
         diagrams: Vec::new(),
         tables: Vec::new(),
         summary: summary(scene, &results)?,

@@ -1,0 +1,438 @@
+//! A printed page per position (issue 14, item 3): A4 or A3 landscape, drawn in paper
+//! millimetres (origin at the sheet's lower-left corner, y up), as a drawing office lays
+//! out a sheet: a border (20 mm binding margin on the left, 10 mm elsewhere), a title block
+//! in the lower right, a table of the position's values above it, and panels for the
+//! figures in a grid on the left, each framed with its title and scale.
+//!
+//! This file knows no mechanism: a kind fills the title block, the table and the panels
+//! (see `fourbar_sheet.rs`). Every figure on a sheet has its own "nice" scale
+//! (1, 2, 2.5, 5 × 10ᵏ) chosen by [`fit`] so that it fills about two thirds of its panel
+//! and never less than half of it.
+
+use std::str::FromStr;
+
+use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
+use crate::geom::{Point, Vector};
+
+use super::vocab::{Sizes, content_drawing, nice_scale};
+
+/// Thinnest stroke on a sheet, paper mm (frame lines, construction lines, pole circles).
+pub const HAIRLINE_MM: f64 = 0.25;
+
+/// The layer of the sheet's own lines and texts (border, title block, table, panel frames).
+pub const SHEET_LAYER: crate::figure::vocab::layers::Layer =
+    ("SHEET", crate::draw::Aci::BLACK, crate::draw::LineType::Continuous);
+
+/// Fraction of a panel's drawing area a figure should fill (its larger extent): "about two
+/// thirds".
+pub const TARGET_FILL: f64 = 2.0 / 3.0;
+
+/// Above this fill a figure takes the next coarser nice scale when that still fills at
+/// least half of the area (room for its letters).
+pub const MAX_FILL: f64 = 0.85;
+
+/// A paper size, landscape.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Paper {
+    /// 297 × 210 mm.
+    A4,
+    /// 420 × 297 mm.
+    A3,
+}
+
+impl Paper {
+    /// Width and height, mm (landscape).
+    pub fn size_mm(self) -> Vector {
+        match self {
+            Paper::A4 => Vector::new(297.0, 210.0),
+            Paper::A3 => Vector::new(420.0, 297.0),
+        }
+    }
+
+    /// `A4`, `A3`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Paper::A4 => "A4",
+            Paper::A3 => "A3",
+        }
+    }
+
+    /// The sheet in paper mm: (0, 0) to its width and height.
+    pub fn bounds(self) -> Bounds {
+        let s = self.size_mm();
+        Bounds { min: Point::origin(), max: Point::new(s.x, s.y) }
+    }
+
+    /// Sizes of letters, arrows, links and joints on this paper, mm: 2.5 mm letters on A4,
+    /// 3 mm on A3 (ISO 3098's 2.5 and 3.5 mm rows, between them).
+    pub fn sizes(self) -> Sizes {
+        let t = match self {
+            Paper::A4 => 2.5,
+            Paper::A3 => 3.0,
+        };
+        Sizes {
+            text: t,
+            head: t,
+            link: 0.28 * t,
+            joint: 0.45 * t,
+            ground: 1.2 * t,
+            slider_length: 2.5 * t,
+            slider_height: 1.4 * t,
+        }
+    }
+}
+
+impl FromStr for Paper {
+    type Err = String;
+    fn from_str(s: &str) -> Result<Paper, String> {
+        match s.to_ascii_lowercase().as_str() {
+            "a4" => Ok(Paper::A4),
+            "a3" => Ok(Paper::A3),
+            _ => Err(format!("unknown paper `{s}`: use a4 (297 × 210 mm) or a3 (420 × 297 mm), landscape")),
+        }
+    }
+}
+
+/// A panel of a sheet: its frame and the area its figure is fitted in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Panel {
+    /// The panel's frame (title included).
+    pub outline: Bounds,
+    /// Where the figure goes: the frame less the title band and a margin of a letter and
+    /// a half for the figure's letters.
+    pub area: Bounds,
+}
+
+impl Panel {
+    /// The panel framed by `outline`, for letters of `sizes`: its figure's area is the
+    /// frame less a title band of 2.2 letter heights at the top and a margin of 1.5 letter
+    /// heights on every side (for the figure's letters).
+    pub fn of_outline(outline: Bounds, sizes: Sizes) -> Panel {
+        let (band, margin) = (2.2 * sizes.text, 1.5 * sizes.text);
+        let area = Bounds {
+            min: outline.min + Vector::new(margin, margin),
+            max: outline.max - Vector::new(margin, band + 0.5 * margin),
+        };
+        Panel { outline, area }
+    }
+}
+
+/// Where everything goes on a sheet.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SheetLayout {
+    /// The paper.
+    pub paper: Paper,
+    /// Sizes of the drawn details, mm.
+    pub sizes: Sizes,
+    /// The border.
+    pub border: Bounds,
+    /// The panels, row by row from the top left.
+    pub panels: Vec<Panel>,
+    /// The value table's box (right column, above the title block).
+    pub table: Bounds,
+    /// The title block's box (lower right).
+    pub title: Bounds,
+}
+
+/// Rows of the title block: its name row, then the other cells two per row.
+fn title_rows(cells: usize) -> usize {
+    1 + cells.div_ceil(2)
+}
+
+impl SheetLayout {
+    /// The layout of a sheet on `paper` with `panels` panels (1 or 2 in a row, more in two
+    /// columns) and a title block of `title_cells` cells besides its name row.
+    pub fn new(paper: Paper, panels: usize, title_cells: usize) -> SheetLayout {
+        let size = paper.size_mm();
+        let sizes = paper.sizes();
+        let border = Bounds { min: Point::new(20.0, 10.0), max: Point::new(size.x - 10.0, size.y - 10.0) };
+        let column = match paper {
+            Paper::A4 => 100.0,
+            Paper::A3 => 130.0,
+        };
+        let row = 2.4 * sizes.text;
+        let title_h = 1.4 * row + (title_rows(title_cells) - 1) as f64 * row;
+        let right = border.max.x - column;
+        let title =
+            Bounds { min: Point::new(right, border.min.y), max: Point::new(border.max.x, border.min.y + title_h) };
+        let table = Bounds { min: Point::new(right, title.max.y), max: border.max };
+        let n = panels.max(1);
+        let cols = if n <= 2 { n } else { 2 };
+        let rows = n.div_ceil(cols);
+        let (w, h) = ((right - border.min.x) / cols as f64, (border.max.y - border.min.y) / rows as f64);
+        let panels = (0..n)
+            .map(|i| {
+                let (r, c) = (i / cols, i % cols);
+                let min = Point::new(border.min.x + c as f64 * w, border.max.y - (r + 1) as f64 * h);
+                Panel::of_outline(Bounds { min, max: min + Vector::new(w, h) }, sizes)
+            })
+            .collect();
+        SheetLayout { paper, sizes, border, panels, table, title }
+    }
+}
+
+/// What the title block says.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TitleBlock {
+    /// The drawing's name (the scene's name), in large letters.
+    pub name: String,
+    /// What it shows (`four-bar`), beside the name.
+    pub subject: String,
+    /// The position (`φ1 = 90°`, `t = 0.25 s`), the first cell, in larger letters.
+    pub position: String,
+    /// Further cells (`ω1 = 20 rad/s`, `k_l = 0.002 m/mm`, …), two per row.
+    pub cells: Vec<String>,
+    /// This sheet's number (from 1) and the number of sheets.
+    pub sheet: (usize, usize),
+}
+
+impl TitleBlock {
+    /// Cells besides the name row, the sheet number included.
+    pub fn cell_count(&self) -> usize {
+        self.cells.len() + 2
+    }
+}
+
+/// A table of values: a header and rows of texts, the first column a name, the last a
+/// unit, numbers between them right-aligned.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Table {
+    /// Column headings.
+    pub header: Vec<String>,
+    /// Rows, each as many cells as the header.
+    pub rows: Vec<Vec<String>>,
+}
+
+/// A number for a table: 4 significant digits (what a graphical construction is read to),
+/// without exponent between 1e-4 and 1e6, trailing zeros kept so that columns align.
+pub fn number(v: f64) -> String {
+    if !v.is_finite() {
+        return "–".to_string();
+    }
+    if v == 0.0 {
+        return "0".to_string();
+    }
+    let mag = v.abs().log10().floor();
+    if !(-4.0..6.0).contains(&mag) {
+        return format!("{v:.3e}");
+    }
+    let decimals = (3.0 - mag).max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".to_string() } else { s }
+}
+
+/// A figure's scale on a sheet: physical units per paper millimetre, and the fraction of
+/// its panel's area the figure's larger extent fills at that scale.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Fit {
+    /// Physical units (m, m/s, N …) per paper millimetre: a nice value.
+    pub per_mm: f64,
+    /// The fraction of the area the figure fills in its tighter direction.
+    pub fill: f64,
+}
+
+/// The scale for a figure of physical `extent` (width, height) in a panel `area` (paper
+/// mm): the finest nice scale (1, 2, 2.5, 5 × 10ᵏ) at which it fits, which fills between
+/// half and all of the area; the next coarser one when that fills more than [`MAX_FILL`]
+/// and the coarser still fills at least half. A zero extent gets scale 1.
+pub fn fit(extent: Vector, area: Vector) -> Fit {
+    let first = finest(extent, area);
+    let coarser = nice_scale(first.per_mm * (1.0 + 1e-9));
+    let full = first.fill * first.per_mm;
+    if first.fill > MAX_FILL && full / coarser >= 0.5 {
+        return Fit { per_mm: coarser, fill: full / coarser };
+    }
+    first
+}
+
+/// The finest nice scale at which a figure of physical `extent` fits `area` (it fills more
+/// than half of it): for a figure whose letters are already allowed for in `area`.
+pub fn finest(extent: Vector, area: Vector) -> Fit {
+    let full = (extent.x / area.x).max(extent.y / area.y);
+    if !(full.is_finite() && full > 0.0) {
+        return Fit { per_mm: 1.0, fill: 0.0 };
+    }
+    let per_mm = nice_scale(full);
+    Fit { per_mm, fill: full / per_mm }
+}
+
+/// Where to put a figure's origin (its pole) so that the figure spanning `min`…`max`
+/// (physical units, relative to the origin) at `per_mm` is centred in `area`.
+pub fn centre(min: Vector, max: Vector, per_mm: f64, area: Bounds) -> Point {
+    let mid = Point::from((area.min.coords + area.max.coords) / 2.0);
+    mid - (min + max) / (2.0 * per_mm)
+}
+
+/// The sheet's fixed part on a drawing of its own: the border, the panel frames with their
+/// `titles`, the title block and the table. Figures are drawn onto it.
+pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[String]) -> Drawing {
+    let s = layout.sizes;
+    let mut d = content_drawing(DimStyle { text_height: s.text, arrow_size: s.head });
+    d.paper_mm_per_unit = Some(1.0);
+    let l = d.layer(SHEET_LAYER.0, SHEET_LAYER.1, SHEET_LAYER.2);
+    let rect = |d: &mut Drawing, b: Bounds, width: f64| {
+        let points = vec![b.min, Point::new(b.max.x, b.min.y), b.max, Point::new(b.min.x, b.max.y)];
+        d.add(l, Shape::Polyline { points, closed: true, width });
+    };
+    let text = |d: &mut Drawing, at: Point, height: f64, value: &str, halign: HAlign| {
+        d.add(l, Shape::Text { at, height, value: value.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 });
+    };
+    rect(&mut d, layout.border, 0.5);
+    for (i, p) in layout.panels.iter().enumerate() {
+        rect(&mut d, p.outline, 0.0);
+        if let Some(t) = titles.get(i) {
+            let at = Point::new(p.outline.min.x + 0.6 * s.text, p.outline.max.y - 1.1 * s.text);
+            text(&mut d, at, s.text, t, HAlign::Left);
+        }
+    }
+    // Title block: the name row, then two cells per row.
+    let tb = layout.title;
+    rect(&mut d, tb, 0.5);
+    let row = 2.4 * s.text;
+    let name_bottom = tb.max.y - 1.4 * row;
+    let pad = 0.8 * s.text;
+    d.add(l, Shape::Line { from: Point::new(tb.min.x, name_bottom), to: Point::new(tb.max.x, name_bottom) });
+    let name_y = (tb.max.y + name_bottom) / 2.0;
+    text(&mut d, Point::new(tb.min.x + pad, name_y), 1.4 * s.text, &title.name, HAlign::Left);
+    text(&mut d, Point::new(tb.max.x - pad, name_y), s.text, &title.subject, HAlign::Right);
+    let mut cells: Vec<(String, f64)> = vec![(title.position.clone(), 1.2 * s.text)];
+    cells.extend(title.cells.iter().map(|c| (c.clone(), 0.9 * s.text)));
+    cells.push((format!("sheet {} of {} · {}", title.sheet.0, title.sheet.1, layout.paper.name()), 0.8 * s.text));
+    let mid_x = (tb.min.x + tb.max.x) / 2.0;
+    let rows = cells.len().div_ceil(2);
+    for r in 0..rows {
+        let top = name_bottom - r as f64 * row;
+        if r + 1 < rows {
+            d.add(l, Shape::Line { from: Point::new(tb.min.x, top - row), to: Point::new(tb.max.x, top - row) });
+        }
+        d.add(l, Shape::Line { from: Point::new(mid_x, top), to: Point::new(mid_x, top - row) });
+        for c in 0..2 {
+            if let Some((value, h)) = cells.get(2 * r + c) {
+                let x = if c == 0 { tb.min.x } else { mid_x } + pad;
+                text(&mut d, Point::new(x, top - row / 2.0), *h, value, HAlign::Left);
+            }
+        }
+    }
+    table_into(&mut d, l, layout.table, table, s);
+    d
+}
+
+/// The table in `b`: the header in a first row with a line under it, the rows below, text
+/// sized to the rows (at most 0.9 letter height).
+fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
+    let ncols = table.header.len();
+    if ncols == 0 {
+        return;
+    }
+    let pad = 0.6 * s.text;
+    let n = table.rows.len() + 1;
+    let row = ((b.height() - 2.0 * pad) / n as f64).min(2.0 * s.text);
+    let h = (0.5 * row).min(0.9 * s.text);
+    // Columns: the name and the unit a little wider than the numbers.
+    let weights: Vec<f64> = (0..ncols)
+        .map(|c| {
+            if c == 0 {
+                1.0
+            } else if c + 1 == ncols {
+                1.2
+            } else {
+                1.25
+            }
+        })
+        .collect();
+    let total: f64 = weights.iter().sum();
+    let width = b.width() - 2.0 * pad;
+    let mut edges = vec![b.min.x + pad];
+    for w in &weights {
+        edges.push(edges.last().copied().unwrap_or(0.0) + width * w / total);
+    }
+    let top = b.max.y - pad;
+    let cell = |d: &mut Drawing, r: usize, c: usize, value: &str| {
+        let y = top - (r as f64 + 0.5) * row;
+        let numeric = c > 0 && c + 1 < ncols;
+        let (x, halign) =
+            if numeric { (edges[c + 1] - 1.2 * pad, HAlign::Right) } else { (edges[c] + 0.3 * pad, HAlign::Left) };
+        d.add(
+            l,
+            Shape::Text {
+                at: Point::new(x, y),
+                height: h,
+                value: value.to_string(),
+                halign,
+                valign: VAlign::Middle,
+                rotation: 0.0,
+            },
+        );
+    };
+    for (c, v) in table.header.iter().enumerate() {
+        cell(d, 0, c, v);
+    }
+    d.add(l, Shape::Line { from: Point::new(b.min.x + pad, top - row), to: Point::new(b.max.x - pad, top - row) });
+    for (r, cells) in table.rows.iter().enumerate() {
+        for (c, v) in cells.iter().enumerate().take(ncols) {
+            cell(d, r + 1, c, v);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn fit_fills_between_half_and_the_whole_area_with_a_nice_scale() {
+        let area = Vector::new(80.0, 70.0);
+        for i in 0..2000 {
+            // Extents over six decades, both shapes.
+            let e = 10f64.powf(-3.0 + i as f64 * 0.003);
+            for extent in [Vector::new(e, 0.3 * e), Vector::new(0.2 * e, e)] {
+                let f = fit(extent, area);
+                let fill = (extent.x / f.per_mm / area.x).max(extent.y / f.per_mm / area.y);
+                assert!((fill - f.fill).abs() < 1e-12);
+                assert!((0.5..=1.0 + 1e-12).contains(&fill), "{extent:?}: fill {fill}");
+                let m = f.per_mm / 10f64.powf(f.per_mm.log10().floor());
+                assert!([1.0, 2.0, 2.5, 5.0].iter().any(|n| (m - n).abs() < 1e-9), "{}", f.per_mm);
+            }
+        }
+        assert_eq!(fit(Vector::zeros(), area).per_mm, 1.0);
+    }
+
+    #[test]
+    fn numbers_have_four_significant_digits() {
+        assert_eq!(number(0.123456), "0.1235");
+        assert_eq!(number(-12.3456), "-12.35");
+        assert_eq!(number(1490.04), "1490");
+        assert_eq!(number(20.0), "20.00");
+        assert_eq!(number(0.0), "0");
+        assert_eq!(number(-1e-7), "-1.000e-7");
+        assert_eq!(number(f64::NAN), "–");
+    }
+
+    #[test]
+    fn the_layout_keeps_inside_the_border_and_panels_apart() {
+        for paper in [Paper::A4, Paper::A3] {
+            let lay = SheetLayout::new(paper, 4, 6);
+            let b = lay.border;
+            let inside = |x: &Bounds| {
+                x.min.x >= b.min.x - 1e-9
+                    && x.min.y >= b.min.y - 1e-9
+                    && x.max.x <= b.max.x + 1e-9
+                    && x.max.y <= b.max.y + 1e-9
+            };
+            assert!(inside(&lay.title) && inside(&lay.table));
+            for (i, p) in lay.panels.iter().enumerate() {
+                assert!(inside(&p.outline) && p.area.width() > 50.0 && p.area.height() > 50.0, "{paper:?} {p:?}");
+                assert!(p.outline.max.x <= lay.table.min.x + 1e-9);
+                for q in &lay.panels[..i] {
+                    let apart = p.outline.min.x >= q.outline.max.x - 1e-9
+                        || q.outline.min.x >= p.outline.max.x - 1e-9
+                        || p.outline.min.y >= q.outline.max.y - 1e-9
+                        || q.outline.min.y >= p.outline.max.y - 1e-9;
+                    assert!(apart);
+                }
+            }
+        }
+        assert_eq!("A3".parse::<Paper>(), Ok(Paper::A3));
+        assert!("letter".parse::<Paper>().is_err());
+    }
+}
