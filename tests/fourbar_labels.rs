@@ -201,7 +201,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
             (marks[3], k.a_g3, mid(pole, b1)),
         ] {
             // Physical: the mark read back at k_a is the solver's centroid acceleration.
-            let read = (mark - pole) * (sa.per_mm * 1000.0);
+            let read = (mark - pole) * (sa.per_mm / layout.k_l);
             assert!((read - solver).norm() <= 1e-9 * solver.norm().max(1.0), "{read:?} vs {solver:?}");
             assert!((mark - construction).norm() <= 1e-9 * drawn_size, "{mark:?} vs {construction:?}");
         }

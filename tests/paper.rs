@@ -124,9 +124,12 @@ fn every_svg_of_every_template_is_sized_in_mm_with_a_viewbox_of_the_same_size() 
                 "{}: viewBox {vb:?}, page {w} × {h}",
                 f.display()
             );
-            // Every drawing of a mechanism or a chain (not the diagrams) prints its k_l.
+            // Every drawing of a mechanism or a chain (not the diagrams) prints its k_l;
+            // Joukowski's lever (a velocity polygon turned, no lengths) its k_v.
             let diagram = f.components().any(|c| c.as_os_str() == "diagrams");
-            assert!(diagram || svg.contains("k_l = "), "{}: no k_l printed", f.display());
+            let lever = f.to_string_lossy().ends_with("-joukowski.svg");
+            let scale = if lever { "k_v = " } else { "k_l = " };
+            assert!(diagram || svg.contains(scale), "{}: no {scale} printed", f.display());
             checked += 1;
         }
     }

@@ -309,17 +309,21 @@ fn printed_scale(d: &Drawing, title: &str) -> f64 {
         .unwrap_or_else(|| panic!("no panel titled {title}"))
 }
 
-/// The longest arrow drawn from the pole (the layer's small circle) on `layer`, paper mm.
+/// The longest arrow drawn from the pole on `layer`, paper mm.
 fn longest_from_pole(d: &Drawing, layer: &str) -> f64 {
     let l = d.layers.iter().position(|x| x.name == layer).unwrap();
     let on: Vec<&Shape> = d.entities.iter().filter(|e| e.layer == l).map(|e| &e.shape).collect();
-    let pole = on
+    // The pole: the point most arrows start from (the layer's circles are the pole and the
+    // centroid images' marks, so a circle alone does not tell it).
+    let tails: Vec<Point> = on
         .iter()
-        .find_map(|s| match s {
-            Shape::Circle { center, .. } => Some(*center),
+        .filter_map(|s| match s {
+            Shape::Arrow { from, .. } => Some(*from),
             _ => None,
         })
-        .unwrap();
+        .collect();
+    let starting_at = |p: &Point| tails.iter().filter(|q| (**q - *p).norm() < 1e-9).count();
+    let pole = *tails.iter().max_by_key(|p| starting_at(p)).unwrap();
     on.iter()
         .filter_map(|s| match s {
             Shape::Arrow { from, to, .. } if (*from - pole).norm() < 1e-9 => Some((*to - *from).norm()),

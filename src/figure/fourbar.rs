@@ -368,6 +368,18 @@ impl Layout {
         d
     }
 
+    /// Where a panel's title starts (left end of its baseline), for the panel from `ll` to `ur`.
+    fn title_at(&self, ll: Point, ur: Point) -> Point {
+        Point::new(ll.x, ur.y - 1.2 * self.sizes.text)
+    }
+
+    /// The box of a panel's title `title`.
+    fn title_box(&self, title: &str, ll: Point, ur: Point) -> labels::TextBox {
+        let at = self.title_at(ll, ur);
+        let h = self.sizes.text;
+        labels::TextBox { min: at, max: at + Vector::new(text_width(title, h), h) }
+    }
+
     fn dim_style(&self) -> DimStyle {
         DimStyle { text_height: self.sizes.text, arrow_size: self.sizes.head }
     }
@@ -389,7 +401,7 @@ impl Layout {
             ground(&mut d, mech, p, self.sizes);
         }
         for (title, _ll, ur) in &self.panels {
-            let at = Point::new(_ll.x, ur.y - 1.2 * self.sizes.text);
+            let at = self.title_at(*_ll, *ur);
             d.add(
                 dims,
                 Shape::Text {
@@ -455,11 +467,15 @@ impl Layout {
         let omega1 = self.omega1.or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let _ = mechanism(&mut d, geom, pos, &arrows, omega1, s);
+        // The polygons' letters keep off the panel titles.
+        let titles: Vec<labels::TextBox> = self.panels.iter().map(|(t, ll, ur)| self.title_box(t, *ll, *ur)).collect();
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.velocity) {
-            polygon::draw(&mut d, &velocity_figure(pos, geom.c, k), layers::VELOCITY, scale, pole, s);
+            let poly = velocity_figure(pos, geom.c, k);
+            polygon::draw_keeping_off(&mut d, &poly, layers::VELOCITY, scale, pole, s, &titles);
         }
         if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.acceleration) {
-            polygon::draw(&mut d, &acceleration_polygon(pos, geom.c, k), layers::ACCELERATION, scale, pole, s);
+            let poly = acceleration_polygon(pos, geom.c, k);
+            polygon::draw_keeping_off(&mut d, &poly, layers::ACCELERATION, scale, pole, s, &titles);
         }
         if let (Some(f), Some((scale, pole)), Some(ff)) = (force, self.forces, &self.force_figures) {
             // The names keep off the captions, the table and the other figure's names.

@@ -115,10 +115,26 @@ impl PointPolygon {
 /// Draws `poly` on `layer` (its construction lines and components on `CONSTRUCTION`) with
 /// the pole at `pole`, at `scale`.
 pub fn draw(d: &mut Drawing, poly: &PointPolygon, layer: layers::Layer, scale: Scale, pole: Point, s: Sizes) {
+    draw_keeping_off(d, poly, layer, scale, pole, s, &[]);
+}
+
+/// [`draw`], its letters kept off the texts `keep_off` (a panel's title, say).
+pub fn draw_keeping_off(
+    d: &mut Drawing,
+    poly: &PointPolygon,
+    layer: layers::Layer,
+    scale: Scale,
+    pole: Point,
+    s: Sizes,
+    keep_off: &[labels::TextBox],
+) {
     let l = layer_of(d, layer);
     let c = layer_of(d, layers::CONSTRUCTION);
     let pts = poly.drawn_points(scale, pole);
     let mut letters = labels::Polygon::of_points();
+    for b in keep_off {
+        letters.keep_off(*b);
+    }
     // Directions: full dashed lines through their point, reaching a little past the point
     // found on both sides.
     let reach = 4.0 * s.head;
