@@ -100,7 +100,7 @@ pub fn draw_centres(
 /// Panels per row of the centres sheet.
 const COLUMNS: usize = 2;
 
-/// The centres sheet: one panel per position of `positions`, [`COLUMNS`] to a row, each the
+/// The centres sheet: one panel per position of `positions`, two to a row, each the
 /// mechanism inside `window` (model units, the same for every panel) with its centres,
 /// Kennedy's lines, its crank angle and the notes of centres not drawn; on paper at `k_l`
 /// (model units per paper millimetre).

@@ -1,7 +1,7 @@
 //! The four-bar on printed sheets (issue 14, item 3): one page per position with the
 //! mechanism, the velocity polygon, the acceleration polygon and the force polygons, each
 //! in its own panel ([`super::sheet`]), drawn by the same functions as the animation
-//! ([`super::fourbar::mechanism`], [`super::polygon::draw`], [`super::forces::draw`] on the
+//! (`figure::fourbar::mechanism`, [`super::polygon::draw`], [`super::forces::draw`] on the
 //! four-bar's adapters), in paper millimetres.
 //!
 //! Scales: the mechanism has one k_l for the whole run (a nice value at which the whole

@@ -60,7 +60,7 @@ pub struct State {
 }
 
 /// A step solved close to a singular Jacobian (smallest relative pivot below
-/// [`NEAR_SINGULAR_PIVOT_REL`] but above [`SINGULAR_PIVOT_REL`]), typically a time step
+/// [`NEAR_SINGULAR_PIVOT_REL`] but above [`SINGULAR_PIVOT_REL`](super::SINGULAR_PIVOT_REL)), typically a time step
 /// landing on or within ~1e-9 rad of a dead point. The position is kept (it is right to
 /// the Newton tolerance); the velocities and accelerations are kept too (finite, never
 /// NaN) but are not reliable there: callers report the step (the run pipeline prints a

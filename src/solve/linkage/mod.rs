@@ -23,7 +23,9 @@ mod kinetostatics;
 mod lu;
 
 pub use kinematics::{NearSingular, Sliding, Solver, State};
-pub use kinetostatics::{Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TimeWindow};
+pub use kinetostatics::{
+    Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TIME_WINDOW_EPS_REL, TimeWindow,
+};
 
 use crate::geom::{Point, Vector, rotate};
 use crate::solve::expr::Expr;
