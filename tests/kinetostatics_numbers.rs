@@ -33,7 +33,7 @@ fn loads(spec: &MotionSpec, p: &Position, k: &Kinematics) -> Loads {
     let g = &spec.geometry;
     let d = spec.dynamics.as_ref().unwrap();
     let mid = |a: Point, b: Point| Point::from((a.coords + b.coords) / 2.0);
-    let down = Vector::new(0.0, -d.g);
+    let down = d.gravity;
     let a_g = [k.a_a / 2.0, (k.a_a + k.a_b) / 2.0, (k.a_b + k.a_m) / 2.0, k.a_b / 2.0];
     let m = [d.m1, d.m21, d.m22, d.m3];
     let l = [g.l1, g.l_ab, g.l_bm, g.l_bc];
@@ -234,7 +234,7 @@ fn static_moment_by_virtual_work_at_every_angle() {
     let g = spec.geometry;
     let d = spec.dynamics.clone().unwrap();
     let motion = solve_motion(&spec).unwrap();
-    let down = Vector::new(0.0, -d.g);
+    let down = d.gravity;
     for (p, f) in motion.positions.iter().zip(&motion.forces) {
         let at = |phi: f64| position(&g, phi, Side::Left).unwrap();
         let ddphi = |get: &dyn Fn(&Position) -> Vector| {

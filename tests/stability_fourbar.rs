@@ -95,6 +95,7 @@ fn branch_is_kept_through_near_singular_positions() {
     let spec = MotionSpec {
         geometry: g,
         omega1: 1.0,
+        epsilon1: 0.0,
         sweep: Sweep { from_deg: from, to_deg: from + n * step, step_deg: step },
         outputs: Outputs { velocity: true, acceleration: false, forces: false },
         dynamics: None,
@@ -142,6 +143,7 @@ fn overflowing_magnitudes_are_refused_by_name() {
             ..base
         },
         omega1,
+        epsilon1: 0.0,
         sweep: Sweep { from_deg: 0.0, to_deg: 10.0, step_deg: 1.0 },
         outputs: Outputs { velocity: true, acceleration: true, forces: false },
         dynamics: None,

@@ -928,6 +928,8 @@ pub(crate) mod tests {
         let ab = aa + a_ba_n + a_ba_t;
         let am = ab - rbm * w2 * w2 + perp(rbm) * e2;
         let kin = Kinematics {
+            omega1,
+            eps1: 0.0,
             omega2: w2,
             omega3: w3,
             eps2: e2,

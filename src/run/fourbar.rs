@@ -220,6 +220,8 @@ struct Quantity {
 fn kin_of(p: &Position) -> crate::solve::fourbar::Kinematics {
     // Quantities of a group are read only when the motion has that group.
     p.kin.unwrap_or(crate::solve::fourbar::Kinematics {
+        omega1: f64::NAN,
+        eps1: f64::NAN,
         omega2: f64::NAN,
         omega3: f64::NAN,
         eps2: f64::NAN,

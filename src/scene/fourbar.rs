@@ -8,7 +8,7 @@ use serde::Deserialize;
 use super::{FieldError, Units, finite, finite_point, positive};
 use crate::geom::{Side, Vector};
 use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
-use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint};
+use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint, Link, LinkLoad, LinkMass};
 
 /// Standard gravity in m/s², the default `dynamics.g` (in every scene: g is in m/s²
 /// whatever the length unit).
@@ -43,6 +43,9 @@ pub struct RawFourbarScene {
     pub l_bc: f64,
     /// Crank angular velocity, rad/s, CCW positive.
     pub omega1: f64,
+    /// Crank angular acceleration, rad/s², CCW positive (default 0).
+    #[serde(default)]
+    pub epsilon1: Option<f64>,
     /// Crank angles.
     pub phi1_deg: RawSweep,
     /// Side of B relative to the directed line A→C at the first crank angle.
@@ -72,9 +75,9 @@ pub struct RawSweep {
 #[derive(Debug, Clone, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RawDynamics {
-    /// Gravity, length units/s², along −y.
+    /// Gravity, m/s²: a number (along −y) or a vector [gx, gy].
     #[serde(default)]
-    pub g: Option<f64>,
+    pub g: Option<RawGravity>,
     /// Crank mass, kg.
     pub m1: f64,
     /// Coupler bar AB mass, kg.
@@ -86,6 +89,63 @@ pub struct RawDynamics {
     /// `[[dynamics.force]]`.
     #[serde(default)]
     pub force: Vec<RawForce>,
+    /// `[dynamics.crank]`: centroid offset and inertia of the crank.
+    #[serde(default)]
+    pub crank: Option<RawLinkMass>,
+    /// `[dynamics.AB]`.
+    #[serde(default, rename = "AB")]
+    pub ab: Option<RawLinkMass>,
+    /// `[dynamics.BM]`.
+    #[serde(default, rename = "BM")]
+    pub bm: Option<RawLinkMass>,
+    /// `[dynamics.rocker]`.
+    #[serde(default)]
+    pub rocker: Option<RawLinkMass>,
+    /// `[[dynamics.load]]`: forces at any point of any link, torques on any link.
+    #[serde(default)]
+    pub load: Vec<RawLoad>,
+}
+
+/// `dynamics.g`: a number (m/s² along −y) or a vector [gx, gy] (m/s²).
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum RawGravity {
+    /// Along −y.
+    Down(f64),
+    /// Any direction.
+    Vector([f64; 2]),
+}
+
+/// `[dynamics.crank]`, `[dynamics.AB]`, `[dynamics.BM]`, `[dynamics.rocker]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLinkMass {
+    /// Offset of the centroid from the bar's middle, link coordinates, length units.
+    #[serde(default)]
+    pub centroid: Option<[f64; 2]>,
+    /// Moment of inertia about the centroid, kg·m².
+    #[serde(default)]
+    pub inertia: Option<f64>,
+}
+
+/// `[[dynamics.load]]`.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawLoad {
+    /// "crank", "AB", "BM" or "rocker".
+    pub link: String,
+    /// Point of application, link coordinates from the link's first point, length units.
+    #[serde(default)]
+    pub at: Option<[f64; 2]>,
+    /// [fx, fy], N.
+    #[serde(default)]
+    pub force: Option<[f64; 2]>,
+    /// Torque, N·m, CCW positive.
+    #[serde(default)]
+    pub torque: Option<f64>,
+    /// [from, to], degrees, closed, counter-clockwise from `from`.
+    #[serde(default)]
+    pub phi1_deg: Option<[f64; 2]>,
 }
 
 /// `[[dynamics.force]]`.
@@ -137,6 +197,7 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
         branch: raw.branch.unwrap_or(Side::Left),
     };
     let omega1 = finite("omega1", raw.omega1)?;
+    let epsilon1 = finite("epsilon1", raw.epsilon1.unwrap_or(0.0))?;
     let sweep = check_sweep(&raw.phi1_deg)?;
 
     let outputs = match &raw.outputs {
@@ -178,7 +239,7 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
     Ok(FourbarScene {
         name,
         units: raw.units,
-        spec: MotionSpec { geometry, omega1, sweep, outputs, dynamics },
+        spec: MotionSpec { geometry, omega1, epsilon1, sweep, outputs, dynamics },
         centres,
     })
 }
@@ -208,10 +269,26 @@ fn check_sweep(s: &RawSweep) -> Result<Sweep, FieldError> {
 }
 
 fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError> {
-    let g = finite("dynamics.g", d.g.unwrap_or(STANDARD_GRAVITY))?;
-    if g < 0.0 {
-        return Err(FieldError::new("dynamics.g", format!("must be ≥ 0 in m/s² (gravity acts along −y), got {g}")));
-    }
+    let gravity = match &d.g {
+        None => Vector::new(0.0, -STANDARD_GRAVITY),
+        Some(RawGravity::Down(g)) => {
+            let g = finite("dynamics.g", *g)?;
+            if g < 0.0 {
+                return Err(FieldError::new(
+                    "dynamics.g",
+                    format!(
+                        "must be ≥ 0 in m/s² (a number acts along −y; write [gx, gy] for another direction), got {g}"
+                    ),
+                ));
+            }
+            Vector::new(0.0, -g)
+        }
+        Some(RawGravity::Vector(v)) => {
+            let v = finite_point("dynamics.g", *v)?;
+            Vector::new(v.x, v.y)
+        }
+    };
+    let g = gravity.norm();
     if units == Units::Mm && g > MAX_G_MM_SCENE {
         return Err(FieldError::new(
             "dynamics.g",
@@ -230,6 +307,69 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
             Err(FieldError::new(field, format!("must be a mass ≥ 0 in kg, got {v}")))
         }
     };
+    let range = |field: String, r: Option<[f64; 2]>| match r {
+        None => Ok(None),
+        Some([from, to]) => {
+            if !from.is_finite() || !to.is_finite() {
+                return Err(FieldError::new(field, format!("must be [from, to] in degrees, got [{from}, {to}]")));
+            }
+            Ok(Some(CrankRange { from_deg: from, to_deg: to }))
+        }
+    };
+    let mut links = [LinkMass::default(); 4];
+    for (link, name, raw) in [
+        (Link::Crank, "crank", &d.crank),
+        (Link::Ab, "AB", &d.ab),
+        (Link::Bm, "BM", &d.bm),
+        (Link::Rocker, "rocker", &d.rocker),
+    ] {
+        let Some(raw) = raw else { continue };
+        let lm = &mut links[link.index()];
+        if let Some(c) = raw.centroid {
+            let c = finite_point(&format!("dynamics.{name}.centroid"), c)?;
+            lm.centroid = Vector::new(c.x, c.y);
+        }
+        if let Some(j) = raw.inertia {
+            if !(j.is_finite() && j >= 0.0) {
+                return Err(FieldError::new(
+                    format!("dynamics.{name}.inertia"),
+                    format!("must be a moment of inertia ≥ 0 in kg·m², got {j}"),
+                ));
+            }
+            lm.inertia = Some(j);
+        }
+    }
+    let mut loads = Vec::with_capacity(d.load.len());
+    for (i, l) in d.load.iter().enumerate() {
+        let link = match l.link.as_str() {
+            "crank" => Link::Crank,
+            "AB" => Link::Ab,
+            "BM" => Link::Bm,
+            "rocker" => Link::Rocker,
+            other => {
+                return Err(FieldError::new(
+                    format!("dynamics.load[{i}].link"),
+                    format!("\"{other}\" is not a link; valid: \"crank\", \"AB\", \"BM\", \"rocker\""),
+                ));
+            }
+        };
+        if l.force.is_none() && l.torque.is_none() {
+            return Err(FieldError::new(
+                format!("dynamics.load[{i}]"),
+                "needs a force = [fx, fy] (N) or a torque (N·m)",
+            ));
+        }
+        let at = finite_point(&format!("dynamics.load[{i}].at"), l.at.unwrap_or([0.0, 0.0]))?;
+        let force = finite_point(&format!("dynamics.load[{i}].force"), l.force.unwrap_or([0.0, 0.0]))?;
+        let torque = finite(&format!("dynamics.load[{i}].torque"), l.torque.unwrap_or(0.0))?;
+        loads.push(LinkLoad {
+            link,
+            at: Vector::new(at.x, at.y),
+            force: Vector::new(force.x, force.y),
+            torque,
+            range: range(format!("dynamics.load[{i}].phi1_deg"), l.phi1_deg)?,
+        });
+    }
     let mut forces = Vec::with_capacity(d.force.len());
     for (i, f) in d.force.iter().enumerate() {
         let at = match f.at.as_str() {
@@ -261,11 +401,13 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
             Units::Si => 1.0,
             Units::Mm => 0.001,
         },
-        g,
+        gravity,
         m1: mass("dynamics.m1", d.m1)?,
         m21: mass("dynamics.m21", d.m21)?,
         m22: mass("dynamics.m22", d.m22)?,
         m3: mass("dynamics.m3", d.m3)?,
         forces,
+        links,
+        loads,
     })
 }

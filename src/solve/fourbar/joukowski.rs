@@ -26,7 +26,7 @@
 
 use super::Geometry;
 use super::kinematics::{Kinematics, Position};
-use super::kinetostatics::{Dynamics, ForcePoint, loads};
+use super::kinetostatics::{Dynamics, ForcePoint, Link, loads};
 use crate::geom::{self, Vector, cross, perp};
 
 /// The velocity polygon's turn: 90° clockwise, `(x, y) → (y, −x)`.
@@ -73,8 +73,17 @@ pub struct Lever {
 pub fn lever(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynamics, omega1: f64) -> Lever {
     let l = loads(geom, pos, kin, dynamics);
     let (v_a, v_b, v_m) = (kin.v_a, kin.v_b, kin.v_m);
-    // Centroids: midpoints of O1A, AB, BM, CB (O1 and C at rest).
-    let (v_c1, v_c21, v_c22, v_c3) = (v_a * 0.5, (v_a + v_b) * 0.5, (v_b + v_m) * 0.5, v_b * 0.5);
+    // Centroids: midpoints of O1A, AB, BM, CB (O1 and C at rest), plus ω × offset for a
+    // centroid the scene puts off the middle (the offset term only then: bit-identical
+    // images for homogeneous bars).
+    let off = |v_mid: Vector, mid: crate::geom::Point, g: crate::geom::Point, w: f64| {
+        if g == mid { v_mid } else { v_mid + perp(g - mid) * w }
+    };
+    let (w1, w2, w3) = (kin.omega1, kin.omega2, kin.omega3);
+    let v_c1 = off(v_a * 0.5, geom.o1 + (pos.a - geom.o1) * 0.5, l.g1_at, w1);
+    let v_c21 = off((v_a + v_b) * 0.5, pos.a + (pos.b - pos.a) * 0.5, l.g21_at, w2);
+    let v_c22 = off((v_b + v_m) * 0.5, pos.b + (pos.m - pos.b) * 0.5, l.g22_at, w2);
+    let v_c3 = off(v_b * 0.5, geom.c + (pos.b - geom.c) * 0.5, l.g3_at, w3);
     let points = vec![
         ("p", Vector::zeros()),
         ("a", rotate(v_a)),
@@ -115,22 +124,42 @@ pub fn lever(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynam
         };
         push(name, at, v, f.value);
     }
+    // Loads at any point of any link, at the images of their points; a torque T on a link
+    // as the couple of the inertia moments below (its power is T·ω).
+    let mut torques = [0.0; 4];
+    let acting = dynamics.loads.iter().filter(|f| f.range.is_none_or(|r| r.contains_deg(phi1_deg)));
+    for (k, f) in acting.enumerate() {
+        let (p, _) = f.link.ends(geom, pos);
+        let at = p + f.link.to_world(geom, pos, f.at);
+        let (w, _) = f.link.motion(kin);
+        let v_p = match f.link {
+            Link::Crank | Link::Rocker => Vector::zeros(),
+            Link::Ab | Link::Bm => v_a,
+        };
+        let base = if f.link == Link::Bm { pos.a } else { p };
+        if f.force != Vector::zeros() {
+            push(format!("L{}", k + 1), "load", v_p + perp(at - base) * w, f.force);
+        }
+        torques[f.link.index()] += f.torque / dynamics.length_unit_m;
+    }
     // Inertia moments as couples at the links' joints: +F at the second joint, −F at the
     // first, F = M/|r|²·perp(r), r from the first joint to the second: moment r × F = M.
     let couple = |m: f64, r: Vector| perp(r) * (m / r.norm_squared());
-    let m2 = l.mi21 + l.mi22;
+    let m2 = l.mi21 + l.mi22 + torques[Link::Ab.index()] + torques[Link::Bm.index()];
     if m2 != 0.0 {
         let f = couple(m2, pos.b - pos.a);
         push("FM2".into(), "b", v_b, f);
         push("FM2'".into(), "a", v_a, -f);
     }
-    if l.mi3 != 0.0 {
-        let f = couple(l.mi3, pos.b - geom.c);
+    let m3 = l.mi3 + torques[Link::Rocker.index()];
+    if m3 != 0.0 {
+        let f = couple(m3, pos.b - geom.c);
         push("FM3".into(), "b", v_b, f);
         push("FM3'".into(), "p", Vector::zeros(), -f);
     }
-    if l.mi1 != 0.0 {
-        let f = couple(l.mi1, pos.a - geom.o1);
+    let m1 = l.mi1 + torques[Link::Crank.index()];
+    if m1 != 0.0 {
+        let f = couple(m1, pos.a - geom.o1);
         push("FM1".into(), "a", v_a, f);
         push("FM1'".into(), "p", Vector::zeros(), -f);
     }
@@ -170,7 +199,7 @@ mod tests {
         };
         let d = Dynamics {
             length_unit_m: 1.0,
-            g: 9.8,
+            gravity: Vector::new(0.0, -9.8),
             m1: 0.05,
             m21: 0.125,
             m22: 0.125,
@@ -180,6 +209,8 @@ mod tests {
                 value: Vector::new(0.0, -50.0),
                 range: Some(CrankRange { from_deg: 80.0, to_deg: 280.0 }),
             }],
+            links: Default::default(),
+            loads: Vec::new(),
         };
         (g, d)
     }

@@ -8,6 +8,10 @@ use crate::geom::{self, CircleIntersection, Point, Side, Vector, cross, perp};
 /// Velocities and accelerations at one crank angle (units/s, units/s²).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Kinematics {
+    /// Angular velocity of the crank (link 1), rad/s, CCW positive: the scene's omega1.
+    pub omega1: f64,
+    /// Angular acceleration of the crank, rad/s², CCW positive: the scene's epsilon1.
+    pub eps1: f64,
     /// Angular velocity of the coupler (link 2), rad/s, CCW positive.
     pub omega2: f64,
     /// Angular velocity of the rocker (link 3).
@@ -241,10 +245,19 @@ pub fn position(geom: &Geometry, phi1: f64, side: Side) -> Result<Position, Four
     Prepared::new(geom).position(phi1, side)
 }
 
-/// Velocities and accelerations at `pos` for the crank turning at the constant `omega1`
-/// (rad/s, CCW positive). Errors with [`FourbarError::Singular`] when A, B, C are collinear.
+/// Velocities and accelerations at `pos` for the crank turning at `omega1` (rad/s, CCW
+/// positive) with no angular acceleration: [`kinematics_eps`] with `eps1 = 0`.
 #[inline]
 pub fn kinematics(geom: &Geometry, pos: &Position, omega1: f64) -> Result<Kinematics, FourbarError> {
+    kinematics_eps(geom, pos, omega1, 0.0)
+}
+
+/// Velocities and accelerations at `pos` for the crank's state `omega1` (rad/s) and `eps1`
+/// (rad/s²), both counter-clockwise positive: A has the tangential acceleration
+/// eps1 × (A − O1) besides the normal −omega1²·(A − O1). Errors with
+/// [`FourbarError::Singular`] when A, B, C are collinear.
+#[inline]
+pub fn kinematics_eps(geom: &Geometry, pos: &Position, omega1: f64, eps1: f64) -> Result<Kinematics, FourbarError> {
     let r1 = pos.a - geom.o1;
     let r2 = pos.b - pos.a; // A→B
     let r3 = pos.b - geom.c; // C→B
@@ -261,7 +274,9 @@ pub fn kinematics(geom: &Geometry, pos: &Position, omega1: f64) -> Result<Kinema
     let v_ba = perp(r2) * omega2;
     let v_b = v_a + v_ba;
     // a_A + a_BA^n + ε2·perp(r2) = a_BC^n + ε3·perp(r3); same system, right side w.
-    let a_a = -r1 * (omega1 * omega1);
+    // The tangential term only when eps1 ≠ 0: adding a ±0 would turn a −0 component into
+    // +0 and change the printed constant-speed results.
+    let a_a = if eps1 == 0.0 { -r1 * (omega1 * omega1) } else { -r1 * (omega1 * omega1) + perp(r1) * eps1 };
     let a_ba_n = -r2 * (omega2 * omega2);
     let a_bc_n = -r3 * (omega3 * omega3);
     let w = a_bc_n - a_a - a_ba_n;
@@ -274,6 +289,8 @@ pub fn kinematics(geom: &Geometry, pos: &Position, omega1: f64) -> Result<Kinema
     let v_m = v_b + perp(rm) * omega2;
     let a_m = a_b - rm * (omega2 * omega2) + perp(rm) * eps2;
     Ok(Kinematics {
+        omega1,
+        eps1,
         omega2,
         omega3,
         eps2,

@@ -29,9 +29,10 @@ pub mod kinetostatics;
 pub mod motion;
 pub mod transmission;
 
-pub use kinematics::{Kinematics, Position, Prepared, kinematics, position};
+pub use kinematics::{Kinematics, Position, Prepared, kinematics, kinematics_eps, position};
 pub use kinetostatics::{
-    CrankRange, Dynamics, ExternalForce, ForcePoint, Forces, Loads, Reactions, forces, forces_newton_euler, loads,
+    CrankRange, Dynamics, ExternalForce, ForcePoint, Forces, Link, LinkLoad, LinkMass, Loads, Reactions, forces,
+    forces_newton_euler, loads,
 };
 pub use motion::{
     DeadPoint, DeadPointKind, Gap, GapReason, MAX_POSITIONS, Motion, MotionSpec, Outputs, Sweep, dead_points,

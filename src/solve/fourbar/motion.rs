@@ -3,7 +3,7 @@
 //! angles ([`Gap`]) and the exact dead points ([`DeadPoint`]), and evaluates kinematics and
 //! kineto-statics only when the scene asks for them.
 
-use super::kinematics::{Position, Prepared, kinematics};
+use super::kinematics::{Position, Prepared, kinematics_eps};
 use super::kinetostatics::{self, Dynamics, Forces};
 use super::{ANGLE_EPS_DEG, FourbarError, Geometry, Grashof, LimitAngle, Reach};
 use crate::geom::{self, CircleIntersection, Point, Side};
@@ -66,8 +66,12 @@ impl Outputs {
 pub struct MotionSpec {
     /// Link geometry and assembly mode.
     pub geometry: Geometry,
-    /// Crank angular velocity, rad/s, counter-clockwise positive, constant.
+    /// Crank angular velocity, rad/s, counter-clockwise positive, at every position.
     pub omega1: f64,
+    /// Crank angular acceleration, rad/s², counter-clockwise positive, at every position
+    /// (0: the crank turns uniformly). With `omega1`, the crank's state at each position of
+    /// the sweep, as a textbook problem gives it (not integrated along the sweep).
+    pub epsilon1: f64,
     /// Crank angles.
     pub sweep: Sweep,
     /// What to compute.
@@ -360,7 +364,7 @@ pub fn solve_motion(spec: &MotionSpec) -> Result<Motion, FourbarError> {
         // Checked once after the loop (a branch here costs the positions-only loop ~20 %).
         position_sum += pos.a.x + pos.a.y + pos.b.x + pos.b.y + pos.m.x + pos.m.y;
         if want_kin {
-            match kinematics(geom, &pos, spec.omega1) {
+            match kinematics_eps(geom, &pos, spec.omega1, spec.epsilon1) {
                 Ok(kin) if !kin.is_finite() => {
                     let quantity = if position_finite(&pos) { "velocities and accelerations" } else { "positions" };
                     return Err(FourbarError::NonFinite { phi1_deg: deg, quantity });
