@@ -99,9 +99,18 @@ fn layout(mech: &Mechanism) -> Layout {
         let JointKind::Prismatic { point, q1, .. } = j.kind else { continue };
         let Attach::Body(g) = q1.body else { continue };
         // The sliding point: a named point of its body at that place, else the joint's name.
+        let named = match point.body {
+            Attach::Body(b) => {
+                mech.bodies[b].points.iter().find(|(_, l)| same_local(*l, point.local)).map(|(n, _)| n.clone())
+            }
+            Attach::Ground => None,
+        };
         let sliding = points
             .iter()
-            .position(|p| p.anchor.body == point.body && same_local(p.anchor.local, point.local))
+            .position(|p| {
+                named.as_ref() == Some(&p.name)
+                    || (p.anchor.body == point.body && same_local(p.anchor.local, point.local))
+            })
             .map(|k| k + 1)
             .unwrap_or_else(|| {
                 points.push(PolyPoint { name: j.name.clone(), anchor: point });
