@@ -11,6 +11,7 @@ pub mod fourbar_sheet;
 pub mod joukowski;
 pub mod labels;
 pub mod linkage;
+pub mod linkage_polygon;
 pub mod plot;
 pub mod polygon;
 pub mod sheet;

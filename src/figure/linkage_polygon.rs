@@ -1,0 +1,275 @@
+//! Velocity and acceleration polygons of any linkage, as [`PointPolygon`] values for the
+//! shared [`super::polygon::draw`] (the four-bar's polygons are drawn by the same code).
+//!
+//! The points are the named points of the moving bodies (one point per name: `crank.A` and
+//! `block.A` pinned together are one point `a`); a point pinned to the ground is the pole.
+//! In the velocity polygon (pole `p`) every point is reached from the pole by its absolute
+//! velocity, and each body's image joins its points. In the acceleration polygon (pole `π`,
+//! primed letters) every point is reached from the pole by its absolute acceleration; for
+//! each body with two or more points, every point X is also constructed from the body's
+//! reference point R (its ground pivot when it has one, else its first point) as the
+//! four-bar's `nBA`: the normal part a_XR^n = −ω²·RX (towards R) to the point `nXR`, then
+//! the tangential part a_XR^t = ε × RX (dashed, along its dashed direction ⊥RX) to x′.
+//!
+//! At a prismatic joint whose guide moves (the shaper's block A2 on the rocker 3), the
+//! guide body's point under the sliding point gets its own letter (`a3`, the letter and the
+//! guide body's number, bodies counted from 1): in the velocity polygon the sliding velocity
+//! v_rel runs from a3 to a (dashed direction: the guide); in the acceleration polygon the
+//! Coriolis component a_cor = 2·ω_guide × v_rel runs from a3′ to `k`, and the relative
+//! acceleration a_rel along the guide (dashed) from k to a′: a_A2 = a_A3 + a_cor + a_rel.
+//! A guide fixed to the ground adds nothing (its point is still: v_rel is the velocity).
+//!
+//! Units: the solver's, per second (mm/s, mm/s² for a scene in mm).
+
+use crate::geom::{Vector, perp};
+use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, State};
+
+use super::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
+
+/// Relative tolerance (of the body's largest point offset) under which two body points
+/// are taken as the same point (a body point at a ground pivot).
+const SAME_POINT: f64 = 1e-9;
+
+/// The velocity and acceleration polygons of a linkage at one instant.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkagePolygons {
+    /// Pole `p`: lower-case letters, each body's image, sliding velocities.
+    pub velocity: PointPolygon,
+    /// Pole `π`: primed letters, normal and tangential parts per body, Coriolis and
+    /// relative accelerations at the moving guides.
+    pub acceleration: PointPolygon,
+}
+
+/// A point of the polygons: its name (as in the scene) and where it is on its body.
+#[derive(Debug, Clone)]
+struct PolyPoint {
+    name: String,
+    anchor: Anchor,
+}
+
+/// The points of the polygons and each body's points in outline order (indices into the
+/// polygons' numbering: [`POLE`] for a point pinned to the ground).
+struct Layout {
+    points: Vec<PolyPoint>,
+    members: Vec<Vec<usize>>,
+    /// Whether a body's image is closed (three or more named points).
+    closed: Vec<bool>,
+    /// Moving guides: (guide's point, sliding point, the joint's kind).
+    guides: Vec<(usize, usize, JointKind)>,
+}
+
+fn same_local(a: Vector, b: Vector) -> bool {
+    (a - b).norm() <= SAME_POINT * a.norm().max(b.norm()).max(1.0)
+}
+
+/// Whether `anchor` is pinned to the ground by a revolute joint.
+fn pinned_to_ground(mech: &Mechanism, anchor: Anchor) -> bool {
+    mech.joints.iter().any(|j| match j.kind {
+        JointKind::Revolute { a, b } => {
+            let at = |x: Anchor| x.body == anchor.body && same_local(x.local, anchor.local);
+            (a.body == Attach::Ground && at(b)) || (b.body == Attach::Ground && at(a))
+        }
+        JointKind::Prismatic { .. } => false,
+    })
+}
+
+fn layout(mech: &Mechanism) -> Layout {
+    let mut points: Vec<PolyPoint> = Vec::new();
+    let mut members: Vec<Vec<usize>> = vec![Vec::new(); mech.bodies.len()];
+    let mut closed = Vec::with_capacity(mech.bodies.len());
+    for (i, body) in mech.bodies.iter().enumerate() {
+        for (name, local) in &body.points {
+            let anchor = Anchor { body: Attach::Body(i), local: *local };
+            let index = if pinned_to_ground(mech, anchor) {
+                POLE
+            } else if let Some(k) = points.iter().position(|p| &p.name == name) {
+                k + 1
+            } else {
+                points.push(PolyPoint { name: name.clone(), anchor });
+                points.len()
+            };
+            if !members[i].contains(&index) {
+                members[i].push(index);
+            }
+        }
+        closed.push(body.points.len() >= 3);
+    }
+    let mut guides = Vec::new();
+    for j in &mech.joints {
+        let JointKind::Prismatic { point, q1, .. } = j.kind else { continue };
+        let Attach::Body(g) = q1.body else { continue };
+        // The sliding point: a named point of its body at that place, else the joint's name.
+        let named = match point.body {
+            Attach::Body(b) => {
+                mech.bodies[b].points.iter().find(|(_, l)| same_local(*l, point.local)).map(|(n, _)| n.clone())
+            }
+            Attach::Ground => None,
+        };
+        let sliding = points
+            .iter()
+            .position(|p| {
+                named.as_ref() == Some(&p.name)
+                    || (p.anchor.body == point.body && same_local(p.anchor.local, point.local))
+            })
+            .map(|k| k + 1)
+            .unwrap_or_else(|| {
+                points.push(PolyPoint { name: j.name.clone(), anchor: point });
+                points.len()
+            });
+        let name = format!("{}{}", points[sliding - 1].name, g + 1);
+        // The guide's point is placed from the sliding point's state (see `guide_point`).
+        points.push(PolyPoint { name, anchor: point });
+        let guide = points.len();
+        members[g].push(guide);
+        guides.push((guide, sliding, j.kind.clone()));
+    }
+    Layout { points, members, closed, guides }
+}
+
+/// Velocity and acceleration of polygon point `k` (1-based) at `state`: a body point's own,
+/// or for a guide's point the guide body's point under the sliding point.
+fn motion_of(lay: &Layout, state: &State, k: usize) -> (Vector, Vector) {
+    if let Some((_, _, kind)) = lay.guides.iter().find(|(g, _, _)| *g == k) {
+        let p = lay.points[k - 1].anchor;
+        if let Some(s) = state.sliding(kind) {
+            return (state.velocity(p) - s.v_rel, state.acceleration(p) - s.a_cor - s.a_rel);
+        }
+    }
+    let a = lay.points[k - 1].anchor;
+    (state.velocity(a), state.acceleration(a))
+}
+
+/// Where polygon point `k` is (any of its anchors: they coincide); the pole's points are
+/// found from the body's own pivot.
+fn position_of(lay: &Layout, state: &State, body: usize, k: usize, mech: &Mechanism) -> Vector {
+    if k == POLE {
+        // The body's point pinned to the ground.
+        let b = &mech.bodies[body];
+        for (_, local) in &b.points {
+            let anchor = Anchor { body: Attach::Body(body), local: *local };
+            if pinned_to_ground(mech, anchor) {
+                return state.point(anchor).coords;
+            }
+        }
+        return Vector::zeros();
+    }
+    state.point(lay.points[k - 1].anchor).coords
+}
+
+/// The velocity and acceleration polygons of `mech` at `state`.
+pub fn polygons(mech: &Mechanism, state: &State) -> LinkagePolygons {
+    let lay = layout(mech);
+    let n = lay.points.len();
+    let motions: Vec<(Vector, Vector)> = (1..=n).map(|k| motion_of(&lay, state, k)).collect();
+    let vector = |from, to| Side { from, to, kind: SideKind::Vector };
+    let image = |from, to| Side { from, to, kind: SideKind::Image };
+
+    // Images of the bodies: consecutive points, closed for a plate; sides at the pole are
+    // the pole's own vectors.
+    let mut images = Vec::new();
+    for (members, &closed) in lay.members.iter().zip(&lay.closed) {
+        let m = members.len();
+        let count = if closed && m >= 3 { m } else { m.saturating_sub(1) };
+        for i in 0..count {
+            let (a, b) = (members[i], members[(i + 1) % m]);
+            if a != POLE && b != POLE {
+                images.push(image(a, b));
+            }
+        }
+    }
+
+    // Velocity polygon.
+    let v_points: Vec<NamedPoint> = lay
+        .points
+        .iter()
+        .zip(&motions)
+        .map(|(p, (v, _))| NamedPoint { name: p.name.to_lowercase(), from: POLE, v: *v })
+        .collect();
+    let mut v_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
+    v_sides.extend(images.iter().copied());
+    let mut v_dirs = Vec::new();
+    for (guide, sliding, kind) in &lay.guides {
+        v_sides.push(vector(*guide, *sliding));
+        v_dirs.push(Direction { through: *guide, dir: guide_dir(state, kind), reaches: *sliding });
+    }
+    let velocity = PointPolygon {
+        pole: "p".into(),
+        pole_away: (1..=n.min(2)).collect(),
+        points: v_points,
+        directions: v_dirs,
+        sides: v_sides,
+        marks: vec![],
+    };
+
+    // Acceleration polygon.
+    let mut a_points: Vec<NamedPoint> = lay
+        .points
+        .iter()
+        .zip(&motions)
+        .map(|(p, (_, a))| NamedPoint { name: format!("{}'", p.name.to_lowercase()), from: POLE, v: *a })
+        .collect();
+    let mut a_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
+    let mut a_dirs = Vec::new();
+    let upper = |k: usize| if k == POLE { String::new() } else { lay.points[k - 1].name.clone() };
+    for (body, members) in lay.members.iter().enumerate() {
+        if members.len() < 2 {
+            continue;
+        }
+        let (_, omega, _) = state.angular(Attach::Body(body));
+        let reference = if members.contains(&POLE) { POLE } else { members[0] };
+        let r_at = position_of(&lay, state, body, reference, mech);
+        let ref_name = if reference == POLE { pivot_name(mech, body) } else { upper(reference) };
+        for &x in members {
+            if x == reference {
+                continue;
+            }
+            let rx = position_of(&lay, state, body, x, mech) - r_at;
+            a_points.push(NamedPoint {
+                name: format!("n{}{}", upper(x), ref_name),
+                from: reference,
+                v: -rx * (omega * omega),
+            });
+            let nx = a_points.len();
+            a_sides.push(vector(reference, nx));
+            a_sides.push(Side { from: nx, to: x, kind: SideKind::Component });
+            a_dirs.push(Direction { through: nx, dir: perp(rx), reaches: x });
+        }
+    }
+    let corioli: Vec<_> = lay.guides.iter().collect();
+    for (i, (guide, sliding, kind)) in corioli.iter().enumerate() {
+        let Some(s) = state.sliding(kind) else { continue };
+        let name = if corioli.len() == 1 { "k".to_string() } else { format!("k{}", i + 1) };
+        a_points.push(NamedPoint { name, from: *guide, v: s.a_cor });
+        let k = a_points.len();
+        a_sides.push(vector(*guide, k));
+        a_sides.push(Side { from: k, to: *sliding, kind: SideKind::Component });
+        a_dirs.push(Direction { through: k, dir: guide_dir(state, kind), reaches: *sliding });
+    }
+    a_sides.extend(images.iter().copied());
+    let acceleration = PointPolygon {
+        pole: "π".into(),
+        pole_away: (1..=n.min(2)).collect(),
+        points: a_points,
+        directions: a_dirs,
+        sides: a_sides,
+        marks: vec![],
+    };
+    LinkagePolygons { velocity, acceleration }
+}
+
+/// Name of a body's ground pivot (the name of its point pinned to the ground).
+fn pivot_name(mech: &Mechanism, body: usize) -> String {
+    mech.bodies[body]
+        .points
+        .iter()
+        .find(|(_, local)| pinned_to_ground(mech, Anchor { body: Attach::Body(body), local: *local }))
+        .map_or_else(String::new, |(name, _)| name.clone())
+}
+
+/// Direction of a prismatic joint's guide at `state` (q1 → q2).
+fn guide_dir(state: &State, kind: &JointKind) -> Vector {
+    match *kind {
+        JointKind::Prismatic { q1, q2, .. } => state.point(q2) - state.point(q1),
+        JointKind::Revolute { .. } => Vector::new(1.0, 0.0),
+    }
+}
