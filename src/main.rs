@@ -35,7 +35,9 @@ enum Command {
         /// Print the JSON summary on stdout.
         #[arg(long)]
         json: bool,
-        /// Also write PNG copies (1600 px wide) of the picture and of the diagrams.
+        /// Also write PNG copies (1600 px wide) of every SVG: the picture, the extra sheets,
+        /// the diagrams, the frames (`frames/<name>/<position>.png`) and the printed pages
+        /// (`sheets/<name>/<position>.png`).
         #[arg(long)]
         png: bool,
         /// Do not write per-position SVG frames and the HTML viewer.

@@ -193,3 +193,26 @@ fn sheets_are_written_like_the_picture_right_after_it() {
         assert!(of(format!("{name}.{ext}")) == of(format!("{name}-first.{ext}")), "{ext}");
     }
 }
+
+#[test]
+fn with_png_every_svg_has_its_png_next_to_it_frames_and_printed_pages_too() {
+    let (_, loaded) = templates().into_iter().find(|(s, _)| s == "fourbar-chebyshev").unwrap();
+    let opts = RunOptions { sheets: Some(mechdraw::figure::sheet::Paper::A4), ..RunOptions::default() };
+    let products = mechdraw::run::products(&loaded, &opts).unwrap();
+    let files = bytes::to_files(&products, &WriteOptions { png: true, ..WriteOptions::default() }).unwrap();
+    let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();
+    let of = |n: &str| &files.iter().find(|(f, _)| f == n).unwrap_or_else(|| panic!("no {n}")).1;
+    let (mut frames, mut pages) = (0, 0);
+    for (i, n) in names.iter().enumerate() {
+        let Some(stem) = n.strip_suffix(".svg") else { continue };
+        frames += usize::from(stem.starts_with("frames/"));
+        pages += usize::from(stem.starts_with("sheets/"));
+        // The PNG comes right after its SVG and is that SVG rasterised at PNG_WIDTH_PX.
+        let png = format!("{stem}.png");
+        assert_eq!(names.get(i + 1), Some(&png.as_str()), "{n} is not followed by its PNG");
+        let svg = std::str::from_utf8(of(n)).unwrap();
+        assert!(of(&png) == &mechdraw::draw::raster::to_png(svg, PNG_WIDTH_PX).unwrap(), "{png}");
+    }
+    // 12 positions at a 30° step: a frame and a printed page for each.
+    assert_eq!((frames, pages), (12, 12));
+}

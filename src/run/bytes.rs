@@ -13,8 +13,8 @@
 //! | `<name><suffix>.csv` | each table |
 //! | `<name>.json` | the summary, pretty, with a final newline |
 //! | `diagrams/<name>/<stem>.svg` (and `.png`) | each diagram |
-//! | `frames/<name>/<position>.svg`, `<name>.html` | a motion's frames and viewer (unless `--no-frames`) |
-//! | `<name>-sheets.pdf`, `sheets/<name>/<position>.svg` | the printed pages, one per position (`--sheets`) |
+//! | `frames/<name>/<position>.svg` (and `.png`), `<name>.html` | a motion's frames and viewer (unless `--no-frames`) |
+//! | `<name>-sheets.pdf`, `sheets/<name>/<position>.svg` (and `.png`) | the printed pages, one per position (`--sheets`) |
 //!
 //! A motion's DXF is built on one core while the frames, the diagrams and the viewer are
 //! built on the others, and the frames are handed to the sink while the diagrams and the
@@ -37,7 +37,8 @@ pub const FRAME_WIDTH_PX: u32 = 1000;
 /// How the products become bytes.
 #[derive(Debug, Clone, Default)]
 pub struct WriteOptions {
-    /// PNG copies of the picture and the diagrams ([`super::PNG_WIDTH_PX`] wide).
+    /// PNG copies of every SVG written: the picture, the sheets, the diagrams, the printed
+    /// pages and the frames ([`super::PNG_WIDTH_PX`] wide).
     pub png: bool,
     /// Skip a motion's per-position frames and its HTML viewer.
     pub no_frames: bool,
@@ -121,7 +122,7 @@ pub fn write(
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
     head.push((format!("{name}.json"), (json + "\n").into_bytes()));
     head.extend(diagrams);
-    head.extend(page_files(name, &p.pages)?);
+    head.extend(page_files(name, &p.pages, opts.png)?);
 
     sink.put(&view(&head))?;
     sink.put(&view(&tail))?;
@@ -194,9 +195,10 @@ fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<(Str
 }
 
 /// The printed pages: `<name>-sheets.pdf` with every page, then each page's SVG
-/// `sheets/<name>/<stem>.svg` (true size: `width="297mm"`, viewBox in paper mm); nothing
-/// without pages. The SVGs are built in parallel with the PDF.
-fn page_files(name: &str, pages: &[Page]) -> Result<Vec<(String, Vec<u8>)>, Error> {
+/// `sheets/<name>/<stem>.svg` (true size: `width="297mm"`, viewBox in paper mm) and, when
+/// asked for, its PNG `sheets/<name>/<stem>.png`; nothing without pages. The SVGs (and PNGs)
+/// are built in parallel with the PDF.
+fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
     if pages.is_empty() {
         return Ok(Vec::new());
     }
@@ -221,13 +223,16 @@ fn page_files(name: &str, pages: &[Page]) -> Result<Vec<(String, Vec<u8>)>, Erro
                         paper_mm_per_unit: Some(1.0),
                         ..SvgOptions::default()
                     };
-                    (format!("sheets/{name}/{}.svg", p.stem), svg::to_string(&p.drawing, &opts).into_bytes())
+                    let stem = format!("sheets/{name}/{}", p.stem);
+                    let mut v = Vec::with_capacity(2);
+                    picture_files(&mut v, &stem, svg::to_string(&p.drawing, &opts), png)?;
+                    Ok(v)
                 })
-                .collect::<Vec<_>>()
+                .collect::<Result<Vec<_>, Error>>()
         },
     );
     let mut files = vec![(pdf_name, doc?)];
-    files.extend(svgs);
+    files.extend(svgs?.into_iter().flatten());
     Ok(files)
 }
 
@@ -271,9 +276,28 @@ fn motion(
         || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),
         || -> Result<_, Error> {
             let frames = if want_frames { frames(a, &poses, &svg_opts, tick) } else { Vec::new() };
-            let names: Vec<String> =
-                a.names.iter().take(frames.len()).map(|n| format!("frames/{name}/{}.svg", n.to_lowercase())).collect();
-            let files: Vec<File<'_>> = names.iter().zip(&frames).map(|(n, f)| (n.clone(), f.svg.as_bytes())).collect();
+            let stems: Vec<String> =
+                a.names.iter().take(frames.len()).map(|n| format!("frames/{name}/{}", n.to_lowercase())).collect();
+            // With --png, each frame's PNG follows its SVG.
+            let pngs: Vec<Vec<u8>> = if opts.png {
+                stems
+                    .par_iter()
+                    .zip(&frames)
+                    .map(|(stem, f)| png_bytes(&f.svg, &format!("{stem}.png")))
+                    .collect::<Result<_, Error>>()?
+            } else {
+                Vec::new()
+            };
+            let mut names = Vec::with_capacity(stems.len() * if opts.png { 2 } else { 1 });
+            let mut files: Vec<File<'_>> = Vec::with_capacity(names.capacity());
+            for (i, (stem, f)) in stems.iter().zip(&frames).enumerate() {
+                names.push(format!("{stem}.svg"));
+                files.push((format!("{stem}.svg"), f.svg.as_bytes()));
+                if let Some(png) = pngs.get(i) {
+                    names.push(format!("{stem}.png"));
+                    files.push((format!("{stem}.png"), png.as_slice()));
+                }
+            }
             let (staged, (diagrams, html)) = rayon::join(
                 || sink.put(&files),
                 || {
