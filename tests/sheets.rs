@@ -348,3 +348,43 @@ fn a_length_measured_on_the_sheet_times_its_printed_scale_is_the_value() {
         assert!((longest_from_pole(d, "ACCELERATION") * k_a - a).abs() < 1e-9 * a, "{}: k_a × mm ≠ |a|", page.stem);
     }
 }
+
+#[test]
+fn every_panel_of_every_page_has_a_scale_bar_whose_length_is_its_value() {
+    let (_, p) = products(Paper::A4);
+    for page in &p.pages {
+        let d = &page.drawing;
+        let dims = d.layers.iter().position(|x| x.name == "DIMENSIONS").unwrap();
+        let texts: Vec<(Point, &str)> = d
+            .entities
+            .iter()
+            .filter(|e| e.layer == dims)
+            .filter_map(|e| match &e.shape {
+                Shape::Text { at, value, .. } => Some((*at, value.as_str())),
+                _ => None,
+            })
+            .collect();
+        // A bar is its "0" and its label (value and unit) level with it, at either end.
+        let zeros: Vec<Point> = texts.iter().filter(|(_, v)| *v == "0").map(|(at, _)| *at).collect();
+        assert_eq!(zeros.len(), 4, "{}: one bar per panel", page.stem);
+        for (title, unit) in [
+            ("Mechanism", " m"),
+            ("Velocity polygon", " m/s"),
+            ("Acceleration polygon", " m/s²"),
+            ("Force polygons", " N"),
+        ] {
+            let k = printed_scale(d, title);
+            let value: f64 = texts
+                .iter()
+                .filter(|(_, v)| v.ends_with(unit) && v.split(' ').count() == 2)
+                .find_map(|(_, v)| v.split(' ').next()?.parse().ok())
+                .unwrap_or_else(|| panic!("{}: no bar label in{unit}", page.stem));
+            let length = value / k;
+            let has_line = d.entities.iter().any(|e| {
+                e.layer == dims
+                    && matches!(e.shape, Shape::Line { from, to } if ((to - from).norm() - length).abs() < 1e-9 && (to.y - from.y).abs() < 1e-12)
+            });
+            assert!(has_line, "{}: no {title} bar {length} mm long", page.stem);
+        }
+    }
+}

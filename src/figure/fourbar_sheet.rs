@@ -18,7 +18,7 @@ use super::fourbar::{
     Show, acceleration_polygon, angle_text, crank_polygon, dyad_polygon, mechanism, velocity_polygon,
 };
 use super::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
-use super::vocab::{ModelUnits, Scale, ground, layer_of, layers, path, scale_text};
+use super::vocab::{ModelUnits, Scale, bar_value, ground, layer_of, layers, path, scale_bar, scale_text};
 use super::{forces, polygon};
 
 /// Gap between the dyad's force polygon and the crank's on a sheet, in the larger polygon's
@@ -219,6 +219,24 @@ impl FourbarSheets {
             let names = forces::draw(&mut d, &dyad_polygon(fs), scale, pole, s, &[]);
             let crank_pole = pole + scale.draw(crank_shift.unwrap_or_else(Vector::zeros));
             forces::draw(&mut d, &crank_polygon(fs), scale, crank_pole, s, &names);
+        }
+
+        // A scale bar at the foot of every panel: the mechanism's in the scene's length unit,
+        // each polygon's at this page's scale.
+        let dims = layer_of(&d, layers::DIMENSIONS);
+        let mut panels = self.layout.panels.iter();
+        let per_mm = [
+            (true, Some(self.k_l), len.to_string()),
+            (self.show.velocity, scales.k_v, format!("{len}/s")),
+            (self.show.acceleration, scales.k_a, format!("{len}/s²")),
+            (self.show.forces, scales.k_f, "N".to_string()),
+        ];
+        for (on, k, unit) in per_mm {
+            let panel = if on { panels.next() } else { None };
+            if let (Some(panel), Some(k)) = (panel, k) {
+                let value = bar_value(k);
+                scale_bar(&mut d, dims, panel.bar_at(s), value / k, &format!("{} {unit}", scale_text(value)), s);
+            }
         }
         (d, scales)
     }

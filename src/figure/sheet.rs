@@ -14,7 +14,7 @@ use std::str::FromStr;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
-use super::vocab::{Sizes, content_drawing, nice_scale};
+use super::vocab::{Sizes, content_drawing, nice_scale, scale_bar_room};
 
 /// Thinnest stroke on a sheet, paper mm (frame lines, construction lines, pole circles).
 pub const HAIRLINE_MM: f64 = 0.25;
@@ -105,15 +105,22 @@ pub struct Panel {
 
 impl Panel {
     /// The panel framed by `outline`, for letters of `sizes`: its figure's area is the
-    /// frame less a title band of 2.2 letter heights at the top and a margin of 1.5 letter
-    /// heights on every side (for the figure's letters).
+    /// frame less a title band of 2.2 letter heights at the top, a margin of 1.5 letter
+    /// heights on every side (for the figure's letters) and, at the foot, the strip of its
+    /// scale bar ([`Panel::bar_at`]).
     pub fn of_outline(outline: Bounds, sizes: Sizes) -> Panel {
         let (band, margin) = (2.2 * sizes.text, 1.5 * sizes.text);
         let area = Bounds {
-            min: outline.min + Vector::new(margin, margin),
+            min: outline.min + Vector::new(margin, margin + scale_bar_room(sizes)),
             max: outline.max - Vector::new(margin, band + 0.5 * margin),
         };
         Panel { outline, area }
+    }
+
+    /// The left end of the panel's scale bar: in the strip at its foot, clear of the frame.
+    pub fn bar_at(&self, sizes: Sizes) -> Point {
+        let h = sizes.small_text();
+        Point::new(self.outline.min.x + 2.5 * h, self.outline.min.y + 0.5 * sizes.text + 0.5 * scale_bar_room(sizes))
     }
 }
 
