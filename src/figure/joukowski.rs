@@ -93,7 +93,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
     let row = 1.6 * small;
     // One table row per load (and F_b), under a header.
     let rows = panels.iter().map(|p| p.lever.forces.len() + 1).max().unwrap_or(0) + 1;
-    let summary_lines = 5.0;
+    let summary_lines = 6.0;
     let notes_room = (rows as f64 + summary_lines + 1.0) * row;
     let title_room = 2.2 * s.text;
     let gap = 2.0 * s.text;
@@ -197,7 +197,8 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         let lines = [
             "velocity polygon turned 90° clockwise".to_string(),
             format!("k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
-            format!("Σ M_p(F_i) = Σ F_i·v_i = {} N·{speed} (without F_b)", sig4(lever.moment)),
+            "Σ M_p(F_i) = Σ F_i·v_i (without F_b)".to_string(),
+            format!("  = {} N·{speed}", sig4(lever.moment)),
             format!("Me1 = −Σ M_p(F_i) / ω1 = {me1} {}", units.moment),
             format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),
         ];
