@@ -171,3 +171,80 @@ pub fn seed_triad() -> mechdraw::solve::triad::Triad {
     )
     .expect("the seed's triad is valid")
 }
+
+/// A text of a drawing as the letter placer measures it: its layer, its value and its box
+/// (label width by one cap height, from its alignment, turned with the text; a circled link
+/// number's circle).
+#[derive(Debug, Clone)]
+pub struct TextBox {
+    pub layer: String,
+    pub value: String,
+    pub min: mechdraw::geom::Point,
+    pub max: mechdraw::geom::Point,
+}
+
+/// Every text of `d` with its box.
+pub fn text_boxes(d: &mechdraw::draw::Drawing) -> Vec<TextBox> {
+    use mechdraw::draw::{HAlign, Shape, VAlign};
+    use mechdraw::figure::labels::{CIRCLE_RADIUS, label_width};
+    use mechdraw::geom::{Point, Vector};
+    let circles: Vec<(Point, f64)> = d
+        .entities
+        .iter()
+        .filter_map(|e| match e.shape {
+            Shape::Circle { center, radius } => Some((center, radius)),
+            _ => None,
+        })
+        .collect();
+    d.entities
+        .iter()
+        .filter_map(|e| match &e.shape {
+            Shape::Text { at, height, value, halign, valign, rotation } => {
+                let (h, w) = (*height, label_width(value, *height));
+                let x0 = match halign {
+                    HAlign::Left => at.x,
+                    HAlign::Center => at.x - 0.5 * w,
+                    HAlign::Right => at.x - w,
+                };
+                let y0 = match valign {
+                    VAlign::Baseline => at.y,
+                    VAlign::Middle => at.y - 0.5 * h,
+                    VAlign::Top => at.y - h,
+                };
+                let (mut min, mut max) = (Point::new(x0, y0), Point::new(x0 + w, y0 + h));
+                let r = CIRCLE_RADIUS * h;
+                if circles.iter().any(|(c, cr)| *c == *at && (cr - r).abs() < 1e-12 * r) {
+                    (min, max) = (*at - Vector::new(r, r), *at + Vector::new(r, r));
+                }
+                // A rotated text: the box of its rotated corners (about its insertion point).
+                if *rotation != 0.0 {
+                    let (sin, cos) = rotation.sin_cos();
+                    let turn = |p: Point| {
+                        let v = p - *at;
+                        *at + Vector::new(cos * v.x - sin * v.y, sin * v.x + cos * v.y)
+                    };
+                    let corners = [min, Point::new(max.x, min.y), max, Point::new(min.x, max.y)].map(turn);
+                    min = corners.iter().fold(corners[0], |m, c| Point::new(m.x.min(c.x), m.y.min(c.y)));
+                    max = corners.iter().fold(corners[0], |m, c| Point::new(m.x.max(c.x), m.y.max(c.y)));
+                }
+                let layer = d.layers[e.layer].name.clone();
+                Some(TextBox { layer, value: value.clone(), min, max })
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The pairs of texts of `d` whose boxes overlap (empty texts aside).
+pub fn overlapping_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
+    let t: Vec<TextBox> = text_boxes(d).into_iter().filter(|t| !t.value.trim().is_empty()).collect();
+    let mut out = Vec::new();
+    for (i, a) in t.iter().enumerate() {
+        for b in &t[..i] {
+            if a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y {
+                out.push((a.value.clone(), b.value.clone()));
+            }
+        }
+    }
+    out
+}
