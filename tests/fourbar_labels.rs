@@ -7,9 +7,8 @@
 
 mod common;
 
-use mechdraw::draw::{Drawing, HAlign, Shape, VAlign};
+use mechdraw::draw::{Drawing, HAlign, Shape};
 use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
-use mechdraw::figure::labels::{CIRCLE_RADIUS, label_width};
 use mechdraw::figure::polygon::MARK_RADIUS;
 use mechdraw::geom::{Point, Vector};
 use mechdraw::run::RunOptions;
@@ -32,59 +31,7 @@ fn template(set: &[&str]) -> (Vec<Drawing>, MotionSpec, Motion, Layout) {
     (frames, s.spec, motion, layout)
 }
 
-/// A text of a frame: its layer's name, value, where it is, and its estimated box
-/// (the letter placer's estimate: label width by one cap height; a circled number's circle).
-#[derive(Debug, Clone)]
-struct Text {
-    layer: String,
-    value: String,
-    at: Point,
-    halign: HAlign,
-    min: Point,
-    max: Point,
-}
-
-fn texts(d: &Drawing) -> Vec<Text> {
-    let circles: Vec<(Point, f64)> = d
-        .entities
-        .iter()
-        .filter_map(|e| match e.shape {
-            Shape::Circle { center, radius } => Some((center, radius)),
-            _ => None,
-        })
-        .collect();
-    d.entities
-        .iter()
-        .filter_map(|e| match &e.shape {
-            Shape::Text { at, height, value, halign, valign, .. } => {
-                let (h, w) = (*height, label_width(value, *height));
-                let x0 = match halign {
-                    HAlign::Left => at.x,
-                    HAlign::Center => at.x - 0.5 * w,
-                    HAlign::Right => at.x - w,
-                };
-                let y0 = match valign {
-                    VAlign::Baseline => at.y,
-                    VAlign::Middle => at.y - 0.5 * h,
-                    VAlign::Top => at.y - h,
-                };
-                let (mut min, mut max) = (Point::new(x0, y0), Point::new(x0 + w, y0 + h));
-                // A link number: its circle is its box.
-                let r = CIRCLE_RADIUS * h;
-                if circles.iter().any(|(c, cr)| *c == *at && (cr - r).abs() < 1e-12 * r) {
-                    (min, max) = (*at - Vector::new(r, r), *at + Vector::new(r, r));
-                }
-                let layer = d.layers[e.layer].name.clone();
-                Some(Text { layer, value: value.clone(), at: *at, halign: *halign, min, max })
-            }
-            _ => None,
-        })
-        .collect()
-}
-
-fn overlap(a: &Text, b: &Text) -> bool {
-    a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
-}
+use common::{boxes_overlap as overlap, text_boxes as texts};
 
 #[test]
 fn no_two_texts_of_a_frame_overlap_over_the_template_motion() {

@@ -179,6 +179,8 @@ pub fn seed_triad() -> mechdraw::solve::triad::Triad {
 pub struct TextBox {
     pub layer: String,
     pub value: String,
+    pub at: mechdraw::geom::Point,
+    pub halign: mechdraw::draw::HAlign,
     pub min: mechdraw::geom::Point,
     pub max: mechdraw::geom::Point,
 }
@@ -228,7 +230,7 @@ pub fn text_boxes(d: &mechdraw::draw::Drawing) -> Vec<TextBox> {
                     max = corners.iter().fold(corners[0], |m, c| Point::new(m.x.max(c.x), m.y.max(c.y)));
                 }
                 let layer = d.layers[e.layer].name.clone();
-                Some(TextBox { layer, value: value.clone(), min, max })
+                Some(TextBox { layer, value: value.clone(), at: *at, halign: *halign, min, max })
             }
             _ => None,
         })
@@ -241,10 +243,15 @@ pub fn overlapping_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
     let mut out = Vec::new();
     for (i, a) in t.iter().enumerate() {
         for b in &t[..i] {
-            if a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y {
+            if boxes_overlap(a, b) {
                 out.push((a.value.clone(), b.value.clone()));
             }
         }
     }
     out
+}
+
+/// Whether the boxes of two texts overlap.
+pub fn boxes_overlap(a: &TextBox, b: &TextBox) -> bool {
+    a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
 }

@@ -138,16 +138,7 @@ mod tests {
     use crate::solve::fourbar::{kinematics, position};
 
     fn template() -> Geometry {
-        Geometry {
-            o1: Point::origin(),
-            c: Point::new(0.08, 0.0),
-            l1: 0.04,
-            l_ab: 0.10,
-            l_bm: 0.10,
-            alpha: std::f64::consts::PI,
-            l_bc: 0.10,
-            branch: Side::Left,
-        }
+        super::super::test_template()
     }
 
     #[test]

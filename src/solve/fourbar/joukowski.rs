@@ -183,20 +183,11 @@ pub fn image_point(lever: &Lever, name: &str) -> Option<Vector> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Point, Side};
+    use crate::geom::Side;
     use crate::solve::fourbar::{CrankRange, ExternalForce, forces, kinematics, position};
 
     fn template() -> (Geometry, Dynamics) {
-        let g = Geometry {
-            o1: Point::origin(),
-            c: Point::new(0.08, 0.0),
-            l1: 0.04,
-            l_ab: 0.10,
-            l_bm: 0.10,
-            alpha: std::f64::consts::PI,
-            l_bc: 0.10,
-            branch: Side::Left,
-        };
+        let g = super::super::test_template();
         let d = Dynamics {
             length_unit_m: 1.0,
             gravity: Vector::new(0.0, -9.8),

@@ -235,3 +235,18 @@ pub struct LimitAngle {
     /// The crank only grazes the limit here (|AC| touches it and turns back): no gap.
     pub touch: bool,
 }
+
+/// The template's Chebyshev geometry (design.md §3), for the unit tests of this folder.
+#[cfg(test)]
+pub(crate) fn test_template() -> Geometry {
+    Geometry {
+        o1: Point::origin(),
+        c: Point::new(0.08, 0.0),
+        l1: 0.04,
+        l_ab: 0.10,
+        l_bm: 0.10,
+        alpha: std::f64::consts::PI,
+        l_bc: 0.10,
+        branch: Side::Left,
+    }
+}

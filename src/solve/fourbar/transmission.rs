@@ -51,20 +51,11 @@ pub fn gamma_min(positions: &[Position]) -> Option<GammaMin> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::geom::{Point, Side};
+    use crate::geom::Side;
     use crate::solve::fourbar::{Geometry, position};
 
     fn template() -> Geometry {
-        Geometry {
-            o1: Point::origin(),
-            c: Point::new(0.08, 0.0),
-            l1: 0.04,
-            l_ab: 0.10,
-            l_bm: 0.10,
-            alpha: std::f64::consts::PI,
-            l_bc: 0.10,
-            branch: Side::Left,
-        }
+        super::super::test_template()
     }
 
     /// γ by the law of cosines in the triangle ABC, from |AC| alone (no solver): |AC|² =
