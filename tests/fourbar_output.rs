@@ -120,8 +120,13 @@ fn every_output_is_written() {
     ] {
         assert!(dir.join(&f).is_file(), "{f} missing");
     }
-    let frames = std::fs::read_dir(dir.join(format!("frames/{NAME}"))).unwrap().count();
-    assert_eq!(frames, 360);
+    // One SVG frame per position, each with its PNG (the run is made with --png).
+    let names: Vec<String> = std::fs::read_dir(dir.join(format!("frames/{NAME}")))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.iter().filter(|n| n.ends_with(".svg")).count(), 360);
+    assert_eq!(names.iter().filter(|n| n.ends_with(".png")).count(), 360);
     for q in [
         "phi2_deg", "phi3_deg", "gamma", "omega2", "omega3", "eps2", "eps3", "vM", "aM", "R_A", "R_B", "R_C", "R_O",
         "Me1",

@@ -23,7 +23,13 @@ fn shaper_run_writes_every_output() {
     let text = std::fs::read_to_string(&dxf).unwrap();
     assert!(text.contains("POS_000") && text.contains("POS_090") && !text.contains("POS_091"));
     assert!(text.contains("TRAJECTORY"));
-    assert_eq!(std::fs::read_dir(out.join("frames/shaper")).unwrap().count(), 91);
+    // One SVG frame per step, each with its PNG (--png).
+    let frames: Vec<String> = std::fs::read_dir(out.join("frames/shaper"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(frames.iter().filter(|n| n.ends_with(".svg")).count(), 91);
+    assert_eq!(frames.iter().filter(|n| n.ends_with(".png")).count(), 91);
     let html = std::fs::read_to_string(out.join("shaper.html")).unwrap();
     assert!(html.contains("shaper"));
     for col in ["E.x", "E.vx", "E.ax", "rocker.angle_deg", "rocker.omega", "rocker.eps"] {
