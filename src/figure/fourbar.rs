@@ -878,20 +878,11 @@ fn on_mechanism(geom: &Geometry, pos: &Position, f: &Forces, external: &[Externa
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
-    use crate::geom::{Side, cross, polar};
+    use crate::geom::{cross, polar};
 
     /// The template's Chebyshev four-bar (design.md §3).
     pub(crate) fn chebyshev() -> Geometry {
-        Geometry {
-            o1: Point::new(0.0, 0.0),
-            c: Point::new(0.08, 0.0),
-            l1: 0.04,
-            l_ab: 0.10,
-            l_bm: 0.10,
-            alpha: std::f64::consts::PI,
-            l_bc: 0.10,
-            branch: Side::Left,
-        }
+        crate::solve::fourbar::test_template()
     }
 
     /// Positions and kinematics by a closed form written here for the figure tests only
