@@ -34,26 +34,22 @@
 //! its own layer `POS_000`…`POS_359`, keeping the content's colour and line type on each
 //! entity, so that a CAD user switches positions by layer and tells contents by colour.
 
-use crate::draw::parts::text_width;
-use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
+use crate::draw::{Drawing, Shape};
 use crate::geom::{Point, Vector, cross, perp};
 use crate::solve::fourbar::{ExternalForce, Forces};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
 use super::forces::{self, ForcePolygon, NamedVector, Resultant};
 use super::labels;
-use super::polygon::{self, Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
+pub use super::panels::TABLE_CAPTION;
+use super::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
+use super::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
-use super::vocab::{
-    bar_value, content_drawing, ground, ground_extent, joint, layer_of, layers, length_scale, length_scale_text, link,
-    path, scale_bar, scale_bar_room, turn_arrow, unit_or,
-};
+use super::vocab::{ground, ground_extent, joint, layer_of, layers, link, path, turn_arrow, unit_or};
 
 /// Largest extent of the mechanism's motion on paper, millimetres: k_l is the nice value
 /// that draws it at most this long.
 pub const MECHANISM_MM: f64 = 100.0;
-/// Gap between panels on paper, millimetres.
-const PANEL_GAP_MM: f64 = 10.0;
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -67,119 +63,26 @@ pub struct Show {
     pub forces: bool,
 }
 
-/// Panel placement and scales for one run: computed once from every position.
+/// Panels, scales and what the four-bar draws on its mechanism, for one run: computed once
+/// from every position ([`PanelFrame`] places the panels).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Layout {
-    /// The model's units.
-    pub units: ModelUnits,
     /// What is drawn.
     pub show: Show,
-    /// Length scale k_l: model units per paper millimetre (0.002 for a mechanism in metres
-    /// drawn at 0.002 m/mm, i.e. 1:2); the drawings' `paper_mm_per_unit` is 1/k_l.
-    pub k_l: f64,
-    /// Sizes of letters, arrows, links and joints (from paper millimetres at k_l).
-    pub sizes: Sizes,
-    /// Velocity scale and the pole p (when drawn).
-    pub velocity: Option<(Scale, Point)>,
-    /// Acceleration scale and the pole π (when drawn).
-    pub acceleration: Option<(Scale, Point)>,
-    /// Force scale and the pole f of the dyad's polygon (seed Fig. 4), when drawn.
-    pub forces: Option<(Scale, Point)>,
-    /// The rest of the force panel (the crank's polygon, captions, the table), when drawn.
-    pub force_figures: Option<ForceFigures>,
+    /// The panels, scales and poles.
+    pub frame: PanelFrame,
     /// The crank's angular velocity (rad/s, CCW positive) for the ω1 arrow
     /// ([`Layout::with_drive`]); without it the arrow follows the sign of the kinematics'.
     pub omega1: Option<f64>,
     /// The external forces on the coupler, drawn on the mechanism where they act
     /// ([`Layout::with_drive`]).
     pub external: Vec<ExternalForce>,
-    /// Lower-left corners and sizes of the panels with their titles:
-    /// (title, lower-left, upper-right).
-    pub panels: Vec<(String, Point, Point)>,
-    /// The scale bar of each panel: left end, length (model units), label (value and
-    /// unit), in the order of `panels`.
-    pub bars: Vec<(Point, f64, String)>,
-    /// The fixed window of every frame.
-    pub window: Bounds,
-}
-
-/// The force panel beside the dyad's polygon (whose pole is [`Layout::forces`]): the crank's
-/// polygon (seed Fig. 5) with its own pole, a caption over each figure, and the table of
-/// magnitudes, all at the run's force scale.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ForceFigures {
-    /// Pole of the crank's polygon.
-    pub crank_pole: Point,
-    /// Upper-left corner of the table of magnitudes.
-    pub table_at: Point,
-    /// Width of the table (values right-aligned at its right edge).
-    pub table_width: f64,
-    /// Captions: text and the left end of its baseline.
-    pub captions: Vec<(String, Point)>,
-    /// Unit of moments in the table (`N·m`, `N·mm`).
-    pub moment_unit: String,
-}
-
-impl ForceFigures {
-    /// The boxes of the captions and of the table (for the polygons' names to keep off).
-    fn text_boxes(&self, s: Sizes) -> Vec<labels::TextBox> {
-        let h = forces::NAME_HEIGHT * s.text;
-        let mut out: Vec<labels::TextBox> = self
-            .captions
-            .iter()
-            .map(|(t, at)| labels::TextBox {
-                min: *at,
-                max: *at + Vector::new(crate::draw::parts::text_width(t, h), h),
-            })
-            .collect();
-        let table_h = forces::TABLE_PITCH * forces::TABLE_TEXT * s.text * MAGNITUDE_ROWS as f64;
-        out.push(labels::TextBox {
-            min: self.table_at - Vector::new(0.0, table_h),
-            max: self.table_at + Vector::new(self.table_width, 0.0),
-        });
-        out
-    }
 }
 
 /// Caption of the dyad's force polygon.
 pub const DYAD_CAPTION: &str = "Dyad 2–3 (Fig. 4)";
 /// Caption of the crank's force polygon.
 pub const CRANK_CAPTION: &str = "Crank 1 (Fig. 5)";
-/// Caption of the table of magnitudes.
-pub const TABLE_CAPTION: &str = "Magnitudes";
-
-/// Bounding box of physical vectors.
-#[derive(Debug, Clone, Copy)]
-struct Extent {
-    min: Vector,
-    max: Vector,
-}
-
-impl Extent {
-    fn of(vs: impl IntoIterator<Item = Vector>) -> Option<Extent> {
-        let mut e: Option<Extent> = None;
-        for v in vs {
-            if !(v.x.is_finite() && v.y.is_finite()) {
-                continue;
-            }
-            e = Some(match e {
-                None => Extent { min: v, max: v },
-                Some(e) => Extent { min: e.min.inf(&v), max: e.max.sup(&v) },
-            });
-        }
-        e
-    }
-    fn union(a: Option<Extent>, b: Option<Extent>) -> Option<Extent> {
-        match (a, b) {
-            (Some(a), Some(b)) => Some(Extent { min: a.min.inf(&b.min), max: a.max.sup(&b.max) }),
-            (a, None) => a,
-            (None, b) => b,
-        }
-    }
-    fn size(&self) -> f64 {
-        (self.max - self.min).amax()
-    }
-}
 
 impl Layout {
     /// The layout for a run: `positions` are the assembled positions (in order),
@@ -193,163 +96,52 @@ impl Layout {
     ) -> Layout {
         // Mechanism extent over the motion.
         let pts = positions.iter().flat_map(|p| [p.a.coords, p.b.coords, p.m.coords]);
-        let mech = Extent::of(pts.chain([geom.o1.coords, geom.c.coords]))
+        let mechanism = Extent::of(pts.chain([geom.o1.coords, geom.c.coords]))
             .unwrap_or(Extent { min: Vector::zeros(), max: Vector::new(1.0, 1.0) });
-        let size = mech.size().max(geom.l1.max(geom.l_bc)).max(f64::MIN_POSITIVE);
-        let k_l = length_scale(size, MECHANISM_MM);
-        let paper = 1.0 / k_l;
-        let sizes = Sizes::on_paper(k_l);
-        let bar_room = scale_bar_room(sizes);
-        // Room for the ground symbols and letters around the mechanism, and for the scale
-        // bar under it.
-        let pad = 3.5 * sizes.joint + 1.6 * sizes.text;
-        let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + 2.0 * sizes.joint + bar_room);
-        let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
-        // Each polygon's panel about as large on paper as the mechanism.
-        let target_mm = size * paper;
-
+        let size = mechanism.size().max(geom.l1.max(geom.l_bc));
         let kins: Vec<(&Position, &Kinematics)> = positions.iter().filter_map(|p| Some((p, p.kin.as_ref()?))).collect();
         let show = Show {
             velocity: show.velocity && !kins.is_empty(),
             acceleration: show.acceleration && !kins.is_empty(),
             forces: show.forces && forces.is_some_and(|f| !f.is_empty()),
         };
-        let scale_for = |e: Option<Extent>| -> (Scale, Extent) {
-            let e = e.unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() });
-            (Scale::on_paper(nice_scale(e.size() / target_mm), paper), e)
-        };
-        // Panels: (title, physical extent, scale, kind, unit of the bar) for each polygon.
-        let mut polys: Vec<(String, Scale, Extent, usize, String)> = Vec::new();
-        if show.velocity {
-            let e =
-                kins.iter().map(|(_, k)| Extent::of(velocity_polygon(k).physical_points())).fold(None, Extent::union);
-            let (s, e) = scale_for(e);
-            let unit = format!("{}/s", units.length);
-            polys.push((format!("Velocity polygon   k_v = {} ({unit})/mm", scale_text(s.per_mm)), s, e, 0, unit));
-        }
-        if show.acceleration {
-            let e = kins
-                .iter()
-                .map(|(p, k)| Extent::of(acceleration_polygon(p, geom.c, k).physical_points()))
-                .fold(None, Extent::union);
-            let (s, e) = scale_for(e);
-            let unit = format!("{}/s²", units.length);
-            polys.push((format!("Acceleration polygon   k_a = {} ({unit})/mm", scale_text(s.per_mm)), s, e, 1, unit));
-        }
-        let mut force_panel = None;
-        if show.forces {
-            let fs = forces.unwrap_or(&[]);
-            let dyad = fs.iter().map(|f| Extent::of(dyad_polygon(f).physical_points())).fold(None, Extent::union);
-            let crank = fs.iter().map(|f| Extent::of(crank_polygon(f).physical_points())).fold(None, Extent::union);
-            let larger = if crank.is_some_and(|c| dyad.is_none_or(|d| c.size() > d.size())) { crank } else { dyad };
-            let (s, _) = scale_for(larger);
+        let velocity =
+            show.velocity.then(|| kins.iter().flat_map(|(_, k)| velocity_polygon(k).physical_points()).collect());
+        let acceleration = show
+            .acceleration
+            .then(|| kins.iter().flat_map(|(p, k)| acceleration_polygon(p, geom.c, k).physical_points()).collect());
+        let force_spec = forces.filter(|_| show.forces).map(|fs| {
             let moment_unit = format!("N·{}", units.length);
-            let rows: Vec<forces::Magnitude> = fs.iter().flat_map(|f| magnitudes(f, &moment_unit)).collect();
-            let (e, panel) =
-                ForcePanel::arrange(s, dyad, crank, forces::table_size(&rows, MAGNITUDE_ROWS, sizes), sizes);
-            force_panel = Some((panel, moment_unit));
-            polys.push((format!("Force polygons   k_f = {} N/mm", scale_text(s.per_mm),), s, e, 2, "N".into()));
-            // The forces drawn on the mechanism, with their names, stay in its panel.
-            let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
-            for (pos, f) in positions.iter().zip(fs) {
-                for (at, nv) in on_mechanism(geom, pos, f, &[]) {
-                    let tip = at + s.draw(nv.v);
-                    if tip.x.is_finite() && tip.y.is_finite() {
-                        mech_min = Point::from(mech_min.coords.inf(&(tip - room - Vector::new(0.0, bar_room)).coords));
-                        mech_max = Point::from(mech_max.coords.sup(&(tip + room).coords));
-                    }
-                }
+            let extent = |poly: fn(&Forces) -> ForcePolygon| {
+                fs.iter().map(|f| Extent::of(poly(f).physical_points())).fold(None, Extent::union)
+            };
+            ForceSpec {
+                figures: vec![
+                    (DYAD_CAPTION.to_string(), extent(dyad_polygon)),
+                    (CRANK_CAPTION.to_string(), extent(crank_polygon)),
+                ],
+                rows: fs.iter().flat_map(|f| magnitudes(f, &moment_unit)).collect(),
+                row_count: MAGNITUDE_ROWS,
+                on_mechanism: positions
+                    .iter()
+                    .zip(fs)
+                    .flat_map(|(pos, f)| on_mechanism(geom, pos, f, &[]).into_iter().map(|(at, nv)| (at, nv.v)))
+                    .collect(),
             }
-        }
-
-        // Grid: up to three panels in a row, four as 2 × 2.
-        let title_room = 2.6 * sizes.text;
-        let gap = PANEL_GAP_MM * k_l;
-        let mech_title = format!("Mechanism   {}", length_scale_text(k_l, units));
-        // Each panel at least as wide as its title (the mechanism's with the crank angle
-        // right of it) and its scale bar.
-        let wide_enough = |b: Vector, title: &str, extra: &str| {
-            let w = text_width(title, sizes.text) + text_width(extra, sizes.text) + 2.0 * sizes.text;
-            Vector::new(b.x.max(w), b.y)
-        };
-        let mut boxes: Vec<(String, Vector)> =
-            vec![(mech_title.clone(), wide_enough(mech_max - mech_min, &mech_title, "φ1 = 359.999°"))];
-        for (title, s, e, _, _) in &polys {
-            let room = Vector::new(2.0 * sizes.text, 2.0 * sizes.text + bar_room);
-            boxes.push((title.clone(), wide_enough(s.draw(e.max - e.min) + room, title, "")));
-        }
-        let cols = if boxes.len() == 4 { 2 } else { boxes.len() };
-        let rows = boxes.len().div_ceil(cols);
-        let mut col_w = vec![0.0f64; cols];
-        let mut row_h = vec![0.0f64; rows];
-        for (i, (_, b)) in boxes.iter().enumerate() {
-            col_w[i % cols] = col_w[i % cols].max(b.x);
-            row_h[i / cols] = row_h[i / cols].max(b.y + title_room);
-        }
-        // Cell i's upper-left corner; row 0 on top, the mechanism's at its own lower-left.
-        let mut panels = Vec::new();
-        let mut origins = Vec::new();
-        for (i, (title, b)) in boxes.iter().enumerate() {
-            let (r, c) = (i / cols, i % cols);
-            let x = mech_min.x + col_w[..c].iter().sum::<f64>() + gap * c as f64;
-            let top = mech_min.y + row_h[0] - row_h[..r].iter().sum::<f64>() - gap * r as f64 - title_room + title_room;
-            let y_top = top - title_room;
-            let lower_left = Point::new(x, y_top - b.y);
-            origins.push(lower_left);
-            panels.push((title.clone(), lower_left, Point::new(x + b.x, y_top + title_room)));
-        }
-        // The mechanism panel must sit where the mechanism is: shift everything so.
-        let shift = mech_min - origins[0];
-        for p in panels.iter_mut() {
-            p.1 += shift;
-            p.2 += shift;
-        }
-        // Scale bars at the foot of each panel: the mechanism's in the scene's length unit.
-        let bar_at = |ll: Point| ll + Vector::new(2.0 * sizes.small_text(), 0.5 * bar_room);
-        let length = bar_value(k_l);
-        let mut bars = vec![(bar_at(panels[0].1), length, format!("{} {}", scale_text(length), units.length))];
-        let mut velocity = None;
-        let mut acceleration = None;
-        let mut force = None;
-        let mut force_figures = None;
-        for (j, (_, s, e, kind, unit)) in polys.iter().enumerate() {
-            let ll = origins[j + 1] + shift + Vector::new(sizes.text, sizes.text + bar_room);
-            let pole = ll - s.draw(e.min);
-            let value = bar_value(s.per_mm);
-            bars.push((
-                bar_at(panels[j + 1].1),
-                s.draw(Vector::new(value, 0.0)).x,
-                format!("{} {unit}", scale_text(value)),
-            ));
-            match kind {
-                0 => velocity = Some((*s, pole)),
-                1 => acceleration = Some((*s, pole)),
-                _ => force = Some((*s, pole)),
-            }
-            if let (2, Some((panel, unit))) = (kind, &force_panel) {
-                force_figures = Some(panel.place(pole, unit));
-            }
-        }
-        let mut window = Bounds { min: panels[0].1, max: panels[0].2 };
-        for p in &panels {
-            window.min = Point::new(window.min.x.min(p.1.x), window.min.y.min(p.1.y));
-            window.max = Point::new(window.max.x.max(p.2.x), window.max.y.max(p.2.y));
-        }
-        Layout {
+        });
+        let frame = PanelFrame::new(&PanelSpec {
             units,
-            show,
-            k_l,
-            sizes,
+            mechanism,
+            size,
+            mechanism_mm: MECHANISM_MM,
+            // Room for the ground symbols and letters around the mechanism.
+            pad: |s| (3.5 * s.joint + 1.6 * s.text, 2.0 * s.joint),
+            position_text: "φ1 = 359.999°".to_string(),
             velocity,
             acceleration,
-            forces: force,
-            force_figures,
-            omega1: None,
-            external: Vec::new(),
-            panels,
-            bars,
-            window,
-        }
+            forces: force_spec,
+        });
+        Layout { show, frame, omega1: None, external: Vec::new() }
     }
 
     /// The layout with the crank's angular velocity `omega1` (rad/s, CCW positive: the ω1
@@ -361,77 +153,22 @@ impl Layout {
         self
     }
 
-    /// A drawing on the content layers, on this layout's paper (1/k_l paper mm per unit).
-    fn paper_drawing(&self) -> Drawing {
-        let mut d = content_drawing(self.dim_style());
-        d.paper_mm_per_unit = Some(1.0 / self.k_l);
-        d
-    }
-
-    /// Where a panel's title starts (left end of its baseline), for the panel from `ll` to `ur`.
-    fn title_at(&self, ll: Point, ur: Point) -> Point {
-        Point::new(ll.x, ur.y - 1.2 * self.sizes.text)
-    }
-
-    /// The box of a panel's title `title`.
-    fn title_box(&self, title: &str, ll: Point, ur: Point) -> labels::TextBox {
-        let at = self.title_at(ll, ur);
-        let h = self.sizes.text;
-        labels::TextBox { min: at, max: at + Vector::new(text_width(title, h), h) }
-    }
-
-    fn dim_style(&self) -> DimStyle {
-        DimStyle { text_height: self.sizes.text, arrow_size: self.sizes.head }
-    }
-
     /// What every frame shares: the ground pivots with their hatch symbols (their letters
     /// move with the links, see [`Layout::moving`]), the coupler
     /// curve of M (`curve`: runs of consecutive positions; a gap in the motion breaks it),
     /// the panel titles with the scales, each panel's scale bar, and the captions of the
     /// force figures.
     pub fn base(&self, geom: &Geometry, curve: &[Vec<Point>]) -> Drawing {
-        let mut d = self.paper_drawing();
+        let mut d = self.frame.paper_drawing();
         let mech = layer_of(&d, layers::MECHANISM);
-        let dims = layer_of(&d, layers::DIMENSIONS);
         let cc = layer_of(&d, layers::COUPLER_CURVE);
         for run in curve {
             path(&mut d, cc, run.clone());
         }
         for p in [geom.o1, geom.c] {
-            ground(&mut d, mech, p, self.sizes);
+            ground(&mut d, mech, p, self.frame.sizes);
         }
-        for (title, _ll, ur) in &self.panels {
-            let at = self.title_at(*_ll, *ur);
-            d.add(
-                dims,
-                Shape::Text {
-                    at,
-                    height: self.sizes.text,
-                    value: title.clone(),
-                    halign: HAlign::Left,
-                    valign: VAlign::Baseline,
-                    rotation: 0.0,
-                },
-            );
-        }
-        for (at, length, label) in &self.bars {
-            scale_bar(&mut d, dims, *at, *length, label, self.sizes);
-        }
-        if let Some(ff) = &self.force_figures {
-            let h = forces::NAME_HEIGHT * self.sizes.text;
-            for (caption, at) in &ff.captions {
-                let value = caption.clone();
-                let shape = Shape::Text {
-                    at: *at,
-                    height: h,
-                    value,
-                    halign: HAlign::Left,
-                    valign: VAlign::Baseline,
-                    rotation: 0.0,
-                };
-                d.add(dims, shape);
-            }
-        }
+        self.frame.draw_titles(&mut d);
         d
     }
 
@@ -439,24 +176,11 @@ impl Layout {
     /// acting loads when forces are shown), the crank-angle text, the polygons asked for, and
     /// with forces the table of magnitudes.
     pub fn moving(&self, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
-        let mut d = self.paper_drawing();
-        let s = self.sizes;
-        let text = layer_of(&d, layers::TEXT);
-        let (ll, ur) = (self.panels[0].1, self.panels[0].2);
-        d.add(
-            text,
-            Shape::Text {
-                at: Point::new(ur.x, ur.y - 1.2 * s.text),
-                height: s.text,
-                value: format!("φ1 = {}°", angle_text(pos.phi1.to_degrees())),
-                halign: HAlign::Right,
-                valign: VAlign::Baseline,
-                rotation: 0.0,
-            },
-        );
-        let _ = ll;
+        let mut d = self.frame.paper_drawing();
+        let s = self.frame.sizes;
+        self.frame.draw_position_text(&mut d, format!("φ1 = {}°", angle_text(pos.phi1.to_degrees())));
         // The reactions and the loads drawn on the mechanism, for its letters to keep off.
-        let arrows = match (force, self.forces) {
+        let arrows = match (force, self.frame.forces) {
             (Some(f), Some((scale, _))) => {
                 let links = links_of(geom, pos);
                 let inside = Point::from((geom.o1.coords + pos.a.coords + pos.b.coords + geom.c.coords) / 4.0);
@@ -467,24 +191,13 @@ impl Layout {
         let omega1 = self.omega1.or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let _ = mechanism(&mut d, geom, pos, &arrows, omega1, s);
-        // The polygons' letters keep off the panel titles.
-        let titles: Vec<labels::TextBox> = self.panels.iter().map(|(t, ll, ur)| self.title_box(t, *ll, *ur)).collect();
-        if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.velocity) {
-            let poly = velocity_figure(pos, geom.c, k);
-            polygon::draw_keeping_off(&mut d, &poly, layers::VELOCITY, scale, pole, s, &titles);
-        }
-        if let (Some(k), Some((scale, pole))) = (pos.kin.as_ref(), self.acceleration) {
-            let poly = acceleration_polygon(pos, geom.c, k);
-            polygon::draw_keeping_off(&mut d, &poly, layers::ACCELERATION, scale, pole, s, &titles);
-        }
-        if let (Some(f), Some((scale, pole)), Some(ff)) = (force, self.forces, &self.force_figures) {
-            // The names keep off the captions, the table and the other figure's names.
-            let mut keep_off = ff.text_boxes(s);
-            let dyad = forces::draw(&mut d, &dyad_polygon(f), scale, pole, s, &keep_off);
-            keep_off.extend(dyad);
-            forces::draw(&mut d, &crank_polygon(f), scale, ff.crank_pole, s, &keep_off);
-            forces::table(&mut d, &magnitudes(f, &ff.moment_unit), ff.table_at, ff.table_width, s);
-        }
+        let kin = pos.kin.as_ref();
+        let velocity = kin.map(|k| velocity_figure(pos, geom.c, k));
+        let acceleration = kin.map(|k| acceleration_polygon(pos, geom.c, k));
+        let moment_unit = format!("N·{}", self.frame.units.length);
+        let figures = force.map(|f| ([dyad_polygon(f), crank_polygon(f)], magnitudes(f, &moment_unit)));
+        let figures = figures.as_ref().map(|(p, m)| (&p[..], &m[..]));
+        self.frame.draw_polygons(&mut d, velocity.as_ref(), acceleration.as_ref(), figures);
         d
     }
 
@@ -502,87 +215,6 @@ pub fn angle_text(deg: f64) -> String {
     let s = format!("{r:.3}");
     let s = s.trim_end_matches('0').trim_end_matches('.');
     if s == "-0" { "0".to_string() } else { s.to_string() }
-}
-
-/// How the force panel is arranged: the dyad's polygon, the crank's, the table, side by
-/// side under their captions, at one force scale (drawn units from the panel's lower-left).
-#[derive(Debug, Clone, Copy)]
-struct ForcePanel {
-    scale: Scale,
-    /// The physical point drawn at the panel's lower-left (the grid's extent's minimum).
-    e_min: Vector,
-    /// The crank polygon's physical extent's minimum.
-    crank_min: Vector,
-    /// Drawn height of the crank's polygon.
-    crank_h: f64,
-    /// Drawn offsets of the crank's column and of the table's.
-    crank_x: f64,
-    table_x: f64,
-    table_w: f64,
-    /// Drawn height of the figures (the captions go above).
-    fig_h: f64,
-    /// Caption text height.
-    caption_h: f64,
-}
-
-impl ForcePanel {
-    /// The panel for polygons of physical extents `dyad` and `crank` and a table of drawn
-    /// size `table`, at `scale`; returns the physical extent the grid sizes the panel by
-    /// (its minimum drawn at the panel's lower-left puts the dyad's pole in place).
-    fn arrange(
-        scale: Scale,
-        dyad: Option<Extent>,
-        crank: Option<Extent>,
-        table: Vector,
-        sizes: Sizes,
-    ) -> (Extent, ForcePanel) {
-        let zero = Extent { min: Vector::zeros(), max: Vector::zeros() };
-        let (dyad, crank) = (dyad.unwrap_or(zero), crank.unwrap_or(zero));
-        let (d4, d5) = (scale.draw(dyad.max - dyad.min), scale.draw(crank.max - crank.min));
-        let caption_h = forces::NAME_HEIGHT * sizes.text;
-        let width = |caption: &str, w: f64| w.max(crate::draw::parts::text_width(caption, caption_h));
-        let (col4, col5, col_t) =
-            (width(DYAD_CAPTION, d4.x), width(CRANK_CAPTION, d5.x), width(TABLE_CAPTION, table.x));
-        let gap = 2.0 * sizes.text;
-        let fig_h = d4.y.max(d5.y).max(table.y);
-        let total = Vector::new(col4 + gap + col5 + gap + col_t, fig_h + 2.0 * caption_h);
-        // Drawn units per physical unit.
-        let k = scale.draw(Vector::new(1.0, 0.0)).x;
-        // The dyad hangs from the top of its column.
-        let e_min = dyad.min - Vector::new(0.0, (fig_h - d4.y) / k);
-        let e = Extent { min: e_min, max: e_min + total / k };
-        let panel = ForcePanel {
-            scale,
-            e_min,
-            crank_min: crank.min,
-            crank_h: d5.y,
-            crank_x: col4 + gap,
-            table_x: col4 + gap + col5 + gap,
-            table_w: col_t,
-            fig_h,
-            caption_h,
-        };
-        (e, panel)
-    }
-
-    /// The figures around the dyad's pole `pole` as the grid placed it.
-    fn place(&self, pole: Point, moment_unit: &str) -> ForceFigures {
-        let origin = pole + self.scale.draw(self.e_min);
-        let crank_pole =
-            origin + Vector::new(self.crank_x, self.fig_h - self.crank_h) - self.scale.draw(self.crank_min);
-        let y = origin.y + self.fig_h + 0.8 * self.caption_h;
-        ForceFigures {
-            crank_pole,
-            table_at: origin + Vector::new(self.table_x, self.fig_h),
-            table_width: self.table_w,
-            captions: vec![
-                (DYAD_CAPTION.to_string(), Point::new(origin.x, y)),
-                (CRANK_CAPTION.to_string(), Point::new(origin.x + self.crank_x, y)),
-                (TABLE_CAPTION.to_string(), Point::new(origin.x + self.table_x, y)),
-            ],
-            moment_unit: moment_unit.to_string(),
-        }
-    }
 }
 
 /// The links as segments: crank O1A, coupler AB and BM, rocker CB.
@@ -974,7 +606,7 @@ pub(crate) mod tests {
         let g = chebyshev();
         let p = closed_form(&g, 0.0, 20.0);
         let k = p.kin.unwrap();
-        let (sv, pole) = lay.velocity.unwrap();
+        let (sv, pole) = lay.frame.velocity.unwrap();
         // v_A = ω1·l1 = 0.8 m/s; its arrow is 0.8 / k_v paper mm long = 0.8 / k_v · k_l m.
         let d = &frames[0];
         let vel = layer_of(d, layers::VELOCITY);
@@ -987,16 +619,16 @@ pub(crate) mod tests {
                 _ => None,
             })
             .unwrap();
-        assert!((pa.norm() - 0.8 / sv.per_mm * lay.k_l).abs() < 1e-12, "{} {}", pa.norm(), sv.per_mm);
+        assert!((pa.norm() - 0.8 / sv.per_mm * lay.frame.k_l).abs() < 1e-12, "{} {}", pa.norm(), sv.per_mm);
         // k_l is nice, prints in the mechanism's title, and the drawing is on its paper.
-        assert_eq!(lay.panels[0].0, format!("Mechanism   k_l = {} m/mm", scale_text(lay.k_l)));
-        assert_eq!(d.paper_mm_per_unit, Some(1.0 / lay.k_l));
+        assert_eq!(lay.frame.panels[0].0, format!("Mechanism   k_l = {} m/mm", scale_text(lay.frame.k_l)));
+        assert_eq!(d.paper_mm_per_unit, Some(1.0 / lay.frame.k_l));
         // Letters are 3.5 mm on paper.
-        assert!((lay.sizes.text / lay.k_l - 3.5).abs() < 1e-12);
+        assert!((lay.frame.sizes.text / lay.frame.k_l - 3.5).abs() < 1e-12);
         assert!((pa.normalize() - k.v_a.normalize()).norm() < 1e-12);
         // Panels do not overlap the mechanism panel.
-        let mech = &lay.panels[0];
-        for p in &lay.panels[1..] {
+        let mech = &lay.frame.panels[0];
+        for p in &lay.frame.panels[1..] {
             let disjoint = p.1.x >= mech.2.x || p.2.x <= mech.1.x || p.1.y >= mech.2.y || p.2.y <= mech.1.y;
             assert!(disjoint, "{p:?} overlaps {mech:?}");
         }
@@ -1006,7 +638,7 @@ pub(crate) mod tests {
         // Every frame lies inside the shared window.
         for f in &frames {
             let b = f.bounds().unwrap();
-            let w = lay.window;
+            let w = lay.frame.window;
             let slack = 0.02 * w.width();
             assert!(b.min.x >= w.min.x - slack && b.max.x <= w.max.x + slack && b.min.y >= w.min.y - slack);
             assert!(b.max.y <= w.max.y + slack, "{b:?} vs {w:?}");
@@ -1016,7 +648,7 @@ pub(crate) mod tests {
     #[test]
     fn positions_only_draws_no_polygon() {
         let (lay, frames) = run(Show::default());
-        assert!(lay.velocity.is_none() && lay.acceleration.is_none() && lay.panels.len() == 1);
+        assert!(lay.frame.velocity.is_none() && lay.frame.acceleration.is_none() && lay.frame.panels.len() == 1);
         let d = &frames[0];
         let vel = layer_of(d, layers::VELOCITY);
         assert!(!d.entities.iter().any(|e| e.layer == vel));
@@ -1039,7 +671,7 @@ pub(crate) mod tests {
     /// The letters of each polygon in a drawn position: (polygon, centre, text, height),
     /// polygon 0 velocity, 1 acceleration, 2 force (the force panel's texts only).
     fn polygon_letters(lay: &Layout, d: &Drawing) -> Vec<(usize, Point, String, f64)> {
-        let force_panel = lay.panels.iter().find(|p| p.0.starts_with("Force")).cloned();
+        let force_panel = lay.frame.panels.iter().find(|p| p.0.starts_with("Force")).cloned();
         let (vel, acc, frc) =
             (layer_of(d, layers::VELOCITY), layer_of(d, layers::ACCELERATION), layer_of(d, layers::FORCES));
         d.entities
@@ -1094,7 +726,7 @@ pub(crate) mod tests {
             // The first frame with overlapping letters, to look at: target/labels-overlap.png.
             let base = lay.base(&g, &[motion.positions.iter().map(|p| p.m).collect()]);
             let f = lay.frame(&base, &lay.moving(&g, &motion.positions[deg], Some(&motion.forces[deg])));
-            let opts = crate::draw::svg::SvgOptions { window: Some(lay.window), ..Default::default() };
+            let opts = crate::draw::svg::SvgOptions { window: Some(lay.frame.window), ..Default::default() };
             let png = crate::draw::raster::to_png(&crate::draw::svg::to_string(&f, &opts), 1400).unwrap();
             let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target");
             std::fs::write(dir.join("labels-overlap.png"), png).unwrap();
@@ -1106,9 +738,9 @@ pub(crate) mod tests {
     fn polygon_letters_stay_near_their_points_over_the_template_motion() {
         use super::super::labels::{COINCIDENT, SAME_POINT, max_distance, max_leader_distance};
         let (g, motion, lay) = template_motion();
-        let (sv, pv) = lay.velocity.unwrap();
-        let (sa, pa) = lay.acceleration.unwrap();
-        let force_panel = lay.panels.iter().find(|p| p.0.starts_with("Force")).cloned().unwrap();
+        let (sv, pv) = lay.frame.velocity.unwrap();
+        let (sa, pa) = lay.frame.acceleration.unwrap();
+        let force_panel = lay.frame.panels.iter().find(|p| p.0.starts_with("Force")).cloned().unwrap();
         let mut checked = 0;
         for (i, pos) in motion.positions.iter().enumerate() {
             let k = pos.kin.unwrap();

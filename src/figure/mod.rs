@@ -12,6 +12,7 @@ pub mod joukowski;
 pub mod labels;
 pub mod linkage;
 pub mod linkage_polygon;
+pub mod panels;
 pub mod plot;
 pub mod polygon;
 pub mod sheet;

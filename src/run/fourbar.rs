@@ -91,7 +91,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -
         None => Vec::new(),
     };
     let title = format!("{name}: four-bar, {} positions", motion.positions.len());
-    let window = layout.window;
+    let window = layout.frame.window;
     let Motion { positions, forces, .. } = motion;
     let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
     Ok(Products {
@@ -542,7 +542,7 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
     .into_iter()
     .filter_map(|(n, on)| on.then_some(n))
     .collect();
-    let len = layout.units.length;
+    let len = layout.frame.units.length;
     let scale = |s: Option<(crate::figure::fourbar::Scale, Point)>, unit: String| {
         s.map(|(s, _)| ScaleRecord { value: s.per_mm, unit })
     };
@@ -558,10 +558,10 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         gaps: &motion.gaps,
         dead_points: &motion.dead_points,
         scales: Scales {
-            k_l: ScaleRecord { value: layout.k_l, unit: format!("{len}/mm") },
-            k_v: scale(layout.velocity, format!("({len}/s)/mm")),
-            k_a: scale(layout.acceleration, format!("({len}/s²)/mm")),
-            k_f: scale(layout.forces, "N/mm".to_string()),
+            k_l: ScaleRecord { value: layout.frame.k_l, unit: format!("{len}/mm") },
+            k_v: scale(layout.frame.velocity, format!("({len}/s)/mm")),
+            k_a: scale(layout.frame.acceleration, format!("({len}/s²)/mm")),
+            k_f: scale(layout.frame.forces, "N/mm".to_string()),
         },
         positions,
     };
@@ -574,12 +574,12 @@ fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String
     if skipped > 0 {
         s.push_str(&format!(", {skipped} skipped"));
     }
-    let k_l = crate::figure::fourbar::scale_text(layout.k_l);
-    s.push_str(&format!("; k_l = {k_l} {}/mm", layout.units.length));
+    let k_l = crate::figure::fourbar::scale_text(layout.frame.k_l);
+    s.push_str(&format!("; k_l = {k_l} {}/mm", layout.frame.units.length));
     for (n, sc, u) in [
-        ("k_v", layout.velocity, format!("({}/s)/mm", layout.units.length)),
-        ("k_a", layout.acceleration, format!("({}/s²)/mm", layout.units.length)),
-        ("k_f", layout.forces, "N/mm".to_string()),
+        ("k_v", layout.frame.velocity, format!("({}/s)/mm", layout.frame.units.length)),
+        ("k_a", layout.frame.acceleration, format!("({}/s²)/mm", layout.frame.units.length)),
+        ("k_f", layout.frame.forces, "N/mm".to_string()),
     ] {
         if let Some((sc, _)) = sc {
             s.push_str(&format!("; {n} = {} {u}", crate::figure::fourbar::scale_text(sc.per_mm)));
