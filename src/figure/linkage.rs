@@ -17,6 +17,7 @@ use crate::draw::{Aci, DimStyle, Drawing, LineType};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
+use super::forces::ForceArrow;
 use super::labels::{self, TextBox};
 use super::vocab::{self, ModelUnits, Sizes};
 
@@ -143,8 +144,8 @@ fn anchor_at(q: &[f64], a: Anchor) -> Point {
 }
 
 /// Extent of each ground-fixed guide over a motion: for each prismatic joint whose line
-/// is on the ground, the segment of the guide line the slider covers (plus the slider's
-/// length and the line's own points). `None` for guides on moving bodies.
+/// is on the ground, the segment of the guide line the slider covers over the motion, plus
+/// the slider's length either side. `None` for guides on moving bodies.
 pub fn guide_spans(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Vec<Option<(Point, Point)>> {
     fig.joints
         .iter()
@@ -152,12 +153,15 @@ pub fn guide_spans(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Vec
             JointSymbol::Slider { point, q1, q2, .. } if q1.body == Attach::Ground => {
                 let (a, b) = (Point::from(q1.local), Point::from(q2.local));
                 let u = (b - a).normalize();
-                let mut lo: f64 = 0.0;
-                let mut hi: f64 = (b - a).norm();
+                let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
                 for q in motion {
                     let s = u.dot(&(anchor_at(q, point) - a));
                     lo = lo.min(s);
                     hi = hi.max(s);
+                }
+                if !(lo.is_finite() && hi.is_finite()) {
+                    // No motion: the line's own points.
+                    (lo, hi) = (0.0, (b - a).norm());
                 }
                 let ext = style.slider_length;
                 Some((a + u * (lo - ext), a + u * (hi + ext)))
@@ -176,10 +180,31 @@ pub fn mechanism(
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) {
+    mechanism_with_forces(d, layer, fig, q, spans, &[], style);
+}
+
+/// [`mechanism`] with the names of the force arrows `arrows` (drawn on the mechanism by
+/// [`super::forces::draw_on_mechanism`]) placed with the points' names, clear of them, on
+/// the `FORCES` layer.
+pub fn mechanism_with_forces(
+    d: &mut Drawing,
+    layer: usize,
+    fig: &LinkageFigure,
+    q: &[f64],
+    spans: &[Option<(Point, Point)>],
+    arrows: &[ForceArrow],
+    style: &Style,
+) {
     let s = *style;
     // The names go through the letter placer, clear of the joints, the bodies' outlines,
     // the guides, the ground symbols and the sliders' blocks; one name a place.
     let mut letters = labels::Polygon::of_names();
+    for a in arrows {
+        letters.segment(a.arrow.0, a.arrow.1);
+        if a.arrow.0 != a.at {
+            letters.segment(a.at, a.arrow.0);
+        }
+    }
     // Guides fixed to the ground.
     for span in spans.iter().flatten() {
         vocab::guide(d, layer, span.0, span.1, s);
@@ -248,7 +273,21 @@ pub fn mechanism(
             name_at(&mut letters, p, name, up_right, s.joint);
         }
     }
-    letters.draw(d, layer);
+    for a in arrows {
+        letters.letter(a.arrow.1, &a.force.name, s.text, a.arrow.1 - a.arrow.0, None);
+    }
+    if arrows.is_empty() {
+        letters.draw(d, layer);
+        return;
+    }
+    // Points' names on the mechanism's layer, the forces' names on the forces' layer.
+    let frc = vocab::layer_of(d, vocab::layers::FORCES);
+    let placed = letters.place();
+    let on_mechanism = placed.len() - arrows.len();
+    for (i, p) in placed.iter().enumerate() {
+        let l = if i < on_mechanism { layer } else { frc };
+        labels::draw_placed(d, l, p, Some(LineType::Continuous));
+    }
 }
 
 /// Paths of the traced points over the motion, on layer `layer` (dashed grey).

@@ -9,7 +9,9 @@
 //! each body with two or more points, every point X is also constructed from the body's
 //! reference point R (its ground pivot when it has one, else its first point) as the
 //! four-bar's `nBA`: the normal part a_XR^n = −ω²·RX (towards R) to the point `nXR`, then
-//! the tangential part a_XR^t = ε × RX (dashed, along its dashed direction ⊥RX) to x′.
+//! the tangential part a_XR^t = ε × RX (dashed, along its dashed direction ⊥RX) to x′ —
+//! unless either part vanishes ([`NEGLIGIBLE_REL`]: a crank at constant speed, a body that
+//! only translates), when x′ is reached by the image side alone.
 //!
 //! At a prismatic joint whose guide moves (the shaper's block A2 on the rocker 3), the
 //! guide body's point under the sliding point gets its own letter (`a3`, the letter and the
@@ -29,6 +31,10 @@ use super::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 /// Relative tolerance (of the body's largest point offset) under which two body points
 /// are taken as the same point (a body point at a ground pivot).
 const SAME_POINT: f64 = 1e-9;
+
+/// A normal or tangential part of a relative acceleration below this fraction of the
+/// largest acceleration in the polygon is not constructed (its point would coincide).
+pub const NEGLIGIBLE_REL: f64 = 1e-9;
 
 /// The velocity and acceleration polygons of a linkage at one instant.
 #[derive(Debug, Clone, PartialEq)]
@@ -73,14 +79,21 @@ fn pinned_to_ground(mech: &Mechanism, anchor: Anchor) -> bool {
     })
 }
 
-fn layout(mech: &Mechanism) -> Layout {
+/// The polygons' points: every body point, or only those named in `only` (and the
+/// points pinned to the ground, which are the pole).
+fn layout(mech: &Mechanism, only: Option<&[String]>) -> Layout {
     let mut points: Vec<PolyPoint> = Vec::new();
     let mut members: Vec<Vec<usize>> = vec![Vec::new(); mech.bodies.len()];
     let mut closed = Vec::with_capacity(mech.bodies.len());
+    let chosen = |name: &String| only.is_none_or(|o| o.contains(name));
     for (i, body) in mech.bodies.iter().enumerate() {
         for (name, local) in &body.points {
             let anchor = Anchor { body: Attach::Body(i), local: *local };
-            let index = if pinned_to_ground(mech, anchor) {
+            let pinned = pinned_to_ground(mech, anchor);
+            if !pinned && !chosen(name) {
+                continue;
+            }
+            let index = if pinned {
                 POLE
             } else if let Some(k) = points.iter().position(|p| &p.name == name) {
                 k + 1
@@ -92,7 +105,7 @@ fn layout(mech: &Mechanism) -> Layout {
                 members[i].push(index);
             }
         }
-        closed.push(body.points.len() >= 3);
+        closed.push(members[i].len() >= 3);
     }
     let mut guides = Vec::new();
     for j in &mech.joints {
@@ -105,6 +118,9 @@ fn layout(mech: &Mechanism) -> Layout {
             }
             Attach::Ground => None,
         };
+        if only.is_some() && !named.as_ref().is_some_and(|n| chosen(n)) {
+            continue;
+        }
         let sliding = points
             .iter()
             .position(|p| {
@@ -156,9 +172,16 @@ fn position_of(lay: &Layout, state: &State, body: usize, k: usize, mech: &Mechan
     state.point(lay.points[k - 1].anchor).coords
 }
 
-/// The velocity and acceleration polygons of `mech` at `state`.
+/// The velocity and acceleration polygons of `mech` at `state`, every body point shown.
 pub fn polygons(mech: &Mechanism, state: &State) -> LinkagePolygons {
-    let lay = layout(mech);
+    polygons_of(mech, state, None)
+}
+
+/// The velocity and acceleration polygons of `mech` at `state`, showing the points named
+/// in `only` (`None`: every body point; a sliding point left out takes its guide's
+/// Coriolis construction with it).
+pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> LinkagePolygons {
+    let lay = layout(mech, only);
     let n = lay.points.len();
     let motions: Vec<(Vector, Vector)> = (1..=n).map(|k| motion_of(&lay, state, k)).collect();
     let vector = |from, to| Side { from, to, kind: SideKind::Vector };
@@ -210,12 +233,13 @@ pub fn polygons(mech: &Mechanism, state: &State) -> LinkagePolygons {
         .collect();
     let mut a_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
     let mut a_dirs = Vec::new();
+    let largest = motions.iter().map(|(_, a)| a.norm()).fold(0.0, f64::max);
     let upper = |k: usize| if k == POLE { String::new() } else { lay.points[k - 1].name.clone() };
     for (body, members) in lay.members.iter().enumerate() {
         if members.len() < 2 {
             continue;
         }
-        let (_, omega, _) = state.angular(Attach::Body(body));
+        let (_, omega, epsilon) = state.angular(Attach::Body(body));
         let reference = if members.contains(&POLE) { POLE } else { members[0] };
         let r_at = position_of(&lay, state, body, reference, mech);
         let ref_name = if reference == POLE { pivot_name(mech, body) } else { upper(reference) };
@@ -224,6 +248,12 @@ pub fn polygons(mech: &Mechanism, state: &State) -> LinkagePolygons {
                 continue;
             }
             let rx = position_of(&lay, state, body, x, mech) - r_at;
+            // No construction where a part vanishes (a crank at constant speed, a body
+            // that only translates): the point would coincide with its image.
+            let (normal, tangential) = ((rx * (omega * omega)).norm(), (perp(rx) * epsilon).norm());
+            if normal <= NEGLIGIBLE_REL * largest || tangential <= NEGLIGIBLE_REL * largest {
+                continue;
+            }
             a_points.push(NamedPoint {
                 name: format!("n{}{}", upper(x), ref_name),
                 from: reference,

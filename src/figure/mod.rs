@@ -11,6 +11,8 @@ pub mod fourbar_sheet;
 pub mod joukowski;
 pub mod labels;
 pub mod linkage;
+pub mod linkage_forces;
+pub mod linkage_frame;
 pub mod linkage_polygon;
 pub mod panels;
 pub mod plot;

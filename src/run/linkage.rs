@@ -13,6 +13,7 @@ use crate::Error;
 use crate::draw::{Aci, LineType};
 use crate::figure::animation::Animation;
 use crate::figure::linkage as fig;
+use crate::figure::linkage_frame::{LinkageFrames, RunForces, Show};
 use crate::figure::plot::{Diagram, Series, diagram};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
@@ -234,9 +235,13 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
 
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let figure = figure_of(scene);
-    let style = fig::paper_style(&figure, &motion);
-    let spans = fig::guide_spans(&figure, &motion, &style);
-    let base = fig::frame_base(&figure, &motion, &style);
+    let p = &scene.polygons;
+    let show = Show { velocity: p.velocity, acceleration: p.acceleration, forces: p.forces, points: p.points.clone() };
+    let run_forces =
+        scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
+    let frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show);
+    let base = frames.base(&figure, &motion);
+    let window = frames.frame.window;
     let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
@@ -274,12 +279,16 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
         csv.row(std::iter::once(s.t).chain(all_cols().map(|c| c.values[k])));
     }
 
-    let qs: Vec<Vec<f64>> = states.into_iter().map(|s| s.q).collect();
-    let pose = move |k: usize| fig::frame_moving(&figure, &qs[k], &spans, &style);
+    let (mech, dynamics) = (scene.mechanism.clone(), scene.dynamics.clone());
+    let forces = forces.unwrap_or_default();
+    let pose = move |k: usize| {
+        let force = dynamics.as_ref().zip(forces.get(k));
+        frames.moving(&figure, &mech, &states[k], force)
+    };
     Ok(Products {
         name: scene.name.clone(),
         mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(Animation::new(scene.name.clone(), base, None, names, labels, pose)),
+        picture: Picture::Motion(Animation::new(scene.name.clone(), base, Some(window), names, labels, pose)),
         positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
         sheets: Vec::new(),
         pages: Vec::new(),

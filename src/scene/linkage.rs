@@ -263,6 +263,36 @@ pub struct RawLinkageScene {
     /// External forces and torques.
     #[serde(default)]
     pub load: Vec<RawLoad>,
+    /// What the frames draw beside the mechanism.
+    pub polygons: Option<RawPolygons>,
+}
+
+/// `[polygons]`: which polygons the frames draw and which points they show.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawPolygons {
+    /// The velocity polygon (default true).
+    pub velocity: Option<bool>,
+    /// The acceleration polygon (default true).
+    pub acceleration: Option<bool>,
+    /// The force polygons, the table and the reactions on the mechanism (default true
+    /// when the scene has forces).
+    pub forces: Option<bool>,
+    /// The points shown, by name (default: every body point).
+    pub points: Option<Vec<String>>,
+}
+
+/// What the frames draw beside the mechanism (from `[polygons]`).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Polygons {
+    /// The velocity polygon.
+    pub velocity: bool,
+    /// The acceleration polygon.
+    pub acceleration: bool,
+    /// The force figures (when the scene has forces).
+    pub forces: bool,
+    /// The points shown (`None`: every body point).
+    pub points: Option<Vec<String>>,
 }
 
 /// `[diagrams]`.
@@ -375,6 +405,8 @@ pub struct LinkageScene {
     /// Masses, gravity and loads, when the scene has any (a body with a `mass` or an
     /// `inertia`, a `[dynamics]` table or a `[[load]]`): then the run computes forces.
     pub dynamics: Option<Dynamics>,
+    /// What the frames draw beside the mechanism.
+    pub polygons: Polygons,
 }
 
 impl LinkageScene {
@@ -453,7 +485,43 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
     let dynamics = check_dynamics(&raw, raw.units, &ground_points, &mechanism)?;
-    Ok(LinkageScene { name, units: raw.units, times, ground_points, mechanism, measures, diagram_axis, dynamics })
+    let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
+    Ok(LinkageScene {
+        name,
+        units: raw.units,
+        times,
+        ground_points,
+        mechanism,
+        measures,
+        diagram_axis,
+        dynamics,
+        polygons,
+    })
+}
+
+/// `[polygons]`: every point named must be a point of a moving body.
+fn check_polygons(raw: Option<&RawPolygons>, mech: &Mechanism) -> Result<Polygons, FieldError> {
+    let raw = raw.cloned().unwrap_or_default();
+    if let Some(points) = &raw.points {
+        let known: Vec<&str> = mech.bodies.iter().flat_map(|b| b.points.iter().map(|(n, _)| n.as_str())).collect();
+        for (i, p) in points.iter().enumerate() {
+            if !known.contains(&p.as_str()) {
+                let mut valid = known.clone();
+                valid.sort_unstable();
+                valid.dedup();
+                return Err(FieldError::new(
+                    format!("polygons.points[{i}]"),
+                    format!("no moving body has a point `{p}`; the bodies' points are: {}", valid.join(", ")),
+                ));
+            }
+        }
+    }
+    Ok(Polygons {
+        velocity: raw.velocity.unwrap_or(true),
+        acceleration: raw.acceleration.unwrap_or(true),
+        forces: raw.forces.unwrap_or(true),
+        points: raw.points,
+    })
 }
 
 /// Masses, gravity and loads: `None` when the scene has none of them (no body with a

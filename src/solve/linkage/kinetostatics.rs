@@ -31,7 +31,7 @@
 
 use super::kinematics::{Solver, State};
 use super::{Anchor, Attach, DriverTarget, JointKind, LinkageError, Mechanism, pz, rate};
-use crate::geom::{Vector, cross, perp};
+use crate::geom::{Point, Vector, cross, perp};
 use crate::solve::expr::Expr;
 
 /// Tolerance of a load's time window, relative to the larger of |from| and |to|: a sample
@@ -308,6 +308,79 @@ impl Solver {
         out.power_residual = power.residual();
         Ok(())
     }
+}
+
+/// What a force acting on a body (other than a joint's reaction) is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AppliedKind {
+    /// The inertia force −m·a_G at the centroid (d'Alembert).
+    Inertia,
+    /// The weight m·g at the centroid.
+    Weight,
+    /// An external force: index into [`Dynamics::loads`].
+    Load(usize),
+    /// A distance driver's force along its guide (index into [`Mechanism::drivers`]):
+    /// +D·u on the slider, −D·u on the guide body.
+    Driver(usize),
+}
+
+/// A force acting on a moving body at one sample, besides the reactions of its joints:
+/// its kind, the body, where it acts, the force.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Applied {
+    /// What it is.
+    pub kind: AppliedKind,
+    /// The body it acts on (index into [`Mechanism::bodies`]).
+    pub body: usize,
+    /// Where it acts (global, scene length units).
+    pub at: Point,
+    /// The force, N.
+    pub force: Vector,
+}
+
+/// Every force acting on the moving bodies at `state` besides the joints' reactions — the
+/// inertia forces and weights at the centroids (bodies with a mass), the loads acting at
+/// `state.t`, the forces of distance drivers (from `forces`) — so that for each body these
+/// and its reactions ([`Forces::reactions`], with the sign conventions of the module docs)
+/// sum to zero: the body's force polygon closes. Torques (inertia torques, torque loads,
+/// angle drivers, prismatic couples) are not forces and are not listed.
+pub fn applied_forces(mech: &Mechanism, dynamics: &Dynamics, state: &State, forces: &Forces) -> Vec<Applied> {
+    let mut out = Vec::new();
+    let k = dynamics.length_unit_m;
+    for (i, body) in dynamics.bodies.iter().enumerate() {
+        if body.mass == 0.0 {
+            continue;
+        }
+        let g = Anchor { body: Attach::Body(i), local: body.centroid };
+        let at = state.point(g);
+        out.push(Applied { kind: AppliedKind::Inertia, body: i, at, force: -state.acceleration(g) * (k * body.mass) });
+        if dynamics.gravity != Vector::zeros() {
+            out.push(Applied { kind: AppliedKind::Weight, body: i, at, force: dynamics.gravity * body.mass });
+        }
+    }
+    for (l, load) in dynamics.loads.iter().enumerate() {
+        if load.window.is_some_and(|w| !w.contains(state.t)) {
+            continue;
+        }
+        if let LoadAction::Force { at, force } = &load.action
+            && let Attach::Body(i) = at.body
+        {
+            let f = Vector::new(force[0].at(state.t), force[1].at(state.t));
+            out.push(Applied { kind: AppliedKind::Load(l), body: i, at: state.point(*at), force: f });
+        }
+    }
+    for (d, (driver, value)) in mech.drivers.iter().zip(&forces.drivers).enumerate() {
+        let DriverTarget::JointDistance(j) = driver.target else { continue };
+        let Some(JointKind::Prismatic { point, q1, q2, .. }) = mech.joints.get(j).map(|j| &j.kind) else { continue };
+        let u = (state.point(*q2) - state.point(*q1)).normalize();
+        let at = state.point(*point);
+        for (body, sign) in [(point.body, 1.0), (q1.body, -1.0)] {
+            if let Attach::Body(i) = body {
+                out.push(Applied { kind: AppliedKind::Driver(d), body: i, at, force: u * (sign * value) });
+            }
+        }
+    }
+    out
 }
 
 /// The dynamics fit the mechanism: one set of mass properties per body, loads on its

@@ -24,7 +24,8 @@ mod lu;
 
 pub use kinematics::{NearSingular, Sliding, Solver, State};
 pub use kinetostatics::{
-    Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TIME_WINDOW_EPS_REL, TimeWindow,
+    Applied, AppliedKind, Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TIME_WINDOW_EPS_REL,
+    TimeWindow, applied_forces,
 };
 
 use crate::geom::{Point, Vector, rotate};

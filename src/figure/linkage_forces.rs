@@ -1,0 +1,203 @@
+//! Force figures of any linkage (issue 15 §2), as [`ForcePolygon`]s for the shared
+//! [`super::forces::draw`] (the four-bar's dyad and crank polygons are drawn by the same
+//! code): for each moving body, the polygon of everything acting on it — its inertia force
+//! `Fi<n>` and weight `G<n>` (n the body's number, from 1; the ground is 0), the loads by
+//! their names, a distance driver's force, and the reactions of its joints — chained from
+//! its pole `f<n>`, the last reaction drawn as the resultant that closes it (seed 003's
+//! Fig. 5: −R_A, F_i1, G1, closed by R_O). The reactions drawn on the mechanism at their
+//! joints, and a table of magnitudes (every reaction's, the drivers' forces).
+//!
+//! Names: a joint with a short name (up to [`SHORT_NAME`] characters: `A`, `O1`) names
+//! its reaction `R<name>` (`RA`, of the first body of the joint on the second, as
+//! [`crate::solve::linkage`] reports it) and the opposite one, on the first body, `−RA`;
+//! any other joint (`slide`, `ram-guide`) takes the textbook's numbers `R<i><j>`, the force
+//! of body i on body j (`R32`), and `R<j><i>` for the opposite. A driver's force is
+//! `Me<n>` (a moment on body n, N·m or N·mm) or `Fe<n>` (a force along a guide, N).
+//!
+//! Units: forces N; moments in N·(the scene's length unit), labelled so.
+
+use crate::geom::{Point, Vector};
+use crate::solve::linkage::{
+    Applied, AppliedKind, Attach, DriverTarget, Dynamics, Forces, JointKind, Mechanism, State, applied_forces,
+};
+
+use super::forces::{ForcePolygon, Magnitude, NamedVector, Resultant};
+
+/// Longest joint name used as is in a reaction's name (`RO1`); longer ones take the bodies'
+/// numbers (`R32`).
+pub const SHORT_NAME: usize = 3;
+
+/// A vector shorter than this fraction of the largest in its polygon is left out of it (a
+/// weight too small to draw); the polygon still closes to that fraction.
+pub const NEGLIGIBLE_REL: f64 = 1e-9;
+
+/// The number of a body for names (the ground 0, moving bodies from 1).
+fn number(a: Attach) -> usize {
+    match a {
+        Attach::Ground => 0,
+        Attach::Body(i) => i + 1,
+    }
+}
+
+/// The two bodies of a joint: the one whose force is reported (first) and the one it acts
+/// on (second), and the joint's point.
+fn joint_bodies(kind: &JointKind) -> (Attach, Attach) {
+    match *kind {
+        JointKind::Revolute { a, b } => (a.body, b.body),
+        JointKind::Prismatic { point, q1, .. } => (q1.body, point.body),
+    }
+}
+
+/// The names of joint `j`'s reaction on its second body and of the opposite one.
+pub fn reaction_names(mech: &Mechanism, j: usize) -> (String, String) {
+    let joint = &mech.joints[j];
+    let short = joint.name.chars().count() <= SHORT_NAME && joint.name.chars().all(|c| c.is_alphanumeric());
+    if short {
+        (format!("R{}", joint.name), format!("−R{}", joint.name))
+    } else {
+        let (a, b) = joint_bodies(&joint.kind);
+        (format!("R{}{}", number(a), number(b)), format!("R{}{}", number(b), number(a)))
+    }
+}
+
+/// Name of an applied force: `Fi<n>`, `G<n>`, the load's name, `Fe<n>`.
+fn applied_name(dynamics: &Dynamics, a: &Applied) -> String {
+    match a.kind {
+        AppliedKind::Inertia => format!("Fi{}", a.body + 1),
+        AppliedKind::Weight => format!("G{}", a.body + 1),
+        AppliedKind::Load(l) => dynamics.loads[l].name.clone(),
+        AppliedKind::Driver(_) => format!("Fe{}", a.body + 1),
+    }
+}
+
+/// Where joint `j` acts at `state`.
+fn joint_point(mech: &Mechanism, state: &State, j: usize) -> Point {
+    match mech.joints[j].kind {
+        JointKind::Revolute { b, .. } => state.point(b),
+        JointKind::Prismatic { point, .. } => state.point(point),
+    }
+}
+
+/// Every force on each moving body at one sample, named: (applied forces, then the
+/// reactions of its joints), with where each acts.
+pub fn body_forces(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Forces) -> Vec<Vec<(Point, NamedVector)>> {
+    let mut out: Vec<Vec<(Point, NamedVector)>> = vec![Vec::new(); mech.bodies.len()];
+    for a in applied_forces(mech, dynamics, state, f) {
+        out[a.body].push((a.at, NamedVector { name: applied_name(dynamics, &a), v: a.force }));
+    }
+    for (j, joint) in mech.joints.iter().enumerate() {
+        let (first, second) = joint_bodies(&joint.kind);
+        let (name, opposite) = reaction_names(mech, j);
+        let at = joint_point(mech, state, j);
+        let r = f.reactions[j].force;
+        if let Attach::Body(b) = second {
+            out[b].push((at, NamedVector { name, v: r }));
+        }
+        if let Attach::Body(a) = first {
+            out[a].push((at, NamedVector { name: opposite, v: -r }));
+        }
+    }
+    out
+}
+
+/// The force polygon of one body from its forces ([`body_forces`]): the chain of every force
+/// but the last reaction from the pole `f<n>`, which closes it as the resultant back to the
+/// pole. Vectors negligible against the largest ([`NEGLIGIBLE_REL`]) are left out.
+pub fn body_polygon(body: usize, forces: &[(Point, NamedVector)]) -> ForcePolygon {
+    let largest = forces.iter().map(|(_, nv)| nv.v.norm()).fold(0.0, f64::max);
+    let mut chain: Vec<NamedVector> =
+        forces.iter().filter(|(_, nv)| nv.v.norm() > NEGLIGIBLE_REL * largest).map(|(_, nv)| nv.clone()).collect();
+    let resultants = match chain.pop() {
+        Some(last) => vec![Resultant { name: last.name, from: chain.len(), to: 0, name_at: 0.5 }],
+        None => Vec::new(),
+    };
+    ForcePolygon { pole: format!("f{}", body + 1), chain, resultants }
+}
+
+/// The caption of body `body`'s polygon: `Crank 1`.
+pub fn caption(mech: &Mechanism, body: usize) -> String {
+    let name = &mech.bodies[body].name;
+    let mut c = name.chars();
+    let cap = c.next().map(|f| f.to_uppercase().chain(c).collect::<String>()).unwrap_or_default();
+    format!("{cap} {}", body + 1)
+}
+
+/// The forces drawn on the mechanism: each joint's reaction (on its second body) at the
+/// joint, and each load where it acts while it acts.
+pub fn on_mechanism(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Forces) -> Vec<(Point, NamedVector)> {
+    let mut out: Vec<(Point, NamedVector)> = (0..mech.joints.len())
+        .map(|j| {
+            (joint_point(mech, state, j), NamedVector { name: reaction_names(mech, j).0, v: f.reactions[j].force })
+        })
+        .collect();
+    for a in applied_forces(mech, dynamics, state, f) {
+        if let AppliedKind::Load(_) = a.kind {
+            out.push((a.at, NamedVector { name: applied_name(dynamics, &a), v: a.force }));
+        }
+    }
+    out
+}
+
+/// The table of magnitudes: every reaction's |R| (N) and, at a prismatic joint, its couple
+/// `M<…>`; each driver's force `Me<n>` (signed, in `moment_unit`) or `Fe<n>` (N).
+/// `moment_per_nm` converts N·m to `moment_unit` (1000 for N·mm).
+pub fn magnitudes(mech: &Mechanism, f: &Forces, moment_unit: &str, moment_per_nm: f64) -> Vec<Magnitude> {
+    let row = |name: String, value: f64, unit: &str| Magnitude { name, value, unit: unit.to_string() };
+    let mut rows = Vec::new();
+    for (j, joint) in mech.joints.iter().enumerate() {
+        let name = reaction_names(mech, j).0;
+        rows.push(row(name.clone(), f.reactions[j].force.norm(), "N"));
+        if let JointKind::Prismatic { .. } = joint.kind {
+            let couple = name.replacen('R', "M", 1);
+            rows.push(row(couple, f.reactions[j].torque * moment_per_nm, moment_unit));
+        }
+    }
+    for (driver, value) in mech.drivers.iter().zip(&f.drivers) {
+        let (kind, body) = match driver.target {
+            DriverTarget::BodyAngle(i) => ("Me", Attach::Body(i)),
+            DriverTarget::JointAngle(j) | DriverTarget::JointDistance(j) => {
+                let (a, b) = joint_bodies(&mech.joints[j].kind);
+                let kind = if matches!(driver.target, DriverTarget::JointAngle(_)) { "Me" } else { "Fe" };
+                (kind, if b == Attach::Ground { a } else { b })
+            }
+        };
+        let name = format!("{kind}{}", number(body));
+        if kind == "Me" {
+            rows.push(row(name, value * moment_per_nm, moment_unit));
+        } else {
+            rows.push(row(name, *value, "N"));
+        }
+    }
+    rows
+}
+
+/// The sum of the forces on a body ([`body_forces`]), N: zero when its polygon closes
+/// (the closing side drawn by [`body_polygon`] is then its last reaction).
+pub fn closure(forces: &[(Point, NamedVector)]) -> Vector {
+    forces.iter().map(|(_, nv)| nv.v).sum()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A body with three forces that balance: the last closes the chain.
+    #[test]
+    fn the_last_reaction_closes_the_polygon() {
+        let forces = vec![
+            (Point::origin(), NamedVector::new("G1", Vector::new(0.0, -10.0))),
+            (Point::origin(), NamedVector::new("RA", Vector::new(4.0, 6.0))),
+            (Point::origin(), NamedVector::new("−RO", Vector::new(-4.0, 4.0))),
+        ];
+        let poly = body_polygon(0, &forces);
+        assert_eq!(poly.pole, "f1");
+        assert_eq!(poly.chain.len(), 2);
+        assert_eq!(poly.resultant("−RO"), Some(Vector::new(-4.0, 4.0)));
+        assert!(closure(&forces).norm() < 1e-15);
+        // Unbalanced, the closing side is not the force.
+        let mut off = forces.clone();
+        off[0].1.v.y = -11.0;
+        assert!((closure(&off) - Vector::new(0.0, -1.0)).norm() < 1e-15);
+        assert_ne!(body_polygon(0, &off).resultant("−RO"), Some(Vector::new(-4.0, 4.0)));
+    }
+}
