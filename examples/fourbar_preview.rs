@@ -33,7 +33,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         Layout::new(geom, &motion.positions, show.forces.then_some(motion.forces.as_slice()), show, ModelUnits::SI)
             .with_drive(s.spec.omega1, external);
     let base = layout.base(geom, &[motion.positions.iter().map(|p| p.m).collect()]);
-    let opts = svg::SvgOptions { window: Some(layout.window), ..Default::default() };
+    let opts = svg::SvgOptions { window: Some(layout.frame.window), ..Default::default() };
     let (stem, width) = if show.forces { ("forces-preview", 1400) } else { ("fourbar-preview", 1200) };
     let dir = root.join("target");
     std::fs::create_dir_all(&dir)?;

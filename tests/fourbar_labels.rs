@@ -109,16 +109,16 @@ fn every_force_is_named_in_every_frame() {
 
 /// Drawn units per physical unit of `scale` (the model is drawn 1:1 in metres).
 fn per_unit(layout: &Layout, v: Vector, which: usize) -> Vector {
-    let (s, _) = [layout.velocity, layout.acceleration, layout.forces][which].unwrap();
+    let (s, _) = [layout.frame.velocity, layout.frame.acceleration, layout.frame.forces][which].unwrap();
     s.draw(v)
 }
 
 #[test]
 fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
     let (frames, spec, motion, layout) = template(&[]);
-    let (_, pole) = layout.acceleration.unwrap();
-    let s = layout.sizes;
-    let (sa, _) = layout.acceleration.unwrap();
+    let (_, pole) = layout.frame.acceleration.unwrap();
+    let s = layout.frame.sizes;
+    let (sa, _) = layout.frame.acceleration.unwrap();
     for (d, pos) in frames.iter().zip(&motion.positions) {
         let k = pos.kin.unwrap();
         let acc = d.layers.iter().position(|l| l.name == "ACCELERATION").unwrap();
@@ -148,7 +148,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
             (marks[3], k.a_g3, mid(pole, b1)),
         ] {
             // Physical: the mark read back at k_a is the solver's centroid acceleration.
-            let read = (mark - pole) * (sa.per_mm / layout.k_l);
+            let read = (mark - pole) * (sa.per_mm / layout.frame.k_l);
             assert!((read - solver).norm() <= 1e-9 * solver.norm().max(1.0), "{read:?} vs {solver:?}");
             assert!((mark - construction).norm() <= 1e-9 * drawn_size, "{mark:?} vs {construction:?}");
         }
@@ -164,7 +164,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
 #[test]
 fn the_table_of_magnitudes_prints_the_solvers_values() {
     let (frames, _, motion, layout) = template(&[]);
-    let ff = layout.force_figures.as_ref().unwrap();
+    let ff = layout.frame.force_figures.as_ref().unwrap();
     for (d, f) in frames.iter().zip(&motion.forces) {
         let t = texts(d);
         // Rows: a left-aligned name and a right-aligned "value unit" on one baseline.
@@ -209,7 +209,7 @@ fn a_ternary_couplers_images_are_closed_triangles() {
         for (which, layer, [a, b, m]) in
             [(0, "VELOCITY", [k.v_a, k.v_b, k.v_m]), (1, "ACCELERATION", [k.a_a, k.a_b, k.a_m])]
         {
-            let pole = [layout.velocity, layout.acceleration][which].unwrap().1;
+            let pole = [layout.frame.velocity, layout.frame.acceleration][which].unwrap().1;
             let l = d.layers.iter().position(|x| x.name == layer).unwrap();
             let at = |v: Vector| pole + per_unit(&layout, v, which);
             let segs: Vec<(Point, Point)> = d
@@ -236,7 +236,7 @@ fn a_ternary_couplers_images_are_closed_triangles() {
 fn the_velocity_polygon_shows_the_directions_that_locate_b() {
     // ⊥AB through a, ⊥BC through p: dashed lines through b on the construction layer.
     let (frames, spec, motion, layout) = template(&["phi1_deg.step=30"]);
-    let (_, pole) = layout.velocity.unwrap();
+    let (_, pole) = layout.frame.velocity.unwrap();
     for (d, pos) in frames.iter().zip(&motion.positions) {
         let k = pos.kin.unwrap();
         let (a, b) = (pole + per_unit(&layout, k.v_a, 0), pole + per_unit(&layout, k.v_b, 0));

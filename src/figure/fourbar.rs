@@ -134,6 +134,7 @@ impl Layout {
             mechanism,
             size,
             mechanism_mm: MECHANISM_MM,
+            polygon_mm: None,
             // Room for the ground symbols and letters around the mechanism.
             pad: |s| (3.5 * s.joint + 1.6 * s.text, 2.0 * s.joint),
             position_text: "φ1 = 359.999°".to_string(),
@@ -510,6 +511,7 @@ fn on_mechanism(geom: &Geometry, pos: &Position, f: &Forces, external: &[Externa
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
+    use crate::draw::HAlign;
     use crate::geom::{cross, polar};
 
     /// The template's Chebyshev four-bar (design.md §3).

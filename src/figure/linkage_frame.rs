@@ -136,6 +136,7 @@ impl LinkageFrames {
             mechanism,
             size: mechanism.size(),
             mechanism_mm: MECHANISM_MM,
+            polygon_mm: Some(MECHANISM_MM),
             pad: |s| (3.5 * s.joint + 1.6 * s.text, 2.0 * s.joint),
             position_text,
             velocity,

@@ -118,7 +118,7 @@ fn layout(mech: &Mechanism, only: Option<&[String]>) -> Layout {
             }
             Attach::Ground => None,
         };
-        if only.is_some() && !named.as_ref().is_some_and(|n| chosen(n)) {
+        if only.is_some() && !named.as_ref().is_some_and(&chosen) {
             continue;
         }
         let sliding = points

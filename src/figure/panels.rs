@@ -13,7 +13,7 @@
 //! length scale k_l (model units per paper millimetre, a nice value 1, 2, 2.5, 5 × 10ᵏ) that
 //! draws its motion at most `mechanism_mm` long on paper; the drawings carry
 //! `paper_mm_per_unit = 1/k_l`. Each polygon's panel is about as large on paper as the
-//! mechanism, at a nice scale per printed millimetre (`k_v = 0.01 (m/s)/mm`: one measured
+//! mechanism (or a stated size), at a nice scale per printed millimetre (`k_v = 0.01 (m/s)/mm`: one measured
 //! millimetre stands for 0.01 m/s) chosen from the largest polygon over the motion. Panels
 //! sit in a grid: up to three in a row, four as 2 × 2. The force panel holds its figures in
 //! rows of up to [`FORCE_ROW`] items (the figures, then the table), each figure hanging from
@@ -104,6 +104,9 @@ pub struct PanelSpec {
     pub size: f64,
     /// The longest the mechanism's motion is drawn on paper, millimetres.
     pub mechanism_mm: f64,
+    /// The size of each polygon's panel on paper, millimetres (`None`: as large as the
+    /// mechanism is drawn).
+    pub polygon_mm: Option<f64>,
     /// Room (model units) around the mechanism for its symbols and letters, and extra room
     /// under it (above its scale bar), from the sizes at the chosen k_l.
     pub pad: fn(Sizes) -> (f64, f64),
@@ -211,7 +214,7 @@ impl PanelFrame {
         let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + below + bar_room);
         let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
         // Each polygon's panel about as large on paper as the mechanism.
-        let target_mm = size * paper;
+        let target_mm = spec.polygon_mm.unwrap_or(size * paper);
         let scale_for = |e: Option<Extent>| -> (Scale, Extent) {
             let e = e.unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() });
             (Scale::on_paper(nice_scale(e.size() / target_mm), paper), e)
@@ -351,6 +354,16 @@ impl PanelFrame {
             .collect()
     }
 
+    /// The boxes of the panels' titles and scale bars (for letters to keep off).
+    pub fn text_boxes(&self) -> Vec<labels::TextBox> {
+        let mut out = self.title_boxes();
+        let mut scratch = Drawing::new(DimStyle { text_height: self.sizes.text, arrow_size: self.sizes.head });
+        for (at, length, label) in &self.bars {
+            out.push(scale_bar(&mut scratch, 0, *at, *length, label, self.sizes));
+        }
+        out
+    }
+
     /// What every frame shares, drawn after the mechanism's own fixed parts: the panels'
     /// titles with their scales, each panel's scale bar, and the force figures' captions
     /// (on `DIMENSIONS`).
@@ -409,7 +422,7 @@ impl PanelFrame {
     }
 
     /// One position's polygons in their panels: the velocity and acceleration polygons
-    /// (their letters off the panel titles), and the force figures with the table of
+    /// (their letters off the panel titles and scale bars), and the force figures with the table of
     /// magnitudes (the names off the captions, the table and each other).
     pub fn draw_polygons(
         &self,
@@ -419,7 +432,7 @@ impl PanelFrame {
         force: Option<(&[ForcePolygon], &[Magnitude])>,
     ) {
         let s = self.sizes;
-        let titles = self.title_boxes();
+        let titles = self.text_boxes();
         if let (Some(poly), Some((scale, pole))) = (velocity, self.velocity) {
             polygon::draw_keeping_off(d, poly, layers::VELOCITY, scale, pole, s, &titles);
         }
@@ -428,6 +441,7 @@ impl PanelFrame {
         }
         if let (Some((figures, rows)), Some((scale, _)), Some(ff)) = (force, self.forces, &self.force_figures) {
             let mut keep_off = ff.text_boxes(s);
+            keep_off.extend(titles.iter().copied());
             for (fig, pole) in figures.iter().zip(&ff.poles) {
                 let names = forces::draw(d, fig, scale, *pole, s, &keep_off);
                 keep_off.extend(names);
