@@ -18,25 +18,9 @@ use super::fourbar::{
     Show, acceleration_polygon, angle_text, crank_polygon, dyad_polygon, mechanism, velocity_polygon,
 };
 use super::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
-use super::vocab::{ModelUnits, Scale, bar_value, ground, layer_of, layers, path, scale_bar, scale_text};
-use super::{forces, polygon};
-
-/// Gap between the dyad's force polygon and the crank's on a sheet, in the larger polygon's
-/// extents.
-const FIGURE_GAP: f64 = 0.15;
-
-/// The scales of one page: physical units per paper millimetre (`None`: not drawn).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PageScales {
-    /// k_l, model length units per paper mm (the same on every page of a run).
-    pub k_l: f64,
-    /// k_v, (length unit/s) per mm.
-    pub k_v: Option<f64>,
-    /// k_a, (length unit/s²) per mm.
-    pub k_a: Option<f64>,
-    /// k_f, N per mm.
-    pub k_f: Option<f64>,
-}
+pub use super::sheet_polygons::PageScales;
+use super::sheet_polygons::{self, PageFit, PagePolygons, Shown};
+use super::vocab::{ModelUnits, ground, layer_of, layers, path};
 
 /// What every page of a run shares: the layout, the mechanism's scale and placement, the
 /// coupler curve on paper.
@@ -115,59 +99,22 @@ impl FourbarSheets {
         table: &Table,
         sheet: (usize, usize),
     ) -> (Drawing, PageScales) {
-        let len = self.units.length;
-        let mut panels = self.layout.panels.iter().skip(1);
-        let mut fitted = |on: bool, pts: Option<Vec<Vector>>| -> Option<(Fit, Point)> {
-            let panel = if on { panels.next() } else { None }?;
-            let (lo, hi) = extent(pts?)?;
-            let f = sheet::fit(hi - lo, Vector::new(panel.area.width(), panel.area.height()));
-            Some((f, sheet::centre(lo, hi, f.per_mm, panel.area)))
-        };
         let kin = pos.kin.as_ref();
-        let vel = fitted(self.show.velocity, kin.map(|k| velocity_polygon(k).physical_points()));
-        let acc = fitted(self.show.acceleration, kin.map(|k| acceleration_polygon(pos, geom.c, k).physical_points()));
-        // The dyad's polygon (Fig. 4) and the crank's (Fig. 5) side by side at one scale: the
-        // crank's shifted right of the dyad's by `crank_shift` (physical units).
-        let crank_shift = force.and_then(|f| {
-            let (lo_d, hi_d) = extent(dyad_polygon(f).physical_points())?;
-            let (lo_c, hi_c) = extent(crank_polygon(f).physical_points())?;
-            let gap = FIGURE_GAP * (hi_d - lo_d).amax().max((hi_c - lo_c).amax());
-            Some(Vector::new(hi_d.x - lo_c.x + gap, hi_d.y - hi_c.y))
-        });
-        let both = force.map(|f| {
-            let shift = crank_shift.unwrap_or_else(Vector::zeros);
-            let crank = crank_polygon(f).physical_points().into_iter().map(|v| v + shift);
-            dyad_polygon(f).physical_points().into_iter().chain(crank).collect()
-        });
-        let frc = fitted(self.show.forces, both);
-        let scales = PageScales {
-            k_l: self.k_l,
-            k_v: vel.map(|(f, _)| f.per_mm),
-            k_a: acc.map(|(f, _)| f.per_mm),
-            k_f: frc.map(|(f, _)| f.per_mm),
+        let velocity = kin.map(velocity_polygon);
+        let acceleration = kin.map(|k| acceleration_polygon(pos, geom.c, k));
+        let figures = force.map(|f| [dyad_polygon(f), crank_polygon(f)]);
+        let polys = PagePolygons {
+            velocity: velocity.as_ref(),
+            acceleration: acceleration.as_ref(),
+            forces: figures.as_ref().map(|f| &f[..]),
         };
-
-        let k_texts: Vec<(&str, Option<f64>, String)> = vec![
-            ("k_v", scales.k_v, format!("({len}/s)/mm")),
-            ("k_a", scales.k_a, format!("({len}/s²)/mm")),
-            ("k_f", scales.k_f, "N/mm".to_string()),
-        ];
-        let shown = [self.show.velocity, self.show.acceleration, self.show.forces];
-        let scale_cell = |n: &str, v: Option<f64>, u: &str| match v {
-            Some(v) => format!("{n} = {} {u}", scale_text(v)),
-            None => format!("{n} –"),
-        };
-        let k_l_text = format!("k_l = {} {len}/mm", scale_text(self.k_l));
-        let mut titles = vec![format!("Mechanism   {k_l_text}")];
-        let mut cells = vec![format!("ω1 = {} rad/s", angle_text(self.omega1)), k_l_text.clone()];
-        for (((n, v, u), on), title) in
-            k_texts.iter().zip(shown).zip(["Velocity polygon", "Acceleration polygon", "Force polygons"])
-        {
-            if on {
-                titles.push(format!("{title}   {}", scale_cell(n, *v, u)));
-                cells.push(scale_cell(n, *v, u));
-            }
-        }
+        let shown =
+            Shown { velocity: self.show.velocity, acceleration: self.show.acceleration, forces: self.show.forces };
+        let fit = PageFit::new(&self.layout, shown, polys);
+        let scales = fit.scales(self.k_l);
+        let (titles, scale_cells) = sheet_polygons::titles(&scales, shown, self.units);
+        let mut cells = vec![format!("ω1 = {} rad/s", angle_text(self.omega1))];
+        cells.extend(scale_cells);
         let title = TitleBlock {
             name: self.name.clone(),
             subject: "four-bar".to_string(),
@@ -206,38 +153,9 @@ impl FourbarSheets {
         };
         let _ = mechanism(&mut d, &on_paper, &p, &[], Some(self.omega1), s);
 
-        // Each polygon at its own scale, centred in its panel.
-        if let (Some(k), Some((f, pole))) = (kin, vel) {
-            polygon::draw(&mut d, &velocity_polygon(k), layers::VELOCITY, Scale::on_paper(f.per_mm, 1.0), pole, s);
-        }
-        if let (Some(k), Some((f, pole))) = (kin, acc) {
-            let poly = acceleration_polygon(pos, geom.c, k);
-            polygon::draw(&mut d, &poly, layers::ACCELERATION, Scale::on_paper(f.per_mm, 1.0), pole, s);
-        }
-        if let (Some(fs), Some((f, pole))) = (force, frc) {
-            let scale = Scale::on_paper(f.per_mm, 1.0);
-            let names = forces::draw(&mut d, &dyad_polygon(fs), scale, pole, s, &[]);
-            let crank_pole = pole + scale.draw(crank_shift.unwrap_or_else(Vector::zeros));
-            forces::draw(&mut d, &crank_polygon(fs), scale, crank_pole, s, &names);
-        }
-
-        // A scale bar at the foot of every panel: the mechanism's in the scene's length unit,
-        // each polygon's at this page's scale.
-        let dims = layer_of(&d, layers::DIMENSIONS);
-        let mut panels = self.layout.panels.iter();
-        let per_mm = [
-            (true, Some(self.k_l), len.to_string()),
-            (self.show.velocity, scales.k_v, format!("{len}/s")),
-            (self.show.acceleration, scales.k_a, format!("{len}/s²")),
-            (self.show.forces, scales.k_f, "N".to_string()),
-        ];
-        for (on, k, unit) in per_mm {
-            let panel = if on { panels.next() } else { None };
-            if let (Some(panel), Some(k)) = (panel, k) {
-                let value = bar_value(k);
-                scale_bar(&mut d, dims, panel.bar_at(s), value / k, &format!("{} {unit}", scale_text(value)), s);
-            }
-        }
+        // Each polygon at its own scale, centred in its panel, and the scale bars.
+        fit.draw(&mut d, polys, s);
+        sheet_polygons::scale_bars(&mut d, &self.layout, &scales, shown, self.units);
         (d, scales)
     }
 }

@@ -18,5 +18,6 @@ pub mod panels;
 pub mod plot;
 pub mod polygon;
 pub mod sheet;
+pub mod sheet_polygons;
 pub mod triad;
 pub mod vocab;
