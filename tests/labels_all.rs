@@ -39,6 +39,14 @@ fn no_two_texts_overlap_in_any_drawing_of_any_template() {
         }
         drawings.extend(p.sheets.iter().map(|s| (format!("sheet {}", s.suffix), s.drawing.clone())));
         drawings.extend(p.pages.iter().map(|g| (format!("page {}", g.stem), g.drawing.clone())));
+        // A linkage's printed pages, at 24 samples to keep the test quick.
+        if matches!(loaded.scene, scene::Scene::Linkage(_)) {
+            let coarse = scene::load(t, &["time.steps=24".parse().unwrap()]).unwrap();
+            let opts = RunOptions { sheets: Some(Paper::A4), ..RunOptions::default() };
+            let pages = mechdraw::run::products(&coarse, &opts).unwrap().pages;
+            assert_eq!(pages.len(), 25, "{stem}");
+            drawings.extend(pages.into_iter().map(|g| (format!("page {}", g.stem), g.drawing)));
+        }
         for (what, d) in &drawings {
             checked += 1;
             for (a, b) in common::overlapping_texts(d) {

@@ -164,3 +164,44 @@ fn slider_crank_forces_frame_golden_png() {
     let d = anim.frame_of(&anim.pose(30));
     common::assert_golden_png("linkage/slider_crank_forces_030.png", &to_string(&d, &SvgOptions::default()));
 }
+
+#[test]
+fn linkage_sheets_have_a_page_per_sample_at_measured_scales() {
+    let over: Vec<mechdraw::scene::Override> = ["time.steps=12".parse().unwrap()].to_vec();
+    let l = scene::load(&common::root().join("templates/slider-crank.toml"), &over).unwrap();
+    let Scene::Linkage(s) = &l.scene else { panic!() };
+    let tmp = tempfile::tempdir().unwrap();
+    let opts = RunOptions {
+        out_dir: Some(tmp.path().to_path_buf()),
+        sheets: Some(mechdraw::figure::sheet::Paper::A4),
+        ..RunOptions::default()
+    };
+    let p = products(&l, &opts).unwrap();
+    assert_eq!(p.pages.len(), 13);
+    let (states, forces) = kinetostatics(s);
+    let crank_pin = Anchor { body: Attach::Body(0), local: Vector::new(110.0, 0.0) };
+    for (k, page) in p.pages.iter().enumerate() {
+        let d = &page.drawing;
+        assert_eq!(d.paper_mm_per_unit, Some(1.0));
+        // The page's own scales, in its panels' titles; measured in paper mm.
+        let k_v = printed_scale(d, "Velocity polygon", "k_v");
+        let k_f = printed_scale(d, "Force polygons", "k_f");
+        let measured =
+            |layer: &str, k: f64| -> Vec<f64> { arrows(d, layer).iter().map(|(a, b)| (b - a).norm() * k).collect() };
+        let want = states[k].velocity(crank_pin).norm();
+        assert!(measured("VELOCITY", k_v).iter().any(|g| (g - want).abs() <= 1e-9 * want), "page {k}: |v_A|");
+        let joint_a = s.mechanism.joints.iter().position(|j| j.name == "A").unwrap();
+        let want = forces[k].reactions[joint_a].force.norm();
+        assert!(measured("FORCES", k_f).iter().any(|g| (g - want).abs() <= 1e-9 * want), "page {k}: |R_A|");
+    }
+    // The PDF: one page per sample, its time and the sheet number on it.
+    mechdraw::run::run(&l, &opts).unwrap();
+    let pdf = tmp.path().join("slider-crank-sheets.pdf");
+    let out =
+        std::process::Command::new("pdftotext").args(["-f", "4", "-l", "4", "-layout"]).arg(&pdf).arg("-").output();
+    let text = String::from_utf8_lossy(&out.expect("run pdftotext (poppler-utils)").stdout).to_string();
+    let t = states[3].t;
+    for want in [format!("t = {t:.4} s"), "sheet 4 of 13".to_string(), "k_l = ".into(), "Me1".into(), "RA".into()] {
+        assert!(text.contains(&want), "page 4 lacks `{want}`:\n{text}");
+    }
+}

@@ -102,6 +102,42 @@ impl LinkageFigure {
     }
 }
 
+impl LinkageFigure {
+    /// The figure drawn on paper: body points scaled by 1/`k_l` (model units per paper mm)
+    /// and ground points placed at `origin + p/k_l`; draw it at the coordinates of
+    /// [`on_paper`].
+    pub fn on_paper(&self, origin: Point, k_l: f64) -> LinkageFigure {
+        let anchor = |a: Anchor| match a.body {
+            Attach::Ground => Anchor { body: Attach::Ground, local: origin.coords + a.local / k_l },
+            Attach::Body(_) => Anchor { body: a.body, local: a.local / k_l },
+        };
+        let bodies = self
+            .bodies
+            .iter()
+            .map(|b| BodyOutline { points: b.points.iter().map(|(n, v)| (n.clone(), v / k_l)).collect() })
+            .collect();
+        let joints = self
+            .joints
+            .iter()
+            .map(|j| match j {
+                JointSymbol::Pin { at, grounded, name } => {
+                    JointSymbol::Pin { at: anchor(*at), grounded: *grounded, name: name.clone() }
+                }
+                JointSymbol::Slider { point, q1, q2, name } => {
+                    JointSymbol::Slider { point: anchor(*point), q1: anchor(*q1), q2: anchor(*q2), name: name.clone() }
+                }
+            })
+            .collect();
+        let traced = self.traced.iter().map(|a| anchor(*a)).collect();
+        LinkageFigure { bodies, joints, traced, units: self.units }
+    }
+}
+
+/// Body coordinates `q` (x, y, φ per body) on paper: positions at `origin + r/k_l`.
+pub fn on_paper(q: &[f64], origin: Point, k_l: f64) -> Vec<f64> {
+    q.chunks(3).flat_map(|c| [origin.x + c[0] / k_l, origin.y + c[1] / k_l, c[2]]).collect()
+}
+
 /// Where every body point goes over `motion` (lower-left, upper-right), `None` for no point.
 fn motion_bounds(fig: &LinkageFigure, motion: &[&[f64]]) -> Option<(Point, Point)> {
     let mut b: Option<(Point, Point)> = None;

@@ -14,6 +14,7 @@ pub mod linkage;
 pub mod linkage_forces;
 pub mod linkage_frame;
 pub mod linkage_polygon;
+pub mod linkage_sheet;
 pub mod panels;
 pub mod plot;
 pub mod polygon;

@@ -289,7 +289,12 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
         rect(&mut d, p.outline, 0.0);
         if let Some(t) = titles.get(i) {
             let at = Point::new(p.outline.min.x + 0.6 * s.text, p.outline.max.y - 1.1 * s.text);
-            text(&mut d, at, s.text, t, HAlign::Left);
+            // A title wider than its panel (a scale in (mm/s²)/mm) in smaller letters, down
+            // to the small text's height.
+            let room = p.outline.width() - 1.2 * s.text;
+            let width = crate::draw::parts::text_width(t, s.text);
+            let h = if width > room { (s.text * room / width).max(s.small_text()) } else { s.text };
+            text(&mut d, at, h, t, HAlign::Left);
         }
     }
     // Title block: the name row, then two cells per row.

@@ -14,6 +14,11 @@ use super::vocab::{ModelUnits, Scale, bar_value, layer_of, layers, scale_bar, sc
 
 /// Gap between force figures on a sheet, in the largest figure's extents.
 pub const FIGURE_GAP: f64 = 0.15;
+/// Room left between a polygon and its panel's edges for the letters at its outer points,
+/// in letter heights.
+pub const LETTER_ROOM: f64 = 1.5;
+/// Room between force figures on a sheet for their names, in letter heights.
+pub const NAME_ROOM: f64 = 3.0;
 /// Force figures in one row of the force panel.
 pub const FIGURES_PER_ROW: usize = 3;
 
@@ -69,6 +74,13 @@ pub struct PageFit {
     shifts: Vec<Vector>,
 }
 
+/// The room a polygon is fitted to in a panel's `area`: [`LETTER_ROOM`] letter heights less
+/// each way, for the letters at its outer points.
+fn letter_room(area: crate::draw::Bounds, s: super::vocab::Sizes) -> Vector {
+    let room = 2.0 * LETTER_ROOM * s.text;
+    Vector::new((area.width() - room).max(0.5 * area.width()), (area.height() - room).max(0.5 * area.height()))
+}
+
 /// The smallest box holding the finite vectors of `vs`.
 fn extent(vs: impl IntoIterator<Item = Vector>) -> Option<(Vector, Vector)> {
     vs.into_iter()
@@ -77,11 +89,12 @@ fn extent(vs: impl IntoIterator<Item = Vector>) -> Option<(Vector, Vector)> {
 }
 
 /// Where each force figure's pole goes relative to the first's (physical units): side by
-/// side, tops aligned, [`FIGURE_GAP`] apart, in rows of [`FIGURES_PER_ROW`] from the top.
-fn figure_shifts(figures: &[ForcePolygon]) -> Vec<Vector> {
+/// side, tops aligned, [`FIGURE_GAP`] of the largest figure apart (at least `min_gap`), in
+/// rows of [`FIGURES_PER_ROW`] from the top.
+fn figure_shifts(figures: &[ForcePolygon], min_gap: f64) -> Vec<Vector> {
     let extents: Vec<Option<(Vector, Vector)>> = figures.iter().map(|f| extent(f.physical_points())).collect();
     let size = extents.iter().flatten().map(|(lo, hi)| (hi - lo).amax()).fold(0.0, f64::max);
-    let gap = FIGURE_GAP * size;
+    let gap = (FIGURE_GAP * size).max(min_gap);
     let mut shifts = Vec::with_capacity(figures.len());
     let (Some(Some((_, hi0))), true) = (extents.first(), !figures.is_empty()) else {
         return vec![Vector::zeros(); figures.len()];
@@ -123,16 +136,37 @@ impl PageFit {
         let mut fitted = |on: bool, pts: Option<Vec<Vector>>| -> Option<(Fit, Point)> {
             let panel = if on { panels.next() } else { None }?;
             let (lo, hi) = extent(pts?)?;
-            let f = sheet::fit(hi - lo, Vector::new(panel.area.width(), panel.area.height()));
+            let f = sheet::fit(hi - lo, letter_room(panel.area, layout.sizes));
             Some((f, sheet::centre(lo, hi, f.per_mm, panel.area)))
         };
         let velocity = fitted(shown.velocity, polys.velocity.map(PointPolygon::physical_points));
         let acceleration = fitted(shown.acceleration, polys.acceleration.map(PointPolygon::physical_points));
-        let shifts = polys.forces.map(figure_shifts).unwrap_or_default();
-        let all = polys.forces.map(|figs| {
-            figs.iter().zip(&shifts).flat_map(|(f, s)| f.physical_points().into_iter().map(move |v| v + s)).collect()
-        });
-        let forces = fitted(shown.forces, all);
+        // The figures at a first gap; then, at the scale that gives, at least
+        // [`NAME_ROOM`] letter heights between them for their names, and fitted again.
+        let all = |shifts: &[Vector]| {
+            polys.forces.map(|figs| {
+                figs.iter().zip(shifts).flat_map(|(f, s)| f.physical_points().into_iter().map(move |v| v + s)).collect()
+            })
+        };
+        let force_panel = if shown.forces {
+            layout.panels.iter().skip(1).nth(shown.velocity as usize + shown.acceleration as usize)
+        } else {
+            None
+        };
+        let mut shifts = polys.forces.map(|f| figure_shifts(f, 0.0)).unwrap_or_default();
+        let mut forces = fitted(shown.forces, all(&shifts));
+        if let (Some((first, _)), Some(figs)) = (forces, polys.forces) {
+            let room = NAME_ROOM * layout.sizes.text * first.per_mm;
+            let wider = figure_shifts(figs, room);
+            if wider != shifts {
+                shifts = wider;
+                forces = force_panel.and_then(|panel| {
+                    let (lo, hi) = extent(all(&shifts)?)?;
+                    let f = sheet::fit(hi - lo, letter_room(panel.area, layout.sizes));
+                    Some((f, sheet::centre(lo, hi, f.per_mm, panel.area)))
+                });
+            }
+        }
         PageFit { velocity, acceleration, forces, shifts }
     }
 

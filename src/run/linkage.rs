@@ -13,8 +13,11 @@ use crate::Error;
 use crate::draw::{Aci, LineType};
 use crate::figure::animation::Animation;
 use crate::figure::linkage as fig;
+use crate::figure::linkage_forces;
 use crate::figure::linkage_frame::{LinkageFrames, RunForces, Show};
+use crate::figure::linkage_sheet::LinkageSheets;
 use crate::figure::plot::{Diagram, Series, diagram};
+use crate::figure::sheet::{self, Paper};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
 use crate::scene::Units;
@@ -23,6 +26,7 @@ use crate::solve::linkage::{
     Anchor, Attach, DriverTarget, Forces, JointKind, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State,
 };
 use crate::solve::stroke::{self, Extreme, Stroke};
+use rayon::prelude::*;
 
 /// One measured column: its name and values over the motion (the CSV's and the JSON's;
 /// the diagrams draw them in textbook form, see `plot_of`).
@@ -104,7 +108,12 @@ fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error
     Ok((anchor, Point::new(nums[0], nums[1])))
 }
 
-pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Result<Products, Error> {
+pub(super) fn products(
+    scene: &LinkageScene,
+    file: &str,
+    drag: &[String],
+    paper: Option<Paper>,
+) -> Result<Products, Error> {
     let serr = solve_err(file);
     let mut solver = match Solver::new(scene.mechanism.clone()) {
         Ok(s) => s,
@@ -239,28 +248,38 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
     let show = Show { velocity: p.velocity, acceleration: p.acceleration, forces: p.forces, points: p.points.clone() };
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
-    let frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show);
+    let frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
     let base = frames.base(&figure, &motion);
     let window = frames.frame.window;
-    let names = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
+    let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
     // Diagrams, one per measured column, as a textbook draws them.
     let (x_label, x) = abscissa(scene, &states);
-    let plots = scene.measures.iter().flat_map(|m| m.quantities.iter().map(move |&q| (m, q)));
+    let plots: Vec<Plot> = scene
+        .measures
+        .iter()
+        .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+        .map(|(m, q)| plot_of(scene, m, q, &states, &strokes))
+        .collect();
+    let pages = match paper {
+        Some(paper) => {
+            let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
+            sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names)
+        }
+        None => Vec::new(),
+    };
     let mut diagrams: Vec<products::Diagram> = plots
+        .into_iter()
         .zip(&cols)
-        .map(|((m, q), c)| {
-            let p = plot_of(scene, m, q, &states, &strokes);
-            products::Diagram {
-                stem: c.name.clone(),
-                drawing: diagram(&Diagram {
-                    title: p.title,
-                    x_label: x_label.clone(),
-                    y_label: p.y_label,
-                    series: vec![Series { label: c.name.clone(), x: x.clone(), y: p.values }],
-                }),
-            }
+        .map(|(p, c)| products::Diagram {
+            stem: c.name.clone(),
+            drawing: diagram(&Diagram {
+                title: p.title,
+                x_label: x_label.clone(),
+                y_label: p.y_label,
+                series: vec![Series { label: c.name.clone(), x: x.clone(), y: p.values }],
+            }),
         })
         .collect();
     // And one per reaction and driver force, against the same abscissa.
@@ -291,7 +310,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, drag: &[String]) -> Res
         picture: Picture::Motion(Animation::new(scene.name.clone(), base, Some(window), names, labels, pose)),
         positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
         sheets: Vec::new(),
-        pages: Vec::new(),
+        pages,
         diagrams,
         tables: vec![products::Table { suffix: String::new(), csv }],
         summary,
@@ -852,4 +871,66 @@ struct DragSummary<'a> {
     drag: Vec<DragRecord<'a>>,
     max_residual: f64,
     bodies: Vec<BodyRecord<'a>>,
+}
+
+/// One sample's values for its sheet: each measured quantity (its diagram's symbol and
+/// unit) and, with forces, every reaction's magnitude and the drivers' forces, 4
+/// significant digits ([`sheet::number`]).
+fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScene, &Forces)>) -> sheet::Table {
+    let header = ["", "value", "unit"].map(String::from).to_vec();
+    let mut rows: Vec<Vec<String>> = plots
+        .iter()
+        .map(|p| {
+            let (name, unit) = match p.y_label.rsplit_once(" [") {
+                Some((n, u)) => (n.to_string(), u.trim_end_matches(']').to_string()),
+                None => (p.y_label.clone(), String::new()),
+            };
+            // A value below 1e-9 of its series' largest is rounding noise (ω = 1e-15 rad/s
+            // at a dead centre) and prints as 0.
+            let largest = p.values.iter().filter(|v| v.is_finite()).fold(0.0, |m: f64, v| m.max(v.abs()));
+            let v = p.values[k];
+            let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v) };
+            vec![name, text, unit]
+        })
+        .collect();
+    if let Some((scene, f)) = forces {
+        let lu = scene.units.length();
+        let per_nm = 1.0 / metres_per_unit(scene.units);
+        for m in linkage_forces::magnitudes(&scene.mechanism, f, &format!("N·{lu}"), per_nm) {
+            rows.push(vec![m.name, sheet::number(m.value), m.unit]);
+        }
+    }
+    sheet::Table { header, rows }
+}
+
+/// The printed pages, one per sample (in parallel): `sheets/<name>/<position>.svg` and the
+/// PDF.
+#[allow(clippy::too_many_arguments)]
+fn sheet_pages(
+    paper: Paper,
+    scene: &LinkageScene,
+    figure: &fig::LinkageFigure,
+    states: &[State],
+    forces: Option<(&crate::solve::linkage::Dynamics, &[Forces])>,
+    plots: &[Plot],
+    show: Show,
+    names: &[String],
+) -> Vec<products::Page> {
+    let sheets = LinkageSheets::new(paper, &scene.name, figure, states, show, forces.is_some());
+    let n = states.len();
+    states
+        .par_iter()
+        .enumerate()
+        .map(|(k, st)| {
+            let force = forces.map(|(d, f)| (d, &f[k]));
+            let table = sheet_table(plots, k, force.map(|(_, f)| (scene, f)));
+            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (k + 1, n));
+            products::Page {
+                stem: names[k].to_lowercase(),
+                drawing,
+                window: paper.bounds(),
+                hairline_mm: sheet::HAIRLINE_MM,
+            }
+        })
+        .collect()
 }

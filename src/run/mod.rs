@@ -36,7 +36,7 @@ pub struct RunOptions {
     /// to millimetres comes from the scene's units ([`Products::mm_per_unit`]).
     pub dxf: crate::draw::dxf::DxfOptions,
     /// `--sheets a4|a3`: one printed page per position (`sheets/<name>/<position>.svg`)
-    /// and `<name>-sheets.pdf` (four-bar scenes).
+    /// and `<name>-sheets.pdf` (four-bar and linkage scenes).
     pub sheets: Option<crate::figure::sheet::Paper>,
 }
 
@@ -71,11 +71,11 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             message: format!("only a linkage scene can be dragged; {file} is a {} scene", loaded.scene.kind()),
         });
     }
-    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_)) {
+    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_) | Scene::Linkage(_)) {
         return Err(Error::Option {
             option: "--sheets".into(),
             message: format!(
-                "per-position sheets are drawn for four-bar scenes only so far; {file} is a {} scene",
+                "per-position sheets are drawn for four-bar and linkage scenes; {file} is a {} scene",
                 loaded.scene.kind()
             ),
         });
@@ -83,7 +83,7 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
         Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets),
-        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag),
+        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets),
         Scene::Chain(s) => chain::products(s, &file),
     }
 }
