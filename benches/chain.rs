@@ -1,5 +1,7 @@
 //! Dimensional chains: the check plus every dependent function on a chain of 1,000
-//! dimensions (target ≤ 10 ms), and a Monte Carlo of 1e6 samples (target ≤ 200 ms).
+//! dimensions (target ≤ 10 ms), a Monte Carlo of 1e6 samples (target ≤ 200 ms), and the
+//! same Monte Carlo at 1e6 and 1e7 samples side by side (target: 1e7 within 12× of 1e6,
+//! i.e. linear in the samples; issue 16 §5).
 //!
 //! Two shapes of chain: a random tree (each dimension based on a random earlier feature,
 //! short paths, like a drawing dimensioned from several bases) and a serial chain (each
@@ -75,6 +77,15 @@ fn bench(c: &mut Criterion) {
     g.bench_function("100 dims, normal", |b| {
         b.iter(|| monte_carlo(&long, &serial.dimensions, Distribution::Normal, 1_000_000, 1, 40, Some([0.0, 1.0])))
     });
+    g.finish();
+    // Linear in the samples: the 3-dimension path at 1e6 and 1e7 (compare the two means).
+    let mut g = c.benchmark_group("chain/monte carlo 1e6 vs 1e7");
+    g.sample_size(10);
+    for samples in [1_000_000u64, 10_000_000] {
+        g.bench_function(format!("3 dims, normal, {samples} samples"), |b| {
+            b.iter(|| monte_carlo(&f3, &short.dimensions, Distribution::Normal, samples, 1, 40, Some([0.0, 1.0])))
+        });
+    }
     g.finish();
 }
 

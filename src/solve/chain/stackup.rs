@@ -135,46 +135,97 @@ pub struct MonteCarlo {
     pub cpk: Option<f64>,
 }
 
-/// Draws `samples` values of Z (seeded, deterministic for any thread count).
-pub fn sample(f: &Function, dims: &[Dimension], dist: Distribution, samples: usize, seed: u64) -> Vec<f64> {
+/// Mean of Z after the mean shifts, and the scale k_i·t_i of each term's symmetric
+/// deviation in Z (terms without tolerance left out).
+fn centre_and_scales(f: &Function, dims: &[Dimension]) -> (f64, Vec<f64>) {
     let mean: f64 = f.nominal + f.terms.iter().map(|t| t.coef * dims[t.dim].sign() * dims[t.dim].mid()).sum::<f64>();
-    // k_i·t_i for each term: the scale of its symmetric deviation in Z.
     let scales: Vec<f64> =
         f.terms.iter().map(|t| t.coef * dims[t.dim].sign() * dims[t.dim].half()).filter(|s| *s != 0.0).collect();
-    let mut out = vec![mean; samples];
-    out.par_chunks_mut(CHUNK).enumerate().for_each(|(k, chunk)| {
-        let mut rng = ChaCha8Rng::seed_from_u64(seed);
-        rng.set_stream(k as u64);
-        for z in chunk.iter_mut() {
-            let mut acc = 0.0;
-            for s in &scales {
-                let e = match dist {
-                    Distribution::Normal => {
-                        let n: f64 = StandardNormal.sample(&mut rng);
-                        n / 3.0
-                    }
-                    Distribution::Uniform => 2.0 * rng.random::<f64>() - 1.0,
-                    Distribution::Triangular => rng.random::<f64>() + rng.random::<f64>() - 1.0,
-                };
-                acc += s * e;
-            }
-            *z += acc;
+    (mean, scales)
+}
+
+/// Fills `chunk` (chunk number `k` of a run, at most [`CHUNK`] long) with samples of Z:
+/// random stream `k` of `seed`, so the values do not depend on which thread draws them.
+fn draw_chunk(chunk: &mut [f64], k: usize, seed: u64, mean: f64, scales: &[f64], dist: Distribution) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    rng.set_stream(k as u64);
+    for z in chunk.iter_mut() {
+        let mut acc = 0.0;
+        for s in scales {
+            let e = match dist {
+                Distribution::Normal => {
+                    let n: f64 = StandardNormal.sample(&mut rng);
+                    n / 3.0
+                }
+                Distribution::Uniform => 2.0 * rng.random::<f64>() - 1.0,
+                Distribution::Triangular => rng.random::<f64>() + rng.random::<f64>() - 1.0,
+            };
+            acc += s * e;
         }
-    });
+        *z = mean + acc;
+    }
+}
+
+/// Draws `samples` values of Z (seeded, deterministic for any thread count).
+pub fn sample(f: &Function, dims: &[Dimension], dist: Distribution, samples: usize, seed: u64) -> Vec<f64> {
+    let (mean, scales) = centre_and_scales(f, dims);
+    // Zeroed memory comes from the allocator untouched; each chunk is first written by the
+    // thread that draws it (no serial fill pass).
+    let mut out = vec![0.0; samples];
+    out.par_chunks_mut(CHUNK).enumerate().for_each(|(k, chunk)| draw_chunk(chunk, k, seed, mean, &scales, dist));
     out
 }
 
-/// Σ g(v) over `z`, in parallel but in a fixed order (per [`CHUNK`], then the chunks' sums
-/// in turn), so that a seeded run gives the same last digit on any thread count and any
-/// scheduling (rayon's own `sum` splits the work adaptively, and floating-point addition is
-/// not associative).
-fn chunked_sum(z: &[f64], g: impl Fn(f64) -> f64 + Sync) -> f64 {
-    let partial: Vec<f64> = z.par_chunks(CHUNK).map(|c| c.iter().map(|&v| g(v)).sum::<f64>()).collect();
-    partial.iter().sum()
+/// Bins of the fine histogram that locates the percentiles' ranks (pass 2 of
+/// [`monte_carlo`]): 4096 counts (32 KiB) stay in a core's cache, and the bins holding the
+/// five ranks keep about 4·n/4096 samples at most for a normal Z (the median's bin).
+const RANK_BINS: usize = 4096;
+
+/// Bin of `v` among `bins` bins of `width` from `x0`, the last bin closed. Monotone
+/// non-decreasing in `v` (each step rounds monotonically), so every sample of a lower bin
+/// is ≤ every sample of a higher one: ranks can be counted bin by bin.
+fn bin_of(v: f64, x0: f64, width: f64, bins: usize) -> usize {
+    (((v - x0) / width) as usize).min(bins - 1)
+}
+
+/// What pass 2 of [`monte_carlo`] counts over the samples.
+struct Tally {
+    /// `(chunk number, Σ (z − mean)² over the chunk)`, summed in chunk order at the end.
+    squares: Vec<(usize, f64)>,
+    /// Samples outside the spec limits.
+    out_of_spec: u64,
+    /// The reported histogram.
+    histogram: Vec<u64>,
+    /// The fine histogram of [`RANK_BINS`] bins over the same span.
+    ranks: Vec<u64>,
+}
+
+impl Tally {
+    fn new(bins: usize) -> Tally {
+        Tally { squares: Vec::new(), out_of_spec: 0, histogram: vec![0; bins], ranks: vec![0; RANK_BINS] }
+    }
+
+    /// Counts are integers: adding them in any order gives the same totals.
+    fn merge(mut self, other: Tally) -> Tally {
+        self.squares.extend(other.squares);
+        self.out_of_spec += other.out_of_spec;
+        self.histogram.iter_mut().zip(other.histogram).for_each(|(a, b)| *a += b);
+        self.ranks.iter_mut().zip(other.ranks).for_each(|(a, b)| *a += b);
+        self
+    }
 }
 
 /// Monte Carlo of `f`: statistics of [`sample`], histogram with `bins` bins, and with
 /// `spec = [LSL, USL]` the out-of-spec fraction and Cp/Cpk. `None` when `samples` is 0.
+///
+/// Linear in `samples`: the samples are drawn chunk by chunk ([`CHUNK`]) and read in three
+/// passes, each streaming through them once (the sum, min and max while each chunk is drawn;
+/// the squares about the mean, both histograms and the out-of-spec count; the samples of
+/// the few fine bins that hold the percentiles' ranks). Sums are taken per chunk and the
+/// chunks' sums added in chunk order, so a seeded run gives the same last digit on any
+/// thread count. The percentiles are exact order statistics (nearest rank): a fine
+/// histogram finds the bin holding each rank and selection within that bin's samples finds
+/// the value, with no sort.
 pub fn monte_carlo(
     f: &Function,
     dims: &[Dimension],
@@ -187,45 +238,60 @@ pub fn monte_carlo(
     if samples == 0 {
         return None;
     }
-    let mut z = sample(f, dims, dist, samples as usize, seed);
+    let (centre, scales) = centre_and_scales(f, dims);
+    let mut z = vec![0.0; samples as usize];
     let n = z.len() as f64;
-    let mean = chunked_sum(&z, |v| v) / n;
-    let ss = chunked_sum(&z, |v| (v - mean) * (v - mean));
-    let sigma = if z.len() > 1 { (ss / (n - 1.0)).sqrt() } else { 0.0 };
-    let (min, max) = z
-        .par_iter()
-        .fold(|| (f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)))
-        .reduce(|| (f64::INFINITY, f64::NEG_INFINITY), |(a, b), (c, d)| (a.min(c), b.max(d)));
+
+    // Pass 1: draw each chunk and take its sum, min and max while it is in cache.
+    let firsts: Vec<(f64, f64, f64)> = z
+        .par_chunks_mut(CHUNK)
+        .enumerate()
+        .map(|(k, c)| {
+            draw_chunk(c, k, seed, centre, &scales, dist);
+            let (lo, hi) = c.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &v| (a.min(v), b.max(v)));
+            (c.iter().sum::<f64>(), lo, hi)
+        })
+        .collect();
+    let mean = firsts.iter().map(|p| p.0).sum::<f64>() / n;
+    let (min, max) =
+        firsts.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &(_, lo, hi)| (a.min(lo), b.max(hi)));
     let bins = bins.max(1) as usize;
     let span = if max > min { max - min } else { (mean.abs() * 1e-9).max(1e-12) };
     let x0 = if max > min { min } else { mean - span / 2.0 };
     let width = span / bins as f64;
-    let counts = z
+    let rank_width = span / RANK_BINS as f64;
+
+    // Pass 2: squares about the mean per chunk, the histograms and the out-of-spec count.
+    let mut tally = z
         .par_chunks(CHUNK)
-        .map(|c| {
-            let mut h = vec![0u64; bins];
-            for v in c {
-                let k = (((v - x0) / width) as usize).min(bins - 1);
-                h[k] += 1;
-            }
-            h
-        })
-        .reduce(
-            || vec![0u64; bins],
-            |mut a, b| {
-                a.iter_mut().zip(b).for_each(|(x, y)| *x += y);
-                a
+        .enumerate()
+        .fold(
+            || Tally::new(bins),
+            |mut t, (k, c)| {
+                t.squares.push((k, c.iter().map(|&v| (v - mean) * (v - mean)).sum::<f64>()));
+                for &v in c {
+                    t.histogram[bin_of(v, x0, width, bins)] += 1;
+                    t.ranks[bin_of(v, x0, rank_width, RANK_BINS)] += 1;
+                }
+                if let Some([lsl, usl]) = spec {
+                    t.out_of_spec += c.iter().filter(|v| **v < lsl || **v > usl).count() as u64;
+                }
+                t
             },
-        );
+        )
+        .reduce(|| Tally::new(bins), Tally::merge);
+    tally.squares.sort_by_key(|p| p.0);
+    let ss = tally.squares.iter().map(|p| p.1).sum::<f64>();
+    let sigma = if z.len() > 1 { (ss / (n - 1.0)).sqrt() } else { 0.0 };
+
     let (out_of_spec_ppm, cp, cpk) = match spec {
         Some([lsl, usl]) => {
-            let out = z.par_iter().filter(|v| **v < lsl || **v > usl).count() as f64;
             let (cp, cpk) = if sigma > 0.0 {
                 (Some((usl - lsl) / (6.0 * sigma)), Some((usl - mean).min(mean - lsl) / (3.0 * sigma)))
             } else {
                 (None, None)
             };
-            (Some(1e6 * out / n), cp, cpk)
+            (Some(1e6 * tally.out_of_spec as f64 / n), cp, cpk)
         }
         None => (None, None, None),
     };
@@ -233,16 +299,60 @@ pub fn monte_carlo(
         let tail = |d: f64| 0.5 * erfc(d / (sigma * std::f64::consts::SQRT_2));
         1e6 * (tail(usl - mean) + tail(mean - lsl))
     });
-    // Nearest-rank percentiles by successive selection (ascending ranks).
-    let mut percentiles = Vec::with_capacity(PERCENTILES.len());
-    let mut lo = 0usize;
-    for p in PERCENTILES {
-        let rank = ((p / 100.0) * (n - 1.0)).round() as usize;
-        let rank = rank.clamp(lo, z.len() - 1);
-        let (_, v, _) = z[lo..].select_nth_unstable_by(rank - lo, f64::total_cmp);
-        percentiles.push((p, *v));
-        lo = rank;
-    }
+
+    // Pass 3: nearest-rank percentiles. Each rank falls in one fine bin (its rank among
+    // the samples of that bin = its rank less the samples of the bins below); the samples
+    // of those bins are gathered and the value picked by selection.
+    let below: Vec<u64> = tally
+        .ranks
+        .iter()
+        .scan(0u64, |acc, &c| {
+            let b = *acc;
+            *acc += c;
+            Some(b)
+        })
+        .collect();
+    let located: Vec<(f64, usize, usize)> = PERCENTILES
+        .iter()
+        .map(|&p| {
+            let rank = (((p / 100.0) * (n - 1.0)).round() as usize).min(z.len() - 1) as u64;
+            // The last bin whose first rank is ≤ rank (empty bins share their first rank).
+            let bin = below.partition_point(|&b| b <= rank) - 1;
+            (p, bin, (rank - below[bin]) as usize)
+        })
+        .collect();
+    let mut wanted: Vec<usize> = located.iter().map(|l| l.1).collect();
+    wanted.sort_unstable();
+    wanted.dedup();
+    let mut gathered = z
+        .par_chunks(CHUNK)
+        .fold(
+            || vec![Vec::new(); wanted.len()],
+            |mut g: Vec<Vec<f64>>, c| {
+                for &v in c {
+                    if let Ok(i) = wanted.binary_search(&bin_of(v, x0, rank_width, RANK_BINS)) {
+                        g[i].push(v);
+                    }
+                }
+                g
+            },
+        )
+        .reduce(
+            || vec![Vec::new(); wanted.len()],
+            |mut a, b| {
+                a.iter_mut().zip(b).for_each(|(x, y)| x.extend(y));
+                a
+            },
+        );
+    drop(z);
+    let percentiles = located
+        .iter()
+        .map(|&(p, bin, offset)| {
+            let i = wanted.binary_search(&bin).expect("a located bin is gathered");
+            let (_, v, _) = gathered[i].select_nth_unstable_by(offset, f64::total_cmp);
+            (p, *v)
+        })
+        .collect();
     Some(MonteCarlo {
         samples,
         mean,
@@ -250,7 +360,7 @@ pub fn monte_carlo(
         min,
         max,
         percentiles,
-        histogram: (x0, width, counts),
+        histogram: (x0, width, tally.histogram),
         out_of_spec_ppm,
         out_of_spec_ppm_normal,
         cp,
@@ -327,7 +437,91 @@ mod tests {
             assert_eq!(one.mean.to_bits(), other.mean.to_bits(), "mean with {threads} threads");
             assert_eq!(one.sigma.to_bits(), other.sigma.to_bits(), "sigma with {threads} threads");
             assert_eq!(one.histogram, other.histogram);
+            assert_eq!(one.percentiles, other.percentiles);
         }
+    }
+
+    /// The old route, written out independently: the whole sample, sums per chunk added in
+    /// chunk order, a full sort for the nearest-rank percentiles, counts by direct loops.
+    fn by_sorting(z: &[f64], bins: usize, spec: Option<[f64; 2]>) -> MonteCarlo {
+        let n = z.len() as f64;
+        let sum_by_chunk = |g: &dyn Fn(f64) -> f64| -> f64 {
+            let partial: Vec<f64> = z.chunks(CHUNK).map(|c| c.iter().map(|&v| g(v)).sum::<f64>()).collect();
+            partial.iter().sum()
+        };
+        let mean = sum_by_chunk(&|v| v) / n;
+        let sigma = if z.len() > 1 { (sum_by_chunk(&|v| (v - mean) * (v - mean)) / (n - 1.0)).sqrt() } else { 0.0 };
+        let mut sorted = z.to_vec();
+        sorted.sort_by(f64::total_cmp);
+        let (min, max) = (sorted[0], sorted[z.len() - 1]);
+        let span = if max > min { max - min } else { (mean.abs() * 1e-9).max(1e-12) };
+        let x0 = if max > min { min } else { mean - span / 2.0 };
+        let width = span / bins as f64;
+        let mut counts = vec![0u64; bins];
+        for v in z {
+            counts[(((v - x0) / width) as usize).min(bins - 1)] += 1;
+        }
+        let percentiles =
+            PERCENTILES.iter().map(|&p| (p, sorted[((p / 100.0) * (n - 1.0)).round() as usize])).collect();
+        let out = spec.map(|[lsl, usl]| 1e6 * z.iter().filter(|v| **v < lsl || **v > usl).count() as f64 / n);
+        MonteCarlo {
+            samples: z.len() as u64,
+            mean,
+            sigma,
+            min,
+            max,
+            percentiles,
+            histogram: (x0, width, counts),
+            out_of_spec_ppm: out,
+            out_of_spec_ppm_normal: None,
+            cp: None,
+            cpk: None,
+        }
+    }
+
+    #[test]
+    fn streaming_statistics_and_selected_percentiles_equal_the_sorted_whole_sample() {
+        let dims = vec![d(10.0, 0.1, -0.1), d(-20.0, 0.2, -0.05), d(5.0, 0.05, -0.02), d(7.0, 0.0, 0.0)];
+        let terms = vec![
+            Term { dim: 0, coef: 1.0 },
+            Term { dim: 1, coef: -1.0 },
+            Term { dim: 2, coef: 1.0 },
+            Term { dim: 3, coef: 1.0 },
+        ];
+        let f = Function { terms, nominal: 42.0 };
+        let spec = Some([41.9, 42.2]);
+        for (dist, samples, bins) in [
+            (Distribution::Normal, 1, 40),
+            (Distribution::Normal, 2, 40),
+            (Distribution::Uniform, 7, 3),
+            (Distribution::Triangular, CHUNK + 1, 40),
+            (Distribution::Normal, 5 * CHUNK + 3, 40),
+            (Distribution::Uniform, 300_001, 17),
+            (Distribution::Normal, 1_000_000, 40),
+        ] {
+            let mc = monte_carlo(&f, &dims, dist, samples as u64, 11, bins, spec).unwrap();
+            let old = by_sorting(&sample(&f, &dims, dist, samples, 11), bins as usize, spec);
+            let what = format!("{dist:?}, {samples} samples");
+            assert_eq!(mc.mean.to_bits(), old.mean.to_bits(), "mean, {what}");
+            assert_eq!(mc.sigma.to_bits(), old.sigma.to_bits(), "sigma, {what}");
+            assert_eq!((mc.min, mc.max), (old.min, old.max), "{what}");
+            assert_eq!(mc.histogram, old.histogram, "{what}");
+            assert_eq!(mc.out_of_spec_ppm, old.out_of_spec_ppm, "{what}");
+            // Exact order statistics, bit for bit.
+            for ((p, v), (_, w)) in mc.percentiles.iter().zip(&old.percentiles) {
+                assert_eq!(v.to_bits(), w.to_bits(), "{p} % percentile, {what}: {v} vs {w}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_chain_without_tolerance_gives_its_mean_at_every_percentile() {
+        let dims = vec![d(10.0, 0.0, 0.0), d(20.0, 0.0, 0.0)];
+        let f = Function { terms: vec![Term { dim: 0, coef: 1.0 }, Term { dim: 1, coef: 1.0 }], nominal: 30.0 };
+        let mc = monte_carlo(&f, &dims, Distribution::Normal, 1000, 1, 10, None).unwrap();
+        assert_eq!((mc.mean, mc.sigma, mc.min, mc.max), (30.0, 0.0, 30.0, 30.0));
+        assert!(mc.percentiles.iter().all(|(_, v)| *v == 30.0));
+        assert_eq!(mc.histogram.2.iter().sum::<u64>(), 1000);
     }
 
     #[test]
