@@ -43,9 +43,9 @@ enum Command {
         /// Do not write per-position SVG frames and the HTML viewer.
         #[arg(long)]
         no_frames: bool,
-        /// Four-bar scenes: also one printed sheet per position on `a4` (297 × 210 mm) or
-        /// `a3` (420 × 297 mm) landscape — border, title block (φ1, ω1, k_l, k_v, k_a, k_f),
-        /// the position's values, the mechanism and each polygon at its own nice scale — as
+        /// Four-bar and linkage scenes: also one printed sheet per position on `a4` (297 × 210
+        /// mm) or `a3` (420 × 297 mm) landscape — border, title block (φ1 or t, k_l, k_v, k_a,
+        /// k_f), the position's values, the mechanism and each polygon at its own nice scale — as
         /// DIR/sheets/<name>/<position>.svg and one PDF, DIR/<name>-sheets.pdf, to print at 100 %.
         #[arg(long, value_name = "PAPER")]
         sheets: Option<Paper>,
