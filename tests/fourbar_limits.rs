@@ -299,3 +299,29 @@ fn a_scalar_g_is_the_vector_along_minus_y_and_bad_fields_are_named() {
         assert!(e.contains(field), "{field}: {e}");
     }
 }
+
+#[test]
+fn the_force_polygons_close_with_loads_on_the_crank_and_the_rocker() {
+    use mechdraw::figure::fourbar::{crank_polygon, dyad_polygon};
+    let spec = fourbar_spec();
+    for deg in [0.0, 30.0, 95.0, 200.0, 310.0] {
+        let m = fourbar_at(&spec, deg, OMEGA0, EPS1);
+        let f = &m.forces[0];
+        assert!(f.f1_ext != Vector::zeros() && f.f3_ext != Vector::zeros(), "the scene loads crank and rocker");
+        let dyad = dyad_polygon(f);
+        let names: Vec<&str> = dyad.chain.iter().map(|v| v.name.as_str()).collect();
+        assert!(names.contains(&"F3"), "{names:?}");
+        // The dyad's chain closes (the link loads on the rocker in it), and its resultants
+        // are the solver's reactions.
+        let sum: Vector = dyad.chain.iter().map(|v| v.v).sum();
+        let size: f64 = dyad.chain.iter().map(|v| v.v.norm()).sum();
+        assert!(sum.norm() <= 1e-12 * size, "{deg}°: the dyad's polygon is open by {sum:?}");
+        for (name, want) in [("RA", f.r_a), ("RB", f.r_b), ("RC", f.r_c)] {
+            assert!(close(dyad.resultant(name).unwrap(), want, 1e-12), "{deg}°: {name}");
+        }
+        // The crank's: −RA, Fi1, G1, F1 closed by RO.
+        let crank = crank_polygon(f);
+        assert_eq!(crank.chain.last().unwrap().name, "F1");
+        assert!(close(crank.resultant("RO").unwrap(), f.r_o, 1e-12), "{deg}°: RO");
+    }
+}

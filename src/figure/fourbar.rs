@@ -36,7 +36,7 @@
 
 use crate::draw::{Drawing, Shape};
 use crate::geom::{Point, Vector, cross, perp};
-use crate::solve::fourbar::{ExternalForce, Forces};
+use crate::solve::fourbar::{ExternalForce, Forces, Link, LinkLoad};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
 use super::forces::{self, ForcePolygon, NamedVector, Resultant};
@@ -77,6 +77,8 @@ pub struct Layout {
     /// The external forces on the coupler, drawn on the mechanism where they act
     /// ([`Layout::with_drive`]).
     pub external: Vec<ExternalForce>,
+    /// The link loads, drawn where they act ([`Layout::with_link_loads`]).
+    pub link_loads: Vec<LinkLoad>,
 }
 
 /// Caption of the dyad's force polygon.
@@ -142,7 +144,7 @@ impl Layout {
             acceleration,
             forces: force_spec,
         });
-        Layout { show, frame, omega1: None, external: Vec::new() }
+        Layout { show, frame, omega1: None, external: Vec::new(), link_loads: Vec::new() }
     }
 
     /// The layout with the crank's angular velocity `omega1` (rad/s, CCW positive: the ω1
@@ -151,6 +153,13 @@ impl Layout {
     pub fn with_drive(mut self, omega1: f64, external: &[ExternalForce]) -> Layout {
         self.omega1 = Some(omega1);
         self.external = external.to_vec();
+        self
+    }
+
+    /// The layout with the scene's link loads (drawn on the mechanism at the force scale
+    /// where and when they act: `F1` on the crank, `F2` on the coupler, `F3` on the rocker).
+    pub fn with_link_loads(mut self, loads: &[LinkLoad]) -> Layout {
+        self.link_loads = loads.to_vec();
         self
     }
 
@@ -185,7 +194,9 @@ impl Layout {
             (Some(f), Some((scale, _))) => {
                 let links = links_of(geom, pos);
                 let inside = Point::from((geom.o1.coords + pos.a.coords + pos.b.coords + geom.c.coords) / 4.0);
-                forces::arrows_on_mechanism(&on_mechanism(geom, pos, f, &self.external), scale, &links, inside, s)
+                let mut acting = on_mechanism(geom, pos, f, &self.external);
+                acting.extend(link_loads_on_mechanism(geom, pos, &self.link_loads));
+                forces::arrows_on_mechanism(&acting, scale, &links, inside, s)
             }
             _ => Vec::new(),
         };
@@ -424,25 +435,29 @@ pub(crate) fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematic
 /// eq. 7) from the end of F to `int`; R_B and R_C are often nearly the same segment (a
 /// light rocker): the resultants are drawn beside a side they would lie on
 /// ([`forces::draw`]) and their names start from different places along them.
-pub(crate) fn dyad_polygon(f: &Forces) -> ForcePolygon {
+pub fn dyad_polygon(f: &Forces) -> ForcePolygon {
     let nv = NamedVector::new;
-    let (p_ran, p_f, p_fi3, int) = (1, 6, 8, 10);
+    // A load on the rocker (F3, from the link loads) joins the chain after Fi3, when any.
+    let f3 = usize::from(f.f3_ext != Vector::zeros());
+    let (p_ran, p_f, p_fi3, int) = (1, 6, 8 + f3, 10 + f3);
     let resultant = |name: &str, from, to, name_at| Resultant { name: name.into(), from, to, name_at };
+    let mut chain = vec![
+        nv("RAn", f.r_a_n),
+        nv("G21", f.g21),
+        nv("Fi21", f.fi21),
+        nv("G22", f.g22),
+        nv("Fi22", f.fi22),
+        nv("F", f.f_ext),
+        nv("G3", f.g3),
+        nv("Fi3", f.fi3),
+    ];
+    if f3 == 1 {
+        chain.push(nv("F3", f.f3_ext));
+    }
+    chain.extend([nv("RCn", f.r_c_n), nv("RCt", f.r_c_t), nv("RAt", f.r_a_t)]);
     ForcePolygon {
         pole: "f".into(),
-        chain: vec![
-            nv("RAn", f.r_a_n),
-            nv("G21", f.g21),
-            nv("Fi21", f.fi21),
-            nv("G22", f.g22),
-            nv("Fi22", f.fi22),
-            nv("F", f.f_ext),
-            nv("G3", f.g3),
-            nv("Fi3", f.fi3),
-            nv("RCn", f.r_c_n),
-            nv("RCt", f.r_c_t),
-            nv("RAt", f.r_a_t),
-        ],
+        chain,
         resultants: vec![
             resultant("RA", int, p_ran, 0.5),
             resultant("RB", p_f, int, 0.7),
@@ -454,12 +469,18 @@ pub(crate) fn dyad_polygon(f: &Forces) -> ForcePolygon {
 /// The crank's force polygon (seed Fig. 5), with its own pole f1 (the seed's pRAn): the
 /// load of the coupler on the crank −R_A, then F_i1 and G1; R_O closes it back to the pole
 /// (seed eq. 8: −R_A + F_i1 + G1 + R_O = 0).
-pub(crate) fn crank_polygon(f: &Forces) -> ForcePolygon {
+pub fn crank_polygon(f: &Forces) -> ForcePolygon {
     let nv = NamedVector::new;
+    let mut chain = vec![nv("−RA", -f.r_a), nv("Fi1", f.fi1), nv("G1", f.g1)];
+    // A load on the crank (F1, from the link loads), when any.
+    if f.f1_ext != Vector::zeros() {
+        chain.push(nv("F1", f.f1_ext));
+    }
+    let from = chain.len();
     ForcePolygon {
         pole: "f1".into(),
-        chain: vec![nv("−RA", -f.r_a), nv("Fi1", f.fi1), nv("G1", f.g1)],
-        resultants: vec![Resultant { name: "RO".into(), from: 3, to: 0, name_at: 0.5 }],
+        chain,
+        resultants: vec![Resultant { name: "RO".into(), from, to: 0, name_at: 0.5 }],
     }
 }
 
@@ -485,6 +506,25 @@ fn magnitudes(f: &Forces, moment_unit: &str) -> Vec<forces::Magnitude> {
     .collect();
     rows.push(row("Me1", f.me1, moment_unit));
     rows
+}
+
+/// The link loads acting at `pos` where they act: `F1` on the crank, `F2` on the coupler,
+/// `F3` on the rocker (their sums are the force polygons' F1, F and F3).
+fn link_loads_on_mechanism(geom: &Geometry, pos: &Position, loads: &[LinkLoad]) -> Vec<(Point, NamedVector)> {
+    let phi1_deg = pos.phi1.to_degrees();
+    loads
+        .iter()
+        .filter(|l| l.force != Vector::zeros() && l.range.is_none_or(|r| r.contains_deg(phi1_deg)))
+        .map(|l| {
+            let (p, _) = l.link.ends(geom, pos);
+            let name = match l.link {
+                Link::Crank => "F1",
+                Link::Ab | Link::Bm => "F2",
+                Link::Rocker => "F3",
+            };
+            (p + l.link.to_world(geom, pos, l.at), NamedVector::new(name, l.force))
+        })
+        .collect()
 }
 
 /// The forces drawn on the mechanism (seed, last section; design.md §4's conventions): R_A
@@ -857,6 +897,8 @@ pub(crate) mod tests {
             mi3,
             mi1: 0.0,
             f_ext,
+            f1_ext: Vector::zeros(),
+            f3_ext: Vector::zeros(),
             r_a_n,
             r_a_t,
             r_c_n,

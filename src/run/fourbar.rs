@@ -44,7 +44,10 @@ pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -
     };
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
     let external = spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
-    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units).with_drive(spec.omega1, external);
+    let link_loads = spec.dynamics.as_ref().map_or(&[][..], |d| d.loads.as_slice());
+    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units)
+        .with_drive(spec.omega1, external)
+        .with_link_loads(link_loads);
     let qs = reported(&spec.outputs, layout.show.forces);
     let mut csv = table(&motion, &qs, layout.show.forces);
     let mut summary = summary(scene, &motion, &layout, &qs)?;

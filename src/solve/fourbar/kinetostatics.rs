@@ -217,8 +217,13 @@ pub struct Forces {
     pub mi3: f64,
     /// See `mi21`.
     pub mi1: f64,
-    /// Sum of the external forces acting at this angle (zero outside their range).
+    /// Sum of the external forces acting at this angle (zero outside their range) on the
+    /// coupler (the `[[dynamics.force]]` and the link loads on AB and BM).
     pub f_ext: Vector,
+    /// Sum of the link loads' forces on the crank at this angle (F1).
+    pub f1_ext: Vector,
+    /// Sum of the link loads' forces on the rocker at this angle (F3).
+    pub f3_ext: Vector,
     /// Component of R_A normal (perpendicular) to AB, from moments about B (seed eq. 3).
     pub r_a_n: Vector,
     /// Component of R_A along the bar AB, from closing the dyad's force polygon (seed eq. 5).
@@ -243,8 +248,25 @@ impl Forces {
     /// Whether every component is a finite number (one sum: NaN and infinities propagate).
     pub fn is_finite(&self) -> bool {
         let vectors = [
-            self.g21, self.g22, self.g3, self.g1, self.fi21, self.fi22, self.fi3, self.fi1, self.f_ext, self.r_a_n,
-            self.r_a_t, self.r_c_n, self.r_c_t, self.r_a, self.r_b, self.r_c, self.r_o,
+            self.g21,
+            self.g22,
+            self.g3,
+            self.g1,
+            self.fi21,
+            self.fi22,
+            self.fi3,
+            self.fi1,
+            self.f_ext,
+            self.f1_ext,
+            self.f3_ext,
+            self.r_a_n,
+            self.r_a_t,
+            self.r_c_n,
+            self.r_c_t,
+            self.r_a,
+            self.r_b,
+            self.r_c,
+            self.r_o,
         ];
         let sum: f64 =
             vectors.iter().map(|v| v.x + v.y).sum::<f64>() + self.mi21 + self.mi22 + self.mi3 + self.mi1 + self.me1;
@@ -441,6 +463,8 @@ pub fn forces(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dyna
         mi3: l.mi3,
         mi1: l.mi1,
         f_ext: l.f_ext,
+        f1_ext: l.f1_ext,
+        f3_ext: l.f3_ext,
         r_a_n,
         r_a_t,
         r_c_n,
