@@ -347,6 +347,7 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
         "name",
         "units",
         "omega1",
+        "epsilon1",
         "sweep",
         "outputs",
         "grashof",
