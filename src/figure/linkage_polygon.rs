@@ -4,7 +4,8 @@
 //! The points are the named points of the moving bodies (one point per name: `crank.A` and
 //! `block.A` pinned together are one point `a`); a point pinned to the ground is the pole.
 //! In the velocity polygon (pole `p`) every point is reached from the pole by its absolute
-//! velocity, and each body's image joins its points. In the acceleration polygon (pole `π`,
+//! velocity, and each body's image joins its points with its relative velocities (arrows
+//! from each point to the next: ab is v_BA). In the acceleration polygon (pole `π`,
 //! primed letters) every point is reached from the pole by its absolute acceleration; for
 //! each body with two or more points, every point X is also constructed from the body's
 //! reference point R (its ground pivot when it has one, else its first point) as the
@@ -209,7 +210,9 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
         .map(|(p, (v, _))| NamedPoint { name: p.name.to_lowercase(), from: POLE, v: *v })
         .collect();
     let mut v_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
-    v_sides.extend(images.iter().copied());
+    // In the velocity polygon a body's image sides are its relative velocities (ab is
+    // v_BA, as the four-bar draws it): arrows.
+    v_sides.extend(images.iter().map(|s| Side { kind: SideKind::Vector, ..*s }));
     let mut v_dirs = Vec::new();
     for (guide, sliding, kind) in &lay.guides {
         v_sides.push(vector(*guide, *sliding));
