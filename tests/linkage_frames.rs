@@ -146,23 +146,24 @@ fn the_polygons_table_chooses_the_points() {
     assert!(!dir.path().join("out").exists());
 }
 
+/// Frame `k` of a template's run against its golden PNG.
+fn frame_golden(template: &str, k: usize, golden: &str) {
+    let loaded = scene::load(&common::root().join(template), &[]).unwrap();
+    let p = products(&loaded, &RunOptions::default()).unwrap();
+    let mechdraw::run::products::Picture::Motion(anim) = &p.picture else { panic!("{template} animates") };
+    let d = anim.frame_of(&anim.pose(k));
+    common::assert_golden_png(golden, &to_string(&d, &SvgOptions::default()));
+}
+
 #[test]
 fn shaper_polygons_frame_golden_png() {
-    let loaded = scene::load(&common::root().join("templates/shaper.toml"), &[]).unwrap();
-    let p = products(&loaded, &RunOptions::default()).unwrap();
-    let mechdraw::run::products::Picture::Motion(anim) = &p.picture else { panic!() };
     // t = 0.694 s, the return stroke: the ram fast, the Coriolis component k clear.
-    let d = anim.frame_of(&anim.pose(250));
-    common::assert_golden_png("linkage/shaper_polygons_250.png", &to_string(&d, &SvgOptions::default()));
+    frame_golden("templates/shaper.toml", 250, "linkage/shaper_polygons_250.png");
 }
 
 #[test]
 fn slider_crank_forces_frame_golden_png() {
-    let loaded = scene::load(&common::root().join("templates/slider-crank.toml"), &[]).unwrap();
-    let p = products(&loaded, &RunOptions::default()).unwrap();
-    let mechdraw::run::products::Picture::Motion(anim) = &p.picture else { panic!() };
-    let d = anim.frame_of(&anim.pose(30));
-    common::assert_golden_png("linkage/slider_crank_forces_030.png", &to_string(&d, &SvgOptions::default()));
+    frame_golden("templates/slider-crank.toml", 30, "linkage/slider_crank_forces_030.png");
 }
 
 #[test]
