@@ -132,8 +132,8 @@ impl Group {
     /// How it is solved.
     pub fn route(&self) -> Route {
         match self.kind {
-            GroupKind::Driven(_) | GroupKind::Dyad(_) => Route::ClosedForm,
-            GroupKind::Triad | GroupKind::General => Route::Newton,
+            GroupKind::Driven(_) | GroupKind::Dyad(_) | GroupKind::Triad => Route::ClosedForm,
+            GroupKind::General => Route::Newton,
         }
     }
 
@@ -424,6 +424,13 @@ struct Slide {
     dir: Vector,
     /// φ_slider − φ_guide.
     angle: f64,
+    /// Its cosine and sine.
+    turn: (f64, f64),
+}
+
+/// The rotation by a then b: (cos, sin) of the sum of their angles.
+fn compose(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0 * b.0 - a.1 * b.1, a.1 * b.0 + a.0 * b.1)
 }
 
 fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
@@ -433,7 +440,8 @@ fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
     if n == 0.0 {
         return None;
     }
-    Some(Slide { u_is_slider: point.body == Attach::Body(u), point, q1, dir: dir / n, angle })
+    let turn = (angle.cos(), angle.sin());
+    Some(Slide { u_is_slider: point.body == Attach::Body(u), point, q1, dir: dir / n, angle, turn })
 }
 
 /// Global position of an anchor at the cached poses.
@@ -453,13 +461,13 @@ impl Slide {
         if self.u_is_slider {
             let g = pz(poses, self.q1.body);
             let phi = g.phi + self.angle;
-            let cs = (phi.cos(), phi.sin());
+            let cs = compose((g.c, g.s), self.turn);
             let w = g.rot(self.dir);
             (phi, cs, glob(poses, self.q1) - rot(cs, self.point.local), w)
         } else {
             let s = pz(poses, self.point.body);
             let phi = s.phi - self.angle;
-            let cs = (phi.cos(), phi.sin());
+            let cs = compose((s.c, s.s), (self.turn.0, -self.turn.1));
             let w = rot(cs, self.dir);
             (phi, cs, glob(poses, self.point) - rot(cs, self.q1.local), w)
         }
@@ -479,6 +487,8 @@ struct Mid {
     n0: Vector,
     /// φ_slider − φ_guide.
     angle: f64,
+    /// Its cosine and sine.
+    turn: (f64, f64),
 }
 
 fn mid_of(mech: &Mechanism, j: usize, b1: usize) -> Option<Mid> {
@@ -491,7 +501,78 @@ fn mid_of(mech: &Mechanism, j: usize, b1: usize) -> Option<Mid> {
         q1: q1.local,
         n0: perp(dir / n),
         angle,
+        turn: (angle.cos(), angle.sin()),
     })
+}
+
+/// The 6R triad: three links pinned to known bodies (pivots) and to a ternary body.
+#[derive(Debug, Clone)]
+struct TriadPlan {
+    centre: usize,
+    links: [usize; 3],
+    /// Each link's pivot (its point and the known anchor).
+    pivots: [Pin; 3],
+    /// Each link's pin on the ternary body, link coordinates.
+    pins: [Vector; 3],
+    /// The pins in the ternary body's coordinates.
+    corners: [Vector; 3],
+    /// R_i = |pin − pivot| on link i.
+    r: [f64; 3],
+    /// The triangle's sides l12, l23, l13.
+    sides: [f64; 3],
+    orientation: crate::solve::triad::Orientation,
+}
+
+fn triad_plan(mech: &Mechanism, g: &Group) -> Option<TriadPlan> {
+    let ([centre, l1, l2, l3], [p1, p2, p3, c1, c2, c3]) = (g.bodies.as_slice(), g.joints.as_slice()) else {
+        return None;
+    };
+    let links = [*l1, *l2, *l3];
+    let pivots = [pin_of(mech, *p1, *l1)?, pin_of(mech, *p2, *l2)?, pin_of(mech, *p3, *l3)?];
+    let pins = [pin_of(mech, *c1, *l1)?.local, pin_of(mech, *c2, *l2)?.local, pin_of(mech, *c3, *l3)?.local];
+    let corners =
+        [pin_of(mech, *c1, *centre)?.local, pin_of(mech, *c2, *centre)?.local, pin_of(mech, *c3, *centre)?.local];
+    let r = [0, 1, 2].map(|i| (pins[i] - pivots[i].local).norm());
+    let sides = [(corners[1] - corners[0]).norm(), (corners[2] - corners[1]).norm(), (corners[2] - corners[0]).norm()];
+    let tiny = DEGENERATE_REL * mech.length_scale;
+    if r.iter().chain(&sides).any(|&v| v <= tiny) {
+        return None;
+    }
+    let turn = cross(corners[1] - corners[0], corners[2] - corners[0]);
+    let orientation =
+        if turn > 0.0 { crate::solve::triad::Orientation::Ccw } else { crate::solve::triad::Orientation::Cw };
+    Some(TriadPlan { centre: *centre, links, pivots, pins, corners, r, sides, orientation })
+}
+
+/// The triad's position: every assembly mode by the degree-6 closed form of
+/// [`crate::solve::triad::modes_with`] (in the ternary body's own orientation), the one
+/// whose pins are nearest the predicted pins taken.
+fn solve_triad(s: &mut Solver, tp: &TriadPlan) -> Result<(), String> {
+    use crate::solve::triad::{Configuration, Triad, modes_with};
+    let o = tp.pivots.map(|p| crate::geom::Point::from(glob(&s.poses, p.known)));
+    let triad = Triad::new(o, tp.r, tp.sides[0], tp.sides[1], tp.sides[2]).map_err(|e| e.to_string())?;
+    let modes = modes_with(&triad, tp.orientation).map_err(|e| e.to_string())?;
+    let c = tp.centre;
+    let (sn, cs) = s.q[3 * c + 2].sin_cos();
+    let at = Vector::new(s.q[3 * c], s.q[3 * c + 1]);
+    let predicted = tp.corners.map(|k| at + rot((cs, sn), k));
+    let d = |m: &Configuration| (0..3).map(|i| (m.a[i].coords - predicted[i]).norm_squared()).sum::<f64>();
+    let best = modes
+        .iter()
+        .min_by(|a, b| d(a).total_cmp(&d(b)))
+        .ok_or_else(|| "the triangle fits none of the three circles' positions".to_string())?;
+    let a = best.a.map(|p| p.coords);
+    for i in 0..3 {
+        let b = tp.links[i];
+        let ko = o[i].coords;
+        let rc = rotation_between(tp.pins[i] - tp.pivots[i].local, a[i] - ko);
+        let phi = unwrap_near(rc, s.q[3 * b + 2]);
+        set_body(&mut s.q, &mut s.poses, b, ko - rot(rc, tp.pivots[i].local), phi, rc);
+    }
+    let rc = rotation_between(tp.corners[1] - tp.corners[0], a[1] - a[0]);
+    let phi = unwrap_near(rc, s.q[3 * c + 2]);
+    set_body(&mut s.q, &mut s.poses, c, a[0] - rot(rc, tp.corners[0]), phi, rc);
+    Ok(())
 }
 
 /// How one group's position is found.
@@ -553,6 +634,7 @@ enum Position {
         mid: Mid,
         s3: Slide,
     },
+    Triad(Box<TriadPlan>),
     Newton,
 }
 
@@ -658,7 +740,8 @@ impl Plan {
                 }
             }
             GroupKind::Dyad(_) => Plan::dyad(mech, &g).unwrap_or(Position::Newton),
-            GroupKind::Triad | GroupKind::General => Position::Newton,
+            GroupKind::Triad => triad_plan(mech, &g).map_or(Position::Newton, |t| Position::Triad(Box::new(t))),
+            GroupKind::General => Position::Newton,
         };
         let mut cons = Vec::new();
         let mut row = 0;
@@ -719,8 +802,8 @@ fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs
     poses[b] = Pose { r, phi, c: cs.0, s: cs.1 };
 }
 
-/// A pose candidate of a dyad: (R, φ, cos/sin) per body.
-type Candidate = [(Vector, f64, (f64, f64)); 2];
+/// A pose candidate of a dyad per body: (R, φ when known exactly, cos/sin of φ).
+type Candidate = [(Vector, Option<f64>, (f64, f64)); 2];
 
 /// The angle nearest `pred` with the rotation `cs`.
 fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
@@ -733,15 +816,17 @@ fn rotation_between(from: Vector, to: Vector) -> (f64, f64) {
     (f.dot(&t), cross(f, t))
 }
 
-/// Squared distance of a candidate from the predicted coordinates (lengths over `l`).
-fn distance(c: &Candidate, bodies: [usize; 2], q: &[f64], l: f64) -> f64 {
+/// Squared distance of a candidate from the predicted body origins in `q` (over `l`) and
+/// the bodies' rotations at the last step (`poses`, not yet overwritten: the chord between
+/// unit vectors, no trigonometry).
+fn distance(c: &Candidate, bodies: [usize; 2], q: &[f64], poses: &[Pose], l: f64) -> f64 {
     let mut d = 0.0;
     for (k, &b) in bodies.iter().enumerate() {
         let (r, _, cs) = c[k];
         let dx = (r.x - q[3 * b]) / l;
         let dy = (r.y - q[3 * b + 1]) / l;
-        let dp = wrap_pi(cs.1.atan2(cs.0) - q[3 * b + 2]);
-        d += dx * dx + dy * dy + dp * dp;
+        let (dc, ds) = (cs.0 - poses[b].c, cs.1 - poses[b].s);
+        d += dx * dx + dy * dy + dc * dc + ds * ds;
     }
     d
 }
@@ -754,8 +839,11 @@ pub struct AssurSolver {
     /// assembles the first position (the assembly mode) and factors Φq for the forces.
     inner: Solver,
     plans: Vec<Plan>,
-    /// q of the step before (the positions-only predictor).
+    /// q, q̇, q̈ of the step before (the positions-only predictor; the fallback at an
+    /// exact dead point).
     q_prev: Vec<f64>,
+    qd_prev: Vec<f64>,
+    qdd_prev: Vec<f64>,
     /// Whether q̇ and q̈ belong to the last step (the Taylor predictor may use them).
     rates_valid: bool,
     dt_prev: Option<f64>,
@@ -790,6 +878,8 @@ impl AssurSolver {
             inner,
             plans,
             q_prev: vec![0.0; n],
+            qd_prev: vec![0.0; n],
+            qdd_prev: vec![0.0; n],
             rates_valid: false,
             dt_prev: None,
             work: vec![0.0; most * most + 2 * most],
@@ -886,8 +976,9 @@ impl AssurSolver {
         Ok(out)
     }
 
-    /// Solves at every time, with the forces at each (on the general solver's Φq factored
-    /// at this route's answer; see [`Solver::run_kinetostatics`]).
+    /// Solves at every time, with the forces at each: the groups' positions, then Φq of the
+    /// whole mechanism factored there for q̇, q̈ and the multipliers, as
+    /// [`Solver::run_kinetostatics`] does.
     pub fn run_kinetostatics(
         &mut self,
         times: &[f64],
@@ -897,7 +988,10 @@ impl AssurSolver {
         let mut forces = Vec::with_capacity(times.len());
         for &t in times {
             self.step(t)?;
-            let state = self.state();
+            // The forces take q̇ and q̈ from the same factorisation as the multipliers (as
+            // the general solver does), so that the virtual-power balance closes to
+            // rounding even where every power is itself at rounding level.
+            self.inner.residual();
             if !self.inner.factor() {
                 return Err(LinkageError::Singular {
                     t,
@@ -905,8 +999,9 @@ impl AssurSolver {
                     constraints: self.plans.iter().map(|p| p.description.clone()).collect::<Vec<_>>().join("; "),
                 });
             }
+            self.inner.kinematics();
             forces.push(self.inner.forces(dynamics)?);
-            states.push(state);
+            states.push(self.state());
         }
         Ok((states, forces))
     }
@@ -949,8 +1044,30 @@ impl AssurSolver {
         };
         self.inner.eval_laws(t)?;
         let dt = t - t0;
+        let had_rates = self.rates_valid;
         self.predict(dt);
-        self.finish(t, Some(dt), rates)
+        match self.finish(t, Some(dt), rates) {
+            Err(LinkageError::Singular { .. }) if rates && had_rates => {
+                // A step exactly on a dead point: the closed forms land on it, where a
+                // group's rates do not exist. The general solver's step from the last
+                // position lands within its tolerance of it and reports it as it always
+                // has (near-singular, solved; or singular).
+                let s = &mut self.inner;
+                s.q.copy_from_slice(&self.q_prev);
+                s.qd.copy_from_slice(&self.qd_prev);
+                s.qdd.copy_from_slice(&self.qdd_prev);
+                s.dt_prev = None;
+                s.t = Some(t0);
+                let iterations = s.step(t)?;
+                for p in &mut self.plans {
+                    p.iterations = iterations;
+                }
+                self.rates_valid = true;
+                self.dt_prev = Some(dt);
+                Ok(())
+            }
+            other => other,
+        }
     }
 
     /// The predicted q: the last q extrapolated with q̇·Δt + ½·q̈·Δt² when the rates
@@ -958,6 +1075,8 @@ impl AssurSolver {
     fn predict(&mut self, dt: f64) {
         let s = &mut self.inner;
         let linear = self.dt_prev.filter(|d| *d != 0.0).map(|d| dt / d);
+        self.qd_prev.copy_from_slice(&s.qd);
+        self.qdd_prev.copy_from_slice(&s.qdd);
         for k in 0..s.n {
             let now = s.q[k];
             s.q[k] = if self.rates_valid {
@@ -988,6 +1107,9 @@ impl AssurSolver {
     /// Every group's position, in order.
     fn positions(&mut self, t: f64) -> Result<(), LinkageError> {
         let l = self.inner.mech.length_scale;
+        // How far a closure may miss and still count as met: the residual every answer
+        // must meet (the general solver accepts the same).
+        let slack = crate::geom::tol::RESIDUAL_REL * l;
         for gi in 0..self.plans.len() {
             let s = &mut self.inner;
             let plan = &mut self.plans[gi];
@@ -1015,6 +1137,8 @@ impl AssurSolver {
                     let d = dv.norm();
                     let a = (d * d + d1 * d1 - d2 * d2) / (2.0 * d);
                     let h2 = d1 * d1 - a * a;
+                    // A miss within the residual tolerance is a tangency (a dead point).
+                    let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
                     if !(h2 >= 0.0 && d > 0.0) {
                         let j2 = plan.group.joints[1];
                         let why = format!(
@@ -1034,8 +1158,8 @@ impl AssurSolver {
                         let j = p1 + e * a + perp(e) * (side * h);
                         let c1 = rotation_between(a1 - k1.local, j - p1);
                         let c2 = rotation_between(a2 - k3.local, j - p3);
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), 0.0, c1), (p3 - rot(c2, k3.local), 0.0, c2)];
-                        let dd = distance(&cand, [b1, b2], &s.q, l);
+                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
+                        let dd = distance(&cand, [b1, b2], &s.q, &s.poses, l);
                         if best.as_ref().is_none_or(|(b, _)| dd < *b) {
                             best = Some((dd, cand));
                         }
@@ -1049,6 +1173,7 @@ impl AssurSolver {
                     let e = base - p1;
                     let b = e.dot(&w);
                     let disc = b * b - e.norm_squared() + d1 * d1;
+                    let disc = if disc < 0.0 && disc >= -2.0 * d1 * slack { 0.0 } else { disc };
                     if disc.is_nan() || disc < 0.0 {
                         let why = format!(
                             "the circle of radius {:.6} about `{}` does not reach the line of `{}`",
@@ -1061,8 +1186,8 @@ impl AssurSolver {
                     for sv in [-b + root, -b - root] {
                         let j = base + w * sv;
                         let c1 = rotation_between(a1 - k1.local, j - p1);
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), 0.0, c1), (c + w * sv, phi2, cs2)];
-                        let dd = distance(&cand, [b1, b2], &s.q, l);
+                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (c + w * sv, Some(phi2), cs2)];
+                        let dd = distance(&cand, [b1, b2], &s.q, &s.poses, l);
                         if best.as_ref().is_none_or(|(b, _)| dd < *b) {
                             best = Some((dd, cand));
                         }
@@ -1081,7 +1206,7 @@ impl AssurSolver {
                     let c0 = mid.n0.dot(&(rot(ca, pks) - qkg));
                     let dv = ks - kg;
                     let d = dv.norm();
-                    if !(d > 0.0 && c0.abs() <= d) {
+                    if !(d > 0.0 && c0.abs() <= d + slack) {
                         let why = format!(
                             "the line of `{}` passes {:.6} from the pivot of the other body, which is {:.6} away",
                             s.mech.joints[plan.group.joints[1]].name,
@@ -1090,17 +1215,18 @@ impl AssurSolver {
                         );
                         return Err(fail(plan.group.joints[1], why, s, plan));
                     }
-                    // ψ = φ_G: cos(ang(D) − ψ − ang(n0)) = −c0/|D|.
-                    let base = dv.y.atan2(dv.x) - mid.n0.y.atan2(mid.n0.x);
-                    let acos = (-c0 / d).clamp(-1.0, 1.0).acos();
+                    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors.
+                    let dh = dv / d;
+                    let x = (-c0 / d).clamp(-1.0, 1.0);
+                    let y = (1.0 - x * x).max(0.0).sqrt();
                     let mut best: Option<(f64, Candidate)> = None;
-                    for psi in [base + acos, base - acos] {
-                        let phi_s = psi + mid.angle;
-                        let (phi1, phi2) = if mid.b1_is_slider { (phi_s, psi) } else { (psi, phi_s) };
-                        let c1 = (phi1.cos(), phi1.sin());
-                        let c2 = (phi2.cos(), phi2.sin());
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), phi1, c1), (p3 - rot(c2, k3.local), phi2, c2)];
-                        let dd = distance(&cand, [b1, b2], &s.q, l);
+                    for side in [1.0, -1.0] {
+                        let ng = dh * x + perp(dh) * (side * y);
+                        let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
+                        let cs = compose(cg, mid.turn);
+                        let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
+                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
+                        let dd = distance(&cand, [b1, b2], &s.q, &s.poses, l);
                         if best.as_ref().is_none_or(|(b, _)| dd < *b) {
                             best = Some((dd, cand));
                         }
@@ -1127,8 +1253,11 @@ impl AssurSolver {
                 }
                 Position::Rpp { b1, b2, k1, mid, s3 } => {
                     let (phi2, cs2, c, w) = s3.line(&s.poses);
-                    let phi1 = if mid.b1_is_slider { phi2 + mid.angle } else { phi2 - mid.angle };
-                    let cs1 = (phi1.cos(), phi1.sin());
+                    let (phi1, cs1) = if mid.b1_is_slider {
+                        (phi2 + mid.angle, compose(cs2, mid.turn))
+                    } else {
+                        (phi2 - mid.angle, compose(cs2, (mid.turn.0, -mid.turn.1)))
+                    };
                     let p1 = glob(&s.poses, k1.known);
                     let r1 = p1 - rot(cs1, k1.local);
                     set_body(&mut s.q, &mut s.poses, b1, r1, phi1, cs1);
@@ -1150,6 +1279,11 @@ impl AssurSolver {
                         return Err(fail(plan.group.joints[1], why, s, plan));
                     }
                     set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
+                }
+                Position::Triad(ref tp) => {
+                    if let Err(why) = solve_triad(s, tp) {
+                        return Err(fail(plan.group.joints[3], why, s, plan));
+                    }
                 }
                 Position::Newton => {
                     newton(s, plan, &mut self.work, t)?;
@@ -1262,8 +1396,8 @@ impl AssurSolver {
 fn apply(s: &mut Solver, bodies: [usize; 2], cand: Option<Candidate>) {
     let Some(cand) = cand else { return };
     for (k, &b) in bodies.iter().enumerate() {
-        let (r, _, cs) = cand[k];
-        let phi = unwrap_near(cs, s.q[3 * b + 2]);
+        let (r, phi, cs) = cand[k];
+        let phi = phi.unwrap_or_else(|| unwrap_near(cs, s.q[3 * b + 2]));
         set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
     }
 }

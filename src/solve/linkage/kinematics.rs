@@ -669,7 +669,8 @@ impl Solver {
         }
     }
 
-    fn kinematics(&mut self) {
+    /// q̇ and q̈ from Φq factored at q (poses cached by `residual`).
+    pub(super) fn kinematics(&mut self) {
         let n = self.n;
         self.velocity_rhs();
         self.solve_in_place();
