@@ -1047,7 +1047,7 @@ impl AssurSolver {
         let had_rates = self.rates_valid;
         self.predict(dt);
         match self.finish(t, Some(dt), rates) {
-            Err(LinkageError::Singular { .. }) if rates && had_rates => {
+            Err(singular @ LinkageError::Singular { .. }) if rates && had_rates => {
                 // A step exactly on a dead point: the closed forms land on it, where a
                 // group's rates do not exist. The general solver's step from the last
                 // position lands within its tolerance of it and reports it as it always
@@ -1058,7 +1058,12 @@ impl AssurSolver {
                 s.qdd.copy_from_slice(&self.qdd_prev);
                 s.dt_prev = None;
                 s.t = Some(t0);
-                let iterations = s.step(t)?;
+                let iterations = match s.step(t) {
+                    Ok(it) => it,
+                    // Singular there too: the group names the dead point.
+                    Err(LinkageError::Singular { .. }) => return Err(singular),
+                    Err(e) => return Err(e),
+                };
                 for p in &mut self.plans {
                     p.iterations = iterations;
                 }
