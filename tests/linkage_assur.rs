@@ -429,3 +429,20 @@ fn forces_on_the_assur_route_equal_the_general_solvers() {
         }
     }
 }
+
+#[test]
+fn a_time_step_too_coarse_for_newton_keeps_every_dyad_on_its_branch() {
+    // The shaper sampled every 2.78 s (2.8 crank turns between samples): the prediction is
+    // useless, each dyad keeps the branch it had; every sample equals the closed form.
+    use mechdraw::bench::reference::shaper::{Y_RAM, closed_form};
+    let mut s = linkage("shaper");
+    s.times = (0..=360).map(|k| k as f64 * 1000.0 / 360.0).collect();
+    let states = AssurSolver::new(s.mechanism.clone()).unwrap().run(&s.times).unwrap();
+    let e = s.anchor("ram.E").unwrap();
+    for st in &states {
+        let ([xe, ve, _], _) = closed_form(st.t);
+        let p = st.point(e);
+        assert!((p.x - xe).abs() <= 1e-9 && (p.y - Y_RAM).abs() <= 1e-9, "t = {}: x_E {} vs {xe}", st.t, p.x);
+        assert!((st.velocity(e).x - ve).abs() <= 1e-9 * 2000.0, "t = {}", st.t);
+    }
+}

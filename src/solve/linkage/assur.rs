@@ -659,6 +659,8 @@ struct Plan {
     pivot: f64,
     /// Newton iterations of the last step (0 for a closed form).
     iterations: usize,
+    /// The branch of a two-root dyad taken at the last step (+1, −1; 0 before the first).
+    side: f64,
 }
 
 impl Plan {
@@ -778,6 +780,7 @@ impl Plan {
             gamma: vec![0.0; 2],
             pivot: f64::INFINITY,
             iterations: 0,
+            side: 0.0,
         }
     }
 
@@ -814,6 +817,41 @@ fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
 fn rotation_between(from: Vector, to: Vector) -> (f64, f64) {
     let (f, t) = (from / from.norm(), to / to.norm());
     (f.dot(&t), cross(f, t))
+}
+
+/// The rotation taking `from` to `to` when |from|·|to| = `lengths` (known).
+fn rotation_scaled(from: Vector, to: Vector, lengths: f64) -> (f64, f64) {
+    (from.dot(&to) / lengths, cross(from, to) / lengths)
+}
+
+/// atan x = x − x³/3 + x⁵/5 − …, the first twelve terms (|x| ≤ 1/8: error < 1e-24).
+const ATAN_SERIES: [f64; 12] = [
+    1.0,
+    -1.0 / 3.0,
+    1.0 / 5.0,
+    -1.0 / 7.0,
+    1.0 / 9.0,
+    -1.0 / 11.0,
+    1.0 / 13.0,
+    -1.0 / 15.0,
+    1.0 / 17.0,
+    -1.0 / 19.0,
+    1.0 / 21.0,
+    -1.0 / 23.0,
+];
+
+/// The angle in (−π, π] from rotation `from` to rotation `to` (unit (cos, sin) pairs): a
+/// short series for the small turn of one time step, `atan2` for a larger one.
+fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
+    let c = to.0 * from.0 + to.1 * from.1;
+    let s = to.1 * from.0 - to.0 * from.1;
+    if c > 0.0 && s.abs() <= 0.125 * c {
+        let x = s / c;
+        let x2 = x * x;
+        x * ATAN_SERIES.iter().rev().fold(0.0, |acc, k| acc * x2 + k)
+    } else {
+        s.atan2(c)
+    }
 }
 
 /// Squared distance of a candidate from the predicted body origins in `q` (over `l`) and
@@ -1158,18 +1196,17 @@ impl AssurSolver {
                     }
                     let e = dv / d;
                     let h = h2.sqrt();
-                    let mut best: Option<(f64, Candidate)> = None;
-                    for side in [1.0, -1.0] {
+                    let mut roots = [(0.0, NO_CANDIDATE); 2];
+                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
                         let j = p1 + e * a + perp(e) * (side * h);
-                        let c1 = rotation_between(a1 - k1.local, j - p1);
-                        let c2 = rotation_between(a2 - k3.local, j - p3);
+                        // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
+                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
+                        let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
                         let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
-                        let dd = distance(&cand, [b1, b2], &s.q, &s.poses, l);
-                        if best.as_ref().is_none_or(|(b, _)| dd < *b) {
-                            best = Some((dd, cand));
-                        }
+                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
                     }
-                    apply(s, [b1, b2], best.map(|b| b.1));
+                    let k = choose(&roots, &mut plan.side);
+                    apply(s, [b1, b2], roots[k].1);
                 }
                 Position::Rrp { b1, b2, k1, a1, a2, s3, d1 } => {
                     let p1 = glob(&s.poses, k1.known);
@@ -1187,17 +1224,15 @@ impl AssurSolver {
                         return Err(fail(plan.group.joints[1], why, s, plan));
                     }
                     let root = disc.sqrt();
-                    let mut best: Option<(f64, Candidate)> = None;
-                    for sv in [-b + root, -b - root] {
+                    let mut roots = [(0.0, NO_CANDIDATE); 2];
+                    for (k, sv) in [-b + root, -b - root].into_iter().enumerate() {
                         let j = base + w * sv;
-                        let c1 = rotation_between(a1 - k1.local, j - p1);
+                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
                         let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (c + w * sv, Some(phi2), cs2)];
-                        let dd = distance(&cand, [b1, b2], &s.q, &s.poses, l);
-                        if best.as_ref().is_none_or(|(b, _)| dd < *b) {
-                            best = Some((dd, cand));
-                        }
+                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
                     }
-                    apply(s, [b1, b2], best.map(|b| b.1));
+                    let k = choose(&roots, &mut plan.side);
+                    apply(s, [b1, b2], roots[k].1);
                 }
                 Position::Rpr { b1, b2, k1, mid, k3 } => {
                     let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
@@ -1224,19 +1259,17 @@ impl AssurSolver {
                     let dh = dv / d;
                     let x = (-c0 / d).clamp(-1.0, 1.0);
                     let y = (1.0 - x * x).max(0.0).sqrt();
-                    let mut best: Option<(f64, Candidate)> = None;
-                    for side in [1.0, -1.0] {
+                    let mut roots = [(0.0, NO_CANDIDATE); 2];
+                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
                         let ng = dh * x + perp(dh) * (side * y);
                         let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
                         let cs = compose(cg, mid.turn);
                         let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
                         let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
-                        let dd = distance(&cand, [b1, b2], &s.q, &s.poses, l);
-                        if best.as_ref().is_none_or(|(b, _)| dd < *b) {
-                            best = Some((dd, cand));
-                        }
+                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
                     }
-                    apply(s, [b1, b2], best.map(|b| b.1));
+                    let k = choose(&roots, &mut plan.side);
+                    apply(s, [b1, b2], roots[k].1);
                 }
                 Position::Prp { b1, b2, s1, a1, a2, s3 } => {
                     let (phi1, cs1, c1, w1) = s1.line(&s.poses);
@@ -1304,6 +1337,20 @@ impl AssurSolver {
         for gi in 0..self.plans.len() {
             let s = &mut self.inner;
             let plan = &mut self.plans[gi];
+            if let Some(rho) = closed_rates(s, &plan.position) {
+                if rho.is_nan() || rho <= super::SINGULAR_PIVOT_REL {
+                    return Err(LinkageError::Singular {
+                        t,
+                        drivers: s.driver_values(),
+                        constraints: plan.constraint_names(s),
+                    });
+                }
+                plan.pivot = rho;
+                if worst.is_none_or(|(p, _)| rho < p) {
+                    worst = Some((rho, gi));
+                }
+                continue;
+            }
             let k = plan.k;
             // Block Φq,group (equilibrated) and the known bodies' shares.
             let bodies = &plan.group.bodies;
@@ -1397,12 +1444,143 @@ impl AssurSolver {
     }
 }
 
-/// Writes the chosen candidate, its angles unwrapped next to the predicted ones.
-fn apply(s: &mut Solver, bodies: [usize; 2], cand: Option<Candidate>) {
-    let Some(cand) = cand else { return };
+/// Velocity and acceleration of the global point `p` carried by body `a` (zero on the
+/// ground), from the body's q̇, q̈.
+fn point_rates(s: &Solver, a: Attach, p: Vector) -> (Vector, Vector) {
+    let Attach::Body(b) = a else { return (Vector::zeros(), Vector::zeros()) };
+    let r = p - Vector::new(s.q[3 * b], s.q[3 * b + 1]);
+    let (w, e) = (s.qd[3 * b + 2], s.qdd[3 * b + 2]);
+    (
+        Vector::new(s.qd[3 * b], s.qd[3 * b + 1]) + perp(r) * w,
+        Vector::new(s.qdd[3 * b], s.qdd[3 * b + 1]) + perp(r) * e - r * (w * w),
+    )
+}
+
+/// ω and ε of body `a` (zero for the ground).
+fn spin(s: &Solver, a: Attach) -> (f64, f64) {
+    match a {
+        Attach::Ground => (0.0, 0.0),
+        Attach::Body(b) => (s.qd[3 * b + 2], s.qdd[3 * b + 2]),
+    }
+}
+
+/// Sets body `b`'s q̇, q̈ from its point `p` (global) with velocity `vp`, acceleration
+/// `ap`, and its ω, ε.
+fn set_rates(s: &mut Solver, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
+    let r = Vector::new(s.q[3 * b], s.q[3 * b + 1]) - p;
+    let v = vp + perp(r) * w;
+    let a = ap + perp(r) * e - r * (w * w);
+    s.qd[3 * b] = v.x;
+    s.qd[3 * b + 1] = v.y;
+    s.qd[3 * b + 2] = w;
+    s.qdd[3 * b] = a.x;
+    s.qdd[3 * b + 1] = a.y;
+    s.qdd[3 * b + 2] = e;
+}
+
+/// x·c1 + y·c2 = r by Cramer's rule, with ρ = |det| / (|c1|·|c2|) (the sine of the angle
+/// between the columns: 0 at a dead point).
+fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
+    let det = cross(c1, c2);
+    let rho = det.abs() / (c1.norm() * c2.norm());
+    (cross(r, c2) / det, cross(c1, r) / det, rho)
+}
+
+/// Velocities and accelerations of a group from its differentiated closures (a 2×2 solve
+/// for a dyad), for the kinds that have them; `None` for the others (the group's block
+/// of Φq is solved instead). Returns ρ, the conditioning of the 2×2 (1 for a driven body).
+fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
+    match *position {
+        Position::DrivenAngle { u, pin, reference, sign, law } => {
+            let (wr, er) = spin(s, reference);
+            let (_, d1, d2) = s.laws[law];
+            let k = glob(&s.poses, pin.known);
+            let rk = point_rates(s, pin.known.body, k);
+            set_rates(s, u, k, rk, wr + sign * d1, er + sign * d2);
+            Some(1.0)
+        }
+        Position::Rrr { b1, b2, k1, a1, k3, .. } => {
+            let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
+            let (r1k, r3k) = (point_rates(s, k1.known.body, p1), point_rates(s, k3.known.body, p3));
+            let (r1, r2) = (j - p1, j - p3);
+            // v_K1 + ω1⊥r1 = v_K3 + ω2⊥r2, and its derivative.
+            let (w1, w2, rho) = solve2(perp(r1), -perp(r2), r3k.0 - r1k.0);
+            let rhs = r3k.1 - r1k.1 + r1 * (w1 * w1) - r2 * (w2 * w2);
+            let (e1, e2, _) = solve2(perp(r1), -perp(r2), rhs);
+            set_rates(s, b1, p1, r1k, w1, e1);
+            set_rates(s, b2, p3, r3k, w2, e2);
+            Some(rho)
+        }
+        Position::Rrp { b1, b2, k1, a1, s3, .. } if s3.u_is_slider => {
+            let g = s3.q1.body;
+            let (wg, eg) = spin(s, g);
+            let dir = pz(&s.poses, g).rot(s3.dir);
+            let p = glob(&s.poses, Anchor { body: Attach::Body(b2), local: s3.point.local });
+            let (vgp, agp) = point_rates(s, g, p);
+            let k = glob(&s.poses, k1.known);
+            let rk = point_rates(s, k1.known.body, k);
+            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
+            let (r1, d) = (j - k, j - p);
+            // v_K + ω1⊥r1 = v_P,guide + ṡ·w + ωg⊥d (b2 turns with the guide), and its derivative.
+            let (w1, sd, rho) = solve2(perp(r1), -dir, vgp + perp(d) * wg - rk.0);
+            let cor = perp(dir) * (2.0 * wg * sd);
+            let rhs = agp + cor + perp(d) * eg - d * (wg * wg) - rk.1 + r1 * (w1 * w1);
+            let (e1, sdd, _) = solve2(perp(r1), -dir, rhs);
+            set_rates(s, b1, k, rk, w1, e1);
+            set_rates(s, b2, p, (vgp + dir * sd, agp + cor + dir * sdd), wg, eg);
+            Some(rho)
+        }
+        Position::Rpr { b1, b2, k1, mid, k3 } => {
+            let (ks, kg, sb, gb) = if mid.b1_is_slider { (k1, k3, b1, b2) } else { (k3, k1, b2, b1) };
+            let (ps, pg) = (glob(&s.poses, ks.known), glob(&s.poses, kg.known));
+            let (rs, rg) = (point_rates(s, ks.known.body, ps), point_rates(s, kg.known.body, pg));
+            let dir = pz(&s.poses, Attach::Body(gb)).rot(-perp(mid.n0));
+            let dk = pg - ps;
+            // Slider and guide turn together about their pivots; P slides along the guide.
+            let (w, sd, rho) = solve2(perp(dk), -dir, rg.0 - rs.0);
+            let rhs = rg.1 - rs.1 + dk * (w * w) + perp(dir) * (2.0 * w * sd);
+            let (e, _, _) = solve2(perp(dk), -dir, rhs);
+            set_rates(s, sb, ps, rs, w, e);
+            set_rates(s, gb, pg, rg, w, e);
+            Some(rho)
+        }
+        _ => None,
+    }
+}
+
+/// An unused candidate slot.
+const NO_CANDIDATE: Candidate = [(Vector::new(0.0, 0.0), None, (1.0, 0.0)); 2];
+
+/// Which of a dyad's two roots (first: the `+` branch of its formula, second: the `−`)
+/// continues the motion: the one nearest the prediction when it is clearly the nearer
+/// (its squared distance under 1/16 of the other's), else the branch taken at the last
+/// step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps between
+/// dead points — so that a time step too coarse for the prediction keeps the mode.
+fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
+    let (d0, d1) = (roots[0].0, roots[1].0);
+    let k = if d0 <= d1 / 16.0 {
+        0
+    } else if d1 <= d0 / 16.0 {
+        1
+    } else if *side > 0.0 {
+        0
+    } else if *side < 0.0 {
+        1
+    } else {
+        usize::from(d1 < d0)
+    };
+    *side = if k == 0 { 1.0 } else { -1.0 };
+    k
+}
+
+/// Writes the chosen candidate, its angles continued from the last step.
+fn apply(s: &mut Solver, bodies: [usize; 2], cand: Candidate) {
     for (k, &b) in bodies.iter().enumerate() {
         let (r, phi, cs) = cand[k];
-        let phi = phi.unwrap_or_else(|| unwrap_near(cs, s.q[3 * b + 2]));
+        // Continuous angles: the last one (still in the cached pose) plus this step's turn.
+        let last = s.poses[b];
+        let phi = phi.unwrap_or_else(|| last.phi + turn_between((last.c, last.s), cs));
         set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
     }
 }
