@@ -1,9 +1,10 @@
 //! Assur-group solving of a linkage (issue 16 §1): the mechanism split into its driven
 //! bodies and its Assur groups in solving order, each group solved in closed form where
-//! its kind is known (the dyads RRR, RRP, RPR, PRP, RPP) and by Newton–Raphson on its own
-//! few coordinates otherwise (the 6R triad, anything unrecognised); velocities and
-//! accelerations per group from its differentiated closures (a 3×3 or 6×6 linear solve
-//! with the known bodies' motion on the right-hand side).
+//! its kind is known (the dyads RRR, RRP, RPR, PRP, RPP; the 6R triad through the triad's
+//! degree-6 closed form) and by Newton–Raphson on its own few coordinates otherwise;
+//! velocities and accelerations per group from its differentiated closures (a 2×2 solve
+//! for the driven crank, RRR, RRP with its slider on a known guide and RPR; the group's
+//! block of Φq, with the known bodies' motion on the right-hand side, for the others).
 //!
 //! A group is a set of bodies whose joints and drivers, once the bodies solved before it
 //! are known, give exactly three equations per body. Kinds:
@@ -20,10 +21,11 @@
 //!
 //! Branch continuity: a dyad has two assembly modes; at every step the solver takes the
 //! root nearest the predicted position (the last position extrapolated with its velocity
-//! and acceleration, or linearly when only positions are solved), and assembles the first
-//! position in the mode the general solver finds from the scene's initial placement, so
-//! that both routes follow the same branch. Body angles are kept continuous (not wrapped),
-//! as the general solver keeps them, so both give the same coordinates q.
+//! and acceleration, or linearly when only positions are solved) when it is clearly the
+//! nearer, else the branch it took at the last step; it assembles the first position in
+//! the mode the general solver finds from the scene's initial placement, so that both
+//! routes follow the same branch. Body angles are kept continuous (not wrapped), as the
+//! general solver keeps them, so both give the same coordinates q.
 
 use super::kinematics::{Con, NearSingular, Solver, State, con_gamma, con_jacobian, con_rate, con_residual};
 use super::lu::Lu;
