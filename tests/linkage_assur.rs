@@ -41,6 +41,11 @@ fn scales(states: &[State], pick: impl Fn(&State) -> &[f64], floor: (f64, f64)) 
 /// quantity's largest value over the motion, at every sample; returns the largest
 /// relative difference.
 fn assert_routes_agree(what: &str, a: &[State], b: &[State], length: f64, rel: f64) -> f64 {
+    assert_routes_agree_as(what, a, b, length, rel, false)
+}
+
+/// [`assert_routes_agree`], body angles compared modulo whole turns when `whole_turns`.
+fn assert_routes_agree_as(what: &str, a: &[State], b: &[State], length: f64, rel: f64, whole_turns: bool) -> f64 {
     assert_eq!(a.len(), b.len(), "{what}: sample counts");
     let mut worst: f64 = 0.0;
     for (label, pick) in [
@@ -53,7 +58,12 @@ fn assert_routes_agree(what: &str, a: &[State], b: &[State], length: f64, rel: f
             assert_eq!(x.t, y.t);
             for (k, (u, v)) in pick(x).iter().zip(pick(y)).enumerate() {
                 let scale = if k % 3 == 2 { sa } else { sl };
-                let d = (u - v).abs() / scale;
+                let mut d = (u - v).abs();
+                if label == "q" && k % 3 == 2 && whole_turns {
+                    // The same pose: Newton may land a body's angle whole turns away.
+                    d = (d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round()).abs();
+                }
+                let d = d / scale;
                 worst = worst.max(d);
                 assert!(d <= rel, "{what}: {label}[{k}] at t = {}: Assur {u} vs Newton {v} ({d:.2e} relative)", x.t);
             }
@@ -193,18 +203,37 @@ impl Build {
     }
 }
 
-/// A crank (driven by its angle, ω = 1.3 rad/s) and a chain of dyads of the given kinds,
+/// A crank (driven by its angle, ω = 1.3 rad/s; for a chain of odd length a slider driven
+/// along a ground line by a distance) and a chain of dyads of the given kinds,
 /// each hung on the crank or the dyad before it and the ground, placed at random poses.
 fn random_chain(rng: &mut Rng, kinds: &[&str]) -> Mechanism {
     let mut m = Build { bodies: vec![], joints: vec![], drivers: vec![] };
     let phi0 = rng.range(0.0, 6.0);
     let crank = m.body("crank", Point::origin(), phi0);
-    m.revolute("O", Attach::Ground, Attach::Body(crank), Point::origin());
-    m.drivers.push(Driver {
-        name: "O".into(),
-        target: DriverTarget::JointAngle(0),
-        law: Expr::parse(&format!("{phi0} + 1.3*t")).unwrap(),
-    });
+    if kinds.len() % 2 == 0 {
+        m.revolute("O", Attach::Ground, Attach::Body(crank), Point::origin());
+        m.drivers.push(Driver {
+            name: "O".into(),
+            target: DriverTarget::JointAngle(0),
+            law: Expr::parse(&format!("{phi0} + 1.3*t")).unwrap(),
+        });
+    } else {
+        // A driven slider instead of a crank: on a ground line through the origin, pushed
+        // by a distance law; the line on the slider or on the ground.
+        let a = rng.range(0.0, std::f64::consts::TAU);
+        let d = Vector::new(a.cos(), a.sin());
+        let back = rng.range(0.5, 1.0);
+        if rng.next() < 0.5 {
+            m.prismatic("O", Attach::Body(crank), Attach::Ground, Point::origin(), d, back);
+        } else {
+            m.prismatic("O", Attach::Ground, Attach::Body(crank), Point::origin(), d, back);
+        }
+        m.drivers.push(Driver {
+            name: "O".into(),
+            target: DriverTarget::JointDistance(0),
+            law: Expr::parse(&format!("{back} + 0.8*sin(2*t)")).unwrap(),
+        });
+    }
     // The known body the next dyad hangs on, and a point of it.
     let mut last = Attach::Body(crank);
     let mut last_point = Point::new(phi0.cos() * 1.5, phi0.sin() * 1.5);
@@ -257,13 +286,16 @@ fn random_chain(rng: &mut Rng, kinds: &[&str]) -> Mechanism {
 fn random_linkages_of_every_dyad_kind_agree_with_the_general_solver() {
     let mut rng = Rng(0x9e37_79b9_7f4a_7c15);
     let times: Vec<f64> = (0..=40).map(|k| k as f64 * 0.002).collect();
-    let chains: [&[&str]; 6] = [
+    // Chains of odd length start from a driven slider, of even length from a crank.
+    let chains: [&[&str]; 8] = [
         &["RRR"],
         &["RRP", "RPR"],
         &["PRP", "RPP"],
         &["RPR", "RRR", "RRP"],
         &["PRR", "PPR"],
         &["RRP", "PRP", "RPP", "RPR"],
+        &["PRP"],
+        &["RPP", "PRR", "RRP"],
     ];
     let mut solved = 0;
     let mut kinds_seen = std::collections::BTreeSet::new();
@@ -283,13 +315,28 @@ fn random_linkages_of_every_dyad_kind_agree_with_the_general_solver() {
             if newton.iter().any(|s| s.near_singular.is_some()) {
                 continue;
             }
+            // Nor where Newton leaves the branch between two samples 2 ms apart (an angle
+            // jumping by more than 0.5 rad: a step from a poor prediction near a fold),
+            // which the closed forms, keeping the nearest root, do not follow.
+            let jumps = newton.windows(2).any(|w| {
+                (2..w[0].q.len()).step_by(3).any(|k| {
+                    let d = (w[1].q[k] - w[0].q[k]).abs();
+                    (d - std::f64::consts::TAU * (d / std::f64::consts::TAU).round()).abs() > 0.5
+                })
+            });
+            if jumps {
+                continue;
+            }
             let ours = AssurSolver::new(mech.clone()).unwrap().run(&times).unwrap();
-            assert_routes_agree(&format!("chain {c} {chain:?} trial {trial}"), &ours, &newton, 10.0, 1e-10);
+            // From a random placement the general solver's Newton sometimes lands an angle
+            // whole turns away between two samples (same pose): compare angles modulo 2π.
+            assert_routes_agree_as(&format!("chain {c} {chain:?} trial {trial}"), &ours, &newton, 10.0, 1e-10, true);
             solved += 1;
         }
     }
     assert_eq!(kinds_seen.into_iter().collect::<Vec<_>>(), ["PRP", "RPP", "RPR", "RRP", "RRR"]);
-    assert!(solved >= 30, "only {solved} of 48 random linkages compared");
+    eprintln!("{solved} of 64 random linkages compared");
+    assert!(solved >= 40, "only {solved} of 64 random linkages compared");
 }
 
 // --- branch continuity -----------------------------------------------------------------

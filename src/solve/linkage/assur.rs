@@ -2,9 +2,9 @@
 //! bodies and its Assur groups in solving order, each group solved in closed form where
 //! its kind is known (the dyads RRR, RRP, RPR, PRP, RPP; the 6R triad through the triad's
 //! degree-6 closed form) and by Newton–Raphson on its own few coordinates otherwise;
-//! velocities and accelerations per group from its differentiated closures (a 2×2 solve
-//! for the driven crank, RRR, RRP with its slider on a known guide and RPR; the group's
-//! block of Φq, with the known bodies' motion on the right-hand side, for the others).
+//! velocities and accelerations per group from its differentiated closures (directly for
+//! a driven body, a 2×2 solve for every dyad; the group's block of Φq, with the known
+//! bodies' motion on the right-hand side, for the triad and general groups).
 //!
 //! A group is a set of bodies whose joints and drivers, once the bodies solved before it
 //! are known, give exactly three equations per body. Kinds:
@@ -1480,6 +1480,48 @@ fn set_rates(s: &mut Solver, b: usize, p: Vector, (vp, ap): (Vector, Vector), w:
     s.qdd[3 * b + 2] = e;
 }
 
+/// A prismatic joint between an unknown body u and a known one, at the current poses: the
+/// global point `p` where the sliding point is, the line's unit direction `w` (global),
+/// ω and ε (u's, locked to the known body's), σ = +1 when u slides on the known body's
+/// line and −1 when u carries the line, and the velocity `v0` and acceleration `a0` of
+/// u's material point at `p` less its sliding terms: that point moves at
+/// v0 + σ·ṡ·w and a0 + σ·(2ω·ṡ⊥w + s̈·w), ṡ the sliding speed.
+struct SlideFrame {
+    p: Vector,
+    w: Vector,
+    sigma: f64,
+    omega: f64,
+    eps: f64,
+    v0: Vector,
+    a0: Vector,
+}
+
+impl SlideFrame {
+    /// Velocity and acceleration of u's material point at `p` for sliding speed `sd` and
+    /// acceleration `sdd`.
+    fn point_rates(&self, sd: f64, sdd: f64) -> (Vector, Vector) {
+        (
+            self.v0 + self.w * (self.sigma * sd),
+            self.a0 + (perp(self.w) * (2.0 * self.omega * sd) + self.w * sdd) * self.sigma,
+        )
+    }
+}
+
+fn slide_frame(s: &Solver, sl: &Slide, u: usize) -> SlideFrame {
+    if sl.u_is_slider {
+        let g = sl.q1.body;
+        let (omega, eps) = spin(s, g);
+        let p = glob(&s.poses, Anchor { body: Attach::Body(u), local: sl.point.local });
+        let (v0, a0) = point_rates(s, g, p);
+        SlideFrame { p, w: pz(&s.poses, g).rot(sl.dir), sigma: 1.0, omega, eps, v0, a0 }
+    } else {
+        let (omega, eps) = spin(s, sl.point.body);
+        let p = glob(&s.poses, sl.point);
+        let (v0, a0) = point_rates(s, sl.point.body, p);
+        SlideFrame { p, w: pz(&s.poses, Attach::Body(u)).rot(sl.dir), sigma: -1.0, omega, eps, v0, a0 }
+    }
+}
+
 /// x·c1 + y·c2 = r by Cramer's rule, with ρ = |det| / (|c1|·|c2|) (the sine of the angle
 /// between the columns: 0 at a dead point).
 fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
@@ -1514,23 +1556,71 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
             set_rates(s, b2, p3, r3k, w2, e2);
             Some(rho)
         }
-        Position::Rrp { b1, b2, k1, a1, s3, .. } if s3.u_is_slider => {
-            let g = s3.q1.body;
-            let (wg, eg) = spin(s, g);
-            let dir = pz(&s.poses, g).rot(s3.dir);
-            let p = glob(&s.poses, Anchor { body: Attach::Body(b2), local: s3.point.local });
-            let (vgp, agp) = point_rates(s, g, p);
+        Position::DrivenDistance { u, slide, law, .. } => {
+            let f = slide_frame(s, &slide, u);
+            let (_, d1, d2) = s.laws[law];
+            let rp = f.point_rates(d1, d2);
+            set_rates(s, u, f.p, rp, f.omega, f.eps);
+            Some(1.0)
+        }
+        Position::Rrp { b1, b2, k1, a1, s3, .. } => {
+            let f = slide_frame(s, &s3, b2);
             let k = glob(&s.poses, k1.known);
             let rk = point_rates(s, k1.known.body, k);
             let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
-            let (r1, d) = (j - k, j - p);
-            // v_K + ω1⊥r1 = v_P,guide + ṡ·w + ωg⊥d (b2 turns with the guide), and its derivative.
-            let (w1, sd, rho) = solve2(perp(r1), -dir, vgp + perp(d) * wg - rk.0);
-            let cor = perp(dir) * (2.0 * wg * sd);
-            let rhs = agp + cor + perp(d) * eg - d * (wg * wg) - rk.1 + r1 * (w1 * w1);
-            let (e1, sdd, _) = solve2(perp(r1), -dir, rhs);
+            let (r1, d) = (j - k, j - f.p);
+            let (w, e) = (f.omega, f.eps);
+            // v_K + ω1⊥r1 = v0 + σ·ṡ·u + ω⊥d (b2 turns with its known body), and its derivative.
+            let (w1, sd, rho) = solve2(perp(r1), -f.w * f.sigma, f.v0 + perp(d) * w - rk.0);
+            let (_, a_slide) = f.point_rates(sd, 0.0);
+            let rhs = a_slide + perp(d) * e - d * (w * w) - rk.1 + r1 * (w1 * w1);
+            let (e1, sdd, _) = solve2(perp(r1), -f.w * f.sigma, rhs);
             set_rates(s, b1, k, rk, w1, e1);
-            set_rates(s, b2, p, (vgp + dir * sd, agp + cor + dir * sdd), wg, eg);
+            let rp = f.point_rates(sd, sdd);
+            set_rates(s, b2, f.p, rp, w, e);
+            Some(rho)
+        }
+        Position::Prp { b1, b2, a1, s1, s3, .. } => {
+            let (f1, f3) = (slide_frame(s, &s1, b1), slide_frame(s, &s3, b2));
+            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
+            let (d1, d3) = (j - f1.p, j - f3.p);
+            let (c1, c3) = (f1.w * f1.sigma, -f3.w * f3.sigma);
+            // v0₁ + σ₁ṡ₁u₁ + ω₁⊥d₁ = v0₃ + σ₃ṡ₃u₃ + ω₃⊥d₃, and its derivative.
+            let rhs = f3.v0 + perp(d3) * f3.omega - f1.v0 - perp(d1) * f1.omega;
+            let (sd1, sd3, rho) = solve2(c1, c3, rhs);
+            let (_, a1b) = f1.point_rates(sd1, 0.0);
+            let (_, a3b) = f3.point_rates(sd3, 0.0);
+            let rhs = a3b + perp(d3) * f3.eps
+                - d3 * (f3.omega * f3.omega)
+                - (a1b + perp(d1) * f1.eps - d1 * (f1.omega * f1.omega));
+            let (sdd1, sdd3, _) = solve2(c1, c3, rhs);
+            let rp1 = f1.point_rates(sd1, sdd1);
+            set_rates(s, b1, f1.p, rp1, f1.omega, f1.eps);
+            let rp3 = f3.point_rates(sd3, sdd3);
+            set_rates(s, b2, f3.p, rp3, f3.omega, f3.eps);
+            Some(rho)
+        }
+        Position::Rpp { b1, b2, k1, mid, s3 } => {
+            // Both bodies turn with the known body of the guide: ω, ε known; b1 is pinned.
+            let f = slide_frame(s, &s3, b2);
+            let (w, e) = (f.omega, f.eps);
+            let k = glob(&s.poses, k1.known);
+            let rk = point_rates(s, k1.known.body, k);
+            let (slider, guide, tau) = if mid.b1_is_slider { (b1, b2, 1.0) } else { (b2, b1, -1.0) };
+            let pm = glob(&s.poses, Anchor { body: Attach::Body(slider), local: mid.p });
+            let wm = pz(&s.poses, Attach::Body(guide)).rot(-perp(mid.n0));
+            let (rm1, rm3) = (pm - k, pm - f.p);
+            let v1 = rk.0 + perp(rm1) * w;
+            let a1 = rk.1 + perp(rm1) * e - rm1 * (w * w);
+            // v1(Pm) − v2(Pm) = τ·ṡm·um with v2(Pm) = v0 + σ·ṡ·u + ω⊥(Pm − P).
+            let (c3, cm) = (f.w * f.sigma, wm * tau);
+            let (sd, sdm, rho) = solve2(c3, cm, v1 - f.v0 - perp(rm3) * w);
+            let (_, a_slide) = f.point_rates(sd, 0.0);
+            let rhs = a1 - a_slide - perp(rm3) * e + rm3 * (w * w) - perp(wm) * (tau * 2.0 * w * sdm);
+            let (sdd, _, _) = solve2(c3, cm, rhs);
+            set_rates(s, b1, k, rk, w, e);
+            let rp = f.point_rates(sd, sdd);
+            set_rates(s, b2, f.p, rp, w, e);
             Some(rho)
         }
         Position::Rpr { b1, b2, k1, mid, k3 } => {
