@@ -4,14 +4,16 @@
 //! per 360 steps. Kineto-statics on templates/shaper-forces.toml: the forces of one
 //! sample alone (the transposed solve on the step's LU, the generalised forces, the
 //! reactions and the power balance: what forces add per sample, target ≤ 1 µs), and a
-//! step with its forces.
+//! step with its forces. The Assur-group route on the shaper (issue 16: positions ≤ 5×
+//! the four-bar's closed-form dyad, with velocities and accelerations ≤ 0.15 µs): one
+//! step, and one positions-only step.
 
 use std::hint::black_box;
 
 use criterion::{BatchSize, Criterion, criterion_group, criterion_main};
 use mechdraw::scene::linkage::LinkageScene;
 use mechdraw::scene::{self, Scene};
-use mechdraw::solve::linkage::{Forces, Solver};
+use mechdraw::solve::linkage::{AssurSolver, Forces, Solver};
 
 fn scene_of(template: &str) -> LinkageScene {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates").join(template);
@@ -71,6 +73,25 @@ fn bench(c: &mut Criterion) {
             t += dt;
             black_box(solver.step(black_box(t)).ok());
             black_box(solver.forces_into(&dynamics, &mut out).ok())
+        })
+    });
+    // The Assur-group route (issue 16): the same shaper, group by group in closed form.
+    let shaper = scene_of("shaper.toml");
+    let Ok(mut assur) = AssurSolver::new(shaper.mechanism.clone()) else { panic!("shaper does not compile") };
+    if assur.step(0.0).is_err() {
+        panic!("shaper does not assemble");
+    }
+    let mut t = 0.0;
+    c.bench_function("linkage/shaper Assur step (pos+vel+acc)", |b| {
+        b.iter(|| {
+            t += dt;
+            black_box(assur.step(black_box(t)).ok())
+        })
+    });
+    c.bench_function("linkage/shaper Assur step (positions)", |b| {
+        b.iter(|| {
+            t += dt;
+            black_box(assur.step_positions(black_box(t)).ok())
         })
     });
 }

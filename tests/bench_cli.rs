@@ -18,6 +18,7 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
     let mut lines = csv.lines();
     assert_eq!(lines.next(), Some("problem,method,setting,ns_per_solve,error,residual,distance"));
     let mut rows: HashMap<(String, String), f64> = HashMap::new();
+    let mut assur = Vec::new();
     for line in lines {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f.len(), 7, "{line}");
@@ -25,7 +26,14 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
         let err: f64 = f[4].parse().unwrap();
         assert!(ns > 0.0 && ns.is_finite() && err.is_finite() && err >= 0.0, "{line}");
         rows.insert((f[1].to_string(), f[2].to_string()), err);
+        if f[1] == "Assur groups" {
+            assur.push((f[0].to_string(), f[2].to_string(), err));
+        }
     }
+    // The Assur-group route on the four-bar and the shaper, positions only and with rates:
+    // exact to rounding against the same references as the general solver.
+    assert_eq!(assur.len(), 4, "{assur:?}");
+    assert!(assur.iter().all(|(_, _, e)| *e < 1e-13), "{assur:?}");
     let err = |method: &str, setting: &str| rows[&(method.to_string(), setting.to_string())];
     // Exact or converged methods sit near rounding against the independent references.
     assert!(err("closed-form dyad", "exact") < 1e-14);

@@ -6,9 +6,10 @@ use super::timing::{Budget, ns_per_call};
 use super::{Measurement, RunCost};
 use crate::error::Error;
 use crate::geom::{Side, angle_of, rad};
+use crate::scene::linkage::LinkageScene;
 use crate::scene::{self, Loaded, Override, Scene};
 use crate::solve::fourbar::{Geometry, Prepared};
-use crate::solve::linkage::{Solver, State};
+use crate::solve::linkage::{AssurSolver, Solver, State};
 use crate::solve::triad::{NewtonOptions, PatternOptions, Triad, all_modes, newton_to, pattern, pattern::construct};
 use std::path::Path;
 
@@ -151,7 +152,57 @@ pub fn fourbar(budget: Budget) -> Result<Vec<Measurement>, Error> {
         let ns = per_step(budget, &solver, &s.times);
         out.push(Measurement::new(problem, "general Newton", &format!("tol={}", fmt_e(tol)), ns, res, dist));
     }
+    let score = |st: &State| {
+        let phi1 = omega1 * st.t;
+        let (a, b) = (st.point(a_an), st.point(b_an));
+        let a_exact = crate::geom::polar(g.o1, g.l1, phi1);
+        let res = reference::fourbar_residual(&g, a, b).max((a - a_exact).norm() / scale);
+        let dist = reference::fourbar_b(&g, phi1).map_or(0.0, |bref| (bref - b).norm() / scale);
+        (res, dist)
+    };
+    out.extend(assur(budget, problem, file, &s, score)?);
     Ok(out)
+}
+
+/// The Assur-group route on a linkage scene (solve::linkage::assur), nanoseconds per time
+/// step over the whole motion after the first (assembled) position: positions only, and
+/// positions with velocities and accelerations. Error: the worst `score` (residual,
+/// distance) over the motion, each row on its own answers.
+fn assur(
+    budget: Budget,
+    problem: &str,
+    file: &str,
+    s: &LinkageScene,
+    score: impl Fn(&State) -> (f64, f64),
+) -> Result<Vec<Measurement>, Error> {
+    let mut solver = AssurSolver::new(s.mechanism.clone()).map_err(|e| solve_err(file, e))?;
+    let states = solver.clone().run(&s.times).map_err(|e| solve_err(file, e))?;
+    let positions = solver.clone().run_positions(&s.times).map_err(|e| solve_err(file, e))?;
+    let worst =
+        |it: &mut dyn Iterator<Item = (f64, f64)>| it.fold((0.0_f64, 0.0_f64), |m, v| (m.0.max(v.0), m.1.max(v.1)));
+    let full = worst(&mut states.iter().map(&score));
+    let pos = worst(&mut states.iter().zip(&positions).map(|(st, q)| score(&State { q: q.clone(), ..st.clone() })));
+    let start = states[0].clone();
+    let rest = &s.times[1..];
+    let steps = rest.len().max(1) as f64;
+    let ns_pos = ns_per_call(budget, || {
+        solver.resume(&start);
+        for &t in rest {
+            let _ = solver.step_positions(t);
+        }
+        solver.q()[0]
+    }) / steps;
+    let ns_full = ns_per_call(budget, || {
+        solver.resume(&start);
+        for &t in rest {
+            let _ = solver.step(t);
+        }
+        solver.q()[0]
+    }) / steps;
+    Ok(vec![
+        Measurement::new(problem, "Assur groups", "positions", ns_pos, pos.0, pos.1),
+        Measurement::new(problem, "Assur groups", "pos+vel+acc", ns_full, full.0, full.1),
+    ])
 }
 
 fn scene_msg(m: String) -> crate::solve::linkage::LinkageError {
@@ -200,6 +251,18 @@ pub fn shaper(budget: Budget) -> Result<Vec<Measurement>, Error> {
             dist,
         ));
     }
+    let check = std::cell::RefCell::new(Solver::new(s.mechanism.clone()).map_err(|e| solve_err(file, e))?);
+    let score = |st: &State| {
+        let res = residual_of(&mut check.borrow_mut(), st);
+        let ([xe, _, _], [th, _, _]) = shaper::closed_form(st.t);
+        let p = st.point(e);
+        let (phi, _, _) = st.angular(rocker);
+        let dist = ((p.x - xe).abs() / shaper::L)
+            .max((p.y - shaper::Y_RAM).abs() / shaper::L)
+            .max(reference::angle_distance(phi, th));
+        (res, dist)
+    };
+    out.extend(assur(budget, "shaper (seed 002)", file, &s, score)?);
     Ok(out)
 }
 

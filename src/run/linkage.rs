@@ -23,7 +23,8 @@ use crate::report::Csv;
 use crate::scene::Units;
 use crate::scene::linkage::{DiagramAxis, LinkageScene, Measure, MeasureTarget, Quantity};
 use crate::solve::linkage::{
-    Anchor, Attach, DriverTarget, Forces, JointKind, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular, Solver, State,
+    Anchor, AssurSolver, Attach, DriverTarget, Forces, JointKind, LinkageError, NEAR_SINGULAR_PIVOT_REL, NearSingular,
+    Solver, State,
 };
 use crate::solve::stroke::{self, Extreme, Stroke};
 use rayon::prelude::*;
@@ -122,12 +123,34 @@ pub(super) fn products(
     if !drag.is_empty() {
         return drag_products(scene, file, drag, solver);
     }
+    // The Assur groups in solving order, each in closed form or by its own Newton
+    // iterations (the general solver stays for the strokes' refinement and --drag).
+    let mut assur = AssurSolver::new(scene.mechanism.clone()).map_err(|e| solve_err(file)(e.into()))?;
+    let groups: Vec<GroupRecord> = assur
+        .routes()
+        .into_iter()
+        .map(|(g, route)| GroupRecord {
+            kind: g.kind_name(),
+            bodies: g.bodies.iter().map(|&b| scene.mechanism.bodies[b].name.as_str()).collect(),
+            joints: g.joints.iter().map(|&j| scene.mechanism.joints[j].name.as_str()).collect(),
+            route: route.name(),
+        })
+        .collect();
+    let groups_line = format!(
+        "groups: {}",
+        assur
+            .routes()
+            .into_iter()
+            .map(|(g, route)| format!("{} by {}", g.describe(&scene.mechanism), route.name()))
+            .collect::<Vec<_>>()
+            .join("; ")
+    );
     let (states, forces) = match &scene.dynamics {
         Some(d) => {
-            let (states, forces) = solver.run_kinetostatics(&scene.times, d).map_err(|e| solve_err(file)(e.into()))?;
+            let (states, forces) = assur.run_kinetostatics(&scene.times, d).map_err(|e| solve_err(file)(e.into()))?;
             (states, Some(forces))
         }
-        None => (solver.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
+        None => (assur.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
     };
     let cols = columns(scene, &states);
     let force_cols = forces.as_ref().map(|f| force_columns(scene, f)).unwrap_or_default();
@@ -205,6 +228,7 @@ pub(super) fn products(
             extremes,
             strokes: strokes.iter().map(|g| (g.measure.label.clone(), stroke_record(scene, &g.stroke))).collect(),
             power_residual_max,
+            groups,
             near_singular: near_singular
                 .iter()
                 .map(|n| NearSingularRecord {
@@ -218,9 +242,14 @@ pub(super) fn products(
         },
         &scene.name,
     )?;
+    let iterations = if assur.all_closed_form() && max_iter == 0 {
+        "no Newton iterations (every group in closed form)".to_string()
+    } else {
+        format!("Newton iterations per step ≤ {max_iter} (mean {mean_iter:.2})")
+    };
     let report = format!(
         "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
-         Newton iterations per step ≤ {} (mean {:.2})",
+         {iterations}",
         scene.name,
         mech.bodies.len(),
         mech.joints.len(),
@@ -229,10 +258,10 @@ pub(super) fn products(
         scene.times[0],
         scene.times[scene.times.len() - 1],
         max_residual,
-        max_iter,
-        mean_iter
     );
     let mut report = report;
+    report.push('\n');
+    report.push_str(&groups_line);
     for g in &strokes {
         report.push('\n');
         report.push_str(&stroke_line(scene, g));
@@ -836,10 +865,23 @@ struct MotionSummary<'a> {
     #[serde(skip_serializing_if = "Option::is_none")]
     power_residual_max: Option<f64>,
     columns: Vec<&'a str>,
+    /// The Assur groups in solving order and how each was solved.
+    groups: Vec<GroupRecord<'a>>,
     extremes: BTreeMap<String, Extremes>,
     strokes: BTreeMap<String, StrokeRecord>,
     near_singular: Vec<NearSingularRecord<'a>>,
     samples: Vec<Sample>,
+}
+
+/// One group of the Assur decomposition in the JSON (docs/linkage.md): its kind (`RRR`,
+/// `RRP`, `RPR`, `PRP`, `RPP`, `driven (angle)`, `driven (distance)`, `triad`, `general`),
+/// bodies and joints in the kind's order, and `closed form` or `Newton`.
+#[derive(Debug, Serialize)]
+struct GroupRecord<'a> {
+    kind: &'static str,
+    bodies: Vec<&'a str>,
+    joints: Vec<&'a str>,
+    route: &'static str,
 }
 
 /// One `--drag` request and where the point went.

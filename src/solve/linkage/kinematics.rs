@@ -16,7 +16,7 @@ const SINGULAR_SHARE: f64 = 0.1;
 
 /// One compiled constraint (one or two rows of Φ).
 #[derive(Debug, Clone)]
-enum Con {
+pub(super) enum Con {
     /// r_a − r_b = 0 (2 rows).
     Coincide { a: Anchor, b: Anchor },
     /// n_g · (r_P − r_Q) = 0, n_g the guide's unit normal (1 row, length).
@@ -28,7 +28,7 @@ enum Con {
 }
 
 impl Con {
-    fn rows(&self) -> usize {
+    pub(super) fn rows(&self) -> usize {
         match self {
             Con::Coincide { .. } => 2,
             _ => 1,
@@ -36,6 +36,109 @@ impl Con {
     }
     fn is_length(&self) -> bool {
         !matches!(self, Con::Angle { .. })
+    }
+}
+
+/// Φ of one constraint at the cached `poses` into `out` (its one or two rows), the
+/// drivers' laws evaluated in `laws` (value, f′, f″).
+pub(super) fn con_residual(c: &Con, q: &[Pose], laws: &[(f64, f64, f64)], out: &mut [f64]) {
+    match *c {
+        Con::Coincide { a, b } => {
+            let (pa, pb) = (pz(q, a.body), pz(q, b.body));
+            let d = pa.r + pa.rot(a.local) - pb.r - pb.rot(b.local);
+            out[0] = d.x;
+            out[1] = d.y;
+        }
+        Con::OnLine { p, q: qa, guide, u } => {
+            let (pp, pg) = (pz(q, p.body), pz(q, guide));
+            let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
+            out[0] = perp(pg.rot(u)).dot(&d);
+        }
+        Con::Angle { i, j, offset, law } => {
+            let f = law.map_or(0.0, |k| laws[k].0);
+            out[0] = pz(q, i).phi - pz(q, j).phi - offset - f;
+        }
+        Con::Distance { p, q: qa, guide, u, law } => {
+            let (pp, pg) = (pz(q, p.body), pz(q, guide));
+            let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
+            out[0] = pg.rot(u).dot(&d) - laws[law].0;
+        }
+    }
+}
+
+/// The Jacobian entries of one constraint at the cached poses: `put(row, body, ∂/∂x,
+/// ∂/∂y, ∂/∂φ)` for each of its rows (0 or 1) and each body it involves (the ground too:
+/// callers skip it). Entries of one row and body may come in two calls; callers add them.
+pub(super) fn con_jacobian(c: &Con, q: &[Pose], mut put: impl FnMut(usize, Attach, f64, f64, f64)) {
+    match *c {
+        Con::Coincide { a, b } => {
+            let (pa, pb) = (pz(q, a.body), pz(q, b.body));
+            let (ba, bb) = (perp(pa.rot(a.local)), perp(pb.rot(b.local)));
+            put(0, a.body, 1.0, 0.0, ba.x);
+            put(1, a.body, 0.0, 1.0, ba.y);
+            put(0, b.body, -1.0, 0.0, -bb.x);
+            put(1, b.body, 0.0, -1.0, -bb.y);
+        }
+        Con::OnLine { p, guide, u, .. } | Con::Distance { p, guide, u, .. } => {
+            let (pp, pg) = (pz(q, p.body), pz(q, guide));
+            let sp = pp.rot(p.local);
+            let rp = pp.r + sp;
+            let ug = pg.rot(u);
+            let ng = perp(ug);
+            // Normal row (OnLine): n·(r_P − r_Q); tangential row (Distance): u·(r_P − r_Q).
+            // ∂/∂φ_guide of n·(r_P − R_g − A s_Q) = −u·(r_P − R_g); of u·(...) = n·(r_P − R_g).
+            let (dir, dphi_g) =
+                if matches!(c, Con::OnLine { .. }) { (ng, -ug.dot(&(rp - pg.r))) } else { (ug, ng.dot(&(rp - pg.r))) };
+            put(0, p.body, dir.x, dir.y, dir.dot(&perp(sp)));
+            put(0, guide, -dir.x, -dir.y, dphi_g);
+        }
+        Con::Angle { i, j, .. } => {
+            put(0, i, 0.0, 0.0, 1.0);
+            put(0, j, 0.0, 0.0, -1.0);
+        }
+    }
+}
+
+/// −Φt of one constraint's first row: f′ on a driver row, 0 otherwise (second rows are 0).
+pub(super) fn con_rate(c: &Con, laws: &[(f64, f64, f64)]) -> f64 {
+    match *c {
+        Con::Angle { law: Some(k), .. } | Con::Distance { law: k, .. } => laws[k].1,
+        _ => 0.0,
+    }
+}
+
+/// γ of one constraint (Φq·q̈ = γ) at the cached poses and the velocities `qd`, into `out`.
+pub(super) fn con_gamma(c: &Con, q: &[Pose], qd: &[f64], laws: &[(f64, f64, f64)], out: &mut [f64]) {
+    match *c {
+        Con::Coincide { a, b } => {
+            let (pa, pb) = (pz(q, a.body), pz(q, b.body));
+            let (wa, wb) = (rate(qd, a.body).1, rate(qd, b.body).1);
+            let g = pa.rot(a.local) * (wa * wa) - pb.rot(b.local) * (wb * wb);
+            out[0] = g.x;
+            out[1] = g.y;
+        }
+        Con::Angle { law, .. } => out[0] = law.map_or(0.0, |k| laws[k].2),
+        Con::OnLine { p, q: qa, guide, u } | Con::Distance { p, q: qa, guide, u, .. } => {
+            let (pp, pg) = (pz(q, p.body), pz(q, guide));
+            let (vp, wp) = rate(qd, p.body);
+            let (vg, wg) = rate(qd, guide);
+            let sp = pp.rot(p.local);
+            let sq = pg.rot(qa.local);
+            let d = pp.r + sp - pg.r - sq;
+            let dd = vp + perp(sp) * wp - vg - perp(sq) * wg;
+            let ug = pg.rot(u);
+            let ng = perp(ug);
+            let centripetal = sp * (wp * wp) - sq * (wg * wg);
+            out[0] = match *c {
+                // Φ = n·d: Φ̈ = Φq·q̈ − ωg²·n·d − 2ωg·u·ḋ − n·(ωp² s_P − ωg² s_Q)
+                Con::OnLine { .. } => wg * wg * ng.dot(&d) + 2.0 * wg * ug.dot(&dd) + ng.dot(&centripetal),
+                // Φ = u·d − f: Φ̈ = Φq·q̈ − ωg²·u·d + 2ωg·n·ḋ − u·(ωp² s_P − ωg² s_Q) − f″
+                Con::Distance { law, .. } => {
+                    laws[law].2 + wg * wg * ug.dot(&d) - 2.0 * wg * ng.dot(&dd) + ug.dot(&centripetal)
+                }
+                _ => 0.0,
+            };
+        }
     }
 }
 
@@ -144,33 +247,33 @@ pub struct Sliding {
 #[derive(Debug, Clone)]
 pub struct Solver {
     pub(super) mech: Mechanism,
-    cons: Vec<Con>,
+    pub(super) cons: Vec<Con>,
     /// Description of each row, for messages.
-    row_names: Vec<String>,
+    pub(super) row_names: Vec<String>,
     /// 1 for angle rows, the length scale for length rows.
-    row_scale: Vec<f64>,
+    pub(super) row_scale: Vec<f64>,
     /// The length scale for x/y columns, 1 for φ columns.
-    col_scale: Vec<f64>,
+    pub(super) col_scale: Vec<f64>,
     pub(super) n: usize,
-    m: usize,
+    pub(super) m: usize,
     pub(super) q: Vec<f64>,
     pub(super) qd: Vec<f64>,
     pub(super) qdd: Vec<f64>,
     /// q̈ of the step before (for the third-order predictor).
-    qdd_prev: Vec<f64>,
+    pub(super) qdd_prev: Vec<f64>,
     /// Length of the previous step, when there was one.
-    dt_prev: Option<f64>,
+    pub(super) dt_prev: Option<f64>,
     pub(super) t: Option<f64>,
-    phi: Vec<f64>,
+    pub(super) phi: Vec<f64>,
     pub(super) rhs: Vec<f64>,
-    lu: Lu,
+    pub(super) lu: Lu,
     pub(super) laws: Vec<(f64, f64, f64)>,
     /// Poses of the bodies at the current q (refreshed by `residual`).
     pub(super) poses: Vec<Pose>,
     /// Newton stops when the largest relative residual is at or below this.
-    newton_tol: f64,
+    pub(super) newton_tol: f64,
     /// The near-singular report of the last step, if any.
-    near: Option<NearSingular>,
+    pub(super) near: Option<NearSingular>,
 }
 
 impl Solver {
@@ -331,7 +434,7 @@ impl Solver {
         })
     }
 
-    fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
+    pub(super) fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
         for (k, d) in self.mech.drivers.iter().enumerate() {
             let j = d.law.eval(t);
             if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
@@ -351,33 +454,11 @@ impl Solver {
 
     /// Φ(q, t) into `self.phi` (laws already evaluated), only the first `rows` rows
     /// (drag leaves out the drivers, which come last).
-    fn residual(&mut self) {
+    pub(super) fn residual(&mut self) {
         fill_poses(&self.q, &mut self.poses);
-        let q = &self.poses;
         let mut r = 0;
         for c in &self.cons {
-            match *c {
-                Con::Coincide { a, b } => {
-                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
-                    let d = pa.r + pa.rot(a.local) - pb.r - pb.rot(b.local);
-                    self.phi[r] = d.x;
-                    self.phi[r + 1] = d.y;
-                }
-                Con::OnLine { p, q: qa, guide, u } => {
-                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
-                    let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
-                    self.phi[r] = perp(pg.rot(u)).dot(&d);
-                }
-                Con::Angle { i, j, offset, law } => {
-                    let f = law.map_or(0.0, |k| self.laws[k].0);
-                    self.phi[r] = pz(q, i).phi - pz(q, j).phi - offset - f;
-                }
-                Con::Distance { p, q: qa, guide, u, law } => {
-                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
-                    let d = pp.r + pp.rot(p.local) - pg.r - pg.rot(qa.local);
-                    self.phi[r] = pg.rot(u).dot(&d) - self.laws[law].0;
-                }
-            }
+            con_residual(c, &self.poses, &self.laws, &mut self.phi[r..r + c.rows()]);
             r += c.rows();
         }
     }
@@ -393,44 +474,15 @@ impl Solver {
     fn jacobian_with(cons: &[Con], q: &[Pose], n: usize, jac: &mut [f64]) {
         jac.iter_mut().for_each(|v| *v = 0.0);
         let mut r = 0;
-        let put = |jac: &mut [f64], row: usize, a: Attach, dx: f64, dy: f64, dphi: f64| {
-            if let Some(k) = col(a) {
-                jac[row * n + k] += dx;
-                jac[row * n + k + 1] += dy;
-                jac[row * n + k + 2] += dphi;
-            }
-        };
         for c in cons {
-            match *c {
-                Con::Coincide { a, b } => {
-                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
-                    let (ba, bb) = (perp(pa.rot(a.local)), perp(pb.rot(b.local)));
-                    put(jac, r, a.body, 1.0, 0.0, ba.x);
-                    put(jac, r + 1, a.body, 0.0, 1.0, ba.y);
-                    put(jac, r, b.body, -1.0, 0.0, -bb.x);
-                    put(jac, r + 1, b.body, 0.0, -1.0, -bb.y);
+            con_jacobian(c, q, |row, a, dx, dy, dphi| {
+                if let Some(k) = col(a) {
+                    let row = r + row;
+                    jac[row * n + k] += dx;
+                    jac[row * n + k + 1] += dy;
+                    jac[row * n + k + 2] += dphi;
                 }
-                Con::OnLine { p, guide, u, .. } | Con::Distance { p, guide, u, .. } => {
-                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
-                    let sp = pp.rot(p.local);
-                    let rp = pp.r + sp;
-                    let ug = pg.rot(u);
-                    let ng = perp(ug);
-                    // Normal row (OnLine): n·(r_P − r_Q); tangential row (Distance): u·(r_P − r_Q).
-                    // ∂/∂φ_guide of n·(r_P − R_g − A s_Q) = −u·(r_P − R_g); of u·(...) = n·(r_P − R_g).
-                    let (dir, dphi_g) = if matches!(c, Con::OnLine { .. }) {
-                        (ng, -ug.dot(&(rp - pg.r)))
-                    } else {
-                        (ug, ng.dot(&(rp - pg.r)))
-                    };
-                    put(jac, r, p.body, dir.x, dir.y, dir.dot(&perp(sp)));
-                    put(jac, r, guide, -dir.x, -dir.y, dphi_g);
-                }
-                Con::Angle { i, j, .. } => {
-                    put(jac, r, i, 0.0, 0.0, 1.0);
-                    put(jac, r, j, 0.0, 0.0, -1.0);
-                }
-            }
+            });
             r += c.rows();
         }
     }
@@ -439,10 +491,7 @@ impl Solver {
     fn velocity_rhs(&mut self) {
         let mut r = 0;
         for c in &self.cons {
-            let v = match *c {
-                Con::Angle { law: Some(k), .. } | Con::Distance { law: k, .. } => self.laws[k].1,
-                _ => 0.0,
-            };
+            let v = con_rate(c, &self.laws);
             for k in 0..c.rows() {
                 self.rhs[r + k] = if k == 0 { v } else { 0.0 };
             }
@@ -453,46 +502,15 @@ impl Solver {
     /// γ (acceleration right-hand side), analytic per constraint type.
     fn gamma(&mut self) {
         // Poses cached by the last residual() at this q.
-        let (q, qd) = (&self.poses, &self.qd);
         let mut r = 0;
         for c in &self.cons {
-            match *c {
-                Con::Coincide { a, b } => {
-                    let (pa, pb) = (pz(q, a.body), pz(q, b.body));
-                    let (wa, wb) = (rate(qd, a.body).1, rate(qd, b.body).1);
-                    let g = pa.rot(a.local) * (wa * wa) - pb.rot(b.local) * (wb * wb);
-                    self.rhs[r] = g.x;
-                    self.rhs[r + 1] = g.y;
-                }
-                Con::Angle { law, .. } => self.rhs[r] = law.map_or(0.0, |k| self.laws[k].2),
-                Con::OnLine { p, q: qa, guide, u } | Con::Distance { p, q: qa, guide, u, .. } => {
-                    let (pp, pg) = (pz(q, p.body), pz(q, guide));
-                    let (vp, wp) = rate(qd, p.body);
-                    let (vg, wg) = rate(qd, guide);
-                    let sp = pp.rot(p.local);
-                    let sq = pg.rot(qa.local);
-                    let d = pp.r + sp - pg.r - sq;
-                    let dd = vp + perp(sp) * wp - vg - perp(sq) * wg;
-                    let ug = pg.rot(u);
-                    let ng = perp(ug);
-                    let centripetal = sp * (wp * wp) - sq * (wg * wg);
-                    self.rhs[r] = match *c {
-                        // Φ = n·d: Φ̈ = Φq·q̈ − ωg²·n·d − 2ωg·u·ḋ − n·(ωp² s_P − ωg² s_Q)
-                        Con::OnLine { .. } => wg * wg * ng.dot(&d) + 2.0 * wg * ug.dot(&dd) + ng.dot(&centripetal),
-                        // Φ = u·d − f: Φ̈ = Φq·q̈ − ωg²·u·d + 2ωg·n·ḋ − u·(ωp² s_P − ωg² s_Q) − f″
-                        Con::Distance { law, .. } => {
-                            self.laws[law].2 + wg * wg * ug.dot(&d) - 2.0 * wg * ng.dot(&dd) + ug.dot(&centripetal)
-                        }
-                        _ => 0.0,
-                    };
-                }
-            }
+            con_gamma(c, &self.poses, &self.qd, &self.laws, &mut self.rhs[r..r + c.rows()]);
             r += c.rows();
         }
     }
 
     /// Largest relative residual and the row where it is.
-    fn residual_norm(&self) -> (f64, usize) {
+    pub(super) fn residual_norm(&self) -> (f64, usize) {
         let mut worst = (0.0, 0);
         for (k, (&p, &s)) in self.phi.iter().zip(&self.row_scale).enumerate() {
             let v = (p / s).abs();
@@ -525,7 +543,7 @@ impl Solver {
 
     /// Builds and factors the equilibrated Φq at the current q; false if a pivot falls
     /// below [`SINGULAR_PIVOT_REL`] · ‖J̃‖∞.
-    fn factor(&mut self) -> bool {
+    pub(super) fn factor(&mut self) -> bool {
         let n = self.n;
         let mut a = std::mem::take(&mut self.lu.a);
         // Poses were cached by residual() at this q.
@@ -554,7 +572,7 @@ impl Solver {
     }
 
     /// Solves Φq·x = rhs[..n] in place with the factored J̃.
-    fn solve_in_place(&mut self) {
+    pub(super) fn solve_in_place(&mut self) {
         let n = self.n;
         for r in 0..n {
             self.rhs[r] /= self.row_scale[r];
@@ -566,7 +584,7 @@ impl Solver {
     }
 
     /// The drivers' current values, for messages (angles in degrees).
-    fn driver_values(&self) -> String {
+    pub(super) fn driver_values(&self) -> String {
         self.mech
             .drivers
             .iter()
@@ -651,7 +669,8 @@ impl Solver {
         }
     }
 
-    fn kinematics(&mut self) {
+    /// q̇ and q̈ from Φq factored at q (poses cached by `residual`).
+    pub(super) fn kinematics(&mut self) {
         let n = self.n;
         self.velocity_rhs();
         self.solve_in_place();

@@ -18,10 +18,12 @@
 //! counter-clockwise positive; a body's point with body coordinates s is at
 //! r = R + A(φ)·s. The ground has R = 0, φ = 0: its points are global.
 
+pub mod assur;
 mod kinematics;
 mod kinetostatics;
 mod lu;
 
+pub use assur::{AssurSolver, DrivenKind, DyadKind, Group, GroupKind, Route, decompose};
 pub use kinematics::{NearSingular, Sliding, Solver, State};
 pub use kinetostatics::{
     Applied, AppliedKind, Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TIME_WINDOW_EPS_REL,
@@ -304,6 +306,21 @@ pub enum LinkageError {
         t: f64,
         /// Which reaction or driver force.
         what: String,
+    },
+    /// A group of the Assur decomposition (see [`assur`]) cannot be assembled at a
+    /// position: its closed form has no real root there. Example: a crank-rocker whose
+    /// crank is driven past the angle where the coupler and the rocker can still meet.
+    #[error("the {group} cannot be assembled at t = {t} s: joint `{joint}` cannot close ({why})")]
+    GroupCannotAssemble {
+        /// The group, e.g. "dyad RRR (coupler, rocker)".
+        group: String,
+        /// The joint whose closure fails, e.g. `B`.
+        joint: String,
+        /// Time, s.
+        t: f64,
+        /// The drivers' values and what does not meet, e.g. "driver `crank` = 117.6000°: the
+        /// circles about `A` and `C` do not meet: centres 0.21 apart, radii 0.1 and 0.1".
+        why: String,
     },
     /// A drag request does not converge.
     #[error("drag {what}")]

@@ -1,0 +1,1883 @@
+//! Assur-group solving of a linkage (issue 16 §1): the mechanism split into its driven
+//! bodies and its Assur groups in solving order, each group solved in closed form where
+//! its kind is known (the dyads RRR, RRP, RPR, PRP, RPP; the 6R triad through the triad's
+//! degree-6 closed form) and by Newton–Raphson on its own few coordinates otherwise;
+//! velocities and accelerations per group from its differentiated closures (directly for
+//! a driven body, a 2×2 solve for every dyad; the group's block of Φq, with the known
+//! bodies' motion on the right-hand side, for the triad and general groups).
+//!
+//! A group is a set of bodies whose joints and drivers, once the bodies solved before it
+//! are known, give exactly three equations per body. Kinds:
+//! - a *driven body*: one body, one joint to a known body and the driver that sets it (a
+//!   crank turned by an angle, a slider pushed along its guide by a distance);
+//! - a *dyad*: two bodies b1, b2 with a joint from a known body to b1, one between b1 and
+//!   b2 and one from b2 to a known body, named by those joints in that order (R revolute,
+//!   P prismatic: a point of one body on a line of the other with their relative rotation
+//!   locked); PRR and PPR are the same dyads as RRP and RPP read from the other end and are
+//!   stored that way;
+//! - the *triad*: a ternary body joined by three revolutes to three binary links, each
+//!   pinned to a known body (class III, seed 000);
+//! - *general*: any other group (solved by Newton).
+//!
+//! Branch continuity: a dyad has two assembly modes; at every step the solver takes the
+//! root nearest the predicted position (the last position extrapolated with its velocity
+//! and acceleration, or linearly when only positions are solved) when it is clearly the
+//! nearer, else the branch it took at the last step; it assembles the first position in
+//! the mode the general solver finds from the scene's initial placement, so that both
+//! routes follow the same branch. Body angles are kept continuous (not wrapped), as the
+//! general solver keeps them, so both give the same coordinates q.
+
+use super::kinematics::{Con, NearSingular, Solver, State, con_gamma, con_jacobian, con_rate, con_residual};
+use super::lu::Lu;
+use super::{
+    Anchor, Attach, DriverTarget, JointKind, LinkageError, MAX_NEWTON_ITERATIONS, Mechanism, NEAR_SINGULAR_PIVOT_REL,
+    Pose, pz,
+};
+use crate::geom::{Vector, cross, perp, wrap_pi};
+
+/// A joint's or a body's length below which (relative to the mechanism's size) a closed
+/// form would divide by zero: such a group is left to Newton.
+const DEGENERATE_REL: f64 = 1e-12;
+/// Largest group the decomposition searches for before it gives everything left to Newton
+/// as one group.
+const MAX_SEARCHED_GROUP: usize = 5;
+
+/// The joints of a dyad, in the order known body → b1 → b2 → known body.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DyadKind {
+    /// Three revolutes: two links pinned to known bodies and to each other.
+    Rrr,
+    /// Revolute, revolute, prismatic: a link pinned to a known body and to a slider on a
+    /// known guide (the slider-crank's connecting rod and piston).
+    Rrp,
+    /// Revolute, prismatic, revolute: two bodies pinned to known bodies, one sliding on the
+    /// other (the shaper's block and rocker: an inverted slider).
+    Rpr,
+    /// Prismatic, revolute, prismatic: two sliders on known guides pinned to each other.
+    Prp,
+    /// Revolute, prismatic, prismatic: a body pinned to a known body sliding on a slider on
+    /// a known guide.
+    Rpp,
+}
+
+impl DyadKind {
+    /// The usual name, e.g. `RRP`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DyadKind::Rrr => "RRR",
+            DyadKind::Rrp => "RRP",
+            DyadKind::Rpr => "RPR",
+            DyadKind::Prp => "PRP",
+            DyadKind::Rpp => "RPP",
+        }
+    }
+}
+
+/// How a driven body is set.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum DrivenKind {
+    /// Its angle (absolute or across its revolute joint) is the driver's law: a crank.
+    Angle,
+    /// Its distance along its prismatic joint is the driver's law: a driven slider.
+    Distance,
+}
+
+/// What kind of group.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GroupKind {
+    /// One body set by a driver and its joint to a known body.
+    Driven(DrivenKind),
+    /// Two bodies, three joints.
+    Dyad(DyadKind),
+    /// The 6R triad: bodies `[ternary, link1, link2, link3]`.
+    Triad,
+    /// Anything else.
+    General,
+}
+
+/// How a group is solved.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Route {
+    /// Explicit formulas (circle and line intersections, a 2×2 solve).
+    ClosedForm,
+    /// Newton–Raphson on the group's own coordinates.
+    Newton,
+}
+
+impl Route {
+    /// As the run reports it: `closed form` or `Newton`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Route::ClosedForm => "closed form",
+            Route::Newton => "Newton",
+        }
+    }
+}
+
+/// One group of the decomposition: its kind, its bodies (indices into
+/// [`Mechanism::bodies`], in the order its kind names them), and the joints and drivers it
+/// solves (indices into [`Mechanism::joints`] and [`Mechanism::drivers`]).
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Group {
+    /// The kind.
+    pub kind: GroupKind,
+    /// Its bodies: a driven body `[b]`; a dyad `[b1, b2]`; a triad `[ternary, l1, l2, l3]`.
+    pub bodies: Vec<usize>,
+    /// Its joints: a driven body `[j]`; a dyad `[j1, j2, j3]` (known–b1, b1–b2, b2–known);
+    /// a triad the three links' pivots, then their pins on the ternary body.
+    pub joints: Vec<usize>,
+    /// Its drivers (a driven body's one; none for the others unless general).
+    pub drivers: Vec<usize>,
+}
+
+impl Group {
+    /// How it is solved.
+    pub fn route(&self) -> Route {
+        match self.kind {
+            GroupKind::Driven(_) | GroupKind::Dyad(_) | GroupKind::Triad => Route::ClosedForm,
+            GroupKind::General => Route::Newton,
+        }
+    }
+
+    /// The kind's short name: `driven (angle)`, `RRR`, `triad`, `general`.
+    pub fn kind_name(&self) -> &'static str {
+        match self.kind {
+            GroupKind::Driven(DrivenKind::Angle) => "driven (angle)",
+            GroupKind::Driven(DrivenKind::Distance) => "driven (distance)",
+            GroupKind::Dyad(k) => k.name(),
+            GroupKind::Triad => "triad",
+            GroupKind::General => "general",
+        }
+    }
+
+    /// A description for reports and messages, e.g. `dyad RPR (block, rocker)`.
+    pub fn describe(&self, mech: &Mechanism) -> String {
+        let names: Vec<&str> = self.bodies.iter().map(|&b| mech.bodies[b].name.as_str()).collect();
+        let what = match self.kind {
+            GroupKind::Driven(DrivenKind::Angle) => "driven body (angle)".to_string(),
+            GroupKind::Driven(DrivenKind::Distance) => "driven body (distance)".to_string(),
+            GroupKind::Dyad(k) => format!("dyad {}", k.name()),
+            GroupKind::Triad => "triad".to_string(),
+            GroupKind::General => "general group".to_string(),
+        };
+        format!("{what} ({})", names.join(", "))
+    }
+}
+
+fn joint_bodies(mech: &Mechanism, j: usize) -> (Attach, Attach) {
+    match mech.joints[j].kind {
+        JointKind::Revolute { a, b } => (a.body, b.body),
+        JointKind::Prismatic { point, q1, .. } => (point.body, q1.body),
+    }
+}
+
+fn driver_bodies(mech: &Mechanism, d: usize) -> (Attach, Attach) {
+    match mech.drivers[d].target {
+        DriverTarget::BodyAngle(b) => (Attach::Body(b), Attach::Ground),
+        DriverTarget::JointAngle(j) | DriverTarget::JointDistance(j) => {
+            joint_bodies(mech, j.min(mech.joints.len().saturating_sub(1)))
+        }
+    }
+}
+
+/// The constraints that close on a set of bodies: unused joints and drivers that touch
+/// `set` and whose other body is known or in `set`.
+struct Closed {
+    joints: Vec<usize>,
+    drivers: Vec<usize>,
+}
+
+impl Closed {
+    fn equations(&self) -> usize {
+        2 * self.joints.len() + self.drivers.len()
+    }
+}
+
+struct Decomposer<'a> {
+    mech: &'a Mechanism,
+    known: Vec<bool>,
+    joint_used: Vec<bool>,
+    driver_used: Vec<bool>,
+}
+
+impl Decomposer<'_> {
+    fn is_known(&self, a: Attach) -> bool {
+        match a {
+            Attach::Ground => true,
+            Attach::Body(b) => self.known[b],
+        }
+    }
+
+    fn closed(&self, set: &[usize]) -> Closed {
+        let inside = |a: Attach| matches!(a, Attach::Body(b) if set.contains(&b));
+        let fits = |(x, y): (Attach, Attach)| {
+            (inside(x) || inside(y)) && (inside(x) || self.is_known(x)) && (inside(y) || self.is_known(y))
+        };
+        let joints =
+            (0..self.mech.joints.len()).filter(|&j| !self.joint_used[j] && fits(joint_bodies(self.mech, j))).collect();
+        let drivers = (0..self.mech.drivers.len())
+            .filter(|&d| !self.driver_used[d] && fits(driver_bodies(self.mech, d)))
+            .collect();
+        Closed { joints, drivers }
+    }
+
+    fn take(&mut self, g: Group) -> Group {
+        for &b in &g.bodies {
+            self.known[b] = true;
+        }
+        for &j in &g.joints {
+            self.joint_used[j] = true;
+        }
+        for &d in &g.drivers {
+            self.driver_used[d] = true;
+        }
+        g
+    }
+
+    fn unknown(&self) -> Vec<usize> {
+        (0..self.known.len()).filter(|&b| !self.known[b]).collect()
+    }
+
+    /// A driven body: `b` with one joint to a known body and one driver on it.
+    fn driven(&self, b: usize) -> Option<Group> {
+        let c = self.closed(&[b]);
+        let ([j], [d]) = (c.joints.as_slice(), c.drivers.as_slice()) else { return None };
+        let (j, d) = (*j, *d);
+        let kind = match (&self.mech.joints[j].kind, self.mech.drivers[d].target) {
+            (JointKind::Revolute { .. }, DriverTarget::BodyAngle(_)) => DrivenKind::Angle,
+            (JointKind::Revolute { .. }, DriverTarget::JointAngle(dj)) if dj == j => DrivenKind::Angle,
+            (JointKind::Prismatic { .. }, DriverTarget::JointDistance(dj)) if dj == j => DrivenKind::Distance,
+            _ => return None,
+        };
+        if kind == DrivenKind::Angle && pin_of(self.mech, j, b).is_none() {
+            return None;
+        }
+        Some(Group { kind: GroupKind::Driven(kind), bodies: vec![b], joints: vec![j], drivers: vec![d] })
+    }
+
+    /// A dyad on `b1`, `b2`, with its bodies and joints in canonical order.
+    fn dyad(&self, b1: usize, b2: usize) -> Option<Group> {
+        let c = self.closed(&[b1, b2]);
+        if !c.drivers.is_empty() || c.joints.len() != 3 {
+            return None;
+        }
+        let touches = |j: usize, b: usize| {
+            let (x, y) = joint_bodies(self.mech, j);
+            x == Attach::Body(b) || y == Attach::Body(b)
+        };
+        let mid = c.joints.iter().copied().find(|&j| touches(j, b1) && touches(j, b2))?;
+        let j1 = c.joints.iter().copied().find(|&j| j != mid && touches(j, b1) && !touches(j, b2))?;
+        let j3 = c.joints.iter().copied().find(|&j| j != mid && touches(j, b2) && !touches(j, b1))?;
+        let letter = |j: usize| matches!(self.mech.joints[j].kind, JointKind::Prismatic { .. });
+        // (prismatic?) per joint; PRR and PPR are read from the other end.
+        let (b1, b2, j1, j3) = match (letter(j1), letter(mid), letter(j3)) {
+            (true, false, false) | (true, true, false) => (b2, b1, j3, j1),
+            _ => (b1, b2, j1, j3),
+        };
+        let kind = match (letter(j1), letter(mid), letter(j3)) {
+            (false, false, false) => DyadKind::Rrr,
+            (false, false, true) => DyadKind::Rrp,
+            (false, true, false) => DyadKind::Rpr,
+            (true, false, true) => DyadKind::Prp,
+            (false, true, true) => DyadKind::Rpp,
+            _ => return None,
+        };
+        let g = Group { kind: GroupKind::Dyad(kind), bodies: vec![b1, b2], joints: vec![j1, mid, j3], drivers: vec![] };
+        // Closed forms that would divide by zero (a link whose two joints coincide).
+        Plan::dyad(self.mech, &g).map(|_| g)
+    }
+
+    /// The 6R triad pattern on a set of four bodies that closes.
+    fn triad(&self, set: &[usize], c: &Closed) -> Option<Group> {
+        if set.len() != 4 || !c.drivers.is_empty() || c.joints.len() != 6 {
+            return None;
+        }
+        let revolute = |j: usize| matches!(self.mech.joints[j].kind, JointKind::Revolute { .. });
+        if !c.joints.iter().all(|&j| revolute(j)) {
+            return None;
+        }
+        let touching = |b: usize| -> Vec<usize> {
+            c.joints
+                .iter()
+                .copied()
+                .filter(|&j| {
+                    let (x, y) = joint_bodies(self.mech, j);
+                    x == Attach::Body(b) || y == Attach::Body(b)
+                })
+                .collect()
+        };
+        let centre = set.iter().copied().find(|&b| {
+            touching(b).iter().all(|&j| {
+                let (x, y) = joint_bodies(self.mech, j);
+                matches!(x, Attach::Body(o) if set.contains(&o)) && matches!(y, Attach::Body(o) if set.contains(&o))
+            }) && touching(b).len() == 3
+        })?;
+        let mut bodies = vec![centre];
+        let (mut pivots, mut pins) = (Vec::new(), Vec::new());
+        for &pin in &touching(centre) {
+            let (x, y) = joint_bodies(self.mech, pin);
+            let link = if x == Attach::Body(centre) { y } else { x };
+            let Attach::Body(link) = link else { return None };
+            let js = touching(link);
+            let [a, b] = js.as_slice() else { return None };
+            let pivot = if *a == pin { *b } else { *a };
+            bodies.push(link);
+            pivots.push(pivot);
+            pins.push(pin);
+        }
+        pivots.extend(pins);
+        Some(Group { kind: GroupKind::Triad, bodies, joints: pivots, drivers: vec![] })
+    }
+
+    /// The smallest set of unknown bodies (up to [`MAX_SEARCHED_GROUP`]) that closes.
+    fn smallest(&self, unknown: &[usize]) -> Option<Group> {
+        for size in 1..=MAX_SEARCHED_GROUP.min(unknown.len()) {
+            let mut idx: Vec<usize> = (0..size).collect();
+            loop {
+                let set: Vec<usize> = idx.iter().map(|&i| unknown[i]).collect();
+                let c = self.closed(&set);
+                if c.equations() == 3 * size {
+                    if let Some(g) = self.triad(&set, &c) {
+                        return Some(g);
+                    }
+                    return Some(Group { kind: GroupKind::General, bodies: set, joints: c.joints, drivers: c.drivers });
+                }
+                // Next combination.
+                let mut k = size;
+                loop {
+                    if k == 0 {
+                        break;
+                    }
+                    k -= 1;
+                    if idx[k] < unknown.len() - size + k {
+                        idx[k] += 1;
+                        for m in k + 1..size {
+                            idx[m] = idx[m - 1] + 1;
+                        }
+                        k = usize::MAX;
+                        break;
+                    }
+                }
+                if k != usize::MAX {
+                    break;
+                }
+            }
+        }
+        None
+    }
+}
+
+/// The driven bodies and Assur groups of `mech`, in solving order: at each stage a driven
+/// body, else a dyad, else the smallest set of bodies that closes (a triad or a general
+/// group), else everything left as one general group. Every body, joint and driver is in
+/// exactly one group.
+pub fn decompose(mech: &Mechanism) -> Vec<Group> {
+    let mut d = Decomposer {
+        mech,
+        known: vec![false; mech.bodies.len()],
+        joint_used: vec![false; mech.joints.len()],
+        driver_used: vec![false; mech.drivers.len()],
+    };
+    let mut out = Vec::new();
+    loop {
+        let unknown = d.unknown();
+        if unknown.is_empty() {
+            break;
+        }
+        let found = unknown.iter().find_map(|&b| d.driven(b)).or_else(|| {
+            unknown.iter().enumerate().find_map(|(k, &b1)| unknown[k + 1..].iter().find_map(|&b2| d.dyad(b1, b2)))
+        });
+        let found = found.or_else(|| d.smallest(&unknown)).unwrap_or_else(|| {
+            let c = d.closed(&unknown);
+            Group { kind: GroupKind::General, bodies: unknown.clone(), joints: c.joints, drivers: c.drivers }
+        });
+        out.push(d.take(found));
+    }
+    out
+}
+
+/// A revolute joint seen from its unknown body `u`: the point of `u` (body coordinates)
+/// and the known anchor it is pinned to.
+#[derive(Debug, Clone, Copy)]
+struct Pin {
+    local: Vector,
+    known: Anchor,
+}
+
+fn pin_of(mech: &Mechanism, j: usize, u: usize) -> Option<Pin> {
+    match mech.joints[j].kind {
+        JointKind::Revolute { a, b } if a.body == Attach::Body(u) => Some(Pin { local: a.local, known: b }),
+        JointKind::Revolute { a, b } if b.body == Attach::Body(u) => Some(Pin { local: b.local, known: a }),
+        _ => None,
+    }
+}
+
+/// A prismatic joint between an unknown body `u` and a known body: `u`'s angle is locked
+/// to the known body's, and `u`'s origin runs on a line c + s·w.
+#[derive(Debug, Clone, Copy)]
+struct Slide {
+    /// `u` carries the sliding point (else it carries the line).
+    u_is_slider: bool,
+    /// The sliding point.
+    point: Anchor,
+    /// The line's first point.
+    q1: Anchor,
+    /// The line's unit direction in its body's coordinates.
+    dir: Vector,
+    /// φ_slider − φ_guide.
+    angle: f64,
+    /// Its cosine and sine.
+    turn: (f64, f64),
+}
+
+/// The rotation by a then b: (cos, sin) of the sum of their angles.
+fn compose(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
+    (a.0 * b.0 - a.1 * b.1, a.1 * b.0 + a.0 * b.1)
+}
+
+fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
+    let JointKind::Prismatic { point, q1, q2, angle } = mech.joints[j].kind else { return None };
+    let dir = q2.local - q1.local;
+    let n = dir.norm();
+    if n == 0.0 {
+        return None;
+    }
+    let turn = (angle.cos(), angle.sin());
+    Some(Slide { u_is_slider: point.body == Attach::Body(u), point, q1, dir: dir / n, angle, turn })
+}
+
+/// Global position of an anchor at the cached poses.
+fn glob(poses: &[Pose], a: Anchor) -> Vector {
+    let p = pz(poses, a.body);
+    p.r + p.rot(a.local)
+}
+
+/// A rotation (cos, sin) applied to a vector.
+fn rot(cs: (f64, f64), v: Vector) -> Vector {
+    Vector::new(cs.0 * v.x - cs.1 * v.y, cs.1 * v.x + cs.0 * v.y)
+}
+
+impl Slide {
+    /// (φ_u, (cos, sin) of φ_u, c, w): `u`'s angle and the line its origin runs on.
+    fn line(&self, poses: &[Pose]) -> (f64, (f64, f64), Vector, Vector) {
+        if self.u_is_slider {
+            let g = pz(poses, self.q1.body);
+            let phi = g.phi + self.angle;
+            let cs = compose((g.c, g.s), self.turn);
+            let w = g.rot(self.dir);
+            (phi, cs, glob(poses, self.q1) - rot(cs, self.point.local), w)
+        } else {
+            let s = pz(poses, self.point.body);
+            let phi = s.phi - self.angle;
+            let cs = compose((s.c, s.s), (self.turn.0, -self.turn.1));
+            let w = rot(cs, self.dir);
+            (phi, cs, glob(poses, self.point) - rot(cs, self.q1.local), w)
+        }
+    }
+}
+
+/// The middle prismatic joint of an RPR or RPP dyad: which of b1, b2 slides, its point and
+/// the line in their bodies' coordinates.
+#[derive(Debug, Clone, Copy)]
+struct Mid {
+    b1_is_slider: bool,
+    /// The sliding point, slider body coordinates.
+    p: Vector,
+    /// The line's first point, guide body coordinates.
+    q1: Vector,
+    /// The line's unit normal (perp of its direction), guide body coordinates.
+    n0: Vector,
+    /// φ_slider − φ_guide.
+    angle: f64,
+    /// Its cosine and sine.
+    turn: (f64, f64),
+}
+
+fn mid_of(mech: &Mechanism, j: usize, b1: usize) -> Option<Mid> {
+    let JointKind::Prismatic { point, q1, q2, angle } = mech.joints[j].kind else { return None };
+    let dir = q2.local - q1.local;
+    let n = dir.norm();
+    (n > 0.0).then(|| Mid {
+        b1_is_slider: point.body == Attach::Body(b1),
+        p: point.local,
+        q1: q1.local,
+        n0: perp(dir / n),
+        angle,
+        turn: (angle.cos(), angle.sin()),
+    })
+}
+
+/// The 6R triad: three links pinned to known bodies (pivots) and to a ternary body.
+#[derive(Debug, Clone)]
+struct TriadPlan {
+    centre: usize,
+    links: [usize; 3],
+    /// Each link's pivot (its point and the known anchor).
+    pivots: [Pin; 3],
+    /// Each link's pin on the ternary body, link coordinates.
+    pins: [Vector; 3],
+    /// The pins in the ternary body's coordinates.
+    corners: [Vector; 3],
+    /// R_i = |pin − pivot| on link i.
+    r: [f64; 3],
+    /// The triangle's sides l12, l23, l13.
+    sides: [f64; 3],
+    orientation: crate::solve::triad::Orientation,
+}
+
+fn triad_plan(mech: &Mechanism, g: &Group) -> Option<TriadPlan> {
+    let ([centre, l1, l2, l3], [p1, p2, p3, c1, c2, c3]) = (g.bodies.as_slice(), g.joints.as_slice()) else {
+        return None;
+    };
+    let links = [*l1, *l2, *l3];
+    let pivots = [pin_of(mech, *p1, *l1)?, pin_of(mech, *p2, *l2)?, pin_of(mech, *p3, *l3)?];
+    let pins = [pin_of(mech, *c1, *l1)?.local, pin_of(mech, *c2, *l2)?.local, pin_of(mech, *c3, *l3)?.local];
+    let corners =
+        [pin_of(mech, *c1, *centre)?.local, pin_of(mech, *c2, *centre)?.local, pin_of(mech, *c3, *centre)?.local];
+    let r = [0, 1, 2].map(|i| (pins[i] - pivots[i].local).norm());
+    let sides = [(corners[1] - corners[0]).norm(), (corners[2] - corners[1]).norm(), (corners[2] - corners[0]).norm()];
+    let tiny = DEGENERATE_REL * mech.length_scale;
+    if r.iter().chain(&sides).any(|&v| v <= tiny) {
+        return None;
+    }
+    let turn = cross(corners[1] - corners[0], corners[2] - corners[0]);
+    let orientation =
+        if turn > 0.0 { crate::solve::triad::Orientation::Ccw } else { crate::solve::triad::Orientation::Cw };
+    Some(TriadPlan { centre: *centre, links, pivots, pins, corners, r, sides, orientation })
+}
+
+/// The triad's position: every assembly mode by the degree-6 closed form of
+/// [`crate::solve::triad::modes_with`] (in the ternary body's own orientation), the one
+/// whose pins are nearest the predicted pins taken.
+fn solve_triad(s: &mut Solver, tp: &TriadPlan) -> Result<(), String> {
+    use crate::solve::triad::{Configuration, Triad, modes_with};
+    let o = tp.pivots.map(|p| crate::geom::Point::from(glob(&s.poses, p.known)));
+    let triad = Triad::new(o, tp.r, tp.sides[0], tp.sides[1], tp.sides[2]).map_err(|e| e.to_string())?;
+    let modes = modes_with(&triad, tp.orientation).map_err(|e| e.to_string())?;
+    let c = tp.centre;
+    let (sn, cs) = s.q[3 * c + 2].sin_cos();
+    let at = Vector::new(s.q[3 * c], s.q[3 * c + 1]);
+    let predicted = tp.corners.map(|k| at + rot((cs, sn), k));
+    let d = |m: &Configuration| (0..3).map(|i| (m.a[i].coords - predicted[i]).norm_squared()).sum::<f64>();
+    let best = modes
+        .iter()
+        .min_by(|a, b| d(a).total_cmp(&d(b)))
+        .ok_or_else(|| "the triangle fits none of the three circles' positions".to_string())?;
+    let a = best.a.map(|p| p.coords);
+    for i in 0..3 {
+        let b = tp.links[i];
+        let ko = o[i].coords;
+        let rc = rotation_between(tp.pins[i] - tp.pivots[i].local, a[i] - ko);
+        let phi = unwrap_near(rc, s.q[3 * b + 2]);
+        set_body(&mut s.q, &mut s.poses, b, ko - rot(rc, tp.pivots[i].local), phi, rc);
+    }
+    let rc = rotation_between(tp.corners[1] - tp.corners[0], a[1] - a[0]);
+    let phi = unwrap_near(rc, s.q[3 * c + 2]);
+    set_body(&mut s.q, &mut s.poses, c, a[0] - rot(rc, tp.corners[0]), phi, rc);
+    Ok(())
+}
+
+/// How one group's position is found.
+#[derive(Debug, Clone)]
+enum Position {
+    /// φ_u = φ_ref + sign·f; u pinned.
+    DrivenAngle {
+        u: usize,
+        pin: Pin,
+        reference: Attach,
+        sign: f64,
+        law: usize,
+    },
+    /// u on its slide at s = sign·f.
+    DrivenDistance {
+        u: usize,
+        slide: Slide,
+        sign: f64,
+        law: usize,
+    },
+    Rrr {
+        b1: usize,
+        b2: usize,
+        k1: Pin,
+        a1: Vector,
+        a2: Vector,
+        k3: Pin,
+        d1: f64,
+        d2: f64,
+    },
+    Rrp {
+        b1: usize,
+        b2: usize,
+        k1: Pin,
+        a1: Vector,
+        a2: Vector,
+        s3: Slide,
+        d1: f64,
+    },
+    Rpr {
+        b1: usize,
+        b2: usize,
+        k1: Pin,
+        mid: Mid,
+        k3: Pin,
+    },
+    Prp {
+        b1: usize,
+        b2: usize,
+        s1: Slide,
+        a1: Vector,
+        a2: Vector,
+        s3: Slide,
+    },
+    Rpp {
+        b1: usize,
+        b2: usize,
+        k1: Pin,
+        mid: Mid,
+        s3: Slide,
+    },
+    Triad(Box<TriadPlan>),
+    Newton,
+}
+
+/// One group compiled for solving.
+#[derive(Debug, Clone)]
+struct Plan {
+    group: Group,
+    description: String,
+    position: Position,
+    /// Indices into the solver's constraints, and the first row of each in the group block.
+    cons: Vec<(usize, usize)>,
+    /// Global rows (for scales and names).
+    rows: Vec<usize>,
+    /// 3 × bodies.
+    k: usize,
+    lu: Lu,
+    /// Right-hand sides and the known bodies' share Φq,known·q̈known.
+    rhs: Vec<f64>,
+    known_a: Vec<f64>,
+    gamma: Vec<f64>,
+    /// Smallest relative pivot of the last velocity factorisation.
+    pivot: f64,
+    /// Newton iterations of the last step (0 for a closed form).
+    iterations: usize,
+    /// The branch of a two-root dyad taken at the last step (+1, −1; 0 before the first).
+    side: f64,
+}
+
+impl Plan {
+    fn dyad(mech: &Mechanism, g: &Group) -> Option<Position> {
+        let GroupKind::Dyad(kind) = g.kind else { return None };
+        let ([b1, b2], [j1, j2, j3]) = (g.bodies.as_slice(), g.joints.as_slice()) else { return None };
+        let (b1, b2, j1, j2, j3) = (*b1, *b2, *j1, *j2, *j3);
+        let tiny = DEGENERATE_REL * mech.length_scale;
+        let inner = || -> Option<(Vector, Vector)> {
+            let a = pin_of(mech, j2, b1)?;
+            let b = pin_of(mech, j2, b2)?;
+            Some((a.local, b.local))
+        };
+        Some(match kind {
+            DyadKind::Rrr => {
+                let (k1, k3) = (pin_of(mech, j1, b1)?, pin_of(mech, j3, b2)?);
+                let (a1, a2) = inner()?;
+                let (d1, d2) = ((a1 - k1.local).norm(), (a2 - k3.local).norm());
+                if d1 <= tiny || d2 <= tiny {
+                    return None;
+                }
+                Position::Rrr { b1, b2, k1, a1, a2, k3, d1, d2 }
+            }
+            DyadKind::Rrp => {
+                let k1 = pin_of(mech, j1, b1)?;
+                let (a1, a2) = inner()?;
+                let d1 = (a1 - k1.local).norm();
+                if d1 <= tiny {
+                    return None;
+                }
+                Position::Rrp { b1, b2, k1, a1, a2, s3: slide_of(mech, j3, b2)?, d1 }
+            }
+            DyadKind::Rpr => Position::Rpr {
+                b1,
+                b2,
+                k1: pin_of(mech, j1, b1)?,
+                mid: mid_of(mech, j2, b1)?,
+                k3: pin_of(mech, j3, b2)?,
+            },
+            DyadKind::Prp => {
+                let (a1, a2) = inner()?;
+                Position::Prp { b1, b2, s1: slide_of(mech, j1, b1)?, a1, a2, s3: slide_of(mech, j3, b2)? }
+            }
+            DyadKind::Rpp => Position::Rpp {
+                b1,
+                b2,
+                k1: pin_of(mech, j1, b1)?,
+                mid: mid_of(mech, j2, b1)?,
+                s3: slide_of(mech, j3, b2)?,
+            },
+        })
+    }
+
+    fn new(mech: &Mechanism, g: Group, con_of_joint: &[usize], con_of_driver: &[usize], solver: &Solver) -> Plan {
+        let position = match g.kind {
+            GroupKind::Driven(DrivenKind::Angle) => {
+                let (u, j, d) = (g.bodies[0], g.joints[0], g.drivers[0]);
+                let pin = pin_of(mech, j, u);
+                let (reference, sign) = match mech.drivers[d].target {
+                    DriverTarget::JointAngle(_) => {
+                        // Φ = φ_b − φ_a − f across the joint ["a", "b"].
+                        let (a, b) = joint_bodies(mech, j);
+                        if b == Attach::Body(u) { (a, 1.0) } else { (b, -1.0) }
+                    }
+                    _ => (Attach::Ground, 1.0),
+                };
+                match pin {
+                    Some(pin) => Position::DrivenAngle { u, pin, reference, sign, law: d },
+                    None => Position::Newton,
+                }
+            }
+            GroupKind::Driven(DrivenKind::Distance) => {
+                let (u, j, d) = (g.bodies[0], g.joints[0], g.drivers[0]);
+                match slide_of(mech, j, u) {
+                    Some(slide) => {
+                        Position::DrivenDistance { u, slide, sign: if slide.u_is_slider { 1.0 } else { -1.0 }, law: d }
+                    }
+                    None => Position::Newton,
+                }
+            }
+            GroupKind::Dyad(_) => Plan::dyad(mech, &g).unwrap_or(Position::Newton),
+            GroupKind::Triad => triad_plan(mech, &g).map_or(Position::Newton, |t| Position::Triad(Box::new(t))),
+            GroupKind::General => Position::Newton,
+        };
+        let mut cons = Vec::new();
+        let mut row = 0;
+        let mut rows = Vec::new();
+        let mut ci: Vec<usize> = Vec::new();
+        for &j in &g.joints {
+            ci.push(con_of_joint[j]);
+            if matches!(mech.joints[j].kind, JointKind::Prismatic { .. }) {
+                ci.push(con_of_joint[j] + 1);
+            }
+        }
+        ci.extend(g.drivers.iter().map(|&d| con_of_driver[d]));
+        let first_row = |c: usize| solver.cons[..c].iter().map(Con::rows).sum::<usize>();
+        for c in ci {
+            cons.push((c, row));
+            let r0 = first_row(c);
+            for k in 0..solver.cons[c].rows() {
+                rows.push(r0 + k);
+            }
+            row += solver.cons[c].rows();
+        }
+        let k = 3 * g.bodies.len();
+        let description = g.describe(mech);
+        Plan {
+            group: g,
+            description,
+            position,
+            cons,
+            rows,
+            k,
+            lu: Lu::new(k),
+            rhs: vec![0.0; k],
+            known_a: vec![0.0; k],
+            gamma: vec![0.0; 2],
+            pivot: f64::INFINITY,
+            iterations: 0,
+            side: 0.0,
+        }
+    }
+
+    /// The group's constraint names, for messages.
+    fn constraint_names(&self, solver: &Solver) -> String {
+        let mut names: Vec<&str> = Vec::new();
+        for &r in &self.rows {
+            let n = solver.row_names[r].as_str();
+            if !names.contains(&n) {
+                names.push(n);
+            }
+        }
+        format!("{}: {}", self.description, names.join(", "))
+    }
+}
+
+/// Writes body `b`'s pose into q and the cached poses.
+fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
+    q[3 * b] = r.x;
+    q[3 * b + 1] = r.y;
+    q[3 * b + 2] = phi;
+    poses[b] = Pose { r, phi, c: cs.0, s: cs.1 };
+}
+
+/// A pose candidate of a dyad per body: (R, φ when known exactly, cos/sin of φ).
+type Candidate = [(Vector, Option<f64>, (f64, f64)); 2];
+
+/// The angle nearest `pred` with the rotation `cs`.
+fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
+    pred + wrap_pi(cs.1.atan2(cs.0) - pred)
+}
+
+/// The rotation taking unit-length direction `from` to `to` (both nonzero).
+fn rotation_between(from: Vector, to: Vector) -> (f64, f64) {
+    let (f, t) = (from / from.norm(), to / to.norm());
+    (f.dot(&t), cross(f, t))
+}
+
+/// The rotation taking `from` to `to` when |from|·|to| = `lengths` (known).
+fn rotation_scaled(from: Vector, to: Vector, lengths: f64) -> (f64, f64) {
+    (from.dot(&to) / lengths, cross(from, to) / lengths)
+}
+
+/// atan x = x − x³/3 + x⁵/5 − …, the first twelve terms (|x| ≤ 1/8: error < 1e-24).
+const ATAN_SERIES: [f64; 12] = [
+    1.0,
+    -1.0 / 3.0,
+    1.0 / 5.0,
+    -1.0 / 7.0,
+    1.0 / 9.0,
+    -1.0 / 11.0,
+    1.0 / 13.0,
+    -1.0 / 15.0,
+    1.0 / 17.0,
+    -1.0 / 19.0,
+    1.0 / 21.0,
+    -1.0 / 23.0,
+];
+
+/// The angle in (−π, π] from rotation `from` to rotation `to` (unit (cos, sin) pairs): a
+/// short series for the small turn of one time step, `atan2` for a larger one.
+fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
+    let c = to.0 * from.0 + to.1 * from.1;
+    let s = to.1 * from.0 - to.0 * from.1;
+    if c > 0.0 && s.abs() <= 0.125 * c {
+        let x = s / c;
+        let x2 = x * x;
+        x * ATAN_SERIES.iter().rev().fold(0.0, |acc, k| acc * x2 + k)
+    } else {
+        s.atan2(c)
+    }
+}
+
+/// Squared distance of a candidate from the predicted body origins in `q` (over `l`) and
+/// the bodies' rotations at the last step (`poses`, not yet overwritten: the chord between
+/// unit vectors, no trigonometry).
+fn distance(c: &Candidate, bodies: [usize; 2], q: &[f64], poses: &[Pose], l: f64) -> f64 {
+    let mut d = 0.0;
+    for (k, &b) in bodies.iter().enumerate() {
+        let (r, _, cs) = c[k];
+        let dx = (r.x - q[3 * b]) / l;
+        let dy = (r.y - q[3 * b + 1]) / l;
+        let (dc, ds) = (cs.0 - poses[b].c, cs.1 - poses[b].s);
+        d += dx * dx + dy * dy + dc * dc + ds * ds;
+    }
+    d
+}
+
+/// The Assur-group solver: the same outputs as [`Solver`] (a [`State`] per step, the same
+/// q layout), each group solved in closed form or by its own Newton iterations.
+#[derive(Debug, Clone)]
+pub struct AssurSolver {
+    /// The general solver: its compiled constraints, laws and buffers are shared, it
+    /// assembles the first position (the assembly mode) and factors Φq for the forces.
+    inner: Solver,
+    plans: Vec<Plan>,
+    /// q, q̇, q̈ of the step before (the positions-only predictor; the fallback at an
+    /// exact dead point).
+    q_prev: Vec<f64>,
+    qd_prev: Vec<f64>,
+    qdd_prev: Vec<f64>,
+    /// Whether q̇ and q̈ belong to the last step (the Taylor predictor may use them).
+    rates_valid: bool,
+    dt_prev: Option<f64>,
+    /// Newton group block and residual buffers.
+    work: Vec<f64>,
+}
+
+impl AssurSolver {
+    /// Decomposes and compiles the mechanism (degrees of freedom counted first, as
+    /// [`Solver::new`] does).
+    pub fn new(mech: Mechanism) -> Result<AssurSolver, LinkageError> {
+        let groups = decompose(&mech);
+        let inner = Solver::new(mech)?;
+        let mech = &inner.mech;
+        let (mut con_of_joint, mut con_of_driver) = (Vec::new(), Vec::new());
+        let mut c = 0;
+        for j in &mech.joints {
+            con_of_joint.push(c);
+            c += match j.kind {
+                JointKind::Revolute { .. } => 1,
+                JointKind::Prismatic { .. } => 2,
+            };
+        }
+        for _ in &mech.drivers {
+            con_of_driver.push(c);
+            c += 1;
+        }
+        let plans = groups.into_iter().map(|g| Plan::new(mech, g, &con_of_joint, &con_of_driver, &inner)).collect();
+        let n = inner.n;
+        let most = 3 * mech.bodies.len();
+        Ok(AssurSolver {
+            inner,
+            plans,
+            q_prev: vec![0.0; n],
+            qd_prev: vec![0.0; n],
+            qdd_prev: vec![0.0; n],
+            rates_valid: false,
+            dt_prev: None,
+            work: vec![0.0; most * most + 2 * most],
+        })
+    }
+
+    /// The groups in solving order.
+    pub fn groups(&self) -> impl Iterator<Item = &Group> {
+        self.plans.iter().map(|p| &p.group)
+    }
+
+    /// Whether every group is solved in closed form.
+    pub fn all_closed_form(&self) -> bool {
+        self.plans.iter().all(|p| !matches!(p.position, Position::Newton))
+    }
+
+    /// How each group is solved (a dyad whose closed form would divide by zero is left to
+    /// Newton, whatever its kind).
+    pub fn routes(&self) -> Vec<(&Group, Route)> {
+        self.plans
+            .iter()
+            .map(|p| (&p.group, if matches!(p.position, Position::Newton) { Route::Newton } else { Route::ClosedForm }))
+            .collect()
+    }
+
+    /// The mechanism.
+    pub fn mechanism(&self) -> &Mechanism {
+        &self.inner.mech
+    }
+
+    /// The general solver this one shares its model with (for the strokes' refinement and
+    /// the drag, which stay on Newton).
+    pub fn general(&self) -> &Solver {
+        &self.inner
+    }
+
+    /// Current coordinates.
+    pub fn q(&self) -> &[f64] {
+        &self.inner.q
+    }
+
+    /// The state after the last step.
+    pub fn state(&mut self) -> State {
+        self.inner.residual();
+        State {
+            t: self.inner.t.unwrap_or(0.0),
+            q: self.inner.q.clone(),
+            qd: self.inner.qd.clone(),
+            qdd: self.inner.qdd.clone(),
+            iterations: self.plans.iter().map(|p| p.iterations).max().unwrap_or(0),
+            residual: self.inner.residual_norm().0,
+            near_singular: self.inner.near.clone(),
+        }
+    }
+
+    /// Resumes from `state` (a state this route or the general one computed at this
+    /// mechanism): the next step starts from it, extrapolated with its rates, in its
+    /// assembly mode.
+    pub fn resume(&mut self, state: &State) {
+        let n = self.inner.n;
+        if state.q.len() != n || state.qd.len() != n || state.qdd.len() != n {
+            return;
+        }
+        self.inner.q.copy_from_slice(&state.q);
+        self.inner.qd.copy_from_slice(&state.qd);
+        self.inner.qdd.copy_from_slice(&state.qdd);
+        self.q_prev.copy_from_slice(&state.q);
+        super::fill_poses(&self.inner.q, &mut self.inner.poses);
+        self.inner.t = Some(state.t);
+        self.inner.near = state.near_singular.clone();
+        self.rates_valid = true;
+        self.dt_prev = None;
+    }
+
+    /// Solves at every time in `times` (positions, velocities, accelerations); the first
+    /// time is assembled in the general solver's assembly mode.
+    pub fn run(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
+        let mut out = Vec::with_capacity(times.len());
+        for &t in times {
+            self.step(t)?;
+            out.push(self.state());
+        }
+        Ok(out)
+    }
+
+    /// Positions only at every time in `times` (q per step; velocities and accelerations
+    /// are not computed).
+    pub fn run_positions(&mut self, times: &[f64]) -> Result<Vec<Vec<f64>>, LinkageError> {
+        let mut out = Vec::with_capacity(times.len());
+        for &t in times {
+            self.step_positions(t)?;
+            out.push(self.inner.q.clone());
+        }
+        Ok(out)
+    }
+
+    /// Solves at every time, with the forces at each: the groups' positions, then Φq of the
+    /// whole mechanism factored there for q̇, q̈ and the multipliers, as
+    /// [`Solver::run_kinetostatics`] does.
+    pub fn run_kinetostatics(
+        &mut self,
+        times: &[f64],
+        dynamics: &super::Dynamics,
+    ) -> Result<(Vec<State>, Vec<super::Forces>), LinkageError> {
+        let mut states = Vec::with_capacity(times.len());
+        let mut forces = Vec::with_capacity(times.len());
+        for &t in times {
+            self.step(t)?;
+            // The forces take q̇ and q̈ from the same factorisation as the multipliers (as
+            // the general solver does), so that the virtual-power balance closes to
+            // rounding even where every power is itself at rounding level.
+            self.inner.residual();
+            if !self.inner.factor() {
+                return Err(LinkageError::Singular {
+                    t,
+                    drivers: self.inner.driver_values(),
+                    constraints: self.plans.iter().map(|p| p.description.clone()).collect::<Vec<_>>().join("; "),
+                });
+            }
+            self.inner.kinematics();
+            forces.push(self.inner.forces(dynamics)?);
+            states.push(self.state());
+        }
+        Ok((states, forces))
+    }
+
+    /// The first position: the general solver assembles from the scene's placement (its
+    /// assembly mode is the prediction every group's root is chosen by).
+    fn first(&mut self, t: f64) -> Result<(), LinkageError> {
+        match self.inner.assemble(t) {
+            Ok(_) => Ok(()),
+            Err(e) => {
+                // Name the group that cannot be assembled, when a closed form can tell.
+                let mech = self.inner.mech.clone();
+                for (i, b) in mech.bodies.iter().enumerate() {
+                    self.inner.q[3 * i] = b.at.x;
+                    self.inner.q[3 * i + 1] = b.at.y;
+                    self.inner.q[3 * i + 2] = b.angle;
+                }
+                super::fill_poses(&self.inner.q, &mut self.inner.poses);
+                self.inner.eval_laws(t)?;
+                self.positions(t)?;
+                Err(e)
+            }
+        }
+    }
+
+    /// Positions, velocities and accelerations at `t`.
+    pub fn step(&mut self, t: f64) -> Result<(), LinkageError> {
+        self.advance(t, true)
+    }
+
+    /// Positions only at `t` (q̇ and q̈ are left as they were, and not used to predict).
+    pub fn step_positions(&mut self, t: f64) -> Result<(), LinkageError> {
+        self.advance(t, false)
+    }
+
+    fn advance(&mut self, t: f64, rates: bool) -> Result<(), LinkageError> {
+        let Some(t0) = self.inner.t else {
+            self.first(t)?;
+            return self.finish(t, None, rates);
+        };
+        self.inner.eval_laws(t)?;
+        let dt = t - t0;
+        let had_rates = self.rates_valid;
+        self.predict(dt);
+        match self.finish(t, Some(dt), rates) {
+            Err(singular @ LinkageError::Singular { .. }) if rates && had_rates => {
+                // A step exactly on a dead point: the closed forms land on it, where a
+                // group's rates do not exist. The general solver's step from the last
+                // position lands within its tolerance of it and reports it as it always
+                // has (near-singular, solved; or singular).
+                let s = &mut self.inner;
+                s.q.copy_from_slice(&self.q_prev);
+                s.qd.copy_from_slice(&self.qd_prev);
+                s.qdd.copy_from_slice(&self.qdd_prev);
+                s.dt_prev = None;
+                s.t = Some(t0);
+                let iterations = match s.step(t) {
+                    Ok(it) => it,
+                    // Singular there too: the group names the dead point.
+                    Err(LinkageError::Singular { .. }) => return Err(singular),
+                    Err(e) => return Err(e),
+                };
+                for p in &mut self.plans {
+                    p.iterations = iterations;
+                }
+                self.rates_valid = true;
+                self.dt_prev = Some(dt);
+                Ok(())
+            }
+            other => other,
+        }
+    }
+
+    /// The predicted q: the last q extrapolated with q̇·Δt + ½·q̈·Δt² when the rates
+    /// belong to it, else linearly from the last two positions (q_prev keeps the last q).
+    fn predict(&mut self, dt: f64) {
+        let s = &mut self.inner;
+        let linear = self.dt_prev.filter(|d| *d != 0.0).map(|d| dt / d);
+        self.qd_prev.copy_from_slice(&s.qd);
+        self.qdd_prev.copy_from_slice(&s.qdd);
+        for k in 0..s.n {
+            let now = s.q[k];
+            s.q[k] = if self.rates_valid {
+                now + s.qd[k] * dt + 0.5 * s.qdd[k] * dt * dt
+            } else if let Some(f) = linear {
+                now + (now - self.q_prev[k]) * f
+            } else {
+                now
+            };
+            self.q_prev[k] = now;
+        }
+    }
+
+    /// Solves every group at `t` from the predicted q (laws evaluated), then the rates.
+    fn finish(&mut self, t: f64, dt: Option<f64>, rates: bool) -> Result<(), LinkageError> {
+        self.positions(t)?;
+        if rates {
+            self.rates(t)?;
+        }
+        self.rates_valid = rates;
+        if dt.is_some() {
+            self.dt_prev = dt;
+        }
+        self.inner.t = Some(t);
+        Ok(())
+    }
+
+    /// Every group's position, in order.
+    fn positions(&mut self, t: f64) -> Result<(), LinkageError> {
+        let l = self.inner.mech.length_scale;
+        // How far a closure may miss and still count as met: the residual every answer
+        // must meet (the general solver accepts the same).
+        let slack = crate::geom::tol::RESIDUAL_REL * l;
+        for gi in 0..self.plans.len() {
+            let s = &mut self.inner;
+            let plan = &mut self.plans[gi];
+            plan.iterations = 0;
+            let fail = |joint: usize, why: String, s: &Solver, plan: &Plan| LinkageError::GroupCannotAssemble {
+                group: plan.description.clone(),
+                joint: s.mech.joints[joint].name.clone(),
+                t,
+                why: format!("{}: {why}", s.driver_values()),
+            };
+            match plan.position {
+                Position::DrivenAngle { u, pin, reference, sign, law, .. } => {
+                    let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
+                    let cs = (phi.cos(), phi.sin());
+                    let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
+                    set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
+                }
+                Position::DrivenDistance { u, slide, sign, law } => {
+                    let (phi, cs, c, w) = slide.line(&s.poses);
+                    set_body(&mut s.q, &mut s.poses, u, c + w * (sign * s.laws[law].0), phi, cs);
+                }
+                Position::Rrr { b1, b2, k1, a1, a2, k3, d1, d2 } => {
+                    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+                    let dv = p3 - p1;
+                    let d = dv.norm();
+                    let a = (d * d + d1 * d1 - d2 * d2) / (2.0 * d);
+                    let h2 = d1 * d1 - a * a;
+                    // A miss within the residual tolerance is a tangency (a dead point).
+                    let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
+                    if !(h2 >= 0.0 && d > 0.0) {
+                        let j2 = plan.group.joints[1];
+                        let why = format!(
+                            "the circles about `{}` and `{}` do not meet: centres {:.6} apart, radii {:.6} and {:.6}",
+                            s.mech.joints[plan.group.joints[0]].name,
+                            s.mech.joints[plan.group.joints[2]].name,
+                            d,
+                            d1,
+                            d2
+                        );
+                        return Err(fail(j2, why, s, plan));
+                    }
+                    let e = dv / d;
+                    let h = h2.sqrt();
+                    let mut roots = [(0.0, NO_CANDIDATE); 2];
+                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
+                        let j = p1 + e * a + perp(e) * (side * h);
+                        // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
+                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
+                        let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
+                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
+                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
+                    }
+                    let k = choose(&roots, &mut plan.side);
+                    apply(s, [b1, b2], roots[k].1);
+                }
+                Position::Rrp { b1, b2, k1, a1, a2, s3, d1 } => {
+                    let p1 = glob(&s.poses, k1.known);
+                    let (phi2, cs2, c, w) = s3.line(&s.poses);
+                    let base = c + rot(cs2, a2);
+                    let e = base - p1;
+                    let b = e.dot(&w);
+                    let disc = b * b - e.norm_squared() + d1 * d1;
+                    let disc = if disc < 0.0 && disc >= -2.0 * d1 * slack { 0.0 } else { disc };
+                    if disc.is_nan() || disc < 0.0 {
+                        let why = format!(
+                            "the circle of radius {:.6} about `{}` does not reach the line of `{}`",
+                            d1, s.mech.joints[plan.group.joints[0]].name, s.mech.joints[plan.group.joints[2]].name
+                        );
+                        return Err(fail(plan.group.joints[1], why, s, plan));
+                    }
+                    let root = disc.sqrt();
+                    let mut roots = [(0.0, NO_CANDIDATE); 2];
+                    for (k, sv) in [-b + root, -b - root].into_iter().enumerate() {
+                        let j = base + w * sv;
+                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
+                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (c + w * sv, Some(phi2), cs2)];
+                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
+                    }
+                    let k = choose(&roots, &mut plan.side);
+                    apply(s, [b1, b2], roots[k].1);
+                }
+                Position::Rpr { b1, b2, k1, mid, k3 } => {
+                    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+                    // Slider S, guide G: rot(φ_G)·n0 · (K_S − K_G) = −n0 · (rot(α)(p − k_S) − (q1 − k_G)).
+                    let (ks, kg, pks, qkg) = if mid.b1_is_slider {
+                        (p1, p3, mid.p - k1.local, mid.q1 - k3.local)
+                    } else {
+                        (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
+                    };
+                    let ca = (mid.angle.cos(), mid.angle.sin());
+                    let c0 = mid.n0.dot(&(rot(ca, pks) - qkg));
+                    let dv = ks - kg;
+                    let d = dv.norm();
+                    if !(d > 0.0 && c0.abs() <= d + slack) {
+                        let why = format!(
+                            "the line of `{}` passes {:.6} from the pivot of the other body, which is {:.6} away",
+                            s.mech.joints[plan.group.joints[1]].name,
+                            c0.abs(),
+                            d
+                        );
+                        return Err(fail(plan.group.joints[1], why, s, plan));
+                    }
+                    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors.
+                    let dh = dv / d;
+                    let x = (-c0 / d).clamp(-1.0, 1.0);
+                    let y = (1.0 - x * x).max(0.0).sqrt();
+                    let mut roots = [(0.0, NO_CANDIDATE); 2];
+                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
+                        let ng = dh * x + perp(dh) * (side * y);
+                        let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
+                        let cs = compose(cg, mid.turn);
+                        let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
+                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
+                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
+                    }
+                    let k = choose(&roots, &mut plan.side);
+                    apply(s, [b1, b2], roots[k].1);
+                }
+                Position::Prp { b1, b2, s1, a1, a2, s3 } => {
+                    let (phi1, cs1, c1, w1) = s1.line(&s.poses);
+                    let (phi2, cs2, c3, w3) = s3.line(&s.poses);
+                    let e = (c3 + rot(cs2, a2)) - (c1 + rot(cs1, a1));
+                    // s1·w1 − s3·w3 = e.
+                    let det = cross(w1, -w3);
+                    if det.abs() <= DEGENERATE_REL {
+                        let why = format!(
+                            "the guides of `{}` and `{}` are parallel",
+                            s.mech.joints[plan.group.joints[0]].name, s.mech.joints[plan.group.joints[2]].name
+                        );
+                        return Err(fail(plan.group.joints[1], why, s, plan));
+                    }
+                    let sv1 = cross(e, -w3) / det;
+                    let sv3 = cross(w1, e) / det;
+                    set_body(&mut s.q, &mut s.poses, b1, c1 + w1 * sv1, phi1, cs1);
+                    set_body(&mut s.q, &mut s.poses, b2, c3 + w3 * sv3, phi2, cs2);
+                }
+                Position::Rpp { b1, b2, k1, mid, s3 } => {
+                    let (phi2, cs2, c, w) = s3.line(&s.poses);
+                    let (phi1, cs1) = if mid.b1_is_slider {
+                        (phi2 + mid.angle, compose(cs2, mid.turn))
+                    } else {
+                        (phi2 - mid.angle, compose(cs2, (mid.turn.0, -mid.turn.1)))
+                    };
+                    let p1 = glob(&s.poses, k1.known);
+                    let r1 = p1 - rot(cs1, k1.local);
+                    set_body(&mut s.q, &mut s.poses, b1, r1, phi1, cs1);
+                    // n_G·(P − Q1) = 0 with b2's origin c + s·w.
+                    let (num, den) = if mid.b1_is_slider {
+                        let n = rot(cs2, mid.n0);
+                        let p = r1 + rot(cs1, mid.p);
+                        (n.dot(&(p - c - rot(cs2, mid.q1))), n.dot(&w))
+                    } else {
+                        let n = rot(cs1, mid.n0);
+                        let q1 = r1 + rot(cs1, mid.q1);
+                        (-n.dot(&(c + rot(cs2, mid.p) - q1)), n.dot(&w))
+                    };
+                    if den.abs() <= DEGENERATE_REL {
+                        let why = format!(
+                            "the line of `{}` runs along the guide of `{}`",
+                            s.mech.joints[plan.group.joints[1]].name, s.mech.joints[plan.group.joints[2]].name
+                        );
+                        return Err(fail(plan.group.joints[1], why, s, plan));
+                    }
+                    set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
+                }
+                Position::Triad(ref tp) => {
+                    if let Err(why) = solve_triad(s, tp) {
+                        return Err(fail(plan.group.joints[3], why, s, plan));
+                    }
+                }
+                Position::Newton => {
+                    newton(s, plan, &mut self.work, t)?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Every group's velocities and accelerations, in order (positions solved).
+    fn rates(&mut self, t: f64) -> Result<(), LinkageError> {
+        let mut worst: Option<(f64, usize)> = None;
+        for gi in 0..self.plans.len() {
+            let s = &mut self.inner;
+            let plan = &mut self.plans[gi];
+            if let Some(rho) = closed_rates(s, &plan.position) {
+                if rho.is_nan() || rho <= super::SINGULAR_PIVOT_REL {
+                    return Err(LinkageError::Singular {
+                        t,
+                        drivers: s.driver_values(),
+                        constraints: plan.constraint_names(s),
+                    });
+                }
+                plan.pivot = rho;
+                if worst.is_none_or(|(p, _)| rho < p) {
+                    worst = Some((rho, gi));
+                }
+                continue;
+            }
+            let k = plan.k;
+            // Block Φq,group (equilibrated) and the known bodies' shares.
+            let bodies = &plan.group.bodies;
+            let a = &mut plan.lu.a;
+            a.iter_mut().for_each(|v| *v = 0.0);
+            plan.rhs.iter_mut().for_each(|v| *v = 0.0);
+            plan.known_a.iter_mut().for_each(|v| *v = 0.0);
+            for &(c, r0) in &plan.cons {
+                let con = &s.cons[c];
+                plan.rhs[r0] = con_rate(con, &s.laws);
+                let (qd, qdd) = (&s.qd, &s.qdd);
+                let (rhs, known_a) = (&mut plan.rhs, &mut plan.known_a);
+                con_jacobian(con, &s.poses, |row, at, dx, dy, dphi| {
+                    let Attach::Body(b) = at else { return };
+                    let r = r0 + row;
+                    match bodies.iter().position(|&x| x == b) {
+                        Some(gb) => {
+                            a[r * k + 3 * gb] += dx;
+                            a[r * k + 3 * gb + 1] += dy;
+                            a[r * k + 3 * gb + 2] += dphi;
+                        }
+                        None => {
+                            rhs[r] -= dx * qd[3 * b] + dy * qd[3 * b + 1] + dphi * qd[3 * b + 2];
+                            known_a[r] += dx * qdd[3 * b] + dy * qdd[3 * b + 1] + dphi * qdd[3 * b + 2];
+                        }
+                    }
+                });
+            }
+            let l = s.mech.length_scale;
+            let mut norm: f64 = 0.0;
+            for (r, &gr) in plan.rows.iter().enumerate() {
+                let ir = 1.0 / s.row_scale[gr];
+                let mut sum = 0.0;
+                for c in 0..k {
+                    let cs = if c % 3 == 2 { 1.0 } else { l };
+                    a[r * k + c] *= cs * ir;
+                    sum += a[r * k + c].abs();
+                }
+                norm = norm.max(sum);
+            }
+            if !plan.lu.factor(norm) {
+                return Err(LinkageError::Singular {
+                    t,
+                    drivers: s.driver_values(),
+                    constraints: plan.constraint_names(s),
+                });
+            }
+            plan.pivot = plan.lu.min_pivot_rel;
+            if worst.is_none_or(|(p, _)| plan.pivot < p) {
+                worst = Some((plan.pivot, gi));
+            }
+            // Velocities.
+            for (r, &gr) in plan.rows.iter().enumerate() {
+                plan.rhs[r] /= s.row_scale[gr];
+            }
+            plan.lu.solve(&mut plan.rhs);
+            for (gb, &b) in bodies.iter().enumerate() {
+                s.qd[3 * b] = plan.rhs[3 * gb] * l;
+                s.qd[3 * b + 1] = plan.rhs[3 * gb + 1] * l;
+                s.qd[3 * b + 2] = plan.rhs[3 * gb + 2];
+            }
+            // Accelerations: Φq,group·q̈group = γ − Φq,known·q̈known.
+            for &(c, r0) in &plan.cons {
+                let con = &s.cons[c];
+                let rows = con.rows();
+                con_gamma(con, &s.poses, &s.qd, &s.laws, &mut plan.gamma[..rows]);
+                for m in 0..rows {
+                    plan.rhs[r0 + m] = plan.gamma[m] - plan.known_a[r0 + m];
+                }
+            }
+            for (r, &gr) in plan.rows.iter().enumerate() {
+                plan.rhs[r] /= s.row_scale[gr];
+            }
+            plan.lu.solve(&mut plan.rhs);
+            for (gb, &b) in bodies.iter().enumerate() {
+                s.qdd[3 * b] = plan.rhs[3 * gb] * l;
+                s.qdd[3 * b + 1] = plan.rhs[3 * gb + 1] * l;
+                s.qdd[3 * b + 2] = plan.rhs[3 * gb + 2];
+            }
+        }
+        self.inner.near = match worst {
+            Some((pivot, gi)) if pivot < NEAR_SINGULAR_PIVOT_REL => Some(NearSingular {
+                t,
+                pivot,
+                drivers: self.inner.driver_values(),
+                constraints: self.plans[gi].constraint_names(&self.inner),
+            }),
+            _ => None,
+        };
+        Ok(())
+    }
+}
+
+/// Velocity and acceleration of the global point `p` carried by body `a` (zero on the
+/// ground), from the body's q̇, q̈.
+fn point_rates(s: &Solver, a: Attach, p: Vector) -> (Vector, Vector) {
+    let Attach::Body(b) = a else { return (Vector::zeros(), Vector::zeros()) };
+    let r = p - Vector::new(s.q[3 * b], s.q[3 * b + 1]);
+    let (w, e) = (s.qd[3 * b + 2], s.qdd[3 * b + 2]);
+    (
+        Vector::new(s.qd[3 * b], s.qd[3 * b + 1]) + perp(r) * w,
+        Vector::new(s.qdd[3 * b], s.qdd[3 * b + 1]) + perp(r) * e - r * (w * w),
+    )
+}
+
+/// ω and ε of body `a` (zero for the ground).
+fn spin(s: &Solver, a: Attach) -> (f64, f64) {
+    match a {
+        Attach::Ground => (0.0, 0.0),
+        Attach::Body(b) => (s.qd[3 * b + 2], s.qdd[3 * b + 2]),
+    }
+}
+
+/// Sets body `b`'s q̇, q̈ from its point `p` (global) with velocity `vp`, acceleration
+/// `ap`, and its ω, ε.
+fn set_rates(s: &mut Solver, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
+    let r = Vector::new(s.q[3 * b], s.q[3 * b + 1]) - p;
+    let v = vp + perp(r) * w;
+    let a = ap + perp(r) * e - r * (w * w);
+    s.qd[3 * b] = v.x;
+    s.qd[3 * b + 1] = v.y;
+    s.qd[3 * b + 2] = w;
+    s.qdd[3 * b] = a.x;
+    s.qdd[3 * b + 1] = a.y;
+    s.qdd[3 * b + 2] = e;
+}
+
+/// A prismatic joint between an unknown body u and a known one, at the current poses: the
+/// global point `p` where the sliding point is, the line's unit direction `w` (global),
+/// ω and ε (u's, locked to the known body's), σ = +1 when u slides on the known body's
+/// line and −1 when u carries the line, and the velocity `v0` and acceleration `a0` of
+/// u's material point at `p` less its sliding terms: that point moves at
+/// v0 + σ·ṡ·w and a0 + σ·(2ω·ṡ⊥w + s̈·w), ṡ the sliding speed.
+struct SlideFrame {
+    p: Vector,
+    w: Vector,
+    sigma: f64,
+    omega: f64,
+    eps: f64,
+    v0: Vector,
+    a0: Vector,
+}
+
+impl SlideFrame {
+    /// Velocity and acceleration of u's material point at `p` for sliding speed `sd` and
+    /// acceleration `sdd`.
+    fn point_rates(&self, sd: f64, sdd: f64) -> (Vector, Vector) {
+        (
+            self.v0 + self.w * (self.sigma * sd),
+            self.a0 + (perp(self.w) * (2.0 * self.omega * sd) + self.w * sdd) * self.sigma,
+        )
+    }
+}
+
+fn slide_frame(s: &Solver, sl: &Slide, u: usize) -> SlideFrame {
+    if sl.u_is_slider {
+        let g = sl.q1.body;
+        let (omega, eps) = spin(s, g);
+        let p = glob(&s.poses, Anchor { body: Attach::Body(u), local: sl.point.local });
+        let (v0, a0) = point_rates(s, g, p);
+        SlideFrame { p, w: pz(&s.poses, g).rot(sl.dir), sigma: 1.0, omega, eps, v0, a0 }
+    } else {
+        let (omega, eps) = spin(s, sl.point.body);
+        let p = glob(&s.poses, sl.point);
+        let (v0, a0) = point_rates(s, sl.point.body, p);
+        SlideFrame { p, w: pz(&s.poses, Attach::Body(u)).rot(sl.dir), sigma: -1.0, omega, eps, v0, a0 }
+    }
+}
+
+/// x·c1 + y·c2 = r by Cramer's rule, with ρ = |det| / (|c1|·|c2|) (the sine of the angle
+/// between the columns: 0 at a dead point).
+fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
+    let det = cross(c1, c2);
+    let rho = det.abs() / (c1.norm() * c2.norm());
+    (cross(r, c2) / det, cross(c1, r) / det, rho)
+}
+
+/// Velocities and accelerations of a group from its differentiated closures (a 2×2 solve
+/// for a dyad), for the kinds that have them; `None` for the others (the group's block
+/// of Φq is solved instead). Returns ρ, the conditioning of the 2×2 (1 for a driven body).
+fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
+    match *position {
+        Position::DrivenAngle { u, pin, reference, sign, law } => {
+            let (wr, er) = spin(s, reference);
+            let (_, d1, d2) = s.laws[law];
+            let k = glob(&s.poses, pin.known);
+            let rk = point_rates(s, pin.known.body, k);
+            set_rates(s, u, k, rk, wr + sign * d1, er + sign * d2);
+            Some(1.0)
+        }
+        Position::Rrr { b1, b2, k1, a1, k3, .. } => {
+            let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
+            let (r1k, r3k) = (point_rates(s, k1.known.body, p1), point_rates(s, k3.known.body, p3));
+            let (r1, r2) = (j - p1, j - p3);
+            // v_K1 + ω1⊥r1 = v_K3 + ω2⊥r2, and its derivative.
+            let (w1, w2, rho) = solve2(perp(r1), -perp(r2), r3k.0 - r1k.0);
+            let rhs = r3k.1 - r1k.1 + r1 * (w1 * w1) - r2 * (w2 * w2);
+            let (e1, e2, _) = solve2(perp(r1), -perp(r2), rhs);
+            set_rates(s, b1, p1, r1k, w1, e1);
+            set_rates(s, b2, p3, r3k, w2, e2);
+            Some(rho)
+        }
+        Position::DrivenDistance { u, slide, law, .. } => {
+            let f = slide_frame(s, &slide, u);
+            let (_, d1, d2) = s.laws[law];
+            let rp = f.point_rates(d1, d2);
+            set_rates(s, u, f.p, rp, f.omega, f.eps);
+            Some(1.0)
+        }
+        Position::Rrp { b1, b2, k1, a1, s3, .. } => {
+            let f = slide_frame(s, &s3, b2);
+            let k = glob(&s.poses, k1.known);
+            let rk = point_rates(s, k1.known.body, k);
+            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
+            let (r1, d) = (j - k, j - f.p);
+            let (w, e) = (f.omega, f.eps);
+            // v_K + ω1⊥r1 = v0 + σ·ṡ·u + ω⊥d (b2 turns with its known body), and its derivative.
+            let (w1, sd, rho) = solve2(perp(r1), -f.w * f.sigma, f.v0 + perp(d) * w - rk.0);
+            let (_, a_slide) = f.point_rates(sd, 0.0);
+            let rhs = a_slide + perp(d) * e - d * (w * w) - rk.1 + r1 * (w1 * w1);
+            let (e1, sdd, _) = solve2(perp(r1), -f.w * f.sigma, rhs);
+            set_rates(s, b1, k, rk, w1, e1);
+            let rp = f.point_rates(sd, sdd);
+            set_rates(s, b2, f.p, rp, w, e);
+            Some(rho)
+        }
+        Position::Prp { b1, b2, a1, s1, s3, .. } => {
+            let (f1, f3) = (slide_frame(s, &s1, b1), slide_frame(s, &s3, b2));
+            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
+            let (d1, d3) = (j - f1.p, j - f3.p);
+            let (c1, c3) = (f1.w * f1.sigma, -f3.w * f3.sigma);
+            // v0₁ + σ₁ṡ₁u₁ + ω₁⊥d₁ = v0₃ + σ₃ṡ₃u₃ + ω₃⊥d₃, and its derivative.
+            let rhs = f3.v0 + perp(d3) * f3.omega - f1.v0 - perp(d1) * f1.omega;
+            let (sd1, sd3, rho) = solve2(c1, c3, rhs);
+            let (_, a1b) = f1.point_rates(sd1, 0.0);
+            let (_, a3b) = f3.point_rates(sd3, 0.0);
+            let rhs = a3b + perp(d3) * f3.eps
+                - d3 * (f3.omega * f3.omega)
+                - (a1b + perp(d1) * f1.eps - d1 * (f1.omega * f1.omega));
+            let (sdd1, sdd3, _) = solve2(c1, c3, rhs);
+            let rp1 = f1.point_rates(sd1, sdd1);
+            set_rates(s, b1, f1.p, rp1, f1.omega, f1.eps);
+            let rp3 = f3.point_rates(sd3, sdd3);
+            set_rates(s, b2, f3.p, rp3, f3.omega, f3.eps);
+            Some(rho)
+        }
+        Position::Rpp { b1, b2, k1, mid, s3 } => {
+            // Both bodies turn with the known body of the guide: ω, ε known; b1 is pinned.
+            let f = slide_frame(s, &s3, b2);
+            let (w, e) = (f.omega, f.eps);
+            let k = glob(&s.poses, k1.known);
+            let rk = point_rates(s, k1.known.body, k);
+            let (slider, guide, tau) = if mid.b1_is_slider { (b1, b2, 1.0) } else { (b2, b1, -1.0) };
+            let pm = glob(&s.poses, Anchor { body: Attach::Body(slider), local: mid.p });
+            let wm = pz(&s.poses, Attach::Body(guide)).rot(-perp(mid.n0));
+            let (rm1, rm3) = (pm - k, pm - f.p);
+            let v1 = rk.0 + perp(rm1) * w;
+            let a1 = rk.1 + perp(rm1) * e - rm1 * (w * w);
+            // v1(Pm) − v2(Pm) = τ·ṡm·um with v2(Pm) = v0 + σ·ṡ·u + ω⊥(Pm − P).
+            let (c3, cm) = (f.w * f.sigma, wm * tau);
+            let (sd, sdm, rho) = solve2(c3, cm, v1 - f.v0 - perp(rm3) * w);
+            let (_, a_slide) = f.point_rates(sd, 0.0);
+            let rhs = a1 - a_slide - perp(rm3) * e + rm3 * (w * w) - perp(wm) * (tau * 2.0 * w * sdm);
+            let (sdd, _, _) = solve2(c3, cm, rhs);
+            set_rates(s, b1, k, rk, w, e);
+            let rp = f.point_rates(sd, sdd);
+            set_rates(s, b2, f.p, rp, w, e);
+            Some(rho)
+        }
+        Position::Rpr { b1, b2, k1, mid, k3 } => {
+            let (ks, kg, sb, gb) = if mid.b1_is_slider { (k1, k3, b1, b2) } else { (k3, k1, b2, b1) };
+            let (ps, pg) = (glob(&s.poses, ks.known), glob(&s.poses, kg.known));
+            let (rs, rg) = (point_rates(s, ks.known.body, ps), point_rates(s, kg.known.body, pg));
+            let dir = pz(&s.poses, Attach::Body(gb)).rot(-perp(mid.n0));
+            let dk = pg - ps;
+            // Slider and guide turn together about their pivots; P slides along the guide.
+            let (w, sd, rho) = solve2(perp(dk), -dir, rg.0 - rs.0);
+            let rhs = rg.1 - rs.1 + dk * (w * w) + perp(dir) * (2.0 * w * sd);
+            let (e, _, _) = solve2(perp(dk), -dir, rhs);
+            set_rates(s, sb, ps, rs, w, e);
+            set_rates(s, gb, pg, rg, w, e);
+            Some(rho)
+        }
+        _ => None,
+    }
+}
+
+/// An unused candidate slot.
+const NO_CANDIDATE: Candidate = [(Vector::new(0.0, 0.0), None, (1.0, 0.0)); 2];
+
+/// Which of a dyad's two roots (first: the `+` branch of its formula, second: the `−`)
+/// continues the motion: the one nearest the prediction when it is clearly the nearer
+/// (its squared distance under 1/16 of the other's), else the branch taken at the last
+/// step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps between
+/// dead points — so that a time step too coarse for the prediction keeps the mode.
+fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
+    let (d0, d1) = (roots[0].0, roots[1].0);
+    let k = if d0 <= d1 / 16.0 {
+        0
+    } else if d1 <= d0 / 16.0 {
+        1
+    } else if *side > 0.0 {
+        0
+    } else if *side < 0.0 {
+        1
+    } else {
+        usize::from(d1 < d0)
+    };
+    *side = if k == 0 { 1.0 } else { -1.0 };
+    k
+}
+
+/// Writes the chosen candidate, its angles continued from the last step.
+fn apply(s: &mut Solver, bodies: [usize; 2], cand: Candidate) {
+    for (k, &b) in bodies.iter().enumerate() {
+        let (r, phi, cs) = cand[k];
+        // Continuous angles: the last one (still in the cached pose) plus this step's turn.
+        let last = s.poses[b];
+        let phi = phi.unwrap_or_else(|| last.phi + turn_between((last.c, last.s), cs));
+        set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
+    }
+}
+
+/// Newton–Raphson on one group's coordinates from the predicted q (the known bodies fixed).
+fn newton(s: &mut Solver, plan: &mut Plan, work: &mut [f64], t: f64) -> Result<(), LinkageError> {
+    let k = plan.k;
+    let l = s.mech.length_scale;
+    let (a, rest) = work.split_at_mut(k * k);
+    let (phi, _) = rest.split_at_mut(k);
+    let refresh = |s: &mut Solver, bodies: &[usize]| {
+        for &b in bodies {
+            let (sn, cs) = s.q[3 * b + 2].sin_cos();
+            s.poses[b] = Pose { r: Vector::new(s.q[3 * b], s.q[3 * b + 1]), phi: s.q[3 * b + 2], c: cs, s: sn };
+        }
+    };
+    refresh(s, &plan.group.bodies);
+    let mut iterations = 0;
+    loop {
+        let mut res: f64 = 0.0;
+        let mut worst = 0;
+        for &(c, r0) in &plan.cons {
+            let con = &s.cons[c];
+            con_residual(con, &s.poses, &s.laws, &mut phi[r0..r0 + con.rows()]);
+        }
+        for (r, &gr) in plan.rows.iter().enumerate() {
+            let v = (phi[r] / s.row_scale[gr]).abs();
+            if v > res || v.is_nan() {
+                res = v;
+                worst = gr;
+            }
+        }
+        if res <= s.newton_tol {
+            break;
+        }
+        if iterations >= MAX_NEWTON_ITERATIONS || !res.is_finite() {
+            if res <= crate::geom::tol::RESIDUAL_REL {
+                break;
+            }
+            return Err(LinkageError::NoConvergence {
+                t,
+                iterations,
+                residual: res,
+                worst: s.row_names[worst].clone(),
+            });
+        }
+        a.iter_mut().for_each(|v| *v = 0.0);
+        let bodies = &plan.group.bodies;
+        for &(c, r0) in &plan.cons {
+            con_jacobian(&s.cons[c], &s.poses, |row, at, dx, dy, dphi| {
+                let Attach::Body(b) = at else { return };
+                if let Some(gb) = bodies.iter().position(|&x| x == b) {
+                    let r = r0 + row;
+                    a[r * k + 3 * gb] += dx;
+                    a[r * k + 3 * gb + 1] += dy;
+                    a[r * k + 3 * gb + 2] += dphi;
+                }
+            });
+        }
+        let mut norm: f64 = 0.0;
+        for (r, &gr) in plan.rows.iter().enumerate() {
+            let ir = 1.0 / s.row_scale[gr];
+            let mut sum = 0.0;
+            for c in 0..k {
+                let cs = if c % 3 == 2 { 1.0 } else { l };
+                a[r * k + c] *= cs * ir;
+                sum += a[r * k + c].abs();
+            }
+            norm = norm.max(sum);
+            plan.rhs[r] = -phi[r] * ir;
+        }
+        plan.lu.a.copy_from_slice(a);
+        if !plan.lu.factor(norm) {
+            return Err(LinkageError::Singular {
+                t,
+                drivers: s.driver_values(),
+                constraints: plan.constraint_names(s),
+            });
+        }
+        plan.lu.solve(&mut plan.rhs);
+        for (gb, &b) in bodies.iter().enumerate() {
+            s.q[3 * b] += plan.rhs[3 * gb] * l;
+            s.q[3 * b + 1] += plan.rhs[3 * gb + 1] * l;
+            s.q[3 * b + 2] += plan.rhs[3 * gb + 2];
+        }
+        refresh(s, &plan.group.bodies);
+        iterations += 1;
+    }
+    plan.iterations = iterations;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::{Body, Driver, Joint};
+    use super::*;
+    use crate::geom::Point;
+    use crate::solve::expr::Expr;
+
+    fn body(name: &str, at: Point, angle: f64) -> Body {
+        Body { name: name.into(), points: vec![], at, angle }
+    }
+
+    fn pin(name: &str, a: Attach, la: Vector, b: Attach, lb: Vector) -> Joint {
+        Joint {
+            name: name.into(),
+            kind: JointKind::Revolute { a: Anchor { body: a, local: la }, b: Anchor { body: b, local: lb } },
+        }
+    }
+
+    /// A slider-crank (crank 1, rod 3, slider on the x axis), its bodies listed slider
+    /// first so that the dyad is found as P–R–R and must be read from the other end.
+    fn slider_crank() -> Mechanism {
+        let (r, l, phi0) = (1.0, 3.0, 0.3_f64);
+        let a = Vector::new(r * phi0.cos(), r * phi0.sin());
+        let beta = (-(a.y / l)).asin();
+        let bx = a.x + l * beta.cos();
+        let (g, s, c, rod) = (Attach::Ground, Attach::Body(0), Attach::Body(1), Attach::Body(2));
+        Mechanism {
+            bodies: vec![
+                body("slider", Point::new(bx, 0.0), 0.0),
+                body("crank", Point::origin(), phi0),
+                body("rod", Point::from(a), beta),
+            ],
+            joints: vec![
+                Joint {
+                    name: "guide".into(),
+                    kind: JointKind::Prismatic {
+                        point: Anchor { body: s, local: Vector::zeros() },
+                        q1: Anchor { body: g, local: Vector::new(-1.0, 0.0) },
+                        q2: Anchor { body: g, local: Vector::new(1.0, 0.0) },
+                        angle: 0.0,
+                    },
+                },
+                pin("B", s, Vector::zeros(), rod, Vector::new(l, 0.0)),
+                pin("A", c, Vector::new(r, 0.0), rod, Vector::zeros()),
+                pin("O", g, Vector::zeros(), c, Vector::zeros()),
+            ],
+            drivers: vec![Driver {
+                name: "crank".into(),
+                target: DriverTarget::JointAngle(3),
+                law: Expr::parse("0.3 + 2*t").unwrap(),
+            }],
+            length_scale: 4.0,
+        }
+    }
+
+    #[test]
+    fn a_prr_dyad_is_read_as_rrp_from_its_other_end() {
+        let m = slider_crank();
+        let groups = decompose(&m);
+        assert_eq!(groups.len(), 2);
+        assert_eq!(groups[0].kind, GroupKind::Driven(DrivenKind::Angle));
+        assert_eq!(groups[0].bodies, vec![1]);
+        assert_eq!(groups[0].joints, vec![3]);
+        assert_eq!(groups[1].kind, GroupKind::Dyad(DyadKind::Rrp));
+        // b1 = rod (pinned to the crank at A), b2 = slider; joints A, B, guide.
+        assert_eq!(groups[1].bodies, vec![2, 0]);
+        assert_eq!(groups[1].joints, vec![2, 1, 0]);
+        assert_eq!(groups[1].describe(&m), "dyad RRP (rod, slider)");
+        assert_eq!(groups[1].route(), Route::ClosedForm);
+    }
+
+    #[test]
+    fn slider_crank_matches_its_closed_form_and_the_general_solver() {
+        let m = slider_crank();
+        let times: Vec<f64> = (0..50).map(|k| k as f64 * 0.07).collect();
+        let ours = AssurSolver::new(m.clone()).unwrap().run(&times).unwrap();
+        let newton = Solver::new(m).unwrap().run(&times).unwrap();
+        let slider = Anchor { body: Attach::Body(0), local: Vector::zeros() };
+        for (st, nw) in ours.iter().zip(&newton) {
+            let phi = 0.3 + 2.0 * st.t;
+            let (r, l, w) = (1.0_f64, 3.0_f64, 2.0_f64);
+            let root = (l * l - (r * phi.sin()).powi(2)).sqrt();
+            let x = r * phi.cos() + root;
+            let v = -r * w * phi.sin() - r * r * w * phi.sin() * phi.cos() / root;
+            assert!((st.point(slider).x - x).abs() < 1e-13, "t = {}", st.t);
+            assert!((st.velocity(slider).x - v).abs() < 1e-12, "t = {}", st.t);
+            assert_eq!(st.iterations, 0);
+            for k in 0..9 {
+                assert!((st.q[k] - nw.q[k]).abs() < 1e-12);
+                assert!((st.qd[k] - nw.qd[k]).abs() < 1e-11);
+                assert!((st.qdd[k] - nw.qdd[k]).abs() < 1e-10);
+            }
+        }
+    }
+
+    #[test]
+    fn a_dead_point_is_reported_as_singular_by_group() {
+        // r = l: the rod folds onto the crank at φ = 90°.
+        let mut m = slider_crank();
+        if let JointKind::Revolute { b, .. } = &mut m.joints[1].kind {
+            b.local = Vector::new(1.0, 0.0);
+        }
+        m.bodies[2].angle = -0.3;
+        m.bodies[0].at = Point::new(2.0 * 0.3_f64.cos(), 0.0);
+        let end = std::f64::consts::FRAC_PI_2 - 0.3;
+        let times: Vec<f64> = (0..=100).map(|k| k as f64 * end / 2.0 / 100.0).collect();
+        let e = AssurSolver::new(m).unwrap().run(&times).unwrap_err();
+        match &e {
+            LinkageError::Singular { t, constraints, .. } => {
+                assert!((t - times[100]).abs() < 1e-12, "{e}");
+                assert!(constraints.starts_with("dyad RRP (rod, slider)"), "{e}");
+            }
+            other => panic!("expected a singularity, got {other}"),
+        }
+    }
+}
