@@ -154,13 +154,14 @@ pub fn nice_ticks(lo: f64, hi: f64, max_ticks: usize, degrees: bool) -> Ticks {
         hi += pad;
     }
     let step = nice_step(hi - lo, max_ticks, degrees);
-    // Tick indices just outside the data (a sample within 1e-9 steps of a tick sits on it).
+    // Tick indices just outside the data (a sample within 1e-9 steps of a tick sits on it,
+    // also in the checks below: −1.2e-18 is 0).
     let mut ka = (lo / step + 1e-9).floor();
     let mut kb = (hi / step - 1e-9).ceil();
-    if snap(ka * step, step) > lo {
+    if snap(ka * step, step) > lo + 1e-9 * step {
         ka -= 1.0;
     }
-    if snap(kb * step, step) < hi {
+    if snap(kb * step, step) < hi - 1e-9 * step {
         kb += 1.0;
     }
     let (a, b) = (snap(ka * step, step), snap(kb * step, step));
@@ -523,11 +524,25 @@ mod tests {
     }
 
     #[test]
+    fn data_a_rounding_off_a_tick_sit_on_it() {
+        // x_B = −1.2e-18 m at the four-bar's extreme, 0.15999999999999998 for 0.16: the axis
+        // ends on the tick, not one step further.
+        let t = nice_ticks(-1.2e-18, 0.1, 8, false);
+        assert_eq!((t.lo, t.hi), (0.0, 0.1));
+        let t = nice_ticks(0.02, 0.15999999999999998 + 2e-17, 8, false);
+        assert!((t.hi - 0.16).abs() < 1e-15, "{t:?}");
+        // A sample a real fraction of a step past a tick still widens the axis.
+        assert!(nice_ticks(-1e-4, 0.1, 8, false).lo < 0.0);
+    }
+
+    #[test]
     fn ticks_are_nice_numbers_covering_the_data() {
         for &(lo, hi) in &[(0.0, 1.0), (-3.7, 12.2), (0.013, 0.0171), (-1520.0, 880.0), (7.0, 7.000001), (-0.5, -0.2)] {
             let t = nice_ticks(lo, hi, 8, false);
             assert!(is_nice(t.step), "step {} for [{lo}, {hi}]", t.step);
-            assert!(t.lo <= lo && t.hi >= hi, "{t:?} does not cover [{lo}, {hi}]");
+            // Covering, a sample within 1e-9 steps of a tick counting as on it.
+            let eps = 1e-9 * t.step;
+            assert!(t.lo <= lo + eps && t.hi >= hi - eps, "{t:?} does not cover [{lo}, {hi}]");
             let v = t.values();
             assert!(v.len() >= 2 && v.len() <= 9 + 1, "{} ticks for [{lo}, {hi}]: {v:?}", v.len());
             // The axis ends on ticks and no more than one step beyond the data.
