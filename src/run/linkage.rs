@@ -145,12 +145,25 @@ pub(super) fn products(
             .collect::<Vec<_>>()
             .join("; ")
     );
+    // Only what `outputs` asks for: forces, or the rates, or positions alone.
+    let out = scene.outputs;
     let (states, forces) = match &scene.dynamics {
-        Some(d) => {
+        Some(d) if out.forces => {
             let (states, forces) = assur.run_kinetostatics(&scene.times, d).map_err(|e| solve_err(file)(e.into()))?;
             (states, Some(forces))
         }
-        None => (assur.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
+        _ if out.velocity => (assur.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
+        _ => {
+            let mut states = Vec::with_capacity(scene.times.len());
+            for &t in &scene.times {
+                assur.step_positions(t).map_err(|e| solve_err(file)(e.into()))?;
+                let mut st = assur.state();
+                // Not computed: zero, and nothing reads them (no rate is measured or drawn).
+                st.qd.iter_mut().chain(st.qdd.iter_mut()).for_each(|v| *v = 0.0);
+                states.push(st);
+            }
+            (states, None)
+        }
     };
     let cols = columns(scene, &states);
     let force_cols = forces.as_ref().map(|f| force_columns(scene, f)).unwrap_or_default();
@@ -189,7 +202,7 @@ pub(super) fn products(
                 scene.mechanism.drivers.iter().zip(&f[k].drivers).map(|(d, v)| (d.name.clone(), v + 0.0)).collect()
             }),
             power_residual: forces.as_ref().map(|f| f[k].power_residual),
-            sliding: sliding_records(scene, s),
+            sliding: if out.velocity { sliding_records(scene, s) } else { BTreeMap::new() },
         })
         .collect();
     let power_residual_max = forces.as_ref().map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max));
@@ -215,6 +228,11 @@ pub(super) fn products(
             kind: "linkage",
             name: &scene.name,
             units: scene.units.length(),
+            outputs: [(true, "position"), (out.velocity, "velocity"), (out.acceleration, "acceleration")]
+                .into_iter()
+                .chain([(forces.is_some(), "forces")])
+                .filter_map(|(on, name)| on.then_some(name))
+                .collect(),
             bodies: mech.bodies.len(),
             joints: mech.joints.len(),
             drivers: mech.drivers.len(),
@@ -274,7 +292,12 @@ pub(super) fn products(
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let figure = figure_of(scene);
     let p = &scene.polygons;
-    let show = Show { velocity: p.velocity, acceleration: p.acceleration, forces: p.forces, points: p.points.clone() };
+    let show = Show {
+        velocity: p.velocity && out.velocity,
+        acceleration: p.acceleration && out.acceleration,
+        forces: p.forces && out.forces,
+        points: p.points.clone(),
+    };
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
     let frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
@@ -853,6 +876,8 @@ struct MotionSummary<'a> {
     kind: &'static str,
     name: &'a str,
     units: &'static str,
+    /// What was computed: "position", "velocity", "acceleration", "forces".
+    outputs: Vec<&'static str>,
     bodies: usize,
     joints: usize,
     drivers: usize,

@@ -265,7 +265,23 @@ pub struct RawLinkageScene {
     pub load: Vec<RawLoad>,
     /// What the frames draw beside the mechanism.
     pub polygons: Option<RawPolygons>,
+    /// What is computed: `"position"`, `"velocity"`, `"acceleration"`, `"forces"`.
+    pub outputs: Option<Vec<String>>,
 }
+
+/// What a linkage run computes (the scene's `outputs`; positions always).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Outputs {
+    /// Velocities (and with them the velocity polygons, sliding velocities).
+    pub velocity: bool,
+    /// Accelerations (and the acceleration polygons, Coriolis components).
+    pub acceleration: bool,
+    /// Reactions and drivers' forces (needs masses or loads).
+    pub forces: bool,
+}
+
+/// The names `outputs` takes.
+pub const OUTPUT_NAMES: &str = "\"position\", \"velocity\", \"acceleration\", \"forces\"";
 
 /// `[polygons]`: which polygons the frames draw and which points they show.
 #[derive(Debug, Clone, Default, Deserialize)]
@@ -407,6 +423,8 @@ pub struct LinkageScene {
     pub dynamics: Option<Dynamics>,
     /// What the frames draw beside the mechanism.
     pub polygons: Polygons,
+    /// What is computed.
+    pub outputs: Outputs,
 }
 
 impl LinkageScene {
@@ -486,6 +504,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
     let dynamics = check_dynamics(&raw, raw.units, &ground_points, &mechanism)?;
     let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
+    let outputs = check_outputs(raw.outputs.as_deref(), dynamics.is_some(), &raw.measure, &measures)?;
     Ok(LinkageScene {
         name,
         units: raw.units,
@@ -496,7 +515,73 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         diagram_axis,
         dynamics,
         polygons,
+        outputs,
     })
+}
+
+/// `outputs`: known names, `"forces"` only with masses or loads, and every measured
+/// quantity computed (a velocity needs `"velocity"`, an acceleration `"acceleration"`).
+/// Default: everything the scene can give (forces when it has masses or loads).
+fn check_outputs(
+    raw: Option<&[String]>,
+    has_dynamics: bool,
+    raw_measures: &[RawMeasure],
+    measures: &[Measure],
+) -> Result<Outputs, FieldError> {
+    let Some(list) = raw else {
+        return Ok(Outputs { velocity: true, acceleration: true, forces: has_dynamics });
+    };
+    if list.is_empty() {
+        return Err(FieldError::new("outputs", format!("must name at least \"position\"; valid: {OUTPUT_NAMES}")));
+    }
+    let mut o = Outputs { velocity: false, acceleration: false, forces: false };
+    for (i, name) in list.iter().enumerate() {
+        match name.as_str() {
+            "position" => {}
+            "velocity" => o.velocity = true,
+            "acceleration" => o.acceleration = true,
+            "forces" => o.forces = true,
+            other => {
+                return Err(FieldError::new(
+                    format!("outputs[{i}]"),
+                    format!("\"{other}\" is not an output; valid: {OUTPUT_NAMES}"),
+                ));
+            }
+        }
+    }
+    if o.forces && !has_dynamics {
+        return Err(FieldError::new(
+            "outputs",
+            "\"forces\" needs masses or loads (a body's `mass`, a [dynamics] table or a [[load]])",
+        ));
+    }
+    if o.forces && !(o.velocity && o.acceleration) {
+        return Err(FieldError::new(
+            "outputs",
+            "\"forces\" needs \"velocity\" and \"acceleration\" too (the inertia forces are m·a)",
+        ));
+    }
+    if o.acceleration && !o.velocity {
+        return Err(FieldError::new("outputs", "\"acceleration\" needs \"velocity\" too"));
+    }
+    for (i, (m, rm)) in measures.iter().zip(raw_measures).enumerate() {
+        for (j, q) in m.quantities.iter().enumerate() {
+            let needs = match q {
+                Quantity::Vx | Quantity::Vy | Quantity::V | Quantity::Omega => (!o.velocity).then_some("velocity"),
+                Quantity::Ax | Quantity::Ay | Quantity::A | Quantity::Eps => {
+                    (!o.acceleration).then_some("acceleration")
+                }
+                _ => None,
+            };
+            if let Some(what) = needs {
+                return Err(FieldError::new(
+                    format!("measure[{i}].quantities[{j}]"),
+                    format!("`{}` needs \"{what}\" in `outputs`", rm.quantities[j]),
+                ));
+            }
+        }
+    }
+    Ok(o)
 }
 
 /// `[polygons]`: every point named must be a point of a moving body.
