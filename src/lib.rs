@@ -26,5 +26,6 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;
+pub mod web;
 
 pub use error::Error;

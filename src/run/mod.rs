@@ -145,7 +145,7 @@ pub const MAX_DRAWN_POSITIONS: usize = 3600;
 
 /// Refuses to draw more than [`MAX_DRAWN_POSITIONS`] positions, naming the field that sets
 /// their number (so that a mistyped step does not fill the disk).
-fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
+pub(crate) fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
     if count <= MAX_DRAWN_POSITIONS {
         return Ok(());
     }
