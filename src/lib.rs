@@ -16,6 +16,7 @@
 #![forbid(unsafe_code)]
 #![warn(missing_docs)]
 
+#[cfg(feature = "cli")]
 pub mod bench;
 pub mod draw;
 mod error;
@@ -25,5 +26,6 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;
+pub mod web;
 
 pub use error::Error;

@@ -8,6 +8,7 @@ mod chain;
 mod fourbar;
 mod fourbar_teaching;
 mod linkage;
+#[cfg(feature = "cli")]
 pub mod output;
 pub mod products;
 mod triad;
@@ -88,7 +89,9 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
     }
 }
 
-/// Solves `loaded` and writes its outputs as `opts` asks.
+/// Solves `loaded` and writes its outputs as `opts` asks (the file system and the
+/// terminal: feature `cli`; the core's products go to bytes with [`bytes::to_files`]).
+#[cfg(feature = "cli")]
 pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     let p = products(loaded, opts)?;
     let Some(dir) = &opts.out_dir else {
@@ -119,6 +122,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
 }
 
 /// A terminal progress bar over `n` frames, when asked for and there are frames.
+#[cfg(feature = "cli")]
 fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
     if !on || n == 0 {
         return None;
@@ -141,7 +145,7 @@ pub const MAX_DRAWN_POSITIONS: usize = 3600;
 
 /// Refuses to draw more than [`MAX_DRAWN_POSITIONS`] positions, naming the field that sets
 /// their number (so that a mistyped step does not fill the disk).
-fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
+pub(crate) fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -> Result<(), Error> {
     if count <= MAX_DRAWN_POSITIONS {
         return Ok(());
     }

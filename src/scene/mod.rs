@@ -13,7 +13,7 @@ pub mod linkage;
 mod overrides;
 pub mod triad;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 use serde::de::DeserializeOwned;
 
@@ -178,8 +178,10 @@ pub fn finite_point(field: &str, p: [f64; 2]) -> Result<crate::geom::Point, Fiel
     }
 }
 
-/// Reads and checks the scene file `path`, with `overrides` applied in order.
-pub fn load(path: &Path, overrides: &[Override]) -> Result<Loaded, SceneError> {
+/// Reads and checks the scene file `path`, with `overrides` applied in order (the file
+/// system: feature `cli`; the core takes the text, [`parse`]).
+#[cfg(feature = "cli")]
+pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Loaded, SceneError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { file: file.clone(), source })?;
     let scene = parse(&text, &file, overrides)?;

@@ -1,0 +1,144 @@
+//! The browser's entry (`mechdraw::web`, exported to JavaScript on wasm32) gives the bytes
+//! the command line writes: for every template, its files are those of `bytes::to_files`
+//! over the scene loaded from disk, and those the `mechdraw` binary writes into its output
+//! directory, name for name and byte for byte, in one order; a bad scene gives the message
+//! the command line prints after `error: `.
+
+mod common;
+
+use std::path::Path;
+
+use mechdraw::run::RunOptions;
+use mechdraw::run::bytes::{self, WriteOptions};
+use mechdraw::scene::{self, Override};
+use mechdraw::web::{self, WebOptions};
+
+/// Every template (path, fewer positions and samples so that the set runs in seconds).
+fn templates() -> Vec<(std::path::PathBuf, Vec<String>)> {
+    let mut paths: Vec<_> = std::fs::read_dir(common::root().join("templates"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    assert!(paths.len() >= 9, "templates missing");
+    paths
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let kind = text.lines().find_map(|l| l.strip_prefix("kind = ")).unwrap().trim_matches('"').to_string();
+            let set = match kind.as_str() {
+                "fourbar" => vec!["phi1_deg.step=30".to_string()],
+                "linkage" => vec!["time.steps=12".to_string()],
+                "chain" => vec!["stackup.samples=20000".to_string()],
+                _ => vec![],
+            };
+            (path, set)
+        })
+        .collect()
+}
+
+/// The scene file's text with the overrides written into it (what a page's fields do).
+fn text_with(path: &Path, set: &[String]) -> String {
+    let mut table: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
+    for s in set {
+        s.parse::<Override>().unwrap().apply(&mut table).unwrap();
+    }
+    toml::to_string(&table).unwrap()
+}
+
+/// Every file under `dir`, `/`-separated paths relative to it.
+fn read_tree(dir: &Path, rel: &Path, into: &mut Vec<(String, Vec<u8>)>) {
+    for e in std::fs::read_dir(dir.join(rel)).unwrap() {
+        let e = e.unwrap();
+        let r = rel.join(e.file_name());
+        if e.path().is_dir() {
+            read_tree(dir, &r, into);
+        } else {
+            into.push((r.to_string_lossy().replace('\\', "/"), std::fs::read(e.path()).unwrap()));
+        }
+    }
+}
+
+fn names(files: &[(String, Vec<u8>)]) -> Vec<&str> {
+    files.iter().map(|(n, _)| n.as_str()).collect()
+}
+
+#[test]
+fn web_files_are_the_command_lines_bytes_for_every_template() {
+    for (path, set) in templates() {
+        let file = path.display().to_string();
+        for frames in [true, false] {
+            let web = web::scene_files(&text_with(&path, &set), &file, WebOptions { frames, png: false })
+                .unwrap_or_else(|e| panic!("{file}: {e}"));
+
+            // The library's own route: the scene read from disk, its products to bytes.
+            let over: Vec<Override> = set.iter().map(|s| s.parse().unwrap()).collect();
+            let loaded = scene::load(&path, &over).unwrap();
+            let opts = RunOptions { no_frames: !frames, ..RunOptions::default() };
+            let products = mechdraw::run::products(&loaded, &opts).unwrap();
+            let memory =
+                bytes::to_files(&products, &WriteOptions { no_frames: !frames, ..WriteOptions::default() }).unwrap();
+            assert_eq!(names(&web.files), names(&memory), "{file} (frames {frames}): file names and order");
+            for ((name, w), (_, m)) in web.files.iter().zip(&memory) {
+                assert!(w == m, "{file}: {name} differs from bytes::to_files");
+            }
+            assert_eq!(web.summary, products.summary, "{file}: summary");
+            assert_eq!(web.warnings, products.warnings, "{file}: warnings");
+
+            // The command line's files on disk.
+            let tmp = tempfile::tempdir().unwrap();
+            let mut cmd = common::mechdraw();
+            cmd.arg("run").arg(&path).arg("--out").arg(tmp.path()).arg("-q");
+            for s in &set {
+                cmd.arg("--set").arg(s);
+            }
+            if !frames {
+                cmd.arg("--no-frames");
+            }
+            let out = cmd.output().unwrap();
+            assert!(out.status.success(), "{file}: {}", String::from_utf8_lossy(&out.stderr));
+            let mut disk = Vec::new();
+            read_tree(tmp.path(), Path::new(""), &mut disk);
+            disk.sort();
+            let mut sorted = web.files.clone();
+            sorted.sort();
+            assert_eq!(names(&sorted), names(&disk), "{file} (frames {frames}): file names");
+            for ((name, w), (_, d)) in sorted.iter().zip(&disk) {
+                assert!(w == d, "{file}: {name} differs from the command line's file");
+            }
+        }
+    }
+}
+
+/// The message the `mechdraw` binary prints for `path`, without its `error: `.
+fn cli_error(path: &Path) -> String {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = common::mechdraw().arg("run").arg(path).arg("--out").arg(tmp.path()).arg("-q").output().unwrap();
+    assert!(!out.status.success(), "{} should fail", path.display());
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    stderr.trim_end().strip_prefix("error: ").unwrap_or_else(|| panic!("no `error: ` in {stderr:?}")).to_string()
+}
+
+#[test]
+fn a_bad_scene_gives_the_command_lines_message() {
+    let tmp = tempfile::tempdir().unwrap();
+    let fourbar = std::fs::read_to_string(common::root().join("templates/fourbar-chebyshev.toml")).unwrap();
+    let cases = [
+        ("syntax.toml", "kind = \"fourbar\"\nname = [unclosed\n".to_string()),
+        ("kind.toml", "kind = \"pentagon\"\nname = \"p\"\n".to_string()),
+        // A negative crank: a field error naming the field.
+        ("field.toml", text_with(&common::root().join("templates/fourbar-chebyshev.toml"), &["l1=-0.04".into()])),
+        // A rocker far too long to meet the coupler at any crank angle: the solver's message.
+        ("solve.toml", fourbar.replace("l_bc = 0.10", "l_bc = 1.0")),
+    ];
+    for (name, text) in cases {
+        let path = tmp.path().join(name);
+        std::fs::write(&path, &text).unwrap();
+        let file = path.display().to_string();
+        let expected = cli_error(&path);
+        let got = web::scene_files(&text, &file, WebOptions::default()).map(|_| ()).unwrap_err().to_string();
+        assert_eq!(got, expected, "{name}");
+        assert!(got.contains(&file), "{name}: the message names the file: {got}");
+    }
+}
