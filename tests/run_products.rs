@@ -43,18 +43,6 @@ fn templates() -> Vec<(String, scene::Loaded)> {
     out
 }
 
-fn read_tree(dir: &Path, rel: &Path, into: &mut Vec<(String, Vec<u8>)>) {
-    for e in std::fs::read_dir(dir.join(rel)).unwrap() {
-        let e = e.unwrap();
-        let r = rel.join(e.file_name());
-        if e.path().is_dir() {
-            read_tree(dir, &r, into);
-        } else {
-            into.push((r.to_string_lossy().replace('\\', "/"), std::fs::read(e.path()).unwrap()));
-        }
-    }
-}
-
 #[test]
 fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
     for (stem, loaded) in templates() {
@@ -65,7 +53,7 @@ fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
         let memory = bytes::to_files(&products, &WriteOptions { png: true, ..WriteOptions::default() }).unwrap();
 
         let mut disk = Vec::new();
-        read_tree(tmp.path(), Path::new(""), &mut disk);
+        common::read_tree(tmp.path(), Path::new(""), &mut disk);
         let on_disk: BTreeSet<&str> = disk.iter().map(|(n, _)| n.as_str()).collect();
         let in_memory: BTreeSet<&str> = memory.iter().map(|(n, _)| n.as_str()).collect();
         assert_eq!(on_disk, in_memory, "{stem}: file sets differ");

@@ -238,18 +238,6 @@ fn the_value_table_is_the_solvers() {
     assert_eq!(checked, 12 * 10);
 }
 
-fn read_tree(dir: &Path, rel: &Path, into: &mut Vec<(String, Vec<u8>)>) {
-    for e in std::fs::read_dir(dir.join(rel)).unwrap() {
-        let e = e.unwrap();
-        let r = rel.join(e.file_name());
-        if e.path().is_dir() {
-            read_tree(dir, &r, into);
-        } else {
-            into.push((r.to_string_lossy().replace('\\', "/"), std::fs::read(e.path()).unwrap()));
-        }
-    }
-}
-
 #[test]
 fn files_on_disk_are_the_in_memory_bytes_with_sheets() {
     let l = loaded("60");
@@ -258,7 +246,7 @@ fn files_on_disk_are_the_in_memory_bytes_with_sheets() {
     let outcome = mechdraw::run::run(&l, &opts).unwrap();
     let memory = bytes::to_files(&mechdraw::run::products(&l, &opts).unwrap(), &WriteOptions::default()).unwrap();
     let mut disk = Vec::new();
-    read_tree(tmp.path(), Path::new(""), &mut disk);
+    common::read_tree(tmp.path(), Path::new(""), &mut disk);
     disk.sort();
     let mut mem = memory.clone();
     mem.sort();

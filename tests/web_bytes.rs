@@ -47,19 +47,6 @@ fn text_with(path: &Path, set: &[String]) -> String {
     toml::to_string(&table).unwrap()
 }
 
-/// Every file under `dir`, `/`-separated paths relative to it.
-fn read_tree(dir: &Path, rel: &Path, into: &mut Vec<(String, Vec<u8>)>) {
-    for e in std::fs::read_dir(dir.join(rel)).unwrap() {
-        let e = e.unwrap();
-        let r = rel.join(e.file_name());
-        if e.path().is_dir() {
-            read_tree(dir, &r, into);
-        } else {
-            into.push((r.to_string_lossy().replace('\\', "/"), std::fs::read(e.path()).unwrap()));
-        }
-    }
-}
-
 fn names(files: &[(String, Vec<u8>)]) -> Vec<&str> {
     files.iter().map(|(n, _)| n.as_str()).collect()
 }
@@ -99,7 +86,7 @@ fn web_files_are_the_command_lines_bytes_for_every_template() {
             let out = cmd.output().unwrap();
             assert!(out.status.success(), "{file}: {}", String::from_utf8_lossy(&out.stderr));
             let mut disk = Vec::new();
-            read_tree(tmp.path(), Path::new(""), &mut disk);
+            common::read_tree(tmp.path(), Path::new(""), &mut disk);
             disk.sort();
             let mut sorted = web.files.clone();
             sorted.sort();

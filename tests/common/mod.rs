@@ -255,3 +255,18 @@ pub fn overlapping_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
 pub fn boxes_overlap(a: &TextBox, b: &TextBox) -> bool {
     a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
 }
+
+/// Every file under `dir` (from `rel`), with `/`-separated paths relative to `dir`, pushed
+/// onto `into` with its bytes.
+#[allow(dead_code)]
+pub fn read_tree(dir: &Path, rel: &Path, into: &mut Vec<(String, Vec<u8>)>) {
+    for e in std::fs::read_dir(dir.join(rel)).unwrap() {
+        let e = e.unwrap();
+        let r = rel.join(e.file_name());
+        if e.path().is_dir() {
+            read_tree(dir, &r, into);
+        } else {
+            into.push((r.to_string_lossy().replace('\\', "/"), std::fs::read(e.path()).unwrap()));
+        }
+    }
+}
