@@ -69,14 +69,56 @@ impl Frame {
     }
 }
 
-/// Fixed, deterministic number formatting: 6 significant decimals trimmed.
+/// Fixed, deterministic number formatting: 6 significant decimals trimmed — exactly what
+/// `format!("{v:.6}")` trimmed gives. Every coordinate of every frame goes through here, so
+/// the common case skips the exact decimal expansion: v·10⁶ is rounded as an integer when it
+/// is small enough and its fraction is far enough from ½ that the product's rounding error
+/// (≤ 2⁻⁵² of it) cannot change the result; anything else takes `format!`.
 pub fn num(v: f64) -> String {
+    let scaled = v * 1e6;
+    if scaled.abs() < 1e12 {
+        let floor = scaled.floor();
+        let frac = scaled - floor;
+        if (frac - 0.5).abs() > 1e-3 {
+            let units = (if frac > 0.5 { floor + 1.0 } else { floor }) as i64;
+            return fixed6(units);
+        }
+    }
     let mut s = format!("{v:.6}");
     // Trimmed in place: this is called for every coordinate of every frame.
     let len = s.trim_end_matches('0').trim_end_matches('.').len();
     s.truncate(len);
     if s == "-0" {
         s.remove(0);
+    }
+    s
+}
+
+/// `units`·10⁻⁶ as `num` writes it: trailing zeros and a bare point trimmed, no `-0`.
+fn fixed6(units: i64) -> String {
+    if units == 0 {
+        return "0".to_string();
+    }
+    let neg = units < 0;
+    let u = units.unsigned_abs();
+    let (int, mut frac) = (u / 1_000_000, u % 1_000_000);
+    let mut s = String::with_capacity(20);
+    if neg {
+        s.push('-');
+    }
+    s.push_str(&int.to_string());
+    if frac != 0 {
+        let mut digits = 6;
+        while frac % 10 == 0 {
+            frac /= 10;
+            digits -= 1;
+        }
+        s.push('.');
+        let f = frac.to_string();
+        for _ in f.len()..digits {
+            s.push('0');
+        }
+        s.push_str(&f);
     }
     s
 }
@@ -372,6 +414,53 @@ mod tests {
         // The options' scale wins over the drawing's.
         let s = to_string(&d, &SvgOptions { margin: 0.0, paper_mm_per_unit: Some(1000.0), ..Default::default() });
         assert!(s.contains(r#"width="100mm""#), "{s}");
+    }
+
+    /// The reference: `format!("{v:.6}")` trimmed, as `num` was written first.
+    fn num_by_format(v: f64) -> String {
+        let mut s = format!("{v:.6}");
+        let len = s.trim_end_matches('0').trim_end_matches('.').len();
+        s.truncate(len);
+        if s == "-0" {
+            s.remove(0);
+        }
+        s
+    }
+
+    #[test]
+    fn the_fast_path_writes_what_format_writes() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        let mut values = vec![
+            0.0,
+            -0.0,
+            0.5e-6,
+            -0.5e-6,
+            1.5e-6,
+            2.5e-6,
+            0.4999999e-6,
+            1e-7,
+            -1e-7,
+            123.4565,
+            0.1,
+            0.7,
+            1e6,
+            -1e6,
+            999_999.999_999_5,
+            1e5 + 0.0000005,
+            2.0f64.powi(20) + 0.25,
+        ];
+        for _ in 0..400_000 {
+            let mag = 10f64.powf(rng.random_range(-9.0..7.0));
+            let v: f64 = rng.random_range(-1.0..1.0) * mag;
+            values.push(v);
+            // Near the ties of the sixth decimal.
+            let tie = ((v * 1e6).floor() + 0.5) / 1e6;
+            values.extend([tie, f64::from_bits(tie.to_bits() + 1), f64::from_bits(tie.to_bits().saturating_sub(1))]);
+        }
+        for v in values {
+            assert_eq!(num(v), num_by_format(v), "{v:e}");
+        }
     }
 
     #[test]
