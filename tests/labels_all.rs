@@ -14,12 +14,7 @@ use mechdraw::scene::{self, Override};
 fn no_two_texts_overlap_in_any_drawing_of_any_template() {
     let mut checked = 0;
     let mut found = Vec::new();
-    let mut templates: Vec<_> = std::fs::read_dir(common::root().join("templates"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
-        .collect();
-    templates.sort();
+    let templates = common::template_paths();
     for t in &templates {
         let stem = t.file_stem().unwrap().to_string_lossy().to_string();
         let fourbar = stem.starts_with("fourbar-chebyshev");

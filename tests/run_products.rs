@@ -20,12 +20,7 @@ use mechdraw::scene::{self, Override};
 /// Every template, with fewer positions and samples so that the whole set runs in seconds.
 fn templates() -> Vec<(String, scene::Loaded)> {
     let mut out = Vec::new();
-    let mut paths: Vec<_> = std::fs::read_dir(common::root().join("templates"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
+    let paths = common::template_paths();
     for path in paths {
         let text = std::fs::read_to_string(&path).unwrap();
         let kind = text.lines().find_map(|l| l.strip_prefix("kind = ")).unwrap().trim_matches('"').to_string();

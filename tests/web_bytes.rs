@@ -15,12 +15,7 @@ use mechdraw::web::{self, WebOptions};
 
 /// Every template (path, fewer positions and samples so that the set runs in seconds).
 fn templates() -> Vec<(std::path::PathBuf, Vec<String>)> {
-    let mut paths: Vec<_> = std::fs::read_dir(common::root().join("templates"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
-        .collect();
-    paths.sort();
+    let paths = common::template_paths();
     assert!(paths.len() >= 9, "templates missing");
     paths
         .into_iter()

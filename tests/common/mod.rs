@@ -270,3 +270,15 @@ pub fn read_tree(dir: &Path, rel: &Path, into: &mut Vec<(String, Vec<u8>)>) {
         }
     }
 }
+
+/// The bundled templates (`templates/*.toml`), sorted by path.
+#[allow(dead_code)]
+pub fn template_paths() -> Vec<PathBuf> {
+    let mut paths: Vec<PathBuf> = std::fs::read_dir(root().join("templates"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    paths.sort();
+    paths
+}
