@@ -1382,17 +1382,7 @@ impl AssurSolver {
                 });
             }
             let l = s.mech.length_scale;
-            let mut norm: f64 = 0.0;
-            for (r, &gr) in plan.rows.iter().enumerate() {
-                let ir = 1.0 / s.row_scale[gr];
-                let mut sum = 0.0;
-                for c in 0..k {
-                    let cs = if c % 3 == 2 { 1.0 } else { l };
-                    a[r * k + c] *= cs * ir;
-                    sum += a[r * k + c].abs();
-                }
-                norm = norm.max(sum);
-            }
+            let norm = equilibrate(a, k, &plan.rows, &s.row_scale, l);
             if !plan.lu.factor(norm) {
                 return Err(LinkageError::Singular {
                     t,
@@ -1732,17 +1722,9 @@ fn newton(s: &mut Solver, plan: &mut Plan, work: &mut [f64], t: f64) -> Result<(
                 }
             });
         }
-        let mut norm: f64 = 0.0;
+        let norm = equilibrate(a, k, &plan.rows, &s.row_scale, l);
         for (r, &gr) in plan.rows.iter().enumerate() {
-            let ir = 1.0 / s.row_scale[gr];
-            let mut sum = 0.0;
-            for c in 0..k {
-                let cs = if c % 3 == 2 { 1.0 } else { l };
-                a[r * k + c] *= cs * ir;
-                sum += a[r * k + c].abs();
-            }
-            norm = norm.max(sum);
-            plan.rhs[r] = -phi[r] * ir;
+            plan.rhs[r] = -phi[r] * (1.0 / s.row_scale[gr]);
         }
         plan.lu.a.copy_from_slice(a);
         if !plan.lu.factor(norm) {
@@ -1763,6 +1745,24 @@ fn newton(s: &mut Solver, plan: &mut Plan, work: &mut [f64], t: f64) -> Result<(
     }
     plan.iterations = iterations;
     Ok(())
+}
+
+/// Equilibrates a group's Jacobian block `a` (`k` columns, one row per entry of `rows`) in
+/// place as the general solver does — each row divided by its constraint's scale, the x, y
+/// columns times the mechanism's length `l` — and returns its ∞-norm.
+fn equilibrate(a: &mut [f64], k: usize, rows: &[usize], row_scale: &[f64], l: f64) -> f64 {
+    let mut norm: f64 = 0.0;
+    for (r, &gr) in rows.iter().enumerate() {
+        let ir = 1.0 / row_scale[gr];
+        let mut sum = 0.0;
+        for c in 0..k {
+            let cs = if c % 3 == 2 { 1.0 } else { l };
+            a[r * k + c] *= cs * ir;
+            sum += a[r * k + c].abs();
+        }
+        norm = norm.max(sum);
+    }
+    norm
 }
 
 #[cfg(test)]
