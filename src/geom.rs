@@ -27,12 +27,12 @@ pub mod tol {
 
 /// Point with polar coordinates `(r, angle)` about `center`.
 pub fn polar(center: Point, r: f64, angle: f64) -> Point {
-    center + Vector::new(r * angle.cos(), r * angle.sin())
+    center + Vector::new(r * libm::cos(angle), r * libm::sin(angle))
 }
 
 /// Direction angle of `v` in (−π, π]; 0 for the zero vector.
 pub fn angle_of(v: Vector) -> f64 {
-    v.y.atan2(v.x)
+    libm::atan2(v.y, v.x)
 }
 
 /// `angle` reduced to [0, 2π).
@@ -50,7 +50,7 @@ pub fn wrap_pi(angle: f64) -> f64 {
 
 /// `v` rotated counter-clockwise by `angle`.
 pub fn rotate(v: Vector, angle: f64) -> Vector {
-    let (s, c) = angle.sin_cos();
+    let (s, c) = libm::sincos(angle);
     Vector::new(c * v.x - s * v.y, s * v.x + c * v.y)
 }
 

@@ -154,7 +154,7 @@ pub struct Prepared {
 impl Prepared {
     /// Precomputes `geom`'s constants.
     pub fn new(geom: &Geometry) -> Prepared {
-        let (sin_alpha, cos_alpha) = geom.alpha.sin_cos();
+        let (sin_alpha, cos_alpha) = libm::sincos(geom.alpha);
         let r1_sq = geom.l_ab * geom.l_ab;
         let r2_sq = geom.l_bc * geom.l_bc;
         let ratio = -geom.l_bm / geom.l_ab;

@@ -215,7 +215,7 @@ impl Geometry {
             } else if cos <= -1.0 + TOUCH_COS {
                 out.push(LimitAngle { phi1: theta + std::f64::consts::PI, reach, touch: true });
             } else {
-                let half = cos.acos();
+                let half = libm::acos(cos);
                 out.push(LimitAngle { phi1: theta - half, reach, touch: false });
                 out.push(LimitAngle { phi1: theta + half, reach, touch: false });
             }

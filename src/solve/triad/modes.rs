@@ -124,7 +124,7 @@ pub fn modes_with(triad: &Triad, orientation: Orientation) -> Result<Vec<Configu
         let p = chart.tan_half_poly();
         let roots = real_roots(&p, -CHART_HALF_WIDTH, CHART_HALF_WIDTH, NEAR_ZERO_REL);
         for &t in roots.as_slice() {
-            complete(triad, m, orientation, offset + 2.0 * t.atan(), &mut found);
+            complete(triad, m, orientation, offset + 2.0 * libm::atan(t), &mut found);
         }
     }
     found.sort_by(|a, b| a.phi[0].total_cmp(&b.phi[0]));

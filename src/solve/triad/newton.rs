@@ -46,9 +46,9 @@ pub struct NewtonSolution {
 /// Residuals g and Jacobian J of the three-angle system at `phi`.
 #[inline]
 fn system(t: &Triad, phi: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
-    let (s1, c1) = phi[0].sin_cos();
-    let (s2, c2) = phi[1].sin_cos();
-    let (s3, c3) = phi[2].sin_cos();
+    let (s1, c1) = libm::sincos(phi[0]);
+    let (s2, c2) = libm::sincos(phi[1]);
+    let (s3, c3) = libm::sincos(phi[2]);
     let [o1, o2, o3] = t.o;
     let [r1, r2, r3] = t.r;
     let a1 = (o1.x + r1 * c1, o1.y + r1 * s1);

@@ -83,7 +83,7 @@ pub fn construct(triad: &Triad, phi1: f64, a2: Side, orientation: Orientation) -
             let (c, s) = triad.angle_at_a1();
             let s = if side == Side::Left { s } else { -s };
             let u = (a2 - a1) / (a2 - a1).norm();
-            a1 + rotate(u, s.atan2(c)) * triad.l13
+            a1 + rotate(u, libm::atan2(s, c)) * triad.l13
         }
         other => other.on(side)?,
     };

@@ -75,7 +75,8 @@ impl Trig {
     pub fn eval(&self, phi: f64) -> f64 {
         let mut s = self.c[N].re;
         for k in 1..=N {
-            let e = C::new(0.0, k as f64 * phi).exp();
+            let (sin, cos) = libm::sincos(k as f64 * phi);
+            let e = C::new(cos, sin);
             s += 2.0 * (self.c[N + k] * e).re;
         }
         s
