@@ -17,6 +17,7 @@
 use std::path::PathBuf;
 
 use crate::Error;
+use crate::draw::svg::{self, SvgOptions};
 use crate::run::bytes::{self, WriteOptions};
 use crate::run::products::Picture;
 use crate::run::{self, RunOptions};
@@ -62,6 +63,191 @@ pub fn scene_files(text: &str, file: &str, opts: WebOptions) -> Result<SceneFile
     Ok(SceneFiles { files, summary: p.summary, report: p.report, warnings: p.warnings })
 }
 
+/// A number of the scene that the page offers as a field or slider: its `--set` path and
+/// its value in the scene's text.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Parameter {
+    /// The `--set` path (`l_bc`, `phi1_deg.step`, `dynamics.force[0].value`,
+    /// `body[1].points.B[0]`).
+    pub path: String,
+    /// Its value (with the session's changes applied).
+    pub value: f64,
+    /// Whether the scene writes it as an integer (a count: set it as one).
+    pub integer: bool,
+}
+
+impl Parameter {
+    /// The value as `--set` takes it (`12` for an integer, `0.125` for a float).
+    pub fn text(&self) -> String {
+        if self.integer { format!("{}", self.value as i64) } else { format!("{:?}", self.value) }
+    }
+}
+
+/// Every number in `table`, depth first in the table's order, as `--set` paths.
+fn numbers(prefix: &str, value: &toml::Value, out: &mut Vec<Parameter>) {
+    match value {
+        toml::Value::Integer(i) => out.push(Parameter { path: prefix.to_string(), value: *i as f64, integer: true }),
+        toml::Value::Float(f) => out.push(Parameter { path: prefix.to_string(), value: *f, integer: false }),
+        toml::Value::Array(items) => {
+            for (i, v) in items.iter().enumerate() {
+                numbers(&format!("{prefix}[{i}]"), v, out);
+            }
+        }
+        toml::Value::Table(t) => {
+            for (k, v) in t {
+                let path = if prefix.is_empty() { k.clone() } else { format!("{prefix}.{k}") };
+                numbers(&path, v, out);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// A scene open in the page: its text, the changes made to it (as `--set` overrides, applied
+/// in order), and its products, solved once per change. A change that the scene does not
+/// accept leaves the session as it was (the page keeps its picture) and returns the command
+/// line's message.
+pub struct Session {
+    file: String,
+    text: String,
+    sets: Vec<(String, String)>,
+    products: crate::run::products::Products,
+    /// A motion's frame options and its base written once (frames splice each position onto
+    /// it).
+    motion: Option<(SvgOptions, String)>,
+}
+
+impl std::fmt::Debug for Session {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Session").field("file", &self.file).field("sets", &self.sets).finish_non_exhaustive()
+    }
+}
+
+impl Session {
+    /// Opens the scene in `text` (named `file` in messages).
+    pub fn new(text: &str, file: &str) -> Result<Session, Error> {
+        let (products, motion) = solve(text, file, &[])?;
+        Ok(Session { file: file.to_string(), text: text.to_string(), sets: Vec::new(), products, motion })
+    }
+
+    /// Sets the number (or any TOML value) at `path` to `value`, as `--set path=value` would,
+    /// and solves again; on an error nothing changes.
+    pub fn set(&mut self, path: &str, value: &str) -> Result<(), Error> {
+        let mut sets = self.sets.clone();
+        sets.retain(|(p, _)| p != path);
+        sets.push((path.to_string(), value.to_string()));
+        let (products, motion) = solve(&self.text, &self.file, &sets)?;
+        (self.sets, self.products, self.motion) = (sets, products, motion);
+        Ok(())
+    }
+
+    /// Replaces the scene's text (the page's TOML editor) and forgets the changes made
+    /// field by field; on an error nothing changes.
+    pub fn replace(&mut self, text: &str) -> Result<(), Error> {
+        let (products, motion) = solve(text, &self.file, &[])?;
+        (self.text, self.sets, self.products, self.motion) = (text.to_string(), Vec::new(), products, motion);
+        Ok(())
+    }
+
+    /// The scene's text with the changes written into it (what a download of the scene is).
+    pub fn scene_text(&self) -> Result<String, Error> {
+        let table = table_with(&self.text, &self.file, &self.sets)?;
+        toml::to_string(&table).map_err(|e| Error::Export { what: self.file.clone(), message: e.to_string() })
+    }
+
+    /// Every number of the scene, with the changes applied: the page's fields.
+    pub fn parameters(&self) -> Result<Vec<Parameter>, Error> {
+        let mut out = Vec::new();
+        numbers("", &toml::Value::Table(table_with(&self.text, &self.file, &self.sets)?), &mut out);
+        Ok(out)
+    }
+
+    /// The products of the scene as it stands.
+    pub fn products(&self) -> &crate::run::products::Products {
+        &self.products
+    }
+
+    /// Number of positions of a motion (1 for a still picture).
+    pub fn positions(&self) -> usize {
+        match &self.products.picture {
+            Picture::Motion(a) => a.len().max(1),
+            Picture::Still(_) => 1,
+        }
+    }
+
+    /// The label of position `k` (`φ1 = 90°`, `t = 0.2500 s`; empty for a still picture).
+    pub fn label(&self, k: usize) -> String {
+        match &self.products.picture {
+            Picture::Motion(a) => a.labels.get(k).cloned().unwrap_or_default(),
+            Picture::Still(_) => String::new(),
+        }
+    }
+
+    /// Position `k`'s frame as an SVG document: for a motion, byte for byte the command
+    /// line's `frames/<name>/<position>.svg`; for a still picture, `<name>.svg`. `None` past
+    /// the last position.
+    pub fn frame(&self, k: usize) -> Option<String> {
+        match &self.products.picture {
+            Picture::Still(d) => (k == 0).then(|| bytes::picture_svg(d)),
+            Picture::Motion(a) if k < a.len() => {
+                let (opts, base) = self.motion.as_ref()?;
+                let pose = a.pose(k);
+                Some(
+                    svg::splice(base, &svg::to_string(&pose, opts))
+                        .unwrap_or_else(|| svg::to_string(&a.frame_of(&pose), opts)),
+                )
+            }
+            Picture::Motion(_) => None,
+        }
+    }
+
+    /// The files `mechdraw run` writes for the scene as it stands (without the frames and
+    /// the viewer: `--no-frames`), for downloads.
+    pub fn files(&self) -> Result<Vec<(String, Vec<u8>)>, Error> {
+        bytes::to_files(&self.products, &WriteOptions { png: false, no_frames: true, dxf: Default::default() })
+    }
+}
+
+/// The scene's TOML table with `sets` applied (checked as `--set` checks them).
+fn table_with(text: &str, file: &str, sets: &[(String, String)]) -> Result<toml::Table, Error> {
+    let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| {
+        Error::from(scene::SceneError::Syntax { file: file.to_string(), message: e.to_string().trim_end().to_string() })
+    })?;
+    for o in overrides(sets)? {
+        o.apply(&mut table)?;
+    }
+    Ok(table)
+}
+
+fn overrides(sets: &[(String, String)]) -> Result<Vec<scene::Override>, Error> {
+    sets.iter().map(|(p, v)| format!("{p}={v}").parse::<scene::Override>().map_err(Error::from)).collect()
+}
+
+/// The products of `text` with `sets`, and a motion's frame options and base SVG.
+type Solved = (crate::run::products::Products, Option<(SvgOptions, String)>);
+
+fn solve(text: &str, file: &str, sets: &[(String, String)]) -> Result<Solved, Error> {
+    let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &overrides(sets)?)? };
+    let p = run::products(&loaded, &RunOptions { no_frames: true, ..RunOptions::default() })?;
+    if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
+        run::check_drawn(file, source.field, a.len(), source.advice)?;
+    }
+    let motion = match &p.picture {
+        Picture::Motion(a) => {
+            // The window of every frame: the animation's own, or fitted as the writer fits it.
+            let opts = if a.fixed_window.is_some() {
+                bytes::frame_options(a, &[])
+            } else {
+                bytes::frame_options(a, &a.poses())
+            };
+            let base = svg::to_string(&a.base, &opts);
+            Some((opts, base))
+        }
+        Picture::Still(_) => None,
+    };
+    Ok((p, motion))
+}
+
 /// The JavaScript side (wasm32 only): [`run_scene`](js::run_scene) and the [`Files`](js::Files)
 /// it returns.
 #[cfg(target_arch = "wasm32")]
@@ -104,6 +290,83 @@ pub mod js {
         /// The warnings, one a line.
         pub fn warnings(&self) -> String {
             self.0.warnings.join("\n")
+        }
+    }
+
+    /// A scene open in the page ([`Session`](super::Session)): every method that changes it
+    /// throws the command line's message and leaves it as it was on an error.
+    #[wasm_bindgen]
+    pub struct Live(super::Session);
+
+    #[wasm_bindgen]
+    impl Live {
+        /// Opens the scene in `toml`, named `file` in messages.
+        #[wasm_bindgen(constructor)]
+        pub fn new(toml: &str, file: &str) -> Result<Live, String> {
+            super::Session::new(toml, file).map(Live).map_err(|e| e.to_string())
+        }
+
+        /// `--set path=value`, and solve again.
+        pub fn set(&mut self, path: &str, value: &str) -> Result<(), String> {
+            self.0.set(path, value).map_err(|e| e.to_string())
+        }
+
+        /// A new scene text (the TOML editor), and solve again.
+        pub fn replace(&mut self, toml: &str) -> Result<(), String> {
+            self.0.replace(toml).map_err(|e| e.to_string())
+        }
+
+        /// The scene's text with the changes written in.
+        pub fn scene_text(&self) -> Result<String, String> {
+            self.0.scene_text().map_err(|e| e.to_string())
+        }
+
+        /// Every number of the scene as JSON:
+        /// `[{"path": "l_bc", "value": 0.125, "integer": false}, ...]`.
+        pub fn parameters(&self) -> Result<String, String> {
+            let ps = self.0.parameters().map_err(|e| e.to_string())?;
+            let list: Vec<serde_json::Value> = ps
+                .iter()
+                .map(|p| serde_json::json!({ "path": p.path, "value": p.value, "integer": p.integer }))
+                .collect();
+            Ok(serde_json::Value::Array(list).to_string())
+        }
+
+        /// Number of positions (1 for a still picture).
+        pub fn positions(&self) -> usize {
+            self.0.positions()
+        }
+
+        /// Position `k`'s label.
+        pub fn label(&self, k: usize) -> String {
+            self.0.label(k)
+        }
+
+        /// Position `k`'s frame, an SVG document (`""` past the last).
+        pub fn frame(&self, k: usize) -> String {
+            self.0.frame(k).unwrap_or_default()
+        }
+
+        /// The JSON summary, pretty.
+        pub fn summary(&self) -> String {
+            serde_json::to_string_pretty(&self.0.products().summary).unwrap_or_default()
+        }
+
+        /// The warnings, one a line.
+        pub fn warnings(&self) -> String {
+            self.0.products().warnings.join("\n")
+        }
+
+        /// The files of the scene as it stands (without frames), for downloads.
+        pub fn files(&self) -> Result<Files, String> {
+            let p = self.0.products();
+            let files = self.0.files().map_err(|e| e.to_string())?;
+            Ok(Files(SceneFiles {
+                files,
+                summary: p.summary.clone(),
+                report: p.report.clone(),
+                warnings: p.warnings.clone(),
+            }))
         }
     }
 

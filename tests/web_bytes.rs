@@ -13,45 +13,16 @@ use mechdraw::run::bytes::{self, WriteOptions};
 use mechdraw::scene::{self, Override};
 use mechdraw::web::{self, WebOptions};
 
-/// Every template (path, fewer positions and samples so that the set runs in seconds).
-fn templates() -> Vec<(std::path::PathBuf, Vec<String>)> {
-    let paths = common::template_paths();
-    assert!(paths.len() >= 9, "templates missing");
-    paths
-        .into_iter()
-        .map(|path| {
-            let text = std::fs::read_to_string(&path).unwrap();
-            let kind = text.lines().find_map(|l| l.strip_prefix("kind = ")).unwrap().trim_matches('"').to_string();
-            let set = match kind.as_str() {
-                "fourbar" => vec!["phi1_deg.step=30".to_string()],
-                "linkage" => vec!["time.steps=12".to_string()],
-                "chain" => vec!["stackup.samples=20000".to_string()],
-                _ => vec![],
-            };
-            (path, set)
-        })
-        .collect()
-}
-
-/// The scene file's text with the overrides written into it (what a page's fields do).
-fn text_with(path: &Path, set: &[String]) -> String {
-    let mut table: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
-    for s in set {
-        s.parse::<Override>().unwrap().apply(&mut table).unwrap();
-    }
-    toml::to_string(&table).unwrap()
-}
-
 fn names(files: &[(String, Vec<u8>)]) -> Vec<&str> {
     files.iter().map(|(n, _)| n.as_str()).collect()
 }
 
 #[test]
 fn web_files_are_the_command_lines_bytes_for_every_template() {
-    for (path, set) in templates() {
+    for (path, set) in common::reduced_templates() {
         let file = path.display().to_string();
         for frames in [true, false] {
-            let web = web::scene_files(&text_with(&path, &set), &file, WebOptions { frames, png: false })
+            let web = web::scene_files(&common::text_with(&path, &set), &file, WebOptions { frames, png: false })
                 .unwrap_or_else(|e| panic!("{file}: {e}"));
 
             // The library's own route: the scene read from disk, its products to bytes.
@@ -110,7 +81,10 @@ fn a_bad_scene_gives_the_command_lines_message() {
         ("syntax.toml", "kind = \"fourbar\"\nname = [unclosed\n".to_string()),
         ("kind.toml", "kind = \"pentagon\"\nname = \"p\"\n".to_string()),
         // A negative crank: a field error naming the field.
-        ("field.toml", text_with(&common::root().join("templates/fourbar-chebyshev.toml"), &["l1=-0.04".into()])),
+        (
+            "field.toml",
+            common::text_with(&common::root().join("templates/fourbar-chebyshev.toml"), &["l1=-0.04".into()]),
+        ),
         // A rocker far too long to meet the coupler at any crank angle: the solver's message.
         ("solve.toml", fourbar.replace("l_bc = 0.10", "l_bc = 1.0")),
     ];

@@ -140,8 +140,24 @@ fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
 /// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
 fn still_files(files: &mut Vec<(String, Vec<u8>)>, stem: &str, d: &Drawing, opts: &WriteOptions) -> Result<(), Error> {
     files.push((format!("{stem}.dxf"), dxf_bytes(d, &opts.dxf, stem)?));
-    let svg = svg::to_string(d, &SvgOptions { width_px: FRAME_WIDTH_PX, ..SvgOptions::default() });
-    picture_files(files, stem, svg, opts.png)
+    picture_files(files, stem, picture_svg(d), opts.png)
+}
+
+/// A still drawing's SVG (`<stem>.svg`).
+pub fn picture_svg(d: &Drawing) -> String {
+    svg::to_string(d, &SvgOptions { width_px: FRAME_WIDTH_PX, ..SvgOptions::default() })
+}
+
+/// The SVG options of a motion's frames: one window for all (the animation's fixed window,
+/// else fitted to the base and `poses`), on the base's paper.
+pub fn frame_options(a: &Animation, poses: &[Drawing]) -> SvgOptions {
+    SvgOptions {
+        width_px: FRAME_WIDTH_PX,
+        window: Some(a.window(poses)),
+        // Every frame on the base's paper, so that frames share the base's header.
+        paper_mm_per_unit: a.base.paper_mm_per_unit,
+        ..SvgOptions::default()
+    }
 }
 
 /// Each sheet as a still drawing named `<name>-<suffix>`, built in parallel.
@@ -264,13 +280,7 @@ fn motion(
     let name = &p.name;
     // Each position drawn once (in parallel), for the window, the DXF layer and the frame.
     let poses = a.poses();
-    let svg_opts = SvgOptions {
-        width_px: FRAME_WIDTH_PX,
-        window: Some(a.window(&poses)),
-        // Every frame on the base's paper, so that frames share the base's header.
-        paper_mm_per_unit: a.base.paper_mm_per_unit,
-        ..SvgOptions::default()
-    };
+    let svg_opts = frame_options(a, &poses);
     let want_frames = !opts.no_frames;
     let (dxf, rest) = rayon::join(
         || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),

@@ -282,3 +282,35 @@ pub fn template_paths() -> Vec<PathBuf> {
     paths.sort();
     paths
 }
+
+/// Every template with the `--set` overrides that make it run in seconds (fewer positions
+/// and samples): (path, overrides).
+#[allow(dead_code)]
+pub fn reduced_templates() -> Vec<(std::path::PathBuf, Vec<String>)> {
+    let paths = template_paths();
+    assert!(paths.len() >= 9, "templates missing");
+    paths
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path).unwrap();
+            let kind = text.lines().find_map(|l| l.strip_prefix("kind = ")).unwrap().trim_matches('"').to_string();
+            let set = match kind.as_str() {
+                "fourbar" => vec!["phi1_deg.step=30".to_string()],
+                "linkage" => vec!["time.steps=12".to_string()],
+                "chain" => vec!["stackup.samples=20000".to_string()],
+                _ => vec![],
+            };
+            (path, set)
+        })
+        .collect()
+}
+
+/// The scene file's text with the overrides written into it (what a page's fields do).
+#[allow(dead_code)]
+pub fn text_with(path: &Path, set: &[String]) -> String {
+    let mut table: toml::Table = std::fs::read_to_string(path).unwrap().parse().unwrap();
+    for s in set {
+        s.parse::<mechdraw::scene::Override>().unwrap().apply(&mut table).unwrap();
+    }
+    toml::to_string(&table).unwrap()
+}

@@ -1,0 +1,173 @@
+//! The page's session (`mechdraw::web::Session`, issue 17): a scene open in the browser,
+//! changed field by field (`--set` paths) or by a new text, gives the command line's bytes:
+//! every frame is the CLI's `frames/<name>/<position>.svg`, the downloads are the CLI's
+//! files, the JSON after a change is the CLI's JSON for the same `--set`; a change the scene
+//! refuses gives the CLI's message and leaves the session as it was.
+
+mod common;
+
+use std::path::Path;
+
+use mechdraw::web::{self, Session, WebOptions};
+
+/// The command line's files for `path` with `set` (frames included), sorted by name.
+fn cli_files(path: &Path, set: &[String]) -> Vec<(String, Vec<u8>)> {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut cmd = common::mechdraw();
+    cmd.arg("run").arg(path).arg("--out").arg(tmp.path()).arg("-q");
+    for s in set {
+        cmd.arg("--set").arg(s);
+    }
+    let out = cmd.output().unwrap();
+    assert!(out.status.success(), "{}: {}", path.display(), String::from_utf8_lossy(&out.stderr));
+    let mut files = Vec::new();
+    common::read_tree(tmp.path(), Path::new(""), &mut files);
+    files.sort();
+    files
+}
+
+/// The JSON the command line prints for `path` with `set` (`--json`).
+fn cli_json(path: &Path, set: &[String]) -> serde_json::Value {
+    let tmp = tempfile::tempdir().unwrap();
+    let mut cmd = common::mechdraw();
+    cmd.arg("run").arg(path).arg("--out").arg(tmp.path()).arg("-q").arg("--json").arg("--no-frames");
+    for s in set {
+        cmd.arg("--set").arg(s);
+    }
+    let out = cmd.output().unwrap();
+    assert!(out.status.success(), "{}: {}", path.display(), String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).unwrap()
+}
+
+#[test]
+fn every_frame_and_download_is_the_command_lines() {
+    for (path, set) in common::reduced_templates() {
+        let file = path.display().to_string();
+        let session = Session::new(&common::text_with(&path, &set), &file).unwrap_or_else(|e| panic!("{file}: {e}"));
+        let cli = cli_files(&path, &set);
+        let frames: Vec<&(String, Vec<u8>)> = cli.iter().filter(|(n, _)| n.starts_with("frames/")).collect();
+        if frames.is_empty() {
+            // A still picture: the one frame is `<name>.svg`.
+            assert_eq!(session.positions(), 1, "{file}");
+            let name = &session.products().name;
+            let svg = cli.iter().find(|(n, _)| *n == format!("{name}.svg")).expect("picture");
+            assert!(session.frame(0).unwrap().as_bytes() == svg.1, "{file}: the picture");
+        } else {
+            assert_eq!(session.positions(), frames.len(), "{file}: positions");
+            for (k, (name, bytes)) in frames.iter().enumerate() {
+                assert!(session.frame(k).unwrap().as_bytes() == bytes.as_slice(), "{file}: frame {k} is not {name}");
+            }
+            assert!(session.frame(frames.len()).is_none(), "{file}: no frame past the last");
+        }
+        // The downloads: the CLI's files without the frames and the viewer.
+        let downloads = session.files().unwrap();
+        let no_frames = web::scene_files(&common::text_with(&path, &set), &file, WebOptions::default()).unwrap();
+        assert_eq!(downloads.len(), no_frames.files.len(), "{file}");
+        for ((n, b), (m, c)) in downloads.iter().zip(&no_frames.files) {
+            assert_eq!(n, m, "{file}");
+            assert!(b == c, "{file}: {n}");
+            let on_disk =
+                cli.iter().find(|(d, _)| d == n).unwrap_or_else(|| panic!("{file}: {n} not written by the CLI"));
+            assert!(on_disk.1 == *b, "{file}: {n} differs from the CLI's");
+        }
+    }
+}
+
+#[test]
+fn a_length_that_breaks_grashof_shows_the_command_lines_gaps() {
+    let path = common::root().join("templates/fourbar-chebyshev.toml");
+    let file = path.display().to_string();
+    let mut session = Session::new(&std::fs::read_to_string(&path).unwrap(), &file).unwrap();
+    assert_eq!(session.products().summary["grashof"], "grashof");
+    assert_eq!(session.products().summary["gaps"], serde_json::json!([]));
+    session.set("l_bc", "0.2").unwrap();
+    let cli = cli_json(&path, &["l_bc=0.2".to_string()]);
+    assert_eq!(session.products().summary, cli, "the JSON after the change is the CLI's for --set l_bc=0.2");
+    let gaps = cli["gaps"].as_array().unwrap();
+    assert_eq!(gaps.len(), 2);
+    // Where a coupler of 0.10 cannot reach a rocker of 0.20 (|O1C|, crank 0.04): the
+    // assembly limits in closed form, cos φ1 = (l1² + d² − (l_bc − l_ab)²) / (2·l1·d).
+    let limits = cli_limits(&session);
+    assert!((gaps[0]["to_deg"].as_f64().unwrap() - limits).abs() < 1e-9, "{} vs {limits}", gaps[0]["to_deg"]);
+    // The parameters show the change.
+    let l_bc = session.parameters().unwrap().into_iter().find(|p| p.path == "l_bc").unwrap();
+    assert_eq!(l_bc.value, 0.2);
+}
+
+/// The crank angle (degrees) at which the dyad stretched to |AC| = l_bc − l_ab first
+/// assembles again after 0°, in closed form from the scene's lengths and the pivot C.
+fn cli_limits(s: &Session) -> f64 {
+    let params = s.parameters().unwrap();
+    let get = |p: &str| params.iter().find(|q| q.path == p).unwrap_or_else(|| panic!("{p}")).value;
+    let (l1, l_ab, l_bc) = (get("l1"), get("l_ab"), get("l_bc"));
+    let (cx, cy) = (get("c[0]"), get("c[1]"));
+    let (ox, oy) = (get("o1[0]"), get("o1[1]"));
+    let (dx, dy) = (cx - ox, cy - oy);
+    let d = dx.hypot(dy);
+    let ac = l_bc - l_ab;
+    let half = ((l1 * l1 + d * d - ac * ac) / (2.0 * l1 * d)).acos();
+    (dy.atan2(dx) + half).to_degrees().rem_euclid(360.0)
+}
+
+#[test]
+fn a_change_the_scene_refuses_gives_the_command_lines_message_and_keeps_the_picture() {
+    let path = common::root().join("templates/fourbar-chebyshev.toml");
+    let file = path.display().to_string();
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut session = Session::new(&text, &file).unwrap();
+    session.set("phi1_deg.step", "30").unwrap();
+    let before = session.frame(3).unwrap();
+
+    // A negative crank, as a field: the CLI's message for --set l1=-0.04.
+    let err = session.set("l1", "-0.04").unwrap_err().to_string();
+    let tmp = tempfile::tempdir().unwrap();
+    let out = common::mechdraw()
+        .args(["run", &file, "--set", "l1=-0.04", "--out"])
+        .arg(tmp.path())
+        .arg("-q")
+        .output()
+        .unwrap();
+    assert!(!out.status.success());
+    let cli = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(err, cli.trim_end().strip_prefix("error: ").unwrap());
+    assert_eq!(session.frame(3).unwrap(), before, "the picture stays");
+
+    // A TOML edit with a syntax error: the CLI's message, naming the line.
+    let broken = text.replace("l_bc = 0.10", "l_bc = = 0.10");
+    let err = session.replace(&broken).unwrap_err().to_string();
+    let bad = tmp.path().join("fourbar-chebyshev.toml");
+    std::fs::write(&bad, &broken).unwrap();
+    let out =
+        common::mechdraw().arg("run").arg(&bad).arg("--out").arg(tmp.path().join("o")).arg("-q").output().unwrap();
+    let cli = String::from_utf8(out.stderr).unwrap();
+    let cli = cli.trim_end().strip_prefix("error: ").unwrap().replace(&bad.display().to_string(), &file);
+    assert_eq!(err, cli);
+    assert!(err.contains("line 14"), "{err}");
+    assert_eq!(session.frame(3).unwrap(), before, "the picture stays");
+}
+
+#[test]
+fn every_number_of_a_scene_is_a_field_that_sets_it() {
+    for (path, set) in common::reduced_templates() {
+        let file = path.display().to_string();
+        let mut session = Session::new(&common::text_with(&path, &set), &file).unwrap();
+        let params = session.parameters().unwrap();
+        assert!(params.len() >= 3, "{file}: {params:?}");
+        let summary = session.products().summary.clone();
+        // Setting every field to its own value changes nothing.
+        for p in &params {
+            session.set(&p.path, &p.text()).unwrap_or_else(|e| panic!("{file}: {}: {e}", p.path));
+        }
+        assert_eq!(session.products().summary, summary, "{file}: every field set to its own value");
+    }
+}
+
+#[test]
+fn the_triad_lists_its_eight_assembly_modes_and_the_pattern_methods_angle() {
+    let path = common::root().join("templates/triad-popa.toml");
+    let session = Session::new(&std::fs::read_to_string(&path).unwrap(), &path.display().to_string()).unwrap();
+    let s = &session.products().summary;
+    assert_eq!(s["solutions"].as_array().unwrap().len(), 8);
+    let phi1 = s["pattern"]["phi1_deg"].as_f64().unwrap();
+    assert_eq!(format!("{phi1:.2}"), "75.77");
+}
