@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The first live page (issue 17, docs/web.md): one self-contained HTML file with the core's
-# WebAssembly module inside (base64), opening from file:// with no server. It shows a scene
-# (default: the Chebyshev four-bar), a slider and a number field for each of its top-level
-# lengths (l1, l_ab, l_bm, l_bc) and its TOML in a text area; each change re-runs the scene in
-# the page and redraws its picture, with links to download every file the CLI would write.
+# WebAssembly module inside (base64), opening from file:// with no server. It opens a scene
+# (default: the Chebyshev four-bar) in a web::Session: scrub and play its positions (the CLI's
+# frames), a number field and a slider for every number of the scene (a --set path), its TOML
+# in a text area; each change solves the scene again in the page and redraws it, with the
+# CLI's message on an error, a triad's assembly modes, and the CLI's files to download.
 #   bash web/build.sh [SCENE.toml]    ->  $CARGO_TARGET_DIR (or target)/web/mechdraw.html
 # Needs the wasm32-unknown-unknown target and wasm-bindgen-cli at the version of the
 # wasm-bindgen crate in Cargo.lock (cargo install wasm-bindgen-cli --version 0.2.130).
