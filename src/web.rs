@@ -18,6 +18,8 @@ use std::path::PathBuf;
 
 use crate::Error;
 use crate::draw::svg::{self, SvgOptions};
+use crate::figure::animation::{Drive, DriveState};
+use crate::geom::Point;
 use crate::run::bytes::{self, WriteOptions};
 use crate::run::products::Picture;
 use crate::run::{self, RunOptions};
@@ -115,7 +117,15 @@ pub struct Session {
     /// A motion's frame options and its base written once (frames splice each position onto
     /// it).
     motion: Option<(SvgOptions, String)>,
+    /// Where the last drag left the drive: (nearest position, drive value).
+    dragged: Option<(usize, f64)>,
 }
+
+/// Relative step of the drive's central differences (of its span) in a drag.
+const DRAG_STEP_REL: f64 = 1e-6;
+
+/// A drag's drive value is found to this fraction of the drive's span.
+const DRAG_TOL_REL: f64 = 1e-13;
 
 impl std::fmt::Debug for Session {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
@@ -127,7 +137,14 @@ impl Session {
     /// Opens the scene in `text` (named `file` in messages).
     pub fn new(text: &str, file: &str) -> Result<Session, Error> {
         let (products, motion) = solve(text, file, &[])?;
-        Ok(Session { file: file.to_string(), text: text.to_string(), sets: Vec::new(), products, motion })
+        Ok(Session {
+            file: file.to_string(),
+            text: text.to_string(),
+            sets: Vec::new(),
+            products,
+            motion,
+            dragged: None,
+        })
     }
 
     /// Sets the number (or any TOML value) at `path` to `value`, as `--set path=value` would,
@@ -137,7 +154,7 @@ impl Session {
         sets.retain(|(p, _)| p != path);
         sets.push((path.to_string(), value.to_string()));
         let (products, motion) = solve(&self.text, &self.file, &sets)?;
-        (self.sets, self.products, self.motion) = (sets, products, motion);
+        (self.sets, self.products, self.motion, self.dragged) = (sets, products, motion, None);
         Ok(())
     }
 
@@ -145,7 +162,8 @@ impl Session {
     /// field by field; on an error nothing changes.
     pub fn replace(&mut self, text: &str) -> Result<(), Error> {
         let (products, motion) = solve(text, &self.file, &[])?;
-        (self.text, self.sets, self.products, self.motion) = (text.to_string(), Vec::new(), products, motion);
+        (self.text, self.sets, self.products, self.motion, self.dragged) =
+            (text.to_string(), Vec::new(), products, motion, None);
         Ok(())
     }
 
@@ -201,11 +219,136 @@ impl Session {
         }
     }
 
+    /// SVG user units per model unit of the frames (paper millimetres per model unit, or 1):
+    /// a frame's user point (x, y) is the model point (x, −y) / this.
+    pub fn user_units_per_model(&self) -> f64 {
+        match &self.products.picture {
+            Picture::Motion(a) => a.base.paper_mm_per_unit.unwrap_or(1.0),
+            Picture::Still(d) => d.paper_mm_per_unit.unwrap_or(1.0),
+        }
+    }
+
+    fn drive(&self) -> Option<&Drive> {
+        match &self.products.picture {
+            Picture::Motion(a) => a.drive.as_ref(),
+            Picture::Still(_) => None,
+        }
+    }
+
+    /// The named points of position `k` of a motion (model units), for picking one to drag.
+    pub fn points(&self, k: usize) -> Option<DriveState> {
+        let d = self.drive()?;
+        (d.solve)(k, *d.values.get(k)?).ok()
+    }
+
+    /// Drags `point` (a name of [`Session::points`]) towards `target` (model units): the
+    /// mechanism moves as its joints allow, to the drive value at which the point comes
+    /// nearest the target (for a crank pin, exactly the crank angle of the target). The
+    /// search starts at the position whose point is nearest and stays in its assembly mode.
+    pub fn drag(&mut self, point: &str, target: Point) -> Result<DriveState, Error> {
+        let bad = |message: String| Error::Option { option: "drag".into(), message };
+        let d = self.drive().ok_or_else(|| bad("only a motion with a drive can be dragged".into()))?;
+        let n = d.values.len();
+        let at = |k: usize, s: f64| -> Option<Point> {
+            let st = (d.solve)(k, s).ok()?;
+            st.points.iter().find(|(name, _)| name == point).map(|(_, p)| *p)
+        };
+        if self.points(0).is_some_and(|st| st.points.iter().all(|(name, _)| name != point)) {
+            let names: Vec<String> = self.points(0).into_iter().flat_map(|st| st.points).map(|(n, _)| n).collect();
+            return Err(bad(format!("no point `{point}` in the mechanism; its points: {}", names.join(", "))));
+        }
+        // The position whose point is nearest the target.
+        let k = (0..n)
+            .filter_map(|k| at(k, d.values[k]).map(|p| (k, (p - target).norm())))
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .map(|(k, _)| k)
+            .ok_or_else(|| bad(format!("`{point}` could not be placed at any position")))?;
+        let span = (d.values[n - 1] - d.values[0]).abs().max(f64::MIN_POSITIVE);
+        let h = DRAG_STEP_REL * span;
+        // g(s) = (p(s) − target)·p'(s): zero where the point is nearest the target.
+        let g = |s: f64| -> Option<f64> {
+            let (p, lo, hi) = (at(k, s)?, at(k, s - h)?, at(k, s + h)?);
+            Some((p - target).dot(&((hi - lo) / (2.0 * h))))
+        };
+        let mut best = (d.values[k], at(k, d.values[k]).map_or(f64::INFINITY, |p| (p - target).norm()));
+        let neighbours = [k.checked_sub(1), (k + 1 < n).then_some(k + 1)];
+        for j in neighbours.into_iter().flatten() {
+            let (a, b) = (d.values[k].min(d.values[j]), d.values[k].max(d.values[j]));
+            if let Some(s) = root(&g, a, b, DRAG_TOL_REL * span)
+                && let Some(p) = at(k, s)
+                && (p - target).norm() < best.1
+            {
+                best = (s, (p - target).norm());
+            }
+        }
+        let state = (d.solve)(k, best.0).map_err(bad)?;
+        self.dragged = Some((k, best.0));
+        Ok(state)
+    }
+
+    /// Where the last drag left the drive: (nearest position, drive value).
+    pub fn dragged(&self) -> Option<(usize, f64)> {
+        self.dragged
+    }
+
+    /// The frame where the last drag left the mechanism (as [`Session::frame`] draws a
+    /// position, at the run's scales).
+    pub fn dragged_frame(&self) -> Option<String> {
+        let (k, s) = self.dragged?;
+        let d = self.drive()?;
+        let (opts, base) = self.motion.as_ref()?;
+        let pose = (d.draw)(k, s).ok()?;
+        let Picture::Motion(a) = &self.products.picture else { return None };
+        Some(
+            svg::splice(base, &svg::to_string(&pose, opts)).unwrap_or_else(|| svg::to_string(&a.frame_of(&pose), opts)),
+        )
+    }
+
     /// The files `mechdraw run` writes for the scene as it stands (without the frames and
     /// the viewer: `--no-frames`), for downloads.
     pub fn files(&self) -> Result<Vec<(String, Vec<u8>)>, Error> {
         bytes::to_files(&self.products, &WriteOptions { png: false, no_frames: true, dxf: Default::default() })
     }
+}
+
+/// A root of `g` in [a, b] when g changes sign there (Illinois false position), to `tol`.
+fn root(g: &impl Fn(f64) -> Option<f64>, mut a: f64, mut b: f64, tol: f64) -> Option<f64> {
+    let (mut ga, mut gb) = (g(a)?, g(b)?);
+    if ga == 0.0 {
+        return Some(a);
+    }
+    if gb == 0.0 {
+        return Some(b);
+    }
+    if ga.signum() == gb.signum() {
+        return None;
+    }
+    let mut side = 0;
+    for _ in 0..200 {
+        let c = (a * gb - b * ga) / (gb - ga);
+        let c = if c.is_finite() && c > a && c < b { c } else { 0.5 * (a + b) };
+        let gc = g(c)?;
+        if gc == 0.0 || (b - a) <= tol {
+            return Some(c);
+        }
+        if gc.signum() == gb.signum() {
+            (b, gb) = (c, gc);
+            if side == -1 {
+                ga *= 0.5;
+            }
+            side = -1;
+        } else {
+            (a, ga) = (c, gc);
+            if side == 1 {
+                gb *= 0.5;
+            }
+            side = 1;
+        }
+        if (b - a) <= tol {
+            return Some(0.5 * (a + b));
+        }
+    }
+    Some(0.5 * (a + b))
 }
 
 /// The scene's TOML table with `sets` applied (checked as `--set` checks them).
@@ -347,6 +490,33 @@ pub mod js {
             self.0.frame(k).unwrap_or_default()
         }
 
+        /// Position `k`'s named points as JSON (`{"label", "points": [[name, x, y], ...],
+        /// "residual"}`, model units; `""` for a still picture).
+        pub fn points(&self, k: usize) -> String {
+            self.0.points(k).map(|st| state_json(&st)).unwrap_or_default()
+        }
+
+        /// SVG user units per model unit of the frames.
+        pub fn user_units_per_model(&self) -> f64 {
+            self.0.user_units_per_model()
+        }
+
+        /// Drags `point` towards the model point (`x`, `y`); returns the state reached as
+        /// [`Live::points`] gives it, with `"drive"` (φ1 in degrees, or t in seconds).
+        pub fn drag(&mut self, point: &str, x: f64, y: f64) -> Result<String, String> {
+            let st = self.0.drag(point, crate::geom::Point::new(x, y)).map_err(|e| e.to_string())?;
+            let mut v: serde_json::Value = serde_json::from_str(&state_json(&st)).unwrap_or_default();
+            if let Some((_, s)) = self.0.dragged() {
+                v["drive"] = serde_json::json!(s);
+            }
+            Ok(v.to_string())
+        }
+
+        /// The frame where the last drag left the mechanism (`""` before any drag).
+        pub fn dragged_frame(&self) -> String {
+            self.0.dragged_frame().unwrap_or_default()
+        }
+
         /// The JSON summary, pretty.
         pub fn summary(&self) -> String {
             serde_json::to_string_pretty(&self.0.products().summary).unwrap_or_default()
@@ -368,6 +538,11 @@ pub mod js {
                 warnings: p.warnings.clone(),
             }))
         }
+    }
+
+    fn state_json(st: &crate::figure::animation::DriveState) -> String {
+        let points: Vec<serde_json::Value> = st.points.iter().map(|(n, p)| serde_json::json!([n, p.x, p.y])).collect();
+        serde_json::json!({ "label": st.label, "points": points, "residual": st.residual }).to_string()
     }
 
     /// Solves the scene in `toml` (named `file` in messages) and returns its files, with a

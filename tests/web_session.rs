@@ -171,3 +171,80 @@ fn the_triad_lists_its_eight_assembly_modes_and_the_pattern_methods_angle() {
     let phi1 = s["pattern"]["phi1_deg"].as_f64().unwrap();
     assert_eq!(format!("{phi1:.2}"), "75.77");
 }
+
+/// A point by name in a drive state.
+fn point_of(st: &mechdraw::figure::animation::DriveState, name: &str) -> mechdraw::geom::Point {
+    st.points.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no point {name}")).1
+}
+
+#[test]
+fn dragging_the_crank_pin_turns_the_crank_to_the_pointers_angle() {
+    let path = common::root().join("templates/fourbar-chebyshev.toml");
+    let file = path.display().to_string();
+    let mut session = Session::new(&std::fs::read_to_string(&path).unwrap(), &file).unwrap();
+    let params = session.parameters().unwrap();
+    let get = |p: &str| params.iter().find(|q| q.path == p).unwrap().value;
+    let (ox, oy, l1) = (get("o1[0]"), get("o1[1]"), get("l1"));
+    // The pointer off the crank circle (1.37 l1 from O1), between two sampled angles: the
+    // crank turns to the pointer's direction from O1, computed here with atan2.
+    for theta_deg in [123.4567_f64, 0.25, 271.9] {
+        let th = theta_deg.to_radians();
+        let target = mechdraw::geom::Point::new(ox + 1.37 * l1 * th.cos(), oy + 1.37 * l1 * th.sin());
+        let st = session.drag("A", target).unwrap();
+        let (_, phi1) = session.dragged().unwrap();
+        assert!((phi1 - theta_deg).abs() < 1e-7, "φ1 = {phi1}° for a pointer at {theta_deg}°");
+        assert!(st.residual <= 1e-9, "loop residual {}", st.residual);
+        // The loop closes, measured here: |O1A| = l1, |AB| = l_ab, |CB| = l_bc.
+        let (a, b) = (point_of(&st, "A"), point_of(&st, "B"));
+        let c = mechdraw::geom::Point::new(get("c[0]"), get("c[1]"));
+        assert!(((a - mechdraw::geom::Point::new(ox, oy)).norm() - l1).abs() <= 1e-12);
+        assert!(((b - a).norm() - get("l_ab")).abs() <= 1e-12);
+        assert!(((b - c).norm() - get("l_bc")).abs() <= 1e-12);
+        let frame = session.dragged_frame().unwrap();
+        let shown = mechdraw::figure::fourbar::angle_text(theta_deg);
+        assert!(frame.contains(&format!("φ1 = {shown}°")), "the frame shows φ1 = {shown}°");
+    }
+    // A fixed pivot cannot be dragged anywhere: the drive stays at the nearest position.
+    let st = session.drag("C", mechdraw::geom::Point::new(1.0, 1.0)).unwrap();
+    assert!(st.residual <= 1e-9);
+    assert!(
+        session.drag("Z", mechdraw::geom::Point::new(0.0, 0.0)).unwrap_err().to_string().contains("O1, A, B, M, C")
+    );
+}
+
+#[test]
+fn dragging_a_shaper_point_keeps_every_joint_together() {
+    let path = common::root().join("templates/shaper.toml");
+    let file = path.display().to_string();
+    let mut session = Session::new(&std::fs::read_to_string(&path).unwrap(), &file).unwrap();
+    use mechdraw::geom::Point;
+    for target in [Point::new(-150.0, 520.0), Point::new(210.0, 560.0), Point::new(80.0, 590.0)] {
+        let st = session.drag("rocker.B", target).unwrap();
+        assert!(st.residual <= 1e-9, "solver residual {}", st.residual);
+        // Every joint measured from the points: pivots on the ground, pins together, the
+        // block on the rocker's line, the ram on its guide y = 600.
+        let p = |n: &str| point_of(&st, n);
+        let close = |a: Point, b: Point| (a - b).norm() <= 1e-9 * 600.0;
+        assert!(close(p("crank.O1"), Point::new(0.0, 300.0)));
+        assert!(close(p("rocker.O3"), Point::new(0.0, 0.0)));
+        assert!(close(p("crank.A"), p("block.A")));
+        assert!(close(p("rocker.B"), p("link.B")));
+        assert!(close(p("link.E"), p("ram.E")));
+        assert!((p("ram.E").y - 600.0).abs() <= 1e-9 * 600.0);
+        let (o3, b, a) = (p("rocker.O3"), p("rocker.B"), p("block.A"));
+        let u = (b - o3) / (b - o3).norm();
+        assert!(((a - o3).x * u.y - (a - o3).y * u.x).abs() <= 1e-9 * 600.0, "the block is on the rocker");
+        // The drive went where rocker.B is nearest the pointer: no nearby time is nearer.
+        let (k, t) = session.dragged().unwrap();
+        let d = |st: &mechdraw::figure::animation::DriveState| (point_of(st, "rocker.B") - target).norm();
+        let here = d(&st);
+        let drive = match &session.products().picture {
+            mechdraw::run::products::Picture::Motion(a) => a.drive.as_ref().unwrap(),
+            _ => unreachable!(),
+        };
+        for dt in [-1e-4, 1e-4] {
+            let there = (drive.solve)(k, t + dt).unwrap();
+            assert!(d(&there) >= here - 1e-12, "t = {t} is not the nearest ({dt:+})");
+        }
+    }
+}

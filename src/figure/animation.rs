@@ -13,6 +13,36 @@ use crate::geom::Point;
 /// Draws position `k` of an animation (its moving part only).
 pub type PoseFn = Box<dyn Fn(usize) -> Drawing + Send + Sync>;
 
+/// The mechanism at one value of its drive, solved (not drawn): for a drag.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriveState {
+    /// The position's label (`φ1 = 93.25°`, `t = 0.2731 s`).
+    pub label: String,
+    /// The named points of the mechanism (`A`, `B`, `crank.A`, ...), model units.
+    pub points: Vec<(String, Point)>,
+    /// The largest constraint residual, relative to the mechanism's size.
+    pub residual: f64,
+}
+
+/// Solves the mechanism at drive value `s`, continuing the assembly mode of position `k`;
+/// the message says why it cannot be assembled there.
+pub type SolveAtFn = Box<dyn Fn(usize, f64) -> Result<DriveState, String> + Send + Sync>;
+
+/// Draws the moving part at drive value `s` (assembly mode of position `k`), at the run's
+/// scales.
+pub type DrawAtFn = Box<dyn Fn(usize, f64) -> Result<Drawing, String> + Send + Sync>;
+
+/// A motion's drive: the value at every position (the crank angle in degrees, the time in
+/// seconds), and the mechanism solved and drawn at any value between.
+pub struct Drive {
+    /// The drive's value at each position (one per [`Animation::names`]), increasing.
+    pub values: Vec<f64>,
+    /// Solves at any value.
+    pub solve: SolveAtFn,
+    /// Draws at any value.
+    pub draw: DrawAtFn,
+}
+
 /// A motion ready to be drawn.
 pub struct Animation {
     /// A title for the viewer (e.g. `fourbar-chebyshev: four-bar, 360 positions`).
@@ -29,6 +59,8 @@ pub struct Animation {
     pub labels: Vec<String>,
     /// Draws the moving part of position `k` (`k < names.len()`).
     pose: PoseFn,
+    /// The drive, for a drag (`None`: the positions only).
+    pub drive: Option<Drive>,
 }
 
 impl std::fmt::Debug for Animation {
@@ -56,7 +88,13 @@ impl Animation {
         pose: impl Fn(usize) -> Drawing + Send + Sync + 'static,
     ) -> Animation {
         assert_eq!(names.len(), labels.len(), "one label per position");
-        Animation { title, base, fixed_window, names, labels, pose: Box::new(pose) }
+        Animation { title, base, fixed_window, names, labels, pose: Box::new(pose), drive: None }
+    }
+
+    /// The animation with its drive (for a drag).
+    pub fn with_drive(mut self, drive: Drive) -> Animation {
+        self.drive = Some(drive);
+        self
     }
 
     /// Number of positions.

@@ -13,18 +13,22 @@ use super::fourbar_teaching as teaching;
 use super::products::{self, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
-use crate::figure::animation::Animation;
+use std::sync::Arc;
+
+use crate::figure::animation::{Animation, Drive, DriveState};
 use crate::figure::fourbar::{Layout, ModelUnits, Show, angle_text};
 use crate::figure::fourbar_sheet::FourbarSheets;
 use crate::figure::plot::{self, Diagram, Series};
 use crate::figure::sheet::{self, Paper};
-use crate::geom::{Point, Vector, deg};
+use crate::geom::{self, Point, Side, Vector, deg};
 use crate::report::{self, Csv};
 use crate::scene::Units;
 use crate::scene::fourbar::FourbarScene;
 use crate::solve::fourbar::Forces;
 use crate::solve::fourbar::transmission::{gamma, gamma_min};
-use crate::solve::fourbar::{Motion, Position, solve_motion};
+use crate::solve::fourbar::{
+    FourbarError, Geometry, Motion, MotionSpec, Position, kinematics_eps, kinetostatics, position, solve_motion,
+};
 
 /// A jump of more than this many sweep steps between consecutive solved positions is a
 /// gap (skipped angles): curves break there.
@@ -96,11 +100,31 @@ pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -
     let title = format!("{name}: four-bar, {} positions", motion.positions.len());
     let window = layout.frame.window;
     let Motion { positions, forces, .. } = motion;
+    let values = positions.iter().map(|p| deg(p.phi1)).collect();
+    let sides: Vec<Side> = positions.iter().map(|p| p.side(&geom).unwrap_or(geom.branch)).collect();
+    let (layout, sides) = (Arc::new(layout), Arc::new(sides));
+    let drive = Drive {
+        values,
+        solve: {
+            let (spec, sides) = (spec.clone(), sides.clone());
+            Box::new(move |k, s_deg| {
+                let (pos, _) = solve_at(&spec, sides.get(k).copied().unwrap_or(spec.geometry.branch), s_deg)?;
+                Ok(drive_state(&spec.geometry, &pos))
+            })
+        },
+        draw: {
+            let (spec, layout) = (spec.clone(), layout.clone());
+            Box::new(move |k, s_deg| {
+                let (pos, force) = solve_at(&spec, sides.get(k).copied().unwrap_or(spec.geometry.branch), s_deg)?;
+                Ok(layout.moving(&spec.geometry, &pos, force.as_ref().filter(|_| show.forces)))
+            })
+        },
+    };
     let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
     Ok(Products {
         name: name.clone(),
         mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose)),
+        picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
         sheets,
         pages,
@@ -110,6 +134,46 @@ pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -
         report,
         warnings,
     })
+}
+
+/// The position at crank angle `phi1_deg` with B on `side`, with its kinematics and forces
+/// as the scene asks for them (as `solve_motion` computes each position of the sweep).
+fn solve_at(spec: &MotionSpec, side: Side, phi1_deg: f64) -> Result<(Position, Option<Forces>), String> {
+    let geom = &spec.geometry;
+    let at = |e: FourbarError| format!("at φ1 = {}°: {e}", angle_text(phi1_deg));
+    let mut pos = position(geom, geom::rad(phi1_deg), side).map_err(at)?;
+    let mut force = None;
+    if spec.outputs.kinematics() {
+        let kin = kinematics_eps(geom, &pos, spec.omega1, spec.epsilon1).map_err(at)?;
+        if let Some(d) = spec.dynamics.as_ref().filter(|_| spec.outputs.forces) {
+            force = Some(kinetostatics::forces(geom, &pos, &kin, d).map_err(at)?);
+        }
+        pos.kin = Some(kin);
+    }
+    Ok((pos, force))
+}
+
+/// The named points of a position (as the mechanism's picture names them) and its loop
+/// residual: the largest miss of |O1A| = l1, |AB| = l_ab, |CB| = l_bc, relative to the
+/// longest link.
+fn drive_state(geom: &Geometry, pos: &Position) -> DriveState {
+    let miss = [
+        ((pos.a - geom.o1).norm(), geom.l1),
+        ((pos.b - pos.a).norm(), geom.l_ab),
+        ((pos.b - geom.c).norm(), geom.l_bc),
+    ];
+    let size = geom.l1.max(geom.l_ab).max(geom.l_bc);
+    DriveState {
+        label: format!("φ1 = {}°", angle_text(deg(pos.phi1))),
+        points: vec![
+            ("O1".into(), geom.o1),
+            ("A".into(), pos.a),
+            ("B".into(), pos.b),
+            ("M".into(), pos.m),
+            ("C".into(), geom.c),
+        ],
+        residual: miss.iter().map(|(d, l)| (d - l).abs()).fold(0.0, f64::max) / size,
+    }
 }
 
 /// Layer (and frame file) names: `POS_ddd` with the crank angle in whole degrees when every

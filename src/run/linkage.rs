@@ -4,6 +4,7 @@
 //! With `--drag`, the dragged configuration is written instead of the motion.
 
 use std::collections::BTreeMap;
+use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
@@ -11,7 +12,7 @@ use super::products::{self, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
 use crate::draw::{Aci, LineType};
-use crate::figure::animation::Animation;
+use crate::figure::animation::{Animation, Drive, DriveState};
 use crate::figure::linkage as fig;
 use crate::figure::linkage_forces;
 use crate::figure::linkage_frame::{LinkageFrames, RunForces, Show};
@@ -352,6 +353,31 @@ pub(super) fn products(
 
     let (mech, dynamics) = (scene.mechanism.clone(), scene.dynamics.clone());
     let forces = forces.unwrap_or_default();
+    let (frames, figure, states) = (Arc::new(frames), Arc::new(figure), Arc::new(states));
+    let at = Arc::new(SolveAt {
+        solver: Mutex::new(AssurSolver::new(mech.clone()).map_err(|e| solve_err(file)(e.into()))?),
+        states: states.clone(),
+        dynamics: dynamics.clone().filter(|_| out.forces),
+        rates: out.velocity,
+    });
+    let drive = Drive {
+        values: states.iter().map(|s| s.t).collect(),
+        solve: {
+            let at = at.clone();
+            Box::new(move |k, t| {
+                let (state, _) = at.solve(k, t)?;
+                Ok(linkage_drive_state(&at.solver, &state))
+            })
+        },
+        draw: {
+            let (frames, figure, mech) = (frames.clone(), figure.clone(), mech.clone());
+            Box::new(move |k, t| {
+                let (state, force) = at.solve(k, t)?;
+                let force = at.dynamics.as_ref().zip(force.as_ref());
+                Ok(frames.moving(&figure, &mech, &state, force))
+            })
+        },
+    };
     let pose = move |k: usize| {
         let force = dynamics.as_ref().zip(forces.get(k));
         frames.moving(&figure, &mech, &states[k], force)
@@ -359,7 +385,9 @@ pub(super) fn products(
     Ok(Products {
         name: scene.name.clone(),
         mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(Animation::new(scene.name.clone(), base, Some(window), names, labels, pose)),
+        picture: Picture::Motion(
+            Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
+        ),
         positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
         sheets: Vec::new(),
         pages,
@@ -369,6 +397,56 @@ pub(super) fn products(
         report,
         warnings,
     })
+}
+
+/// The Assur route at any time between the run's samples (for a drag), continuing the
+/// assembly mode of a sample, computing what the run computed.
+struct SolveAt {
+    solver: Mutex<AssurSolver>,
+    states: Arc<Vec<State>>,
+    dynamics: Option<crate::solve::linkage::Dynamics>,
+    rates: bool,
+}
+
+impl SolveAt {
+    /// The state (and forces) at `t`, from sample `k`.
+    fn solve(&self, k: usize, t: f64) -> Result<(State, Option<crate::solve::linkage::Forces>), String> {
+        let mut solver = self.solver.lock().map_err(|_| "the solver failed earlier".to_string())?;
+        if let Some(s) = self.states.get(k) {
+            solver.resume(s);
+        }
+        let at = |e: LinkageError| format!("at t = {t} s: {e}");
+        match &self.dynamics {
+            Some(d) => {
+                let (mut states, mut forces) = solver.run_kinetostatics(&[t], d).map_err(at)?;
+                Ok((states.remove(0), forces.pop()))
+            }
+            None if self.rates => Ok((solver.run(&[t]).map_err(at)?.remove(0), None)),
+            None => {
+                solver.step_positions(t).map_err(at)?;
+                Ok((solver.state(), None))
+            }
+        }
+    }
+}
+
+/// Every named point of every body (`crank.A`), and the state's residual.
+fn linkage_drive_state(solver: &Mutex<AssurSolver>, state: &State) -> DriveState {
+    let points = match solver.lock() {
+        Ok(s) => s
+            .mechanism()
+            .bodies
+            .iter()
+            .enumerate()
+            .flat_map(|(i, b)| {
+                b.points.iter().map(move |(name, local)| {
+                    (format!("{}.{name}", b.name), state.point(Anchor { body: Attach::Body(i), local: *local }))
+                })
+            })
+            .collect(),
+        Err(_) => Vec::new(),
+    };
+    DriveState { label: format!("t = {:.4} s", state.t), points, residual: state.residual }
 }
 
 fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: Solver) -> Result<Products, Error> {
