@@ -1,32 +1,50 @@
 #!/usr/bin/env bash
-# The first live page (issue 17, docs/web.md): one self-contained HTML file with the core's
-# WebAssembly module inside (base64), opening from file:// with no server. It opens a scene
-# (default: the Chebyshev four-bar) in a web::Session: scrub and play its positions (the CLI's
-# frames), a number field and a slider for every number of the scene (a --set path), its TOML
-# in a text area; each change solves the scene again in the page and redraws it, with the
-# CLI's message on an error, a triad's assembly modes, and the CLI's files to download.
-#   bash web/build.sh [SCENE.toml]    ->  $CARGO_TARGET_DIR (or target)/web/mechdraw.html
+# The live pages (issue 17, docs/web.md): one self-contained HTML file per scene with the
+# core's WebAssembly module inside (base64), opening from file:// with no server, and an
+# index of them (the gallery a course can publish as static files).
+#   bash web/build.sh [SCENE.toml ...]   ->  $CARGO_TARGET_DIR (or target)/web/<scene>.html, index.html
+# Without arguments: every bundled template. Each page opens its scene in a web::Session:
+# scrub and play the positions (the CLI's frames), drag a joint, a number field and a slider
+# for every number of the scene (a --set path), its TOML in a text area; each change solves
+# the scene again in the page and redraws it, with the CLI's message on an error, a triad's
+# assembly modes, and the CLI's files to download.
 # Needs the wasm32-unknown-unknown target and wasm-bindgen-cli at the version of the
 # wasm-bindgen crate in Cargo.lock (cargo install wasm-bindgen-cli --version 0.2.130).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 target="${CARGO_TARGET_DIR:-target}"
-scene="${1:-templates/fourbar-chebyshev.toml}"
+if [ $# -eq 0 ]; then set -- templates/*.toml; fi
+mkdir -p "$target/web" && rm -f "$target/web/"*.html
 cargo rustc --lib --profile wasm --target wasm32-unknown-unknown --no-default-features --crate-type cdylib
 wasm-bindgen --target no-modules --no-typescript --remove-name-section --remove-producers-section --out-dir "$target/web" \
   "$target/wasm32-unknown-unknown/wasm/mechdraw.wasm"
-python3 - "$target/web" "$scene" <<'PY'
-import base64, pathlib, sys
-out, scene = pathlib.Path(sys.argv[1]), pathlib.Path(sys.argv[2])
-page = pathlib.Path("web/page.html").read_text()
-wasm = (out / "mechdraw_bg.wasm").read_bytes()
-for key, value in [
-    ("__WASM_BINDGEN_JS__", (out / "mechdraw.js").read_text()),
-    ("__WASM_BASE64__", base64.b64encode(wasm).decode()),
-    ("__SCENE_TOML__", scene.read_text()),
-    ("__SCENE_FILE__", scene.name),
-]:
-    page = page.replace(key, value, 1)
-(out / "mechdraw.html").write_text(page)
-print(f"{out / 'mechdraw.html'}: {len(page.encode())} bytes (module {len(wasm)} bytes)")
+python3 - "$target/web" "$@" <<'PY'
+import base64, html, pathlib, sys
+out = pathlib.Path(sys.argv[1])
+template = pathlib.Path("web/page.html").read_text()
+glue = (out / "mechdraw.js").read_text()
+wasm = base64.b64encode((out / "mechdraw_bg.wasm").read_bytes()).decode()
+links = []
+for scene in map(pathlib.Path, sys.argv[2:]):
+    text = scene.read_text()
+    page = template
+    for key, value in [
+        ("__WASM_BINDGEN_JS__", glue),
+        ("__WASM_BASE64__", wasm),
+        # Inside <script type="text/plain">: only "</" could end it early.
+        ("__SCENE_TOML__", text.replace("</", "<\\/")),
+        ("__SCENE_FILE__", scene.name),
+    ]:
+        page = page.replace(key, value, 1)
+    target = out / (scene.stem + ".html")
+    target.write_text(page)
+    title = next((l.split("=", 1)[1].strip().strip('"') for l in text.splitlines() if l.startswith("name")), scene.stem)
+    kind = next((l.split("=", 1)[1].strip().strip('"') for l in text.splitlines() if l.startswith("kind")), "")
+    links.append(f'<li><a href="{html.escape(target.name)}">{html.escape(title)}</a> ({html.escape(kind)})</li>')
+    print(f"{target}: {len(page.encode())} bytes")
+index = ("<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><title>mechdraw live: the templates</title></head>\n"
+         "<body>\n<h1>mechdraw live</h1>\n<p>Each page solves and draws its scene in the browser (no server): drag a joint, "
+         "change any number, edit the TOML, download the files.</p>\n<ul>\n" + "\n".join(links) + "\n</ul>\n</body>\n</html>\n")
+(out / "index.html").write_text(index)
+print(f"{out / 'index.html'}: {len(links)} pages")
 PY

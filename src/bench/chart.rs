@@ -44,7 +44,7 @@ fn decades(values: impl Iterator<Item = f64>) -> (i32, i32) {
     if !lo.is_finite() {
         return (0, 1);
     }
-    let (a, b) = (lo.log10().floor() as i32, hi.log10().ceil() as i32);
+    let (a, b) = (libm::log10(lo).floor() as i32, libm::log10(hi).ceil() as i32);
     (a, b.max(a + 1))
 }
 
@@ -60,8 +60,8 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
     let pts: Vec<&Measurement> = ms.iter().filter(|m| m.error.is_some() && m.ns_per_solve > 0.0).collect();
     let (x0, x1) = decades(pts.iter().map(|m| m.ns_per_solve));
     let (y0, y1) = decades(pts.iter().map(|m| m.error.unwrap_or(1.0).max(ERROR_FLOOR)));
-    let px = |ns: f64| W * (ns.log10() - x0 as f64) / (x1 - x0) as f64;
-    let py = |e: f64| H * (e.max(ERROR_FLOOR).log10() - y0 as f64) / (y1 - y0) as f64;
+    let px = |ns: f64| W * (libm::log10(ns) - x0 as f64) / (x1 - x0) as f64;
+    let py = |e: f64| H * (libm::log10(e.max(ERROR_FLOOR)) - y0 as f64) / (y1 - y0) as f64;
 
     // Frame, decade grid and labels.
     d.add(

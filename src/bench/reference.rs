@@ -29,17 +29,17 @@ pub mod shaper {
     /// direct differentiation.
     pub fn closed_form(t: f64) -> ([f64; 3], [f64; 3]) {
         let phi = OMEGA * t;
-        let (s, c) = phi.sin_cos();
+        let (s, c) = libm::sincos(phi);
         let a = [R * c, H_PIVOT + R * s];
         let ad = [-R * OMEGA * s, R * OMEGA * c];
         let add = [-R * OMEGA * OMEGA * c, -R * OMEGA * OMEGA * s];
         let n2 = a[0] * a[0] + a[1] * a[1];
         let cross = |u: [f64; 2], v: [f64; 2]| u[0] * v[1] - u[1] * v[0];
         let dot = |u: [f64; 2], v: [f64; 2]| u[0] * v[0] + u[1] * v[1];
-        let th = a[1].atan2(a[0]);
+        let th = libm::atan2(a[1], a[0]);
         let thd = cross(a, ad) / n2;
         let thdd = cross(a, add) / n2 - 2.0 * cross(a, ad) * dot(a, ad) / (n2 * n2);
-        let (st, ct) = th.sin_cos();
+        let (st, ct) = libm::sincos(th);
         let b = [L * ct, L * st];
         let bd = [-L * thd * st, L * thd * ct];
         let bdd = [-L * thdd * st - L * thd * thd * ct, L * thdd * ct - L * thd * thd * st];
@@ -87,7 +87,7 @@ pub fn fourbar_b(g: &Geometry, phi1: f64) -> Option<Point> {
     if !(-1.0..=1.0).contains(&cos_gamma) {
         return None;
     }
-    let gamma = cos_gamma.acos();
+    let gamma = libm::acos(cos_gamma);
     // B left of A→C means B right of C→A: turn clockwise from C→A.
     let turn = if g.branch == Side::Left { -gamma } else { gamma };
     let mut b = polar(g.c, g.l_bc, angle_of(ca) + turn);

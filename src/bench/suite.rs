@@ -54,7 +54,7 @@ pub fn chebyshev_geometry() -> Result<Geometry, Error> {
 }
 
 fn fmt_e(v: f64) -> String {
-    let k = v.log10().round() as i32;
+    let k = libm::log10(v).round() as i32;
     format!("1e{k}")
 }
 

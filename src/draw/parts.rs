@@ -101,7 +101,7 @@ pub fn arrow(from: Point, to: Point, head: f64) -> Option<(Point, [Point; 3])> {
 pub fn dash_pattern(extent: f64) -> (f64, f64) {
     let extent = if extent.is_finite() && extent > 0.0 { extent } else { 100.0 };
     let target = 0.018 * extent;
-    let decade = 10f64.powf(target.log10().floor());
+    let decade = libm::pow(10f64, libm::log10(target).floor());
     let mantissa = target / decade;
     let step = if mantissa >= 5.0 {
         5.0
@@ -142,7 +142,7 @@ pub fn middle_text_box(mid: Point, width: f64, height: f64) -> (Point, Point) {
 fn point_box_distance(p: Point, (min, max): (Point, Point)) -> f64 {
     let dx = (min.x - p.x).max(p.x - max.x).max(0.0);
     let dy = (min.y - p.y).max(p.y - max.y).max(0.0);
-    dx.hypot(dy)
+    libm::hypot(dx, dy)
 }
 
 /// Whether the segment `a`–`b` meets the axis-aligned box `(min, max)` (Liang–Barsky
@@ -185,7 +185,7 @@ pub fn angular_text_mid(
     let a1 = angle_of(first - vertex);
     let sweep = normalize_angle(angle_of(second - vertex) - a1);
     let mid = a1 + 0.5 * sweep;
-    let u = Vector::new(mid.cos(), mid.sin());
+    let u = Vector::new(libm::cos(mid), libm::sin(mid));
     let w = text_width(text, th);
     let boxed = |d: f64| middle_text_box(vertex + u * d, w, th);
     // Clear of the arc: the box's distance to the vertex grows with d, so bisect. At `hi`
@@ -276,7 +276,7 @@ pub fn linear_layout_placed(
     style: &DimStyle,
 ) -> LinearLayout {
     let th = style.text_height;
-    let u = Vector::new(angle.cos(), angle.sin());
+    let u = Vector::new(libm::cos(angle), libm::sin(angle));
     let n = perp(u);
     let foot = |p: &Point| p + n * (line_at - p).dot(&n);
     let (f1, f2) = (foot(&p1), foot(&p2));
@@ -382,7 +382,7 @@ fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out:
                 }
             }
             // Outward along the dimension line at each foot (f1 back, f2 on, when they meet).
-            let u = Vector::new(angle.cos(), angle.sin());
+            let u = Vector::new(libm::cos(*angle), libm::sin(*angle));
             let out1 = if (f1 - f2).dot(&u) > 0.0 { u } else { -u };
             // How far the dimension line runs on past each foot: under an outside text, and
             // under outside arrowheads.

@@ -189,15 +189,15 @@ fn arc(f: &Frame, center: Point, radius: f64, start: f64, sweep: f64) -> Option<
     let n = ((sweep.abs() / std::f64::consts::FRAC_PI_2).ceil() as usize).max(1);
     let step = sweep / n as f64;
     // Control-arm length of a cubic approximating an arc of `step`.
-    let t = 4.0 / 3.0 * (step / 4.0).tan();
+    let t = 4.0 / 3.0 * libm::tan(step / 4.0);
     let mut pb = PathBuilder::new();
     let (x, y) = f.pt(polar(center, radius, start));
     pb.move_to(x, y);
     for i in 0..n {
         let (a0, a1) = (start + step * i as f64, start + step * (i + 1) as f64);
         let (p0, p3) = (polar(center, radius, a0), polar(center, radius, a1));
-        let d0 = crate::geom::Vector::new(-a0.sin(), a0.cos()) * (radius * t);
-        let d1 = crate::geom::Vector::new(-a1.sin(), a1.cos()) * (radius * t);
+        let d0 = crate::geom::Vector::new(-libm::sin(a0), libm::cos(a0)) * (radius * t);
+        let d1 = crate::geom::Vector::new(-libm::sin(a1), libm::cos(a1)) * (radius * t);
         let ((x1, y1), (x2, y2), (x3, y3)) = (f.pt(p0 + d0), f.pt(p3 - d1), f.pt(p3));
         pb.cubic_to(x1, y1, x2, y2, x3, y3);
     }

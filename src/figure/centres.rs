@@ -88,7 +88,7 @@ pub fn draw_centres(
                 notes.push(format!("{name} off the panel, at ({}, {})", coord(q.x), coord(q.y)));
             }
             Centre::AtInfinity(u) => {
-                let deg = u.y.atan2(u.x).to_degrees().rem_euclid(180.0);
+                let deg = libm::atan2(u.y, u.x).to_degrees().rem_euclid(180.0);
                 notes.push(format!("{name} at infinity, direction {}°", angle_text(deg)))
             }
         }

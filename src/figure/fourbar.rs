@@ -281,7 +281,7 @@ pub(crate) fn mechanism(
         let r = OMEGA_RADIUS * s.joint;
         let mid = turn_arrow(d, mech, geom.o1, r, from, sweep, s);
         // The arc for the letters, as chords.
-        let at = |t: f64| geom.o1 + Vector::new((from + t * sweep).cos(), (from + t * sweep).sin()) * r;
+        let at = |t: f64| geom.o1 + Vector::new(libm::cos(from + t * sweep), libm::sin(from + t * sweep)) * r;
         for i in 0..6 {
             letters.segment(at(i as f64 / 6.0), at((i + 1) as f64 / 6.0));
         }
@@ -675,7 +675,7 @@ pub(crate) mod tests {
             assert!(disjoint, "{p:?} overlaps {mech:?}");
         }
         // The scale is nice and the largest polygon is about as large as the mechanism.
-        let m = sv.per_mm / 10f64.powf(sv.per_mm.log10().floor());
+        let m = sv.per_mm / libm::pow(10f64, libm::log10(sv.per_mm).floor());
         assert!([1.0, 2.0, 2.5, 5.0].iter().any(|n| (m - n).abs() < 1e-9), "{}", sv.per_mm);
         // Every frame lies inside the shared window.
         for f in &frames {

@@ -48,7 +48,7 @@ pub fn sig4(v: f64) -> String {
     if v == 0.0 || !v.is_finite() {
         return format!("{v}");
     }
-    let mag = v.abs().log10().floor() as i32;
+    let mag = libm::log10(v.abs()).floor() as i32;
     if !(-4..6).contains(&mag) {
         return format!("{v:.3e}");
     }

@@ -396,14 +396,14 @@ fn candidates_in(
     rings: &[f64],
 ) -> impl Iterator<Item = Point> + '_ {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
-    let base = u0.y.atan2(u0.x);
+    let base = libm::atan2(u0.y, u0.x);
     let (hw, hh) = (half.x, half.y);
     // Lazy: most letters take their first candidate, so the directions are not computed
     // ahead (a run places some ten thousand letters).
     rings.iter().flat_map(move |&ring| {
         TURNS.into_iter().map(move |turn| {
             let a = base + turn * TURN;
-            let u = Vector::new(a.cos(), a.sin());
+            let u = Vector::new(libm::cos(a), libm::sin(a));
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
             at + u * (ring * (LABEL_GAP * height + clear + reach))
@@ -415,13 +415,13 @@ fn candidates_in(
 /// direction.
 pub fn max_distance(text: &str, height: f64) -> f64 {
     let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    RINGS[RINGS.len() - 1] * (LABEL_GAP * height + hw.hypot(hh))
+    RINGS[RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(hw, hh))
 }
 
 /// The farthest a name with a leader ([`Polygon::name_with_leader`]) can be from its point.
 pub fn max_leader_distance(text: &str, height: f64) -> f64 {
     let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + hw.hypot(hh))
+    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(hw, hh))
 }
 
 #[cfg(test)]

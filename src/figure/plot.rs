@@ -133,7 +133,7 @@ pub fn nice_step(span: f64, max_ticks: usize, degrees: bool) -> f64 {
             }
         }
     }
-    let mag = 10f64.powf(raw.log10().floor());
+    let mag = libm::pow(10f64, libm::log10(raw).floor());
     for m in [1.0, 2.0, 2.5, 5.0, 10.0] {
         if m * mag >= raw * (1.0 - 1e-12) {
             return m * mag;

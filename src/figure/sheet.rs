@@ -219,7 +219,7 @@ pub fn number(v: f64) -> String {
     if v == 0.0 {
         return "0".to_string();
     }
-    let mag = v.abs().log10().floor();
+    let mag = libm::log10(v.abs()).floor();
     if !(-4.0..6.0).contains(&mag) {
         return format!("{v:.3e}");
     }

@@ -241,7 +241,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     for o in t.o {
         letters.keep_off(vocab::ground_extent(o, s));
     }
-    let toward = |dir: f64| Vector::new(dir.cos(), dir.sin());
+    let toward = |dir: f64| Vector::new(libm::cos(dir), libm::sin(dir));
     let half_pi = std::f64::consts::FRAC_PI_2;
     for i in 0..3 {
         let phi = f.exact.phi[i];

@@ -61,7 +61,7 @@ pub fn nice_scale(raw: f64) -> f64 {
     if !(raw.is_finite() && raw > 0.0) {
         return 1.0;
     }
-    let mag = 10f64.powf(raw.log10().floor());
+    let mag = libm::pow(10f64, libm::log10(raw).floor());
     for m in [1.0, 2.0, 2.5, 5.0, 10.0] {
         if m * mag >= raw * (1.0 - 1e-12) {
             return m * mag;
@@ -236,10 +236,10 @@ pub fn turn_arrow(d: &mut Drawing, layer: usize, centre: Point, radius: f64, fro
     let to = from + sweep;
     let (start, end) = if sweep >= 0.0 { (from, to) } else { (to, from) };
     d.add(layer, Shape::Arc { center: centre, radius, start, end });
-    let at = |a: f64| centre + Vector::new(a.cos(), a.sin()) * radius;
+    let at = |a: f64| centre + Vector::new(libm::cos(a), libm::sin(a)) * radius;
     let tip = at(to);
     // Tangent at the tip, along the turn.
-    let t = Vector::new(-to.sin(), to.cos()) * sweep.signum();
+    let t = Vector::new(-libm::sin(to), libm::cos(to)) * sweep.signum();
     let h = s.head.min(0.5 * radius * sweep.abs());
     let base = tip - t * h;
     let n = perp(t) * (h * crate::draw::parts::ARROW_HALF_WIDTH);

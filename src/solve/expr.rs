@@ -24,9 +24,9 @@
 //! use mechdraw::solve::expr::Expr;
 //! let law = Expr::parse("0.3*sin(4*t) + t^2").unwrap();
 //! let j = law.eval(0.5);
-//! assert!((j.value - (0.3 * 2f64.sin() + 0.25)).abs() < 1e-15);
-//! assert!((j.d1 - (1.2 * 2f64.cos() + 1.0)).abs() < 1e-15);
-//! assert!((j.d2 - (-4.8 * 2f64.sin() + 2.0)).abs() < 1e-15);
+//! assert!((j.value - (0.3 * libm::sin(2f64) + 0.25)).abs() < 1e-15);
+//! assert!((j.d1 - (1.2 * libm::cos(2f64) + 1.0)).abs() < 1e-15);
+//! assert!((j.d2 - (-4.8 * libm::sin(2f64) + 2.0)).abs() < 1e-15);
 //! ```
 
 use std::fmt;
@@ -91,7 +91,7 @@ impl Jet {
             } else if e.fract() == 0.0 && e.abs() < 1e9 {
                 v.powi(e as i32)
             } else {
-                v.powf(e)
+                libm::pow(v, e)
             }
         };
         let g1 = c * p(1.0);
@@ -156,45 +156,45 @@ impl Func {
         let v = a.value;
         match self {
             Func::Sin => {
-                let (s, c) = v.sin_cos();
+                let (s, c) = libm::sincos(v);
                 a.chain(s, c, -s)
             }
             Func::Cos => {
-                let (s, c) = v.sin_cos();
+                let (s, c) = libm::sincos(v);
                 a.chain(c, -s, -c)
             }
             Func::Tan => {
-                let t = v.tan();
+                let t = libm::tan(v);
                 let sec2 = 1.0 + t * t;
                 a.chain(t, sec2, 2.0 * t * sec2)
             }
             Func::Asin => {
                 let w = 1.0 - v * v;
-                a.chain(v.asin(), 1.0 / w.sqrt(), v / (w * w.sqrt()))
+                a.chain(libm::asin(v), 1.0 / w.sqrt(), v / (w * w.sqrt()))
             }
             Func::Acos => {
                 let w = 1.0 - v * v;
-                a.chain(v.acos(), -1.0 / w.sqrt(), -v / (w * w.sqrt()))
+                a.chain(libm::acos(v), -1.0 / w.sqrt(), -v / (w * w.sqrt()))
             }
             Func::Atan => {
                 let w = 1.0 + v * v;
-                a.chain(v.atan(), 1.0 / w, -2.0 * v / (w * w))
+                a.chain(libm::atan(v), 1.0 / w, -2.0 * v / (w * w))
             }
-            Func::Sinh => a.chain(v.sinh(), v.cosh(), v.sinh()),
-            Func::Cosh => a.chain(v.cosh(), v.sinh(), v.cosh()),
+            Func::Sinh => a.chain(libm::sinh(v), libm::cosh(v), libm::sinh(v)),
+            Func::Cosh => a.chain(libm::cosh(v), libm::sinh(v), libm::cosh(v)),
             Func::Tanh => {
-                let t = v.tanh();
+                let t = libm::tanh(v);
                 let s = 1.0 - t * t;
                 a.chain(t, s, -2.0 * t * s)
             }
             Func::Exp => {
-                let e = v.exp();
+                let e = libm::exp(v);
                 a.chain(e, e, e)
             }
-            Func::Ln => a.chain(v.ln(), 1.0 / v, -1.0 / (v * v)),
+            Func::Ln => a.chain(libm::log(v), 1.0 / v, -1.0 / (v * v)),
             Func::Log10 => {
                 let k = std::f64::consts::LN_10;
-                a.chain(v.log10(), 1.0 / (k * v), -1.0 / (k * v * v))
+                a.chain(libm::log10(v), 1.0 / (k * v), -1.0 / (k * v * v))
             }
             Func::Sqrt => {
                 let s = v.sqrt();

@@ -763,7 +763,7 @@ fn text_insertion(at: Point, height: f64, value: &str, halign: HAlign, valign: V
     if along == 0.0 && up == 0.0 {
         return at;
     }
-    let (sin, cos) = rotation.sin_cos();
+    let (sin, cos) = libm::sincos(rotation);
     Point::new(at.x - along * cos + up * sin, at.y - along * sin - up * cos)
 }
 

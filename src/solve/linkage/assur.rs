@@ -442,7 +442,7 @@ fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
     if n == 0.0 {
         return None;
     }
-    let turn = (angle.cos(), angle.sin());
+    let turn = (libm::cos(angle), libm::sin(angle));
     Some(Slide { u_is_slider: point.body == Attach::Body(u), point, q1, dir: dir / n, angle, turn })
 }
 
@@ -503,7 +503,7 @@ fn mid_of(mech: &Mechanism, j: usize, b1: usize) -> Option<Mid> {
         q1: q1.local,
         n0: perp(dir / n),
         angle,
-        turn: (angle.cos(), angle.sin()),
+        turn: (libm::cos(angle), libm::sin(angle)),
     })
 }
 
@@ -555,7 +555,7 @@ fn solve_triad(s: &mut Solver, tp: &TriadPlan) -> Result<(), String> {
     let triad = Triad::new(o, tp.r, tp.sides[0], tp.sides[1], tp.sides[2]).map_err(|e| e.to_string())?;
     let modes = modes_with(&triad, tp.orientation).map_err(|e| e.to_string())?;
     let c = tp.centre;
-    let (sn, cs) = s.q[3 * c + 2].sin_cos();
+    let (sn, cs) = libm::sincos(s.q[3 * c + 2]);
     let at = Vector::new(s.q[3 * c], s.q[3 * c + 1]);
     let predicted = tp.corners.map(|k| at + rot((cs, sn), k));
     let d = |m: &Configuration| (0..3).map(|i| (m.a[i].coords - predicted[i]).norm_squared()).sum::<f64>();
@@ -812,7 +812,7 @@ type Candidate = [(Vector, Option<f64>, (f64, f64)); 2];
 
 /// The angle nearest `pred` with the rotation `cs`.
 fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
-    pred + wrap_pi(cs.1.atan2(cs.0) - pred)
+    pred + wrap_pi(libm::atan2(cs.1, cs.0) - pred)
 }
 
 /// The rotation taking unit-length direction `from` to `to` (both nonzero).
@@ -852,7 +852,7 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
         let x2 = x * x;
         x * ATAN_SERIES.iter().rev().fold(0.0, |acc, k| acc * x2 + k)
     } else {
-        s.atan2(c)
+        libm::atan2(s, c)
     }
 }
 
@@ -1168,7 +1168,7 @@ impl AssurSolver {
             match plan.position {
                 Position::DrivenAngle { u, pin, reference, sign, law, .. } => {
                     let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
-                    let cs = (phi.cos(), phi.sin());
+                    let cs = (libm::cos(phi), libm::sin(phi));
                     let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
                     set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
                 }
@@ -1244,7 +1244,7 @@ impl AssurSolver {
                     } else {
                         (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
                     };
-                    let ca = (mid.angle.cos(), mid.angle.sin());
+                    let ca = (libm::cos(mid.angle), libm::sin(mid.angle));
                     let c0 = mid.n0.dot(&(rot(ca, pks) - qkg));
                     let dv = ks - kg;
                     let d = dv.norm();
@@ -1675,7 +1675,7 @@ fn newton(s: &mut Solver, plan: &mut Plan, work: &mut [f64], t: f64) -> Result<(
     let (phi, _) = rest.split_at_mut(k);
     let refresh = |s: &mut Solver, bodies: &[usize]| {
         for &b in bodies {
-            let (sn, cs) = s.q[3 * b + 2].sin_cos();
+            let (sn, cs) = libm::sincos(s.q[3 * b + 2]);
             s.poses[b] = Pose { r: Vector::new(s.q[3 * b], s.q[3 * b + 1]), phi: s.q[3 * b + 2], c: cs, s: sn };
         }
     };

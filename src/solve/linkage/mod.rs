@@ -350,7 +350,7 @@ pub(super) fn pose(q: &[f64], a: Attach) -> Pose {
     match col(a) {
         None => Pose { r: Vector::zeros(), phi: 0.0, c: 1.0, s: 0.0 },
         Some(k) => {
-            let (s, c) = q[k + 2].sin_cos();
+            let (s, c) = libm::sincos(q[k + 2]);
             Pose { r: Vector::new(q[k], q[k + 1]), phi: q[k + 2], c, s }
         }
     }
