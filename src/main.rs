@@ -123,6 +123,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 drag,
                 dxf: DxfOptions { version: dxf_version, dimensions: dxf_dimensions, ..DxfOptions::default() },
                 sheets,
+                sets: set.clone(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

@@ -15,11 +15,15 @@ cd "$(dirname "$0")/.."
 target="${CARGO_TARGET_DIR:-target}"
 if [ $# -eq 0 ]; then set -- templates/*.toml; fi
 mkdir -p "$target/web" && rm -f "$target/web/"*.html
+# The same bytes from any checkout: no absolute path of the checkout, the target directory or
+# the cargo home in the module (panic locations, build scripts' generated sources).
+abs_target="$(cd "$target" && pwd)"
+export CARGO_TARGET_WASM32_UNKNOWN_UNKNOWN_RUSTFLAGS="--remap-path-prefix=$abs_target=/target --remap-path-prefix=$PWD=/mechdraw --remap-path-prefix=${CARGO_HOME:-$HOME/.cargo}=/cargo"
 cargo rustc --lib --profile wasm --target wasm32-unknown-unknown --no-default-features --crate-type cdylib
 wasm-bindgen --target no-modules --no-typescript --remove-name-section --remove-producers-section --out-dir "$target/web" \
   "$target/wasm32-unknown-unknown/wasm/mechdraw.wasm"
 python3 - "$target/web" "$@" <<'PY'
-import base64, html, pathlib, sys
+import base64, html, json, pathlib, sys
 out = pathlib.Path(sys.argv[1])
 template = pathlib.Path("web/page.html").read_text()
 glue = (out / "mechdraw.js").read_text()
@@ -33,7 +37,8 @@ for scene in map(pathlib.Path, sys.argv[2:]):
         ("__WASM_BASE64__", wasm),
         # Inside <script type="text/plain">: only "</" could end it early.
         ("__SCENE_TOML__", text.replace("</", "<\\/")),
-        ("__SCENE_FILE__", scene.name),
+        ("__SCENE_SETS__", "[]"),
+        ("__SCENE_FILE__", json.dumps(scene.name)),
     ]:
         page = page.replace(key, value, 1)
     target = out / (scene.stem + ".html")

@@ -15,7 +15,7 @@ os.makedirs(SHOTS, exist_ok=True)
 READY = "typeof live === 'object' && live !== null"
 # Client (CSS pixel) position of a model point in the frame shown.
 TO_SCREEN = """(function (x, y) {
-  const m = document.querySelector('#picture svg').getScreenCTM();
+  const m = document.querySelector('#stage svg').getScreenCTM();
   const k = live.user_units_per_model();
   const p = new DOMPoint(k * x, -k * y).matrixTransform(m);
   return [p.x, p.y];
@@ -66,7 +66,7 @@ with Browser() as b:
     path = [(ox + 1.3 * l1 * math.cos(th * f), oy + 1.3 * l1 * math.sin(th * f)) for f in (0.25, 0.5, 0.75, 1.0)]
     at, state = drag(page, "A", path)
     out["fourbar_drag"] = {"pointer": at, "o1": [ox, oy], "state": state,
-                           "drive": page.eval("+document.getElementById('picture').dataset.drive"),
+                           "drive": page.eval("+document.getElementById('stage').dataset.drive"),
                            "label": page.eval("document.getElementById('frame-label').textContent"),
                            "status": page.eval("document.getElementById('status').textContent")}
     page.screenshot(os.path.join(SHOTS, "fourbar-drag.png"))
@@ -83,14 +83,14 @@ with Browser() as b:
 
     # An invalid TOML edit (on the page as it opened): the CLI's message, and the picture stays.
     page = b.open(url("fourbar-chebyshev"), READY)
-    before = page.eval("document.getElementById('picture').innerHTML")
+    before = page.eval("document.getElementById('stage').innerHTML")
     page.eval("""(function () {
       const area = document.getElementById('scene');
       area.value = area.value.replace('l_bc = 0.10', 'l_bc = = 0.10');
       document.getElementById('apply').click();
     })()""")
     out["fourbar_bad_toml"] = {"error": page.eval("document.getElementById('error').textContent"),
-                               "picture_kept": page.eval("document.getElementById('picture').innerHTML") == before,
+                               "picture_kept": page.eval("document.getElementById('stage').innerHTML") == before,
                                "text": page.eval("document.getElementById('scene').value")}
     page.screenshot(os.path.join(SHOTS, "fourbar-bad-toml.png"))
 

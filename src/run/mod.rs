@@ -10,6 +10,8 @@ mod fourbar_teaching;
 mod linkage;
 #[cfg(feature = "cli")]
 pub mod output;
+#[cfg(feature = "cli")]
+pub mod page;
 pub mod products;
 mod triad;
 
@@ -39,6 +41,9 @@ pub struct RunOptions {
     /// `--sheets a4|a3`: one printed page per position (`sheets/<name>/<position>.svg`)
     /// and `<name>-sheets.pdf` (four-bar and linkage scenes).
     pub sheets: Option<crate::figure::sheet::Paper>,
+    /// The `--set KEY=VALUE` changes the scene was loaded with: the live page applies them
+    /// to the scene file's text when it opens.
+    pub sets: Vec<String>,
 }
 
 /// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
@@ -116,7 +121,16 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    out.record_paths(order.into_iter().map(PathBuf::from));
+    // The live page replaces the frame viewer as `<name>.html` (for every kind), unless
+    // --no-frames.
+    let page_rel = PathBuf::from(format!("{}.html", p.name));
+    out.record_paths(order.into_iter().map(PathBuf::from).filter(|r| opts.no_frames || *r != page_rel));
+    if !opts.no_frames {
+        let text = std::fs::read_to_string(&loaded.path)
+            .map_err(|source| Error::Io { path: loaded.path.display().to_string(), source })?;
+        let file = loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
+        out.write(&page_rel, page::live_page(&text, &file, &opts.sets))?;
+    }
     let written = out.commit()?;
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })
 }
