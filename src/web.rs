@@ -304,6 +304,12 @@ impl Session {
         )
     }
 
+    /// The scene's sheets (a triad's modes, a four-bar's centres and Joukowski's lever) as
+    /// the CLI's `<name>-<suffix>.svg`: (suffix, SVG).
+    pub fn sheets(&self) -> Vec<(String, String)> {
+        self.products.sheets.iter().map(|s| (s.suffix.clone(), bytes::picture_svg(&s.drawing))).collect()
+    }
+
     /// The files `mechdraw run` writes for the scene as it stands (without the frames and
     /// the viewer: `--no-frames`), for downloads.
     pub fn files(&self) -> Result<Vec<(String, Vec<u8>)>, Error> {
@@ -515,6 +521,11 @@ pub mod js {
         /// The frame where the last drag left the mechanism (`""` before any drag).
         pub fn dragged_frame(&self) -> String {
             self.0.dragged_frame().unwrap_or_default()
+        }
+
+        /// The scene's sheets as JSON: `[[suffix, svg], ...]`.
+        pub fn sheets(&self) -> String {
+            serde_json::to_string(&self.0.sheets()).unwrap_or_else(|_| "[]".into())
         }
 
         /// The JSON summary, pretty.

@@ -1,5 +1,5 @@
-//! The HTML viewer in a real browser: headless Chromium opens DIR/<name>.html from
-//! `file://`, the URL hash moves the slider (`#frame=18`, the page dispatches the slider's
+//! The page `mechdraw run` writes (the live page, docs/web.md) in a real browser: headless
+//! Chromium opens DIR/<name>.html from `file://`, the URL hash moves the slider (`#frame=18`, the page dispatches the slider's
 //! `input` event as a user's drag would), and the DOM after the scripts ran shows the
 //! frame that was asked for; `#play` advances the frames on its own. A screenshot is kept
 //! at target/viewer-screenshot.png for people to look at.

@@ -79,8 +79,12 @@ fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
         json["solutions"].as_array().unwrap().iter().map(|s| format!("{:.2}", num(&s["phi1_deg"]))).collect();
     assert_eq!(angles.len(), 8);
     assert!(shown.starts_with("8 assembly modes"), "{shown}");
-    assert!(shown.contains(&angles.join(", ")), "{shown} vs {angles:?}");
+    assert!(shown.contains(&angles.join(" ")), "{shown} vs {angles:?}");
     assert!(shown.contains("pattern method φ1 = 75.77°"), "{shown}");
+
+    // Every mode drawn: the modes sheet is on the page.
+    assert_eq!(observed()["triad"]["sheets"], serde_json::json!(["modes"]));
+    assert!(num(&observed()["triad"]["modes_sheet"]) > 1000.0, "the modes sheet is drawn");
 }
 
 #[test]

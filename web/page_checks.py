@@ -55,6 +55,9 @@ with Browser() as b:
     out["triad"] = {"modes": page.eval("document.getElementById('modes').textContent"),
                     "error": page.eval("document.getElementById('error').textContent")}
     page.screenshot(os.path.join(SHOTS, "triad-popa.png"))
+    out["triad"]["sheets"] = page.eval("JSON.parse(live.sheets()).map(([n, s]) => n)")
+    out["triad"]["modes_sheet"] = page.eval("document.querySelector('#sheets svg') ? document.querySelector('#sheets svg').outerHTML.length : 0")
+
 
     # The four-bar: drag the crank pin round to 123.4567° (off the crank circle).
     page = b.open(url("fourbar-chebyshev"), READY)
