@@ -119,6 +119,9 @@ pub struct Session {
     motion: Option<(SvgOptions, String)>,
     /// Where the last drag left the drive: (nearest position, drive value).
     dragged: Option<(usize, f64)>,
+    /// Every position's named points, solved at the first drag (the nearest position of every
+    /// later pointer event is looked up here).
+    positions_points: std::sync::OnceLock<Vec<Vec<(String, Point)>>>,
 }
 
 /// Relative step of the drive's central differences (of its span) in a drag.
@@ -144,6 +147,7 @@ impl Session {
             products,
             motion,
             dragged: None,
+            positions_points: std::sync::OnceLock::new(),
         })
     }
 
@@ -155,6 +159,7 @@ impl Session {
         sets.push((path.to_string(), value.to_string()));
         let (products, motion) = solve(&self.text, &self.file, &sets)?;
         (self.sets, self.products, self.motion, self.dragged) = (sets, products, motion, None);
+        self.positions_points = std::sync::OnceLock::new();
         Ok(())
     }
 
@@ -164,6 +169,7 @@ impl Session {
         let (products, motion) = solve(text, &self.file, &[])?;
         (self.text, self.sets, self.products, self.motion, self.dragged) =
             (text.to_string(), Vec::new(), products, motion, None);
+        self.positions_points = std::sync::OnceLock::new();
         Ok(())
     }
 
@@ -258,8 +264,13 @@ impl Session {
             return Err(bad(format!("no point `{point}` in the mechanism; its points: {}", names.join(", "))));
         }
         // The position whose point is nearest the target.
-        let k = (0..n)
-            .filter_map(|k| at(k, d.values[k]).map(|p| (k, (p - target).norm())))
+        let all = self.positions_points.get_or_init(|| {
+            (0..n).map(|k| (d.solve)(k, d.values[k]).map(|st| st.points).unwrap_or_default()).collect()
+        });
+        let k = all
+            .iter()
+            .enumerate()
+            .filter_map(|(k, pts)| pts.iter().find(|(name, _)| name == point).map(|(_, p)| (k, (*p - target).norm())))
             .min_by(|a, b| a.1.total_cmp(&b.1))
             .map(|(k, _)| k)
             .ok_or_else(|| bad(format!("`{point}` could not be placed at any position")))?;
@@ -308,6 +319,15 @@ impl Session {
     /// the CLI's `<name>-<suffix>.svg`: (suffix, SVG).
     pub fn sheets(&self) -> Vec<(String, String)> {
         self.products.sheets.iter().map(|s| (s.suffix.clone(), bytes::picture_svg(&s.drawing))).collect()
+    }
+
+    /// The scene's diagrams as the CLI's `diagrams/<name>/<stem>.svg`: (stem, SVG).
+    pub fn diagrams(&self) -> Vec<(String, String)> {
+        self.products
+            .diagrams
+            .iter()
+            .map(|d| (d.stem.clone(), svg::to_string(&d.drawing, &SvgOptions::default())))
+            .collect()
     }
 
     /// The files `mechdraw run` writes for the scene as it stands (without the frames and
@@ -526,6 +546,11 @@ pub mod js {
         /// The scene's sheets as JSON: `[[suffix, svg], ...]`.
         pub fn sheets(&self) -> String {
             serde_json::to_string(&self.0.sheets()).unwrap_or_else(|_| "[]".into())
+        }
+
+        /// The scene's diagrams as JSON: `[[stem, svg], ...]`.
+        pub fn diagrams(&self) -> String {
+            serde_json::to_string(&self.0.diagrams()).unwrap_or_else(|_| "[]".into())
         }
 
         /// The JSON summary, pretty.

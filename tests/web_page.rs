@@ -79,7 +79,7 @@ fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
         json["solutions"].as_array().unwrap().iter().map(|s| format!("{:.2}", num(&s["phi1_deg"]))).collect();
     assert_eq!(angles.len(), 8);
     assert!(shown.starts_with("8 assembly modes"), "{shown}");
-    assert!(shown.contains(&angles.join(" ")), "{shown} vs {angles:?}");
+    assert!(shown.contains(&angles.join(", ")), "{shown} vs {angles:?}");
     assert!(shown.contains("pattern method φ1 = 75.77°"), "{shown}");
 
     // Every mode drawn: the modes sheet is on the page.
@@ -111,6 +111,21 @@ fn dragging_the_crank_pin_turns_the_crank_to_the_pointer() {
     assert!((dist(a, b) - get("l_ab")).abs() <= 1e-9 * get("l_ab"));
     assert!((dist(b, (cx, cy)) - get("l_bc")).abs() <= 1e-9 * get("l_ab"));
     assert!(d["label"].as_str().unwrap().starts_with("φ1 = "), "{}", d["label"]);
+}
+
+#[test]
+fn the_four_bars_page_shows_every_diagram_the_cli_draws() {
+    let (files, _, _) = cli(&template("fourbar-chebyshev"), &[]);
+    let mut cli: Vec<String> = files
+        .keys()
+        .filter_map(|f| f.strip_prefix("diagrams/fourbar-chebyshev/")?.strip_suffix(".svg").map(String::from))
+        .collect();
+    let mut shown: Vec<String> =
+        observed()["fourbar_diagrams"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
+    cli.sort();
+    shown.sort();
+    assert!(cli.len() >= 10, "{cli:?}");
+    assert_eq!(shown, cli);
 }
 
 #[test]

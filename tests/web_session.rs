@@ -65,6 +65,12 @@ fn every_frame_and_download_is_the_command_lines() {
             let on_disk = cli.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{file}: no {name}"));
             assert!(on_disk.1 == svg.as_bytes(), "{file}: the sheet {suffix} differs from {name}");
         }
+        // The diagrams shown on the page: the CLI's `diagrams/<name>/<stem>.svg`.
+        for (stem, svg) in session.diagrams() {
+            let name = format!("diagrams/{}/{stem}.svg", session.products().name);
+            let on_disk = cli.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{file}: no {name}"));
+            assert!(on_disk.1 == svg.as_bytes(), "{file}: the diagram {stem} differs from {name}");
+        }
         // The downloads: the CLI's files without the frames and the viewer.
         let downloads = session.files().unwrap();
         let no_frames = web::scene_files(&common::text_with(&path, &set), &file, WebOptions::default()).unwrap();

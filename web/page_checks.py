@@ -61,6 +61,7 @@ with Browser() as b:
 
     # The four-bar: drag the crank pin round to 123.4567° (off the crank circle).
     page = b.open(url("fourbar-chebyshev"), READY)
+    out["fourbar_diagrams"] = page.eval("[...document.querySelectorAll('#diagrams figcaption')].map((c) => c.textContent)")
     st = json.loads(page.eval("live.points(0)"))
     _, ox, oy = point(st, "O1")
     _, ax, ay = point(st, "A")
