@@ -447,11 +447,18 @@ fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
     Some(Slide { u_is_slider: point.body == Attach::Body(u), point, q1, dir: dir / n, angle, turn })
 }
 
-/// Global position of an anchor at the cached poses.
-#[inline]
+/// Global position of an anchor at the cached poses. A ground anchor is its own
+/// coordinates plus 0 — exactly what R + A(φ)·s gives at R = 0, φ = 0 (a −0 becomes +0,
+/// as there), without the rotation.
+#[inline(always)]
 fn glob(poses: &[Pose], a: Anchor) -> Vector {
-    let p = pz(poses, a.body);
-    p.r + p.rot(a.local)
+    match a.body {
+        Attach::Ground => Vector::new(a.local.x + 0.0, a.local.y + 0.0),
+        Attach::Body(i) => {
+            let p = poses[i];
+            p.r + p.rot(a.local)
+        }
+    }
 }
 
 /// A rotation (cos, sin) applied to a vector.
@@ -462,7 +469,7 @@ fn rot(cs: (f64, f64), v: Vector) -> Vector {
 
 impl Slide {
     /// (φ_u, (cos, sin) of φ_u, c, w): `u`'s angle and the line its origin runs on.
-    #[inline]
+    #[inline(always)]
     fn line(&self, poses: &[Pose]) -> (f64, (f64, f64), Vector, Vector) {
         if self.u_is_slider {
             let g = pz(poses, self.q1.body);
@@ -1285,8 +1292,7 @@ impl AssurSolver {
                     } else {
                         (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
                     };
-                    let ca = (mid.angle.cos(), mid.angle.sin());
-                    let c0 = mid.n0.dot(&(rot(ca, pks) - qkg));
+                    let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
                     let dv = ks - kg;
                     let d = dv.norm();
                     if !(d > 0.0 && c0.abs() <= d + slack) {
@@ -1816,7 +1822,7 @@ fn equilibrate(a: &mut [f64], k: usize, rows: &[usize], row_scale: &[f64], l: f6
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Body, Driver, Joint};
+    use super::super::{Body, Driver, GROUND_POSE, Joint};
     use super::*;
     use crate::geom::Point;
     use crate::solve::expr::Expr;
@@ -1866,6 +1872,24 @@ mod tests {
                 law: Expr::parse("0.3 + 2*t").unwrap(),
             }],
             length_scale: 4.0,
+        }
+    }
+
+    #[test]
+    fn a_ground_anchor_is_placed_as_the_general_formula_places_it() {
+        let values = [0.0, -0.0, 1.5, -2.25, 1e-300, -1e300, f64::MIN_POSITIVE, 0.1];
+        for x in values {
+            for y in values {
+                let local = Vector::new(x, y);
+                let p = GROUND_POSE;
+                let general = p.r + p.rot(local);
+                let fast = glob(&[], Anchor { body: Attach::Ground, local });
+                assert_eq!(
+                    (fast.x.to_bits(), fast.y.to_bits()),
+                    (general.x.to_bits(), general.y.to_bits()),
+                    "{x}, {y}"
+                );
+            }
         }
     }
 
