@@ -1104,32 +1104,36 @@ impl AssurSolver {
         let had_rates = self.rates_valid;
         self.predict(dt, rates);
         match self.finish(t, Some(dt), rates) {
-            Err(singular @ LinkageError::Singular { .. }) if rates && had_rates => {
-                // A step exactly on a dead point: the closed forms land on it, where a
-                // group's rates do not exist. The general solver's step from the last
-                // position lands within its tolerance of it and reports it as it always
-                // has (near-singular, solved; or singular).
-                let s = &mut self.inner;
-                s.q.copy_from_slice(&self.q_prev);
-                s.qd.copy_from_slice(&self.qd_prev);
-                s.qdd.copy_from_slice(&self.qdd_prev);
-                s.dt_prev = None;
-                s.t = Some(t0);
-                let iterations = match s.step(t) {
-                    Ok(it) => it,
-                    // Singular there too: the group names the dead point.
-                    Err(LinkageError::Singular { .. }) => return Err(singular),
-                    Err(e) => return Err(e),
-                };
-                for p in &mut self.plans {
-                    p.iterations = iterations;
-                }
-                self.rates_valid = true;
-                self.dt_prev = Some(dt);
-                Ok(())
-            }
+            Err(singular @ LinkageError::Singular { .. }) if rates && had_rates => self.dead_point(t, t0, dt, singular),
             other => other,
         }
+    }
+
+    /// A step exactly on a dead point (out of the step's hot path): the closed forms land
+    /// on it, where a group's rates do not exist. The general solver's step from the last
+    /// position lands within its tolerance of it and reports it as it always has
+    /// (near-singular, solved; or singular).
+    #[cold]
+    #[inline(never)]
+    fn dead_point(&mut self, t: f64, t0: f64, dt: f64, singular: LinkageError) -> Result<(), LinkageError> {
+        let s = &mut self.inner;
+        s.q.copy_from_slice(&self.q_prev);
+        s.qd.copy_from_slice(&self.qd_prev);
+        s.qdd.copy_from_slice(&self.qdd_prev);
+        s.dt_prev = None;
+        s.t = Some(t0);
+        let iterations = match s.step(t) {
+            Ok(it) => it,
+            // Singular there too: the group names the dead point.
+            Err(LinkageError::Singular { .. }) => return Err(singular),
+            Err(e) => return Err(e),
+        };
+        for p in &mut self.plans {
+            p.iterations = iterations;
+        }
+        self.rates_valid = true;
+        self.dt_prev = Some(dt);
+        Ok(())
     }
 
     /// The predicted q: the last q extrapolated with q̇·Δt + ½·q̈·Δt² when the rates
