@@ -1143,37 +1143,18 @@ impl AssurSolver {
     fn predict(&mut self, dt: f64, rates: bool) {
         let s = &mut self.inner;
         let linear = self.dt_prev.filter(|d| *d != 0.0).map(|d| dt / d);
-        let (q, q_prev) = (&mut s.q[..], &mut self.q_prev[..]);
-        if self.rates_valid {
-            let (qd, qdd) = (&s.qd[..], &s.qdd[..]);
-            if rates {
-                let (qd_prev, qdd_prev) = (&mut self.qd_prev[..], &mut self.qdd_prev[..]);
-                for (((((q, qp), &qd), &qdd), qdp), qddp) in q
-                    .iter_mut()
-                    .zip(q_prev.iter_mut())
-                    .zip(qd)
-                    .zip(qdd)
-                    .zip(qd_prev.iter_mut())
-                    .zip(qdd_prev.iter_mut())
-                {
-                    let now = *q;
-                    *q = now + qd * dt + 0.5 * qdd * dt * dt;
-                    *qp = now;
-                    *qdp = qd;
-                    *qddp = qdd;
-                }
-            } else {
-                for (((q, qp), &qd), &qdd) in q.iter_mut().zip(q_prev.iter_mut()).zip(qd).zip(qdd) {
-                    let now = *q;
-                    *q = now + qd * dt + 0.5 * qdd * dt * dt;
-                    *qp = now;
-                }
-            }
-            return;
-        }
         if rates {
             self.qd_prev.copy_from_slice(&s.qd);
             self.qdd_prev.copy_from_slice(&s.qdd);
+        }
+        let (q, q_prev) = (&mut s.q[..], &mut self.q_prev[..]);
+        if self.rates_valid {
+            for (((q, qp), &qd), &qdd) in q.iter_mut().zip(q_prev.iter_mut()).zip(&s.qd).zip(&s.qdd) {
+                let now = *q;
+                *q = now + qd * dt + 0.5 * qdd * dt * dt;
+                *qp = now;
+            }
+            return;
         }
         match linear {
             Some(f) => {
