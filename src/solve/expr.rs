@@ -285,11 +285,84 @@ impl Node {
     }
 }
 
+/// `t` itself, or a t-independent factor times it (in the tree's order).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Term {
+    /// `t`.
+    T,
+    /// `k·t` (`k_first`) or `t·k`, k folded into its jet.
+    Scaled { k: Jet, k_first: bool },
+}
+
+impl Term {
+    fn of(node: &Node) -> Option<Term> {
+        match node {
+            Node::T => Some(Term::T),
+            Node::Bin(BinOp::Mul, a, b) => match (a.as_ref(), b.as_ref()) {
+                (k, Node::T) if !k.depends_on_t() => Some(Term::Scaled { k: k.eval(0.0), k_first: true }),
+                (Node::T, k) if !k.depends_on_t() => Some(Term::Scaled { k: k.eval(0.0), k_first: false }),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    #[inline]
+    fn eval(self, t: f64) -> Jet {
+        let tj = Jet { value: t, d1: 1.0, d2: 0.0 };
+        match self {
+            Term::T => tj,
+            Term::Scaled { k, k_first: true } => k.mul(tj),
+            Term::Scaled { k, k_first: false } => tj.mul(k),
+        }
+    }
+}
+
+/// The shapes of the usual driver laws (constant, `ω·t`, `φ0 + ω·t`), evaluated without
+/// walking the tree: the same jet operations in the same order as [`Node::eval`] (the
+/// t-independent subtrees folded once into their jets), so the same bits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Shape {
+    /// No `t` at all.
+    Const(Jet),
+    /// `t` or `k·t`.
+    Term(Term),
+    /// `k ± term` (`k_first`) or `term ± k`.
+    Shift { k: Jet, term: Term, k_first: bool, sub: bool },
+    /// Anything else: the tree.
+    Tree,
+}
+
+impl Shape {
+    fn of(root: &Node) -> Shape {
+        if !root.depends_on_t() {
+            return Shape::Const(root.eval(0.0));
+        }
+        if let Some(term) = Term::of(root) {
+            return Shape::Term(term);
+        }
+        if let Node::Bin(op @ (BinOp::Add | BinOp::Sub), a, b) = root {
+            let sub = *op == BinOp::Sub;
+            if !a.depends_on_t() {
+                if let Some(term) = Term::of(b) {
+                    return Shape::Shift { k: a.eval(0.0), term, k_first: true, sub };
+                }
+            } else if !b.depends_on_t() {
+                if let Some(term) = Term::of(a) {
+                    return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
+                }
+            }
+        }
+        Shape::Tree
+    }
+}
+
 /// A parsed driver law f(t).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Expr {
     source: String,
     root: Node,
+    shape: Shape,
 }
 
 impl Expr {
@@ -301,7 +374,8 @@ impl Expr {
         if let Some(tok) = p.peek() {
             return Err(p.error_at(tok.col, format!("unexpected {} after a complete expression", tok.kind)));
         }
-        Ok(Expr { source: source.to_string(), root })
+        let shape = Shape::of(&root);
+        Ok(Expr { source: source.to_string(), root, shape })
     }
 
     /// The text the expression was parsed from.
@@ -316,8 +390,17 @@ impl Expr {
 
     /// f(t), f'(t), f''(t). Outside the domain of a function (e.g. `sqrt` of a negative
     /// number) the values are not finite: callers check.
+    #[inline]
     pub fn eval(&self, t: f64) -> Jet {
-        self.root.eval(t)
+        match self.shape {
+            Shape::Const(k) => k,
+            Shape::Term(term) => term.eval(t),
+            Shape::Shift { k, term, k_first, sub } => {
+                let (x, y) = if k_first { (k, term.eval(t)) } else { (term.eval(t), k) };
+                if sub { x.sub(y) } else { x.add(y) }
+            }
+            Shape::Tree => self.root.eval(t),
+        }
     }
 }
 
@@ -572,6 +655,43 @@ mod tests {
 
     fn v(s: &str) -> f64 {
         Expr::parse(s).unwrap().eval(0.0).value
+    }
+
+    #[test]
+    fn the_usual_shapes_give_the_trees_bits() {
+        let laws = [
+            ("20*t", "term"),
+            ("t*20", "term"),
+            ("t", "term"),
+            ("2*pi*t", "term"),
+            ("320*2*pi/60*t", "term"),
+            ("pi/2 + 2*pi*t", "shift"),
+            ("2*pi*t - pi/3", "shift"),
+            ("0.25 - t", "shift"),
+            ("-1.5 - t*3", "shift"),
+            ("pi/7", "const"),
+            ("-0*3", "const"),
+            ("t*t", "tree"),
+            ("sin(t)", "tree"),
+            ("2*t + t", "tree"),
+        ];
+        let times = [0.0, -0.0, 1.0 / 3.0, -2.75, 1e-300, 7.0e5, 0.1, f64::MIN_POSITIVE];
+        for (law, shape) in laws {
+            let e = Expr::parse(law).unwrap();
+            let got = match e.shape {
+                Shape::Const(_) => "const",
+                Shape::Term(_) => "term",
+                Shape::Shift { .. } => "shift",
+                Shape::Tree => "tree",
+            };
+            assert_eq!(got, shape, "{law}");
+            for t in times {
+                let (fast, tree) = (e.eval(t), e.root.eval(t));
+                for (a, b) in [(fast.value, tree.value), (fast.d1, tree.d1), (fast.d2, tree.d2)] {
+                    assert_eq!(a.to_bits(), b.to_bits(), "{law} at t = {t}: {fast:?} against {tree:?}");
+                }
+            }
+        }
     }
 
     #[test]

@@ -431,6 +431,7 @@ struct Slide {
 }
 
 /// The rotation by a then b: (cos, sin) of the sum of their angles.
+#[inline]
 fn compose(a: (f64, f64), b: (f64, f64)) -> (f64, f64) {
     (a.0 * b.0 - a.1 * b.1, a.1 * b.0 + a.0 * b.1)
 }
@@ -446,19 +447,29 @@ fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
     Some(Slide { u_is_slider: point.body == Attach::Body(u), point, q1, dir: dir / n, angle, turn })
 }
 
-/// Global position of an anchor at the cached poses.
+/// Global position of an anchor at the cached poses. A ground anchor is its own
+/// coordinates plus 0 — exactly what R + A(φ)·s gives at R = 0, φ = 0 (a −0 becomes +0,
+/// as there), without the rotation.
+#[inline(always)]
 fn glob(poses: &[Pose], a: Anchor) -> Vector {
-    let p = pz(poses, a.body);
-    p.r + p.rot(a.local)
+    match a.body {
+        Attach::Ground => Vector::new(a.local.x + 0.0, a.local.y + 0.0),
+        Attach::Body(i) => {
+            let p = poses[i];
+            p.r + p.rot(a.local)
+        }
+    }
 }
 
 /// A rotation (cos, sin) applied to a vector.
+#[inline]
 fn rot(cs: (f64, f64), v: Vector) -> Vector {
     Vector::new(cs.0 * v.x - cs.1 * v.y, cs.1 * v.x + cs.0 * v.y)
 }
 
 impl Slide {
     /// (φ_u, (cos, sin) of φ_u, c, w): `u`'s angle and the line its origin runs on.
+    #[inline(always)]
     fn line(&self, poses: &[Pose]) -> (f64, (f64, f64), Vector, Vector) {
         if self.u_is_slider {
             let g = pz(poses, self.q1.body);
@@ -800,6 +811,7 @@ impl Plan {
 }
 
 /// Writes body `b`'s pose into q and the cached poses.
+#[inline]
 fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
     q[3 * b] = r.x;
     q[3 * b + 1] = r.y;
@@ -811,17 +823,20 @@ fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs
 type Candidate = [(Vector, Option<f64>, (f64, f64)); 2];
 
 /// The angle nearest `pred` with the rotation `cs`.
+#[inline]
 fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
     pred + wrap_pi(libm::atan2(cs.1, cs.0) - pred)
 }
 
 /// The rotation taking unit-length direction `from` to `to` (both nonzero).
+#[inline]
 fn rotation_between(from: Vector, to: Vector) -> (f64, f64) {
     let (f, t) = (from / from.norm(), to / to.norm());
     (f.dot(&t), cross(f, t))
 }
 
 /// The rotation taking `from` to `to` when |from|·|to| = `lengths` (known).
+#[inline]
 fn rotation_scaled(from: Vector, to: Vector, lengths: f64) -> (f64, f64) {
     (from.dot(&to) / lengths, cross(from, to) / lengths)
 }
@@ -844,6 +859,7 @@ const ATAN_SERIES: [f64; 12] = [
 
 /// The angle in (−π, π] from rotation `from` to rotation `to` (unit (cos, sin) pairs): a
 /// short series for the small turn of one time step, `atan2` for a larger one.
+#[inline(always)]
 fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     let c = to.0 * from.0 + to.1 * from.1;
     let s = to.1 * from.0 - to.0 * from.1;
@@ -859,6 +875,7 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
 /// Squared distance of a candidate from the predicted body origins in `q` (over `l`) and
 /// the bodies' rotations at the last step (`poses`, not yet overwritten: the chord between
 /// unit vectors, no trigonometry).
+#[inline(always)]
 fn distance(c: &Candidate, bodies: [usize; 2], q: &[f64], poses: &[Pose], l: f64) -> f64 {
     let mut d = 0.0;
     for (k, &b) in bodies.iter().enumerate() {
@@ -1085,53 +1102,69 @@ impl AssurSolver {
         self.inner.eval_laws(t)?;
         let dt = t - t0;
         let had_rates = self.rates_valid;
-        self.predict(dt);
+        self.predict(dt, rates);
         match self.finish(t, Some(dt), rates) {
-            Err(singular @ LinkageError::Singular { .. }) if rates && had_rates => {
-                // A step exactly on a dead point: the closed forms land on it, where a
-                // group's rates do not exist. The general solver's step from the last
-                // position lands within its tolerance of it and reports it as it always
-                // has (near-singular, solved; or singular).
-                let s = &mut self.inner;
-                s.q.copy_from_slice(&self.q_prev);
-                s.qd.copy_from_slice(&self.qd_prev);
-                s.qdd.copy_from_slice(&self.qdd_prev);
-                s.dt_prev = None;
-                s.t = Some(t0);
-                let iterations = match s.step(t) {
-                    Ok(it) => it,
-                    // Singular there too: the group names the dead point.
-                    Err(LinkageError::Singular { .. }) => return Err(singular),
-                    Err(e) => return Err(e),
-                };
-                for p in &mut self.plans {
-                    p.iterations = iterations;
-                }
-                self.rates_valid = true;
-                self.dt_prev = Some(dt);
-                Ok(())
-            }
+            Err(singular @ LinkageError::Singular { .. }) if rates && had_rates => self.dead_point(t, t0, dt, singular),
             other => other,
         }
     }
 
+    /// A step exactly on a dead point (out of the step's hot path): the closed forms land
+    /// on it, where a group's rates do not exist. The general solver's step from the last
+    /// position lands within its tolerance of it and reports it as it always has
+    /// (near-singular, solved; or singular).
+    #[cold]
+    #[inline(never)]
+    fn dead_point(&mut self, t: f64, t0: f64, dt: f64, singular: LinkageError) -> Result<(), LinkageError> {
+        let s = &mut self.inner;
+        s.q.copy_from_slice(&self.q_prev);
+        s.qd.copy_from_slice(&self.qd_prev);
+        s.qdd.copy_from_slice(&self.qdd_prev);
+        s.dt_prev = None;
+        s.t = Some(t0);
+        let iterations = match s.step(t) {
+            Ok(it) => it,
+            // Singular there too: the group names the dead point.
+            Err(LinkageError::Singular { .. }) => return Err(singular),
+            Err(e) => return Err(e),
+        };
+        for p in &mut self.plans {
+            p.iterations = iterations;
+        }
+        self.rates_valid = true;
+        self.dt_prev = Some(dt);
+        Ok(())
+    }
+
     /// The predicted q: the last q extrapolated with q̇·Δt + ½·q̈·Δt² when the rates
     /// belong to it, else linearly from the last two positions (q_prev keeps the last q).
-    fn predict(&mut self, dt: f64) {
+    /// With `rates`, q̇ and q̈ are kept too (the fallback at an exact dead point restarts
+    /// from them); a positions-only step leaves them as they are and does not need them.
+    fn predict(&mut self, dt: f64, rates: bool) {
         let s = &mut self.inner;
         let linear = self.dt_prev.filter(|d| *d != 0.0).map(|d| dt / d);
-        self.qd_prev.copy_from_slice(&s.qd);
-        self.qdd_prev.copy_from_slice(&s.qdd);
-        for k in 0..s.n {
-            let now = s.q[k];
-            s.q[k] = if self.rates_valid {
-                now + s.qd[k] * dt + 0.5 * s.qdd[k] * dt * dt
-            } else if let Some(f) = linear {
-                now + (now - self.q_prev[k]) * f
-            } else {
-                now
-            };
-            self.q_prev[k] = now;
+        if rates {
+            self.qd_prev.copy_from_slice(&s.qd);
+            self.qdd_prev.copy_from_slice(&s.qdd);
+        }
+        let (q, q_prev) = (&mut s.q[..], &mut self.q_prev[..]);
+        if self.rates_valid {
+            for (((q, qp), &qd), &qdd) in q.iter_mut().zip(q_prev.iter_mut()).zip(&s.qd).zip(&s.qdd) {
+                let now = *q;
+                *q = now + qd * dt + 0.5 * qdd * dt * dt;
+                *qp = now;
+            }
+            return;
+        }
+        match linear {
+            Some(f) => {
+                for (q, qp) in q.iter_mut().zip(q_prev.iter_mut()) {
+                    let now = *q;
+                    *q = now + (now - *qp) * f;
+                    *qp = now;
+                }
+            }
+            None => q_prev.copy_from_slice(q),
         }
     }
 
@@ -1244,8 +1277,7 @@ impl AssurSolver {
                     } else {
                         (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
                     };
-                    let ca = (libm::cos(mid.angle), libm::sin(mid.angle));
-                    let c0 = mid.n0.dot(&(rot(ca, pks) - qkg));
+                    let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
                     let dv = ks - kg;
                     let d = dv.norm();
                     if !(d > 0.0 && c0.abs() <= d + slack) {
@@ -1438,6 +1470,7 @@ impl AssurSolver {
 
 /// Velocity and acceleration of the global point `p` carried by body `a` (zero on the
 /// ground), from the body's q̇, q̈.
+#[inline(always)]
 fn point_rates(s: &Solver, a: Attach, p: Vector) -> (Vector, Vector) {
     let Attach::Body(b) = a else { return (Vector::zeros(), Vector::zeros()) };
     let r = p - Vector::new(s.q[3 * b], s.q[3 * b + 1]);
@@ -1449,6 +1482,7 @@ fn point_rates(s: &Solver, a: Attach, p: Vector) -> (Vector, Vector) {
 }
 
 /// ω and ε of body `a` (zero for the ground).
+#[inline]
 fn spin(s: &Solver, a: Attach) -> (f64, f64) {
     match a {
         Attach::Ground => (0.0, 0.0),
@@ -1458,6 +1492,7 @@ fn spin(s: &Solver, a: Attach) -> (f64, f64) {
 
 /// Sets body `b`'s q̇, q̈ from its point `p` (global) with velocity `vp`, acceleration
 /// `ap`, and its ω, ε.
+#[inline(always)]
 fn set_rates(s: &mut Solver, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
     let r = Vector::new(s.q[3 * b], s.q[3 * b + 1]) - p;
     let v = vp + perp(r) * w;
@@ -1489,6 +1524,7 @@ struct SlideFrame {
 impl SlideFrame {
     /// Velocity and acceleration of u's material point at `p` for sliding speed `sd` and
     /// acceleration `sdd`.
+    #[inline]
     fn point_rates(&self, sd: f64, sdd: f64) -> (Vector, Vector) {
         (
             self.v0 + self.w * (self.sigma * sd),
@@ -1497,6 +1533,7 @@ impl SlideFrame {
     }
 }
 
+#[inline(always)]
 fn slide_frame(s: &Solver, sl: &Slide, u: usize) -> SlideFrame {
     if sl.u_is_slider {
         let g = sl.q1.body;
@@ -1514,6 +1551,7 @@ fn slide_frame(s: &Solver, sl: &Slide, u: usize) -> SlideFrame {
 
 /// x·c1 + y·c2 = r by Cramer's rule, with ρ = |det| / (|c1|·|c2|) (the sine of the angle
 /// between the columns: 0 at a dead point).
+#[inline(always)]
 fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
     let det = cross(c1, c2);
     let rho = det.abs() / (c1.norm() * c2.norm());
@@ -1639,6 +1677,7 @@ const NO_CANDIDATE: Candidate = [(Vector::new(0.0, 0.0), None, (1.0, 0.0)); 2];
 /// (its squared distance under 1/16 of the other's), else the branch taken at the last
 /// step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps between
 /// dead points — so that a time step too coarse for the prediction keeps the mode.
+#[inline(always)]
 fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
     let (d0, d1) = (roots[0].0, roots[1].0);
     let k = if d0 <= d1 / 16.0 {
@@ -1657,6 +1696,7 @@ fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
 }
 
 /// Writes the chosen candidate, its angles continued from the last step.
+#[inline(always)]
 fn apply(s: &mut Solver, bodies: [usize; 2], cand: Candidate) {
     for (k, &b) in bodies.iter().enumerate() {
         let (r, phi, cs) = cand[k];
@@ -1767,7 +1807,7 @@ fn equilibrate(a: &mut [f64], k: usize, rows: &[usize], row_scale: &[f64], l: f6
 
 #[cfg(test)]
 mod tests {
-    use super::super::{Body, Driver, Joint};
+    use super::super::{Body, Driver, GROUND_POSE, Joint};
     use super::*;
     use crate::geom::Point;
     use crate::solve::expr::Expr;
@@ -1817,6 +1857,24 @@ mod tests {
                 law: Expr::parse("0.3 + 2*t").unwrap(),
             }],
             length_scale: 4.0,
+        }
+    }
+
+    #[test]
+    fn a_ground_anchor_is_placed_as_the_general_formula_places_it() {
+        let values = [0.0, -0.0, 1.5, -2.25, 1e-300, -1e300, f64::MIN_POSITIVE, 0.1];
+        for x in values {
+            for y in values {
+                let local = Vector::new(x, y);
+                let p = GROUND_POSE;
+                let general = p.r + p.rot(local);
+                let fast = glob(&[], Anchor { body: Attach::Ground, local });
+                assert_eq!(
+                    (fast.x.to_bits(), fast.y.to_bits()),
+                    (general.x.to_bits(), general.y.to_bits()),
+                    "{x}, {y}"
+                );
+            }
         }
     }
 

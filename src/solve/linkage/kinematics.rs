@@ -435,19 +435,12 @@ impl Solver {
     }
 
     pub(super) fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
-        for (k, d) in self.mech.drivers.iter().enumerate() {
+        for (d, law) in self.mech.drivers.iter().zip(self.laws.iter_mut()) {
             let j = d.law.eval(t);
             if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
-                return Err(LinkageError::DriverNotFinite {
-                    driver: d.name.clone(),
-                    law: d.law.source().to_string(),
-                    t,
-                    value: j.value,
-                    d1: j.d1,
-                    d2: j.d2,
-                });
+                return Err(not_finite(d, t, j));
             }
-            self.laws[k] = (j.value, j.d1, j.d2);
+            *law = (j.value, j.d1, j.d2);
         }
         Ok(())
     }
@@ -1015,6 +1008,20 @@ impl Solver {
             residual: res,
             near_singular: None,
         })
+    }
+}
+
+/// The error for a driver law that is not finite at `t` (out of the step's hot path).
+#[cold]
+#[inline(never)]
+fn not_finite(d: &super::Driver, t: f64, j: crate::solve::expr::Jet) -> LinkageError {
+    LinkageError::DriverNotFinite {
+        driver: d.name.clone(),
+        law: d.law.source().to_string(),
+        t,
+        value: j.value,
+        d1: j.d1,
+        d2: j.d2,
     }
 }
 
