@@ -31,7 +31,7 @@
 //! Everything here is deterministic: the same polygon gives the same letters in the same
 //! places.
 
-use crate::draw::parts::text_width;
+use crate::draw::parts::chars_width;
 use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
@@ -257,11 +257,23 @@ impl Polygon {
     }
 
     /// The labels, in the order added, after combining coincident points.
+    ///
+    /// Each candidate's score is counted only as far as it can still beat the best so far
+    /// (the first candidate with the lowest score wins, so a candidate that cannot be lower
+    /// is dropped as soon as that is known), and a segment is tested against a candidate's
+    /// box only when their bounding boxes overlap (a segment whose bounding box lies on or
+    /// outside an edge of the box cannot pass through its interior: [`TextBox::crosses`]
+    /// says no for it, rounding included).
     pub fn place(&self) -> Vec<Placed> {
         let letters = if self.merge { combine(&self.letters) } else { self.letters.clone() };
-        let mut boxes: Vec<TextBox> = Vec::with_capacity(letters.len());
-        // Leaders drawn so far: later letters keep off them as off the polygon's segments.
-        let mut leaders: Vec<(Point, Point)> = Vec::new();
+        // What a letter's box must not overlap, and what its leader should not cross: the
+        // boxes kept off, then the letters placed so far (counted, so the order is free).
+        let mut blockers: Vec<TextBox> = Vec::with_capacity(self.obstacles.len() + letters.len());
+        blockers.extend_from_slice(&self.obstacles);
+        // What a letter's box should not cross: the polygon's segments, then the leaders
+        // drawn so far, each with its bounding box.
+        let mut lines: Vec<(Segment, TextBox)> = Vec::with_capacity(self.segments.len() + letters.len());
+        lines.extend(self.segments.iter().map(|&s| (s, segment_box(s))));
         let mut out = Vec::with_capacity(letters.len());
         for l in &letters {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
@@ -269,22 +281,45 @@ impl Polygon {
             let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
             for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
                 let bx = TextBox::around(c, half);
-                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
-                let hits = boxes.iter().chain(&self.obstacles).filter(|b| b.overlaps(&bx)).count();
-                let through =
-                    leader.map_or(0, |(a, b)| boxes.iter().chain(&self.obstacles).filter(|x| x.crosses(a, b)).count());
-                let crossed = self.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
-                let score = (hits, through, crossed);
-                if best.as_ref().is_none_or(|(s, ..)| score < *s) {
-                    best = Some((score, c, bx, leader));
+                let bound = best.as_ref().map(|(s, ..)| *s);
+                let hits = blockers.iter().filter(|b| b.overlaps(&bx)).count();
+                if bound.is_some_and(|s| hits > s.0) {
+                    continue;
                 }
+                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
+                let through = leader.map_or(0, |(a, b)| blockers.iter().filter(|x| x.crosses(a, b)).count());
+                // The most segments the box may cross and still win.
+                let limit = match bound {
+                    Some(s) if (hits, through) > (s.0, s.1) => continue,
+                    Some(s) if (hits, through) == (s.0, s.1) => s.2,
+                    _ => usize::MAX,
+                };
+                let mut crossed = 0;
+                for ((a, b), sb) in &lines {
+                    if sb.min.x < bx.max.x
+                        && bx.min.x < sb.max.x
+                        && sb.min.y < bx.max.y
+                        && bx.min.y < sb.max.y
+                        && bx.crosses(*a, *b)
+                    {
+                        crossed += 1;
+                        if crossed >= limit {
+                            break;
+                        }
+                    }
+                }
+                if crossed >= limit {
+                    continue;
+                }
+                let score = (hits, through, crossed);
+                best = Some((score, c, bx, leader));
                 if score == (0, 0, 0) {
                     break;
                 }
             }
             if let Some((_, c, bx, leader)) = best {
-                boxes.push(bx);
-                leaders.extend(leader);
+                blockers.push(bx);
+                lines.extend(leader.map(|s| (s, segment_box(s))));
                 out.push(Placed {
                     centre: c,
                     text: l.text.clone(),
@@ -348,6 +383,11 @@ fn leader_line(at: Point, centre: Point, half: Vector, height: f64) -> Option<(P
     ((at - edge).norm() >= LEADER_MIN * height).then_some((at, edge))
 }
 
+/// The bounding box of a segment.
+fn segment_box((a, b): Segment) -> TextBox {
+    TextBox { min: Point::new(a.x.min(b.x), a.y.min(b.y)), max: Point::new(a.x.max(b.x), a.y.max(b.y)) }
+}
+
 /// Letters whose points lie within [`COINCIDENT`] heights of an earlier letter's point join
 /// that letter's label (`a≡b`), which keeps the earlier letter's place and direction.
 fn combine(letters: &[Letter]) -> Vec<Letter> {
@@ -367,11 +407,14 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
     out
 }
 
-/// Estimated width of a label: [`text_width`], with [`SAME_POINT`] as wide as `=` (DejaVu
-/// Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
+/// Estimated width of a label: [`text_width`](crate::draw::parts::text_width), with
+/// [`SAME_POINT`] as wide as `=` (DejaVu Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
 /// and a combined label `a≡b≡m` would print over its neighbours).
 pub fn label_width(text: &str, height: f64) -> f64 {
-    text_width(&text.replace(SAME_POINT, "="), height)
+    // `SAME_POINT` is one character, replaced by one.
+    const SAME: char = '≡';
+    const _: () = assert!(SAME_POINT.len() == SAME.len_utf8());
+    chars_width(text.chars().map(|c| if c == SAME { '=' } else { c }), height)
 }
 
 /// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
@@ -427,6 +470,7 @@ pub fn max_leader_distance(text: &str, height: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::draw::parts::text_width;
 
     #[test]
     fn a_box_is_crossed_only_by_segments_through_it() {
@@ -510,5 +554,83 @@ mod tests {
         let Placed { centre: c, .. } = &q.place()[0];
         assert!(!q.place()[0].bounds().overlaps(&symbol), "{c:?}");
         assert!(c.coords.norm() >= LABEL_GAP + 0.5 + 0.5 - 1e-12);
+    }
+
+    /// The placer as first written (every candidate's score counted in full, every segment
+    /// clipped): the reference for [`Polygon::place`].
+    fn place_in_full(p: &Polygon) -> Vec<Placed> {
+        let letters = if p.merge { combine(&p.letters) } else { p.letters.clone() };
+        let mut boxes: Vec<TextBox> = Vec::new();
+        let mut leaders: Vec<(Point, Point)> = Vec::new();
+        let mut out = Vec::new();
+        for l in &letters {
+            let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
+            let half = l.half();
+            let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
+                let bx = TextBox::around(c, half);
+                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
+                let hits = boxes.iter().chain(&p.obstacles).filter(|b| b.overlaps(&bx)).count();
+                let through =
+                    leader.map_or(0, |(a, b)| boxes.iter().chain(&p.obstacles).filter(|x| x.crosses(a, b)).count());
+                let crossed = p.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
+                let score = (hits, through, crossed);
+                if best.as_ref().is_none_or(|(s, ..)| score < *s) {
+                    best = Some((score, c, bx, leader));
+                }
+                if score == (0, 0, 0) {
+                    break;
+                }
+            }
+            if let Some((_, c, bx, leader)) = best {
+                boxes.push(bx);
+                leaders.extend(leader);
+                let (text, height, color, circled) = (l.text.clone(), l.height, l.color, l.circled);
+                out.push(Placed { centre: c, text, height, color, leader, circled });
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_placer_places_as_when_every_score_was_counted_in_full() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
+        let mut crowded = 0;
+        for case in 0..400 {
+            let mut p = if case % 2 == 0 { Polygon::of_points() } else { Polygon::of_names() };
+            // Points on a small grid (so segments touch box edges exactly) and anywhere.
+            let pt = |rng: &mut rand_chacha::ChaCha8Rng| {
+                if rng.random_range(0..2) == 0 {
+                    Point::new(rng.random_range(-4..4) as f64 * 0.5, rng.random_range(-4..4) as f64 * 0.5)
+                } else {
+                    Point::new(rng.random_range(-3.0..3.0), rng.random_range(-3.0..3.0))
+                }
+            };
+            let n = rng.random_range(1..25);
+            let points: Vec<Point> = (0..n).map(|_| pt(&mut rng)).collect();
+            for w in points.windows(2) {
+                p.segment(w[0], w[1]);
+            }
+            for _ in 0..rng.random_range(0..4) {
+                let (a, b) = (pt(&mut rng), pt(&mut rng));
+                let min = Point::new(a.x.min(b.x), a.y.min(b.y));
+                p.keep_off(TextBox { min, max: Point::new(a.x.max(b.x), a.y.max(b.y)) });
+            }
+            for (i, &at) in points.iter().enumerate() {
+                let dir = Vector::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                let text = ["a", "b", "m", "RB", "R12", "Fi3"][i % 6];
+                match rng.random_range(0..4) {
+                    0 => p.letter(at, text, 0.5, dir, None),
+                    1 => p.name_with_leader(at, text, 0.5, dir, Some(Aci::RED)),
+                    2 => p.circled(at, "3", 0.5, dir, 0.1),
+                    _ => p.letter_clear(at, text, 0.5, dir, 0.2),
+                }
+            }
+            let placed = p.place();
+            assert_eq!(placed, place_in_full(&p), "case {case}");
+            crowded += usize::from(placed.iter().any(|l| l.leader.is_some()));
+        }
+        assert!(crowded > 50, "{crowded}");
     }
 }
