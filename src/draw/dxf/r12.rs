@@ -445,7 +445,11 @@ pub(super) fn write_f64(o: &mut Vec<u8>, v: f64) {
     if negative {
         o.push(b'-');
     }
-    let (int, frac) = ((q / SCALE) as u64, (q % SCALE) as u64);
+    // In 64 bits when q fits (|v| below 1.8·10⁷): a 128-bit division is a library call.
+    let (int, frac) = match u64::try_from(q) {
+        Ok(q) => (q / SCALE as u64, q % SCALE as u64),
+        Err(_) => ((q / SCALE) as u64, (q % SCALE) as u64),
+    };
     let mut buf = [0u8; 20];
     let i = digits(&mut buf, int);
     o.extend_from_slice(&buf[i..]);
