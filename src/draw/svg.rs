@@ -74,13 +74,19 @@ impl Frame {
 /// is small enough and its fraction is far enough from ½ that the product's rounding error
 /// (≤ 2⁻⁵² of it) cannot change the result; anything else takes `format!`.
 pub fn num(v: f64) -> String {
-    let mut s = String::with_capacity(16);
+    let mut s = Vec::with_capacity(16);
     push_num(&mut s, v);
-    s
+    utf8(s)
+}
+
+/// The writer's bytes as a String: they are UTF-8 (ASCII, and text copied from `&str`s
+/// whole), so the lossy branch is never taken.
+fn utf8(bytes: Vec<u8>) -> String {
+    String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
 }
 
 /// Appends [`num`]`(v)` to `out` without allocating in the common case.
-pub fn push_num(out: &mut String, v: f64) {
+fn push_num(out: &mut Vec<u8>, v: f64) {
     let scaled = v * 1e6;
     if scaled.abs() < 1e12 {
         let floor = scaled.floor();
@@ -91,26 +97,29 @@ pub fn push_num(out: &mut String, v: f64) {
             return;
         }
     }
-    use std::fmt::Write as _;
     let start = out.len();
-    // Writing into a String cannot fail.
+    // Writing into a Vec cannot fail.
     let _ = write!(out, "{v:.6}");
     // Trimmed in place: trailing zeros, then a bare point, and no `-0`.
-    let len = start + out[start..].trim_end_matches('0').trim_end_matches('.').len();
-    out.truncate(len);
-    if &out[start..] == "-0" {
+    while out.len() > start && out.last() == Some(&b'0') {
+        out.pop();
+    }
+    if out.len() > start && out.last() == Some(&b'.') {
+        out.pop();
+    }
+    if &out[start..] == b"-0" {
         out.remove(start);
     }
 }
 
 /// Appends `units`·10⁻⁶ as [`num`] writes it: trailing zeros and a bare point trimmed, no `-0`.
-fn push_fixed6(out: &mut String, units: i64) {
+fn push_fixed6(out: &mut Vec<u8>, units: i64) {
     if units == 0 {
-        out.push('0');
+        out.push(b'0');
         return;
     }
     if units < 0 {
-        out.push('-');
+        out.push(b'-');
     }
     let u = units.unsigned_abs();
     let (int, mut frac) = (u / 1_000_000, u % 1_000_000);
@@ -127,14 +136,13 @@ fn push_fixed6(out: &mut String, units: i64) {
             buf[i] = b'0' + (frac % 10) as u8;
             frac /= 10;
         }
-        out.push('.');
-        // ASCII digits.
-        out.push_str(std::str::from_utf8(&buf[..digits]).unwrap_or_default());
+        out.push(b'.');
+        out.extend_from_slice(&buf[..digits]);
     }
 }
 
 /// Appends the decimal digits of `n`.
-fn push_u64(out: &mut String, mut n: u64) {
+fn push_u64(out: &mut Vec<u8>, mut n: u64) {
     let mut buf = [0u8; 20];
     let mut i = buf.len();
     loop {
@@ -145,8 +153,7 @@ fn push_u64(out: &mut String, mut n: u64) {
             break;
         }
     }
-    // ASCII digits.
-    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or_default());
+    out.extend_from_slice(&buf[i..]);
 }
 
 /// `#rrggbb`.
@@ -162,18 +169,19 @@ fn rgb(c: Aci) -> [u8; 7] {
 }
 
 /// Appends `s` escaped as XML text content: `&`, `<`, `>`.
-fn push_text(out: &mut String, s: &str) {
+fn push_text(out: &mut Vec<u8>, s: &str) {
     push_escaped(out, s, false);
 }
 
 /// Appends `s` escaped for an attribute value in double quotes: `&`, `<`, `>`, `"`, `'`.
-fn push_attr_value(out: &mut String, s: &str) {
+fn push_attr_value(out: &mut Vec<u8>, s: &str) {
     push_escaped(out, s, true);
 }
 
-fn push_escaped(out: &mut String, s: &str, quotes: bool) {
+fn push_escaped(out: &mut Vec<u8>, s: &str, quotes: bool) {
+    let s = s.as_bytes();
     let mut plain = 0;
-    for (i, b) in s.bytes().enumerate() {
+    for (i, &b) in s.iter().enumerate() {
         let esc = match b {
             b'&' => "&amp;",
             b'<' => "&lt;",
@@ -182,66 +190,66 @@ fn push_escaped(out: &mut String, s: &str, quotes: bool) {
             b'\'' if quotes => "&apos;",
             _ => continue,
         };
-        out.push_str(&s[plain..i]);
-        out.push_str(esc);
+        out.extend_from_slice(&s[plain..i]);
+        out.extend_from_slice(esc.as_bytes());
         plain = i + 1;
     }
-    out.push_str(&s[plain..]);
+    out.extend_from_slice(&s[plain..]);
 }
 
 /// Writes elements into one buffer. Attributes are written in the order of their names
 /// (byte order), as the `svg` crate this replaced wrote them, so that the bytes did not change.
 struct Out<'a> {
-    s: &'a mut String,
+    s: &'a mut Vec<u8>,
 }
 
 impl Out<'_> {
     /// ` name="value"` with `value` escaped.
     fn attr(&mut self, name: &str, value: &str) {
-        self.s.push(' ');
-        self.s.push_str(name);
-        self.s.push_str("=\"");
+        self.s.push(b' ');
+        self.s.extend_from_slice(name.as_bytes());
+        self.s.extend_from_slice(b"=\"");
         push_attr_value(self.s, value);
-        self.s.push('"');
+        self.s.push(b'"');
     }
     /// ` name="number"`.
     fn num(&mut self, name: &str, v: f64) {
-        self.s.push(' ');
-        self.s.push_str(name);
-        self.s.push_str("=\"");
+        self.s.push(b' ');
+        self.s.extend_from_slice(name.as_bytes());
+        self.s.extend_from_slice(b"=\"");
         push_num(self.s, v);
-        self.s.push('"');
+        self.s.push(b'"');
     }
     /// A new child line: `\n<name`.
     fn open(&mut self, name: &str) {
-        self.s.push_str("\n<");
-        self.s.push_str(name);
+        self.s.extend_from_slice(b"\n<");
+        self.s.extend_from_slice(name.as_bytes());
     }
     /// `x,y` (the `points` of polylines and polygons), after a space unless first.
     fn points(&mut self, f: &Frame, points: impl IntoIterator<Item = Point>) {
-        self.s.push_str(" points=\"");
+        self.s.extend_from_slice(b" points=\"");
         for (i, p) in points.into_iter().enumerate() {
             if i > 0 {
-                self.s.push(' ');
+                self.s.push(b' ');
             }
             let (x, y) = f.pt(p);
             push_num(self.s, x);
-            self.s.push(',');
+            self.s.push(b',');
             push_num(self.s, y);
         }
-        self.s.push('"');
+        self.s.push(b'"');
     }
 }
 
 /// Renders `drawing` as an SVG document string.
 pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
-    let mut s = String::with_capacity(256 + 160 * drawing.entities.len());
+    let mut s = Vec::with_capacity(256 + 160 * drawing.entities.len());
     write_into(&mut s, drawing, opts);
-    s
+    utf8(s)
 }
 
-/// Appends the SVG document of `drawing` to `s` (what [`to_string`] returns).
-pub fn write_into(s: &mut String, drawing: &Drawing, opts: &SvgOptions) {
+/// Appends the SVG document of `drawing` to `s` (the bytes of [`to_string`]).
+pub fn write_into(s: &mut Vec<u8>, drawing: &Drawing, opts: &SvgOptions) {
     let bounds = opts
         .window
         .or_else(|| drawing.bounds())
@@ -257,41 +265,41 @@ pub fn write_into(s: &mut String, drawing: &Drawing, opts: &SvgOptions) {
     let mut o = Out { s };
 
     // <svg font-family height viewBox width xmlns>
-    o.s.push_str("<svg");
+    o.s.extend_from_slice(b"<svg");
     o.attr("font-family", FONT_FAMILY);
     let paper_size = |o: &mut Out<'_>, name: &str, v: f64| {
-        o.s.push(' ');
-        o.s.push_str(name);
-        o.s.push_str("=\"");
+        o.s.push(b' ');
+        o.s.extend_from_slice(name.as_bytes());
+        o.s.extend_from_slice(b"=\"");
         push_num(o.s, v);
-        o.s.push_str("mm\"");
+        o.s.extend_from_slice(b"mm\"");
     };
     match paper {
         Some(_) => paper_size(&mut o, "height", h),
         None => {
             let height_px = ((opts.width_px as f64) * h / w).round().max(1.0) as u32;
-            o.s.push_str(" height=\"");
+            o.s.extend_from_slice(b" height=\"");
             push_u64(o.s, u64::from(height_px));
-            o.s.push('"');
+            o.s.push(b'"');
         }
     }
-    o.s.push_str(" viewBox=\"");
+    o.s.extend_from_slice(b" viewBox=\"");
     for (i, v) in [x0, y0, w, h].into_iter().enumerate() {
         if i > 0 {
-            o.s.push(' ');
+            o.s.push(b' ');
         }
         push_num(o.s, v);
     }
-    o.s.push('"');
+    o.s.push(b'"');
     match paper {
         Some(_) => paper_size(&mut o, "width", w),
         None => {
-            o.s.push_str(" width=\"");
+            o.s.extend_from_slice(b" width=\"");
             push_u64(o.s, u64::from(opts.width_px));
-            o.s.push('"');
+            o.s.push(b'"');
         }
     }
-    o.s.push_str(" xmlns=\"http://www.w3.org/2000/svg\">");
+    o.s.extend_from_slice(b" xmlns=\"http://www.w3.org/2000/svg\">");
     // The background: <rect fill height width x y/>
     o.open("rect");
     o.attr("fill", "#ffffff");
@@ -299,23 +307,23 @@ pub fn write_into(s: &mut String, drawing: &Drawing, opts: &SvgOptions) {
     o.num("width", w);
     o.num("x", x0);
     o.num("y", y0);
-    o.s.push_str("/>");
+    o.s.extend_from_slice(b"/>");
 
     // Entities in drawing order (later ones on top, as in the DXF), grouped into runs of
     // consecutive entities on one layer: `<g class="layer-NAME">` (a layer may have several).
     // A group's `>` waits for its first child: a group with none is written `<g …/>`.
     let mut run: Option<usize> = None;
     let mut empty = false;
-    let close = |o: &mut Out<'_>, empty: bool| o.s.push_str(if empty { "/>" } else { "\n</g>" });
+    let close = |o: &mut Out<'_>, empty: bool| o.s.extend_from_slice(if empty { b"/>" } else { &b"\n</g>"[..] });
     for e in &drawing.entities {
         if run != Some(e.layer) {
             if run.is_some() {
                 close(&mut o, empty);
             }
             o.open("g");
-            o.s.push_str(" class=\"layer-");
+            o.s.extend_from_slice(b" class=\"layer-");
             push_attr_value(o.s, &drawing.layers[e.layer].name);
-            o.s.push_str("\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"");
+            o.s.extend_from_slice(b"\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"");
             run = Some(e.layer);
             empty = true;
         }
@@ -324,7 +332,7 @@ pub fn write_into(s: &mut String, drawing: &Drawing, opts: &SvgOptions) {
     if run.is_some() {
         close(&mut o, empty);
     }
-    o.s.push_str("\n</svg>");
+    o.s.extend_from_slice(b"\n</svg>");
 }
 
 /// The frames of an animation without rewriting their shared part: the SVG of a drawing
@@ -366,7 +374,7 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
     // Each child starts its own line; the group's `>` comes before the first.
     let mut child = |o: &mut Out<'_>, name: &str| {
         if std::mem::take(empty) {
-            o.s.push('>');
+            o.s.push(b'>');
         }
         o.open(name);
     };
@@ -375,11 +383,11 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
     let stroke = |o: &mut Out<'_>, w: f64| {
         o.attr("stroke", color);
         if dashed {
-            o.s.push_str(" stroke-dasharray=\"");
+            o.s.extend_from_slice(b" stroke-dasharray=\"");
             push_num(o.s, f.len(f.dash.0));
-            o.s.push(' ');
+            o.s.push(b' ');
             push_num(o.s, f.len(f.dash.1));
-            o.s.push('"');
+            o.s.push(b'"');
         }
         o.num("stroke-width", f.len(w.max(f.hairline)));
     };
@@ -391,7 +399,7 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
         o.num("x2", x2);
         o.num("y1", y1);
         o.num("y2", y2);
-        o.s.push_str("/>");
+        o.s.extend_from_slice(b"/>");
     };
     match &e.shape {
         Shape::Circle { center, radius } => {
@@ -401,15 +409,15 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
             o.num("cy", y);
             o.num("r", f.len(*radius));
             stroke(o, 0.0);
-            o.s.push_str("/>");
+            o.s.extend_from_slice(b"/>");
         }
         Shape::Arc { center, radius, start, end } => {
             child(o, "path");
-            o.s.push_str(" d=\"");
+            o.s.extend_from_slice(b" d=\"");
             arc_path(o.s, f, *center, *radius, *start, *end);
-            o.s.push('"');
+            o.s.push(b'"');
             stroke(o, 0.0);
-            o.s.push_str("/>");
+            o.s.extend_from_slice(b"/>");
         }
         Shape::Line { from, to } => {
             child(o, "line");
@@ -419,13 +427,13 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
             child(o, if *closed { "polygon" } else { "polyline" });
             o.points(f, points.iter().copied());
             stroke(o, *width);
-            o.s.push_str("/>");
+            o.s.extend_from_slice(b"/>");
         }
         Shape::Filled { points } => {
             child(o, "polygon");
             o.attr("fill", color);
             o.points(f, points.iter().copied());
-            o.s.push_str(" stroke=\"none\"/>");
+            o.s.extend_from_slice(b" stroke=\"none\"/>");
         }
         Shape::Arrow { from, to, head } => {
             if let Some((base, tri)) = arrow(*from, *to, *head) {
@@ -434,7 +442,7 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
                 child(o, "polygon");
                 o.attr("fill", color);
                 o.points(f, tri);
-                o.s.push_str(" stroke=\"none\"/>");
+                o.s.extend_from_slice(b" stroke=\"none\"/>");
             }
         }
         Shape::Text { at, height, value, halign, valign, rotation } => {
@@ -483,49 +491,49 @@ fn text(
     }
     o.attr("fill", color);
     o.num("font-size", size);
-    o.s.push_str(" stroke=\"none\"");
+    o.s.extend_from_slice(b" stroke=\"none\"");
     o.attr("text-anchor", anchor);
     if rotation != 0.0 {
         // SVG rotates clockwise in its y-down frame: negate.
-        o.s.push_str(" transform=\"rotate(");
+        o.s.extend_from_slice(b" transform=\"rotate(");
         push_num(o.s, -rotation.to_degrees());
-        o.s.push(' ');
+        o.s.push(b' ');
         push_num(o.s, x);
-        o.s.push(' ');
+        o.s.push(b' ');
         push_num(o.s, y);
-        o.s.push_str(")\"");
+        o.s.extend_from_slice(b")\"");
     }
     o.num("x", x);
     o.num("y", y);
     // The content on its own line.
-    o.s.push_str(">\n");
+    o.s.extend_from_slice(b">\n");
     push_text(o.s, value);
-    o.s.push_str("\n</text>");
+    o.s.extend_from_slice(b"\n</text>");
 }
 
 /// Appends an arc's path data: counter-clockwise from `start` to `end`.
-fn arc_path(d: &mut String, f: &Frame, center: Point, radius: f64, start: f64, end: f64) {
+fn arc_path(d: &mut Vec<u8>, f: &Frame, center: Point, radius: f64, start: f64, end: f64) {
     // Counter-clockwise from start to end, wrapping through 0 when end < start (as in DXF).
     let sweep = arc_sweep(start, end);
     // SVG arcs cannot draw a full circle in one command: split into two halves.
     let n = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
     let (sx, sy) = f.pt(polar(center, radius, start));
-    d.push('M');
+    d.push(b'M');
     push_num(d, sx);
-    d.push(',');
+    d.push(b',');
     push_num(d, sy);
     for i in 1..=n {
         let a = start + sweep * i as f64 / n as f64;
         let (x, y) = f.pt(polar(center, radius, a));
         // Counter-clockwise in the model = sweep-flag 0 in SVG's flipped frame.
         let r = f.len(radius);
-        d.push_str(" A");
+        d.extend_from_slice(b" A");
         push_num(d, r);
-        d.push(',');
+        d.push(b',');
         push_num(d, r);
-        d.push_str(" 0 0 0 ");
+        d.extend_from_slice(b" 0 0 0 ");
         push_num(d, x);
-        d.push(',');
+        d.push(b',');
         push_num(d, y);
     }
 }

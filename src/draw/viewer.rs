@@ -236,11 +236,26 @@ pub fn html(title: &str, frames: &[Frame]) -> String {
         lists.push(list);
     }
     s.push_str("<div id=\"stage\" data-frame=\"0\"></div>\n<script>\nvar PARTS = [\n");
-    for (i, p) in parts.iter().enumerate() {
+    // Escaped in parallel, in chunks written in order.
+    use rayon::prelude::*;
+    let chunks: Vec<String> = parts
+        .par_chunks(64)
+        .map(|chunk| {
+            let mut c = String::with_capacity(chunk.iter().map(|p| p.len() + 16).sum());
+            for (i, p) in chunk.iter().enumerate() {
+                if i > 0 {
+                    c.push_str(",\n");
+                }
+                push_js_string(&mut c, p);
+            }
+            c
+        })
+        .collect();
+    for (i, c) in chunks.iter().enumerate() {
         if i > 0 {
             s.push_str(",\n");
         }
-        push_js_string(&mut s, p);
+        s.push_str(c);
     }
     s.push_str("\n];\nvar FRAME_PARTS = [\n");
     for (i, list) in lists.iter().enumerate() {
