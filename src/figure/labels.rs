@@ -455,15 +455,21 @@ fn candidates_in(
     let base = u0.y.atan2(u0.x);
     let (hw, hh) = (half.x, half.y);
     // Lazy: most letters take their first candidate, so the directions are not computed
-    // ahead (a run places some ten thousand letters).
-    rings.iter().flat_map(move |&ring| {
-        TURNS.into_iter().map(move |turn| {
-            let a = base + turn * TURN;
+    // ahead (a run places some ten thousand letters); each direction (and its reach) is
+    // computed once, on the first ring, and kept for the others.
+    let mut dirs = [(Vector::zeros(), 0.0); TURNS.len()];
+    let mut known = 0;
+    rings.iter().flat_map(move |&ring| (0..TURNS.len()).map(move |i| (ring, i))).map(move |(ring, i)| {
+        if i == known {
+            let a = base + TURNS[i] * TURN;
             let u = Vector::new(a.cos(), a.sin());
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
-            at + u * (ring * (LABEL_GAP * height + clear + reach))
-        })
+            dirs[i] = (u, reach);
+            known += 1;
+        }
+        let (u, reach) = dirs[i];
+        at + u * (ring * (LABEL_GAP * height + clear + reach))
     })
 }
 
