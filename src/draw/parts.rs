@@ -67,7 +67,13 @@ fn char_advance(c: char) -> f64 {
 /// font, so this is an estimate (exact for DejaVu Sans digits and signs), the same for both
 /// writers.
 pub fn text_width(text: &str, height: f64) -> f64 {
-    height / CAP_HEIGHT_EM * text.chars().map(char_advance).sum::<f64>() / UNITS_PER_EM
+    chars_width(text.chars(), height)
+}
+
+/// [`text_width`] of the text made of `chars` (a text read with some characters replaced,
+/// without building it).
+pub fn chars_width(chars: impl Iterator<Item = char>, height: f64) -> f64 {
+    height / CAP_HEIGHT_EM * chars.map(char_advance).sum::<f64>() / UNITS_PER_EM
 }
 
 /// Whether a linear dimension measured along `angle` (radians) has its text turned by half

@@ -12,13 +12,12 @@
 
 use std::io::Write;
 
-use svg::Document;
-use svg::Node as _;
-use svg::node::element::{Circle, Group, Line, Path, Polygon, Polyline, Rectangle, Text};
-
 use super::parts::{arc_sweep, arrow, dash_pattern, explode_dimension};
 use super::{Aci, Bounds, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, polar};
+
+#[cfg(test)]
+mod reference;
 
 /// Font family written into SVG text; the bundled DejaVu Sans (assets/fonts) renders it in
 /// golden images, browsers fall back to any sans-serif.
@@ -75,61 +74,182 @@ impl Frame {
 /// is small enough and its fraction is far enough from ½ that the product's rounding error
 /// (≤ 2⁻⁵² of it) cannot change the result; anything else takes `format!`.
 pub fn num(v: f64) -> String {
+    let mut s = Vec::with_capacity(16);
+    push_num(&mut s, v);
+    utf8(s)
+}
+
+/// The writer's bytes as a String: they are UTF-8 (ASCII, and text copied from `&str`s
+/// whole), so the lossy branch is never taken.
+fn utf8(bytes: Vec<u8>) -> String {
+    String::from_utf8(bytes).unwrap_or_else(|e| String::from_utf8_lossy(e.as_bytes()).into_owned())
+}
+
+/// Appends [`num`]`(v)` to `out` without allocating in the common case.
+fn push_num(out: &mut Vec<u8>, v: f64) {
     let scaled = v * 1e6;
     if scaled.abs() < 1e12 {
         let floor = scaled.floor();
         let frac = scaled - floor;
         if (frac - 0.5).abs() > 1e-3 {
             let units = (if frac > 0.5 { floor + 1.0 } else { floor }) as i64;
-            return fixed6(units);
+            push_fixed6(out, units);
+            return;
         }
     }
-    let mut s = format!("{v:.6}");
-    // Trimmed in place: this is called for every coordinate of every frame.
-    let len = s.trim_end_matches('0').trim_end_matches('.').len();
-    s.truncate(len);
-    if s == "-0" {
-        s.remove(0);
+    let start = out.len();
+    // Writing into a Vec cannot fail.
+    let _ = write!(out, "{v:.6}");
+    // Trimmed in place: trailing zeros, then a bare point, and no `-0`.
+    while out.len() > start && out.last() == Some(&b'0') {
+        out.pop();
     }
-    s
+    if out.len() > start && out.last() == Some(&b'.') {
+        out.pop();
+    }
+    if &out[start..] == b"-0" {
+        out.remove(start);
+    }
 }
 
-/// `units`·10⁻⁶ as `num` writes it: trailing zeros and a bare point trimmed, no `-0`.
-fn fixed6(units: i64) -> String {
+/// Appends `units`·10⁻⁶ as [`num`] writes it: trailing zeros and a bare point trimmed, no `-0`.
+fn push_fixed6(out: &mut Vec<u8>, units: i64) {
     if units == 0 {
-        return "0".to_string();
+        out.push(b'0');
+        return;
     }
-    let neg = units < 0;
+    if units < 0 {
+        out.push(b'-');
+    }
     let u = units.unsigned_abs();
     let (int, mut frac) = (u / 1_000_000, u % 1_000_000);
-    let mut s = String::with_capacity(20);
-    if neg {
-        s.push('-');
-    }
-    s.push_str(&int.to_string());
+    push_u64(out, int);
     if frac != 0 {
         let mut digits = 6;
         while frac % 10 == 0 {
             frac /= 10;
             digits -= 1;
         }
-        s.push('.');
-        let f = frac.to_string();
-        for _ in f.len()..digits {
-            s.push('0');
+        // `digits` decimals, leading zeros kept.
+        let mut buf = [b'0'; 6];
+        for i in (0..digits).rev() {
+            buf[i] = b'0' + (frac % 10) as u8;
+            frac /= 10;
         }
-        s.push_str(&f);
+        out.push(b'.');
+        out.extend_from_slice(&buf[..digits]);
+    }
+}
+
+/// Appends the decimal digits of `n`.
+fn push_u64(out: &mut Vec<u8>, mut n: u64) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    out.extend_from_slice(&buf[i..]);
+}
+
+/// `#rrggbb`.
+fn rgb(c: Aci) -> [u8; 7] {
+    const HEX: &[u8; 16] = b"0123456789abcdef";
+    let (r, g, b) = c.rgb();
+    let mut s = [b'#'; 7];
+    for (i, v) in [r, g, b].into_iter().enumerate() {
+        s[1 + 2 * i] = HEX[usize::from(v >> 4)];
+        s[2 + 2 * i] = HEX[usize::from(v & 15)];
     }
     s
 }
 
-fn rgb(c: Aci) -> String {
-    let (r, g, b) = c.rgb();
-    format!("#{r:02x}{g:02x}{b:02x}")
+/// Appends `s` escaped as XML text content: `&`, `<`, `>`.
+fn push_text(out: &mut Vec<u8>, s: &str) {
+    push_escaped(out, s, false);
+}
+
+/// Appends `s` escaped for an attribute value in double quotes: `&`, `<`, `>`, `"`, `'`.
+fn push_attr_value(out: &mut Vec<u8>, s: &str) {
+    push_escaped(out, s, true);
+}
+
+fn push_escaped(out: &mut Vec<u8>, s: &str, quotes: bool) {
+    let s = s.as_bytes();
+    let mut plain = 0;
+    for (i, &b) in s.iter().enumerate() {
+        let esc = match b {
+            b'&' => "&amp;",
+            b'<' => "&lt;",
+            b'>' => "&gt;",
+            b'"' if quotes => "&quot;",
+            b'\'' if quotes => "&apos;",
+            _ => continue,
+        };
+        out.extend_from_slice(&s[plain..i]);
+        out.extend_from_slice(esc.as_bytes());
+        plain = i + 1;
+    }
+    out.extend_from_slice(&s[plain..]);
+}
+
+/// Writes elements into one buffer. Attributes are written in the order of their names
+/// (byte order), as the `svg` crate this replaced wrote them, so that the bytes did not change.
+struct Out<'a> {
+    s: &'a mut Vec<u8>,
+}
+
+impl Out<'_> {
+    /// ` name="value"` with `value` escaped.
+    fn attr(&mut self, name: &str, value: &str) {
+        self.s.push(b' ');
+        self.s.extend_from_slice(name.as_bytes());
+        self.s.extend_from_slice(b"=\"");
+        push_attr_value(self.s, value);
+        self.s.push(b'"');
+    }
+    /// ` name="number"`.
+    fn num(&mut self, name: &str, v: f64) {
+        self.s.push(b' ');
+        self.s.extend_from_slice(name.as_bytes());
+        self.s.extend_from_slice(b"=\"");
+        push_num(self.s, v);
+        self.s.push(b'"');
+    }
+    /// A new child line: `\n<name`.
+    fn open(&mut self, name: &str) {
+        self.s.extend_from_slice(b"\n<");
+        self.s.extend_from_slice(name.as_bytes());
+    }
+    /// `x,y` (the `points` of polylines and polygons), after a space unless first.
+    fn points(&mut self, f: &Frame, points: impl IntoIterator<Item = Point>) {
+        self.s.extend_from_slice(b" points=\"");
+        for (i, p) in points.into_iter().enumerate() {
+            if i > 0 {
+                self.s.push(b' ');
+            }
+            let (x, y) = f.pt(p);
+            push_num(self.s, x);
+            self.s.push(b',');
+            push_num(self.s, y);
+        }
+        self.s.push(b'"');
+    }
 }
 
 /// Renders `drawing` as an SVG document string.
 pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
+    let mut s = Vec::with_capacity(256 + 160 * drawing.entities.len());
+    write_into(&mut s, drawing, opts);
+    utf8(s)
+}
+
+/// Appends the SVG document of `drawing` to `s` (the bytes of [`to_string`]).
+pub fn write_into(s: &mut Vec<u8>, drawing: &Drawing, opts: &SvgOptions) {
     let bounds = opts
         .window
         .or_else(|| drawing.bounds())
@@ -142,53 +262,77 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
     let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
     let w = frame.len(w.max(extent * 1e-3));
     let h = frame.len(h.max(extent * 1e-3));
-    let (width, height) = match paper {
-        Some(_) => (format!("{}mm", num(w)), format!("{}mm", num(h))),
+    let mut o = Out { s };
+
+    // <svg font-family height viewBox width xmlns>
+    o.s.extend_from_slice(b"<svg");
+    o.attr("font-family", FONT_FAMILY);
+    let paper_size = |o: &mut Out<'_>, name: &str, v: f64| {
+        o.s.push(b' ');
+        o.s.extend_from_slice(name.as_bytes());
+        o.s.extend_from_slice(b"=\"");
+        push_num(o.s, v);
+        o.s.extend_from_slice(b"mm\"");
+    };
+    match paper {
+        Some(_) => paper_size(&mut o, "height", h),
         None => {
             let height_px = ((opts.width_px as f64) * h / w).round().max(1.0) as u32;
-            (opts.width_px.to_string(), height_px.to_string())
+            o.s.extend_from_slice(b" height=\"");
+            push_u64(o.s, u64::from(height_px));
+            o.s.push(b'"');
         }
-    };
-
-    let mut doc = Document::new()
-        .set("viewBox", format!("{} {} {} {}", num(x0), num(y0), num(w), num(h)))
-        .set("width", width)
-        .set("height", height)
-        .set("font-family", FONT_FAMILY)
-        .add(
-            Rectangle::new()
-                .set("x", num(x0))
-                .set("y", num(y0))
-                .set("width", num(w))
-                .set("height", num(h))
-                .set("fill", "#ffffff"),
-        );
+    }
+    o.s.extend_from_slice(b" viewBox=\"");
+    for (i, v) in [x0, y0, w, h].into_iter().enumerate() {
+        if i > 0 {
+            o.s.push(b' ');
+        }
+        push_num(o.s, v);
+    }
+    o.s.push(b'"');
+    match paper {
+        Some(_) => paper_size(&mut o, "width", w),
+        None => {
+            o.s.extend_from_slice(b" width=\"");
+            push_u64(o.s, u64::from(opts.width_px));
+            o.s.push(b'"');
+        }
+    }
+    o.s.extend_from_slice(b" xmlns=\"http://www.w3.org/2000/svg\">");
+    // The background: <rect fill height width x y/>
+    o.open("rect");
+    o.attr("fill", "#ffffff");
+    o.num("height", h);
+    o.num("width", w);
+    o.num("x", x0);
+    o.num("y", y0);
+    o.s.extend_from_slice(b"/>");
 
     // Entities in drawing order (later ones on top, as in the DXF), grouped into runs of
     // consecutive entities on one layer: `<g class="layer-NAME">` (a layer may have several).
-    let mut run: Option<(usize, Group)> = None;
+    // A group's `>` waits for its first child: a group with none is written `<g …/>`.
+    let mut run: Option<usize> = None;
+    let mut empty = false;
+    let close = |o: &mut Out<'_>, empty: bool| o.s.extend_from_slice(if empty { b"/>" } else { &b"\n</g>"[..] });
     for e in &drawing.entities {
-        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer) {
-            if let Some((_, g)) = run.take() {
-                doc = doc.add(g);
+        if run != Some(e.layer) {
+            if run.is_some() {
+                close(&mut o, empty);
             }
+            o.open("g");
+            o.s.extend_from_slice(b" class=\"layer-");
+            push_attr_value(o.s, &drawing.layers[e.layer].name);
+            o.s.extend_from_slice(b"\" fill=\"none\" stroke-linecap=\"round\" stroke-linejoin=\"round\"");
+            run = Some(e.layer);
+            empty = true;
         }
-        let (_, g) = run.get_or_insert_with(|| {
-            let g = Group::new()
-                .set("class", format!("layer-{}", drawing.layers[e.layer].name))
-                .set("fill", "none")
-                .set("stroke-linecap", "round")
-                .set("stroke-linejoin", "round");
-            (e.layer, g)
-        });
-        for node in entity_nodes(drawing, e, &frame) {
-            *g = std::mem::take(g).add(node);
-        }
+        entity(&mut o, drawing, e, &frame, &mut empty);
     }
-    if let Some((_, g)) = run {
-        doc = doc.add(g);
+    if run.is_some() {
+        close(&mut o, empty);
     }
-    doc.to_string()
+    o.s.extend_from_slice(b"\n</svg>");
 }
 
 /// The frames of an animation without rewriting their shared part: the SVG of a drawing
@@ -220,99 +364,104 @@ pub fn write(drawing: &Drawing, opts: &SvgOptions, mut out: impl Write) -> std::
     out.write_all(to_string(drawing, opts).as_bytes())
 }
 
-fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::Node>> {
+/// Appends the elements of one entity to the open group (`empty`: the group's `>` is not
+/// written yet).
+fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut bool) {
     let color = rgb(drawing.color_of(e));
+    // ASCII.
+    let color = std::str::from_utf8(&color).unwrap_or_default();
     let dashed = drawing.linetype_of(e) == LineType::Dashed;
-    let mut nodes: Vec<Box<dyn svg::Node>> = Vec::new();
-    let stroke = |w: f64| -> (String, String) { (color.clone(), num(f.len(w.max(f.hairline)))) };
-    let (dash, gap) = (num(f.len(f.dash.0)), num(f.len(f.dash.1)));
-    let styled = |mut el: svg::node::element::Element, w: f64| {
-        let (c, sw) = stroke(w);
-        el.assign("stroke", c);
-        el.assign("stroke-width", sw);
-        if dashed {
-            el.assign("stroke-dasharray", format!("{dash} {gap}"));
+    // Each child starts its own line; the group's `>` comes before the first.
+    let mut child = |o: &mut Out<'_>, name: &str| {
+        if std::mem::take(empty) {
+            o.s.push(b'>');
         }
-        el
+        o.open(name);
+    };
+    // The stroke attributes (stroke, stroke-dasharray, stroke-width), after any attribute
+    // whose name sorts before `stroke` and before any that sorts after.
+    let stroke = |o: &mut Out<'_>, w: f64| {
+        o.attr("stroke", color);
+        if dashed {
+            o.s.extend_from_slice(b" stroke-dasharray=\"");
+            push_num(o.s, f.len(f.dash.0));
+            o.s.push(b' ');
+            push_num(o.s, f.len(f.dash.1));
+            o.s.push(b'"');
+        }
+        o.num("stroke-width", f.len(w.max(f.hairline)));
+    };
+    let line = |o: &mut Out<'_>, from: Point, to: Point| {
+        let (x1, y1) = f.pt(from);
+        let (x2, y2) = f.pt(to);
+        stroke(o, 0.0);
+        o.num("x1", x1);
+        o.num("x2", x2);
+        o.num("y1", y1);
+        o.num("y2", y2);
+        o.s.extend_from_slice(b"/>");
     };
     match &e.shape {
         Shape::Circle { center, radius } => {
             let (x, y) = f.pt(*center);
-            let el: svg::node::element::Element =
-                Circle::new().set("cx", num(x)).set("cy", num(y)).set("r", num(f.len(*radius))).into();
-            nodes.push(Box::new(styled(el, 0.0)));
+            child(o, "circle");
+            o.num("cx", x);
+            o.num("cy", y);
+            o.num("r", f.len(*radius));
+            stroke(o, 0.0);
+            o.s.extend_from_slice(b"/>");
         }
         Shape::Arc { center, radius, start, end } => {
-            let el: svg::node::element::Element =
-                Path::new().set("d", arc_path(f, *center, *radius, *start, *end)).into();
-            nodes.push(Box::new(styled(el, 0.0)));
+            child(o, "path");
+            o.s.extend_from_slice(b" d=\"");
+            arc_path(o.s, f, *center, *radius, *start, *end);
+            o.s.push(b'"');
+            stroke(o, 0.0);
+            o.s.extend_from_slice(b"/>");
         }
         Shape::Line { from, to } => {
-            let (x1, y1) = f.pt(*from);
-            let (x2, y2) = f.pt(*to);
-            let el: svg::node::element::Element =
-                Line::new().set("x1", num(x1)).set("y1", num(y1)).set("x2", num(x2)).set("y2", num(y2)).into();
-            nodes.push(Box::new(styled(el, 0.0)));
+            child(o, "line");
+            line(o, *from, *to);
         }
         Shape::Polyline { points, closed, width } => {
-            let pts = points.iter().map(|p| {
-                let (x, y) = f.pt(*p);
-                format!("{},{}", num(x), num(y))
-            });
-            let pts = pts.collect::<Vec<_>>().join(" ");
-            let el: svg::node::element::Element = if *closed {
-                Polygon::new().set("points", pts).into()
-            } else {
-                Polyline::new().set("points", pts).into()
-            };
-            nodes.push(Box::new(styled(el, *width)));
+            child(o, if *closed { "polygon" } else { "polyline" });
+            o.points(f, points.iter().copied());
+            stroke(o, *width);
+            o.s.extend_from_slice(b"/>");
         }
         Shape::Filled { points } => {
-            let pts = points.iter().map(|p| {
-                let (x, y) = f.pt(*p);
-                format!("{},{}", num(x), num(y))
-            });
-            nodes.push(Box::new(
-                Polygon::new()
-                    .set("points", pts.collect::<Vec<_>>().join(" "))
-                    .set("fill", color.clone())
-                    .set("stroke", "none"),
-            ));
+            child(o, "polygon");
+            o.attr("fill", color);
+            o.points(f, points.iter().copied());
+            o.s.extend_from_slice(b" stroke=\"none\"/>");
         }
         Shape::Arrow { from, to, head } => {
             if let Some((base, tri)) = arrow(*from, *to, *head) {
-                let (x1, y1) = f.pt(*from);
-                let (x2, y2) = f.pt(base);
-                let el: svg::node::element::Element =
-                    Line::new().set("x1", num(x1)).set("y1", num(y1)).set("x2", num(x2)).set("y2", num(y2)).into();
-                nodes.push(Box::new(styled(el, 0.0)));
-                let pts: Vec<String> = tri
-                    .iter()
-                    .map(|p| {
-                        let (x, y) = f.pt(*p);
-                        format!("{},{}", num(x), num(y))
-                    })
-                    .collect();
-                nodes.push(Box::new(
-                    Polygon::new().set("points", pts.join(" ")).set("fill", color.clone()).set("stroke", "none"),
-                ));
+                child(o, "line");
+                line(o, *from, base);
+                child(o, "polygon");
+                o.attr("fill", color);
+                o.points(f, tri);
+                o.s.extend_from_slice(b" stroke=\"none\"/>");
             }
         }
         Shape::Text { at, height, value, halign, valign, rotation } => {
-            nodes.push(Box::new(text_node(f, *at, *height, value, *halign, *valign, *rotation, &color)));
+            child(o, "text");
+            text(o, f, *at, *height, value, *halign, *valign, *rotation, color);
         }
         dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
             for part in explode_dimension(dim, &drawing.dim_style) {
                 let sub = Entity { layer: e.layer, color: e.color, linetype: Some(LineType::Continuous), shape: part };
-                nodes.extend(entity_nodes(drawing, &sub, f));
+                entity(o, drawing, &sub, f, empty);
             }
         }
     }
-    nodes
 }
 
+/// A `<text …>` element's attributes, content and end (its `<text` is written).
 #[allow(clippy::too_many_arguments)]
-fn text_node(
+fn text(
+    o: &mut Out<'_>,
     f: &Frame,
     at: Point,
     height: f64,
@@ -321,7 +470,7 @@ fn text_node(
     valign: VAlign,
     rotation: f64,
     color: &str,
-) -> Text {
+) {
     let (x, y) = f.pt(at);
     let anchor = match halign {
         HAlign::Left => "start",
@@ -336,39 +485,57 @@ fn text_node(
         VAlign::Middle => 0.5 * height,
         VAlign::Top => height,
     });
-    let mut t = Text::new(value)
-        .set("x", num(x))
-        .set("y", num(y))
-        .set("font-size", num(size))
-        .set("text-anchor", anchor)
-        .set("fill", color)
-        .set("stroke", "none");
+    // dy fill font-size stroke text-anchor transform x y
     if dy != 0.0 {
-        t = t.set("dy", num(dy));
+        o.num("dy", dy);
     }
+    o.attr("fill", color);
+    o.num("font-size", size);
+    o.s.extend_from_slice(b" stroke=\"none\"");
+    o.attr("text-anchor", anchor);
     if rotation != 0.0 {
         // SVG rotates clockwise in its y-down frame: negate.
-        t = t.set("transform", format!("rotate({} {} {})", num(-rotation.to_degrees()), num(x), num(y)));
+        o.s.extend_from_slice(b" transform=\"rotate(");
+        push_num(o.s, -rotation.to_degrees());
+        o.s.push(b' ');
+        push_num(o.s, x);
+        o.s.push(b' ');
+        push_num(o.s, y);
+        o.s.extend_from_slice(b")\"");
     }
-    t
+    o.num("x", x);
+    o.num("y", y);
+    // The content on its own line.
+    o.s.extend_from_slice(b">\n");
+    push_text(o.s, value);
+    o.s.extend_from_slice(b"\n</text>");
 }
 
-fn arc_path(f: &Frame, center: Point, radius: f64, start: f64, end: f64) -> String {
+/// Appends an arc's path data: counter-clockwise from `start` to `end`.
+fn arc_path(d: &mut Vec<u8>, f: &Frame, center: Point, radius: f64, start: f64, end: f64) {
     // Counter-clockwise from start to end, wrapping through 0 when end < start (as in DXF).
     let sweep = arc_sweep(start, end);
     // SVG arcs cannot draw a full circle in one command: split into two halves.
     let n = if sweep.abs() > std::f64::consts::PI { 2 } else { 1 };
-    let mut d = String::new();
     let (sx, sy) = f.pt(polar(center, radius, start));
-    d.push_str(&format!("M{},{}", num(sx), num(sy)));
+    d.push(b'M');
+    push_num(d, sx);
+    d.push(b',');
+    push_num(d, sy);
     for i in 1..=n {
         let a = start + sweep * i as f64 / n as f64;
         let (x, y) = f.pt(polar(center, radius, a));
         // Counter-clockwise in the model = sweep-flag 0 in SVG's flipped frame.
-        let r = num(f.len(radius));
-        d.push_str(&format!(" A{r},{r} 0 0 0 {},{}", num(x), num(y)));
+        let r = f.len(radius);
+        d.extend_from_slice(b" A");
+        push_num(d, r);
+        d.push(b',');
+        push_num(d, r);
+        d.extend_from_slice(b" 0 0 0 ");
+        push_num(d, x);
+        d.push(b',');
+        push_num(d, y);
     }
-    d
 }
 
 #[cfg(test)]
@@ -469,5 +636,179 @@ mod tests {
         assert_eq!(num(-0.0000001), "0");
         assert_eq!(num(2.5), "2.5");
         assert_eq!(num(1.0 / 3.0), "0.333333");
+    }
+
+    /// A drawing with every kind of entity, on layers in and out of order, dashed and
+    /// coloured, with text that needs escaping, a layer whose only entity writes nothing
+    /// (a zero-length arrow) and dimensions.
+    fn every_kind() -> Drawing {
+        let mut d = Drawing::new(DimStyle { text_height: 2.5, arrow_size: 2.0 });
+        let a = d.layer("A&<\"'>", Aci::RED, LineType::Dashed);
+        let b = d.layer("B", Aci::BLUE, LineType::Continuous);
+        let c = d.layer("EMPTY", Aci::BLACK, LineType::Continuous);
+        let p = Point::new;
+        d.add(a, Shape::Circle { center: p(1.25, -3.5), radius: 4.0 });
+        d.add(a, Shape::Arc { center: p(0.0, 0.0), radius: 3.0, start: 0.3, end: 5.9 });
+        d.add(b, Shape::Arc { center: p(2.0, 1.0), radius: 1.0 / 3.0, start: 2.0, end: 1.0 });
+        d.add(b, Shape::Line { from: p(0.1, 0.2), to: p(-7.0, 1e-9) });
+        d.add_colored(
+            b,
+            Aci::GREEN,
+            Shape::Polyline { points: vec![p(0.0, 0.0), p(1.0, 2.0), p(3.0, -1.0)], closed: false, width: 0.0 },
+        );
+        d.add(a, Shape::Polyline { points: vec![p(0.0, 0.0), p(1.0, 2.0), p(3.0, -1.0)], closed: true, width: 0.7 });
+        d.add(c, Shape::Arrow { from: p(1.0, 1.0), to: p(1.0, 1.0), head: 1.0 });
+        d.add(b, Shape::Filled { points: vec![p(0.0, 0.0), p(1.0, 0.0), p(0.5, 0.8)] });
+        d.add(b, Shape::Arrow { from: p(-1.0, -1.0), to: p(5.0, 2.0), head: 1.5 });
+        for (i, (h, v)) in
+            [(HAlign::Left, VAlign::Baseline), (HAlign::Center, VAlign::Middle), (HAlign::Right, VAlign::Top)]
+                .into_iter()
+                .enumerate()
+        {
+            d.add(
+                a,
+                Shape::Text {
+                    at: p(i as f64, 2.0 * i as f64),
+                    height: 2.5,
+                    value: ["x < y & \"z\" > 'w'", "", "φ1 = 75.77°"][i].into(),
+                    halign: h,
+                    valign: v,
+                    rotation: [0.0, 0.5, -1.25][i],
+                },
+            );
+        }
+        d.add(
+            b,
+            Shape::AngularDimension {
+                vertex: p(0.0, 0.0),
+                first: p(5.0, 0.0),
+                second: p(0.0, 5.0),
+                radius: 4.0,
+                text: "90°".into(),
+            },
+        );
+        d.add(
+            a,
+            Shape::LinearDimension {
+                p1: p(0.0, 0.0),
+                p2: p(10.0, 3.0),
+                line_at: p(0.0, -4.0),
+                angle: 0.0,
+                text: "10 ±0.1".into(),
+            },
+        );
+        d.add(c, Shape::Arrow { from: p(3.0, 3.0), to: p(3.0, 3.0), head: 1.0 });
+        d
+    }
+
+    #[test]
+    fn the_direct_writer_writes_what_the_svg_element_tree_wrote() {
+        let d = every_kind();
+        let windows = [None, Some(Bounds { min: Point::new(-20.0, -20.0), max: Point::new(30.0, 10.0) })];
+        for window in windows {
+            for paper in [None, Some(0.5)] {
+                let opts = SvgOptions { window, paper_mm_per_unit: paper, ..SvgOptions::default() };
+                assert_eq!(to_string(&d, &opts), reference::to_string(&d, &opts), "{opts:?}");
+            }
+        }
+        // No entities: the header and the background only.
+        let empty = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });
+        assert_eq!(to_string(&empty, &SvgOptions::default()), reference::to_string(&empty, &SvgOptions::default()));
+    }
+
+    /// Every template's drawings (picture or every position's frame, sheets, diagrams,
+    /// printed pages) written by both writers.
+    #[test]
+    fn every_template_is_written_as_the_svg_element_tree_wrote_it() {
+        use crate::run::products::Picture;
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates");
+        let mut paths: Vec<_> = std::fs::read_dir(&root).unwrap().map(|e| e.unwrap().path()).collect();
+        paths.retain(|p| p.extension().is_some_and(|e| e == "toml"));
+        assert!(paths.len() >= 7);
+        for path in paths {
+            let text = std::fs::read_to_string(&path).unwrap();
+            // Fewer positions and samples, as in tests/run_products.rs; printed pages where
+            // the kind has them.
+            let kind = text.lines().find_map(|l| l.strip_prefix("kind = ")).unwrap().trim_matches('"');
+            let set: &[&str] = match kind {
+                "fourbar" => &["phi1_deg.step=30"],
+                "linkage" => &["time.steps=12"],
+                "chain" => &["stackup.samples=20000"],
+                _ => &[],
+            };
+            let over: Vec<crate::scene::Override> = set.iter().map(|s| s.parse().unwrap()).collect();
+            let loaded = crate::scene::load(&path, &over).unwrap();
+            let sheets = matches!(kind, "fourbar" | "linkage").then_some(crate::figure::sheet::Paper::A4);
+            let opts = crate::run::RunOptions { sheets, ..Default::default() };
+            let p = crate::run::products(&loaded, &opts).unwrap();
+            let mut drawings: Vec<(Drawing, SvgOptions)> = Vec::new();
+            match &p.picture {
+                Picture::Still(d) => drawings.push((d.clone(), SvgOptions::default())),
+                Picture::Motion(a) => {
+                    let poses = a.poses();
+                    let opts = SvgOptions {
+                        window: Some(a.window(&poses)),
+                        paper_mm_per_unit: a.base.paper_mm_per_unit,
+                        ..SvgOptions::default()
+                    };
+                    drawings.extend(poses.iter().map(|pose| (a.frame_of(pose), opts)));
+                }
+            }
+            drawings.extend(p.sheets.iter().map(|s| (s.drawing.clone(), SvgOptions::default())));
+            drawings.extend(p.diagrams.iter().map(|s| (s.drawing.clone(), SvgOptions::default())));
+            drawings.extend(p.pages.iter().map(|s| {
+                (
+                    s.drawing.clone(),
+                    SvgOptions {
+                        margin: 0.0,
+                        window: Some(s.window),
+                        paper_mm_per_unit: Some(1.0),
+                        ..SvgOptions::default()
+                    },
+                )
+            }));
+            assert!(!drawings.is_empty());
+            for (i, (d, opts)) in drawings.iter().enumerate() {
+                assert!(to_string(d, opts) == reference::to_string(d, opts), "{}: drawing {i}", path.display());
+            }
+        }
+    }
+
+    /// An independent parse: usvg reads the direct writer's SVG back (escaped text and
+    /// layer names included) and finds every element drawn.
+    #[test]
+    fn usvg_reads_back_every_kind_of_element() {
+        use resvg::usvg;
+        let d = every_kind();
+        let s = to_string(&d, &SvgOptions::default());
+        let mut db = usvg::fontdb::Database::new();
+        db.load_font_data(crate::draw::raster::FONT.to_vec());
+        let opts = usvg::Options { fontdb: std::sync::Arc::new(db), ..usvg::Options::default() };
+        let tree = usvg::Tree::from_str(&s, &opts).expect("usvg parses the writer's SVG");
+        fn walk(g: &usvg::Group, paths: &mut usize, texts: &mut Vec<String>) {
+            for n in g.children() {
+                match n {
+                    usvg::Node::Group(g) => walk(g, paths, texts),
+                    usvg::Node::Path(_) => *paths += 1,
+                    usvg::Node::Text(t) => texts.push(t.chunks().iter().map(|c| c.text().to_string()).collect()),
+                    usvg::Node::Image(_) => {}
+                }
+            }
+        }
+        let (mut paths, mut texts) = (0, Vec::new());
+        walk(tree.root(), &mut paths, &mut texts);
+        // The XML as written: one element per line after the header, and what usvg makes of it.
+        let count = |tag: &str| s.lines().filter(|l| l.starts_with(tag)).count();
+        let drawn = count("<rect")
+            + count("<circle")
+            + count("<path")
+            + count("<line")
+            + count("<polyline")
+            + count("<polygon");
+        assert!(drawn >= 12, "{s}");
+        assert_eq!(paths, drawn, "{s}");
+        assert!(texts.iter().any(|t| t.contains("x < y & \"z\" > 'w'")), "{texts:?}");
+        assert!(texts.iter().any(|t| t.contains("φ1 = 75.77°")), "{texts:?}");
+        assert!(texts.iter().any(|t| t.contains("10 ±0.1")), "{texts:?}");
     }
 }

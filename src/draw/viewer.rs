@@ -46,31 +46,73 @@ fn js_string(s: &str) -> String {
 /// Appends `s` as a JavaScript string literal (see [`js_string`]), copying runs of plain
 /// characters at once.
 fn push_js_string(out: &mut String, s: &str) {
+    // The bytes that start an escape: controls, `"`, `\\`, `<`, and 0xE2, the first byte of
+    // U+2028 and U+2029 (and of other characters, which pass as they are).
+    const SPECIAL: [bool; 256] = {
+        let mut t = [false; 256];
+        let mut b = 0;
+        while b < 0x20 {
+            t[b] = true;
+            b += 1;
+        }
+        t[b'"' as usize] = true;
+        t[b'\\' as usize] = true;
+        t[b'<' as usize] = true;
+        t[0xE2] = true;
+        t
+    };
+    const HEX: &[u8; 16] = b"0123456789abcdef";
+    out.reserve(s.len() + 2);
     out.push('"');
     let mut plain = 0;
     // Byte by byte: every character escaped is ASCII except U+2028 and U+2029, whose UTF-8
     // starts with 0xE2 (never a continuation byte, so `i` is always a character boundary).
     for (i, &b) in s.as_bytes().iter().enumerate() {
-        let esc: Option<std::borrow::Cow<'static, str>> = match b {
-            b'"' => Some("\\\"".into()),
-            b'\\' => Some("\\\\".into()),
-            b'\n' => Some("\\n".into()),
-            b'\r' => Some("\\r".into()),
-            b'\t' => Some("\\t".into()),
-            b'<' => Some("\\u003c".into()),
-            b if b < 0x20 => Some(format!("\\u{:04x}", b).into()),
-            0xE2 if s[i..].starts_with('\u{2028}') => Some("\\u2028".into()),
-            0xE2 if s[i..].starts_with('\u{2029}') => Some("\\u2029".into()),
-            _ => None,
-        };
-        if let Some(e) = esc {
-            out.push_str(&s[plain..i]);
-            out.push_str(&e);
-            plain = i + if b == 0xE2 { 3 } else { 1 };
+        if !SPECIAL[usize::from(b)] {
+            continue;
         }
+        let (esc, len): (&str, usize) = match b {
+            b'"' => ("\\\"", 1),
+            b'\\' => ("\\\\", 1),
+            b'\n' => ("\\n", 1),
+            b'\r' => ("\\r", 1),
+            b'\t' => ("\\t", 1),
+            b'<' => ("\\u003c", 1),
+            0xE2 if s[i..].starts_with('\u{2028}') => ("\\u2028", 3),
+            0xE2 if s[i..].starts_with('\u{2029}') => ("\\u2029", 3),
+            0xE2 => continue,
+            _ => {
+                // Another control character: \u00XX.
+                out.push_str(&s[plain..i]);
+                out.push_str("\\u00");
+                out.push(char::from(HEX[usize::from(b >> 4)]));
+                out.push(char::from(HEX[usize::from(b & 15)]));
+                plain = i + 1;
+                continue;
+            }
+        };
+        out.push_str(&s[plain..i]);
+        out.push_str(esc);
+        plain = i + len;
     }
     out.push_str(&s[plain..]);
     out.push('"');
+}
+
+/// Appends the decimal digits of `n`.
+fn push_usize(out: &mut String, mut n: usize) {
+    let mut buf = [0u8; 20];
+    let mut i = buf.len();
+    loop {
+        i -= 1;
+        buf[i] = b'0' + (n % 10) as u8;
+        n /= 10;
+        if n == 0 {
+            break;
+        }
+    }
+    // ASCII digits.
+    out.push_str(std::str::from_utf8(&buf[i..]).unwrap_or_default());
 }
 
 const STYLE: &str = r#"
@@ -177,7 +219,7 @@ pub fn html(title: &str, frames: &[Frame]) -> String {
     s.push_str("</select></label>\n</div>\n</header>\n");
     // The frames share most of their lines (the ground, the coupler curve, titles): each
     // distinct line is stored once in PARTS, each frame as the list of its lines' indices.
-    let mut index: std::collections::HashMap<&str, usize> = std::collections::HashMap::new();
+    let mut index: rustc_hash::FxHashMap<&str, usize> = rustc_hash::FxHashMap::default();
     let mut parts: Vec<&str> = Vec::new();
     let mut lists: Vec<Vec<usize>> = Vec::with_capacity(frames.len());
     for f in frames {
@@ -194,11 +236,26 @@ pub fn html(title: &str, frames: &[Frame]) -> String {
         lists.push(list);
     }
     s.push_str("<div id=\"stage\" data-frame=\"0\"></div>\n<script>\nvar PARTS = [\n");
-    for (i, p) in parts.iter().enumerate() {
+    // Escaped in parallel, in chunks written in order.
+    use rayon::prelude::*;
+    let chunks: Vec<String> = parts
+        .par_chunks(64)
+        .map(|chunk| {
+            let mut c = String::with_capacity(chunk.iter().map(|p| p.len() + 16).sum());
+            for (i, p) in chunk.iter().enumerate() {
+                if i > 0 {
+                    c.push_str(",\n");
+                }
+                push_js_string(&mut c, p);
+            }
+            c
+        })
+        .collect();
+    for (i, c) in chunks.iter().enumerate() {
         if i > 0 {
             s.push_str(",\n");
         }
-        push_js_string(&mut s, p);
+        s.push_str(c);
     }
     s.push_str("\n];\nvar FRAME_PARTS = [\n");
     for (i, list) in lists.iter().enumerate() {
@@ -210,7 +267,7 @@ pub fn html(title: &str, frames: &[Frame]) -> String {
             if j > 0 {
                 s.push(',');
             }
-            s.push_str(&k.to_string());
+            push_usize(&mut s, *k);
         }
         s.push(']');
     }
@@ -258,6 +315,40 @@ mod tests {
         assert_eq!(page.matches("0,0 1,1 2,0").count(), 1);
         // Frame 2 is lines 0 (<svg>), 1 (shared), its own circle, and the closing tag.
         assert!(page.contains("[0,1,5,3]"), "{page}");
+    }
+
+    /// The escaping as first written (a match on every byte): the reference.
+    fn js_string_by_match(s: &str) -> String {
+        let mut out = String::from("\"");
+        for c in s.chars() {
+            match c {
+                '"' => out.push_str("\\\""),
+                '\\' => out.push_str("\\\\"),
+                '\n' => out.push_str("\\n"),
+                '\r' => out.push_str("\\r"),
+                '\t' => out.push_str("\\t"),
+                '<' => out.push_str("\\u003c"),
+                c if (c as u32) < 0x20 => out.push_str(&format!("\\u{:04x}", c as u32)),
+                '\u{2028}' => out.push_str("\\u2028"),
+                '\u{2029}' => out.push_str("\\u2029"),
+                c => out.push(c),
+            }
+        }
+        out.push('"');
+        out
+    }
+
+    #[test]
+    fn js_strings_escape_every_character_as_a_match_on_each_does() {
+        let mut text = String::new();
+        for c in (0u32..0x300).chain(0x2000..0x2100).chain([0x1F600, 0x10FFFF]).filter_map(char::from_u32) {
+            text.push(c);
+            text.push('a');
+        }
+        assert_eq!(js_string(&text), js_string_by_match(&text));
+        for chunk in ["", "\u{2028}", "x\u{2029}", "\u{2027}\u{202a}", "é\u{1f}\u{7f}"] {
+            assert_eq!(js_string(chunk), js_string_by_match(chunk), "{chunk:?}");
+        }
     }
 
     #[test]

@@ -31,7 +31,7 @@
 //! Everything here is deterministic: the same polygon gives the same letters in the same
 //! places.
 
-use crate::draw::parts::text_width;
+use crate::draw::parts::chars_width;
 use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
@@ -257,34 +257,82 @@ impl Polygon {
     }
 
     /// The labels, in the order added, after combining coincident points.
+    ///
+    /// Each candidate's score is counted only as far as it can still beat the best so far
+    /// (the first candidate with the lowest score wins, so a candidate that cannot be lower
+    /// is dropped as soon as that is known), and a segment is tested against a candidate's
+    /// box only when their bounding boxes overlap (a segment whose bounding box lies on or
+    /// outside an edge of the box cannot pass through its interior: [`TextBox::crosses`]
+    /// says no for it, rounding included).
     pub fn place(&self) -> Vec<Placed> {
         let letters = if self.merge { combine(&self.letters) } else { self.letters.clone() };
-        let mut boxes: Vec<TextBox> = Vec::with_capacity(letters.len());
-        // Leaders drawn so far: later letters keep off them as off the polygon's segments.
-        let mut leaders: Vec<(Point, Point)> = Vec::new();
+        // What a letter's box must not overlap, and what its leader should not cross: the
+        // boxes kept off, then the letters placed so far (counted, so the order is free).
+        let mut blockers: Vec<TextBox> = Vec::with_capacity(self.obstacles.len() + letters.len());
+        blockers.extend_from_slice(&self.obstacles);
+        // What a letter's box should not cross: the polygon's segments, then the leaders
+        // drawn so far, each with its bounding box.
+        let mut lines: Vec<(Segment, TextBox)> = Vec::with_capacity(self.segments.len() + letters.len());
+        lines.extend(self.segments.iter().map(|&s| (s, segment_box(s))));
+        // Those near the letter being placed.
+        let (mut near_blockers, mut near_lines) = (Vec::new(), Vec::new());
         let mut out = Vec::with_capacity(letters.len());
         for l in &letters {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
             let half = l.half();
             let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
+            // Every candidate's box and leader lie inside `reach` (with room for rounding):
+            // what lies wholly outside it is neither overlapped nor crossed by any of them.
+            let reach = candidates_reach(l.at, half, l.height, l.clear, rings);
+            let apart = |b: &TextBox| {
+                b.max.x < reach.min.x || b.min.x > reach.max.x || b.max.y < reach.min.y || b.min.y > reach.max.y
+            };
+            near_blockers.clear();
+            near_blockers.extend(blockers.iter().filter(|b| !apart(b)));
+            near_lines.clear();
+            near_lines.extend(lines.iter().filter(|(_, b)| !apart(b)).copied());
+            let (blockers_near, lines_near): (&[TextBox], &[(Segment, TextBox)]) = (&near_blockers, &near_lines);
             for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
                 let bx = TextBox::around(c, half);
-                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
-                let hits = boxes.iter().chain(&self.obstacles).filter(|b| b.overlaps(&bx)).count();
-                let through =
-                    leader.map_or(0, |(a, b)| boxes.iter().chain(&self.obstacles).filter(|x| x.crosses(a, b)).count());
-                let crossed = self.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
-                let score = (hits, through, crossed);
-                if best.as_ref().is_none_or(|(s, ..)| score < *s) {
-                    best = Some((score, c, bx, leader));
+                let bound = best.as_ref().map(|(s, ..)| *s);
+                let hits = blockers_near.iter().filter(|b| b.overlaps(&bx)).count();
+                if bound.is_some_and(|s| hits > s.0) {
+                    continue;
                 }
+                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
+                let through = leader.map_or(0, |(a, b)| blockers_near.iter().filter(|x| x.crosses(a, b)).count());
+                // The most segments the box may cross and still win.
+                let limit = match bound {
+                    Some(s) if (hits, through) > (s.0, s.1) => continue,
+                    Some(s) if (hits, through) == (s.0, s.1) => s.2,
+                    _ => usize::MAX,
+                };
+                let mut crossed = 0;
+                for &((a, b), ref sb) in lines_near {
+                    if sb.min.x < bx.max.x
+                        && bx.min.x < sb.max.x
+                        && sb.min.y < bx.max.y
+                        && bx.min.y < sb.max.y
+                        && bx.crosses(a, b)
+                    {
+                        crossed += 1;
+                        if crossed >= limit {
+                            break;
+                        }
+                    }
+                }
+                if crossed >= limit {
+                    continue;
+                }
+                let score = (hits, through, crossed);
+                best = Some((score, c, bx, leader));
                 if score == (0, 0, 0) {
                     break;
                 }
             }
             if let Some((_, c, bx, leader)) = best {
-                boxes.push(bx);
-                leaders.extend(leader);
+                blockers.push(bx);
+                lines.extend(leader.map(|s| (s, segment_box(s))));
                 out.push(Placed {
                     centre: c,
                     text: l.text.clone(),
@@ -348,6 +396,11 @@ fn leader_line(at: Point, centre: Point, half: Vector, height: f64) -> Option<(P
     ((at - edge).norm() >= LEADER_MIN * height).then_some((at, edge))
 }
 
+/// The bounding box of a segment.
+fn segment_box((a, b): Segment) -> TextBox {
+    TextBox { min: Point::new(a.x.min(b.x), a.y.min(b.y)), max: Point::new(a.x.max(b.x), a.y.max(b.y)) }
+}
+
 /// Letters whose points lie within [`COINCIDENT`] heights of an earlier letter's point join
 /// that letter's label (`a≡b`), which keeps the earlier letter's place and direction.
 fn combine(letters: &[Letter]) -> Vec<Letter> {
@@ -367,11 +420,14 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
     out
 }
 
-/// Estimated width of a label: [`text_width`], with [`SAME_POINT`] as wide as `=` (DejaVu
-/// Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
+/// Estimated width of a label: [`text_width`](crate::draw::parts::text_width), with
+/// [`SAME_POINT`] as wide as `=` (DejaVu Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
 /// and a combined label `a≡b≡m` would print over its neighbours).
 pub fn label_width(text: &str, height: f64) -> f64 {
-    text_width(&text.replace(SAME_POINT, "="), height)
+    // `SAME_POINT` is one character, replaced by one.
+    const SAME: char = '≡';
+    const _: () = assert!(SAME_POINT.len() == SAME.len_utf8());
+    chars_width(text.chars().map(|c| if c == SAME { '=' } else { c }), height)
 }
 
 /// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
@@ -399,16 +455,33 @@ fn candidates_in(
     let base = libm::atan2(u0.y, u0.x);
     let (hw, hh) = (half.x, half.y);
     // Lazy: most letters take their first candidate, so the directions are not computed
-    // ahead (a run places some ten thousand letters).
-    rings.iter().flat_map(move |&ring| {
-        TURNS.into_iter().map(move |turn| {
-            let a = base + turn * TURN;
+    // ahead (a run places some ten thousand letters); each direction (and its reach) is
+    // computed once, on the first ring, and kept for the others.
+    let mut dirs = [(Vector::zeros(), 0.0); TURNS.len()];
+    let mut known = 0;
+    rings.iter().flat_map(move |&ring| (0..TURNS.len()).map(move |i| (ring, i))).map(move |(ring, i)| {
+        if i == known {
+            let a = base + TURNS[i] * TURN;
             let u = Vector::new(libm::cos(a), libm::sin(a));
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
-            at + u * (ring * (LABEL_GAP * height + clear + reach))
-        })
+            dirs[i] = (u, reach);
+            known += 1;
+        }
+        let (u, reach) = dirs[i];
+        at + u * (ring * (LABEL_GAP * height + clear + reach))
     })
+}
+
+/// A box holding every candidate box of [`candidates_in`] (same arguments) and every
+/// leader from `at` to one of them, with room for rounding: the nearest ray from a box's
+/// centre to its edge is at most its half-diagonal long.
+fn candidates_reach(at: Point, half: Vector, height: f64, clear: f64, rings: &[f64]) -> TextBox {
+    let ring = rings.iter().fold(0.0f64, |a, &r| a.max(r));
+    let r = ring * (LABEL_GAP * height + clear + libm::hypot(half.x, half.y));
+    let slack = 1e-6 * (r + half.x + half.y) + 1e-9 * (at.x.abs() + at.y.abs());
+    let d = Vector::new(r + half.x + slack, r + half.y + slack);
+    TextBox { min: at - d, max: at + d }
 }
 
 /// The farthest a label's centre can be from its point: the last ring in the worst
@@ -427,6 +500,7 @@ pub fn max_leader_distance(text: &str, height: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::draw::parts::text_width;
 
     #[test]
     fn a_box_is_crossed_only_by_segments_through_it() {
@@ -510,5 +584,85 @@ mod tests {
         let Placed { centre: c, .. } = &q.place()[0];
         assert!(!q.place()[0].bounds().overlaps(&symbol), "{c:?}");
         assert!(c.coords.norm() >= LABEL_GAP + 0.5 + 0.5 - 1e-12);
+    }
+
+    /// The placer as first written (every candidate's score counted in full, every segment
+    /// clipped): the reference for [`Polygon::place`].
+    fn place_in_full(p: &Polygon) -> Vec<Placed> {
+        let letters = if p.merge { combine(&p.letters) } else { p.letters.clone() };
+        let mut boxes: Vec<TextBox> = Vec::new();
+        let mut leaders: Vec<(Point, Point)> = Vec::new();
+        let mut out = Vec::new();
+        for l in &letters {
+            let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
+            let half = l.half();
+            let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
+                let bx = TextBox::around(c, half);
+                let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
+                let hits = boxes.iter().chain(&p.obstacles).filter(|b| b.overlaps(&bx)).count();
+                let through =
+                    leader.map_or(0, |(a, b)| boxes.iter().chain(&p.obstacles).filter(|x| x.crosses(a, b)).count());
+                let crossed = p.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
+                let score = (hits, through, crossed);
+                if best.as_ref().is_none_or(|(s, ..)| score < *s) {
+                    best = Some((score, c, bx, leader));
+                }
+                if score == (0, 0, 0) {
+                    break;
+                }
+            }
+            if let Some((_, c, bx, leader)) = best {
+                boxes.push(bx);
+                leaders.extend(leader);
+                let (text, height, color, circled) = (l.text.clone(), l.height, l.color, l.circled);
+                out.push(Placed { centre: c, text, height, color, leader, circled });
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_placer_places_as_when_every_score_was_counted_in_full() {
+        use rand::{RngExt, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
+        let mut crowded = 0;
+        for case in 0..800 {
+            let mut p = if case % 2 == 0 { Polygon::of_points() } else { Polygon::of_names() };
+            // Points on a small grid (so segments touch box edges exactly) and anywhere.
+            // Crowded, and spread out (so that most of the polygon is far from a letter).
+            let spread = [1.0, 1.0, 4.0, 12.0][case % 4];
+            let pt = |rng: &mut rand_chacha::ChaCha8Rng| {
+                if rng.random_range(0..2) == 0 {
+                    Point::new(rng.random_range(-4..4) as f64 * 0.5, rng.random_range(-4..4) as f64 * 0.5) * spread
+                } else {
+                    Point::new(rng.random_range(-3.0..3.0), rng.random_range(-3.0..3.0)) * spread
+                }
+            };
+            let n = rng.random_range(1..25);
+            let points: Vec<Point> = (0..n).map(|_| pt(&mut rng)).collect();
+            for w in points.windows(2) {
+                p.segment(w[0], w[1]);
+            }
+            for _ in 0..rng.random_range(0..4) {
+                let (a, b) = (pt(&mut rng), pt(&mut rng));
+                let min = Point::new(a.x.min(b.x), a.y.min(b.y));
+                p.keep_off(TextBox { min, max: Point::new(a.x.max(b.x), a.y.max(b.y)) });
+            }
+            for (i, &at) in points.iter().enumerate() {
+                let dir = Vector::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+                let text = ["a", "b", "m", "RB", "R12", "Fi3"][i % 6];
+                match rng.random_range(0..4) {
+                    0 => p.letter(at, text, 0.5, dir, None),
+                    1 => p.name_with_leader(at, text, 0.5, dir, Some(Aci::RED)),
+                    2 => p.circled(at, "3", 0.5, dir, 0.1),
+                    _ => p.letter_clear(at, text, 0.5, dir, 0.2),
+                }
+            }
+            let placed = p.place();
+            assert_eq!(placed, place_in_full(&p), "case {case}");
+            crowded += usize::from(placed.iter().any(|l| l.leader.is_some()));
+        }
+        assert!(crowded > 50, "{crowded}");
     }
 }

@@ -442,26 +442,53 @@ pub(super) fn write_f64(o: &mut Vec<u8>, v: f64) {
         let half = 1u128 << (shift - 1);
         if r > half || (r == half && q & 1 == 1) { q + 1 } else { q }
     };
+    // In 64 bits when q fits (|v| below 1.8·10⁷): a 128-bit division is a library call.
+    let (int, frac) = match u64::try_from(q) {
+        Ok(q) => (q / SCALE as u64, q % SCALE as u64),
+        Err(_) => ((q / SCALE) as u64, (q % SCALE) as u64),
+    };
+    // Sign, integer digits, point and up to 12 decimals made on the stack, appended at once.
+    let mut buf = [0u8; 40];
+    let mut n = 0;
     if negative {
-        o.push(b'-');
+        buf[0] = b'-';
+        n = 1;
     }
-    let (int, frac) = ((q / SCALE) as u64, (q % SCALE) as u64);
-    let mut buf = [0u8; 20];
-    let i = digits(&mut buf, int);
-    o.extend_from_slice(&buf[i..]);
-    o.push(b'.');
+    let mut int_digits = [0u8; 20];
+    let i = digits(&mut int_digits, int);
+    buf[n..n + 20 - i].copy_from_slice(&int_digits[i..]);
+    n += 20 - i;
+    buf[n] = b'.';
+    n += 1;
     if frac == 0 {
-        o.push(b'0');
-        return;
+        buf[n] = b'0';
+        n += 1;
+    } else {
+        // Two decimals at a time, from a table.
+        const PAIRS: [u8; 200] = {
+            let mut t = [0u8; 200];
+            let mut k = 0;
+            while k < 100 {
+                t[2 * k] = b'0' + (k / 10) as u8;
+                t[2 * k + 1] = b'0' + (k % 10) as u8;
+                k += 1;
+            }
+            t
+        };
+        let (hi, lo) = (frac / 1_000_000, frac % 1_000_000);
+        for (j, pair) in
+            [hi / 10_000, hi / 100 % 100, hi % 100, lo / 10_000, lo / 100 % 100, lo % 100].into_iter().enumerate()
+        {
+            let p = 2 * pair as usize;
+            buf[n + 2 * j..n + 2 * j + 2].copy_from_slice(&PAIRS[p..p + 2]);
+        }
+        n += 12;
+        // Trailing zeros trimmed (frac ≠ 0: a non-zero decimal stays).
+        while buf[n - 1] == b'0' {
+            n -= 1;
+        }
     }
-    let mut digits = [0u8; 12];
-    let mut m = frac;
-    for d in digits.iter_mut().rev() {
-        *d = b'0' + (m % 10) as u8;
-        m /= 10;
-    }
-    let len = 12 - digits.iter().rev().take_while(|&&d| d == b'0').count();
-    o.extend_from_slice(&digits[..len]);
+    o.extend_from_slice(&buf[..n]);
 }
 
 #[cfg(test)]
