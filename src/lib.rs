@@ -2,12 +2,12 @@
 //!
 //! Planar mechanisms (triads, four-bars, general linkages with revolute and prismatic
 //! joints) and dimensional chains: solved to machine precision and written as drawings
-//! (DXF for any CAD program, SVG frames, an HTML viewer), diagrams, CSV and a JSON summary.
+//! (DXF for any CAD program, SVG frames, a live HTML page), diagrams, CSV and a JSON summary.
 //!
 //! The pipeline, one module per arrow:
 //!
 //! ```text
-//! scene (TOML) ─► scene::Scene ─► solve ─► figure ─► draw::Drawing ─► draw::{dxf, svg, viewer}
+//! scene (TOML) ─► scene::Scene ─► solve ─► figure ─► draw::Drawing ─► draw::{dxf, svg} (+ run::page, the live page)
 //!                                    └──────────────► report (JSON, CSV)
 //! ```
 //!

@@ -54,7 +54,7 @@ pub struct SceneFiles {
 /// command line's default DXF options. `file` names the scene in messages (as the path does
 /// on the command line). The error's text is what the command line prints after `error: `.
 pub fn scene_files(text: &str, file: &str, opts: WebOptions) -> Result<SceneFiles, Error> {
-    let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])? };
+    let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])?, text: text.to_string() };
     let ropts = RunOptions { png: opts.png, no_frames: !opts.frames, ..RunOptions::default() };
     let p = run::products(&loaded, &ropts)?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
@@ -396,7 +396,11 @@ fn overrides(sets: &[(String, String)]) -> Result<Vec<scene::Override>, Error> {
 type Solved = (crate::run::products::Products, Option<(SvgOptions, String)>);
 
 fn solve(text: &str, file: &str, sets: &[(String, String)]) -> Result<Solved, Error> {
-    let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &overrides(sets)?)? };
+    let loaded = Loaded {
+        path: PathBuf::from(file),
+        scene: scene::parse(text, file, &overrides(sets)?)?,
+        text: text.to_string(),
+    };
     let p = run::products(&loaded, &RunOptions { no_frames: true, ..RunOptions::default() })?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;

@@ -63,8 +63,11 @@ quantities = ["angle", "omega", "eps"]
 
 fn load(text: &str, set: &[&str]) -> Result<Loaded, scene::SceneError> {
     let over: Vec<Override> = set.iter().map(|s| s.parse().unwrap()).collect();
-    scene::parse(text, "offset-slider-crank.toml", &over)
-        .map(|scene| Loaded { path: "offset-slider-crank.toml".into(), scene })
+    scene::parse(text, "offset-slider-crank.toml", &over).map(|scene| Loaded {
+        path: "offset-slider-crank.toml".into(),
+        scene,
+        text: text.to_string(),
+    })
 }
 
 fn products(text: &str, set: &[&str]) -> Products {

@@ -49,6 +49,8 @@ fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
 
         let mut disk = Vec::new();
         common::read_tree(tmp.path(), Path::new(""), &mut disk);
+        let page = common::take_live_page(&mut disk, loaded.scene.name());
+        assert!(page.contains(&format!("name = \"{}\"", loaded.scene.name())), "{stem}: the page carries the scene");
         let on_disk: BTreeSet<&str> = disk.iter().map(|(n, _)| n.as_str()).collect();
         let in_memory: BTreeSet<&str> = memory.iter().map(|(n, _)| n.as_str()).collect();
         assert_eq!(on_disk, in_memory, "{stem}: file sets differ");
@@ -62,8 +64,9 @@ fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
             .iter()
             .map(|p| p.strip_prefix(tmp.path()).unwrap().to_string_lossy().replace('\\', "/"))
             .collect();
-        let order: Vec<&str> = memory.iter().map(|(n, _)| n.as_str()).collect();
-        assert_eq!(written, order, "{stem}: written order");
+        let page = format!("{}.html", loaded.scene.name());
+        let order: Vec<&str> = memory.iter().map(|(n, _)| n.as_str()).chain([page.as_str()]).collect();
+        assert_eq!(written, order, "{stem}: written order (the live page last)");
 
         // The JSON: the summary, pretty, one final newline.
         let json = &memory.iter().find(|(n, _)| *n == format!("{}.json", loaded.scene.name())).unwrap().1;

@@ -247,6 +247,7 @@ fn files_on_disk_are_the_in_memory_bytes_with_sheets() {
     let memory = bytes::to_files(&mechdraw::run::products(&l, &opts).unwrap(), &WriteOptions::default()).unwrap();
     let mut disk = Vec::new();
     common::read_tree(tmp.path(), Path::new(""), &mut disk);
+    common::take_live_page(&mut disk, NAME);
     disk.sort();
     let mut mem = memory.clone();
     mem.sort();
@@ -260,7 +261,8 @@ fn files_on_disk_are_the_in_memory_bytes_with_sheets() {
         .iter()
         .map(|p| p.strip_prefix(tmp.path()).unwrap().to_string_lossy().replace('\\', "/"))
         .collect();
-    let order: Vec<&str> = memory.iter().map(|(n, _)| n.as_str()).collect();
+    let page = format!("{NAME}.html");
+    let order: Vec<&str> = memory.iter().map(|(n, _)| n.as_str()).chain([page.as_str()]).collect();
     assert_eq!(written, order);
     assert!(
         order.contains(&format!("{NAME}-sheets.pdf").as_str())

@@ -283,7 +283,7 @@ pub fn outputs_cost(scratch: &Path, runs: usize) -> Result<Vec<RunCost>, Error> 
     for (name, set) in cases {
         let ov: Override = set.parse().map_err(Error::from)?;
         let scene = parse(FOURBAR_CHEBYSHEV, "fourbar-chebyshev.toml", &[ov])?;
-        let loaded = Loaded { path: "fourbar-chebyshev.toml".into(), scene };
+        let loaded = Loaded { path: "fourbar-chebyshev.toml".into(), scene, text: FOURBAR_CHEBYSHEV.to_string() };
         for frames in [false, true] {
             let mut times = Vec::new();
             let mut files = 0;

@@ -3,7 +3,7 @@
 //! it and know nothing about mechanisms:
 //! [`dxf`] (R12 DXF for any CAD program), [`svg`] (SVG, y axis up as in CAD), [`pdf`]
 //! (pages of drawings as one PDF),
-//! [`raster`] (SVG to PNG with resvg and the bundled font), [`viewer`] (the HTML viewer).
+//! [`raster`] (SVG to PNG with resvg and the bundled font).
 //!
 //! Coordinates are model coordinates (the scene's units), y up. Angles are radians,
 //! counter-clockwise from +x. Text heights, widths and arrow sizes are model lengths too,
@@ -14,7 +14,6 @@ pub mod parts;
 pub mod pdf;
 pub mod raster;
 pub mod svg;
-pub mod viewer;
 
 use crate::geom::{Point, Vector};
 

@@ -1,5 +1,5 @@
-//! [`Products`] to named byte buffers: the one place that calls the DXF, SVG, viewer and
-//! PNG writers and names the files. It needs no file system and no terminal: the files go
+//! [`Products`] to named byte buffers: the one place that calls the DXF, SVG, PDF and PNG
+//! writers and names the files. It needs no file system and no terminal: the files go
 //! to a [`Sink`] (the output directory's staging, or memory for a download), and progress
 //! is reported through a callback.
 //!
@@ -13,12 +13,13 @@
 //! | `<name><suffix>.csv` | each table |
 //! | `<name>.json` | the summary, pretty, with a final newline |
 //! | `diagrams/<name>/<stem>.svg` (and `.png`) | each diagram |
-//! | `frames/<name>/<position>.svg` (and `.png`), `<name>.html` | a motion's frames and viewer (unless `--no-frames`) |
+//! | `frames/<name>/<position>.svg` (and `.png`) | a motion's frames (unless `--no-frames`) |
 //! | `<name>-sheets.pdf`, `sheets/<name>/<position>.svg` (and `.png`) | the printed pages, one per position (`--sheets`) |
 //!
-//! A motion's DXF is built on one core while the frames, the diagrams and the viewer are
-//! built on the others, and the frames are handed to the sink while the diagrams and the
-//! viewer are still being built.
+//! A motion's DXF is built on one core while the frames and the diagrams are built on the
+//! others, and the frames are handed to the sink while the diagrams are still being built.
+//! The live page `<name>.html` is the command line's (`run::page`): it carries the module
+//! this code runs in.
 
 use std::sync::Mutex;
 
@@ -28,7 +29,7 @@ use super::products::{Diagram, Page, Picture, Products, Sheet};
 use crate::Error;
 use crate::draw::dxf::{self, DxfOptions};
 use crate::draw::svg::{self, SvgOptions};
-use crate::draw::{Drawing, pdf, raster, viewer};
+use crate::draw::{Drawing, pdf, raster};
 use crate::figure::animation::Animation;
 
 /// Width of the SVG frames and pictures, pixels (their viewBox is in model units).
@@ -40,7 +41,7 @@ pub struct WriteOptions {
     /// PNG copies of every SVG written: the picture, the sheets, the diagrams, the printed
     /// pages and the frames ([`super::PNG_WIDTH_PX`] wide).
     pub png: bool,
-    /// Skip a motion's per-position frames and its HTML viewer.
+    /// Skip a motion's per-position frames.
     pub no_frames: bool,
     /// The DXF writer's options (its scale is the products' [`Products::mm_per_unit`]).
     pub dxf: DxfOptions,
@@ -86,7 +87,7 @@ pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8
 /// Writes every file of `p` into `sink`; `tick` is called once per frame made (for a
 /// progress bar). Returns the names of the files in their canonical order: the picture
 /// (DXF, SVG, PNG), the sheets (each DXF, SVG, PNG), the tables, the JSON, the diagrams,
-/// the printed pages' PDF and SVGs, the frames, the viewer.
+/// the printed pages' PDF and SVGs, the frames.
 pub fn write(
     p: &Products,
     opts: &WriteOptions,
@@ -96,7 +97,6 @@ pub fn write(
     let name = &p.name;
     let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
     let mut head: Vec<(String, Vec<u8>)> = Vec::new();
-    let mut tail: Vec<(String, Vec<u8>)> = Vec::new();
     let mut frame_names = Vec::new();
     let diagrams = match &p.picture {
         Picture::Still(d) => {
@@ -108,9 +108,6 @@ pub fn write(
             head.push((format!("{name}.dxf"), m.dxf));
             picture_files(&mut head, name, m.picture, opts.png)?;
             frame_names = m.frame_names;
-            if let Some(html) = m.html {
-                tail.push((format!("{name}.html"), html.into_bytes()));
-            }
             m.diagrams
         }
     };
@@ -125,10 +122,8 @@ pub fn write(
     head.extend(page_files(name, &p.pages, opts.png)?);
 
     sink.put(&view(&head))?;
-    sink.put(&view(&tail))?;
     let mut order: Vec<String> = head.into_iter().map(|(n, _)| n).collect();
     order.extend(frame_names);
-    order.extend(tail.into_iter().map(|(n, _)| n));
     Ok(order)
 }
 
@@ -261,12 +256,16 @@ fn dxf_bytes(d: &Drawing, opts: &DxfOptions, name: &str) -> Result<Vec<u8>, Erro
     dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
 }
 
+/// One SVG frame of a motion.
+struct Frame {
+    svg: String,
+}
+
 /// What a motion gives besides the frames handed to the sink.
 struct MotionFiles {
     dxf: Vec<u8>,
     picture: String,
     frame_names: Vec<String>,
-    html: Option<String>,
     diagrams: Vec<(String, Vec<u8>)>,
 }
 
@@ -308,38 +307,30 @@ fn motion(
                     files.push((format!("{stem}.png"), png.as_slice()));
                 }
             }
-            let (staged, (diagrams, html)) = rayon::join(
-                || sink.put(&files),
-                || {
-                    let diagrams = diagram_files(&p.diagrams, name, opts.png);
-                    let html = want_frames.then(|| viewer::html(&a.title, &frames));
-                    (diagrams, html)
-                },
-            );
+            let (staged, diagrams) = rayon::join(|| sink.put(&files), || diagram_files(&p.diagrams, name, opts.png));
             staged?;
             let picture = match (frames.first(), poses.first()) {
                 (Some(f), _) => f.svg.clone(),
                 (None, Some(first)) => svg::to_string(&a.frame_of(first), &svg_opts),
                 (None, None) => svg::to_string(&a.base, &svg_opts),
             };
-            Ok((picture, names, html, diagrams?))
+            Ok((picture, names, diagrams?))
         },
     );
-    let (picture, frame_names, html, diagrams) = rest?;
-    Ok(MotionFiles { dxf: dxf?, picture, frame_names, html, diagrams })
+    let (picture, frame_names, diagrams) = rest?;
+    Ok(MotionFiles { dxf: dxf?, picture, frame_names, diagrams })
 }
 
 /// The SVG frames (in parallel): the base written once, each position spliced onto it.
-fn frames(a: &Animation, poses: &[Drawing], svg_opts: &SvgOptions, tick: &(dyn Fn() + Sync)) -> Vec<viewer::Frame> {
+fn frames(a: &Animation, poses: &[Drawing], svg_opts: &SvgOptions, tick: &(dyn Fn() + Sync)) -> Vec<Frame> {
     let base_svg = svg::to_string(&a.base, svg_opts);
     poses
         .par_iter()
-        .zip(a.labels.par_iter())
-        .map(|(pose, label)| {
+        .map(|pose| {
             let s = svg::splice(&base_svg, &svg::to_string(pose, svg_opts))
                 .unwrap_or_else(|| svg::to_string(&a.frame_of(pose), svg_opts));
             tick();
-            viewer::Frame { label: label.clone(), svg: s }
+            Frame { svg: s }
         })
         .collect()
 }

@@ -121,15 +121,12 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
-    // The live page replaces the frame viewer as `<name>.html` (for every kind), unless
-    // --no-frames.
+    out.record_paths(order.into_iter().map(PathBuf::from));
+    // The live page `<name>.html` (every kind), unless --no-frames.
     let page_rel = PathBuf::from(format!("{}.html", p.name));
-    out.record_paths(order.into_iter().map(PathBuf::from).filter(|r| opts.no_frames || *r != page_rel));
     if !opts.no_frames {
-        let text = std::fs::read_to_string(&loaded.path)
-            .map_err(|source| Error::Io { path: loaded.path.display().to_string(), source })?;
         let file = loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
-        out.write(&page_rel, page::live_page(&text, &file, &opts.sets))?;
+        out.write(&page_rel, page::live_page(&loaded.text, &file, &opts.sets))?;
     }
     let written = out.commit()?;
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })

@@ -64,6 +64,8 @@ pub struct Loaded {
     pub path: PathBuf,
     /// The checked scene.
     pub scene: Scene,
+    /// The scene file's text as read (before any `--set`): the live page carries it.
+    pub text: String,
 }
 
 /// Length units of a scene, stated once per file.
@@ -185,7 +187,7 @@ pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Loaded, Sc
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { file: file.clone(), source })?;
     let scene = parse(&text, &file, overrides)?;
-    Ok(Loaded { path: path.to_path_buf(), scene })
+    Ok(Loaded { path: path.to_path_buf(), scene, text })
 }
 
 /// Parses and checks scene text; `file` names it in messages.

@@ -314,3 +314,19 @@ pub fn text_with(path: &Path, set: &[String]) -> String {
     }
     toml::to_string(&table).unwrap()
 }
+
+/// Takes the live page `<name>.html` out of `files` (a run's files on disk: the command line
+/// writes it, the in-memory products have no page) and returns it, checking that it is the
+/// live page: the module inside it and the scene's text.
+#[allow(dead_code)]
+pub fn take_live_page(files: &mut Vec<(String, Vec<u8>)>, name: &str) -> String {
+    let file = format!("{name}.html");
+    let i = files.iter().position(|(n, _)| *n == file).unwrap_or_else(|| panic!("no {file} written"));
+    let page = String::from_utf8(files.remove(i).1).expect("the page is UTF-8");
+    assert!(
+        page.contains("wasm_bindgen.initSync") && page.contains("const WASM_BASE64 = \""),
+        "{file}: not the live page"
+    );
+    assert!(page.len() > 1_000_000, "{file}: the module is missing");
+    page
+}

@@ -128,6 +128,22 @@ let wasm_bindgen = (function(exports) {
             wasm.__wbg_live_free(ptr, 0);
         }
         /**
+         * The scene's diagrams as JSON: `[[stem, svg], ...]`.
+         * @returns {string}
+         */
+        diagrams() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_diagrams(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
          * Drags `point` towards the model point (`x`, `y`); returns the state reached as
          * [`Live::points`] gives it, with `"drive"` (φ1 in degrees, or t in seconds).
          * @param {string} point
@@ -346,6 +362,22 @@ let wasm_bindgen = (function(exports) {
             const ret = wasm.live_set(this.__wbg_ptr, ptr0, len0, ptr1, len1);
             if (ret[1]) {
                 throw takeFromExternrefTable0(ret[0]);
+            }
+        }
+        /**
+         * The scene's sheets as JSON: `[[suffix, svg], ...]`.
+         * @returns {string}
+         */
+        sheets() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_sheets(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
             }
         }
         /**
