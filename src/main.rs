@@ -24,8 +24,9 @@ enum Command {
     Run {
         /// The scene file (TOML; see templates/).
         scene: PathBuf,
-        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, and per kind frames/<name>/,
-        /// <name>.html, diagrams/<name>/, <name>.csv, <name>.json. Several scenes can share DIR.
+        /// Output directory: DIR/<name>.dxf, DIR/<name>.svg, DIR/<name>.html (the live page:
+        /// the scene solved and drawn in the browser), and per kind frames/<name>/,
+        /// diagrams/<name>/, <name>.csv, <name>.json. Several scenes can share DIR.
         #[arg(short, long, value_name = "DIR", default_value = "out")]
         out: PathBuf,
         /// Override a scene field, checked like the file: `l12=55`, `pattern.tol=1e-7`,
@@ -40,7 +41,7 @@ enum Command {
         /// (`sheets/<name>/<position>.png`).
         #[arg(long)]
         png: bool,
-        /// Do not write per-position SVG frames and the HTML viewer.
+        /// Do not write the per-position SVG frames and the live page (<name>.html).
         #[arg(long)]
         no_frames: bool,
         /// Four-bar and linkage scenes: also one printed sheet per position on `a4` (297 × 210
@@ -64,6 +65,15 @@ enum Command {
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
+    },
+    /// Write the live pages of scenes and an index.html linking them: a gallery to publish
+    /// as static files (each page solves and draws its scene in the browser, no server).
+    Web {
+        /// Scene files (default: every bundled template).
+        scenes: Vec<PathBuf>,
+        /// Output directory: DIR/<scene file stem>.html for each scene, DIR/index.html.
+        #[arg(short, long, value_name = "DIR", default_value = "web-out")]
+        out: PathBuf,
     },
     /// Validate a scene file (and overrides) without solving.
     Check {
@@ -140,6 +150,24 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     eprintln!("wrote {}", f.display());
                 }
             }
+            Ok(())
+        }
+        Command::Web { scenes, out } => {
+            let scenes: Vec<(String, String)> = if scenes.is_empty() {
+                mechdraw::run::page::TEMPLATES.iter().map(|(f, t)| (f.to_string(), t.to_string())).collect()
+            } else {
+                scenes
+                    .iter()
+                    .map(|p| {
+                        let text = std::fs::read_to_string(p).map_err(|source| {
+                            mechdraw::Error::from(scene::SceneError::Read { file: p.display().to_string(), source })
+                        })?;
+                        Ok((p.display().to_string(), text))
+                    })
+                    .collect::<Result<_, mechdraw::Error>>()?
+            };
+            let written = mechdraw::run::page::gallery(&scenes, &out)?;
+            eprintln!("wrote {} pages and {}", written.len() - 1, out.join("index.html").display());
             Ok(())
         }
         Command::Check { scene, set } => {

@@ -42,6 +42,55 @@ pub fn live_page(text: &str, file: &str, sets: &[String]) -> String {
     page
 }
 
+/// The bundled templates (`templates/*.toml`), for `mechdraw web` without scenes.
+pub const TEMPLATES: &[(&str, &str)] = &[
+    ("chain-humienny-2.toml", include_str!("../../templates/chain-humienny-2.toml")),
+    ("chain-humienny-3.toml", include_str!("../../templates/chain-humienny-3.toml")),
+    ("fourbar-chebyshev.toml", include_str!("../../templates/fourbar-chebyshev.toml")),
+    ("fourbar-linkage.toml", include_str!("../../templates/fourbar-linkage.toml")),
+    ("shaper-forces.toml", include_str!("../../templates/shaper-forces.toml")),
+    ("shaper.toml", include_str!("../../templates/shaper.toml")),
+    ("slider-crank.toml", include_str!("../../templates/slider-crank.toml")),
+    ("triad-driven.toml", include_str!("../../templates/triad-driven.toml")),
+    ("triad-popa.toml", include_str!("../../templates/triad-popa.toml")),
+];
+
+/// Writes the live page of every scene (`(file name, text)`) into `dir` and an `index.html`
+/// linking them — the gallery a course can publish as static files. Every scene is checked
+/// first: a bad one is reported (by its file name) and nothing is written.
+pub fn gallery(scenes: &[(String, String)], dir: &std::path::Path) -> Result<Vec<std::path::PathBuf>, crate::Error> {
+    let mut items = Vec::with_capacity(scenes.len());
+    for (file, text) in scenes {
+        let scene = crate::scene::parse(text, file, &[])?;
+        let stem =
+            std::path::Path::new(file).file_stem().map_or_else(|| file.clone(), |s| s.to_string_lossy().into_owned());
+        items.push((stem, file.clone(), text.clone(), scene.name().to_string(), scene.kind()));
+    }
+    let mut out = super::output::Output::new(dir)?;
+    let mut index = String::from(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><title>mechdraw live</title></head>\n<body>\n\
+         <h1>mechdraw live</h1>\n<p>Each page solves and draws its scene in the browser, with no server: drag a joint, \
+         change any number, edit the TOML, download the files the command line writes.</p>\n<ul>\n",
+    );
+    for (stem, file, text, name, kind) in &items {
+        out.write(format!("{stem}.html"), live_page(text, file, &[]))?;
+        index.push_str(&format!(
+            "<li><a href=\"{}.html\">{}</a> ({kind}, {})</li>\n",
+            escape(stem),
+            escape(name),
+            escape(file)
+        ));
+    }
+    index.push_str("</ul>\n</body>\n</html>\n");
+    out.write("index.html", index)?;
+    out.commit()
+}
+
+/// `s` for HTML text and attribute values.
+fn escape(s: &str) -> String {
+    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -55,5 +104,19 @@ mod tests {
         assert!(page.contains(r#"const FILE = "t.toml";"#));
         let b64 = base64::engine::general_purpose::STANDARD.encode(MODULE);
         assert!(page.contains(&b64));
+    }
+
+    #[test]
+    fn the_bundled_templates_are_templates_dir() {
+        let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates");
+        let mut on_disk: Vec<(String, String)> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+            .map(|p| (p.file_name().unwrap().to_string_lossy().into_owned(), std::fs::read_to_string(&p).unwrap()))
+            .collect();
+        on_disk.sort();
+        let bundled: Vec<(String, String)> = TEMPLATES.iter().map(|(n, t)| (n.to_string(), t.to_string())).collect();
+        assert_eq!(bundled, on_disk, "run::page::TEMPLATES must list templates/*.toml");
     }
 }
