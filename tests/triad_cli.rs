@@ -151,3 +151,39 @@ fn bad_input_exits_2_naming_file_and_field_and_writes_nothing() {
     // ... and circle 3 so small that A3 never reaches it.
     assert_rejected(&t.replace("r = [50.0, 60.0, 84.0]", "r = [50.0, 60.0, 8.0]"), &["no configuration", "r[2]"]);
 }
+
+#[test]
+fn mode_chooses_the_assembly_mode_the_picture_draws() {
+    let plain = run_json(&[]);
+    let solutions = plain["solutions"].as_array().unwrap();
+    assert_eq!(solutions.len(), 8);
+    // The pattern method's mode by default ...
+    let pattern_phi1 = plain["pattern"]["phi1_deg"].as_f64().unwrap();
+    let primary = plain["primary"].as_u64().unwrap() as usize;
+    assert!((solutions[primary]["phi1_deg"].as_f64().unwrap() - pattern_phi1).abs() < 1e-3);
+    // ... and any other by `mode` (numbered from 1 as the report lists them).
+    for mode in [1, 3, 8] {
+        let tmp = tempfile::tempdir().unwrap();
+        let out = common::mechdraw()
+            .args(["run", TEMPLATE, "--json", "--set", &format!("mode={mode}"), "--out"])
+            .arg(tmp.path())
+            .current_dir(common::root())
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let json: Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(json["primary"], mode - 1, "mode {mode}");
+        // The modes found do not depend on which one is drawn.
+        assert_eq!(json["solutions"], plain["solutions"]);
+        let report = String::from_utf8_lossy(&out.stderr);
+        let drawn: Vec<&str> = report.lines().filter(|l| l.ends_with("(drawn)")).collect();
+        assert_eq!(drawn.len(), 1, "{report}");
+        assert!(drawn[0].trim_start().starts_with(&format!("{mode} ")), "{report}");
+        let svg = std::fs::read_to_string(tmp.path().join("triad-popa.svg")).unwrap();
+        assert!(svg.contains(&format!("solid: mode {mode} of 8")), "the caption names mode {mode}");
+    }
+    let t = template_text();
+    let with_mode = |m: &str| t.replace("orientation = \"both\"", &format!("orientation = \"both\"\nmode = {m}"));
+    assert_rejected(&with_mode("9"), &["mode = 9", "8 assembly mode(s)", "1 to 8"]);
+    assert_rejected(&with_mode("0"), &["field `mode`", "1 or more"]);
+}

@@ -40,6 +40,9 @@ pub struct TriadResults {
     pub newton: Result<NewtonSolution, TriadError>,
     /// Index in `modes` of the position drawn as the mechanism.
     pub primary: usize,
+    /// Whether the scene's `mode` chose it (else: the pattern method's mode, or the one
+    /// nearest its start).
+    pub chosen: bool,
     /// Warnings for the terminal.
     pub warnings: Vec<String>,
 }
@@ -87,12 +90,16 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
         (0..modes.len())
             .min_by(|&i, &j| max_vertex_distance(&modes[i].a, a).total_cmp(&max_vertex_distance(&modes[j].a, a)))
     };
+    let drawing = match scene.mode {
+        Some(m) => format!("drawing mode {m}, as the scene's `mode` asks"),
+        None => "drawing the mode nearest to its start".to_string(),
+    };
     let matched = match &pattern {
         Ok(p) => match nearest(&p.configuration.a) {
             Some(i) if max_vertex_distance(&modes[i].a, &p.configuration.a) <= SAME_POSITION_REL * scale => Some(i),
             _ => {
                 warnings.push(format!(
-                    "the pattern method's position (phi1 = {:.4}°) is not among the modes searched (orientation {}); drawing the mode nearest to its start",
+                    "the pattern method's position (phi1 = {:.4}°) is not among the modes searched (orientation {}); {drawing}",
                     deg(p.configuration.phi[0]),
                     match scene.orientation {
                         OrientationChoice::Both => "both",
@@ -104,7 +111,7 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
             }
         },
         Err(_) => {
-            warnings.push("the pattern method failed (see the report); drawing the mode nearest to its start".into());
+            warnings.push(format!("the pattern method failed (see the report); {drawing}"));
             None
         }
     };
@@ -116,10 +123,25 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
         };
         (0..modes.len()).min_by(|&i, &j| key(&modes[i]).total_cmp(&key(&modes[j]))).unwrap_or(0)
     });
+    let primary = match scene.mode {
+        Some(m) if (1..=modes.len()).contains(&m) => m - 1,
+        Some(m) => return Err(TriadError::NoSuchMode { mode: m, count: modes.len() }),
+        None => primary,
+    };
     if let Err(e) = &newton {
         warnings.push(e.to_string());
     }
-    Ok(TriadResults { triad, modes, pattern, start, newton_start, newton, primary, warnings })
+    Ok(TriadResults {
+        triad,
+        modes,
+        pattern,
+        start,
+        newton_start,
+        newton,
+        primary,
+        chosen: scene.mode.is_some(),
+        warnings,
+    })
 }
 
 /// Where a configuration puts the triad: its angles, its vertices and their orientation.
@@ -314,7 +336,35 @@ fn model_units(scene: &TriadScene) -> ModelUnits {
 /// The seed's Fig. 3 of the results: the drawn mode alone with the pattern method's start.
 pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
     let mut caption = Vec::new();
+    let start_deg = deg(scene.pattern.phi1_start);
+    let reached = |p: &PatternSolution| {
+        (0..r.modes.len())
+            .find(|&i| max_vertex_distance(&p.configuration.a, &r.modes[i].a) <= SAME_POSITION_REL * r.triad.scale())
+    };
     match &r.pattern {
+        _ if r.chosen => {
+            let pattern = match &r.pattern {
+                Ok(p) => match reached(p) {
+                    Some(i) => format!(
+                        "Pattern method: φ1 = {start_deg:.2}° (dashed, red) → {:.2}° in {} iterations (mode {})",
+                        deg(p.configuration.phi[0]),
+                        p.iterations,
+                        i + 1
+                    ),
+                    None => format!(
+                        "Pattern method: φ1 = {start_deg:.2}° (dashed, red) → {:.2}°, not among the modes searched",
+                        deg(p.configuration.phi[0])
+                    ),
+                },
+                Err(_) => format!("Pattern method failed from φ1 = {start_deg:.2}°"),
+            };
+            caption.push(format!(
+                "{pattern}; solid: mode {} of {} (mode = {} in the scene).",
+                r.primary + 1,
+                r.modes.len(),
+                r.primary + 1
+            ));
+        }
         Ok(p) if max_vertex_distance(&p.configuration.a, &r.modes[r.primary].a) <= SAME_POSITION_REL * r.triad.scale() => {
             caption.push(format!(
                 "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}° in {} iterations (solid: mode {} of {}).",

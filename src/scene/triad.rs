@@ -157,6 +157,10 @@ pub struct RawTriadScene {
     /// Newton–Raphson settings.
     #[serde(default)]
     pub newton: RawNewton,
+    /// The assembly mode the picture draws, numbered from 1 as the report lists them
+    /// (default: the one the pattern method reaches).
+    #[serde(default)]
+    pub mode: Option<usize>,
 }
 
 /// Checked pattern-method settings (angles in radians).
@@ -208,6 +212,8 @@ pub struct TriadScene {
     pub pattern: PatternSettings,
     /// Newton–Raphson.
     pub newton: NewtonSettings,
+    /// The assembly mode drawn, numbered from 1 (`None`: the pattern method's).
+    pub mode: Option<usize>,
 }
 
 /// Largest iteration cap accepted.
@@ -274,7 +280,25 @@ pub fn check(raw: RawTriadScene) -> Result<TriadScene, FieldError> {
     };
     let newton =
         NewtonSettings { start, max_iterations: iterations("newton.max_iterations", raw.newton.max_iterations)? };
-    Ok(TriadScene { name, units: raw.units, o, r, l12, l23, l13, orientation: raw.orientation, pattern, newton })
+    if raw.mode == Some(0) {
+        return Err(FieldError::new(
+            "mode",
+            "must be 1 or more: the assembly modes are numbered from 1 as the report lists them",
+        ));
+    }
+    Ok(TriadScene {
+        name,
+        units: raw.units,
+        o,
+        r,
+        l12,
+        l23,
+        l13,
+        orientation: raw.orientation,
+        pattern,
+        newton,
+        mode: raw.mode,
+    })
 }
 
 #[cfg(test)]

@@ -189,6 +189,17 @@ pub enum TriadError {
         /// Iteration.
         iteration: usize,
     },
+    /// The drawn assembly mode asked for is not among those found. Example: `mode = 9` for
+    /// a triad with 8 modes.
+    #[error(
+        "mode = {mode}: the triad has {count} assembly mode(s) here, numbered 1 to {count} as the report lists them"
+    )]
+    NoSuchMode {
+        /// The mode asked for (1-based).
+        mode: usize,
+        /// How many modes were found.
+        count: usize,
+    },
     /// Newton–Raphson: the iteration cap was reached (or the iterates diverged).
     #[error("Newton–Raphson did not converge in {iterations} iterations (residual {residual:e})")]
     NewtonNotConverged {
