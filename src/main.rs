@@ -134,6 +134,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 dxf: DxfOptions { version: dxf_version, dimensions: dxf_dimensions, ..DxfOptions::default() },
                 sheets,
                 sets: set.clone(),
+                picture_only: false,
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

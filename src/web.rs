@@ -106,14 +106,19 @@ fn numbers(prefix: &str, value: &toml::Value, out: &mut Vec<Parameter>) {
 }
 
 /// A scene open in the page: its text, the changes made to it (as `--set` overrides, applied
-/// in order), and its products, solved once per change. A change that the scene does not
-/// accept leaves the session as it was (the page keeps its picture) and returns the command
-/// line's message.
+/// in order), and its products. A change solves the scene again and draws its picture (the
+/// motion with its polygons and forces at every position: [`RunOptions::picture_only`]);
+/// the rest of the products (sheets, diagrams, tables, the summary, the files) is made when
+/// first asked for. A change that the scene does not accept leaves the session as it was
+/// (the page keeps its picture) and returns the command line's message.
 pub struct Session {
     file: String,
     text: String,
     sets: Vec<(String, String)>,
+    /// The picture and the warnings.
     products: crate::run::products::Products,
+    /// Everything `mechdraw run` makes, made on first ask after a change.
+    full: std::sync::OnceLock<crate::run::products::Products>,
     /// A motion's frame options and its base written once (frames splice each position onto
     /// it).
     motion: Option<(SvgOptions, String)>,
@@ -145,6 +150,7 @@ impl Session {
             text: text.to_string(),
             sets: Vec::new(),
             products,
+            full: std::sync::OnceLock::new(),
             motion,
             dragged: None,
             positions_points: std::sync::OnceLock::new(),
@@ -160,6 +166,7 @@ impl Session {
         let (products, motion) = solve(&self.text, &self.file, &sets)?;
         (self.sets, self.products, self.motion, self.dragged) = (sets, products, motion, None);
         self.positions_points = std::sync::OnceLock::new();
+        self.full = std::sync::OnceLock::new();
         Ok(())
     }
 
@@ -170,6 +177,7 @@ impl Session {
         (self.text, self.sets, self.products, self.motion, self.dragged) =
             (text.to_string(), Vec::new(), products, motion, None);
         self.positions_points = std::sync::OnceLock::new();
+        self.full = std::sync::OnceLock::new();
         Ok(())
     }
 
@@ -186,9 +194,20 @@ impl Session {
         Ok(out)
     }
 
-    /// The products of the scene as it stands.
-    pub fn products(&self) -> &crate::run::products::Products {
-        &self.products
+    /// All the products of the scene as it stands, as `mechdraw run` makes them (made on the
+    /// first call after a change).
+    pub fn products(&self) -> Result<&crate::run::products::Products, Error> {
+        if let Some(p) = self.full.get() {
+            return Ok(p);
+        }
+        let loaded = loaded(&self.text, &self.file, &self.sets)?;
+        let p = run::products(&loaded, &RunOptions { no_frames: true, ..RunOptions::default() })?;
+        Ok(self.full.get_or_init(|| p))
+    }
+
+    /// The warnings of the scene as it stands (gaps, dead points, γ_min, ...), one line each.
+    pub fn warnings(&self) -> &[String] {
+        &self.products.warnings
     }
 
     /// Number of positions of a motion (1 for a still picture).
@@ -223,6 +242,32 @@ impl Session {
             }
             Picture::Motion(_) => None,
         }
+    }
+
+    /// A motion's base: what every frame shares (the header, the ground, the traced paths,
+    /// the scales and titles), an SVG document of its own. `None` for a still picture.
+    pub fn base(&self) -> Option<&str> {
+        self.motion.as_ref().map(|(_, base)| base.as_str())
+    }
+
+    /// What position `k`'s frame draws on top of [`Session::base`]: the frame is the base's
+    /// document with these elements inserted before its closing tag (what the page replaces
+    /// as the motion plays or a point is dragged). `None` past the last position, for a still
+    /// picture, or when the frame cannot be split so (then draw [`Session::frame`] whole).
+    pub fn moving(&self, k: usize) -> Option<String> {
+        let Picture::Motion(a) = &self.products.picture else { return None };
+        let (opts, base) = self.motion.as_ref()?;
+        let pose = (k < a.len()).then(|| a.pose(k))?;
+        svg::spliced_part(base, &svg::to_string(&pose, opts)).map(str::to_string)
+    }
+
+    /// What the frame where the last drag left the mechanism draws on top of
+    /// [`Session::base`] (as [`Session::moving`]).
+    pub fn dragged_moving(&self) -> Option<String> {
+        let (k, s) = self.dragged?;
+        let (opts, base) = self.motion.as_ref()?;
+        let pose = (self.drive()?.draw)(k, s).ok()?;
+        svg::spliced_part(base, &svg::to_string(&pose, opts)).map(str::to_string)
     }
 
     /// SVG user units per model unit of the frames (paper millimetres per model unit, or 1):
@@ -317,23 +362,24 @@ impl Session {
 
     /// The scene's sheets (a triad's modes, a four-bar's centres and Joukowski's lever) as
     /// the CLI's `<name>-<suffix>.svg`: (suffix, SVG).
-    pub fn sheets(&self) -> Vec<(String, String)> {
-        self.products.sheets.iter().map(|s| (s.suffix.clone(), bytes::picture_svg(&s.drawing))).collect()
+    pub fn sheets(&self) -> Result<Vec<(String, String)>, Error> {
+        Ok(self.products()?.sheets.iter().map(|s| (s.suffix.clone(), bytes::picture_svg(&s.drawing))).collect())
     }
 
     /// The scene's diagrams as the CLI's `diagrams/<name>/<stem>.svg`: (stem, SVG).
-    pub fn diagrams(&self) -> Vec<(String, String)> {
-        self.products
+    pub fn diagrams(&self) -> Result<Vec<(String, String)>, Error> {
+        Ok(self
+            .products()?
             .diagrams
             .iter()
             .map(|d| (d.stem.clone(), svg::to_string(&d.drawing, &SvgOptions::default())))
-            .collect()
+            .collect())
     }
 
     /// The files `mechdraw run` writes for the scene as it stands (without the frames and
     /// the viewer: `--no-frames`), for downloads.
     pub fn files(&self) -> Result<Vec<(String, Vec<u8>)>, Error> {
-        bytes::to_files(&self.products, &WriteOptions { png: false, no_frames: true, dxf: Default::default() })
+        bytes::to_files(self.products()?, &WriteOptions { png: false, no_frames: true, dxf: Default::default() })
     }
 }
 
@@ -395,13 +441,18 @@ fn overrides(sets: &[(String, String)]) -> Result<Vec<scene::Override>, Error> {
 /// The products of `text` with `sets`, and a motion's frame options and base SVG.
 type Solved = (crate::run::products::Products, Option<(SvgOptions, String)>);
 
-fn solve(text: &str, file: &str, sets: &[(String, String)]) -> Result<Solved, Error> {
-    let loaded = Loaded {
+/// The scene in `text` with `sets` applied, as the command line loads it.
+fn loaded(text: &str, file: &str, sets: &[(String, String)]) -> Result<Loaded, Error> {
+    Ok(Loaded {
         path: PathBuf::from(file),
         scene: scene::parse(text, file, &overrides(sets)?)?,
         text: text.to_string(),
-    };
-    let p = run::products(&loaded, &RunOptions { no_frames: true, ..RunOptions::default() })?;
+    })
+}
+
+fn solve(text: &str, file: &str, sets: &[(String, String)]) -> Result<Solved, Error> {
+    let loaded = loaded(text, file, sets)?;
+    let p = run::products(&loaded, &RunOptions { no_frames: true, picture_only: true, ..RunOptions::default() })?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;
     }
@@ -547,29 +598,49 @@ pub mod js {
             self.0.dragged_frame().unwrap_or_default()
         }
 
-        /// The scene's sheets as JSON: `[[suffix, svg], ...]`.
-        pub fn sheets(&self) -> String {
-            serde_json::to_string(&self.0.sheets()).unwrap_or_else(|_| "[]".into())
+        /// A motion's base SVG, shared by every frame (`""` for a still picture).
+        pub fn base(&self) -> String {
+            self.0.base().unwrap_or_default().to_string()
         }
 
-        /// The scene's diagrams as JSON: `[[stem, svg], ...]`.
-        pub fn diagrams(&self) -> String {
-            serde_json::to_string(&self.0.diagrams()).unwrap_or_else(|_| "[]".into())
+        /// What position `k`'s frame draws on the base (`""`: draw [`Live::frame`] whole).
+        pub fn moving(&self, k: usize) -> String {
+            self.0.moving(k).unwrap_or_default()
         }
 
-        /// The JSON summary, pretty.
-        pub fn summary(&self) -> String {
-            serde_json::to_string_pretty(&self.0.products().summary).unwrap_or_default()
+        /// What the dragged frame draws on the base (`""`: draw [`Live::dragged_frame`]).
+        pub fn dragged_moving(&self) -> String {
+            self.0.dragged_moving().unwrap_or_default()
+        }
+
+        /// The scene's sheets as JSON: `[[suffix, svg], ...]` (made when first asked for
+        /// after a change).
+        pub fn sheets(&self) -> Result<String, String> {
+            let sheets = self.0.sheets().map_err(|e| e.to_string())?;
+            serde_json::to_string(&sheets).map_err(|e| e.to_string())
+        }
+
+        /// The scene's diagrams as JSON: `[[stem, svg], ...]` (made when first asked for
+        /// after a change).
+        pub fn diagrams(&self) -> Result<String, String> {
+            let diagrams = self.0.diagrams().map_err(|e| e.to_string())?;
+            serde_json::to_string(&diagrams).map_err(|e| e.to_string())
+        }
+
+        /// The JSON summary, pretty (made when first asked for after a change).
+        pub fn summary(&self) -> Result<String, String> {
+            let p = self.0.products().map_err(|e| e.to_string())?;
+            serde_json::to_string_pretty(&p.summary).map_err(|e| e.to_string())
         }
 
         /// The warnings, one a line.
         pub fn warnings(&self) -> String {
-            self.0.products().warnings.join("\n")
+            self.0.warnings().join("\n")
         }
 
         /// The files of the scene as it stands (without frames), for downloads.
         pub fn files(&self) -> Result<Files, String> {
-            let p = self.0.products();
+            let p = self.0.products().map_err(|e| e.to_string())?;
             let files = self.0.files().map_err(|e| e.to_string())?;
             Ok(Files(SceneFiles {
                 files,

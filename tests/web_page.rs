@@ -88,6 +88,23 @@ fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
 }
 
 #[test]
+fn a_triad_mode_picked_on_the_page_is_the_one_the_picture_draws() {
+    let pick = &observed()["triad_pick"];
+    assert_eq!(pick["error"], "", "{pick}");
+    // The page's picture is the command line's for `--set mode=3`, byte for byte.
+    let (files, json, _) = cli(&template("triad-popa"), &["mode=3"]);
+    let svg = String::from_utf8(files["triad-popa.svg"].clone()).unwrap();
+    assert_eq!(pick["picture"].as_str().unwrap(), svg, "the picture after picking mode 3");
+    assert_eq!(json["primary"], 2, "the CLI draws mode 3 (index 2)");
+    assert_eq!(pick["drawn"], 2);
+    assert_eq!(pick["disabled"], serde_json::json!(["3"]), "mode 3's button shows it is drawn");
+    assert!(pick["caption"].as_str().unwrap().contains("solid: mode 3 of 8"), "{}", pick["caption"]);
+    // And it is a different picture from the pattern method's mode.
+    let (plain, _, _) = cli(&template("triad-popa"), &[]);
+    assert_ne!(plain["triad-popa.svg"], files["triad-popa.svg"]);
+}
+
+#[test]
 fn dragging_the_crank_pin_turns_the_crank_to_the_pointer() {
     let d = &observed()["fourbar_drag"];
     let (px, py) = (num(&d["pointer"][0]), num(&d["pointer"][1]));

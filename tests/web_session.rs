@@ -49,25 +49,32 @@ fn every_frame_and_download_is_the_command_lines() {
         if frames.is_empty() {
             // A still picture: the one frame is `<name>.svg`.
             assert_eq!(session.positions(), 1, "{file}");
-            let name = &session.products().name;
+            let name = &session.products().unwrap().name;
             let svg = cli.iter().find(|(n, _)| *n == format!("{name}.svg")).expect("picture");
             assert!(session.frame(0).unwrap().as_bytes() == svg.1, "{file}: the picture");
         } else {
             assert_eq!(session.positions(), frames.len(), "{file}: positions");
+            let base = session.base().expect("a motion has a base");
+            let head = base.strip_suffix("</svg>").expect("the base is an SVG document");
             for (k, (name, bytes)) in frames.iter().enumerate() {
                 assert!(session.frame(k).unwrap().as_bytes() == bytes.as_slice(), "{file}: frame {k} is not {name}");
+                // The page draws the base once and each frame's moving part on it.
+                let moving = session.moving(k).unwrap_or_else(|| panic!("{file}: frame {k} does not split"));
+                let spliced = format!("{head}{moving}</svg>");
+                assert!(spliced.as_bytes() == bytes.as_slice(), "{file}: base + moving part {k} is not {name}");
             }
+            assert!(session.moving(frames.len()).is_none(), "{file}: no moving part past the last");
             assert!(session.frame(frames.len()).is_none(), "{file}: no frame past the last");
         }
         // The sheets shown under the picture: the CLI's `<name>-<suffix>.svg`.
-        for (suffix, svg) in session.sheets() {
-            let name = format!("{}-{suffix}.svg", session.products().name);
+        for (suffix, svg) in session.sheets().unwrap() {
+            let name = format!("{}-{suffix}.svg", session.products().unwrap().name);
             let on_disk = cli.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{file}: no {name}"));
             assert!(on_disk.1 == svg.as_bytes(), "{file}: the sheet {suffix} differs from {name}");
         }
         // The diagrams shown on the page: the CLI's `diagrams/<name>/<stem>.svg`.
-        for (stem, svg) in session.diagrams() {
-            let name = format!("diagrams/{}/{stem}.svg", session.products().name);
+        for (stem, svg) in session.diagrams().unwrap() {
+            let name = format!("diagrams/{}/{stem}.svg", session.products().unwrap().name);
             let on_disk = cli.iter().find(|(n, _)| *n == name).unwrap_or_else(|| panic!("{file}: no {name}"));
             assert!(on_disk.1 == svg.as_bytes(), "{file}: the diagram {stem} differs from {name}");
         }
@@ -75,6 +82,8 @@ fn every_frame_and_download_is_the_command_lines() {
         let downloads = session.files().unwrap();
         let no_frames = web::scene_files(&common::text_with(&path, &set), &file, WebOptions::default()).unwrap();
         assert_eq!(downloads.len(), no_frames.files.len(), "{file}");
+        // The warnings the page shows at once (from the picture alone) are the run's.
+        assert_eq!(session.warnings(), no_frames.warnings.as_slice(), "{file}: warnings");
         for ((n, b), (m, c)) in downloads.iter().zip(&no_frames.files) {
             assert_eq!(n, m, "{file}");
             assert!(b == c, "{file}: {n}");
@@ -90,11 +99,11 @@ fn a_length_that_breaks_grashof_shows_the_command_lines_gaps() {
     let path = common::root().join("templates/fourbar-chebyshev.toml");
     let file = path.display().to_string();
     let mut session = Session::new(&std::fs::read_to_string(&path).unwrap(), &file).unwrap();
-    assert_eq!(session.products().summary["grashof"], "grashof");
-    assert_eq!(session.products().summary["gaps"], serde_json::json!([]));
+    assert_eq!(session.products().unwrap().summary["grashof"], "grashof");
+    assert_eq!(session.products().unwrap().summary["gaps"], serde_json::json!([]));
     session.set("l_bc", "0.2").unwrap();
     let cli = cli_json(&path, &["l_bc=0.2".to_string()]);
-    assert_eq!(session.products().summary, cli, "the JSON after the change is the CLI's for --set l_bc=0.2");
+    assert_eq!(session.products().unwrap().summary, cli, "the JSON after the change is the CLI's for --set l_bc=0.2");
     let gaps = cli["gaps"].as_array().unwrap();
     assert_eq!(gaps.len(), 2);
     // Where a coupler of 0.10 cannot reach a rocker of 0.20 (|O1C|, crank 0.04): the
@@ -165,12 +174,12 @@ fn every_number_of_a_scene_is_a_field_that_sets_it() {
         let mut session = Session::new(&common::text_with(&path, &set), &file).unwrap();
         let params = session.parameters().unwrap();
         assert!(params.len() >= 3, "{file}: {params:?}");
-        let summary = session.products().summary.clone();
+        let summary = session.products().unwrap().summary.clone();
         // Setting every field to its own value changes nothing.
         for p in &params {
             session.set(&p.path, &p.text()).unwrap_or_else(|e| panic!("{file}: {}: {e}", p.path));
         }
-        assert_eq!(session.products().summary, summary, "{file}: every field set to its own value");
+        assert_eq!(session.products().unwrap().summary, summary, "{file}: every field set to its own value");
     }
 }
 
@@ -178,7 +187,7 @@ fn every_number_of_a_scene_is_a_field_that_sets_it() {
 fn the_triad_lists_its_eight_assembly_modes_and_the_pattern_methods_angle() {
     let path = common::root().join("templates/triad-popa.toml");
     let session = Session::new(&std::fs::read_to_string(&path).unwrap(), &path.display().to_string()).unwrap();
-    let s = &session.products().summary;
+    let s = &session.products().unwrap().summary;
     assert_eq!(s["solutions"].as_array().unwrap().len(), 8);
     let phi1 = s["pattern"]["phi1_deg"].as_f64().unwrap();
     assert_eq!(format!("{phi1:.2}"), "75.77");
@@ -250,7 +259,7 @@ fn dragging_a_shaper_point_keeps_every_joint_together() {
         let (k, t) = session.dragged().unwrap();
         let d = |st: &mechdraw::figure::animation::DriveState| (point_of(st, "rocker.B") - target).norm();
         let here = d(&st);
-        let drive = match &session.products().picture {
+        let drive = match &session.products().unwrap().picture {
             mechdraw::run::products::Picture::Motion(a) => a.drive.as_ref().unwrap(),
             _ => unreachable!(),
         };

@@ -12,7 +12,8 @@ DIR = os.path.abspath(sys.argv[1])
 SHOTS = os.path.join(DIR, "screens")
 shutil.rmtree(os.path.join(DIR, "downloads"), ignore_errors=True)
 os.makedirs(SHOTS, exist_ok=True)
-READY = "typeof live === 'object' && live !== null"
+# The page has solved and drawn its scene, and made the rest (summary, sheets, diagrams).
+READY = "typeof live === 'object' && live !== null && document.body.dataset.state === 'idle'"
 # Client (CSS pixel) position of a model point in the frame shown.
 TO_SCREEN = """(function (x, y) {
   const m = document.querySelector('#stage svg').getScreenCTM();
@@ -21,6 +22,17 @@ TO_SCREEN = """(function (x, y) {
   return [p.x, p.y];
 })"""
 out = {}
+
+
+def settle(page, timeout=30):
+    """Waits until the page has made the rest of its last change (summary, sheets, diagrams)."""
+    import time
+    end = time.time() + timeout
+    while time.time() < end:
+        if page.eval("document.body.dataset.state === 'idle'"):
+            return
+        time.sleep(0.05)
+    raise RuntimeError("the page did not settle")
 
 
 def url(name):
@@ -57,6 +69,15 @@ with Browser() as b:
     page.screenshot(os.path.join(SHOTS, "triad-popa.png"))
     out["triad"]["sheets"] = page.eval("JSON.parse(live.sheets()).map(([n, s]) => n)")
     out["triad"]["modes_sheet"] = page.eval("document.querySelector('#sheets svg') ? document.querySelector('#sheets svg').outerHTML.length : 0")
+    # Pick mode 3 with its button: the picture draws it (the CLI's picture for --set mode=3).
+    page.eval("document.querySelector('#modes button[data-mode=\"3\"]').click()")
+    settle(page)
+    out["triad_pick"] = {"picture": page.eval("live.frame(0)"),
+                         "drawn": page.eval("JSON.parse(live.summary()).primary"),
+                         "disabled": page.eval("[...document.querySelectorAll('#modes button')].filter((b) => b.disabled).map((b) => b.dataset.mode)"),
+                         "caption": page.eval("document.getElementById('stage').textContent"),
+                         "error": page.eval("document.getElementById('error').textContent")}
+    page.screenshot(os.path.join(SHOTS, "triad-popa-mode-3.png"))
 
 
     # The four-bar: drag the crank pin round to 123.4567° (off the crank circle).
@@ -80,6 +101,7 @@ with Browser() as b:
       const f = document.querySelector('input[type=number][data-path="l_bc"]');
       f.value = '0.2'; f.dispatchEvent(new Event('change'));
     })()""")
+    settle(page)
     out["fourbar_lbc"] = {"summary": json.loads(page.eval("live.summary()")),
                           "warnings": page.eval("document.getElementById('warnings').textContent"),
                           "error": page.eval("document.getElementById('error').textContent")}

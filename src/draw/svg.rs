@@ -343,20 +343,30 @@ pub fn write_into(s: &mut Vec<u8>, drawing: &Drawing, opts: &SvgOptions) {
 /// moving's first are on different layers (else the writer would put them in one group).
 /// `None` when the two headers differ (then write the frame whole).
 pub fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
-    const CLOSE: &str = "</svg>";
+    let part = spliced_part(base_svg, moving_svg)?;
+    let head = &base_svg[..base_svg.len() - CLOSE.len()];
+    let mut out = String::with_capacity(head.len() + part.len() + CLOSE.len());
+    out.push_str(head);
+    out.push_str(part);
+    out.push_str(CLOSE);
+    Some(out)
+}
+
+/// The closing tag of an SVG document as [`to_string`] writes it.
+const CLOSE: &str = "</svg>";
+
+/// What [`splice`] appends to `base_svg` (without its closing tag): `moving_svg`'s elements,
+/// after its header and before its closing tag. `None` when the headers differ.
+pub fn spliced_part<'a>(base_svg: &str, moving_svg: &'a str) -> Option<&'a str> {
     let header_end = |s: &str| -> Option<usize> {
         let first = s.find('\n')?;
         Some(first + 1 + s[first + 1..].find('\n')? + 1)
     };
     let (hb, hm) = (header_end(base_svg)?, header_end(moving_svg)?);
-    if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) {
+    if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) || !moving_svg.ends_with(CLOSE) {
         return None;
     }
-    let head = &base_svg[..base_svg.len() - CLOSE.len()];
-    let mut out = String::with_capacity(head.len() + moving_svg.len() - hm);
-    out.push_str(head);
-    out.push_str(&moving_svg[hm..]);
-    Some(out)
+    Some(&moving_svg[hm..moving_svg.len() - CLOSE.len()])
 }
 
 /// Writes `drawing` as SVG to `out`.

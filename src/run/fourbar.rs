@@ -10,7 +10,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use super::fourbar_teaching as teaching;
-use super::products::{self, Picture, PositionsSource, Products};
+use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
 use std::sync::Arc;
@@ -34,7 +34,12 @@ use crate::solve::fourbar::{
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
 
-pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -> Result<Products, Error> {
+pub(super) fn products(
+    scene: &FourbarScene,
+    file: &str,
+    paper: Option<Paper>,
+    picture_only: bool,
+) -> Result<Products, Error> {
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
     let units = match scene.units {
@@ -52,50 +57,64 @@ pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -
     let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units)
         .with_drive(spec.omega1, external)
         .with_link_loads(link_loads);
-    let qs = reported(&spec.outputs, layout.show.forces);
-    let mut csv = table(&motion, &qs, layout.show.forces);
-    let mut summary = summary(scene, &motion, &layout, &qs)?;
     let mut warnings = motion.warnings();
     if motion.positions.is_empty() {
         warnings.push("no crank angle of the sweep could be assembled: nothing to draw".to_string());
     }
-    let mut report = report_text(scene, &motion, &layout);
     // Issue 14 item 10: γ_min, Joukowski's lever, the instantaneous centres.
     let gamma_min = gamma_min(&motion.positions);
-    let levers = if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() };
-    teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
     if let Some(m) = &gamma_min {
-        report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
         warnings.extend(teaching::gamma_warning(m));
-    }
-    let mut sheets = Vec::new();
-    if scene.centres {
-        sheets.extend(teaching::centres(&spec.geometry, &motion.positions, units));
-    }
-    if layout.show.forces {
-        sheets.extend(teaching::joukowski(spec, &motion.positions, &motion.forces, &levers, units));
     }
     let name = &scene.name;
     let step = spec.sweep.step_deg;
     let geom = spec.geometry;
-    let diagrams = diagrams(&motion, step, &qs, layout.show.forces, units)
-        .into_par_iter()
-        .map(|(stem, d)| match stem.as_str() {
-            "gamma_deg" => products::Diagram {
-                stem: "gamma".into(),
-                drawing: plot::diagram_marked(&d, &teaching::gamma_marks(gamma_min)),
-            },
-            _ => products::Diagram { stem, drawing: plot::diagram(&d) },
-        })
-        .collect();
     let mut curve = runs(&motion.positions, step, |p| p.m);
     close_full_turn(&mut curve, &motion.positions, step);
     let base = layout.base(&geom, &curve);
     let names = position_names(&motion.positions, spec.sweep.from_deg, step);
     let labels = motion.positions.iter().map(|p| format!("φ1 = {}°", angle_text(deg(p.phi1)))).collect();
-    let pages = match paper {
-        Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names),
-        None => Vec::new(),
+    let extras = if picture_only {
+        Extras::default()
+    } else {
+        let qs = reported(&spec.outputs, layout.show.forces);
+        let mut csv = table(&motion, &qs, layout.show.forces);
+        let mut summary = summary(scene, &motion, &layout, &qs)?;
+        let mut report = report_text(scene, &motion, &layout);
+        let levers = if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() };
+        teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
+        if let Some(m) = &gamma_min {
+            report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
+        }
+        let mut sheets = Vec::new();
+        if scene.centres {
+            sheets.extend(teaching::centres(&spec.geometry, &motion.positions, units));
+        }
+        if layout.show.forces {
+            sheets.extend(teaching::joukowski(spec, &motion.positions, &motion.forces, &levers, units));
+        }
+        let diagrams = diagrams(&motion, step, &qs, layout.show.forces, units)
+            .into_par_iter()
+            .map(|(stem, d)| match stem.as_str() {
+                "gamma_deg" => products::Diagram {
+                    stem: "gamma".into(),
+                    drawing: plot::diagram_marked(&d, &teaching::gamma_marks(gamma_min)),
+                },
+                _ => products::Diagram { stem, drawing: plot::diagram(&d) },
+            })
+            .collect();
+        let pages = match paper {
+            Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names),
+            None => Vec::new(),
+        };
+        Extras {
+            sheets,
+            pages,
+            diagrams,
+            tables: vec![products::Table { suffix: String::new(), csv }],
+            summary,
+            report,
+        }
     };
     let title = format!("{name}: four-bar, {} positions", motion.positions.len());
     let window = layout.frame.window;
@@ -126,12 +145,12 @@ pub(super) fn products(scene: &FourbarScene, file: &str, paper: Option<Paper>) -
         mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive)),
         positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
-        sheets,
-        pages,
-        diagrams,
-        tables: vec![products::Table { suffix: String::new(), csv }],
-        summary,
-        report,
+        sheets: extras.sheets,
+        pages: extras.pages,
+        diagrams: extras.diagrams,
+        tables: extras.tables,
+        summary: extras.summary,
+        report: extras.report,
         warnings,
     })
 }

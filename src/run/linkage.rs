@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
-use super::products::{self, Picture, PositionsSource, Products};
+use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
 use crate::draw::{Aci, LineType};
@@ -115,6 +115,7 @@ pub(super) fn products(
     file: &str,
     drag: &[String],
     paper: Option<Paper>,
+    picture_only: bool,
 ) -> Result<Products, Error> {
     let serr = solve_err(file);
     let mut solver = match Solver::new(scene.mechanism.clone()) {
@@ -167,15 +168,6 @@ pub(super) fn products(
         }
     };
     let cols = columns(scene, &states);
-    let force_cols = forces.as_ref().map(|f| force_columns(scene, f)).unwrap_or_default();
-    let strokes = guided_strokes(scene, &mut solver, &states).map_err(|e| solve_err(file)(e.into()))?;
-    let max_residual = states.iter().map(|s| s.residual).fold(0.0, f64::max);
-    let max_iter = states.iter().skip(1).map(|s| s.iterations).max().unwrap_or(0);
-    let mean_iter = if states.len() > 1 {
-        states.iter().skip(1).map(|s| s.iterations as f64).sum::<f64>() / (states.len() - 1) as f64
-    } else {
-        0.0
-    };
     let mut warnings = Vec::new();
     if scene.measures.is_empty() {
         warnings.push("no [[measure]] in the scene: the CSV and the diagrams have no quantity columns".to_string());
@@ -188,106 +180,6 @@ pub(super) fn products(
                 LinkageError::InvalidModel { what: format!("measured column {} is not finite", c.name) }.into(),
             ));
         }
-    }
-
-    // JSON summary.
-    let samples = states
-        .iter()
-        .enumerate()
-        .map(|(k, s)| Sample {
-            t: s.t,
-            values: cols.iter().map(|c| (c.name.clone(), c.values[k])).collect(),
-            near_singular: s.near_singular.is_some().then_some(true),
-            reactions: forces.as_ref().map(|f| reaction_records(scene, &f[k])),
-            drivers: forces.as_ref().map(|f| {
-                scene.mechanism.drivers.iter().zip(&f[k].drivers).map(|(d, v)| (d.name.clone(), v + 0.0)).collect()
-            }),
-            power_residual: forces.as_ref().map(|f| f[k].power_residual),
-            sliding: if out.velocity { sliding_records(scene, s) } else { BTreeMap::new() },
-        })
-        .collect();
-    let power_residual_max = forces.as_ref().map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max));
-    let extremes = cols
-        .iter()
-        .map(|c| {
-            let (mut kmin, mut kmax) = (0, 0);
-            for (k, v) in c.values.iter().enumerate() {
-                if *v < c.values[kmin] {
-                    kmin = k;
-                }
-                if *v > c.values[kmax] {
-                    kmax = k;
-                }
-            }
-            let e = Extremes { min: c.values[kmin], t_min: states[kmin].t, max: c.values[kmax], t_max: states[kmax].t };
-            (c.name.clone(), e)
-        })
-        .collect();
-    let mech = &scene.mechanism;
-    let summary = products::summary_value(
-        &MotionSummary {
-            kind: "linkage",
-            name: &scene.name,
-            units: scene.units.length(),
-            outputs: [(true, "position"), (out.velocity, "velocity"), (out.acceleration, "acceleration")]
-                .into_iter()
-                .chain([(forces.is_some(), "forces")])
-                .filter_map(|(on, name)| on.then_some(name))
-                .collect(),
-            bodies: mech.bodies.len(),
-            joints: mech.joints.len(),
-            drivers: mech.drivers.len(),
-            positions: states.len(),
-            t_from: scene.times[0],
-            t_to: scene.times[scene.times.len() - 1],
-            max_residual,
-            newton_iterations_max: max_iter,
-            newton_iterations_mean: mean_iter,
-            columns: cols.iter().map(|c| c.name.as_str()).collect(),
-            extremes,
-            strokes: strokes.iter().map(|g| (g.measure.label.clone(), stroke_record(scene, &g.stroke))).collect(),
-            power_residual_max,
-            groups,
-            near_singular: near_singular
-                .iter()
-                .map(|n| NearSingularRecord {
-                    t: n.t,
-                    drivers: &n.drivers,
-                    constraints: &n.constraints,
-                    pivot: n.pivot,
-                })
-                .collect(),
-            samples,
-        },
-        &scene.name,
-    )?;
-    let iterations = if assur.all_closed_form() && max_iter == 0 {
-        "no Newton iterations (every group in closed form)".to_string()
-    } else {
-        format!("Newton iterations per step ≤ {max_iter} (mean {mean_iter:.2})")
-    };
-    let report = format!(
-        "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
-         {iterations}",
-        scene.name,
-        mech.bodies.len(),
-        mech.joints.len(),
-        mech.drivers.len(),
-        states.len(),
-        scene.times[0],
-        scene.times[scene.times.len() - 1],
-        max_residual,
-    );
-    let mut report = report;
-    report.push('\n');
-    report.push_str(&groups_line);
-    for g in &strokes {
-        report.push('\n');
-        report.push_str(&stroke_line(scene, g));
-    }
-    if let (Some(f), Some(p)) = (&forces, power_residual_max) {
-        report.push('\n');
-        report.push_str(&forces_line(scene, f, p));
     }
 
     let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
@@ -307,50 +199,171 @@ pub(super) fn products(
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
 
-    // Diagrams, one per measured column, as a textbook draws them.
-    let (x_label, x) = abscissa(scene, &states);
-    let plots: Vec<Plot> = scene
-        .measures
-        .iter()
-        .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
-        .map(|(m, q)| plot_of(scene, m, q, &states, &strokes))
-        .collect();
-    let pages = match paper {
-        Some(paper) => {
-            let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
-            sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names)
-        }
-        None => Vec::new(),
-    };
-    let mut diagrams: Vec<products::Diagram> = plots
-        .into_iter()
-        .zip(&cols)
-        .map(|(p, c)| products::Diagram {
-            stem: c.name.clone(),
-            drawing: diagram(&Diagram {
-                title: p.title,
-                x_label: x_label.clone(),
-                y_label: p.y_label,
-                series: vec![Series { label: c.name.clone(), x: x.clone(), y: p.values }],
-            }),
-        })
-        .collect();
-    // And one per reaction and driver force, against the same abscissa.
-    if let Some(f) = &forces {
-        diagrams.extend(
-            force_diagrams(scene, f, &x_label, &x)
-                .into_iter()
-                .map(|(stem, d)| products::Diagram { stem, drawing: diagram(&d) }),
+    let extras = if picture_only {
+        Extras::default()
+    } else {
+        let force_cols = forces.as_ref().map(|f| force_columns(scene, f)).unwrap_or_default();
+        let strokes = guided_strokes(scene, &mut solver, &states).map_err(|e| solve_err(file)(e.into()))?;
+        let max_residual = states.iter().map(|s| s.residual).fold(0.0, f64::max);
+        let max_iter = states.iter().skip(1).map(|s| s.iterations).max().unwrap_or(0);
+        let mean_iter = if states.len() > 1 {
+            states.iter().skip(1).map(|s| s.iterations as f64).sum::<f64>() / (states.len() - 1) as f64
+        } else {
+            0.0
+        };
+        // JSON summary.
+        let samples = states
+            .iter()
+            .enumerate()
+            .map(|(k, s)| Sample {
+                t: s.t,
+                values: cols.iter().map(|c| (c.name.clone(), c.values[k])).collect(),
+                near_singular: s.near_singular.is_some().then_some(true),
+                reactions: forces.as_ref().map(|f| reaction_records(scene, &f[k])),
+                drivers: forces.as_ref().map(|f| {
+                    scene.mechanism.drivers.iter().zip(&f[k].drivers).map(|(d, v)| (d.name.clone(), v + 0.0)).collect()
+                }),
+                power_residual: forces.as_ref().map(|f| f[k].power_residual),
+                sliding: if out.velocity { sliding_records(scene, s) } else { BTreeMap::new() },
+            })
+            .collect();
+        let power_residual_max = forces.as_ref().map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max));
+        let extremes = cols
+            .iter()
+            .map(|c| {
+                let (mut kmin, mut kmax) = (0, 0);
+                for (k, v) in c.values.iter().enumerate() {
+                    if *v < c.values[kmin] {
+                        kmin = k;
+                    }
+                    if *v > c.values[kmax] {
+                        kmax = k;
+                    }
+                }
+                let e =
+                    Extremes { min: c.values[kmin], t_min: states[kmin].t, max: c.values[kmax], t_max: states[kmax].t };
+                (c.name.clone(), e)
+            })
+            .collect();
+        let mech = &scene.mechanism;
+        let summary = products::summary_value(
+            &MotionSummary {
+                kind: "linkage",
+                name: &scene.name,
+                units: scene.units.length(),
+                outputs: [(true, "position"), (out.velocity, "velocity"), (out.acceleration, "acceleration")]
+                    .into_iter()
+                    .chain([(forces.is_some(), "forces")])
+                    .filter_map(|(on, name)| on.then_some(name))
+                    .collect(),
+                bodies: mech.bodies.len(),
+                joints: mech.joints.len(),
+                drivers: mech.drivers.len(),
+                positions: states.len(),
+                t_from: scene.times[0],
+                t_to: scene.times[scene.times.len() - 1],
+                max_residual,
+                newton_iterations_max: max_iter,
+                newton_iterations_mean: mean_iter,
+                columns: cols.iter().map(|c| c.name.as_str()).collect(),
+                extremes,
+                strokes: strokes.iter().map(|g| (g.measure.label.clone(), stroke_record(scene, &g.stroke))).collect(),
+                power_residual_max,
+                groups,
+                near_singular: near_singular
+                    .iter()
+                    .map(|n| NearSingularRecord {
+                        t: n.t,
+                        drivers: &n.drivers,
+                        constraints: &n.constraints,
+                        pivot: n.pivot,
+                    })
+                    .collect(),
+                samples,
+            },
+            &scene.name,
+        )?;
+        let iterations = if assur.all_closed_form() && max_iter == 0 {
+            "no Newton iterations (every group in closed form)".to_string()
+        } else {
+            format!("Newton iterations per step ≤ {max_iter} (mean {mean_iter:.2})")
+        };
+        let report = format!(
+            "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
+             {iterations}",
+            scene.name,
+            mech.bodies.len(),
+            mech.joints.len(),
+            mech.drivers.len(),
+            states.len(),
+            scene.times[0],
+            scene.times[scene.times.len() - 1],
+            max_residual,
         );
-    }
+        let mut report = report;
+        report.push('\n');
+        report.push_str(&groups_line);
+        for g in &strokes {
+            report.push('\n');
+            report.push_str(&stroke_line(scene, g));
+        }
+        if let (Some(f), Some(p)) = (&forces, power_residual_max) {
+            report.push('\n');
+            report.push_str(&forces_line(scene, f, p));
+        }
 
-    // CSV.
-    let all_cols = || cols.iter().chain(&force_cols);
-    let mut csv = Csv::new(std::iter::once("t".to_string()).chain(all_cols().map(|c| c.name.clone())));
-    for (k, s) in states.iter().enumerate() {
-        csv.row(std::iter::once(s.t).chain(all_cols().map(|c| c.values[k])));
-    }
+        // Diagrams, one per measured column, as a textbook draws them.
+        let (x_label, x) = abscissa(scene, &states);
+        let plots: Vec<Plot> = scene
+            .measures
+            .iter()
+            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+            .map(|(m, q)| plot_of(scene, m, q, &states, &strokes))
+            .collect();
+        let pages = match paper {
+            Some(paper) => {
+                let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
+                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names)
+            }
+            None => Vec::new(),
+        };
+        let mut diagrams: Vec<products::Diagram> = plots
+            .into_iter()
+            .zip(&cols)
+            .map(|(p, c)| products::Diagram {
+                stem: c.name.clone(),
+                drawing: diagram(&Diagram {
+                    title: p.title,
+                    x_label: x_label.clone(),
+                    y_label: p.y_label,
+                    series: vec![Series { label: c.name.clone(), x: x.clone(), y: p.values }],
+                }),
+            })
+            .collect();
+        // And one per reaction and driver force, against the same abscissa.
+        if let Some(f) = &forces {
+            diagrams.extend(
+                force_diagrams(scene, f, &x_label, &x)
+                    .into_iter()
+                    .map(|(stem, d)| products::Diagram { stem, drawing: diagram(&d) }),
+            );
+        }
 
+        // CSV.
+        let all_cols = || cols.iter().chain(&force_cols);
+        let mut csv = Csv::new(std::iter::once("t".to_string()).chain(all_cols().map(|c| c.name.clone())));
+        for (k, s) in states.iter().enumerate() {
+            csv.row(std::iter::once(s.t).chain(all_cols().map(|c| c.values[k])));
+        }
+        Extras {
+            sheets: Vec::new(),
+            pages,
+            diagrams,
+            tables: vec![products::Table { suffix: String::new(), csv }],
+            summary,
+            report,
+        }
+    };
     let (mech, dynamics) = (scene.mechanism.clone(), scene.dynamics.clone());
     let forces = forces.unwrap_or_default();
     let (frames, figure, states) = (Arc::new(frames), Arc::new(figure), Arc::new(states));
@@ -389,12 +402,12 @@ pub(super) fn products(
             Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
         ),
         positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
-        sheets: Vec::new(),
-        pages,
-        diagrams,
-        tables: vec![products::Table { suffix: String::new(), csv }],
-        summary,
-        report,
+        sheets: extras.sheets,
+        pages: extras.pages,
+        diagrams: extras.diagrams,
+        tables: extras.tables,
+        summary: extras.summary,
+        report: extras.report,
         warnings,
     })
 }

@@ -44,6 +44,11 @@ pub struct RunOptions {
     /// The `--set KEY=VALUE` changes the scene was loaded with: the live page applies them
     /// to the scene file's text when it opens.
     pub sets: Vec<String>,
+    /// Only the picture and the warnings: no sheets, printed pages, diagrams, tables, JSON
+    /// summary or report (`Null` and empty). The live page's answer to a change, which makes
+    /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
+    /// make everything anyway. The picture and the warnings are the same either way.
+    pub picture_only: bool,
 }
 
 /// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
@@ -88,8 +93,8 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
     }
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
-        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets),
-        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets),
+        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, opts.picture_only),
+        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, opts.picture_only),
         Scene::Chain(s) => chain::products(s, &file),
     }
 }

@@ -112,6 +112,24 @@ pub struct Products {
     pub warnings: Vec<String>,
 }
 
+/// What a run makes besides its picture and warnings (all of it empty, the summary `Null`,
+/// when only the picture is asked for: [`RunOptions::picture_only`](super::RunOptions)).
+#[derive(Default)]
+pub(crate) struct Extras {
+    /// Extra sheets.
+    pub sheets: Vec<Sheet>,
+    /// Per-position printed pages.
+    pub pages: Vec<Page>,
+    /// Diagrams.
+    pub diagrams: Vec<Diagram>,
+    /// CSV tables.
+    pub tables: Vec<Table>,
+    /// The JSON summary.
+    pub summary: serde_json::Value,
+    /// The terminal's report.
+    pub report: String,
+}
+
 /// A typed summary as the JSON value the products carry (keys in the order serde_json
 /// keeps them: sorted).
 pub fn summary_value(summary: &impl Serialize, name: &str) -> Result<serde_json::Value, Error> {

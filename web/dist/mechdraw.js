@@ -128,19 +128,42 @@ let wasm_bindgen = (function(exports) {
             wasm.__wbg_live_free(ptr, 0);
         }
         /**
-         * The scene's diagrams as JSON: `[[stem, svg], ...]`.
+         * A motion's base SVG, shared by every frame (`""` for a still picture).
          * @returns {string}
          */
-        diagrams() {
+        base() {
             let deferred1_0;
             let deferred1_1;
             try {
-                const ret = wasm.live_diagrams(this.__wbg_ptr);
+                const ret = wasm.live_base(this.__wbg_ptr);
                 deferred1_0 = ret[0];
                 deferred1_1 = ret[1];
                 return getStringFromWasm0(ret[0], ret[1]);
             } finally {
                 wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
+         * The scene's diagrams as JSON: `[[stem, svg], ...]` (made when first asked for
+         * after a change).
+         * @returns {string}
+         */
+        diagrams() {
+            let deferred2_0;
+            let deferred2_1;
+            try {
+                const ret = wasm.live_diagrams(this.__wbg_ptr);
+                var ptr1 = ret[0];
+                var len1 = ret[1];
+                if (ret[3]) {
+                    ptr1 = 0; len1 = 0;
+                    throw takeFromExternrefTable0(ret[2]);
+                }
+                deferred2_0 = ptr1;
+                deferred2_1 = len1;
+                return getStringFromWasm0(ptr1, len1);
+            } finally {
+                wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
             }
         }
         /**
@@ -190,6 +213,22 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
+         * What the dragged frame draws on the base (`""`: draw [`Live::dragged_frame`]).
+         * @returns {string}
+         */
+        dragged_moving() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_dragged_moving(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
          * The files of the scene as it stands (without frames), for downloads.
          * @returns {Files}
          */
@@ -227,6 +266,23 @@ let wasm_bindgen = (function(exports) {
             let deferred1_1;
             try {
                 const ret = wasm.live_label(this.__wbg_ptr, k);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
+         * What position `k`'s frame draws on the base (`""`: draw [`Live::frame`] whole).
+         * @param {number} k
+         * @returns {string}
+         */
+        moving(k) {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_moving(this.__wbg_ptr, k);
                 deferred1_0 = ret[0];
                 deferred1_1 = ret[1];
                 return getStringFromWasm0(ret[0], ret[1]);
@@ -365,35 +421,48 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
-         * The scene's sheets as JSON: `[[suffix, svg], ...]`.
+         * The scene's sheets as JSON: `[[suffix, svg], ...]` (made when first asked for
+         * after a change).
          * @returns {string}
          */
         sheets() {
-            let deferred1_0;
-            let deferred1_1;
+            let deferred2_0;
+            let deferred2_1;
             try {
                 const ret = wasm.live_sheets(this.__wbg_ptr);
-                deferred1_0 = ret[0];
-                deferred1_1 = ret[1];
-                return getStringFromWasm0(ret[0], ret[1]);
+                var ptr1 = ret[0];
+                var len1 = ret[1];
+                if (ret[3]) {
+                    ptr1 = 0; len1 = 0;
+                    throw takeFromExternrefTable0(ret[2]);
+                }
+                deferred2_0 = ptr1;
+                deferred2_1 = len1;
+                return getStringFromWasm0(ptr1, len1);
             } finally {
-                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+                wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
             }
         }
         /**
-         * The JSON summary, pretty.
+         * The JSON summary, pretty (made when first asked for after a change).
          * @returns {string}
          */
         summary() {
-            let deferred1_0;
-            let deferred1_1;
+            let deferred2_0;
+            let deferred2_1;
             try {
                 const ret = wasm.live_summary(this.__wbg_ptr);
-                deferred1_0 = ret[0];
-                deferred1_1 = ret[1];
-                return getStringFromWasm0(ret[0], ret[1]);
+                var ptr1 = ret[0];
+                var len1 = ret[1];
+                if (ret[3]) {
+                    ptr1 = 0; len1 = 0;
+                    throw takeFromExternrefTable0(ret[2]);
+                }
+                deferred2_0 = ptr1;
+                deferred2_1 = len1;
+                return getStringFromWasm0(ptr1, len1);
             } finally {
-                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+                wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
             }
         }
         /**
