@@ -205,6 +205,23 @@ impl Session {
         Ok(self.full.get_or_init(|| p))
     }
 
+    /// A triad's assembly modes as the page lists them: `{"phi1_deg": [...], "pattern_phi1_deg":
+    /// 75.77 or null, "drawn": index}` (from the JSON summary's `solutions`, `pattern` and
+    /// `primary`); `None` for the other kinds.
+    pub fn modes(&self) -> Result<Option<serde_json::Value>, Error> {
+        let s = &self.products()?.summary;
+        if s["kind"] != "triad" {
+            return Ok(None);
+        }
+        let phi1: Vec<serde_json::Value> =
+            s["solutions"].as_array().map_or(&[][..], Vec::as_slice).iter().map(|m| m["phi1_deg"].clone()).collect();
+        Ok(Some(serde_json::json!({
+            "phi1_deg": phi1,
+            "pattern_phi1_deg": s["pattern"]["phi1_deg"],
+            "drawn": s["primary"],
+        })))
+    }
+
     /// The warnings of the scene as it stands (gaps, dead points, γ_min, ...), one line each.
     pub fn warnings(&self) -> &[String] {
         &self.products.warnings
@@ -631,6 +648,12 @@ pub mod js {
         pub fn summary(&self) -> Result<String, String> {
             let p = self.0.products().map_err(|e| e.to_string())?;
             serde_json::to_string_pretty(&p.summary).map_err(|e| e.to_string())
+        }
+
+        /// A triad's modes as JSON (`{"phi1_deg": [...], "pattern_phi1_deg", "drawn"}`), `""`
+        /// for the other kinds.
+        pub fn modes(&self) -> Result<String, String> {
+            Ok(self.0.modes().map_err(|e| e.to_string())?.map(|m| m.to_string()).unwrap_or_default())
         }
 
         /// The warnings, one a line.
