@@ -22,7 +22,10 @@
 //! Branch continuity: a dyad has two assembly modes; at every step the solver takes the
 //! root nearest the predicted position (the last position extrapolated with its velocity
 //! and acceleration, or linearly when only positions are solved) when it is clearly the
-//! nearer, else the branch it took at the last step; it assembles the first position in
+//! nearer, else the branch it took at the last step. Nearest is judged on one point or
+//! direction per dyad, and only the chosen root's poses are built: RRR the joint between
+//! its links where b1's predicted angle puts it, RRP the slider's predicted origin, RPR the
+//! guide's normal at its predicted angle (PRP and RPP have one root); it assembles the first position in
 //! the mode the general solver finds from the scene's initial placement, so that both
 //! routes follow the same branch. Body angles are kept continuous (not wrapped), as the
 //! general solver keeps them, so both give the same coordinates q.
@@ -819,9 +822,6 @@ fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs
     poses[b] = Pose { r, phi, c: cs.0, s: cs.1 };
 }
 
-/// A pose candidate of a dyad per body: (R, φ when known exactly, cos/sin of φ).
-type Candidate = [(Vector, Option<f64>, (f64, f64)); 2];
-
 /// The angle nearest `pred` with the rotation `cs`.
 #[inline]
 fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
@@ -872,20 +872,23 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     }
 }
 
-/// Squared distance of a candidate from the predicted body origins in `q` (over `l`) and
-/// the bodies' rotations at the last step (`poses`, not yet overwritten: the chord between
-/// unit vectors, no trigonometry).
+/// Body `b`'s rotation (cos, sin) at the angle predicted for this step (in q; its pose
+/// still holds the last step's): the last rotation turned by the predicted change through
+/// a short series (errors below |Δ|⁷/5040 < 2e-6: the prediction only chooses a dyad's
+/// root, it is never part of a result). A predicted turn over 0.5 rad is not trusted (a
+/// time step too coarse for the motion extrapolates to any angle): the last rotation is
+/// the guess then.
 #[inline(always)]
-fn distance(c: &Candidate, bodies: [usize; 2], q: &[f64], poses: &[Pose], l: f64) -> f64 {
-    let mut d = 0.0;
-    for (k, &b) in bodies.iter().enumerate() {
-        let (r, _, cs) = c[k];
-        let dx = (r.x - q[3 * b]) / l;
-        let dy = (r.y - q[3 * b + 1]) / l;
-        let (dc, ds) = (cs.0 - poses[b].c, cs.1 - poses[b].s);
-        d += dx * dx + dy * dy + dc * dc + ds * ds;
+fn predicted_rotation(s: &Solver, b: usize) -> (f64, f64) {
+    let last = s.poses[b];
+    let d = s.q[3 * b + 2] - last.phi;
+    if d.abs() <= 0.5 {
+        let d2 = d * d;
+        let turn = (1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0)), d * (1.0 - d2 * (1.0 / 6.0 - d2 / 120.0)));
+        compose((last.c, last.s), turn)
+    } else {
+        (last.c, last.s)
     }
-    d
 }
 
 /// The Assur-group solver: the same outputs as [`Solver`] (a [`State`] per step, the same
@@ -1201,7 +1204,9 @@ impl AssurSolver {
             match plan.position {
                 Position::DrivenAngle { u, pin, reference, sign, law, .. } => {
                     let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
-                    let cs = (libm::cos(phi), libm::sin(phi));
+                    // One argument reduction for both (the same bits as libm's sin and cos).
+                    let (sn, cn) = libm::sincos(phi);
+                    let cs = (cn, sn);
                     let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
                     set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
                 }
@@ -1231,17 +1236,19 @@ impl AssurSolver {
                     }
                     let e = dv / d;
                     let h = h2.sqrt();
-                    let mut roots = [(0.0, NO_CANDIDATE); 2];
-                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
-                        let j = p1 + e * a + perp(e) * (side * h);
-                        // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
-                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
-                        let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
-                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
-                    }
-                    let k = choose(&roots, &mut plan.side);
-                    apply(s, [b1, b2], roots[k].1);
+                    // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
+                    // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
+                    let m = p1 + e * a;
+                    let arm = a1 - k1.local;
+                    let dd = p1 + rot(predicted_rotation(s, b1), arm) - m;
+                    let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
+                    let side = if choose(common - x, common + x, &mut plan.side) == 0 { 1.0 } else { -1.0 };
+                    let j = m + perp(e) * (side * h);
+                    // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
+                    let c1 = rotation_scaled(arm, j - p1, d1 * d1);
+                    let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
+                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+                    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
                 }
                 Position::Rrp { b1, b2, k1, a1, a2, s3, d1 } => {
                     let p1 = glob(&s.poses, k1.known);
@@ -1259,15 +1266,19 @@ impl AssurSolver {
                         return Err(fail(plan.group.joints[1], why, s, plan));
                     }
                     let root = disc.sqrt();
-                    let mut roots = [(0.0, NO_CANDIDATE); 2];
-                    for (k, sv) in [-b + root, -b - root].into_iter().enumerate() {
-                        let j = base + w * sv;
-                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (c + w * sv, Some(phi2), cs2)];
-                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
-                    }
-                    let k = choose(&roots, &mut plan.side);
-                    apply(s, [b1, b2], roots[k].1);
+                    // b2's origin is c + s·w and the joint rides with it (b2's rotation is
+                    // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
+                    // along the line and |rp − c|² − s_p² off it.
+                    let off = Vector::new(s.q[3 * b2], s.q[3 * b2 + 1]) - c;
+                    let sp = off.dot(&w);
+                    let across = off.norm_squared() - sp * sp;
+                    let (sv0, sv1) = (-b + root, -b - root);
+                    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, &mut plan.side);
+                    let sv = if k == 0 { sv0 } else { sv1 };
+                    let j = base + w * sv;
+                    let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
+                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+                    set_body(&mut s.q, &mut s.poses, b2, c + w * sv, phi2, cs2);
                 }
                 Position::Rpr { b1, b2, k1, mid, k3 } => {
                     let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
@@ -1293,17 +1304,19 @@ impl AssurSolver {
                     let dh = dv / d;
                     let x = (-c0 / d).clamp(-1.0, 1.0);
                     let y = (1.0 - x * x).max(0.0).sqrt();
-                    let mut roots = [(0.0, NO_CANDIDATE); 2];
-                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
-                        let ng = dh * x + perp(dh) * (side * y);
-                        let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
-                        let cs = compose(cg, mid.turn);
-                        let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
-                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
-                    }
-                    let k = choose(&roots, &mut plan.side);
-                    apply(s, [b1, b2], roots[k].1);
+                    // The two bodies turn together: the root whose guide normal
+                    // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
+                    let guide = if mid.b1_is_slider { b2 } else { b1 };
+                    let u = dh * x - rot(predicted_rotation(s, guide), mid.n0);
+                    let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
+                    let side =
+                        if choose(common + cross_term, common - cross_term, &mut plan.side) == 0 { 1.0 } else { -1.0 };
+                    let ng = dh * x + perp(dh) * (side * y);
+                    let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
+                    let cs = compose(cg, mid.turn);
+                    let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
+                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+                    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
                 }
                 Position::Prp { b1, b2, s1, a1, a2, s3 } => {
                     let (phi1, cs1, c1, w1) = s1.line(&s.poses);
@@ -1669,17 +1682,13 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
     }
 }
 
-/// An unused candidate slot.
-const NO_CANDIDATE: Candidate = [(Vector::new(0.0, 0.0), None, (1.0, 0.0)); 2];
-
 /// Which of a dyad's two roots (first: the `+` branch of its formula, second: the `−`)
-/// continues the motion: the one nearest the prediction when it is clearly the nearer
-/// (its squared distance under 1/16 of the other's), else the branch taken at the last
-/// step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps between
-/// dead points — so that a time step too coarse for the prediction keeps the mode.
+/// continues the motion, from their squared distances `d0`, `d1` to the prediction: the
+/// nearer when it is clearly the nearer (under 1/16 of the other), else the branch taken at
+/// the last step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps
+/// between dead points — so that a time step too coarse for the prediction keeps the mode.
 #[inline(always)]
-fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
-    let (d0, d1) = (roots[0].0, roots[1].0);
+fn choose(d0: f64, d1: f64, side: &mut f64) -> usize {
     let k = if d0 <= d1 / 16.0 {
         0
     } else if d1 <= d0 / 16.0 {
@@ -1695,16 +1704,13 @@ fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
     k
 }
 
-/// Writes the chosen candidate, its angles continued from the last step.
+/// Writes body `b` at origin `r` and rotation `cs`, its angle continued from the last step
+/// (still in its cached pose) by this step's turn.
 #[inline(always)]
-fn apply(s: &mut Solver, bodies: [usize; 2], cand: Candidate) {
-    for (k, &b) in bodies.iter().enumerate() {
-        let (r, phi, cs) = cand[k];
-        // Continuous angles: the last one (still in the cached pose) plus this step's turn.
-        let last = s.poses[b];
-        let phi = phi.unwrap_or_else(|| last.phi + turn_between((last.c, last.s), cs));
-        set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
-    }
+fn turn_to(s: &mut Solver, b: usize, r: Vector, cs: (f64, f64)) {
+    let last = s.poses[b];
+    let phi = last.phi + turn_between((last.c, last.s), cs);
+    set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
 }
 
 /// Newton–Raphson on one group's coordinates from the predicted q (the known bodies fixed).
@@ -1875,6 +1881,33 @@ mod tests {
                     "{x}, {y}"
                 );
             }
+        }
+    }
+
+    #[test]
+    fn a_cranks_sincos_is_libms_sin_and_cos_bit_for_bit() {
+        // The driven crank takes both from one argument reduction; results stay the bits of
+        // the two separate calls (over many turns, both signs, near the reduction's edges).
+        for k in -200_000..=200_000 {
+            let x = k as f64 * 1.7e-4 + if k % 7 == 0 { std::f64::consts::FRAC_PI_4 } else { 0.0 };
+            let (sn, cs) = libm::sincos(x);
+            assert_eq!((sn.to_bits(), cs.to_bits()), (libm::sin(x).to_bits(), libm::cos(x).to_bits()), "{x}");
+        }
+    }
+
+    #[test]
+    fn a_predicted_rotation_is_the_rotation_at_the_predicted_angle() {
+        let mut s = Solver::new(slider_crank()).unwrap();
+        let q = s.q.clone();
+        super::super::fill_poses(&q, &mut s.poses);
+        for (last, turn) in [(0.3, 0.0), (0.3, 0.01), (-2.0, -0.4), (3.0, 0.5), (1.0, 0.5000001), (1.0, -3.0)] {
+            let (sn, cs) = libm::sincos(last);
+            s.poses[1] = Pose { r: Vector::zeros(), phi: last, c: cs, s: sn };
+            s.q[5] = last + turn;
+            let (c, sv) = predicted_rotation(&s, 1);
+            // A turn over 0.5 rad is not trusted: the last rotation.
+            let expect = if turn.abs() <= 0.5 { last + turn } else { last };
+            assert!((c - libm::cos(expect)).abs() < 2e-6 && (sv - libm::sin(expect)).abs() < 2e-6, "{last} {turn}");
         }
     }
 
