@@ -872,22 +872,67 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     }
 }
 
-/// Body `b`'s rotation (cos, sin) at the angle predicted for this step (in q; its pose
-/// still holds the last step's): the last rotation turned by the predicted change through
+/// Body `b`'s rotation (cos, sin) at the angle predicted for this step (its pose still
+/// holds the last step's): the last rotation turned by the predicted change through
 /// a short series (errors below |Δ|⁷/5040 < 2e-6: the prediction only chooses a dyad's
 /// root, it is never part of a result). A predicted turn over 0.5 rad is not trusted (a
 /// time step too coarse for the motion extrapolates to any angle): the last rotation is
 /// the guess then.
 #[inline(always)]
-fn predicted_rotation(s: &Solver, b: usize) -> (f64, f64) {
+fn predicted_rotation(s: &Solver, pred: &Predictor, b: usize) -> (f64, f64) {
     let last = s.poses[b];
-    let d = s.q[3 * b + 2] - last.phi;
+    let d = pred.at(s, 3 * b + 2) - last.phi;
     if d.abs() <= 0.5 {
         let d2 = d * d;
         let turn = (1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0)), d * (1.0 - d2 * (1.0 / 6.0 - d2 / 120.0)));
         compose((last.c, last.s), turn)
     } else {
         (last.c, last.s)
+    }
+}
+
+/// How this step's q is predicted from the last (which `q_prev` holds; the solver's own q
+/// holds the step before it until a group overwrites its bodies' coordinates).
+#[derive(Debug, Clone, Copy)]
+enum Extrapolation {
+    /// The last q as it is (the first position, or no earlier one).
+    Hold,
+    /// Linearly from the last two positions, Δt over the last Δt as given.
+    Linear(f64),
+    /// q + q̇·Δt + ½·q̈·Δt² with the last step's rates (in `qd_prev`, `qdd_prev`).
+    Taylor(f64),
+}
+
+/// This step's prediction of q, computed per coordinate where a group asks for it (a dyad
+/// one angle or point, Newton and the triad their bodies' coordinates): the same numbers,
+/// in the same order of operations, as extrapolating the whole q first.
+struct Predictor<'a> {
+    how: Extrapolation,
+    last: &'a [f64],
+    qd: &'a [f64],
+    qdd: &'a [f64],
+}
+
+impl Predictor<'_> {
+    /// The predicted coordinate `i`, read before the group that owns it writes `s.q[i]`.
+    #[inline(always)]
+    fn at(&self, s: &Solver, i: usize) -> f64 {
+        let now = self.last[i];
+        match self.how {
+            Extrapolation::Hold => now,
+            Extrapolation::Linear(f) => now + (now - s.q[i]) * f,
+            Extrapolation::Taylor(dt) => now + self.qd[i] * dt + 0.5 * self.qdd[i] * dt * dt,
+        }
+    }
+
+    /// Writes the prediction of `bodies`' coordinates into `s.q` (for the groups that start
+    /// from it: the triad's choice of mode, Newton's first iterate).
+    fn write(&self, s: &mut Solver, bodies: &[usize]) {
+        for &b in bodies {
+            for i in 3 * b..3 * b + 3 {
+                s.q[i] = self.at(s, i);
+            }
+        }
     }
 }
 
@@ -899,14 +944,18 @@ pub struct AssurSolver {
     /// assembles the first position (the assembly mode) and factors Φq for the forces.
     inner: Solver,
     plans: Vec<Plan>,
-    /// q, q̇, q̈ of the step before (the positions-only predictor; the fallback at an
-    /// exact dead point).
+    /// q, q̇, q̈ of the last step while a step is solved (the prediction; the fallback at
+    /// an exact dead point): swapped with the solver's own at the start of a step, so the
+    /// solver's hold the step before until overwritten (q the linear predictor's second
+    /// point).
     q_prev: Vec<f64>,
     qd_prev: Vec<f64>,
     qdd_prev: Vec<f64>,
     /// Whether q̇ and q̈ belong to the last step (the Taylor predictor may use them).
     rates_valid: bool,
     dt_prev: Option<f64>,
+    /// How the step being solved predicts q.
+    how: Extrapolation,
     /// Newton group block and residual buffers.
     work: Vec<f64>,
 }
@@ -942,6 +991,7 @@ impl AssurSolver {
             qdd_prev: vec![0.0; n],
             rates_valid: false,
             dt_prev: None,
+            how: Extrapolation::Hold,
             work: vec![0.0; most * most + 2 * most],
         })
     }
@@ -1069,7 +1119,10 @@ impl AssurSolver {
     /// The first position: the general solver assembles from the scene's placement (its
     /// assembly mode is the prediction every group's root is chosen by).
     fn first(&mut self, t: f64) -> Result<(), LinkageError> {
-        match self.inner.assemble(t) {
+        self.how = Extrapolation::Hold;
+        let assembled = self.inner.assemble(t);
+        self.q_prev.copy_from_slice(&self.inner.q);
+        match assembled {
             Ok(_) => Ok(()),
             Err(e) => {
                 // Name the group that cannot be assembled, when a closed form can tell.
@@ -1080,6 +1133,7 @@ impl AssurSolver {
                     self.inner.q[3 * i + 2] = b.angle;
                 }
                 super::fill_poses(&self.inner.q, &mut self.inner.poses);
+                self.q_prev.copy_from_slice(&self.inner.q);
                 self.inner.eval_laws(t)?;
                 self.positions(t)?;
                 Err(e)
@@ -1139,36 +1193,30 @@ impl AssurSolver {
         Ok(())
     }
 
-    /// The predicted q: the last q extrapolated with q̇·Δt + ½·q̈·Δt² when the rates
-    /// belong to it, else linearly from the last two positions (q_prev keeps the last q).
-    /// With `rates`, q̇ and q̈ are kept too (the fallback at an exact dead point restarts
-    /// from them); a positions-only step leaves them as they are and does not need them.
+    /// Starts a step: the last q, q̇, q̈ into `q_prev`, `qd_prev`, `qdd_prev` and how q is
+    /// predicted from them — with q̇·Δt + ½·q̈·Δt² when the rates belong to the last q,
+    /// else linearly from the last two positions. The last q and (on a step with rates)
+    /// q̇, q̈ are swapped in, not copied: every group writes all its bodies' coordinates
+    /// and rates. A positions-only step leaves q̇ and q̈ as they are (copied once for the
+    /// prediction when they belong to the last q).
     fn predict(&mut self, dt: f64, rates: bool) {
         let s = &mut self.inner;
-        let linear = self.dt_prev.filter(|d| *d != 0.0).map(|d| dt / d);
+        std::mem::swap(&mut s.q, &mut self.q_prev);
         if rates {
+            std::mem::swap(&mut s.qd, &mut self.qd_prev);
+            std::mem::swap(&mut s.qdd, &mut self.qdd_prev);
+        } else if self.rates_valid {
             self.qd_prev.copy_from_slice(&s.qd);
             self.qdd_prev.copy_from_slice(&s.qdd);
         }
-        let (q, q_prev) = (&mut s.q[..], &mut self.q_prev[..]);
-        if self.rates_valid {
-            for (((q, qp), &qd), &qdd) in q.iter_mut().zip(q_prev.iter_mut()).zip(&s.qd).zip(&s.qdd) {
-                let now = *q;
-                *q = now + qd * dt + 0.5 * qdd * dt * dt;
-                *qp = now;
+        self.how = if self.rates_valid {
+            Extrapolation::Taylor(dt)
+        } else {
+            match self.dt_prev.filter(|d| *d != 0.0) {
+                Some(d) => Extrapolation::Linear(dt / d),
+                None => Extrapolation::Hold,
             }
-            return;
-        }
-        match linear {
-            Some(f) => {
-                for (q, qp) in q.iter_mut().zip(q_prev.iter_mut()) {
-                    let now = *q;
-                    *q = now + (now - *qp) * f;
-                    *qp = now;
-                }
-            }
-            None => q_prev.copy_from_slice(q),
-        }
+        };
     }
 
     /// Solves every group at `t` from the predicted q (laws evaluated), then the rates.
@@ -1191,6 +1239,7 @@ impl AssurSolver {
         // How far a closure may miss and still count as met: the residual every answer
         // must meet (the general solver accepts the same).
         let slack = crate::geom::tol::RESIDUAL_REL * l;
+        let pred = Predictor { how: self.how, last: &self.q_prev, qd: &self.qd_prev, qdd: &self.qdd_prev };
         for gi in 0..self.plans.len() {
             let s = &mut self.inner;
             let plan = &mut self.plans[gi];
@@ -1240,7 +1289,7 @@ impl AssurSolver {
                     // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
                     let m = p1 + e * a;
                     let arm = a1 - k1.local;
-                    let dd = p1 + rot(predicted_rotation(s, b1), arm) - m;
+                    let dd = p1 + rot(predicted_rotation(s, &pred, b1), arm) - m;
                     let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
                     let side = if choose(common - x, common + x, &mut plan.side) == 0 { 1.0 } else { -1.0 };
                     let j = m + perp(e) * (side * h);
@@ -1269,7 +1318,7 @@ impl AssurSolver {
                     // b2's origin is c + s·w and the joint rides with it (b2's rotation is
                     // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
                     // along the line and |rp − c|² − s_p² off it.
-                    let off = Vector::new(s.q[3 * b2], s.q[3 * b2 + 1]) - c;
+                    let off = Vector::new(pred.at(s, 3 * b2), pred.at(s, 3 * b2 + 1)) - c;
                     let sp = off.dot(&w);
                     let across = off.norm_squared() - sp * sp;
                     let (sv0, sv1) = (-b + root, -b - root);
@@ -1307,7 +1356,7 @@ impl AssurSolver {
                     // The two bodies turn together: the root whose guide normal
                     // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
                     let guide = if mid.b1_is_slider { b2 } else { b1 };
-                    let u = dh * x - rot(predicted_rotation(s, guide), mid.n0);
+                    let u = dh * x - rot(predicted_rotation(s, &pred, guide), mid.n0);
                     let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
                     let side =
                         if choose(common + cross_term, common - cross_term, &mut plan.side) == 0 { 1.0 } else { -1.0 };
@@ -1366,11 +1415,13 @@ impl AssurSolver {
                     set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
                 }
                 Position::Triad(ref tp) => {
+                    pred.write(s, &plan.group.bodies);
                     if let Err(why) = solve_triad(s, tp) {
                         return Err(fail(plan.group.joints[3], why, s, plan));
                     }
                 }
                 Position::Newton => {
+                    pred.write(s, &plan.group.bodies);
                     newton(s, plan, &mut self.work, t)?;
                 }
             }
@@ -1903,8 +1954,10 @@ mod tests {
         for (last, turn) in [(0.3, 0.0), (0.3, 0.01), (-2.0, -0.4), (3.0, 0.5), (1.0, 0.5000001), (1.0, -3.0)] {
             let (sn, cs) = libm::sincos(last);
             s.poses[1] = Pose { r: Vector::zeros(), phi: last, c: cs, s: sn };
-            s.q[5] = last + turn;
-            let (c, sv) = predicted_rotation(&s, 1);
+            let mut q = s.q.clone();
+            q[5] = last + turn;
+            let pred = Predictor { how: Extrapolation::Hold, last: &q, qd: &q, qdd: &q };
+            let (c, sv) = predicted_rotation(&s, &pred, 1);
             // A turn over 0.5 rad is not trusted: the last rotation.
             let expect = if turn.abs() <= 0.5 { last + turn } else { last };
             assert!((c - libm::cos(expect)).abs() < 2e-6 && (sv - libm::sin(expect)).abs() < 2e-6, "{last} {turn}");
