@@ -22,7 +22,10 @@
 //! Branch continuity: a dyad has two assembly modes; at every step the solver takes the
 //! root nearest the predicted position (the last position extrapolated with its velocity
 //! and acceleration, or linearly when only positions are solved) when it is clearly the
-//! nearer, else the branch it took at the last step; it assembles the first position in
+//! nearer, else the branch it took at the last step. Nearest is judged on one point or
+//! direction per dyad, and only the chosen root's poses are built: RRR the joint between
+//! its links where b1's predicted angle puts it, RRP the slider's predicted origin, RPR the
+//! guide's normal at its predicted angle (PRP and RPP have one root); it assembles the first position in
 //! the mode the general solver finds from the scene's initial placement, so that both
 //! routes follow the same branch. Body angles are kept continuous (not wrapped), as the
 //! general solver keeps them, so both give the same coordinates q.
@@ -819,9 +822,6 @@ fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs
     poses[b] = Pose { r, phi, c: cs.0, s: cs.1 };
 }
 
-/// A pose candidate of a dyad per body: (R, φ when known exactly, cos/sin of φ).
-type Candidate = [(Vector, Option<f64>, (f64, f64)); 2];
-
 /// The angle nearest `pred` with the rotation `cs`.
 #[inline]
 fn unwrap_near(cs: (f64, f64), pred: f64) -> f64 {
@@ -841,21 +841,9 @@ fn rotation_scaled(from: Vector, to: Vector, lengths: f64) -> (f64, f64) {
     (from.dot(&to) / lengths, cross(from, to) / lengths)
 }
 
-/// atan x = x − x³/3 + x⁵/5 − …, the first twelve terms (|x| ≤ 1/8: error < 1e-24).
-const ATAN_SERIES: [f64; 12] = [
-    1.0,
-    -1.0 / 3.0,
-    1.0 / 5.0,
-    -1.0 / 7.0,
-    1.0 / 9.0,
-    -1.0 / 11.0,
-    1.0 / 13.0,
-    -1.0 / 15.0,
-    1.0 / 17.0,
-    -1.0 / 19.0,
-    1.0 / 21.0,
-    -1.0 / 23.0,
-];
+/// atan x = x − x³/3 + x⁵/5 − …, the first seven terms (|x| ≤ 1/16: the first term left
+/// out, x¹⁵/15, is under 2^-56 of x, below half an ulp).
+const ATAN_SERIES: [f64; 7] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0];
 
 /// The angle in (−π, π] from rotation `from` to rotation `to` (unit (cos, sin) pairs): a
 /// short series for the small turn of one time step, `atan2` for a larger one.
@@ -863,7 +851,7 @@ const ATAN_SERIES: [f64; 12] = [
 fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     let c = to.0 * from.0 + to.1 * from.1;
     let s = to.1 * from.0 - to.0 * from.1;
-    if c > 0.0 && s.abs() <= 0.125 * c {
+    if c > 0.0 && s.abs() <= 0.0625 * c {
         let x = s / c;
         let x2 = x * x;
         x * ATAN_SERIES.iter().rev().fold(0.0, |acc, k| acc * x2 + k)
@@ -872,20 +860,68 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     }
 }
 
-/// Squared distance of a candidate from the predicted body origins in `q` (over `l`) and
-/// the bodies' rotations at the last step (`poses`, not yet overwritten: the chord between
-/// unit vectors, no trigonometry).
+/// Body `b`'s rotation (cos, sin) at the angle predicted for this step (its pose still
+/// holds the last step's): the last rotation turned by the predicted change through
+/// a short series (errors below |Δ|⁷/5040 < 2e-6: the prediction only chooses a dyad's
+/// root, it is never part of a result). A predicted turn over 0.5 rad is not trusted (a
+/// time step too coarse for the motion extrapolates to any angle): the last rotation is
+/// the guess then.
 #[inline(always)]
-fn distance(c: &Candidate, bodies: [usize; 2], q: &[f64], poses: &[Pose], l: f64) -> f64 {
-    let mut d = 0.0;
-    for (k, &b) in bodies.iter().enumerate() {
-        let (r, _, cs) = c[k];
-        let dx = (r.x - q[3 * b]) / l;
-        let dy = (r.y - q[3 * b + 1]) / l;
-        let (dc, ds) = (cs.0 - poses[b].c, cs.1 - poses[b].s);
-        d += dx * dx + dy * dy + dc * dc + ds * ds;
+fn predicted_rotation(s: &Solver, pred: &Predictor, b: usize) -> (f64, f64) {
+    let last = s.poses[b];
+    let d = pred.at(s, 3 * b + 2) - last.phi;
+    if d.abs() <= 0.5 {
+        let d2 = d * d;
+        let turn = (1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0)), d * (1.0 - d2 * (1.0 / 6.0 - d2 / 120.0)));
+        compose((last.c, last.s), turn)
+    } else {
+        (last.c, last.s)
     }
-    d
+}
+
+/// How this step's q is predicted from the last (which `q_prev` holds; the solver's own q
+/// holds the step before it until a group overwrites its bodies' coordinates).
+#[derive(Debug, Clone, Copy)]
+enum Extrapolation {
+    /// The last q as it is (the first position, or no earlier one).
+    Hold,
+    /// Linearly from the last two positions, Δt over the last Δt as given.
+    Linear(f64),
+    /// q + q̇·Δt + ½·q̈·Δt² with the last step's rates (in `qd_prev`, `qdd_prev`).
+    Taylor(f64),
+}
+
+/// This step's prediction of q, computed per coordinate where a group asks for it (a dyad
+/// one angle or point, Newton and the triad their bodies' coordinates): the same numbers,
+/// in the same order of operations, as extrapolating the whole q first.
+struct Predictor<'a> {
+    how: Extrapolation,
+    last: &'a [f64],
+    qd: &'a [f64],
+    qdd: &'a [f64],
+}
+
+impl Predictor<'_> {
+    /// The predicted coordinate `i`, read before the group that owns it writes `s.q[i]`.
+    #[inline(always)]
+    fn at(&self, s: &Solver, i: usize) -> f64 {
+        let now = self.last[i];
+        match self.how {
+            Extrapolation::Hold => now,
+            Extrapolation::Linear(f) => now + (now - s.q[i]) * f,
+            Extrapolation::Taylor(dt) => now + self.qd[i] * dt + 0.5 * self.qdd[i] * dt * dt,
+        }
+    }
+
+    /// Writes the prediction of `bodies`' coordinates into `s.q` (for the groups that start
+    /// from it: the triad's choice of mode, Newton's first iterate).
+    fn write(&self, s: &mut Solver, bodies: &[usize]) {
+        for &b in bodies {
+            for i in 3 * b..3 * b + 3 {
+                s.q[i] = self.at(s, i);
+            }
+        }
+    }
 }
 
 /// The Assur-group solver: the same outputs as [`Solver`] (a [`State`] per step, the same
@@ -896,14 +932,18 @@ pub struct AssurSolver {
     /// assembles the first position (the assembly mode) and factors Φq for the forces.
     inner: Solver,
     plans: Vec<Plan>,
-    /// q, q̇, q̈ of the step before (the positions-only predictor; the fallback at an
-    /// exact dead point).
+    /// q, q̇, q̈ of the last step while a step is solved (the prediction; the fallback at
+    /// an exact dead point): swapped with the solver's own at the start of a step, so the
+    /// solver's hold the step before until overwritten (q the linear predictor's second
+    /// point).
     q_prev: Vec<f64>,
     qd_prev: Vec<f64>,
     qdd_prev: Vec<f64>,
     /// Whether q̇ and q̈ belong to the last step (the Taylor predictor may use them).
     rates_valid: bool,
     dt_prev: Option<f64>,
+    /// How the step being solved predicts q.
+    how: Extrapolation,
     /// Newton group block and residual buffers.
     work: Vec<f64>,
 }
@@ -939,6 +979,7 @@ impl AssurSolver {
             qdd_prev: vec![0.0; n],
             rates_valid: false,
             dt_prev: None,
+            how: Extrapolation::Hold,
             work: vec![0.0; most * most + 2 * most],
         })
     }
@@ -1066,7 +1107,10 @@ impl AssurSolver {
     /// The first position: the general solver assembles from the scene's placement (its
     /// assembly mode is the prediction every group's root is chosen by).
     fn first(&mut self, t: f64) -> Result<(), LinkageError> {
-        match self.inner.assemble(t) {
+        self.how = Extrapolation::Hold;
+        let assembled = self.inner.assemble(t);
+        self.q_prev.copy_from_slice(&self.inner.q);
+        match assembled {
             Ok(_) => Ok(()),
             Err(e) => {
                 // Name the group that cannot be assembled, when a closed form can tell.
@@ -1077,6 +1121,7 @@ impl AssurSolver {
                     self.inner.q[3 * i + 2] = b.angle;
                 }
                 super::fill_poses(&self.inner.q, &mut self.inner.poses);
+                self.q_prev.copy_from_slice(&self.inner.q);
                 self.inner.eval_laws(t)?;
                 self.positions(t)?;
                 Err(e)
@@ -1136,36 +1181,30 @@ impl AssurSolver {
         Ok(())
     }
 
-    /// The predicted q: the last q extrapolated with q̇·Δt + ½·q̈·Δt² when the rates
-    /// belong to it, else linearly from the last two positions (q_prev keeps the last q).
-    /// With `rates`, q̇ and q̈ are kept too (the fallback at an exact dead point restarts
-    /// from them); a positions-only step leaves them as they are and does not need them.
+    /// Starts a step: the last q, q̇, q̈ into `q_prev`, `qd_prev`, `qdd_prev` and how q is
+    /// predicted from them — with q̇·Δt + ½·q̈·Δt² when the rates belong to the last q,
+    /// else linearly from the last two positions. The last q and (on a step with rates)
+    /// q̇, q̈ are swapped in, not copied: every group writes all its bodies' coordinates
+    /// and rates. A positions-only step leaves q̇ and q̈ as they are (copied once for the
+    /// prediction when they belong to the last q).
     fn predict(&mut self, dt: f64, rates: bool) {
         let s = &mut self.inner;
-        let linear = self.dt_prev.filter(|d| *d != 0.0).map(|d| dt / d);
+        std::mem::swap(&mut s.q, &mut self.q_prev);
         if rates {
+            std::mem::swap(&mut s.qd, &mut self.qd_prev);
+            std::mem::swap(&mut s.qdd, &mut self.qdd_prev);
+        } else if self.rates_valid {
             self.qd_prev.copy_from_slice(&s.qd);
             self.qdd_prev.copy_from_slice(&s.qdd);
         }
-        let (q, q_prev) = (&mut s.q[..], &mut self.q_prev[..]);
-        if self.rates_valid {
-            for (((q, qp), &qd), &qdd) in q.iter_mut().zip(q_prev.iter_mut()).zip(&s.qd).zip(&s.qdd) {
-                let now = *q;
-                *q = now + qd * dt + 0.5 * qdd * dt * dt;
-                *qp = now;
+        self.how = if self.rates_valid {
+            Extrapolation::Taylor(dt)
+        } else {
+            match self.dt_prev.filter(|d| *d != 0.0) {
+                Some(d) => Extrapolation::Linear(dt / d),
+                None => Extrapolation::Hold,
             }
-            return;
-        }
-        match linear {
-            Some(f) => {
-                for (q, qp) in q.iter_mut().zip(q_prev.iter_mut()) {
-                    let now = *q;
-                    *q = now + (now - *qp) * f;
-                    *qp = now;
-                }
-            }
-            None => q_prev.copy_from_slice(q),
-        }
+        };
     }
 
     /// Solves every group at `t` from the predicted q (laws evaluated), then the rates.
@@ -1188,6 +1227,7 @@ impl AssurSolver {
         // How far a closure may miss and still count as met: the residual every answer
         // must meet (the general solver accepts the same).
         let slack = crate::geom::tol::RESIDUAL_REL * l;
+        let pred = Predictor { how: self.how, last: &self.q_prev, qd: &self.qd_prev, qdd: &self.qdd_prev };
         for gi in 0..self.plans.len() {
             let s = &mut self.inner;
             let plan = &mut self.plans[gi];
@@ -1201,7 +1241,9 @@ impl AssurSolver {
             match plan.position {
                 Position::DrivenAngle { u, pin, reference, sign, law, .. } => {
                     let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
-                    let cs = (libm::cos(phi), libm::sin(phi));
+                    // One argument reduction for both (the same bits as libm's sin and cos).
+                    let (sn, cn) = libm::sincos(phi);
+                    let cs = (cn, sn);
                     let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
                     set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
                 }
@@ -1231,17 +1273,19 @@ impl AssurSolver {
                     }
                     let e = dv / d;
                     let h = h2.sqrt();
-                    let mut roots = [(0.0, NO_CANDIDATE); 2];
-                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
-                        let j = p1 + e * a + perp(e) * (side * h);
-                        // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
-                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
-                        let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
-                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
-                    }
-                    let k = choose(&roots, &mut plan.side);
-                    apply(s, [b1, b2], roots[k].1);
+                    // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
+                    // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
+                    let m = p1 + e * a;
+                    let arm = a1 - k1.local;
+                    let dd = p1 + rot(predicted_rotation(s, &pred, b1), arm) - m;
+                    let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
+                    let side = if choose(common - x, common + x, &mut plan.side) == 0 { 1.0 } else { -1.0 };
+                    let j = m + perp(e) * (side * h);
+                    // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
+                    let c1 = rotation_scaled(arm, j - p1, d1 * d1);
+                    let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
+                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+                    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
                 }
                 Position::Rrp { b1, b2, k1, a1, a2, s3, d1 } => {
                     let p1 = glob(&s.poses, k1.known);
@@ -1259,15 +1303,19 @@ impl AssurSolver {
                         return Err(fail(plan.group.joints[1], why, s, plan));
                     }
                     let root = disc.sqrt();
-                    let mut roots = [(0.0, NO_CANDIDATE); 2];
-                    for (k, sv) in [-b + root, -b - root].into_iter().enumerate() {
-                        let j = base + w * sv;
-                        let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (c + w * sv, Some(phi2), cs2)];
-                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
-                    }
-                    let k = choose(&roots, &mut plan.side);
-                    apply(s, [b1, b2], roots[k].1);
+                    // b2's origin is c + s·w and the joint rides with it (b2's rotation is
+                    // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
+                    // along the line and |rp − c|² − s_p² off it.
+                    let off = Vector::new(pred.at(s, 3 * b2), pred.at(s, 3 * b2 + 1)) - c;
+                    let sp = off.dot(&w);
+                    let across = off.norm_squared() - sp * sp;
+                    let (sv0, sv1) = (-b + root, -b - root);
+                    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, &mut plan.side);
+                    let sv = if k == 0 { sv0 } else { sv1 };
+                    let j = base + w * sv;
+                    let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
+                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+                    set_body(&mut s.q, &mut s.poses, b2, c + w * sv, phi2, cs2);
                 }
                 Position::Rpr { b1, b2, k1, mid, k3 } => {
                     let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
@@ -1293,17 +1341,19 @@ impl AssurSolver {
                     let dh = dv / d;
                     let x = (-c0 / d).clamp(-1.0, 1.0);
                     let y = (1.0 - x * x).max(0.0).sqrt();
-                    let mut roots = [(0.0, NO_CANDIDATE); 2];
-                    for (k, side) in [1.0, -1.0].into_iter().enumerate() {
-                        let ng = dh * x + perp(dh) * (side * y);
-                        let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
-                        let cs = compose(cg, mid.turn);
-                        let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
-                        let cand: Candidate = [(p1 - rot(c1, k1.local), None, c1), (p3 - rot(c2, k3.local), None, c2)];
-                        roots[k] = (distance(&cand, [b1, b2], &s.q, &s.poses, l), cand);
-                    }
-                    let k = choose(&roots, &mut plan.side);
-                    apply(s, [b1, b2], roots[k].1);
+                    // The two bodies turn together: the root whose guide normal
+                    // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
+                    let guide = if mid.b1_is_slider { b2 } else { b1 };
+                    let u = dh * x - rot(predicted_rotation(s, &pred, guide), mid.n0);
+                    let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
+                    let side =
+                        if choose(common + cross_term, common - cross_term, &mut plan.side) == 0 { 1.0 } else { -1.0 };
+                    let ng = dh * x + perp(dh) * (side * y);
+                    let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
+                    let cs = compose(cg, mid.turn);
+                    let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
+                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+                    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
                 }
                 Position::Prp { b1, b2, s1, a1, a2, s3 } => {
                     let (phi1, cs1, c1, w1) = s1.line(&s.poses);
@@ -1353,11 +1403,13 @@ impl AssurSolver {
                     set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
                 }
                 Position::Triad(ref tp) => {
+                    pred.write(s, &plan.group.bodies);
                     if let Err(why) = solve_triad(s, tp) {
                         return Err(fail(plan.group.joints[3], why, s, plan));
                     }
                 }
                 Position::Newton => {
+                    pred.write(s, &plan.group.bodies);
                     newton(s, plan, &mut self.work, t)?;
                 }
             }
@@ -1669,17 +1721,13 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
     }
 }
 
-/// An unused candidate slot.
-const NO_CANDIDATE: Candidate = [(Vector::new(0.0, 0.0), None, (1.0, 0.0)); 2];
-
 /// Which of a dyad's two roots (first: the `+` branch of its formula, second: the `−`)
-/// continues the motion: the one nearest the prediction when it is clearly the nearer
-/// (its squared distance under 1/16 of the other's), else the branch taken at the last
-/// step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps between
-/// dead points — so that a time step too coarse for the prediction keeps the mode.
+/// continues the motion, from their squared distances `d0`, `d1` to the prediction: the
+/// nearer when it is clearly the nearer (under 1/16 of the other), else the branch taken at
+/// the last step (`side`: +1 or −1, 0 before the first), which a continuous motion keeps
+/// between dead points — so that a time step too coarse for the prediction keeps the mode.
 #[inline(always)]
-fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
-    let (d0, d1) = (roots[0].0, roots[1].0);
+fn choose(d0: f64, d1: f64, side: &mut f64) -> usize {
     let k = if d0 <= d1 / 16.0 {
         0
     } else if d1 <= d0 / 16.0 {
@@ -1695,16 +1743,13 @@ fn choose(roots: &[(f64, Candidate); 2], side: &mut f64) -> usize {
     k
 }
 
-/// Writes the chosen candidate, its angles continued from the last step.
+/// Writes body `b` at origin `r` and rotation `cs`, its angle continued from the last step
+/// (still in its cached pose) by this step's turn.
 #[inline(always)]
-fn apply(s: &mut Solver, bodies: [usize; 2], cand: Candidate) {
-    for (k, &b) in bodies.iter().enumerate() {
-        let (r, phi, cs) = cand[k];
-        // Continuous angles: the last one (still in the cached pose) plus this step's turn.
-        let last = s.poses[b];
-        let phi = phi.unwrap_or_else(|| last.phi + turn_between((last.c, last.s), cs));
-        set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
-    }
+fn turn_to(s: &mut Solver, b: usize, r: Vector, cs: (f64, f64)) {
+    let last = s.poses[b];
+    let phi = last.phi + turn_between((last.c, last.s), cs);
+    set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
 }
 
 /// Newton–Raphson on one group's coordinates from the predicted q (the known bodies fixed).
@@ -1874,6 +1919,51 @@ mod tests {
                     (general.x.to_bits(), general.y.to_bits()),
                     "{x}, {y}"
                 );
+            }
+        }
+    }
+
+    #[test]
+    fn a_cranks_sincos_is_libms_sin_and_cos_bit_for_bit() {
+        // The driven crank takes both from one argument reduction; results stay the bits of
+        // the two separate calls (over many turns, both signs, near the reduction's edges).
+        for k in -200_000..=200_000 {
+            let x = k as f64 * 1.7e-4 + if k % 7 == 0 { std::f64::consts::FRAC_PI_4 } else { 0.0 };
+            let (sn, cs) = libm::sincos(x);
+            assert_eq!((sn.to_bits(), cs.to_bits()), (libm::sin(x).to_bits(), libm::cos(x).to_bits()), "{x}");
+        }
+    }
+
+    #[test]
+    fn a_predicted_rotation_is_the_rotation_at_the_predicted_angle() {
+        let mut s = Solver::new(slider_crank()).unwrap();
+        let q = s.q.clone();
+        super::super::fill_poses(&q, &mut s.poses);
+        for (last, turn) in [(0.3, 0.0), (0.3, 0.01), (-2.0, -0.4), (3.0, 0.5), (1.0, 0.5000001), (1.0, -3.0)] {
+            let (sn, cs) = libm::sincos(last);
+            s.poses[1] = Pose { r: Vector::zeros(), phi: last, c: cs, s: sn };
+            let mut q = s.q.clone();
+            q[5] = last + turn;
+            let pred = Predictor { how: Extrapolation::Hold, last: &q, qd: &q, qdd: &q };
+            let (c, sv) = predicted_rotation(&s, &pred, 1);
+            // A turn over 0.5 rad is not trusted: the last rotation.
+            let expect = if turn.abs() <= 0.5 { last + turn } else { last };
+            assert!((c - libm::cos(expect)).abs() < 2e-6 && (sv - libm::sin(expect)).abs() < 2e-6, "{last} {turn}");
+        }
+    }
+
+    #[test]
+    fn a_steps_turn_is_atan2_of_the_two_rotations_to_an_ulp() {
+        for k in 0..20_000 {
+            let a = -7.0 + k as f64 * 7e-4;
+            for turn in [0.0, 1e-9, -3e-4, 0.01, -0.0455, 0.0624, -0.0626, 0.3, -2.9] {
+                let (sa, ca) = libm::sincos(a);
+                let (sb, cb) = libm::sincos(a + turn);
+                let got = turn_between((ca, sa), (cb, sb));
+                let c = cb * ca + sb * sa;
+                let s = sb * ca - cb * sa;
+                let exact = libm::atan2(s, c);
+                assert!((got - exact).abs() <= 2.3e-16 * exact.abs(), "{a} {turn}: {got} vs {exact}");
             }
         }
     }
