@@ -343,6 +343,17 @@ pub fn write_into(s: &mut Vec<u8>, drawing: &Drawing, opts: &SvgOptions) {
 /// moving's first are on different layers (else the writer would put them in one group).
 /// `None` when the two headers differ (then write the frame whole).
 pub fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
+    let (head, tail) = splice_parts(base_svg, moving_svg)?;
+    let mut out = String::with_capacity(head.len() + tail.len());
+    out.push_str(head);
+    out.push_str(tail);
+    Some(out)
+}
+
+/// The two pieces of [`splice`]'s frame, borrowed: `base_svg` without its closing tag, and
+/// `moving_svg` after its header; the frame is the one followed by the other (a writer can
+/// put them in a file one after the other without building the frame).
+pub fn splice_parts<'b, 'm>(base_svg: &'b str, moving_svg: &'m str) -> Option<(&'b str, &'m str)> {
     const CLOSE: &str = "</svg>";
     let header_end = |s: &str| -> Option<usize> {
         let first = s.find('\n')?;
@@ -352,11 +363,7 @@ pub fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
     if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) {
         return None;
     }
-    let head = &base_svg[..base_svg.len() - CLOSE.len()];
-    let mut out = String::with_capacity(head.len() + moving_svg.len() - hm);
-    out.push_str(head);
-    out.push_str(&moving_svg[hm..]);
-    Some(out)
+    Some((&base_svg[..base_svg.len() - CLOSE.len()], &moving_svg[hm..]))
 }
 
 /// Writes `drawing` as SVG to `out`.
