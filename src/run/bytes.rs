@@ -99,6 +99,7 @@ pub fn write(
     let name = &p.name;
     let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
     let mut head: Vec<(String, Vec<u8>)> = Vec::new();
+    let mut order = Vec::new();
     let mut frame_names = Vec::new();
     let diagrams = match &p.picture {
         Picture::Still(d) => {
@@ -107,7 +108,11 @@ pub fn write(
         }
         Picture::Motion(a) => {
             let m = motion(a, p, opts, tick, sink)?;
-            head.push((format!("{name}.dxf"), m.dxf));
+            // The DXF in its two pieces (the entities, most of it, not copied to join them).
+            let dxf_name = format!("{name}.dxf");
+            let [dxf_head, dxf_entities] = &m.dxf;
+            sink.put(&[(dxf_name.clone(), [dxf_head.as_slice(), dxf_entities.as_slice()])])?;
+            order.push(dxf_name);
             picture_files(&mut head, name, m.picture, opts.png)?;
             frame_names = m.frame_names;
             m.diagrams
@@ -124,7 +129,7 @@ pub fn write(
     head.extend(page_files(name, &p.pages, opts.png)?);
 
     sink.put(&view(&head))?;
-    let mut order: Vec<String> = head.into_iter().map(|(n, _)| n).collect();
+    order.extend(head.into_iter().map(|(n, _)| n));
     order.extend(frame_names);
     Ok(order)
 }
@@ -284,7 +289,8 @@ impl Frame<'_> {
 
 /// What a motion gives besides the frames handed to the sink.
 struct MotionFiles {
-    dxf: Vec<u8>,
+    /// The DXF in two pieces ([`dxf::to_pieces`]).
+    dxf: [Vec<u8>; 2],
     picture: String,
     frame_names: Vec<String>,
     diagrams: Vec<(String, Vec<u8>)>,
@@ -303,7 +309,10 @@ fn motion(
     let svg_opts = frame_options(a, &poses);
     let want_frames = !opts.no_frames;
     let (dxf, rest) = rayon::join(
-        || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),
+        || {
+            dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
+                .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+        },
         || -> Result<_, Error> {
             let base_svg = if want_frames { svg::to_string(&a.base, &svg_opts) } else { String::new() };
             let frames = if want_frames { frames(a, &poses, &base_svg, &svg_opts, tick) } else { Vec::new() };
