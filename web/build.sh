@@ -28,6 +28,8 @@ out = pathlib.Path(sys.argv[1])
 template = pathlib.Path("web/page.html").read_text()
 glue = (out / "mechdraw.js").read_text()
 wasm = base64.b64encode((out / "mechdraw_bg.wasm").read_bytes()).decode()
+# The module's base64 once, for src/run/page.rs (through web/dist/): no run encodes it again.
+(out / "mechdraw_bg.wasm.b64").write_text(wasm)
 links = []
 for scene in map(pathlib.Path, sys.argv[2:]):
     text = scene.read_text()

@@ -343,12 +343,10 @@ pub fn write_into(s: &mut Vec<u8>, drawing: &Drawing, opts: &SvgOptions) {
 /// moving's first are on different layers (else the writer would put them in one group).
 /// `None` when the two headers differ (then write the frame whole).
 pub fn splice(base_svg: &str, moving_svg: &str) -> Option<String> {
-    let part = spliced_part(base_svg, moving_svg)?;
-    let head = &base_svg[..base_svg.len() - CLOSE.len()];
-    let mut out = String::with_capacity(head.len() + part.len() + CLOSE.len());
+    let (head, tail) = splice_parts(base_svg, moving_svg)?;
+    let mut out = String::with_capacity(head.len() + tail.len());
     out.push_str(head);
-    out.push_str(part);
-    out.push_str(CLOSE);
+    out.push_str(tail);
     Some(out)
 }
 
@@ -358,6 +356,13 @@ const CLOSE: &str = "</svg>";
 /// What [`splice`] appends to `base_svg` (without its closing tag): `moving_svg`'s elements,
 /// after its header and before its closing tag. `None` when the headers differ.
 pub fn spliced_part<'a>(base_svg: &str, moving_svg: &'a str) -> Option<&'a str> {
+    splice_parts(base_svg, moving_svg)?.1.strip_suffix(CLOSE)
+}
+
+/// The two pieces of [`splice`]'s frame, borrowed: `base_svg` without its closing tag, and
+/// `moving_svg` after its header; the frame is the one followed by the other (a writer can
+/// put them in a file one after the other without building the frame).
+pub fn splice_parts<'b, 'm>(base_svg: &'b str, moving_svg: &'m str) -> Option<(&'b str, &'m str)> {
     let header_end = |s: &str| -> Option<usize> {
         let first = s.find('\n')?;
         Some(first + 1 + s[first + 1..].find('\n')? + 1)
@@ -366,7 +371,7 @@ pub fn spliced_part<'a>(base_svg: &str, moving_svg: &'a str) -> Option<&'a str> 
     if base_svg[..hb] != moving_svg[..hm] || !base_svg.ends_with(CLOSE) || !moving_svg.ends_with(CLOSE) {
         return None;
     }
-    Some(&moving_svg[hm..moving_svg.len() - CLOSE.len()])
+    Some((&base_svg[..base_svg.len() - CLOSE.len()], &moving_svg[hm..]))
 }
 
 /// Writes `drawing` as SVG to `out`.

@@ -265,7 +265,8 @@ impl Polygon {
     /// outside an edge of the box cannot pass through its interior: [`TextBox::crosses`]
     /// says no for it, rounding included).
     pub fn place(&self) -> Vec<Placed> {
-        let letters = if self.merge { combine(&self.letters) } else { self.letters.clone() };
+        let letters: std::borrow::Cow<'_, [Letter]> =
+            if self.merge { combine(&self.letters).into() } else { self.letters.as_slice().into() };
         // What a letter's box must not overlap, and what its leader should not cross: the
         // boxes kept off, then the letters placed so far (counted, so the order is free).
         let mut blockers: Vec<TextBox> = Vec::with_capacity(self.obstacles.len() + letters.len());
@@ -277,7 +278,7 @@ impl Polygon {
         // Those near the letter being placed.
         let (mut near_blockers, mut near_lines) = (Vec::new(), Vec::new());
         let mut out = Vec::with_capacity(letters.len());
-        for l in &letters {
+        for l in letters.iter() {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
             let half = l.half();
             let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
@@ -295,12 +296,27 @@ impl Polygon {
             for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
                 let bx = TextBox::around(c, half);
                 let bound = best.as_ref().map(|(s, ..)| *s);
-                let hits = blockers_near.iter().filter(|b| b.overlaps(&bx)).count();
-                if bound.is_some_and(|s| hits > s.0) {
+                // Overlapped letters counted only until the candidate has lost.
+                let most_hits = bound.map_or(usize::MAX, |s| s.0);
+                let mut hits = 0;
+                for b in blockers_near {
+                    if b.overlaps(&bx) {
+                        hits += 1;
+                        if hits > most_hits {
+                            break;
+                        }
+                    }
+                }
+                if hits > most_hits {
                     continue;
                 }
                 let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
-                let through = leader.map_or(0, |(a, b)| blockers_near.iter().filter(|x| x.crosses(a, b)).count());
+                // A box is tested against the leader only when their bounding boxes overlap
+                // (as the segments below).
+                let through = leader.map_or(0, |(a, b)| {
+                    let sb = segment_box((a, b));
+                    blockers_near.iter().filter(|x| sb.overlaps(x) && x.crosses(a, b)).count()
+                });
                 // The most segments the box may cross and still win.
                 let limit = match bound {
                     Some(s) if (hits, through) > (s.0, s.1) => continue,
@@ -309,12 +325,7 @@ impl Polygon {
                 };
                 let mut crossed = 0;
                 for &((a, b), ref sb) in lines_near {
-                    if sb.min.x < bx.max.x
-                        && bx.min.x < sb.max.x
-                        && sb.min.y < bx.max.y
-                        && bx.min.y < sb.max.y
-                        && bx.crosses(a, b)
-                    {
+                    if sb.overlaps(&bx) && bx.crosses(a, b) {
                         crossed += 1;
                         if crossed >= limit {
                             break;
@@ -353,16 +364,22 @@ impl Polygon {
     pub fn draw(&self, d: &mut Drawing, layer: usize) -> Vec<TextBox> {
         let linetype = if self.merge { None } else { Some(LineType::Continuous) };
         let placed = self.place();
-        for p in &placed {
-            draw_placed(d, layer, p, linetype);
+        let bounds = placed.iter().map(Placed::bounds).collect();
+        for p in placed {
+            push_placed(d, layer, p, linetype);
         }
-        placed.iter().map(Placed::bounds).collect()
+        bounds
     }
 }
 
 /// Adds a placed label to `d` on `layer`: its text centred at its place, its leader line
 /// and its circle (in the label's colour, with `linetype` on each entity).
 pub fn draw_placed(d: &mut Drawing, layer: usize, p: &Placed, linetype: Option<LineType>) {
+    push_placed(d, layer, p.clone(), linetype);
+}
+
+/// [`draw_placed`], the label's text moved into the drawing.
+fn push_placed(d: &mut Drawing, layer: usize, p: Placed, linetype: Option<LineType>) {
     let color = p.color;
     if let Some((from, to)) = p.leader {
         let color = Some(LEADER_COLOR);
@@ -375,7 +392,7 @@ pub fn draw_placed(d: &mut Drawing, layer: usize, p: &Placed, linetype: Option<L
     let shape = Shape::Text {
         at: p.centre,
         height: p.height,
-        value: p.text.clone(),
+        value: p.text,
         halign: HAlign::Center,
         valign: VAlign::Middle,
         rotation: 0.0,

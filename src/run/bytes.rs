@@ -47,8 +47,10 @@ pub struct WriteOptions {
     pub dxf: DxfOptions,
 }
 
-/// One file: its path relative to the output directory (`/`-separated) and its bytes.
-pub type File<'a> = (String, &'a [u8]);
+/// One file: its path relative to the output directory (`/`-separated) and its bytes in two
+/// pieces, the one followed by the other (a frame: the part every frame shares, then its own;
+/// the second piece is empty for a file made whole), so that no frame is copied together.
+pub type File<'a> = (String, [&'a [u8]; 2]);
 
 /// Where files go as they are made. `put` may be called from any thread, in any order;
 /// [`write`](fn@write) returns the files' canonical order.
@@ -64,7 +66,7 @@ pub struct Memory(Mutex<Vec<(String, Vec<u8>)>>);
 impl Sink for Memory {
     fn put(&self, files: &[File<'_>]) -> Result<(), Error> {
         let mut v = self.0.lock().map_err(|_| poisoned())?;
-        v.extend(files.iter().map(|(n, b)| (n.clone(), b.to_vec())));
+        v.extend(files.iter().map(|(n, [a, b])| (n.clone(), [*a, *b].concat())));
         Ok(())
     }
 }
@@ -97,6 +99,7 @@ pub fn write(
     let name = &p.name;
     let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
     let mut head: Vec<(String, Vec<u8>)> = Vec::new();
+    let mut order = Vec::new();
     let mut frame_names = Vec::new();
     let diagrams = match &p.picture {
         Picture::Still(d) => {
@@ -105,7 +108,11 @@ pub fn write(
         }
         Picture::Motion(a) => {
             let m = motion(a, p, opts, tick, sink)?;
-            head.push((format!("{name}.dxf"), m.dxf));
+            // The DXF in its two pieces (the entities, most of it, not copied to join them).
+            let dxf_name = format!("{name}.dxf");
+            let [dxf_head, dxf_entities] = &m.dxf;
+            sink.put(&[(dxf_name.clone(), [dxf_head.as_slice(), dxf_entities.as_slice()])])?;
+            order.push(dxf_name);
             picture_files(&mut head, name, m.picture, opts.png)?;
             frame_names = m.frame_names;
             m.diagrams
@@ -122,14 +129,14 @@ pub fn write(
     head.extend(page_files(name, &p.pages, opts.png)?);
 
     sink.put(&view(&head))?;
-    let mut order: Vec<String> = head.into_iter().map(|(n, _)| n).collect();
+    order.extend(head.into_iter().map(|(n, _)| n));
     order.extend(frame_names);
     Ok(order)
 }
 
 /// Borrowed views of owned files, for [`Sink::put`].
 fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
-    v.iter().map(|(n, b)| (n.clone(), b.as_slice())).collect()
+    v.iter().map(|(n, b)| (n.clone(), [b.as_slice(), &[]])).collect()
 }
 
 /// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
@@ -256,14 +263,34 @@ fn dxf_bytes(d: &Drawing, opts: &DxfOptions, name: &str) -> Result<Vec<u8>, Erro
     dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
 }
 
-/// One SVG frame of a motion.
-struct Frame {
+/// One SVG frame of a motion: `head` (the part every frame shares, written once; empty for a
+/// frame written whole) followed by `svg[from..]`.
+struct Frame<'a> {
+    head: &'a str,
     svg: String,
+    from: usize,
+}
+
+impl Frame<'_> {
+    /// The frame's two pieces, as a [`File`] holds them.
+    fn pieces(&self) -> [&[u8]; 2] {
+        [self.head.as_bytes(), &self.svg.as_bytes()[self.from..]]
+    }
+
+    /// The whole frame in one string (for the picture and a PNG).
+    fn whole(&self) -> String {
+        let tail = &self.svg[self.from..];
+        let mut s = String::with_capacity(self.head.len() + tail.len());
+        s.push_str(self.head);
+        s.push_str(tail);
+        s
+    }
 }
 
 /// What a motion gives besides the frames handed to the sink.
 struct MotionFiles {
-    dxf: Vec<u8>,
+    /// The DXF in two pieces ([`dxf::to_pieces`]).
+    dxf: [Vec<u8>; 2],
     picture: String,
     frame_names: Vec<String>,
     diagrams: Vec<(String, Vec<u8>)>,
@@ -282,9 +309,13 @@ fn motion(
     let svg_opts = frame_options(a, &poses);
     let want_frames = !opts.no_frames;
     let (dxf, rest) = rayon::join(
-        || dxf_bytes(&a.all_positions(&poses), &opts.dxf, name),
+        || {
+            dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
+                .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+        },
         || -> Result<_, Error> {
-            let frames = if want_frames { frames(a, &poses, &svg_opts, tick) } else { Vec::new() };
+            let base_svg = if want_frames { svg::to_string(&a.base, &svg_opts) } else { String::new() };
+            let frames = if want_frames { frames(a, &poses, &base_svg, &svg_opts, tick) } else { Vec::new() };
             let stems: Vec<String> =
                 a.names.iter().take(frames.len()).map(|n| format!("frames/{name}/{}", n.to_lowercase())).collect();
             // With --png, each frame's PNG follows its SVG.
@@ -292,7 +323,7 @@ fn motion(
                 stems
                     .par_iter()
                     .zip(&frames)
-                    .map(|(stem, f)| png_bytes(&f.svg, &format!("{stem}.png")))
+                    .map(|(stem, f)| png_bytes(&f.whole(), &format!("{stem}.png")))
                     .collect::<Result<_, Error>>()?
             } else {
                 Vec::new()
@@ -301,16 +332,16 @@ fn motion(
             let mut files: Vec<File<'_>> = Vec::with_capacity(names.capacity());
             for (i, (stem, f)) in stems.iter().zip(&frames).enumerate() {
                 names.push(format!("{stem}.svg"));
-                files.push((format!("{stem}.svg"), f.svg.as_bytes()));
+                files.push((format!("{stem}.svg"), f.pieces()));
                 if let Some(png) = pngs.get(i) {
                     names.push(format!("{stem}.png"));
-                    files.push((format!("{stem}.png"), png.as_slice()));
+                    files.push((format!("{stem}.png"), [png.as_slice(), &[]]));
                 }
             }
             let (staged, diagrams) = rayon::join(|| sink.put(&files), || diagram_files(&p.diagrams, name, opts.png));
             staged?;
             let picture = match (frames.first(), poses.first()) {
-                (Some(f), _) => f.svg.clone(),
+                (Some(f), _) => f.whole(),
                 (None, Some(first)) => svg::to_string(&a.frame_of(first), &svg_opts),
                 (None, None) => svg::to_string(&a.base, &svg_opts),
             };
@@ -321,16 +352,25 @@ fn motion(
     Ok(MotionFiles { dxf: dxf?, picture, frame_names, diagrams })
 }
 
-/// The SVG frames (in parallel): the base written once, each position spliced onto it.
-fn frames(a: &Animation, poses: &[Drawing], svg_opts: &SvgOptions, tick: &(dyn Fn() + Sync)) -> Vec<Frame> {
-    let base_svg = svg::to_string(&a.base, svg_opts);
+/// The SVG frames (in parallel): the base written once (`base_svg`, by [`svg::to_string`]
+/// with `svg_opts`), each position's part after it (see [`svg::splice_parts`]).
+fn frames<'a>(
+    a: &Animation,
+    poses: &[Drawing],
+    base_svg: &'a str,
+    svg_opts: &SvgOptions,
+    tick: &(dyn Fn() + Sync),
+) -> Vec<Frame<'a>> {
     poses
         .par_iter()
         .map(|pose| {
-            let s = svg::splice(&base_svg, &svg::to_string(pose, svg_opts))
-                .unwrap_or_else(|| svg::to_string(&a.frame_of(pose), svg_opts));
+            let moving = svg::to_string(pose, svg_opts);
+            let frame = match svg::splice_parts(base_svg, &moving) {
+                Some((head, tail)) => Frame { head, from: moving.len() - tail.len(), svg: moving },
+                None => Frame { head: "", svg: svg::to_string(&a.frame_of(pose), svg_opts), from: 0 },
+            };
             tick();
-            Frame { svg: s }
+            frame
         })
         .collect()
 }

@@ -131,7 +131,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     let page_rel = PathBuf::from(format!("{}.html", p.name));
     if !opts.no_frames {
         let file = loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
-        out.write(&page_rel, page::live_page(&loaded.text, &file, &opts.sets))?;
+        out.write_pieces(&page_rel, &page::LivePage::new(&loaded.text, &file, &opts.sets).pieces())?;
     }
     let written = out.commit()?;
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })

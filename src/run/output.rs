@@ -64,10 +64,24 @@ impl Output {
         for d in &dirs {
             std::fs::create_dir_all(d).map_err(io(d))?;
         }
-        for (rel, bytes) in files {
+        for (rel, pieces) in files {
             let path = self.staging.join(rel);
-            std::fs::write(&path, bytes).map_err(io(&path))?;
+            write_pieces(&path, pieces).map_err(io(&path))?;
         }
+        Ok(())
+    }
+
+    /// Stages as `rel` (as for [`Output::write`]) the file made of `pieces` one after the
+    /// other, without joining them in memory first (the live page: a few kilobytes of its
+    /// own around the 10 MB module, which is written straight from the program's image).
+    pub fn write_pieces(&mut self, rel: impl AsRef<Path>, pieces: &[&[u8]]) -> Result<(), Error> {
+        let rel = rel.as_ref();
+        let path = self.staging.join(rel);
+        if let Some(parent) = path.parent() {
+            std::fs::create_dir_all(parent).map_err(io(parent))?;
+        }
+        write_pieces(&path, pieces).map_err(io(&path))?;
+        self.files.push(rel.to_path_buf());
         Ok(())
     }
 
@@ -87,6 +101,24 @@ impl Output {
         self.committed = true;
         Ok(self.files.iter().map(|f| self.dir.join(f)).collect())
     }
+}
+
+/// Creates (or truncates) the file `path` and writes `pieces` into it one after the other,
+/// as few system calls as the kernel takes them in (one for a frame's two pieces).
+fn write_pieces(path: &Path, pieces: &[&[u8]]) -> std::io::Result<()> {
+    use std::io::{IoSlice, Write};
+    let mut file = std::fs::File::create(path)?;
+    let mut slices: Vec<IoSlice<'_>> = pieces.iter().filter(|p| !p.is_empty()).map(|p| IoSlice::new(p)).collect();
+    let mut rest = &mut slices[..];
+    while !rest.is_empty() {
+        match file.write_vectored(rest) {
+            Ok(0) => return Err(std::io::ErrorKind::WriteZero.into()),
+            Ok(n) => IoSlice::advance_slices(&mut rest, n),
+            Err(e) if e.kind() == std::io::ErrorKind::Interrupted => {}
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(())
 }
 
 /// Moves the entries of `from` into `to` (see [`Output::commit`] for the rule).
@@ -155,7 +187,8 @@ mod tests {
         let mut out = Output::new(tmp.path()).unwrap();
         let files: Vec<(String, Vec<u8>)> =
             (0..50).map(|i| (format!("frames/f{i:02}.svg"), format!("{i}").into_bytes())).collect();
-        let views: Vec<super::super::bytes::File<'_>> = files.iter().map(|(n, b)| (n.clone(), b.as_slice())).collect();
+        let views: Vec<super::super::bytes::File<'_>> =
+            files.iter().map(|(n, b)| (n.clone(), [&b[..1], &b[1..]])).collect();
         super::super::bytes::Sink::put(&out, &views).unwrap();
         out.record_paths(files.iter().map(|(n, _)| PathBuf::from(n)));
         assert!(!tmp.path().join("frames").exists());
@@ -163,6 +196,19 @@ mod tests {
         assert_eq!(written.len(), 50);
         assert_eq!(written[7], tmp.path().join("frames/f07.svg"));
         assert_eq!(std::fs::read_to_string(tmp.path().join("frames/f49.svg")).unwrap(), "49");
+    }
+
+    #[test]
+    fn a_file_in_pieces_is_the_pieces_one_after_the_other() {
+        let tmp = tempfile::tempdir().unwrap();
+        let mut out = Output::new(tmp.path()).unwrap();
+        let big: Vec<u8> = (0..3_000_000u32).map(|i| (i % 251) as u8).collect();
+        let pieces: [&[u8]; 5] = [b"head ", &[], &big, b"", b" tail"];
+        out.write_pieces("p/page.html", &pieces).unwrap();
+        out.write_pieces("empty", &[]).unwrap();
+        out.commit().unwrap();
+        assert!(std::fs::read(tmp.path().join("p/page.html")).unwrap() == pieces.concat());
+        assert_eq!(std::fs::read(tmp.path().join("empty")).unwrap().len(), 0);
     }
 
     #[test]

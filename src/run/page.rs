@@ -6,40 +6,74 @@
 //!
 //! The module is `web/dist/` (built by `bash web/dist.sh`, which `.ci/test` runs with
 //! `--check`: CI fails when the committed module is not the one the sources build); the page
-//! is `web/page.html`, the template `web/build.sh` fills for the gallery too.
-
-use base64::Engine;
+//! is `web/page.html`, the template `web/build.sh` fills for the gallery too. The module is
+//! included as its base64 text (`web/dist/mechdraw_bg.wasm.b64`, written by the same script):
+//! a run copies the 10 MB into the page instead of encoding 7.5 MB each time.
 
 /// The page's template.
 const TEMPLATE: &str = include_str!("../../web/page.html");
 /// wasm-bindgen's glue for the module (`--target no-modules`).
 const GLUE: &str = include_str!("../../web/dist/mechdraw.js");
-/// The core, compiled for wasm32-unknown-unknown (profile `wasm`) and through wasm-bindgen.
-const MODULE: &[u8] = include_bytes!("../../web/dist/mechdraw_bg.wasm");
+/// The core, compiled for wasm32-unknown-unknown (profile `wasm`) and through wasm-bindgen,
+/// in standard base64 with padding and no line breaks (`web/dist/mechdraw_bg.wasm` encoded
+/// by `web/build.sh`; a test checks that the two agree).
+static MODULE_BASE64: &str = include_str!("../../web/dist/mechdraw_bg.wasm.b64");
 
 /// The live page of the scene `text` (the scene file's text, named `file` in messages) with
 /// `sets` (`KEY=VALUE`, as `--set` took them) applied when it opens.
 pub fn live_page(text: &str, file: &str, sets: &[String]) -> String {
-    let module = base64::engine::general_purpose::STANDARD.encode(MODULE);
-    // JSON inside <script type="application/json">: "</" must not end it early.
-    let sets = serde_json::to_string(sets).unwrap_or_else(|_| "[]".into()).replace("</", "<\\/");
-    let mut page = String::with_capacity(TEMPLATE.len() + GLUE.len() + module.len() + text.len() + 256);
-    let mut rest = TEMPLATE;
-    for (key, value) in [
-        ("__SCENE_TOML__", text.replace("</", "<\\/").as_str()),
-        ("__SCENE_SETS__", sets.as_str()),
-        ("__WASM_BINDGEN_JS__", GLUE),
-        ("__WASM_BASE64__", module.as_str()),
-        ("__SCENE_FILE__", &serde_json::to_string(file).unwrap_or_else(|_| "\"scene.toml\"".into())),
-    ] {
-        if let Some(i) = rest.find(key) {
-            page.push_str(&rest[..i]);
-            page.push_str(value);
-            rest = &rest[i + key.len()..];
+    LivePage::new(text, file, sets).strs().concat()
+}
+
+/// The live page of one scene, held as what is its own (the scene's text, its `--set`
+/// changes, its file name, each made safe for its place in the page); [`LivePage::pieces`]
+/// gives the page as pieces to write one after the other, the template's and the module's
+/// borrowed from the program (no 10 MB page is built in memory).
+#[derive(Debug, Clone)]
+pub struct LivePage {
+    scene: String,
+    sets: String,
+    file: String,
+}
+
+impl LivePage {
+    /// The page of the scene `text` (named `file` in messages) with `sets` applied when it
+    /// opens.
+    pub fn new(text: &str, file: &str, sets: &[String]) -> LivePage {
+        // JSON inside <script type="application/json">: "</" must not end it early.
+        let sets = serde_json::to_string(sets).unwrap_or_else(|_| "[]".into()).replace("</", "<\\/");
+        LivePage {
+            scene: text.replace("</", "<\\/"),
+            sets,
+            file: serde_json::to_string(file).unwrap_or_else(|_| "\"scene.toml\"".into()),
         }
     }
-    page.push_str(rest);
-    page
+
+    /// The page's bytes in pieces, in order: the template with each placeholder replaced
+    /// once.
+    pub fn pieces(&self) -> Vec<&[u8]> {
+        self.strs().into_iter().map(str::as_bytes).collect()
+    }
+
+    fn strs(&self) -> Vec<&str> {
+        let mut out = Vec::with_capacity(11);
+        let mut rest = TEMPLATE;
+        for (key, value) in [
+            ("__SCENE_TOML__", self.scene.as_str()),
+            ("__SCENE_SETS__", self.sets.as_str()),
+            ("__WASM_BINDGEN_JS__", GLUE),
+            ("__WASM_BASE64__", MODULE_BASE64),
+            ("__SCENE_FILE__", self.file.as_str()),
+        ] {
+            if let Some(i) = rest.find(key) {
+                out.push(&rest[..i]);
+                out.push(value);
+                rest = &rest[i + key.len()..];
+            }
+        }
+        out.push(rest);
+        out
+    }
 }
 
 /// The bundled templates (`templates/*.toml`), for `mechdraw web` without scenes.
@@ -73,7 +107,7 @@ pub fn gallery(scenes: &[(String, String)], dir: &std::path::Path) -> Result<Vec
          change any number, edit the TOML, download the files the command line writes.</p>\n<ul>\n",
     );
     for (stem, file, text, name, kind) in &items {
-        out.write(format!("{stem}.html"), live_page(text, file, &[]))?;
+        out.write_pieces(format!("{stem}.html"), &LivePage::new(text, file, &[]).pieces())?;
         index.push_str(&format!(
             "<li><a href=\"{}.html\">{}</a> ({kind}, {})</li>\n",
             escape(stem),
@@ -94,6 +128,7 @@ fn escape(s: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use base64::Engine;
 
     #[test]
     fn every_placeholder_is_filled_once_in_order() {
@@ -102,8 +137,26 @@ mod tests {
         assert!(page.contains("# <\\/script>"), "a scene cannot end its script block");
         assert!(page.contains(r#"["l12=55"]"#));
         assert!(page.contains(r#"const FILE = "t.toml";"#));
-        let b64 = base64::engine::general_purpose::STANDARD.encode(MODULE);
-        assert!(page.contains(&b64));
+        let wasm =
+            std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("web/dist/mechdraw_bg.wasm")).unwrap();
+        assert!(page.contains(&base64::engine::general_purpose::STANDARD.encode(wasm)));
+    }
+
+    #[test]
+    fn the_pieces_are_the_page() {
+        let page = LivePage::new("name = \"x\"\n", "x.toml", &["a=1".into()]);
+        let joined: Vec<u8> = page.pieces().concat();
+        assert!(joined == live_page("name = \"x\"\n", "x.toml", &["a=1".into()]).into_bytes());
+        assert!(page.pieces().iter().any(|p| p.as_ptr() == MODULE_BASE64.as_ptr()), "the module is not copied");
+    }
+
+    #[test]
+    fn the_included_base64_is_the_module_in_web_dist() {
+        let wasm =
+            std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("web/dist/mechdraw_bg.wasm")).unwrap();
+        assert!(MODULE_BASE64 == base64::engine::general_purpose::STANDARD.encode(&wasm), "run bash web/dist.sh");
+        let back = base64::engine::general_purpose::STANDARD.decode(MODULE_BASE64).unwrap();
+        assert!(back == wasm, "web/dist/mechdraw_bg.wasm.b64 decodes to web/dist/mechdraw_bg.wasm");
     }
 
     #[test]

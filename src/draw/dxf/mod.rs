@@ -284,6 +284,18 @@ pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfErro
     }
 }
 
+/// [`to_bytes`] in two pieces, the file being the one followed by the other; for R12 the
+/// second is the ENTITIES section's entities and the end of the file (most of a motion's
+/// file), so that a writer can put the file together without copying them. (R2000 and R2007:
+/// the whole file, then nothing.)
+pub fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<[Vec<u8>; 2], DxfError> {
+    let drawing = prepare(drawing, opts)?;
+    match opts.version {
+        DxfVersion::R12 => r12::to_pieces(&drawing, opts),
+        DxfVersion::R2000 | DxfVersion::R2007 => Ok([crate_bytes(&drawing, opts)?, Vec::new()]),
+    }
+}
+
 /// The reference writer: the same file as [`to_bytes`], with every entity built as a `dxf`
 /// crate struct and serialised by the crate, then fixed up. Several times slower than
 /// [`to_bytes`] for R12; kept to check the hand-written R12 path against (tests and

@@ -26,6 +26,15 @@ use crate::geom::Point;
 
 /// Writes a validated drawing (in mm) as R12.
 pub(super) fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    let [mut out, entities] = to_pieces(drawing, opts)?;
+    out.extend_from_slice(&entities);
+    Ok(out)
+}
+
+/// [`to_bytes`] in two pieces, the one followed by the other: the file up to the ENTITIES
+/// section's first entity, then the entities and the end of the file (so that the entities,
+/// most of the file, are not copied to join them).
+pub(super) fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<[Vec<u8>; 2], DxfError> {
     let opts = DxfOptions { version: DxfVersion::R12, ..*opts };
     let doc = build_head(drawing, &opts);
     let first_handle = doc.header.next_available_handle.0;
@@ -42,9 +51,9 @@ pub(super) fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, 
 
     let mut body = Body::new(drawing, first_handle, opts.dimensions);
     body.write_all();
-    let Body { blocks, entities, next, .. } = body;
+    let Body { blocks, mut entities, next, .. } = body;
 
-    let mut out = Vec::with_capacity(cut + blocks.len() + entities.len() + 128);
+    let mut out = Vec::with_capacity(cut + blocks.len() + 128);
     out.extend_from_slice(&head[..seed_at]);
     hex(&mut out, next);
     out.extend_from_slice(&head[seed_end..cut]);
@@ -54,9 +63,8 @@ pub(super) fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, 
         out.extend_from_slice(b"  0\r\nENDSEC\r\n");
     }
     out.extend_from_slice(b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n");
-    out.extend_from_slice(&entities);
-    out.extend_from_slice(b"  0\r\nENDSEC\r\n  0\r\nEOF\r\n");
-    Ok(out)
+    entities.extend_from_slice(b"  0\r\nENDSEC\r\n  0\r\nEOF\r\n");
+    Ok([out, entities])
 }
 
 /// Position of `needle` in `hay`.
