@@ -7,32 +7,13 @@ import base64, json, math, os, shutil, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cdp import Browser
+from live import READY, TO_SCREEN, settle
 
 DIR = os.path.abspath(sys.argv[1])
 SHOTS = os.path.join(DIR, "screens")
 shutil.rmtree(os.path.join(DIR, "downloads"), ignore_errors=True)
 os.makedirs(SHOTS, exist_ok=True)
-# The page has solved and drawn its scene, and made the rest (summary, sheets, diagrams).
-READY = "typeof live === 'object' && live !== null && document.body.dataset.state === 'idle'"
-# Client (CSS pixel) position of a model point in the frame shown.
-TO_SCREEN = """(function (x, y) {
-  const m = document.querySelector('#stage svg').getScreenCTM();
-  const k = live.user_units_per_model();
-  const p = new DOMPoint(k * x, -k * y).matrixTransform(m);
-  return [p.x, p.y];
-})"""
 out = {}
-
-
-def settle(page, timeout=30):
-    """Waits until the page has made the rest of its last change (summary, sheets, diagrams)."""
-    import time
-    end = time.time() + timeout
-    while time.time() < end:
-        if page.eval("document.body.dataset.state === 'idle'"):
-            return
-        time.sleep(0.05)
-    raise RuntimeError("the page did not settle")
 
 
 def url(name):

@@ -18,16 +18,10 @@ import json, math, os, statistics, sys
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cdp import Browser
+from live import READY, TO_SCREEN, settle
 
 DIR = os.path.abspath(sys.argv[1])
 ROUNDS = int(sys.argv[2]) if len(sys.argv) > 2 else 40
-READY = "typeof live === 'object' && live !== null && document.body.dataset.state === 'idle'"
-TO_SCREEN = """(function (x, y) {
-  const m = document.querySelector('#stage svg').getScreenCTM();
-  const k = live.user_units_per_model();
-  const p = new DOMPoint(k * x, -k * y).matrixTransform(m);
-  return [p.x, p.y];
-})"""
 # One drag step as the page's pointermove handler does it, then style and layout forced.
 DRAG_WITH_LAYOUT = """(function (name, points) {
   const out = [];
@@ -46,12 +40,6 @@ DRAG_WITH_LAYOUT = """(function (name, points) {
 def stats(xs):
     xs = sorted(xs)
     return {"median_ms": round(statistics.median(xs), 2), "p90_ms": round(xs[int(0.9 * (len(xs) - 1))], 2), "n": len(xs)}
-
-
-def settle(page):
-    import time
-    while not page.eval("document.body.dataset.state === 'idle'"):
-        time.sleep(0.02)
 
 
 def measure(b, name, point, radius, field, factor):

@@ -10,7 +10,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use super::fourbar_teaching as teaching;
-use super::products::{self, Extras, Picture, PositionsSource, Products};
+use super::products::{self, Extras, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
 use std::sync::Arc;
@@ -140,19 +140,13 @@ pub(super) fn products(
         },
     };
     let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
-    Ok(Products {
-        name: name.clone(),
-        mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive)),
-        positions: Some(PositionsSource { field: "phi1_deg.step", advice: "use a larger step" }),
-        sheets: extras.sheets,
-        pages: extras.pages,
-        diagrams: extras.diagrams,
-        tables: extras.tables,
-        summary: extras.summary,
-        report: extras.report,
+    Ok(extras.with_motion(
+        name.clone(),
+        super::mm_per_unit(scene.units),
+        Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive),
+        PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
         warnings,
-    })
+    ))
 }
 
 /// The position at crank angle `phi1_deg` with B on `side`, with its kinematics and forces

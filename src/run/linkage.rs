@@ -395,21 +395,13 @@ pub(super) fn products(
         let force = dynamics.as_ref().zip(forces.get(k));
         frames.moving(&figure, &mech, &states[k], force)
     };
-    Ok(Products {
-        name: scene.name.clone(),
-        mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Motion(
-            Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
-        ),
-        positions: Some(PositionsSource { field: "time.steps", advice: "use fewer steps" }),
-        sheets: extras.sheets,
-        pages: extras.pages,
-        diagrams: extras.diagrams,
-        tables: extras.tables,
-        summary: extras.summary,
-        report: extras.report,
+    Ok(extras.with_motion(
+        scene.name.clone(),
+        super::mm_per_unit(scene.units),
+        Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
+        PositionsSource { field: "time.steps", advice: "use fewer steps" },
         warnings,
-    })
+    ))
 }
 
 /// The Assur route at any time between the run's samples (for a drag), continuing the

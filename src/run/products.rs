@@ -130,6 +130,33 @@ pub(crate) struct Extras {
     pub report: String,
 }
 
+impl Extras {
+    /// The products of a motion: its picture, where its number of positions comes from, its
+    /// warnings, and these.
+    pub(crate) fn with_motion(
+        self,
+        name: String,
+        mm_per_unit: f64,
+        animation: Animation,
+        positions: PositionsSource,
+        warnings: Vec<String>,
+    ) -> Products {
+        Products {
+            name,
+            mm_per_unit,
+            picture: Picture::Motion(animation),
+            positions: Some(positions),
+            sheets: self.sheets,
+            pages: self.pages,
+            diagrams: self.diagrams,
+            tables: self.tables,
+            summary: self.summary,
+            report: self.report,
+            warnings,
+        }
+    }
+}
+
 /// A typed summary as the JSON value the products carry (keys in the order serde_json
 /// keeps them: sorted).
 pub fn summary_value(summary: &impl Serialize, name: &str) -> Result<serde_json::Value, Error> {

@@ -274,6 +274,29 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
+         * A triad's modes as JSON (`{"phi1_deg": [...], "pattern_phi1_deg", "drawn"}`), `""`
+         * for the other kinds.
+         * @returns {string}
+         */
+        modes() {
+            let deferred2_0;
+            let deferred2_1;
+            try {
+                const ret = wasm.live_modes(this.__wbg_ptr);
+                var ptr1 = ret[0];
+                var len1 = ret[1];
+                if (ret[3]) {
+                    ptr1 = 0; len1 = 0;
+                    throw takeFromExternrefTable0(ret[2]);
+                }
+                deferred2_0 = ptr1;
+                deferred2_1 = len1;
+                return getStringFromWasm0(ptr1, len1);
+            } finally {
+                wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
+            }
+        }
+        /**
          * What position `k`'s frame draws on the base (`""`: draw [`Live::frame`] whole).
          * @param {number} k
          * @returns {string}
