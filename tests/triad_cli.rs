@@ -180,7 +180,40 @@ fn mode_chooses_the_assembly_mode_the_picture_draws() {
         assert_eq!(drawn.len(), 1, "{report}");
         assert!(drawn[0].trim_start().starts_with(&format!("{mode} ")), "{report}");
         let svg = std::fs::read_to_string(tmp.path().join("triad-popa.svg")).unwrap();
-        assert!(svg.contains(&format!("solid: mode {mode} of 8")), "the caption names mode {mode}");
+        assert!(svg.contains(&format!("Solid: mode {mode} of 8")), "the caption names mode {mode}");
+        // The DXF read by ezdxf: its one closed triangle on MECHANISM closes the triad's six
+        // equations (the template's pivots, radii and sides) at mode `mode`'s vertices.
+        let out = std::process::Command::new(common::python())
+            .arg(common::root().join("tests/ezdxf_inspect.py"))
+            .arg(tmp.path().join("triad-popa.dxf"))
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let inspected: Value = serde_json::from_slice(&out.stdout).unwrap();
+        // Closed three-point polylines: the triad's triangle and the ground symbols under
+        // the pivots; the triangle is by far the largest.
+        let area = |p: &[(f64, f64)]| {
+            ((p[1].0 - p[0].0) * (p[2].1 - p[0].1) - (p[2].0 - p[0].0) * (p[1].1 - p[0].1)).abs() / 2.0
+        };
+        let a: Vec<(f64, f64)> = inspected["polylines"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|p| p["layer"] == "MECHANISM" && p["closed"] == true && p["points"].as_array().unwrap().len() == 3)
+            .map(|p| p["points"].as_array().unwrap().iter().map(pt).collect::<Vec<_>>())
+            .max_by(|p, q| area(p).total_cmp(&area(q)))
+            .expect("the triangle on MECHANISM");
+        let o = [(15.0, 30.0), (90.0, 20.0), (150.0, 40.0)];
+        let r = [50.0, 60.0, 84.0];
+        for i in 0..3 {
+            assert!((dist(a[i], o[i]) - r[i]).abs() < 1e-6, "mode {mode}: |O{}A{}|", i + 1, i + 1);
+        }
+        assert!((dist(a[0], a[1]) - 50.0).abs() < 1e-6 && (dist(a[1], a[2]) - 50.0).abs() < 1e-6);
+        assert!((dist(a[0], a[2]) - 92.0).abs() < 1e-6);
+        let sol = &solutions[mode as usize - 1];
+        for (i, v) in ["A1", "A2", "A3"].iter().enumerate() {
+            assert!(dist(a[i], pt(&sol[*v])) < 1e-6, "mode {mode}: {v} drawn at {:?}, not {}", a[i], sol[*v]);
+        }
     }
     let t = template_text();
     let with_mode = |m: &str| t.replace("orientation = \"both\"", &format!("orientation = \"both\"\nmode = {m}"));

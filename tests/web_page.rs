@@ -98,7 +98,7 @@ fn a_triad_mode_picked_on_the_page_is_the_one_the_picture_draws() {
     assert_eq!(json["primary"], 2, "the CLI draws mode 3 (index 2)");
     assert_eq!(pick["drawn"], 2);
     assert_eq!(pick["disabled"], serde_json::json!(["3"]), "mode 3's button shows it is drawn");
-    assert!(pick["caption"].as_str().unwrap().contains("solid: mode 3 of 8"), "{}", pick["caption"]);
+    assert!(pick["caption"].as_str().unwrap().contains("Solid: mode 3 of 8"), "{}", pick["caption"]);
     // And it is a different picture from the pattern method's mode.
     let (plain, _, _) = cli(&template("triad-popa"), &[]);
     assert_ne!(plain["triad-popa.svg"], files["triad-popa.svg"]);

@@ -40,9 +40,9 @@ pub struct TriadResults {
     pub newton: Result<NewtonSolution, TriadError>,
     /// Index in `modes` of the position drawn as the mechanism.
     pub primary: usize,
-    /// Whether the scene's `mode` chose it (else: the pattern method's mode, or the one
-    /// nearest its start).
-    pub chosen: bool,
+    /// Index in `modes` of the position the pattern method reached (`None`: it failed, or
+    /// reached a position outside the modes searched).
+    pub reached: Option<usize>,
     /// Warnings for the terminal.
     pub warnings: Vec<String>,
 }
@@ -131,17 +131,7 @@ pub fn solve(scene: &TriadScene) -> Result<TriadResults, TriadError> {
     if let Err(e) = &newton {
         warnings.push(e.to_string());
     }
-    Ok(TriadResults {
-        triad,
-        modes,
-        pattern,
-        start,
-        newton_start,
-        newton,
-        primary,
-        chosen: scene.mode.is_some(),
-        warnings,
-    })
+    Ok(TriadResults { triad, modes, pattern, start, newton_start, newton, primary, reached: matched, warnings })
 }
 
 /// Where a configuration puts the triad: its angles, its vertices and their orientation.
@@ -337,57 +327,34 @@ fn model_units(scene: &TriadScene) -> ModelUnits {
 pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
     let mut caption = Vec::new();
     let start_deg = deg(scene.pattern.phi1_start);
-    let reached = |p: &PatternSolution| {
-        (0..r.modes.len())
-            .find(|&i| max_vertex_distance(&p.configuration.a, &r.modes[i].a) <= SAME_POSITION_REL * r.triad.scale())
-    };
-    match &r.pattern {
-        _ if r.chosen => {
-            let pattern = match &r.pattern {
-                Ok(p) => match reached(p) {
-                    Some(i) => format!(
-                        "Pattern method: φ1 = {start_deg:.2}° (dashed, red) → {:.2}° in {} iterations (mode {})",
-                        deg(p.configuration.phi[0]),
-                        p.iterations,
-                        i + 1
-                    ),
-                    None => format!(
-                        "Pattern method: φ1 = {start_deg:.2}° (dashed, red) → {:.2}°, not among the modes searched",
-                        deg(p.configuration.phi[0])
-                    ),
-                },
-                Err(_) => format!("Pattern method failed from φ1 = {start_deg:.2}°"),
-            };
-            caption.push(format!(
-                "{pattern}; solid: mode {} of {} (mode = {} in the scene).",
-                r.primary + 1,
-                r.modes.len(),
-                r.primary + 1
-            ));
-        }
-        Ok(p) if max_vertex_distance(&p.configuration.a, &r.modes[r.primary].a) <= SAME_POSITION_REL * r.triad.scale() => {
-            caption.push(format!(
-                "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}° in {} iterations (solid: mode {} of {}).",
-                deg(scene.pattern.phi1_start),
-                deg(p.configuration.phi[0]),
-                p.iterations,
-                r.primary + 1,
-                r.modes.len()
-            ))
-        }
-        Ok(p) => caption.push(format!(
-            "Pattern method: φ1 = {:.2}° (dashed, red) → {:.2}°, not among the modes searched; drawn: mode {} of {}, the nearest to the start.",
-            deg(scene.pattern.phi1_start),
+    let n = r.modes.len();
+    // The pattern method's run, then what is drawn solid and why.
+    let pattern = match &r.pattern {
+        Ok(p) => format!(
+            "Pattern method: φ1 = {start_deg:.2}° (dashed, red) → {:.2}°{}",
             deg(p.configuration.phi[0]),
-            r.primary + 1,
-            r.modes.len()
-        )),
-        Err(_) => caption.push(format!(
-            "Pattern method failed from φ1 = {:.2}°; drawn: mode {} of {}.",
-            deg(scene.pattern.phi1_start),
-            r.primary + 1,
-            r.modes.len()
-        )),
+            match r.reached {
+                Some(_) => format!(" in {} iterations", p.iterations),
+                None => ", not among the modes searched".to_string(),
+            }
+        ),
+        Err(_) => format!("Pattern method failed from φ1 = {start_deg:.2}°"),
+    };
+    let drawn = r.primary + 1;
+    match (scene.mode, r.reached, &r.pattern) {
+        (Some(m), Some(i), _) => {
+            caption.push(format!("{pattern} (mode {}).", i + 1));
+            caption.push(format!("Solid: mode {m} of {n}, chosen by the scene's mode = {m}."));
+        }
+        (Some(m), None, _) => {
+            caption.push(format!("{pattern}."));
+            caption.push(format!("Solid: mode {m} of {n}, chosen by the scene's mode = {m}."));
+        }
+        (None, Some(_), _) => caption.push(format!("{pattern} (solid: mode {drawn} of {n}).")),
+        (None, None, Ok(_)) => {
+            caption.push(format!("{pattern}; drawn: mode {drawn} of {n}, the nearest to the start."))
+        }
+        (None, None, Err(_)) => caption.push(format!("{pattern}; drawn: mode {drawn} of {n}.")),
     }
     if r.modes.len() > 1 {
         caption.push(format!("All {} assembly modes are drawn on the modes sheet.", r.modes.len()));
