@@ -17,11 +17,12 @@
 use std::path::PathBuf;
 
 use crate::Error;
+use crate::draw::Drawing;
 use crate::draw::svg::{self, SvgOptions};
 use crate::figure::animation::{Drive, DriveState};
 use crate::geom::Point;
 use crate::run::bytes::{self, WriteOptions};
-use crate::run::products::Picture;
+use crate::run::products::{Picture, Products};
 use crate::run::{self, RunOptions};
 use crate::scene::{self, Loaded};
 
@@ -115,10 +116,8 @@ pub struct Session {
     file: String,
     text: String,
     sets: Vec<(String, String)>,
-    /// The picture and the warnings.
-    products: crate::run::products::Products,
-    /// Everything `mechdraw run` makes, made on first ask after a change.
-    full: std::sync::OnceLock<crate::run::products::Products>,
+    /// The products of the scene as it stands.
+    made: Made,
     /// A motion's frame options and its base written once (frames splice each position onto
     /// it).
     motion: Option<(SvgOptions, String)>,
@@ -127,6 +126,24 @@ pub struct Session {
     /// Every position's named points, solved at the first drag (the nearest position of every
     /// later pointer event is looked up here).
     positions_points: std::sync::OnceLock<Vec<Vec<(String, Point)>>>,
+}
+
+/// What a change made: everything (a kind whose whole run is cheap), or the picture and the
+/// warnings, with the rest made on first ask.
+enum Made {
+    /// Everything `mechdraw run` makes.
+    Complete(Products),
+    /// The picture and the warnings ([`RunOptions::picture_only`]), and everything once asked.
+    Picture(Products, Box<std::sync::OnceLock<Products>>),
+}
+
+impl Made {
+    /// The products the picture and the warnings come from.
+    fn shown(&self) -> &Products {
+        match self {
+            Made::Complete(p) | Made::Picture(p, _) => p,
+        }
+    }
 }
 
 /// Relative step of the drive's central differences (of its span) in a drag.
@@ -149,8 +166,7 @@ impl Session {
             file: file.to_string(),
             text: text.to_string(),
             sets: Vec::new(),
-            products,
-            full: std::sync::OnceLock::new(),
+            made: products,
             motion,
             dragged: None,
             positions_points: std::sync::OnceLock::new(),
@@ -164,9 +180,8 @@ impl Session {
         sets.retain(|(p, _)| p != path);
         sets.push((path.to_string(), value.to_string()));
         let (products, motion) = solve(&self.text, &self.file, &sets)?;
-        (self.sets, self.products, self.motion, self.dragged) = (sets, products, motion, None);
+        (self.sets, self.made, self.motion, self.dragged) = (sets, products, motion, None);
         self.positions_points = std::sync::OnceLock::new();
-        self.full = std::sync::OnceLock::new();
         Ok(())
     }
 
@@ -174,10 +189,9 @@ impl Session {
     /// field by field; on an error nothing changes.
     pub fn replace(&mut self, text: &str) -> Result<(), Error> {
         let (products, motion) = solve(text, &self.file, &[])?;
-        (self.text, self.sets, self.products, self.motion, self.dragged) =
+        (self.text, self.sets, self.made, self.motion, self.dragged) =
             (text.to_string(), Vec::new(), products, motion, None);
         self.positions_points = std::sync::OnceLock::new();
-        self.full = std::sync::OnceLock::new();
         Ok(())
     }
 
@@ -196,13 +210,17 @@ impl Session {
 
     /// All the products of the scene as it stands, as `mechdraw run` makes them (made on the
     /// first call after a change).
-    pub fn products(&self) -> Result<&crate::run::products::Products, Error> {
-        if let Some(p) = self.full.get() {
+    pub fn products(&self) -> Result<&Products, Error> {
+        let full = match &self.made {
+            Made::Complete(p) => return Ok(p),
+            Made::Picture(_, full) => full,
+        };
+        if let Some(p) = full.get() {
             return Ok(p);
         }
         let loaded = loaded(&self.text, &self.file, &self.sets)?;
         let p = run::products(&loaded, &RunOptions { no_frames: true, ..RunOptions::default() })?;
-        Ok(self.full.get_or_init(|| p))
+        Ok(full.get_or_init(|| p))
     }
 
     /// A triad's assembly modes as the page lists them: `{"phi1_deg": [...], "pattern_phi1_deg":
@@ -224,12 +242,12 @@ impl Session {
 
     /// The warnings of the scene as it stands (gaps, dead points, γ_min, ...), one line each.
     pub fn warnings(&self) -> &[String] {
-        &self.products.warnings
+        &self.made.shown().warnings
     }
 
     /// Number of positions of a motion (1 for a still picture).
     pub fn positions(&self) -> usize {
-        match &self.products.picture {
+        match &self.made.shown().picture {
             Picture::Motion(a) => a.len().max(1),
             Picture::Still(_) => 1,
         }
@@ -237,7 +255,7 @@ impl Session {
 
     /// The label of position `k` (`φ1 = 90°`, `t = 0.2500 s`; empty for a still picture).
     pub fn label(&self, k: usize) -> String {
-        match &self.products.picture {
+        match &self.made.shown().picture {
             Picture::Motion(a) => a.labels.get(k).cloned().unwrap_or_default(),
             Picture::Still(_) => String::new(),
         }
@@ -247,16 +265,9 @@ impl Session {
     /// line's `frames/<name>/<position>.svg`; for a still picture, `<name>.svg`. `None` past
     /// the last position.
     pub fn frame(&self, k: usize) -> Option<String> {
-        match &self.products.picture {
+        match &self.made.shown().picture {
             Picture::Still(d) => (k == 0).then(|| bytes::picture_svg(d)),
-            Picture::Motion(a) if k < a.len() => {
-                let (opts, base) = self.motion.as_ref()?;
-                let pose = a.pose(k);
-                Some(
-                    svg::splice(base, &svg::to_string(&pose, opts))
-                        .unwrap_or_else(|| svg::to_string(&a.frame_of(&pose), opts)),
-                )
-            }
+            Picture::Motion(a) if k < a.len() => self.whole(&a.pose(k)),
             Picture::Motion(_) => None,
         }
     }
@@ -272,32 +283,46 @@ impl Session {
     /// as the motion plays or a point is dragged). `None` past the last position, for a still
     /// picture, or when the frame cannot be split so (then draw [`Session::frame`] whole).
     pub fn moving(&self, k: usize) -> Option<String> {
-        let Picture::Motion(a) = &self.products.picture else { return None };
-        let (opts, base) = self.motion.as_ref()?;
-        let pose = (k < a.len()).then(|| a.pose(k))?;
-        svg::spliced_part(base, &svg::to_string(&pose, opts)).map(str::to_string)
+        let Picture::Motion(a) = &self.made.shown().picture else { return None };
+        self.part(&(k < a.len()).then(|| a.pose(k))?)
     }
 
     /// What the frame where the last drag left the mechanism draws on top of
     /// [`Session::base`] (as [`Session::moving`]).
     pub fn dragged_moving(&self) -> Option<String> {
+        self.part(&self.dragged_pose()?)
+    }
+
+    /// What moves in the frame where the last drag left the mechanism.
+    fn dragged_pose(&self) -> Option<Drawing> {
         let (k, s) = self.dragged?;
+        (self.drive()?.draw)(k, s).ok()
+    }
+
+    /// A motion's frame with `pose` on its base, whole (as the command line writes it).
+    fn whole(&self, pose: &Drawing) -> Option<String> {
+        let Picture::Motion(a) = &self.made.shown().picture else { return None };
         let (opts, base) = self.motion.as_ref()?;
-        let pose = (self.drive()?.draw)(k, s).ok()?;
-        svg::spliced_part(base, &svg::to_string(&pose, opts)).map(str::to_string)
+        Some(svg::splice(base, &svg::to_string(pose, opts)).unwrap_or_else(|| svg::to_string(&a.frame_of(pose), opts)))
+    }
+
+    /// What `pose` draws on the motion's base (`None` when the frame does not split so).
+    fn part(&self, pose: &Drawing) -> Option<String> {
+        let (opts, base) = self.motion.as_ref()?;
+        svg::spliced_part(base, &svg::to_string(pose, opts)).map(str::to_string)
     }
 
     /// SVG user units per model unit of the frames (paper millimetres per model unit, or 1):
     /// a frame's user point (x, y) is the model point (x, −y) / this.
     pub fn user_units_per_model(&self) -> f64 {
-        match &self.products.picture {
+        match &self.made.shown().picture {
             Picture::Motion(a) => a.base.paper_mm_per_unit.unwrap_or(1.0),
             Picture::Still(d) => d.paper_mm_per_unit.unwrap_or(1.0),
         }
     }
 
     fn drive(&self) -> Option<&Drive> {
-        match &self.products.picture {
+        match &self.made.shown().picture {
             Picture::Motion(a) => a.drive.as_ref(),
             Picture::Still(_) => None,
         }
@@ -367,14 +392,7 @@ impl Session {
     /// The frame where the last drag left the mechanism (as [`Session::frame`] draws a
     /// position, at the run's scales).
     pub fn dragged_frame(&self) -> Option<String> {
-        let (k, s) = self.dragged?;
-        let d = self.drive()?;
-        let (opts, base) = self.motion.as_ref()?;
-        let pose = (d.draw)(k, s).ok()?;
-        let Picture::Motion(a) = &self.products.picture else { return None };
-        Some(
-            svg::splice(base, &svg::to_string(&pose, opts)).unwrap_or_else(|| svg::to_string(&a.frame_of(&pose), opts)),
-        )
+        self.whole(&self.dragged_pose()?)
     }
 
     /// The scene's sheets (a triad's modes, a four-bar's centres and Joukowski's lever) as
@@ -456,7 +474,7 @@ fn overrides(sets: &[(String, String)]) -> Result<Vec<scene::Override>, Error> {
 }
 
 /// The products of `text` with `sets`, and a motion's frame options and base SVG.
-type Solved = (crate::run::products::Products, Option<(SvgOptions, String)>);
+type Solved = (Made, Option<(SvgOptions, String)>);
 
 /// The scene in `text` with `sets` applied, as the command line loads it.
 fn loaded(text: &str, file: &str, sets: &[(String, String)]) -> Result<Loaded, Error> {
@@ -469,7 +487,8 @@ fn loaded(text: &str, file: &str, sets: &[(String, String)]) -> Result<Loaded, E
 
 fn solve(text: &str, file: &str, sets: &[(String, String)]) -> Result<Solved, Error> {
     let loaded = loaded(text, file, sets)?;
-    let p = run::products(&loaded, &RunOptions { no_frames: true, picture_only: true, ..RunOptions::default() })?;
+    let alone = run::picture_alone(&loaded.scene);
+    let p = run::products(&loaded, &RunOptions { no_frames: true, picture_only: alone, ..RunOptions::default() })?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;
     }
@@ -486,7 +505,7 @@ fn solve(text: &str, file: &str, sets: &[(String, String)]) -> Result<Solved, Er
         }
         Picture::Still(_) => None,
     };
-    Ok((p, motion))
+    Ok((if alone { Made::Picture(p, Box::default()) } else { Made::Complete(p) }, motion))
 }
 
 /// The JavaScript side (wasm32 only): [`run_scene`](js::run_scene) and the [`Files`](js::Files)

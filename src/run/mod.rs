@@ -51,6 +51,13 @@ pub struct RunOptions {
     pub picture_only: bool,
 }
 
+/// Whether [`RunOptions::picture_only`] makes less than a whole run of `scene`: it does for
+/// the kinds whose runs sweep many positions (four-bar, linkage); a triad's or a chain's run
+/// is made whole.
+pub fn picture_alone(scene: &Scene) -> bool {
+    matches!(scene, Scene::Fourbar(_) | Scene::Linkage(_))
+}
+
 /// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
 /// DXF is written in millimetres).
 pub(crate) fn mm_per_unit(units: crate::scene::Units) -> f64 {
