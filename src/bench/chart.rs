@@ -5,9 +5,9 @@
 
 use super::Measurement;
 use super::basins::{Basin, Strip};
-use crate::draw::parts::text_width;
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
-use crate::geom::Point;
+use crate::figure::labels::{Polygon, TextBox};
+use crate::geom::{Point, Vector, perp};
 use crate::solve::triad::Configuration;
 
 /// Errors below this are drawn on the chart's floor (exact answers have error 0).
@@ -20,6 +20,12 @@ const H: f64 = 120.0;
 const TEXT: f64 = 2.5;
 /// Points of one series closer than this (model units) share one label.
 const LABEL_MERGE: f64 = 6.0;
+/// Radius of a point's marker circle, paper mm.
+const MARKER: f64 = 0.9;
+/// Width of a series' line, paper mm.
+const LINE_WIDTH: f64 = 0.3;
+/// Clear space between a point's label and the lines and markers of every series, paper mm.
+const CLEAR: f64 = 0.4;
 const PALETTE: [Aci; 8] =
     [Aci::BLUE, Aci::RED, Aci::GREEN, Aci::MAGENTA, Aci::ORANGE, Aci::CYAN, Aci::DARK_GREY, Aci(34)];
 
@@ -122,57 +128,85 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
             keys.push(k);
         }
     }
-    for (i, (problem, method)) in keys.iter().enumerate() {
-        let color = PALETTE[i % PALETTE.len()];
-        let series: Vec<&&Measurement> = pts.iter().filter(|m| &m.problem == problem && &m.method == method).collect();
-        let points: Vec<Point> =
-            series.iter().map(|m| Point::new(px(m.ns_per_solve), py(m.error.unwrap_or(1.0)))).collect();
-        if points.len() > 1 {
-            d.add_colored(data, color, Shape::Polyline { points: points.clone(), closed: false, width: 0.3 });
+    // Every point's label is placed by the letter placer, all series together: off the
+    // other labels, the point markers and the margins, and (preferably) off every series' lines.
+    let mut names = Polygon::of_names();
+    // Inside the frame: the margins (tick labels, title, legend) are kept off.
+    let m = 20.0;
+    for (min, max) in
+        [((-m, -m), (W + m, 0.0)), ((-m, H), (W + m, H + m)), ((-m, -m), (0.0, H + m)), ((W, -m), (W + m, H + m))]
+    {
+        names.keep_off(TextBox { min: Point::new(min.0, min.1), max: Point::new(max.0, max.1) });
+    }
+    let series: Vec<(Aci, Vec<Point>, Vec<(Point, String)>)> = keys
+        .iter()
+        .enumerate()
+        .map(|(i, (problem, method))| {
+            let color = PALETTE[i % PALETTE.len()];
+            let series: Vec<&&Measurement> =
+                pts.iter().filter(|m| &m.problem == problem && &m.method == method).collect();
+            let points: Vec<Point> =
+                series.iter().map(|m| Point::new(px(m.ns_per_solve), py(m.error.unwrap_or(1.0)))).collect();
+            (color, points.clone(), point_labels(&points, &series))
+        })
+        .collect();
+    for (_, points, _) in &series {
+        // A line is drawn LINE_WIDTH wide: a label keeps CLEAR from its edges (the placer
+        // tests boxes against its centre line and the two lines CLEAR off its edges).
+        let off = 0.5 * LINE_WIDTH + CLEAR;
+        for w in points.windows(2) {
+            let v = w[1] - w[0];
+            // (A zero-length piece gives NaN offsets, which the placer leaves out.)
+            let n = perp(v) * (off / v.norm());
+            names.segment(w[0], w[1]);
+            names.segment(w[0] + n, w[1] + n);
+            names.segment(w[0] - n, w[1] - n);
         }
-        // Points closer than LABEL_MERGE share one label ("tol=1e-12, 1e-15"), so labels of
-        // coinciding points do not pile up.
-        let mut groups: Vec<(Point, String)> = Vec::new();
-        for (p, m) in points.iter().zip(&series) {
-            d.add_colored(data, color, Shape::Circle { center: *p, radius: 0.9 });
-            match groups.last_mut() {
-                Some((q, text)) if (p - *q).norm() < LABEL_MERGE => {
-                    let value = m.setting.split_once('=').map_or(m.setting.as_str(), |(_, v)| v);
-                    text.push_str(", ");
-                    text.push_str(value);
-                }
-                _ => groups.push((*p, m.setting.clone())),
-            }
+        let r = Vector::new(MARKER + CLEAR, MARKER + CLEAR);
+        for p in points {
+            names.keep_off(TextBox { min: p - r, max: p + r });
         }
-        // A label close to the one before it (same height band, within a label's width)
-        // goes below its point instead of above.
-        let mut prev: Option<(Point, bool)> = None;
+    }
+    for (color, _, groups) in &series {
         for (p, text) in groups {
-            let below = prev.is_some_and(|(q, was_below)| {
-                !was_below && (p.y - q.y).abs() < 3.0 && (p.x - q.x).abs() < text_width(&text, 0.65 * TEXT)
-            });
-            prev = Some((p, below));
-            let offset = if below { crate::geom::Vector::new(1.2, -2.6) } else { crate::geom::Vector::new(1.2, 1.0) };
-            d.add_colored(
-                labels,
-                color,
-                Shape::Text {
-                    at: p + offset,
-                    height: 0.65 * TEXT,
-                    value: text,
-                    halign: HAlign::Left,
-                    valign: VAlign::Baseline,
-                    rotation: 0.0,
-                },
-            );
+            names.letter(*p, text, 0.65 * TEXT, Vector::new(1.0, 1.0), Some(*color));
+        }
+    }
+    for (i, ((problem, method), (color, points, _))) in keys.iter().zip(&series).enumerate() {
+        let color = *color;
+        if points.len() > 1 {
+            d.add_colored(data, color, Shape::Polyline { points: points.clone(), closed: false, width: LINE_WIDTH });
+        }
+        for p in points {
+            d.add_colored(data, color, Shape::Circle { center: *p, radius: MARKER });
         }
         // Legend to the right of the plot.
         let y = H - 4.0 - 5.0 * i as f64;
         d.add_colored(data, color, Shape::Line { from: Point::new(W + 6.0, y), to: Point::new(W + 12.0, y) });
-        d.add_colored(data, color, Shape::Circle { center: Point::new(W + 9.0, y), radius: 0.9 });
+        d.add_colored(data, color, Shape::Circle { center: Point::new(W + 9.0, y), radius: MARKER });
         d.add(labels, label(Point::new(W + 14.0, y), format!("{problem}: {method}"), HAlign::Left, VAlign::Middle));
     }
+    // The labels last, over the lines they keep off.
+    names.draw(&mut d, labels);
     d
+}
+
+/// A series' point labels: its settings, points closer than [`LABEL_MERGE`] sharing one
+/// label ("tol=1e-12, 1e-15") at the first of them, so that labels of coinciding points do
+/// not pile up.
+fn point_labels(points: &[Point], series: &[&&Measurement]) -> Vec<(Point, String)> {
+    let mut groups: Vec<(Point, String)> = Vec::new();
+    for (p, m) in points.iter().zip(series) {
+        match groups.last_mut() {
+            Some((q, text)) if (p - *q).norm() < LABEL_MERGE => {
+                let value = m.setting.split_once('=').map_or(m.setting.as_str(), |(_, v)| v);
+                text.push_str(", ");
+                text.push_str(value);
+            }
+            _ => groups.push((*p, m.setting.clone())),
+        }
+    }
+    groups
 }
 
 /// Width of the basin strips, model units (360° of start angle).
@@ -294,6 +328,75 @@ mod tests {
         assert_eq!(power_of_ten(-12), "10⁻¹²");
         assert_eq!(power_of_ten(3), "10³");
         assert_eq!(power_of_ten(0), "10⁰");
+    }
+
+    /// Measurements from a `methods.csv` of `mechdraw bench` (error = max(residual, distance)).
+    fn measurements(csv: &str) -> Vec<Measurement> {
+        csv.lines()
+            .skip(1)
+            .map(|l| {
+                let f: Vec<&str> = l.split(',').collect();
+                let num = |i: usize| f[i].parse::<f64>().expect("a number");
+                Measurement::new(f[0], f[1], f[2], num(3), num(5), num(6))
+            })
+            .collect()
+    }
+
+    /// No point label of the chart overlaps another label or a point's marker, none leaves
+    /// the frame, and none crosses a series' line: on the published run (idle machine) and on
+    /// a run on a busy machine, whose scattered times cross the series (the labels of the
+    /// four-bar's and the shaper's Assur rows touched when placed by a fixed offset).
+    #[test]
+    fn point_labels_keep_off_each_other_the_markers_and_the_lines() {
+        for (run, csv) in
+            [("idle", include_str!("testdata/methods-idle.csv")), ("busy", include_str!("testdata/methods-busy.csv"))]
+        {
+            let ms = measurements(csv);
+            let d = speed_accuracy_chart("t", &ms);
+            let labels = d.layers.iter().position(|l| l.name == "LABELS").expect("a LABELS layer");
+            let data = d.layers.iter().position(|l| l.name == "DATA").expect("a DATA layer");
+            let (mut boxes, mut lines, mut markers) = (Vec::new(), Vec::new(), Vec::new());
+            for e in &d.entities {
+                match &e.shape {
+                    Shape::Text { at, value, height, halign: HAlign::Center, .. } if e.layer == labels => {
+                        boxes.push((value.clone(), TextBox::centred(*at, value, *height)));
+                    }
+                    Shape::Polyline { points, .. } if e.layer == data => {
+                        lines.extend(points.windows(2).map(|w| (w[0], w[1])));
+                    }
+                    Shape::Circle { center, radius } if e.layer == data && center.x < W => {
+                        let r = Vector::new(*radius, *radius);
+                        markers.push(TextBox { min: center - r, max: center + r });
+                    }
+                    _ => {}
+                }
+            }
+            let settings = ms.iter().filter(|m| m.error.is_some()).count();
+            assert!(
+                boxes.len() >= 20 && markers.len() == settings,
+                "{run}: {} labels, {} markers",
+                boxes.len(),
+                markers.len()
+            );
+            for (i, (text, b)) in boxes.iter().enumerate() {
+                for (other, o) in &boxes[..i] {
+                    assert!(!b.overlaps(o), "{run}: `{text}` overlaps `{other}`");
+                }
+                for m in &markers {
+                    assert!(!b.overlaps(m), "{run}: `{text}` covers a point");
+                }
+                // The box grown by the clearance, less rounding: clear of every line's edge.
+                let g = Vector::new(CLEAR + 0.5 * LINE_WIDTH - 1e-9, CLEAR + 0.5 * LINE_WIDTH - 1e-9);
+                let grown = TextBox { min: b.min - g, max: b.max + g };
+                for &(p, q) in &lines {
+                    assert!(!grown.crosses(p, q), "{run}: `{text}` within the clearance of the line {p:?}–{q:?}");
+                }
+                assert!(
+                    b.min.x >= 0.0 && b.max.x <= W && b.min.y >= 0.0 && b.max.y <= H,
+                    "{run}: `{text}` leaves the frame"
+                );
+            }
+        }
     }
 
     #[test]
