@@ -138,7 +138,9 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
     {
         names.keep_off(TextBox { min: Point::new(min.0, min.1), max: Point::new(max.0, max.1) });
     }
-    let series: Vec<(Aci, Vec<Point>, Vec<(Point, String)>)> = keys
+    // Each series: its colour, its points, its labels.
+    type Series = (Aci, Vec<Point>, Vec<(Point, String)>);
+    let series: Vec<Series> = keys
         .iter()
         .enumerate()
         .map(|(i, (problem, method))| {
