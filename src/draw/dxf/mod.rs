@@ -99,6 +99,11 @@ pub const LIMITS_MARGIN: f64 = 0.05;
 /// 180° minus this (radians); nearer 0° or 180° the two lines are almost parallel, and
 /// from 180° on two lines cannot hold the angle: 3-point (type 5) then.
 pub const TWO_LINE_MARGIN: f64 = 1e-6;
+/// How wide LibreCAD draws a character of TEXT, in text heights, with some room: its font
+/// for [`TEXT_STYLE`] (AZOMIX) took 0.94 a character on the triad's first caption line and
+/// 0.98 on its second (many spaces), measured on LibreCAD 2.2's PDF page; DejaVu Sans, which
+/// the bounds assume, about 0.55.
+pub const LIBRECAD_ADVANCE: f64 = 1.05;
 /// The smallest sheet (limits) written, width × height in mm: A4 landscape.
 pub const MIN_SHEET_MM: (f64, f64) = (297.0, 210.0);
 /// The text style of every TEXT and of dimension text. LibreCAD takes a text's font from
@@ -559,7 +564,7 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
     h.version_guid = Default::default();
     h.minimum_drawing_extents = pt(bounds.min);
     h.maximum_drawing_extents = pt(bounds.max);
-    let (lim_min, lim_max) = sheet(bounds, extent);
+    let (lim_min, lim_max) = sheet(drawing, bounds, extent);
     let (lim_min, lim_max) = (pt(lim_min), pt(lim_max));
     h.minimum_drawing_limits = lim_min.clone();
     h.maximum_drawing_limits = lim_max.clone();
@@ -586,9 +591,32 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
 /// The sheet (limits): the drawing's bounds with a [`LIMITS_MARGIN`] margin, grown about
 /// its centre to at least [`MIN_SHEET_MM`] (landscape, or portrait for a tall drawing), so
 /// that a small drawing still prints on a real page (LibreCAD prints the limits at 1:1).
-fn sheet(bounds: &Bounds, extent: f64) -> (Point, Point) {
+///
+/// The bounds are grown to hold every TEXT as LibreCAD draws it, in its font
+/// ([`TEXT_STYLE`]) at [`LIBRECAD_ADVANCE`] text heights a character: wider than the
+/// DejaVu Sans estimate of the bounds, so a long caption would run off LibreCAD's page.
+fn sheet(drawing: &Drawing, bounds: &Bounds, extent: f64) -> (Point, Point) {
+    let (mut lo, mut hi) = (bounds.min, bounds.max);
+    for e in &drawing.entities {
+        if let Shape::Text { at, height, value, halign, rotation, .. } = &e.shape {
+            let w = LIBRECAD_ADVANCE * *height * value.chars().count() as f64;
+            let x0 = match halign {
+                HAlign::Left => 0.0,
+                HAlign::Center => -0.5 * w,
+                HAlign::Right => -w,
+            };
+            let (c, s) = (libm::cos(*rotation), libm::sin(*rotation));
+            let (u, v) = (Vector::new(c, s), Vector::new(-s, c));
+            for (x, y) in [(x0, -0.3), (x0 + w, -0.3), (x0, 1.0), (x0 + w, 1.0)] {
+                let p = at + u * x + v * (y * *height);
+                if p.x.is_finite() && p.y.is_finite() {
+                    (lo, hi) = (Point::new(lo.x.min(p.x), lo.y.min(p.y)), Point::new(hi.x.max(p.x), hi.y.max(p.y)));
+                }
+            }
+        }
+    }
     let m = Vector::new(LIMITS_MARGIN * extent, LIMITS_MARGIN * extent);
-    let (lo, hi) = (bounds.min - m, bounds.max + m);
+    let (lo, hi) = (lo - m, hi + m);
     let (w, h) = (hi.x - lo.x, hi.y - lo.y);
     let (min_w, min_h) = if h > w { (MIN_SHEET_MM.1, MIN_SHEET_MM.0) } else { MIN_SHEET_MM };
     let grow = Vector::new(0.5 * (min_w - w).max(0.0), 0.5 * (min_h - h).max(0.0));
