@@ -2,7 +2,7 @@
 //! templates gives a real page (larger than 100 mm both ways), and the page shows the triad's
 //! angular dimensions φ2 = 102.23° and φ3 = 117.04° (these numbers appear nowhere else in
 //! the drawing: LibreCAD draws them only if it draws the DIMENSION) and the chain's "±0.1"
-//! tolerances.
+//! tolerances; and that no text runs off LibreCAD's page (its font is wider than ours).
 //!
 //! LibreCAD draws text as strokes, so `pdftotext` finds nothing: the page is read back with
 //! tesseract. An angular dimension's text is drawn along its arc, so each one is cropped
@@ -230,4 +230,64 @@ fn librecad_draws_the_chains_tolerances_on_a_real_page() {
         .filter(|n| words.windows(2).any(|w| w[0] == *n && (w[1] == "±0.1" || w[1] == "+0.1")))
         .collect();
     assert!(seen.len() >= 5, "only {seen:?} of {wanted:?} read with ±0.1 on LibreCAD's page; OCR read {read:?}");
+}
+
+/// The page as an 8-bit grey image (`pdftoppm -gray`, PGM): (width, height, pixels row by row).
+fn page_grey(pdf: &Path, dpi: u32) -> (usize, usize, Vec<u8>) {
+    let out = Command::new("pdftoppm")
+        .args(["-gray", "-singlefile", "-r", &dpi.to_string()])
+        .arg(pdf)
+        .output()
+        .expect("run pdftoppm");
+    assert!(out.status.success(), "pdftoppm {} failed", pdf.display());
+    // "P5", width, height, maxval, each followed by one whitespace, then the pixels.
+    let bytes = out.stdout;
+    let mut fields = Vec::new();
+    let mut i = 0;
+    while fields.len() < 4 {
+        while bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        let start = i;
+        while !bytes[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        fields.push(String::from_utf8_lossy(&bytes[start..i]).into_owned());
+    }
+    assert_eq!(fields[0], "P5", "pdftoppm -gray writes a binary PGM");
+    let (w, h): (usize, usize) = (fields[1].parse().unwrap(), fields[2].parse().unwrap());
+    let pixels = bytes[i + 1..].to_vec();
+    assert_eq!(pixels.len(), w * h, "one byte a pixel");
+    (w, h, pixels)
+}
+
+/// LibreCAD prints the limits as the page, and draws text in its own font (wider than the
+/// DejaVu Sans the drawing's bounds assume): every caption and title must still be on the
+/// page. Checked on the page itself: nothing is drawn within 3 mm of its edges (the
+/// triad's first caption line ran off the right edge when the limits held the bounds alone).
+#[test]
+fn librecad_pages_hold_every_text() {
+    require_tools();
+    const DPI: u32 = 50;
+    const EDGE_MM: f64 = 3.0;
+    let dir = out_dir("margins");
+    for stem in ["triad-popa", "triad-popa-modes"] {
+        let dxf =
+            if stem == "triad-popa" { write_dxf("triad-popa", &dir, &[]) } else { dir.join(format!("{stem}.dxf")) };
+        let pdf = dxf2pdf(&dxf, &dir);
+        let (w, h, px) = page_grey(&pdf, DPI);
+        let edge = (EDGE_MM / 25.4 * DPI as f64).ceil() as usize;
+        let inked: Vec<(usize, usize)> = (0..h)
+            .flat_map(|y| (0..w).map(move |x| (x, y)))
+            .filter(|&(x, y)| (x < edge || x + edge >= w || y < edge || y + edge >= h) && px[y * w + x] < 200)
+            .collect();
+        assert!(
+            inked.is_empty(),
+            "{stem}: LibreCAD draws within {EDGE_MM} mm of the page's edge ({} px of a {w} × {h} page, e.g. {:?})",
+            inked.len(),
+            &inked[..inked.len().min(5)]
+        );
+        // And the page holds a drawing: something is drawn.
+        assert!(px.iter().filter(|&&v| v < 200).count() > 1000, "{stem}: an empty page");
+    }
 }
