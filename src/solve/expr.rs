@@ -424,7 +424,7 @@ impl Expr {
 
     /// f(t), f'(t), f''(t). Outside the domain of a function (e.g. `sqrt` of a negative
     /// number) the values are not finite: callers check.
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, t: f64) -> Jet {
         match self.shape {
             Shape::Const(k) => k,

@@ -1327,11 +1327,7 @@ impl AssurSolver {
             let plan = &mut self.plans[gi];
             if let Some(rho) = closed_rates(s, &self.ops[gi].position) {
                 if rho.is_nan() || rho <= super::SINGULAR_PIVOT_REL {
-                    return Err(LinkageError::Singular {
-                        t,
-                        drivers: s.driver_values(),
-                        constraints: plan.constraint_names(s),
-                    });
+                    return Err(singular_group(s, plan, t));
                 }
                 plan.pivot = rho;
                 if worst.is_none_or(|(p, _)| rho < p) {
@@ -1615,6 +1611,14 @@ fn rpp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
     Ok(())
 }
 
+/// The error of a group whose rates do not exist at `t` (a dead point; built out of the
+/// step's hot path).
+#[cold]
+#[inline(never)]
+fn singular_group(s: &Solver, plan: &Plan, t: f64) -> LinkageError {
+    LinkageError::Singular { t, drivers: s.driver_values(), constraints: plan.constraint_names(s) }
+}
+
 /// Why a group's closed form finds no position (the numbers its message shows).
 enum Why {
     /// RRR: the circles' centres are `d` apart.
@@ -1767,6 +1771,7 @@ fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
 /// Velocities and accelerations of a group from its differentiated closures (a 2×2 solve
 /// for a dyad), for the kinds that have them; `None` for the others (the group's block
 /// of Φq is solved instead). Returns ρ, the conditioning of the 2×2 (1 for a driven body).
+#[inline(always)]
 fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
     match *position {
         Position::DrivenAngle { u, pin, reference, sign, law } => {

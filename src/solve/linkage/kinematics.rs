@@ -434,6 +434,7 @@ impl Solver {
         })
     }
 
+    #[inline]
     pub(super) fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
         for (d, law) in self.mech.drivers.iter().zip(self.laws.iter_mut()) {
             let j = d.law.eval(t);
