@@ -307,6 +307,24 @@ impl Term {
         }
     }
 
+    /// The value of [`Term::eval`] alone (the same operation on the values).
+    #[inline]
+    fn value(self, t: f64) -> f64 {
+        match self {
+            Term::T => t,
+            Term::Scaled { k, k_first: true } => k.value * t,
+            Term::Scaled { k, k_first: false } => t * k.value,
+        }
+    }
+
+    /// Its folded constant, if any.
+    fn constant(self) -> Option<Jet> {
+        match self {
+            Term::T => None,
+            Term::Scaled { k, .. } => Some(k),
+        }
+    }
+
     #[inline]
     fn eval(self, t: f64) -> Jet {
         let tj = Jet { value: t, d1: 1.0, d2: 0.0 };
@@ -355,6 +373,20 @@ impl Shape {
         }
         Shape::Tree
     }
+
+    /// Whether the value alone tells whether the whole jet is finite: a fast shape whose
+    /// folded constants are finite with zero derivatives (then f′ and f″ are constants or
+    /// k·1, finite for every finite t, and a non-finite t makes the value non-finite too).
+    /// The tree, or a constant such as `sqrt(0)` (f′ = 0/0), is not.
+    fn value_tells(self) -> bool {
+        let plain = |k: Jet| k.value.is_finite() && k.d1 == 0.0 && k.d2 == 0.0;
+        match self {
+            Shape::Const(k) => plain(k),
+            Shape::Term(term) => term.constant().is_none_or(plain),
+            Shape::Shift { k, term, .. } => plain(k) && term.constant().is_none_or(plain),
+            Shape::Tree => false,
+        }
+    }
 }
 
 /// A parsed driver law f(t).
@@ -363,6 +395,8 @@ pub struct Expr {
     source: String,
     root: Node,
     shape: Shape,
+    /// `shape.value_tells()`, kept.
+    value_tells: bool,
 }
 
 impl Expr {
@@ -375,7 +409,7 @@ impl Expr {
             return Err(p.error_at(tok.col, format!("unexpected {} after a complete expression", tok.kind)));
         }
         let shape = Shape::of(&root);
-        Ok(Expr { source: source.to_string(), root, shape })
+        Ok(Expr { source: source.to_string(), root, shape, value_tells: shape.value_tells() })
     }
 
     /// The text the expression was parsed from.
@@ -390,7 +424,7 @@ impl Expr {
 
     /// f(t), f'(t), f''(t). Outside the domain of a function (e.g. `sqrt` of a negative
     /// number) the values are not finite: callers check.
-    #[inline]
+    #[inline(always)]
     pub fn eval(&self, t: f64) -> Jet {
         match self.shape {
             Shape::Const(k) => k,
@@ -401,6 +435,26 @@ impl Expr {
             }
             Shape::Tree => self.root.eval(t),
         }
+    }
+
+    /// f(t) alone, bit for bit `eval(t).value`, for a law whose value tells whether f′ and
+    /// f″ are finite too (the usual shapes: constant, `ω·t`, `φ0 + ω·t`, with plain
+    /// constants); `None` for any other law (evaluate the whole jet with [`Expr::eval`]).
+    /// A positions-only step needs no more than this.
+    #[inline]
+    pub fn value(&self, t: f64) -> Option<f64> {
+        if !self.value_tells {
+            return None;
+        }
+        Some(match self.shape {
+            Shape::Const(k) => k.value,
+            Shape::Term(term) => term.value(t),
+            Shape::Shift { k, term, k_first, sub } => {
+                let (x, y) = if k_first { (k.value, term.value(t)) } else { (term.value(t), k.value) };
+                if sub { x - y } else { x + y }
+            }
+            Shape::Tree => return None,
+        })
     }
 }
 
@@ -690,7 +744,31 @@ mod tests {
                 for (a, b) in [(fast.value, tree.value), (fast.d1, tree.d1), (fast.d2, tree.d2)] {
                     assert_eq!(a.to_bits(), b.to_bits(), "{law} at t = {t}: {fast:?} against {tree:?}");
                 }
+                // The value alone: the tree's bits, for every shape but the tree.
+                match e.value(t) {
+                    Some(v) => assert_eq!(v.to_bits(), tree.value.to_bits(), "{law} at t = {t}"),
+                    None => assert_eq!(shape, "tree", "{law}"),
+                }
             }
+        }
+    }
+
+    #[test]
+    fn a_value_alone_is_given_only_where_it_tells_whether_the_rates_are_finite() {
+        // Over many times, the value is finite exactly when the whole jet is.
+        let times = [0.0, 1.0, -3.5, 1e308, -1e308, f64::INFINITY, f64::NEG_INFINITY, f64::NAN, 1e-320];
+        for law in ["20*t", "t*0", "0*t", "t", "pi/2 + 2*pi*t", "1e308 + t*1e308", "pi/7", "-0*3", "0.25 - t"] {
+            let e = Expr::parse(law).unwrap();
+            for t in times {
+                let (v, j) = (e.value(t).unwrap(), e.eval(t));
+                assert_eq!(v.to_bits(), j.value.to_bits(), "{law} at {t}");
+                let all = j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite();
+                assert_eq!(v.is_finite(), all, "{law} at {t}: {j:?}");
+            }
+        }
+        // A constant with a non-finite derivative, and the tree: the whole jet is needed.
+        for law in ["sqrt(0)", "sqrt(0)*t", "1 + sqrt(0)*t", "sqrt(t)", "t*t", "1/0"] {
+            assert_eq!(Expr::parse(law).unwrap().value(1.0), None, "{law}");
         }
     }
 

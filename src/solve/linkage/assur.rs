@@ -614,10 +614,14 @@ enum Position {
         b2: usize,
         k1: Pin,
         a1: Vector,
-        a2: Vector,
         k3: Pin,
         d1: f64,
         d2: f64,
+        /// a1 − k1 and a2 − k3 (b1's and b2's arms), d1², d2².
+        arm1: Vector,
+        arm3: Vector,
+        d1sq: f64,
+        d2sq: f64,
     },
     Rrp {
         b1: usize,
@@ -627,6 +631,9 @@ enum Position {
         a2: Vector,
         s3: Slide,
         d1: f64,
+        /// a1 − k1 (b1's arm), d1².
+        arm1: Vector,
+        d1sq: f64,
     },
     Rpr {
         b1: usize,
@@ -659,7 +666,6 @@ enum Position {
 struct Plan {
     group: Group,
     description: String,
-    position: Position,
     /// Indices into the solver's constraints, and the first row of each in the group block.
     cons: Vec<(usize, usize)>,
     /// Global rows (for scales and names).
@@ -675,6 +681,13 @@ struct Plan {
     pivot: f64,
     /// Newton iterations of the last step (0 for a closed form).
     iterations: usize,
+}
+
+/// The hot part of a group's plan, what a step reads: how its position is found, with
+/// every index, local vector and constant resolved at construction, and its branch.
+#[derive(Debug, Clone)]
+struct Op {
+    position: Position,
     /// The branch of a two-root dyad taken at the last step (+1, −1; 0 before the first).
     side: f64,
 }
@@ -698,7 +711,19 @@ impl Plan {
                 if d1 <= tiny || d2 <= tiny {
                     return None;
                 }
-                Position::Rrr { b1, b2, k1, a1, a2, k3, d1, d2 }
+                Position::Rrr {
+                    b1,
+                    b2,
+                    k1,
+                    a1,
+                    k3,
+                    d1,
+                    d2,
+                    arm1: a1 - k1.local,
+                    arm3: a2 - k3.local,
+                    d1sq: d1 * d1,
+                    d2sq: d2 * d2,
+                }
             }
             DyadKind::Rrp => {
                 let k1 = pin_of(mech, j1, b1)?;
@@ -707,7 +732,17 @@ impl Plan {
                 if d1 <= tiny {
                     return None;
                 }
-                Position::Rrp { b1, b2, k1, a1, a2, s3: slide_of(mech, j3, b2)?, d1 }
+                Position::Rrp {
+                    b1,
+                    b2,
+                    k1,
+                    a1,
+                    a2,
+                    s3: slide_of(mech, j3, b2)?,
+                    d1,
+                    arm1: a1 - k1.local,
+                    d1sq: d1 * d1,
+                }
             }
             DyadKind::Rpr => Position::Rpr {
                 b1,
@@ -730,7 +765,7 @@ impl Plan {
         })
     }
 
-    fn new(mech: &Mechanism, g: Group, con_of_joint: &[usize], con_of_driver: &[usize], solver: &Solver) -> Plan {
+    fn new(mech: &Mechanism, g: Group, con_of_joint: &[usize], con_of_driver: &[usize], solver: &Solver) -> (Plan, Op) {
         let position = match g.kind {
             GroupKind::Driven(DrivenKind::Angle) => {
                 let (u, j, d) = (g.bodies[0], g.joints[0], g.drivers[0]);
@@ -783,10 +818,9 @@ impl Plan {
         }
         let k = 3 * g.bodies.len();
         let description = g.describe(mech);
-        Plan {
+        let plan = Plan {
             group: g,
             description,
-            position,
             cons,
             rows,
             k,
@@ -796,8 +830,8 @@ impl Plan {
             gamma: vec![0.0; 2],
             pivot: f64::INFINITY,
             iterations: 0,
-            side: 0.0,
-        }
+        };
+        (plan, Op { position, side: 0.0 })
     }
 
     /// The group's constraint names, for messages.
@@ -816,9 +850,11 @@ impl Plan {
 /// Writes body `b`'s pose into q and the cached poses.
 #[inline]
 fn set_body(q: &mut [f64], poses: &mut [Pose], b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
-    q[3 * b] = r.x;
-    q[3 * b + 1] = r.y;
-    q[3 * b + 2] = phi;
+    // One bounds check for the three coordinates.
+    let w = &mut q[3 * b..3 * b + 3];
+    w[0] = r.x;
+    w[1] = r.y;
+    w[2] = phi;
     poses[b] = Pose { r, phi, c: cs.0, s: cs.1 };
 }
 
@@ -854,7 +890,17 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     if c > 0.0 && s.abs() <= 0.0625 * c {
         let x = s / c;
         let x2 = x * x;
-        x * ATAN_SERIES.iter().rev().fold(0.0, |acc, k| acc * x2 + k)
+        // Horner's rule written out (the fold's 0·x² + k₆ is k₆): the same operations in
+        // the same order as folding over the series, without a loop.
+        let k = ATAN_SERIES;
+        let mut acc = k[6];
+        acc = acc * x2 + k[5];
+        acc = acc * x2 + k[4];
+        acc = acc * x2 + k[3];
+        acc = acc * x2 + k[2];
+        acc = acc * x2 + k[1];
+        acc = acc * x2 + k[0];
+        x * acc
     } else {
         libm::atan2(s, c)
     }
@@ -872,7 +918,10 @@ fn predicted_rotation(s: &Solver, pred: &Predictor, b: usize) -> (f64, f64) {
     let d = pred.at(s, 3 * b + 2) - last.phi;
     if d.abs() <= 0.5 {
         let d2 = d * d;
-        let turn = (1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 / 720.0)), d * (1.0 - d2 * (1.0 / 6.0 - d2 / 120.0)));
+        // Multiplications by the reciprocals (no division on the step's critical path;
+        // an ulp of difference is nothing against the series' own error).
+        let (k720, k120) = (1.0 / 720.0, 1.0 / 120.0);
+        let turn = (1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 * k720)), d * (1.0 - d2 * (1.0 / 6.0 - d2 * k120)));
         compose((last.c, last.s), turn)
     } else {
         (last.c, last.s)
@@ -932,6 +981,11 @@ pub struct AssurSolver {
     /// assembles the first position (the assembly mode) and factors Φq for the forces.
     inner: Solver,
     plans: Vec<Plan>,
+    /// The groups' ops, in solving order (one per plan).
+    ops: Vec<Op>,
+    /// The general solver's iterations when it solved the last step (at a dead point),
+    /// else `None` (the groups' own: Newton groups count theirs, closed forms none).
+    fallback: Option<usize>,
     /// q, q̇, q̈ of the last step while a step is solved (the prediction; the fallback at
     /// an exact dead point): swapped with the solver's own at the start of a step, so the
     /// solver's hold the step before until overwritten (q the linear predictor's second
@@ -968,12 +1022,15 @@ impl AssurSolver {
             con_of_driver.push(c);
             c += 1;
         }
-        let plans = groups.into_iter().map(|g| Plan::new(mech, g, &con_of_joint, &con_of_driver, &inner)).collect();
+        let (plans, ops) =
+            groups.into_iter().map(|g| Plan::new(mech, g, &con_of_joint, &con_of_driver, &inner)).unzip();
         let n = inner.n;
         let most = 3 * mech.bodies.len();
         Ok(AssurSolver {
             inner,
             plans,
+            ops,
+            fallback: None,
             q_prev: vec![0.0; n],
             qd_prev: vec![0.0; n],
             qdd_prev: vec![0.0; n],
@@ -991,7 +1048,7 @@ impl AssurSolver {
 
     /// Whether every group is solved in closed form.
     pub fn all_closed_form(&self) -> bool {
-        self.plans.iter().all(|p| !matches!(p.position, Position::Newton))
+        self.ops.iter().all(|o| !matches!(o.position, Position::Newton))
     }
 
     /// How each group is solved (a dyad whose closed form would divide by zero is left to
@@ -999,7 +1056,10 @@ impl AssurSolver {
     pub fn routes(&self) -> Vec<(&Group, Route)> {
         self.plans
             .iter()
-            .map(|p| (&p.group, if matches!(p.position, Position::Newton) { Route::Newton } else { Route::ClosedForm }))
+            .zip(&self.ops)
+            .map(|(p, o)| {
+                (&p.group, if matches!(o.position, Position::Newton) { Route::Newton } else { Route::ClosedForm })
+            })
             .collect()
     }
 
@@ -1027,7 +1087,7 @@ impl AssurSolver {
             q: self.inner.q.clone(),
             qd: self.inner.qd.clone(),
             qdd: self.inner.qdd.clone(),
-            iterations: self.plans.iter().map(|p| p.iterations).max().unwrap_or(0),
+            iterations: self.fallback.unwrap_or_else(|| self.plans.iter().map(|p| p.iterations).max().unwrap_or(0)),
             residual: self.inner.residual_norm().0,
             near_singular: self.inner.near.clone(),
         }
@@ -1140,11 +1200,17 @@ impl AssurSolver {
     }
 
     fn advance(&mut self, t: f64, rates: bool) -> Result<(), LinkageError> {
+        self.fallback = None;
         let Some(t0) = self.inner.t else {
             self.first(t)?;
             return self.finish(t, None, rates);
         };
-        self.inner.eval_laws(t)?;
+        if rates {
+            self.inner.eval_laws(t)?;
+        } else {
+            // Positions read the laws' values alone.
+            self.inner.eval_law_values(t)?;
+        }
         let dt = t - t0;
         let had_rates = self.rates_valid;
         self.predict(dt, rates);
@@ -1173,9 +1239,7 @@ impl AssurSolver {
             Err(LinkageError::Singular { .. }) => return Err(singular),
             Err(e) => return Err(e),
         };
-        for p in &mut self.plans {
-            p.iterations = iterations;
-        }
+        self.fallback = Some(iterations);
         self.rates_valid = true;
         self.dt_prev = Some(dt);
         Ok(())
@@ -1221,197 +1285,38 @@ impl AssurSolver {
         Ok(())
     }
 
-    /// Every group's position, in order.
+    /// Every group's position, in order: a straight run through the compiled ops, each
+    /// closed form its own small function (a group's failure message is built out of the
+    /// run, by [`cannot_assemble`]).
     fn positions(&mut self, t: f64) -> Result<(), LinkageError> {
         let l = self.inner.mech.length_scale;
         // How far a closure may miss and still count as met: the residual every answer
         // must meet (the general solver accepts the same).
         let slack = crate::geom::tol::RESIDUAL_REL * l;
         let pred = Predictor { how: self.how, last: &self.q_prev, qd: &self.qd_prev, qdd: &self.qdd_prev };
-        for gi in 0..self.plans.len() {
-            let s = &mut self.inner;
-            let plan = &mut self.plans[gi];
-            plan.iterations = 0;
-            let fail = |joint: usize, why: String, s: &Solver, plan: &Plan| LinkageError::GroupCannotAssemble {
-                group: plan.description.clone(),
-                joint: s.mech.joints[joint].name.clone(),
-                t,
-                why: format!("{}: {why}", s.driver_values()),
-            };
-            match plan.position {
-                Position::DrivenAngle { u, pin, reference, sign, law, .. } => {
-                    let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
-                    // One argument reduction for both (the same bits as libm's sin and cos).
-                    let (sn, cn) = libm::sincos(phi);
-                    let cs = (cn, sn);
-                    let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
-                    set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
-                }
-                Position::DrivenDistance { u, slide, sign, law } => {
-                    let (phi, cs, c, w) = slide.line(&s.poses);
-                    set_body(&mut s.q, &mut s.poses, u, c + w * (sign * s.laws[law].0), phi, cs);
-                }
-                Position::Rrr { b1, b2, k1, a1, a2, k3, d1, d2 } => {
-                    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
-                    let dv = p3 - p1;
-                    let d = dv.norm();
-                    let a = (d * d + d1 * d1 - d2 * d2) / (2.0 * d);
-                    let h2 = d1 * d1 - a * a;
-                    // A miss within the residual tolerance is a tangency (a dead point).
-                    let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
-                    if !(h2 >= 0.0 && d > 0.0) {
-                        let j2 = plan.group.joints[1];
-                        let why = format!(
-                            "the circles about `{}` and `{}` do not meet: centres {:.6} apart, radii {:.6} and {:.6}",
-                            s.mech.joints[plan.group.joints[0]].name,
-                            s.mech.joints[plan.group.joints[2]].name,
-                            d,
-                            d1,
-                            d2
-                        );
-                        return Err(fail(j2, why, s, plan));
-                    }
-                    let e = dv / d;
-                    let h = h2.sqrt();
-                    // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
-                    // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
-                    let m = p1 + e * a;
-                    let arm = a1 - k1.local;
-                    let dd = p1 + rot(predicted_rotation(s, &pred, b1), arm) - m;
-                    let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
-                    let side = if choose(common - x, common + x, &mut plan.side) == 0 { 1.0 } else { -1.0 };
-                    let j = m + perp(e) * (side * h);
-                    // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
-                    let c1 = rotation_scaled(arm, j - p1, d1 * d1);
-                    let c2 = rotation_scaled(a2 - k3.local, j - p3, d2 * d2);
-                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
-                    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
-                }
-                Position::Rrp { b1, b2, k1, a1, a2, s3, d1 } => {
-                    let p1 = glob(&s.poses, k1.known);
-                    let (phi2, cs2, c, w) = s3.line(&s.poses);
-                    let base = c + rot(cs2, a2);
-                    let e = base - p1;
-                    let b = e.dot(&w);
-                    let disc = b * b - e.norm_squared() + d1 * d1;
-                    let disc = if disc < 0.0 && disc >= -2.0 * d1 * slack { 0.0 } else { disc };
-                    if disc.is_nan() || disc < 0.0 {
-                        let why = format!(
-                            "the circle of radius {:.6} about `{}` does not reach the line of `{}`",
-                            d1, s.mech.joints[plan.group.joints[0]].name, s.mech.joints[plan.group.joints[2]].name
-                        );
-                        return Err(fail(plan.group.joints[1], why, s, plan));
-                    }
-                    let root = disc.sqrt();
-                    // b2's origin is c + s·w and the joint rides with it (b2's rotation is
-                    // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
-                    // along the line and |rp − c|² − s_p² off it.
-                    let off = Vector::new(pred.at(s, 3 * b2), pred.at(s, 3 * b2 + 1)) - c;
-                    let sp = off.dot(&w);
-                    let across = off.norm_squared() - sp * sp;
-                    let (sv0, sv1) = (-b + root, -b - root);
-                    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, &mut plan.side);
-                    let sv = if k == 0 { sv0 } else { sv1 };
-                    let j = base + w * sv;
-                    let c1 = rotation_scaled(a1 - k1.local, j - p1, d1 * d1);
-                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
-                    set_body(&mut s.q, &mut s.poses, b2, c + w * sv, phi2, cs2);
-                }
-                Position::Rpr { b1, b2, k1, mid, k3 } => {
-                    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
-                    // Slider S, guide G: rot(φ_G)·n0 · (K_S − K_G) = −n0 · (rot(α)(p − k_S) − (q1 − k_G)).
-                    let (ks, kg, pks, qkg) = if mid.b1_is_slider {
-                        (p1, p3, mid.p - k1.local, mid.q1 - k3.local)
-                    } else {
-                        (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
-                    };
-                    let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
-                    let dv = ks - kg;
-                    let d = dv.norm();
-                    if !(d > 0.0 && c0.abs() <= d + slack) {
-                        let why = format!(
-                            "the line of `{}` passes {:.6} from the pivot of the other body, which is {:.6} away",
-                            s.mech.joints[plan.group.joints[1]].name,
-                            c0.abs(),
-                            d
-                        );
-                        return Err(fail(plan.group.joints[1], why, s, plan));
-                    }
-                    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors.
-                    let dh = dv / d;
-                    let x = (-c0 / d).clamp(-1.0, 1.0);
-                    let y = (1.0 - x * x).max(0.0).sqrt();
-                    // The two bodies turn together: the root whose guide normal
-                    // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
-                    let guide = if mid.b1_is_slider { b2 } else { b1 };
-                    let u = dh * x - rot(predicted_rotation(s, &pred, guide), mid.n0);
-                    let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
-                    let side =
-                        if choose(common + cross_term, common - cross_term, &mut plan.side) == 0 { 1.0 } else { -1.0 };
-                    let ng = dh * x + perp(dh) * (side * y);
-                    let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
-                    let cs = compose(cg, mid.turn);
-                    let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
-                    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
-                    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
-                }
-                Position::Prp { b1, b2, s1, a1, a2, s3 } => {
-                    let (phi1, cs1, c1, w1) = s1.line(&s.poses);
-                    let (phi2, cs2, c3, w3) = s3.line(&s.poses);
-                    let e = (c3 + rot(cs2, a2)) - (c1 + rot(cs1, a1));
-                    // s1·w1 − s3·w3 = e.
-                    let det = cross(w1, -w3);
-                    if det.abs() <= DEGENERATE_REL {
-                        let why = format!(
-                            "the guides of `{}` and `{}` are parallel",
-                            s.mech.joints[plan.group.joints[0]].name, s.mech.joints[plan.group.joints[2]].name
-                        );
-                        return Err(fail(plan.group.joints[1], why, s, plan));
-                    }
-                    let sv1 = cross(e, -w3) / det;
-                    let sv3 = cross(w1, e) / det;
-                    set_body(&mut s.q, &mut s.poses, b1, c1 + w1 * sv1, phi1, cs1);
-                    set_body(&mut s.q, &mut s.poses, b2, c3 + w3 * sv3, phi2, cs2);
-                }
-                Position::Rpp { b1, b2, k1, mid, s3 } => {
-                    let (phi2, cs2, c, w) = s3.line(&s.poses);
-                    let (phi1, cs1) = if mid.b1_is_slider {
-                        (phi2 + mid.angle, compose(cs2, mid.turn))
-                    } else {
-                        (phi2 - mid.angle, compose(cs2, (mid.turn.0, -mid.turn.1)))
-                    };
-                    let p1 = glob(&s.poses, k1.known);
-                    let r1 = p1 - rot(cs1, k1.local);
-                    set_body(&mut s.q, &mut s.poses, b1, r1, phi1, cs1);
-                    // n_G·(P − Q1) = 0 with b2's origin c + s·w.
-                    let (num, den) = if mid.b1_is_slider {
-                        let n = rot(cs2, mid.n0);
-                        let p = r1 + rot(cs1, mid.p);
-                        (n.dot(&(p - c - rot(cs2, mid.q1))), n.dot(&w))
-                    } else {
-                        let n = rot(cs1, mid.n0);
-                        let q1 = r1 + rot(cs1, mid.q1);
-                        (-n.dot(&(c + rot(cs2, mid.p) - q1)), n.dot(&w))
-                    };
-                    if den.abs() <= DEGENERATE_REL {
-                        let why = format!(
-                            "the line of `{}` runs along the guide of `{}`",
-                            s.mech.joints[plan.group.joints[1]].name, s.mech.joints[plan.group.joints[2]].name
-                        );
-                        return Err(fail(plan.group.joints[1], why, s, plan));
-                    }
-                    set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
-                }
+        let s = &mut self.inner;
+        for (gi, op) in self.ops.iter_mut().enumerate() {
+            let done = match op.position {
+                Position::DrivenAngle { .. } => driven_angle(s, &pred, op, slack),
+                Position::DrivenDistance { .. } => driven_distance(s, &pred, op, slack),
+                Position::Rrr { .. } => rrr(s, &pred, op, slack),
+                Position::Rrp { .. } => rrp(s, &pred, op, slack),
+                Position::Rpr { .. } => rpr(s, &pred, op, slack),
+                Position::Prp { .. } => prp(s, &pred, op, slack),
+                Position::Rpp { .. } => rpp(s, &pred, op, slack),
                 Position::Triad(ref tp) => {
-                    pred.write(s, &plan.group.bodies);
-                    if let Err(why) = solve_triad(s, tp) {
-                        return Err(fail(plan.group.joints[3], why, s, plan));
-                    }
+                    pred.write(s, &self.plans[gi].group.bodies);
+                    solve_triad(s, tp).map_err(Why::Triad)
                 }
                 Position::Newton => {
+                    let plan = &mut self.plans[gi];
                     pred.write(s, &plan.group.bodies);
                     newton(s, plan, &mut self.work, t)?;
+                    Ok(())
                 }
+            };
+            if let Err(why) = done {
+                return Err(cannot_assemble(s, &self.plans[gi], t, why));
             }
         }
         Ok(())
@@ -1423,13 +1328,9 @@ impl AssurSolver {
         for gi in 0..self.plans.len() {
             let s = &mut self.inner;
             let plan = &mut self.plans[gi];
-            if let Some(rho) = closed_rates(s, &plan.position) {
+            if let Some(rho) = closed_rates(s, &self.ops[gi].position) {
                 if rho.is_nan() || rho <= super::SINGULAR_PIVOT_REL {
-                    return Err(LinkageError::Singular {
-                        t,
-                        drivers: s.driver_values(),
-                        constraints: plan.constraint_names(s),
-                    });
+                    return Err(singular_group(s, plan, t));
                 }
                 plan.pivot = rho;
                 if worst.is_none_or(|(p, _)| rho < p) {
@@ -1517,6 +1418,266 @@ impl AssurSolver {
             _ => None,
         };
         Ok(())
+    }
+}
+
+/// A crank's position: its angle from the law, its pin on the known body. Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn driven_angle(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::DrivenAngle { u, pin, reference, sign, law, .. } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
+    // One argument reduction for both (the same bits as libm's sin and cos).
+    let (sn, cn) = libm::sincos(phi);
+    let cs = (cn, sn);
+    let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
+    set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
+    Ok(())
+}
+
+/// A driven slider's position: along its guide by the law. Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn driven_distance(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::DrivenDistance { u, slide, sign, law } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let (phi, cs, c, w) = slide.line(&s.poses);
+    set_body(&mut s.q, &mut s.poses, u, c + w * (sign * s.laws[law].0), phi, cs);
+    Ok(())
+}
+
+/// An RRR dyad's position: the circles about its two known pivots, the root nearer the
+/// joint where b1's predicted angle puts it. Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn rrr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::Rrr { b1, b2, k1, k3, arm1, arm3, d1, d2, d1sq, d2sq, .. } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+    let dv = p3 - p1;
+    let d = dv.norm();
+    let a = (d * d + d1sq - d2sq) / (2.0 * d);
+    let h2 = d1sq - a * a;
+    // A miss within the residual tolerance is a tangency (a dead point).
+    let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
+    if !(h2 >= 0.0 && d > 0.0) {
+        return Err(Why::Apart { d, d1, d2 });
+    }
+    let e = dv / d;
+    let h = h2.sqrt();
+    // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
+    // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
+    let m = p1 + e * a;
+    let dd = p1 + rot(predicted_rotation(s, pred, b1), arm1) - m;
+    let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
+    let side = if choose(common - x, common + x, &mut op.side) == 0 { 1.0 } else { -1.0 };
+    let j = m + perp(e) * (side * h);
+    // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
+    let c1 = rotation_scaled(arm1, j - p1, d1sq);
+    let c2 = rotation_scaled(arm3, j - p3, d2sq);
+    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
+    Ok(())
+}
+
+/// An RRP dyad's position: the circle about its known pivot and the slider's line, the
+/// root nearer b2's predicted origin. Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn rrp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, .. } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let p1 = glob(&s.poses, k1.known);
+    let (phi2, cs2, c, w) = s3.line(&s.poses);
+    let base = c + rot(cs2, a2);
+    let e = base - p1;
+    let b = e.dot(&w);
+    let disc = b * b - e.norm_squared() + d1sq;
+    let disc = if disc < 0.0 && disc >= -2.0 * d1 * slack { 0.0 } else { disc };
+    if disc.is_nan() || disc < 0.0 {
+        return Err(Why::Reach { d1 });
+    }
+    let root = disc.sqrt();
+    // b2's origin is c + s·w and the joint rides with it (b2's rotation is
+    // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
+    // along the line and |rp − c|² − s_p² off it.
+    let off = Vector::new(pred.at(s, 3 * b2), pred.at(s, 3 * b2 + 1)) - c;
+    let sp = off.dot(&w);
+    let across = off.norm_squared() - sp * sp;
+    let (sv0, sv1) = (-b + root, -b - root);
+    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, &mut op.side);
+    let sv = if k == 0 { sv0 } else { sv1 };
+    let j = base + w * sv;
+    let c1 = rotation_scaled(arm1, j - p1, d1sq);
+    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+    set_body(&mut s.q, &mut s.poses, b2, c + w * sv, phi2, cs2);
+    Ok(())
+}
+
+/// An RPR dyad's position: the guide's normal from the pivots' distance, the root nearer
+/// the normal at the guide's predicted angle. Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn rpr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::Rpr { b1, b2, k1, mid, k3 } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+    // Slider S, guide G: rot(φ_G)·n0 · (K_S − K_G) = −n0 · (rot(α)(p − k_S) − (q1 − k_G)).
+    let (ks, kg, pks, qkg) = if mid.b1_is_slider {
+        (p1, p3, mid.p - k1.local, mid.q1 - k3.local)
+    } else {
+        (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
+    };
+    let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
+    let dv = ks - kg;
+    let d = dv.norm();
+    if !(d > 0.0 && c0.abs() <= d + slack) {
+        return Err(Why::Passes { c0, d });
+    }
+    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors.
+    let dh = dv / d;
+    let x = (-c0 / d).clamp(-1.0, 1.0);
+    let y = (1.0 - x * x).max(0.0).sqrt();
+    // The two bodies turn together: the root whose guide normal
+    // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
+    let guide = if mid.b1_is_slider { b2 } else { b1 };
+    let u = dh * x - rot(predicted_rotation(s, pred, guide), mid.n0);
+    let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
+    let side = if choose(common + cross_term, common - cross_term, &mut op.side) == 0 { 1.0 } else { -1.0 };
+    let ng = dh * x + perp(dh) * (side * y);
+    let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
+    let cs = compose(cg, mid.turn);
+    let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
+    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
+    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
+    Ok(())
+}
+
+/// A PRP dyad's position: the two sliders' lines intersected (one root). Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn prp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::Prp { b1, b2, s1, a1, a2, s3 } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let (phi1, cs1, c1, w1) = s1.line(&s.poses);
+    let (phi2, cs2, c3, w3) = s3.line(&s.poses);
+    let e = (c3 + rot(cs2, a2)) - (c1 + rot(cs1, a1));
+    // s1·w1 − s3·w3 = e.
+    let det = cross(w1, -w3);
+    if det.abs() <= DEGENERATE_REL {
+        return Err(Why::Parallel);
+    }
+    let sv1 = cross(e, -w3) / det;
+    let sv3 = cross(w1, e) / det;
+    set_body(&mut s.q, &mut s.poses, b1, c1 + w1 * sv1, phi1, cs1);
+    set_body(&mut s.q, &mut s.poses, b2, c3 + w3 * sv3, phi2, cs2);
+    Ok(())
+}
+
+/// An RPP dyad's position: both bodies turn with the guide's body (one root). Every kind's step has the same
+/// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
+/// why, for [`cannot_assemble`].
+#[inline(always)]
+fn rpp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
+    let Position::Rpp { b1, b2, k1, mid, s3 } = op.position else { return Ok(()) };
+    let _ = (pred, slack); // not every kind reads both
+    let (phi2, cs2, c, w) = s3.line(&s.poses);
+    let (phi1, cs1) = if mid.b1_is_slider {
+        (phi2 + mid.angle, compose(cs2, mid.turn))
+    } else {
+        (phi2 - mid.angle, compose(cs2, (mid.turn.0, -mid.turn.1)))
+    };
+    let p1 = glob(&s.poses, k1.known);
+    let r1 = p1 - rot(cs1, k1.local);
+    set_body(&mut s.q, &mut s.poses, b1, r1, phi1, cs1);
+    // n_G·(P − Q1) = 0 with b2's origin c + s·w.
+    let (num, den) = if mid.b1_is_slider {
+        let n = rot(cs2, mid.n0);
+        let p = r1 + rot(cs1, mid.p);
+        (n.dot(&(p - c - rot(cs2, mid.q1))), n.dot(&w))
+    } else {
+        let n = rot(cs1, mid.n0);
+        let q1 = r1 + rot(cs1, mid.q1);
+        (-n.dot(&(c + rot(cs2, mid.p) - q1)), n.dot(&w))
+    };
+    if den.abs() <= DEGENERATE_REL {
+        return Err(Why::Along);
+    }
+    set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
+    Ok(())
+}
+
+/// The error of a group whose rates do not exist at `t` (a dead point; built out of the
+/// step's hot path).
+#[cold]
+#[inline(never)]
+fn singular_group(s: &Solver, plan: &Plan, t: f64) -> LinkageError {
+    LinkageError::Singular { t, drivers: s.driver_values(), constraints: plan.constraint_names(s) }
+}
+
+/// Why a group's closed form finds no position (the numbers its message shows).
+enum Why {
+    /// RRR: the circles' centres are `d` apart.
+    Apart { d: f64, d1: f64, d2: f64 },
+    /// RRP: the circle of radius `d1` misses the line.
+    Reach { d1: f64 },
+    /// RPR: the line passes `|c0|` from the other pivot, `d` away.
+    Passes { c0: f64, d: f64 },
+    /// PRP: parallel guides.
+    Parallel,
+    /// RPP: the line runs along the guide.
+    Along,
+    /// The triad's own message.
+    Triad(String),
+}
+
+/// The error of a group that cannot be assembled at `t`: the group, its joint and why
+/// (built here, out of the step's hot path).
+#[cold]
+#[inline(never)]
+fn cannot_assemble(s: &Solver, plan: &Plan, t: f64, why: Why) -> LinkageError {
+    let joints = &plan.group.joints;
+    let name = |slot: usize| s.mech.joints[joints[slot]].name.as_str();
+    let (joint, why) = match why {
+        Why::Apart { d, d1, d2 } => (
+            1,
+            format!(
+                "the circles about `{}` and `{}` do not meet: centres {:.6} apart, radii {:.6} and {:.6}",
+                name(0),
+                name(2),
+                d,
+                d1,
+                d2
+            ),
+        ),
+        Why::Reach { d1 } => {
+            (1, format!("the circle of radius {:.6} about `{}` does not reach the line of `{}`", d1, name(0), name(2)))
+        }
+        Why::Passes { c0, d } => (
+            1,
+            format!(
+                "the line of `{}` passes {:.6} from the pivot of the other body, which is {:.6} away",
+                name(1),
+                c0.abs(),
+                d
+            ),
+        ),
+        Why::Parallel => (1, format!("the guides of `{}` and `{}` are parallel", name(0), name(2))),
+        Why::Along => (1, format!("the line of `{}` runs along the guide of `{}`", name(1), name(2))),
+        Why::Triad(why) => (3, why),
+    };
+    LinkageError::GroupCannotAssemble {
+        group: plan.description.clone(),
+        joint: name(joint).to_string(),
+        t,
+        why: format!("{}: {why}", s.driver_values()),
     }
 }
 
@@ -1613,6 +1774,7 @@ fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
 /// Velocities and accelerations of a group from its differentiated closures (a 2×2 solve
 /// for a dyad), for the kinds that have them; `None` for the others (the group's block
 /// of Φq is solved instead). Returns ρ, the conditioning of the 2×2 (1 for a driven body).
+#[inline(always)]
 fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
     match *position {
         Position::DrivenAngle { u, pin, reference, sign, law } => {

@@ -434,6 +434,7 @@ impl Solver {
         })
     }
 
+    #[inline]
     pub(super) fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
         for (d, law) in self.mech.drivers.iter().zip(self.laws.iter_mut()) {
             let j = d.law.eval(t);
@@ -441,6 +442,21 @@ impl Solver {
                 return Err(not_finite(d, t, j));
             }
             *law = (j.value, j.d1, j.d2);
+        }
+        Ok(())
+    }
+
+    /// The laws' values alone at `t` (a positions-only step reads no more): f′ and f″ are
+    /// left as they were, except for a law whose value does not tell whether its rates are
+    /// finite ([`Expr::value`](crate::solve::expr::Expr::value) gives `None`), evaluated
+    /// whole. The same error as [`Solver::eval_laws`] where any of them is not finite.
+    #[inline]
+    pub(super) fn eval_law_values(&mut self, t: f64) -> Result<(), LinkageError> {
+        for (d, law) in self.mech.drivers.iter().zip(self.laws.iter_mut()) {
+            match d.law.value(t) {
+                Some(v) if v.is_finite() => law.0 = v,
+                _ => *law = whole_law(d, t)?,
+            }
         }
         Ok(())
     }
@@ -1009,6 +1025,18 @@ impl Solver {
             near_singular: None,
         })
     }
+}
+
+/// A law's whole jet at `t` (out of the positions-only step's hot path), or the error
+/// where it is not finite.
+#[cold]
+#[inline(never)]
+fn whole_law(d: &super::Driver, t: f64) -> Result<(f64, f64, f64), LinkageError> {
+    let j = d.law.eval(t);
+    if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
+        return Err(not_finite(d, t, j));
+    }
+    Ok((j.value, j.d1, j.d2))
 }
 
 /// The error for a driver law that is not finite at `t` (out of the step's hot path).
