@@ -78,9 +78,12 @@ pub(super) fn products(
         Extras::default()
     } else {
         let qs = reported(&spec.outputs, layout.show.forces);
-        let mut csv = table(&motion, &qs, layout.show.forces);
-        let mut summary = summary(scene, &motion, &layout, &qs)?;
-        let mut report = report_text(scene, &motion, &layout);
+        // The table on one core, the summary and the report on the other.
+        let (mut csv, (summary, mut report)) = rayon::join(
+            || table(&motion, &qs, layout.show.forces),
+            || (summary(scene, &motion, &layout, &qs), report_text(scene, &motion, &layout)),
+        );
+        let mut summary = summary?;
         let levers = if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() };
         teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
         if let Some(m) = &gamma_min {
