@@ -48,10 +48,11 @@ pub struct WriteOptions {
     pub dxf: DxfOptions,
 }
 
-/// One file: its path relative to the output directory (`/`-separated) and its bytes in two
-/// pieces, the one followed by the other (a frame: the part every frame shares, then its own;
-/// the second piece is empty for a file made whole), so that no frame is copied together.
-pub type File<'a> = (String, [&'a [u8]; 2]);
+/// One file: its path relative to the output directory (`/`-separated) and its bytes in
+/// pieces, the one after the other (a frame: the part every frame shares, then its own; a
+/// motion's DXF: its head, then what each job wrote; one piece for a file made whole), so
+/// that no file is copied together.
+pub type File<'a> = (String, Vec<&'a [u8]>);
 
 /// Where files go as they are made. `put` may be called from any thread, in any order;
 /// [`write`](fn@write) returns the files' canonical order.
@@ -67,7 +68,7 @@ pub struct Memory(Mutex<Vec<(String, Vec<u8>)>>);
 impl Sink for Memory {
     fn put(&self, files: &[File<'_>]) -> Result<(), Error> {
         let mut v = self.0.lock().map_err(|_| poisoned())?;
-        v.extend(files.iter().map(|(n, [a, b])| (n.clone(), [*a, *b].concat())));
+        v.extend(files.iter().map(|(n, pieces)| (n.clone(), pieces.concat())));
         Ok(())
     }
 }
@@ -142,7 +143,7 @@ fn put_owned(sink: &dyn Sink, files: Vec<(String, Vec<u8>)>) -> Result<Vec<Strin
 
 /// Borrowed views of owned files, for [`Sink::put`].
 fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
-    v.iter().map(|(n, b)| (n.clone(), [b.as_slice(), &[]])).collect()
+    v.iter().map(|(n, b)| (n.clone(), vec![b.as_slice()])).collect()
 }
 
 /// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
@@ -279,8 +280,8 @@ struct Frame<'a> {
 
 impl Frame<'_> {
     /// The frame's two pieces, as a [`File`] holds them.
-    fn pieces(&self) -> [&[u8]; 2] {
-        [self.head.as_bytes(), &self.svg.as_bytes()[self.from..]]
+    fn pieces(&self) -> Vec<&[u8]> {
+        vec![self.head.as_bytes(), &self.svg.as_bytes()[self.from..]]
     }
 
     /// The whole frame in one string (for the picture and a PNG).
@@ -311,21 +312,26 @@ fn motion(
     let poses = a.poses();
     let svg_opts = frame_options(a, &poses);
     let dxf_name = format!("{name}.dxf");
-    let ((dxf, frames), (extras, (diagrams, pages))) = rayon::join(
+    // The DXF's pieces first, on every core (its jobs are the largest part of the run; the
+    // sheets, the tables and the JSON meanwhile), then the file written on one core while
+    // the frames, the diagrams and the printed pages are made on the other.
+    let (pieces, extras) = rayon::join(
         || {
-            rayon::join(
-                || -> Result<(), Error> {
-                    let [head, entities] = dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
-                        .map_err(|e| Error::Export { what: dxf_name.clone(), message: e.to_string() })?;
-                    // The entities, most of the file, are not copied to join them.
-                    sink.put(&[(dxf_name.clone(), [head.as_slice(), entities.as_slice()])])
-                },
-                || frame_files(a, &poses, &svg_opts, opts, tick, sink, name),
-            )
+            dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
+                .map_err(|e| Error::Export { what: dxf_name.clone(), message: e.to_string() })
+        },
+        || extra_files(p, opts).and_then(|f| put_owned(sink, f)),
+    );
+    let dxf_file = (dxf_name.clone(), pieces?);
+    let (dxf, (frames, (diagrams, pages))) = rayon::join(
+        || {
+            // The entities, most of the file, are not copied to join them (and are freed here).
+            let (name, pieces) = dxf_file;
+            sink.put(&[(name, pieces.iter().map(Vec::as_slice).collect())])
         },
         || {
             rayon::join(
-                || extra_files(p, opts).and_then(|f| put_owned(sink, f)),
+                || frame_files(a, &poses, &svg_opts, opts, tick, sink, name),
                 || {
                     rayon::join(
                         || diagram_files(&p.diagrams, name, opts.png).and_then(|f| put_owned(sink, f)),
@@ -398,7 +404,7 @@ fn frame_files(
             for (i, (stem, f)) in stems.iter().zip(&frames).enumerate() {
                 files.push((format!("{stem}.svg"), f.pieces()));
                 if let Some(png) = pngs.get(i) {
-                    files.push((format!("{stem}.png"), [png.as_slice(), &[]]));
+                    files.push((format!("{stem}.png"), vec![png.as_slice()]));
                 }
             }
             sink.put(&files)?;

@@ -195,7 +195,7 @@ mod tests {
         let files: Vec<(String, Vec<u8>)> =
             (0..50).map(|i| (format!("frames/f{i:02}.svg"), format!("{i}").into_bytes())).collect();
         let views: Vec<super::super::bytes::File<'_>> =
-            files.iter().map(|(n, b)| (n.clone(), [&b[..1], &b[1..]])).collect();
+            files.iter().map(|(n, b)| (n.clone(), vec![&b[..1], &b[1..]])).collect();
         super::super::bytes::Sink::put(&out, &views).unwrap();
         out.record_paths(files.iter().map(|(n, _)| PathBuf::from(n)));
         assert!(!tmp.path().join("frames").exists());
