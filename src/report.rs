@@ -118,6 +118,13 @@ impl Csv {
         self.rows.push(values.into_iter().map(number).collect());
     }
 
+    /// Appends rows of numbers (as [`Csv::row`] each), formatted in parallel.
+    pub fn rows(&mut self, rows: &[Vec<f64>]) {
+        use rayon::prelude::*;
+        let formatted: Vec<Vec<String>> = rows.par_iter().map(|r| r.iter().copied().map(number).collect()).collect();
+        self.rows.extend(formatted);
+    }
+
     /// Appends a row of already formatted fields.
     pub fn row_text<S: Into<String>>(&mut self, fields: impl IntoIterator<Item = S>) {
         self.rows.push(fields.into_iter().map(Into::into).collect());
