@@ -78,13 +78,17 @@ pub(super) fn products(
         Extras::default()
     } else {
         let qs = reported(&spec.outputs, layout.show.forces);
-        // The table on one core, the summary and the report on the other.
-        let (mut csv, (summary, mut report)) = rayon::join(
+        // The table, the summary with the report, and Joukowski's levers side by side.
+        let (mut csv, ((summary, mut report), levers)) = rayon::join(
             || table(&motion, &qs, layout.show.forces),
-            || (summary(scene, &motion, &layout, &qs), report_text(scene, &motion, &layout)),
+            || {
+                rayon::join(
+                    || (summary(scene, &motion, &layout, &qs), report_text(scene, &motion, &layout)),
+                    || if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() },
+                )
+            },
         );
         let mut summary = summary?;
-        let levers = if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() };
         teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
         if let Some(m) = &gamma_min {
             report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
