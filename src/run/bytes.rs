@@ -16,8 +16,9 @@
 //! | `frames/<name>/<position>.svg` (and `.png`) | a motion's frames (unless `--no-frames`) |
 //! | `<name>-sheets.pdf`, `sheets/<name>/<position>.svg` (and `.png`) | the printed pages, one per position (`--sheets`) |
 //!
-//! A motion's DXF is built on one core while the frames and the diagrams are built on the
-//! others, and the frames are handed to the sink while the diagrams are still being built.
+//! The files are built as independent jobs on every core and handed to the sink as each is
+//! made: a motion's DXF, its frames in batches, the sheets with the tables and the JSON, the
+//! diagrams and the printed pages; so writing (the kernel's copy) overlaps building.
 //! The live page `<name>.html` is the command line's (`run::page`): it carries the module
 //! this code runs in.
 
@@ -47,10 +48,11 @@ pub struct WriteOptions {
     pub dxf: DxfOptions,
 }
 
-/// One file: its path relative to the output directory (`/`-separated) and its bytes in two
-/// pieces, the one followed by the other (a frame: the part every frame shares, then its own;
-/// the second piece is empty for a file made whole), so that no frame is copied together.
-pub type File<'a> = (String, [&'a [u8]; 2]);
+/// One file: its path relative to the output directory (`/`-separated) and its bytes in
+/// pieces, the one after the other (a frame: the part every frame shares, then its own; a
+/// motion's DXF: its head, then what each job wrote; one piece for a file made whole), so
+/// that no file is copied together.
+pub type File<'a> = (String, Vec<&'a [u8]>);
 
 /// Where files go as they are made. `put` may be called from any thread, in any order;
 /// [`write`](fn@write) returns the files' canonical order.
@@ -66,7 +68,7 @@ pub struct Memory(Mutex<Vec<(String, Vec<u8>)>>);
 impl Sink for Memory {
     fn put(&self, files: &[File<'_>]) -> Result<(), Error> {
         let mut v = self.0.lock().map_err(|_| poisoned())?;
-        v.extend(files.iter().map(|(n, [a, b])| (n.clone(), [*a, *b].concat())));
+        v.extend(files.iter().map(|(n, pieces)| (n.clone(), pieces.concat())));
         Ok(())
     }
 }
@@ -90,6 +92,11 @@ pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8
 /// progress bar). Returns the names of the files in their canonical order: the picture
 /// (DXF, SVG, PNG), the sheets (each DXF, SVG, PNG), the tables, the JSON, the diagrams,
 /// the printed pages' PDF and SVGs, the frames.
+///
+/// The files are made and handed to the sink as independent jobs (a motion's DXF, its frames
+/// in batches, the sheets with the tables and the JSON, the diagrams, the printed pages), so
+/// that each core builds one while the other writes another; the order they reach the sink
+/// in is not the canonical one.
 pub fn write(
     p: &Products,
     opts: &WriteOptions,
@@ -98,45 +105,45 @@ pub fn write(
 ) -> Result<Vec<String>, Error> {
     let name = &p.name;
     let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
-    let mut head: Vec<(String, Vec<u8>)> = Vec::new();
-    let mut order = Vec::new();
-    let mut frame_names = Vec::new();
-    let diagrams = match &p.picture {
+    match &p.picture {
         Picture::Still(d) => {
-            still_files(&mut head, name, d, opts)?;
-            diagram_files(&p.diagrams, name, opts.png)?
+            let mut files: Vec<(String, Vec<u8>)> = Vec::new();
+            still_files(&mut files, name, d, opts)?;
+            let (extras, diagrams) =
+                rayon::join(|| extra_files(p, opts), || diagram_files(&p.diagrams, name, opts.png));
+            files.extend(extras?);
+            files.extend(diagrams?);
+            files.extend(page_files(name, &p.pages, opts.png)?);
+            sink.put(&view(&files))?;
+            Ok(files.into_iter().map(|(n, _)| n).collect())
         }
-        Picture::Motion(a) => {
-            let m = motion(a, p, opts, tick, sink)?;
-            // The DXF in its two pieces (the entities, most of it, not copied to join them).
-            let dxf_name = format!("{name}.dxf");
-            let [dxf_head, dxf_entities] = &m.dxf;
-            sink.put(&[(dxf_name.clone(), [dxf_head.as_slice(), dxf_entities.as_slice()])])?;
-            order.push(dxf_name);
-            picture_files(&mut head, name, m.picture, opts.png)?;
-            frame_names = m.frame_names;
-            m.diagrams
-        }
-    };
-    sheet_files(&mut head, name, &p.sheets, opts)?;
+        Picture::Motion(a) => motion(a, p, opts, tick, sink),
+    }
+}
+
+/// The sheets (each DXF, SVG, PNG), the tables and the JSON summary, in this order.
+fn extra_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8>)>, Error> {
+    let name = &p.name;
+    let mut files = Vec::new();
+    sheet_files(&mut files, name, &p.sheets, opts)?;
     for t in &p.tables {
-        head.push((format!("{name}{}.csv", t.suffix), t.csv.to_bytes()));
+        files.push((format!("{name}{}.csv", t.suffix), t.csv.to_bytes()));
     }
     let json = serde_json::to_string_pretty(&p.summary)
         .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
-    head.push((format!("{name}.json"), (json + "\n").into_bytes()));
-    head.extend(diagrams);
-    head.extend(page_files(name, &p.pages, opts.png)?);
+    files.push((format!("{name}.json"), (json + "\n").into_bytes()));
+    Ok(files)
+}
 
-    sink.put(&view(&head))?;
-    order.extend(head.into_iter().map(|(n, _)| n));
-    order.extend(frame_names);
-    Ok(order)
+/// Hands `files` to `sink` and returns their names, in order.
+fn put_owned(sink: &dyn Sink, files: Vec<(String, Vec<u8>)>) -> Result<Vec<String>, Error> {
+    sink.put(&view(&files))?;
+    Ok(files.into_iter().map(|(n, _)| n).collect())
 }
 
 /// Borrowed views of owned files, for [`Sink::put`].
 fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
-    v.iter().map(|(n, b)| (n.clone(), [b.as_slice(), &[]])).collect()
+    v.iter().map(|(n, b)| (n.clone(), vec![b.as_slice()])).collect()
 }
 
 /// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
@@ -273,8 +280,8 @@ struct Frame<'a> {
 
 impl Frame<'_> {
     /// The frame's two pieces, as a [`File`] holds them.
-    fn pieces(&self) -> [&[u8]; 2] {
-        [self.head.as_bytes(), &self.svg.as_bytes()[self.from..]]
+    fn pieces(&self) -> Vec<&[u8]> {
+        vec![self.head.as_bytes(), &self.svg.as_bytes()[self.from..]]
     }
 
     /// The whole frame in one string (for the picture and a PNG).
@@ -287,90 +294,141 @@ impl Frame<'_> {
     }
 }
 
-/// What a motion gives besides the frames handed to the sink.
-struct MotionFiles {
-    /// The DXF in two pieces ([`dxf::to_pieces`]).
-    dxf: [Vec<u8>; 2],
-    picture: String,
-    frame_names: Vec<String>,
-    diagrams: Vec<(String, Vec<u8>)>,
-}
+/// Frames made and handed to the sink together (each batch is one job: its frames built,
+/// then written while other jobs are built).
+const FRAMES_PER_BATCH: usize = 12;
 
+/// A motion's files: each position drawn once (in parallel), for the window, the DXF layer
+/// and the frame; then the DXF, the frames (in batches), the sheets with the tables and the
+/// JSON, the diagrams and the printed pages built and handed to the sink as separate jobs.
 fn motion(
     a: &Animation,
     p: &Products,
     opts: &WriteOptions,
     tick: &(dyn Fn() + Sync),
     sink: &dyn Sink,
-) -> Result<MotionFiles, Error> {
+) -> Result<Vec<String>, Error> {
     let name = &p.name;
-    // Each position drawn once (in parallel), for the window, the DXF layer and the frame.
     let poses = a.poses();
     let svg_opts = frame_options(a, &poses);
-    let want_frames = !opts.no_frames;
-    let (dxf, rest) = rayon::join(
+    let dxf_name = format!("{name}.dxf");
+    // The DXF's pieces first, on every core (its jobs are the largest part of the run; the
+    // sheets, the tables and the JSON meanwhile), then the file written on one core while
+    // the frames, the diagrams and the printed pages are made on the other.
+    let (pieces, extras) = rayon::join(
         || {
             dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
-                .map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+                .map_err(|e| Error::Export { what: dxf_name.clone(), message: e.to_string() })
         },
-        || -> Result<_, Error> {
-            let base_svg = if want_frames { svg::to_string(&a.base, &svg_opts) } else { String::new() };
-            let frames = if want_frames { frames(a, &poses, &base_svg, &svg_opts, tick) } else { Vec::new() };
-            let stems: Vec<String> =
-                a.names.iter().take(frames.len()).map(|n| format!("frames/{name}/{}", n.to_lowercase())).collect();
-            // With --png, each frame's PNG follows its SVG.
+        || extra_files(p, opts).and_then(|f| put_owned(sink, f)),
+    );
+    let dxf_file = (dxf_name.clone(), pieces?);
+    let (dxf, (frames, (diagrams, pages))) = rayon::join(
+        || {
+            // The entities, most of the file, are not copied to join them (and are freed here).
+            let (name, pieces) = dxf_file;
+            sink.put(&[(name, pieces.iter().map(Vec::as_slice).collect())])
+        },
+        || {
+            rayon::join(
+                || frame_files(a, &poses, &svg_opts, opts, tick, sink, name),
+                || {
+                    rayon::join(
+                        || diagram_files(&p.diagrams, name, opts.png).and_then(|f| put_owned(sink, f)),
+                        || page_files(name, &p.pages, opts.png).and_then(|f| put_owned(sink, f)),
+                    )
+                },
+            )
+        },
+    );
+    dxf?;
+    let (picture, frame_names) = frames?;
+    let mut files = Vec::with_capacity(2);
+    picture_files(&mut files, name, picture, opts.png)?;
+    let mut order = vec![dxf_name];
+    order.extend(put_owned(sink, files)?);
+    order.extend(extras?);
+    order.extend(diagrams?);
+    order.extend(pages?);
+    order.extend(frame_names);
+    // The positions' drawings (many small allocations) freed on every core.
+    poses.into_par_iter().for_each(drop);
+    Ok(order)
+}
+
+/// The frames (unless `--no-frames`; with `--png` each frame's PNG follows its SVG), handed to
+/// the sink in batches built in parallel: the base written once (by [`svg::to_string`] with
+/// `svg_opts`), each position's part after it (see [`svg::splice_parts`]). Returns the picture
+/// (the first frame whole; without frames the first position, or the base alone) and the
+/// frames' file names in order.
+fn frame_files(
+    a: &Animation,
+    poses: &[Drawing],
+    svg_opts: &SvgOptions,
+    opts: &WriteOptions,
+    tick: &(dyn Fn() + Sync),
+    sink: &dyn Sink,
+    name: &str,
+) -> Result<(String, Vec<String>), Error> {
+    if opts.no_frames || poses.is_empty() {
+        let picture = match poses.first() {
+            Some(first) => svg::to_string(&a.frame_of(first), svg_opts),
+            None => svg::to_string(&a.base, svg_opts),
+        };
+        return Ok((picture, Vec::new()));
+    }
+    let base_svg = svg::to_string(&a.base, svg_opts);
+    let stems: Vec<String> =
+        a.names.iter().take(poses.len()).map(|n| format!("frames/{name}/{}", n.to_lowercase())).collect();
+    let firsts: Vec<Option<String>> = poses
+        .par_chunks(FRAMES_PER_BATCH)
+        .zip(stems.par_chunks(FRAMES_PER_BATCH))
+        .enumerate()
+        .map(|(batch, (poses, stems))| -> Result<Option<String>, Error> {
+            let frames: Vec<Frame<'_>> = poses
+                .iter()
+                .map(|pose| {
+                    let f = frame(a, pose, &base_svg, svg_opts);
+                    tick();
+                    f
+                })
+                .collect();
             let pngs: Vec<Vec<u8>> = if opts.png {
                 stems
-                    .par_iter()
+                    .iter()
                     .zip(&frames)
                     .map(|(stem, f)| png_bytes(&f.whole(), &format!("{stem}.png")))
                     .collect::<Result<_, Error>>()?
             } else {
                 Vec::new()
             };
-            let mut names = Vec::with_capacity(stems.len() * if opts.png { 2 } else { 1 });
-            let mut files: Vec<File<'_>> = Vec::with_capacity(names.capacity());
+            let mut files: Vec<File<'_>> = Vec::with_capacity(frames.len() * if opts.png { 2 } else { 1 });
             for (i, (stem, f)) in stems.iter().zip(&frames).enumerate() {
-                names.push(format!("{stem}.svg"));
                 files.push((format!("{stem}.svg"), f.pieces()));
                 if let Some(png) = pngs.get(i) {
-                    names.push(format!("{stem}.png"));
-                    files.push((format!("{stem}.png"), [png.as_slice(), &[]]));
+                    files.push((format!("{stem}.png"), vec![png.as_slice()]));
                 }
             }
-            let (staged, diagrams) = rayon::join(|| sink.put(&files), || diagram_files(&p.diagrams, name, opts.png));
-            staged?;
-            let picture = match (frames.first(), poses.first()) {
-                (Some(f), _) => f.whole(),
-                (None, Some(first)) => svg::to_string(&a.frame_of(first), &svg_opts),
-                (None, None) => svg::to_string(&a.base, &svg_opts),
-            };
-            Ok((picture, names, diagrams?))
-        },
-    );
-    let (picture, frame_names, diagrams) = rest?;
-    Ok(MotionFiles { dxf: dxf?, picture, frame_names, diagrams })
+            sink.put(&files)?;
+            Ok(if batch == 0 { frames.first().map(Frame::whole) } else { None })
+        })
+        .collect::<Result<_, Error>>()?;
+    let picture = firsts.into_iter().flatten().next().unwrap_or_else(|| svg::to_string(&a.base, svg_opts));
+    let mut names = Vec::with_capacity(stems.len() * if opts.png { 2 } else { 1 });
+    for stem in &stems {
+        names.push(format!("{stem}.svg"));
+        if opts.png {
+            names.push(format!("{stem}.png"));
+        }
+    }
+    Ok((picture, names))
 }
 
-/// The SVG frames (in parallel): the base written once (`base_svg`, by [`svg::to_string`]
-/// with `svg_opts`), each position's part after it (see [`svg::splice_parts`]).
-fn frames<'a>(
-    a: &Animation,
-    poses: &[Drawing],
-    base_svg: &'a str,
-    svg_opts: &SvgOptions,
-    tick: &(dyn Fn() + Sync),
-) -> Vec<Frame<'a>> {
-    poses
-        .par_iter()
-        .map(|pose| {
-            let moving = svg::to_string(pose, svg_opts);
-            let frame = match svg::splice_parts(base_svg, &moving) {
-                Some((head, tail)) => Frame { head, from: moving.len() - tail.len(), svg: moving },
-                None => Frame { head: "", svg: svg::to_string(&a.frame_of(pose), svg_opts), from: 0 },
-            };
-            tick();
-            frame
-        })
-        .collect()
+/// One SVG frame: `pose` on the base (`base_svg`, written with `svg_opts`).
+fn frame<'a>(a: &Animation, pose: &Drawing, base_svg: &'a str, svg_opts: &SvgOptions) -> Frame<'a> {
+    let moving = svg::to_string(pose, svg_opts);
+    match svg::splice_parts(base_svg, &moving) {
+        Some((head, tail)) => Frame { head, from: moving.len() - tail.len(), svg: moving },
+        None => Frame { head: "", svg: svg::to_string(&a.frame_of(pose), svg_opts), from: 0 },
+    }
 }

@@ -78,10 +78,17 @@ pub(super) fn products(
         Extras::default()
     } else {
         let qs = reported(&spec.outputs, layout.show.forces);
-        let mut csv = table(&motion, &qs, layout.show.forces);
-        let mut summary = summary(scene, &motion, &layout, &qs)?;
-        let mut report = report_text(scene, &motion, &layout);
-        let levers = if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() };
+        // The table, the summary with the report, and Joukowski's levers side by side.
+        let (mut csv, ((summary, mut report), levers)) = rayon::join(
+            || table(&motion, &qs, layout.show.forces),
+            || {
+                rayon::join(
+                    || (summary(scene, &motion, &layout, &qs), report_text(scene, &motion, &layout)),
+                    || if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() },
+                )
+            },
+        );
+        let mut summary = summary?;
         teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
         if let Some(m) = &gamma_min {
             report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
@@ -519,24 +526,29 @@ fn table(motion: &Motion, qs: &[Quantity], forces: bool) -> Csv {
         }
     }
     let mut csv = Csv::new(header);
-    let mut row = Vec::new();
-    for (i, p) in motion.positions.iter().enumerate() {
-        let f = forces_at(motion, i, forces);
-        row.clear();
-        for q in qs {
-            match q.get {
-                Get::Scalar(g) => row.push(g(p, f)),
-                Get::Pair(g) => {
-                    let v = g(p, f);
-                    row.extend([v.x, v.y]);
-                    if q.magnitude {
-                        row.push(v.norm());
+    let rows: Vec<Vec<f64>> = motion
+        .positions
+        .par_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let f = forces_at(motion, i, forces);
+            let mut row = Vec::new();
+            for q in qs {
+                match q.get {
+                    Get::Scalar(g) => row.push(g(p, f)),
+                    Get::Pair(g) => {
+                        let v = g(p, f);
+                        row.extend([v.x, v.y]);
+                        if q.magnitude {
+                            row.push(v.norm());
+                        }
                     }
                 }
             }
-        }
-        csv.row(row.iter().copied());
-    }
+            row
+        })
+        .collect();
+    csv.rows(&rows);
     csv
 }
 
@@ -600,18 +612,21 @@ struct Summary<'a> {
     gaps: &'a [crate::solve::fourbar::Gap],
     dead_points: &'a [crate::solve::fourbar::DeadPoint],
     scales: Scales,
-    positions: Vec<BTreeMap<String, Value>>,
+    /// Empty when serialised: the records are put into the value afterwards.
+    positions: Vec<Value>,
 }
 
 fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantity]) -> Result<Value, Error> {
     let spec = &scene.spec;
     let o = &spec.outputs;
     let forces = layout.show.forces;
-    let positions = motion
+    // The records made in parallel and put into the summary's value as they are (not
+    // serialised into a second copy with the rest).
+    let positions: Vec<Value> = motion
         .positions
-        .iter()
+        .par_iter()
         .enumerate()
-        .map(|(i, p)| position_record(p, forces_at(motion, i, forces), qs))
+        .map(|(i, p)| Value::Object(position_record(p, forces_at(motion, i, forces), qs).into_iter().collect()))
         .collect();
     let outputs = [
         ("position", true),
@@ -645,9 +660,13 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
             k_a: scale(layout.frame.acceleration, format!("({len}/s²)/mm")),
             k_f: scale(layout.frame.forces, "N/mm".to_string()),
         },
-        positions,
+        positions: Vec::new(),
     };
-    products::summary_value(&s, &scene.name)
+    let mut value = products::summary_value(&s, &scene.name)?;
+    if let Value::Object(map) = &mut value {
+        map.insert("positions".to_string(), Value::Array(positions));
+    }
+    Ok(value)
 }
 
 fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String {

@@ -129,16 +129,28 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
         }
     };
     let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: opts.dxf };
-    let order = bytes::write(&p, &wopts, &tick, &out)?;
+    // The live page `<name>.html` (every kind), unless --no-frames: written while the
+    // products become files.
+    let page_rel = PathBuf::from(format!("{}.html", p.name));
+    let (order, page) = rayon::join(
+        || bytes::write(&p, &wopts, &tick, &out),
+        || -> Result<bool, Error> {
+            if opts.no_frames {
+                return Ok(false);
+            }
+            let file =
+                loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
+            out.put_pieces(&page_rel, &page::LivePage::new(&loaded.text, &file, &opts.sets).pieces())?;
+            Ok(true)
+        },
+    );
+    let (order, page) = (order?, page?);
     if let Some(b) = &bar {
         b.finish_and_clear();
     }
     out.record_paths(order.into_iter().map(PathBuf::from));
-    // The live page `<name>.html` (every kind), unless --no-frames.
-    let page_rel = PathBuf::from(format!("{}.html", p.name));
-    if !opts.no_frames {
-        let file = loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
-        out.write_pieces(&page_rel, &page::LivePage::new(&loaded.text, &file, &opts.sets).pieces())?;
+    if page {
+        out.record_paths([page_rel]);
     }
     let written = out.commit()?;
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })

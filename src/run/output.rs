@@ -76,13 +76,20 @@ impl Output {
     /// own around the 10 MB module, which is written straight from the program's image).
     pub fn write_pieces(&mut self, rel: impl AsRef<Path>, pieces: &[&[u8]]) -> Result<(), Error> {
         let rel = rel.as_ref();
+        self.put_pieces(rel, pieces)?;
+        self.files.push(rel.to_path_buf());
+        Ok(())
+    }
+
+    /// Stages as [`Output::write_pieces`] does, through a shared reference (so that a big
+    /// file, the live page, is written on one thread while the run's other files are made on
+    /// another), without listing it: list it with [`Output::record_paths`].
+    pub fn put_pieces(&self, rel: &Path, pieces: &[&[u8]]) -> Result<(), Error> {
         let path = self.staging.join(rel);
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent).map_err(io(parent))?;
         }
-        write_pieces(&path, pieces).map_err(io(&path))?;
-        self.files.push(rel.to_path_buf());
-        Ok(())
+        write_pieces(&path, pieces).map_err(io(&path))
     }
 
     /// Lists files already staged (through [`super::bytes::Sink::put`]) among the run's
@@ -188,7 +195,7 @@ mod tests {
         let files: Vec<(String, Vec<u8>)> =
             (0..50).map(|i| (format!("frames/f{i:02}.svg"), format!("{i}").into_bytes())).collect();
         let views: Vec<super::super::bytes::File<'_>> =
-            files.iter().map(|(n, b)| (n.clone(), [&b[..1], &b[1..]])).collect();
+            files.iter().map(|(n, b)| (n.clone(), vec![&b[..1], &b[1..]])).collect();
         super::super::bytes::Sink::put(&out, &views).unwrap();
         out.record_paths(files.iter().map(|(n, _)| PathBuf::from(n)));
         assert!(!tmp.path().join("frames").exists());

@@ -289,15 +289,15 @@ pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfErro
     }
 }
 
-/// [`to_bytes`] in two pieces, the file being the one followed by the other; for R12 the
-/// second is the ENTITIES section's entities and the end of the file (most of a motion's
-/// file), so that a writer can put the file together without copying them. (R2000 and R2007:
-/// the whole file, then nothing.)
-pub fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<[Vec<u8>; 2], DxfError> {
+/// [`to_bytes`] in pieces, the file being the one after the other; for R12 the blocks and
+/// the entities (most of a motion's file) are written in parallel jobs, each its own piece,
+/// so that a writer can put the file together without copying them. (R2000 and R2007: the
+/// whole file in one piece.)
+pub fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<Vec<u8>>, DxfError> {
     let drawing = prepare(drawing, opts)?;
     match opts.version {
         DxfVersion::R12 => r12::to_pieces(&drawing, opts),
-        DxfVersion::R2000 | DxfVersion::R2007 => Ok([crate_bytes(&drawing, opts)?, Vec::new()]),
+        DxfVersion::R2000 | DxfVersion::R2007 => Ok(vec![crate_bytes(&drawing, opts)?]),
     }
 }
 
@@ -1508,6 +1508,12 @@ mod tests {
                     let at = f.lines().zip(r.lines()).position(|(a, b)| a != b).unwrap_or(0);
                     let show = |s: &str| s.lines().skip(at.saturating_sub(12)).take(16).collect::<Vec<_>>().join("|");
                     panic!("{opts:?}: differ at line {at}:\nfast: {}\ncrate: {}", show(&f), show(&r));
+                }
+                // Written in parallel jobs of a few entities: every job boundary, the same bytes.
+                let mm = prepare(d, &opts).unwrap();
+                for per_job in [1, 2, 3, 7] {
+                    let pieces = r12::to_pieces_in(&mm, &opts, per_job).unwrap();
+                    assert!(pieces.concat() == reference, "{opts:?}, {per_job} entities per job");
                 }
             }
         }

@@ -21,27 +21,47 @@ use super::{
     entity_linetype, fix_up, prims, snap,
 };
 use crate::draw::parts::explode_dimension;
-use crate::draw::{Drawing, HAlign, Shape, VAlign};
+use crate::draw::{Drawing, Entity, HAlign, Shape, VAlign};
 use crate::geom::Point;
 
 /// Writes a validated drawing (in mm) as R12.
 pub(super) fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
-    let [mut out, entities] = to_pieces(drawing, opts)?;
-    out.extend_from_slice(&entities);
-    Ok(out)
+    Ok(to_pieces(drawing, opts)?.concat())
 }
 
-/// [`to_bytes`] in two pieces, the one followed by the other: the file up to the ENTITIES
-/// section's first entity, then the entities and the end of the file (so that the entities,
-/// most of the file, are not copied to join them).
-pub(super) fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<[Vec<u8>; 2], DxfError> {
+/// Entities written by one job (a motion's few hundred thousand lines of entities are split
+/// among the cores; a small drawing is one job).
+const ENTITIES_PER_JOB: usize = 1024;
+
+/// [`to_bytes`] in pieces, the file being the one after the other: the file up to the
+/// BLOCKS section's first block (or the ENTITIES section's first entity), each job's blocks,
+/// the ENTITIES section's start, each job's entities, the end of the file. Jobs of
+/// [`ENTITIES_PER_JOB`] entities are written in parallel, so that the pieces (most of a
+/// motion's file) are neither written on one core nor copied to join them.
+pub(super) fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<Vec<u8>>, DxfError> {
+    to_pieces_in(drawing, opts, ENTITIES_PER_JOB)
+}
+
+/// [`to_pieces`] with `per_job` entities per job (the tests try every job boundary).
+pub(super) fn to_pieces_in(drawing: &Drawing, opts: &DxfOptions, per_job: usize) -> Result<Vec<Vec<u8>>, DxfError> {
     let opts = DxfOptions { version: DxfVersion::R12, ..*opts };
     let doc = build_head(drawing, &opts);
     let first_handle = doc.header.next_available_handle.0;
-    let mut raw = Vec::new();
-    doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
-    let limits_min = &doc.header.paperspace_minimum_drawing_limits;
-    let head = fix_up(&raw, DxfVersion::R12, (-limits_min.x, -limits_min.y));
+    // The head serialised by the crate while the jobs count and write.
+    let (head, written) = rayon::join(
+        || -> Result<Vec<u8>, DxfError> {
+            let mut raw = Vec::new();
+            doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
+            let limits_min = &doc.header.paperspace_minimum_drawing_limits;
+            Ok(fix_up(&raw, DxfVersion::R12, (-limits_min.x, -limits_min.y)))
+        },
+        || jobs(drawing, &opts, per_job, first_handle),
+    );
+    let head = head?;
+    let Some((written, next)) = written else {
+        debug_assert!(false, "a job's handle count differs from what it wrote");
+        return to_pieces_in(drawing, &opts, drawing.entities.len());
+    };
     let broken = |what: &str| DxfError::Crate(format!("unexpected crate output: no {what}"));
     // The crate's (empty) ENTITIES section and EOF are replaced by ours.
     let cut = find(&head, b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n").ok_or_else(|| broken("ENTITIES section"))?;
@@ -49,27 +69,104 @@ pub(super) fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<[Vec<u8>
     let seed_at = find(&head[..cut], seed_key).ok_or_else(|| broken("$HANDSEED"))? + seed_key.len();
     let seed_end = find(&head[seed_at..cut], b"\r\n").ok_or_else(|| broken("$HANDSEED value"))? + seed_at;
 
-    let mut body = Body::new(drawing, first_handle, opts.dimensions);
-    body.write_all();
-    let Body { blocks, mut entities, next, .. } = body;
-
-    let mut out = Vec::with_capacity(cut + blocks.len() + 128);
+    let mut out = Vec::with_capacity(cut + 128);
     out.extend_from_slice(&head[..seed_at]);
     hex(&mut out, next);
     out.extend_from_slice(&head[seed_end..cut]);
-    if !blocks.is_empty() {
+    let mut pieces = Vec::with_capacity(2 * written.len() + 3);
+    let (blocks, entities): (Vec<Vec<u8>>, Vec<Vec<u8>>) = written.into_iter().unzip();
+    let entities_start = b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n";
+    if blocks.iter().any(|b| !b.is_empty()) {
         out.extend_from_slice(b"  0\r\nSECTION\r\n  2\r\nBLOCKS\r\n");
-        out.extend_from_slice(&blocks);
-        out.extend_from_slice(b"  0\r\nENDSEC\r\n");
+        pieces.push(out);
+        pieces.extend(blocks.into_iter().filter(|b| !b.is_empty()));
+        pieces.push([&b"  0\r\nENDSEC\r\n"[..], entities_start].concat());
+    } else {
+        out.extend_from_slice(entities_start);
+        pieces.push(out);
     }
-    out.extend_from_slice(b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n");
-    entities.extend_from_slice(b"  0\r\nENDSEC\r\n  0\r\nEOF\r\n");
-    Ok([out, entities])
+    pieces.extend(entities.into_iter().filter(|e| !e.is_empty()));
+    pieces.push(b"  0\r\nENDSEC\r\n  0\r\nEOF\r\n".to_vec());
+    Ok(pieces)
+}
+
+/// What one job wrote: its part of the BLOCKS section, then of the ENTITIES section.
+type JobBytes = (Vec<u8>, Vec<u8>);
+
+/// The BLOCKS and ENTITIES contents in jobs of `per_job` entities, written in parallel with
+/// handles from `first_handle` on: each job's blocks and entities, and the next free handle.
+/// Each job's handles and dimensions are counted first ([`count`]), which says where the
+/// next job's numbering starts; `None` if a job did not end where the count said (a bug:
+/// the caller then writes one job).
+fn jobs(drawing: &Drawing, opts: &DxfOptions, per_job: usize, first_handle: u64) -> Option<(Vec<JobBytes>, u64)> {
+    use rayon::prelude::*;
+    // Layer names escaped once, for every job.
+    let layers: Vec<String> = drawing
+        .layers
+        .iter()
+        .map(|l| {
+            let mut v = Vec::new();
+            escaped(&mut v, &l.name);
+            String::from_utf8(v).unwrap_or_default()
+        })
+        .collect();
+    let jobs: Vec<&[Entity]> = drawing.entities.chunks(per_job.max(1)).collect();
+    let counts: Vec<(u64, usize)> = jobs.par_iter().map(|es| count(drawing, es, opts.dimensions)).collect();
+    let mut starts = Vec::with_capacity(jobs.len());
+    let (mut next, mut dims) = (first_handle, 0usize);
+    for &(handles, dimensions) in &counts {
+        starts.push((next, dims));
+        next += handles;
+        dims += dimensions;
+    }
+    let written: Vec<(Vec<u8>, Vec<u8>, u64)> = jobs
+        .par_iter()
+        .zip(&starts)
+        .map(|(es, &(first, dims))| {
+            let mut body = Body::new(drawing, &layers, first, dims, opts.dimensions, es.len());
+            body.write(es);
+            (body.blocks, body.entities, body.next)
+        })
+        .collect();
+    // A job ends where the next begins (one job is right by construction).
+    if !written.iter().zip(starts.iter().skip(1)).all(|((_, _, end), &(begin, _))| *end == begin) {
+        return None;
+    }
+    let next = written.last().map_or(first_handle, |w| w.2);
+    Some((written.into_iter().map(|(b, e, _)| (b, e)).collect(), next))
 }
 
 /// Position of `needle` in `hay`.
 fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
     hay.windows(needle.len()).position(|w| w == needle)
+}
+
+/// The handles and the dimensions (anonymous blocks) that [`Body::write`] takes for
+/// `entities`, without writing them.
+fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64, usize) {
+    // A polyline takes its vertices, the POLYLINE and its SEQEND; every other entity one.
+    let of = |p: Prim| match p {
+        Prim::Polyline { points, .. } => points.len() as u64 + 2,
+        _ => 1,
+    };
+    let mut handles = 0u64;
+    let mut dims = 0usize;
+    for e in entities {
+        match &e.shape {
+            shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                for part in explode_dimension(shape, &drawing.dim_style) {
+                    prims(&part, |p| handles += of(p));
+                }
+                if dimensions != Dimensions::Exploded {
+                    dims += 1;
+                    // The BLOCK and its BLOCK_RECORD, and the DIMENSION when there is one.
+                    handles += 2 + u64::from(dimension_prim(shape, &drawing.dim_style).is_some());
+                }
+            }
+            shape => prims(shape, |p| handles += of(p)),
+        }
+    }
+    (handles, dims)
 }
 
 /// Layer (escaped), line type and colour of the entities written for one drawing entity.
@@ -80,46 +177,46 @@ struct Style<'a> {
     color: Option<u8>,
 }
 
-/// The BLOCKS and ENTITIES sections' contents being written, and the next handle.
+/// One job's BLOCKS and ENTITIES contents being written, and the next handle.
 struct Body<'a> {
     drawing: &'a Drawing,
     /// How dimensions are written.
     dimensions: Dimensions,
     /// Layer names as written (escaped once per layer).
-    layers: Vec<String>,
+    layers: &'a [String],
+    /// Dimensions (anonymous blocks `*D1`, `*D2`, …) written before this one.
+    dim_count: usize,
     blocks: Vec<u8>,
     entities: Vec<u8>,
     next: u64,
 }
 
 impl<'a> Body<'a> {
-    fn new(drawing: &'a Drawing, first_handle: u64, dimensions: Dimensions) -> Body<'a> {
-        let layers = drawing
-            .layers
-            .iter()
-            .map(|l| {
-                let mut v = Vec::new();
-                escaped(&mut v, &l.name);
-                String::from_utf8(v).unwrap_or_default()
-            })
-            .collect();
+    fn new(
+        drawing: &'a Drawing,
+        layers: &'a [String],
+        first_handle: u64,
+        dim_count: usize,
+        dimensions: Dimensions,
+        entities: usize,
+    ) -> Body<'a> {
         Body {
             drawing,
             dimensions,
             layers,
+            dim_count,
             blocks: Vec::new(),
-            entities: Vec::with_capacity(drawing.entities.len() * 160),
+            entities: Vec::with_capacity(entities * 160),
             next: first_handle,
         }
     }
 
-    /// Writes every entity (and every dimension's block), in drawing order.
-    fn write_all(&mut self) {
+    /// Writes `entities` (and every dimension's block), in drawing order.
+    fn write(&mut self, entities: &[Entity]) {
         let drawing = self.drawing;
-        let layers = std::mem::take(&mut self.layers);
-        let mut dim_count = 0usize;
+        let layers = self.layers;
         let mut name = String::new();
-        for e in &drawing.entities {
+        for e in entities {
             let style = Style {
                 layer: layers.get(e.layer).map_or("0", String::as_str),
                 linetype: entity_linetype(drawing, e),
@@ -137,10 +234,10 @@ impl<'a> Body<'a> {
                     }
                 }
                 shape @ (Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. }) => {
-                    dim_count += 1;
+                    self.dim_count += 1;
                     name.clear();
                     name.push_str("*D");
-                    name.push_str(&dim_count.to_string());
+                    name.push_str(&self.dim_count.to_string());
                     self.dimension(shape, text, &name, style);
                 }
                 shape => {
@@ -150,7 +247,6 @@ impl<'a> Body<'a> {
                 }
             }
         }
-        self.layers = layers;
     }
 
     /// The dimension's anonymous block (its exploded geometry on the dimension's layer in its
