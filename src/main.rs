@@ -10,6 +10,12 @@ use mechdraw::figure::sheet::Paper;
 use mechdraw::run::RunOptions;
 use mechdraw::scene::{self, Override};
 
+/// mimalloc keeps freed pages for the next allocation: a run builds and drops tens of MB of
+/// drawings and file bytes, and glibc's malloc gave each large buffer fresh pages from the
+/// kernel (a page fault per 4 KB touched).
+#[global_allocator]
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 /// Planar mechanisms and dimensional chains, solved and drawn: DXF, SVG, diagrams, CSV, JSON.
 #[derive(Debug, Parser)]
 #[command(name = "mechdraw", version, about, long_about = None)]
