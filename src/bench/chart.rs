@@ -149,7 +149,8 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
                 pts.iter().filter(|m| &m.problem == problem && &m.method == method).collect();
             let points: Vec<Point> =
                 series.iter().map(|m| Point::new(px(m.ns_per_solve), py(m.error.unwrap_or(1.0)))).collect();
-            (color, points.clone(), point_labels(&points, &series))
+            let labels = point_labels(&points, &series);
+            (color, points, labels)
         })
         .collect();
     for (_, points, _) in &series {

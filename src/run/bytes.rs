@@ -114,8 +114,7 @@ pub fn write(
             files.extend(extras?);
             files.extend(diagrams?);
             files.extend(page_files(name, &p.pages, opts.png)?);
-            sink.put(&view(&files))?;
-            Ok(files.into_iter().map(|(n, _)| n).collect())
+            put_owned(sink, files)
         }
         Picture::Motion(a) => motion(a, p, opts, tick, sink),
     }

@@ -131,7 +131,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: opts.dxf };
     // The live page `<name>.html` (every kind), unless --no-frames: written while the
     // products become files.
-    let page_rel = PathBuf::from(format!("{}.html", p.name));
+    let page_rel = format!("{}.html", p.name);
     let (order, page) = rayon::join(
         || bytes::write(&p, &wopts, &tick, &out),
         || -> Result<bool, Error> {
@@ -140,7 +140,8 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
             }
             let file =
                 loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
-            out.put_pieces(&page_rel, &page::LivePage::new(&loaded.text, &file, &opts.sets).pieces())?;
+            let page = page::LivePage::new(&loaded.text, &file, &opts.sets);
+            bytes::Sink::put(&out, &[(page_rel.clone(), page.pieces())])?;
             Ok(true)
         },
     );
@@ -150,7 +151,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     }
     out.record_paths(order.into_iter().map(PathBuf::from));
     if page {
-        out.record_paths([page_rel]);
+        out.record_paths([PathBuf::from(page_rel)]);
     }
     let written = out.commit()?;
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })

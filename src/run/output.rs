@@ -76,20 +76,13 @@ impl Output {
     /// own around the 10 MB module, which is written straight from the program's image).
     pub fn write_pieces(&mut self, rel: impl AsRef<Path>, pieces: &[&[u8]]) -> Result<(), Error> {
         let rel = rel.as_ref();
-        self.put_pieces(rel, pieces)?;
-        self.files.push(rel.to_path_buf());
-        Ok(())
-    }
-
-    /// Stages as [`Output::write_pieces`] does, through a shared reference (so that a big
-    /// file, the live page, is written on one thread while the run's other files are made on
-    /// another), without listing it: list it with [`Output::record_paths`].
-    pub fn put_pieces(&self, rel: &Path, pieces: &[&[u8]]) -> Result<(), Error> {
         let path = self.staging.join(rel);
         if let Some(parent) = path.parent() {
             std::fs::create_dir_all(parent).map_err(io(parent))?;
         }
-        write_pieces(&path, pieces).map_err(io(&path))
+        write_pieces(&path, pieces).map_err(io(&path))?;
+        self.files.push(rel.to_path_buf());
+        Ok(())
     }
 
     /// Lists files already staged (through [`super::bytes::Sink::put`]) among the run's

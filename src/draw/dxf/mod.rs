@@ -605,7 +605,8 @@ fn sheet(drawing: &Drawing, bounds: &Bounds, extent: f64) -> (Point, Point) {
                 HAlign::Center => -0.5 * w,
                 HAlign::Right => -w,
             };
-            let (c, s) = (libm::cos(*rotation), libm::sin(*rotation));
+            // Most text is level: no sine and cosine for it (the same numbers: cos 0 = 1, sin 0 = 0).
+            let (c, s) = if *rotation == 0.0 { (1.0, 0.0) } else { (libm::cos(*rotation), libm::sin(*rotation)) };
             let (u, v) = (Vector::new(c, s), Vector::new(-s, c));
             for (x, y) in [(x0, -0.3), (x0 + w, -0.3), (x0, 1.0), (x0 + w, 1.0)] {
                 let p = at + u * x + v * (y * *height);
