@@ -493,3 +493,105 @@ fn a_time_step_too_coarse_for_newton_keeps_every_dyad_on_its_branch() {
         assert!((st.velocity(e).x - ve).abs() <= 1e-9 * 2000.0, "t = {}", st.t);
     }
 }
+
+// --- the sweep ---------------------------------------------------------------------------
+
+/// `positions_into` (group by group over all the steps) against `step_positions` at each
+/// time in turn: the same q, bit for bit, or the same error after the same steps.
+fn assert_sweep_is_stepping(what: &str, mech: &Mechanism, times: &[f64]) {
+    let mut stepping = AssurSolver::new(mech.clone()).unwrap();
+    let mut stepped = Vec::new();
+    let mut stepped_err = None;
+    for &t in times {
+        match stepping.step_positions(t) {
+            Ok(()) => stepped.extend_from_slice(stepping.q()),
+            Err(e) => {
+                stepped_err = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    let mut swept = Vec::new();
+    let swept_err =
+        AssurSolver::new(mech.clone()).unwrap().positions_into(times, &mut swept).err().map(|e| e.to_string());
+    assert_eq!(swept_err, stepped_err, "{what}");
+    assert_eq!(swept.len(), stepped.len(), "{what}");
+    for (i, (a, b)) in swept.iter().zip(&stepped).enumerate() {
+        assert_eq!(
+            a.to_bits(),
+            b.to_bits(),
+            "{what}: step {}, q[{}]: {a} vs {b}",
+            i / mech.bodies.len() / 3,
+            i % (3 * mech.bodies.len())
+        );
+    }
+}
+
+#[test]
+fn a_sweep_gives_the_bits_of_stepping() {
+    for name in ["fourbar-linkage", "shaper", "shaper-forces", "slider-crank", "triad-driven"] {
+        let s = linkage(name);
+        assert_sweep_is_stepping(name, &s.mechanism, &s.times);
+        // Uneven steps (the linear prediction's ratio), and a repeated time.
+        let mut times = s.times.clone();
+        times.insert(3, times[3]);
+        times.insert(10, 0.5 * (times[9] + times[10]));
+        assert_sweep_is_stepping(&format!("{name}, uneven"), &s.mechanism, &times);
+    }
+    for mode in [1.0, -1.0] {
+        let (mech, times) = fourbar(mode);
+        assert_sweep_is_stepping(&format!("four-bar mode {mode}"), &mech, &times);
+    }
+    let mut rng = Rng(0x2545_f491_4f6c_dd1d);
+    let times: Vec<f64> = (0..=40).map(|k| k as f64 * 0.002).collect();
+    for chain in [&["RRR"][..], &["RRP", "RPR"], &["PRP", "RPP"], &["RPR", "RRR", "RRP"], &["RPP", "PRR", "RRP"]] {
+        for trial in 0..6 {
+            let mech = random_chain(&mut rng, chain);
+            assert_sweep_is_stepping(&format!("{chain:?} trial {trial}"), &mech, &times);
+        }
+    }
+}
+
+#[test]
+fn a_sweep_stops_where_stepping_fails_and_resumes_as_stepping_does() {
+    // The four-bar whose crank carries A out of the coupler's and rocker's reach (see
+    // an_unassemblable_position_is_reported_by_group_joint_and_time).
+    let s = linkage("fourbar-linkage");
+    let mut mech = s.mechanism.clone();
+    if let JointKind::Revolute { a, .. } = &mut mech.joints[1].kind {
+        a.local = Vector::new(0.15, 0.0);
+    }
+    mech.drivers[0].law = Expr::parse("pi/6 + 20*t").unwrap();
+    mech.bodies[0].angle = std::f64::consts::FRAC_PI_6;
+    mech.bodies[1].at = Point::new(0.15 * 30f64.to_radians().cos(), 0.15 * 30f64.to_radians().sin());
+    let times: Vec<f64> = (0..=100).map(|k| k as f64 * 0.001).collect();
+    assert_sweep_is_stepping("unassemblable four-bar", &mech, &times);
+    // A law that is not finite part way (log of a negative number from t = 0.05 on).
+    let mut mech = s.mechanism.clone();
+    mech.drivers[0].law = Expr::parse("20*t + 0*log(0.05 - t)").unwrap();
+    assert_sweep_is_stepping("law not finite", &mech, &times);
+    // Sweeps after a resume (its first step predicted from the state's rates) continue
+    // as steps from it do.
+    let (mech, times) = fourbar(1.0);
+    let start = AssurSolver::new(mech.clone()).unwrap().run(&times[..1]).unwrap().remove(0);
+    let mut a = AssurSolver::new(mech.clone()).unwrap();
+    a.resume(&start);
+    let mut b = a.clone();
+    let mut swept = Vec::new();
+    a.positions_into(&times[1..], &mut swept).unwrap();
+    let mut stepped = Vec::new();
+    for &t in &times[1..] {
+        b.step_positions(t).unwrap();
+        stepped.extend_from_slice(b.q());
+    }
+    assert!(swept.iter().zip(&stepped).all(|(x, y)| x.to_bits() == y.to_bits()));
+    assert_eq!(swept.len(), stepped.len());
+    // And a sweep in two parts is one sweep.
+    let mut halves = Vec::new();
+    let mut c = AssurSolver::new(mech.clone()).unwrap();
+    c.positions_into(&times[..150], &mut halves).unwrap();
+    c.positions_into(&times[150..], &mut halves).unwrap();
+    let mut whole = Vec::new();
+    AssurSolver::new(mech).unwrap().positions_into(&times, &mut whole).unwrap();
+    assert!(halves.iter().zip(&whole).all(|(x, y)| x.to_bits() == y.to_bits()) && halves.len() == whole.len());
+}

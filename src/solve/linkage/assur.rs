@@ -30,11 +30,11 @@
 //! routes follow the same branch. Body angles are kept continuous (not wrapped), as the
 //! general solver keeps them, so both give the same coordinates q.
 
-use super::kinematics::{Con, NearSingular, Solver, State, con_gamma, con_jacobian, con_rate, con_residual};
+use super::kinematics::{Con, NearSingular, Solver, State, con_gamma, con_jacobian, con_rate, con_residual, whole_law};
 use super::lu::Lu;
 use super::{
-    Anchor, Attach, DriverTarget, JointKind, LinkageError, MAX_NEWTON_ITERATIONS, Mechanism, NEAR_SINGULAR_PIVOT_REL,
-    Pose, pz,
+    Anchor, Attach, DriverTarget, GROUND_POSE, JointKind, LinkageError, MAX_NEWTON_ITERATIONS, Mechanism,
+    NEAR_SINGULAR_PIVOT_REL, Pose, pz,
 };
 use crate::geom::{Vector, cross, perp, wrap_pi};
 
@@ -454,13 +454,43 @@ fn slide_of(mech: &Mechanism, j: usize, u: usize) -> Option<Slide> {
 /// coordinates plus 0 — exactly what R + A(φ)·s gives at R = 0, φ = 0 (a −0 becomes +0,
 /// as there), without the rotation.
 #[inline(always)]
-fn glob(poses: &[Pose], a: Anchor) -> Vector {
+fn glob<P: Poses + ?Sized>(poses: &P, a: Anchor) -> Vector {
     match a.body {
         Attach::Ground => Vector::new(a.local.x + 0.0, a.local.y + 0.0),
         Attach::Body(i) => {
-            let p = poses[i];
+            let p = poses.pose(i);
             p.r + p.rot(a.local)
         }
+    }
+}
+
+/// Where the bodies' poses are read from: the live solver's cached poses, or one step of
+/// a sweep.
+trait Poses {
+    /// Body `b`'s pose.
+    fn pose(&self, b: usize) -> Pose;
+}
+
+impl Poses for [Pose] {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self[b]
+    }
+}
+
+impl Poses for Vec<Pose> {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self[b]
+    }
+}
+
+/// The pose of `a` (the ground's for the ground).
+#[inline(always)]
+fn pose_of<P: Poses + ?Sized>(poses: &P, a: Attach) -> Pose {
+    match a {
+        Attach::Ground => GROUND_POSE,
+        Attach::Body(b) => poses.pose(b),
     }
 }
 
@@ -473,15 +503,15 @@ fn rot(cs: (f64, f64), v: Vector) -> Vector {
 impl Slide {
     /// (φ_u, (cos, sin) of φ_u, c, w): `u`'s angle and the line its origin runs on.
     #[inline(always)]
-    fn line(&self, poses: &[Pose]) -> (f64, (f64, f64), Vector, Vector) {
+    fn line<P: Poses + ?Sized>(&self, poses: &P) -> (f64, (f64, f64), Vector, Vector) {
         if self.u_is_slider {
-            let g = pz(poses, self.q1.body);
+            let g = pose_of(poses, self.q1.body);
             let phi = g.phi + self.angle;
             let cs = compose((g.c, g.s), self.turn);
             let w = g.rot(self.dir);
             (phi, cs, glob(poses, self.q1) - rot(cs, self.point.local), w)
         } else {
-            let s = pz(poses, self.point.body);
+            let s = pose_of(poses, self.point.body);
             let phi = s.phi - self.angle;
             let cs = compose((s.c, s.s), (self.turn.0, -self.turn.1));
             let w = rot(cs, self.dir);
@@ -913,9 +943,9 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
 /// time step too coarse for the motion extrapolates to any angle): the last rotation is
 /// the guess then.
 #[inline(always)]
-fn predicted_rotation(s: &Solver, pred: &Predictor, b: usize) -> (f64, f64) {
-    let last = s.poses[b];
-    let d = pred.at(s, 3 * b + 2) - last.phi;
+fn predicted_rotation<F: Frame>(f: &F, b: usize) -> (f64, f64) {
+    let last = f.last(b);
+    let d = f.predicted_phi(b) - last.phi;
     if d.abs() <= 0.5 {
         let d2 = d * d;
         // Multiplications by the reciprocals (no division on the step's critical path;
@@ -928,11 +958,171 @@ fn predicted_rotation(s: &Solver, pred: &Predictor, b: usize) -> (f64, f64) {
     }
 }
 
+/// What a group's closed form reads and writes at one time step: the known bodies' poses
+/// at this step ([`Poses`]), the group's own bodies' at the last step, the laws' values,
+/// the prediction of its own coordinates. Implemented by the live solver (a step at a
+/// time, [`Live`]) and by a sweep over many steps ([`Lane`]): the same closed forms, the
+/// same operations in the same order, so the same bits.
+trait Frame: Poses {
+    /// Body `b`'s pose at the last step (one of the group's own bodies, before it puts it).
+    fn last(&self, b: usize) -> Pose;
+    /// Driver `d`'s law value at this step.
+    fn law(&self, d: usize) -> f64;
+    /// Body `b`'s predicted angle.
+    fn predicted_phi(&self, b: usize) -> f64;
+    /// Body `b`'s predicted origin.
+    fn predicted_r(&self, b: usize) -> Vector;
+    /// Writes body `b`'s pose: origin `r`, angle `phi`, rotation `cs`.
+    fn put(&mut self, b: usize, r: Vector, phi: f64, cs: (f64, f64));
+}
+
+/// The live solver at the step being solved.
+struct Live<'a, 'p> {
+    s: &'a mut Solver,
+    pred: &'a Predictor<'p>,
+}
+
+impl Poses for Live<'_, '_> {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self.s.poses[b]
+    }
+}
+
+impl Frame for Live<'_, '_> {
+    #[inline(always)]
+    fn last(&self, b: usize) -> Pose {
+        self.s.poses[b]
+    }
+    #[inline(always)]
+    fn law(&self, d: usize) -> f64 {
+        self.s.laws[d].0
+    }
+    #[inline(always)]
+    fn predicted_phi(&self, b: usize) -> f64 {
+        self.pred.at(&self.s.q, 3 * b + 2)
+    }
+    #[inline(always)]
+    fn predicted_r(&self, b: usize) -> Vector {
+        Vector::new(self.pred.at(&self.s.q, 3 * b), self.pred.at(&self.s.q, 3 * b + 1))
+    }
+    #[inline(always)]
+    fn put(&mut self, b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
+        set_body(&mut self.s.q, &mut self.s.poses, b, r, phi, cs);
+    }
+}
+
+/// Step `k` of a sweep ([`AssurSolver::positions_into`]): the sweep's poses, body by body
+/// (body b's pose at step k at `b·stride + k + 2`; the two entries before step 0 hold the
+/// step before the last and the last), the laws' values, the steps' predictions.
+struct Lane<'a> {
+    poses: &'a mut [Pose],
+    stride: usize,
+    k: usize,
+    laws: &'a [f64],
+    nd: usize,
+    how: Extrapolation,
+    /// The rates of the last step before the sweep (a first step may predict from them).
+    qd: &'a [f64],
+    qdd: &'a [f64],
+}
+
+impl Poses for Lane<'_> {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self.poses[b * self.stride + self.k + 2]
+    }
+}
+
+impl Lane<'_> {
+    /// The prediction of coordinate `j` (0: x, 1: y, 2: φ) of body `b`, as
+    /// [`Predictor::at`] gives it (the two entries before step 0 hold the q of the step
+    /// before the last and of the last).
+    #[inline(always)]
+    fn predicted(&self, b: usize, j: usize) -> f64 {
+        let coordinate = |p: Pose| match j {
+            0 => p.r.x,
+            1 => p.r.y,
+            _ => p.phi,
+        };
+        let at = b * self.stride + self.k;
+        let now = coordinate(self.poses[at + 1]);
+        match self.how {
+            Extrapolation::Hold => now,
+            Extrapolation::Linear(f) => now + (now - coordinate(self.poses[at])) * f,
+            Extrapolation::Taylor(dt) => now + self.qd[3 * b + j] * dt + 0.5 * self.qdd[3 * b + j] * dt * dt,
+        }
+    }
+}
+
+impl Frame for Lane<'_> {
+    #[inline(always)]
+    fn last(&self, b: usize) -> Pose {
+        self.poses[b * self.stride + self.k + 1]
+    }
+    #[inline(always)]
+    fn law(&self, d: usize) -> f64 {
+        self.laws[self.k * self.nd + d]
+    }
+    #[inline(always)]
+    fn predicted_phi(&self, b: usize) -> f64 {
+        self.predicted(b, 2)
+    }
+    #[inline(always)]
+    fn predicted_r(&self, b: usize) -> Vector {
+        Vector::new(self.predicted(b, 0), self.predicted(b, 1))
+    }
+    #[inline(always)]
+    fn put(&mut self, b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
+        self.poses[b * self.stride + self.k + 2] = Pose { r, phi, c: cs.0, s: cs.1 };
+    }
+}
+
+/// A sweep's buffers (kept between sweeps): every body's poses over the steps (see
+/// [`Lane`]), the laws' values and the prediction of each step, each group's branch after
+/// each step.
+#[derive(Debug, Clone, Default)]
+struct Sweep {
+    poses: Vec<Pose>,
+    laws: Vec<f64>,
+    how: Vec<Extrapolation>,
+    sides: Vec<f64>,
+}
+
+/// One group over the sweep's steps `0..end`, its closed form `kernel` at each, its
+/// position's constants and branch held across the steps: the first step it cannot
+/// solve, and why.
+#[inline(always)]
+fn sweep_group<'a, K: Fn(&mut Lane<'a>, &Position, &mut f64, f64) -> Result<(), Why>>(
+    kernel: K,
+    op: &mut Op,
+    mut lane: Lane<'a>,
+    how: &[Extrapolation],
+    sides: &mut [f64],
+    end: usize,
+    slack: f64,
+) -> Option<(usize, Why)> {
+    let position = op.position.clone();
+    let mut side = op.side;
+    for (k, (&how, after)) in how[..end].iter().zip(&mut sides[..end]).enumerate() {
+        lane.k = k;
+        lane.how = how;
+        if let Err(why) = kernel(&mut lane, &position, &mut side, slack) {
+            op.side = side;
+            return Some((k, why));
+        }
+        *after = side;
+    }
+    op.side = side;
+    None
+}
+
 /// How this step's q is predicted from the last (which `q_prev` holds; the solver's own q
 /// holds the step before it until a group overwrites its bodies' coordinates).
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 enum Extrapolation {
     /// The last q as it is (the first position, or no earlier one).
+    #[default]
     Hold,
     /// Linearly from the last two positions, Δt over the last Δt as given.
     Linear(f64),
@@ -951,13 +1141,14 @@ struct Predictor<'a> {
 }
 
 impl Predictor<'_> {
-    /// The predicted coordinate `i`, read before the group that owns it writes `s.q[i]`.
+    /// The predicted coordinate `i`, from the last step and `before`, the step before it
+    /// (the solver's own q, read before the group that owns coordinate `i` writes it).
     #[inline(always)]
-    fn at(&self, s: &Solver, i: usize) -> f64 {
+    fn at(&self, before: &[f64], i: usize) -> f64 {
         let now = self.last[i];
         match self.how {
             Extrapolation::Hold => now,
-            Extrapolation::Linear(f) => now + (now - s.q[i]) * f,
+            Extrapolation::Linear(f) => now + (now - before[i]) * f,
             Extrapolation::Taylor(dt) => now + self.qd[i] * dt + 0.5 * self.qdd[i] * dt * dt,
         }
     }
@@ -967,7 +1158,7 @@ impl Predictor<'_> {
     fn write(&self, s: &mut Solver, bodies: &[usize]) {
         for &b in bodies {
             for i in 3 * b..3 * b + 3 {
-                s.q[i] = self.at(s, i);
+                s.q[i] = self.at(&s.q, i);
             }
         }
     }
@@ -1000,6 +1191,8 @@ pub struct AssurSolver {
     how: Extrapolation,
     /// Newton group block and residual buffers.
     work: Vec<f64>,
+    /// The sweep's buffers.
+    sweep: Sweep,
 }
 
 impl AssurSolver {
@@ -1038,6 +1231,7 @@ impl AssurSolver {
             dt_prev: None,
             how: Extrapolation::Hold,
             work: vec![0.0; most * most + 2 * most],
+            sweep: Sweep::default(),
         })
     }
 
@@ -1124,14 +1318,203 @@ impl AssurSolver {
     }
 
     /// Positions only at every time in `times` (q per step; velocities and accelerations
-    /// are not computed).
+    /// are not computed): [`AssurSolver::positions_into`], one q per step.
     pub fn run_positions(&mut self, times: &[f64]) -> Result<Vec<Vec<f64>>, LinkageError> {
-        let mut out = Vec::with_capacity(times.len());
-        for &t in times {
-            self.step_positions(t)?;
-            out.push(self.inner.q.clone());
+        let n = self.inner.n;
+        let mut flat = Vec::with_capacity(times.len() * n);
+        self.positions_into(times, &mut flat)?;
+        if n == 0 {
+            return Ok(vec![Vec::new(); times.len()]);
         }
-        Ok(out)
+        Ok(flat.chunks_exact(n).map(<[f64]>::to_vec).collect())
+    }
+
+    /// Positions only at every time in `times`, as states ([`AssurSolver::positions_into`]):
+    /// each step's q with its residual (relative, as [`AssurSolver::state`] gives it);
+    /// q̇ and q̈ zero, not computed.
+    pub fn run_positions_states(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
+        let n = self.inner.n;
+        let mut flat = Vec::with_capacity(times.len() * n);
+        self.positions_into(times, &mut flat)?;
+        let mut states = Vec::with_capacity(times.len());
+        for (k, &t) in times.iter().enumerate() {
+            let q = &flat[k * n..(k + 1) * n];
+            // The laws at t (the drivers' rows of the residual) and q's poses, as a step
+            // leaves them.
+            self.inner.eval_law_values(t)?;
+            self.inner.q.copy_from_slice(q);
+            self.inner.residual();
+            states.push(State {
+                t,
+                q: q.to_vec(),
+                qd: vec![0.0; n],
+                qdd: vec![0.0; n],
+                iterations: self.fallback.unwrap_or_else(|| self.plans.iter().map(|p| p.iterations).max().unwrap_or(0)),
+                residual: self.inner.residual_norm().0,
+                near_singular: None,
+            });
+        }
+        Ok(states)
+    }
+
+    /// Positions only at every time in `times`, each step's q appended to `out` (n values a
+    /// step; on an error, the steps before it). The same numbers, bit for bit, as
+    /// [`AssurSolver::step_positions`] at each time in turn, found group by group: when
+    /// every group has a closed form, each group is solved over all the steps before the
+    /// next group is (a sweep: one loop per group, its constants held across the steps),
+    /// after the first step, which assembles. A step a sweep cannot solve (a law not
+    /// finite, a group that cannot be assembled) is then stepped alone, which reports it
+    /// as [`AssurSolver::step_positions`] does.
+    pub fn positions_into(&mut self, times: &[f64], out: &mut Vec<f64>) -> Result<(), LinkageError> {
+        let sweeps = self.ops.iter().all(|o| !matches!(o.position, Position::Triad(_) | Position::Newton));
+        let mut i = 0;
+        while i < times.len() {
+            if sweeps && self.inner.t.is_some() {
+                let m = self.sweep(&times[i..], out);
+                i += m;
+                if i == times.len() {
+                    break;
+                }
+            }
+            self.step_positions(times[i])?;
+            out.extend_from_slice(&self.inner.q);
+            i += 1;
+        }
+        Ok(())
+    }
+
+    /// Positions at `times` by a sweep (see [`AssurSolver::positions_into`]) from the last
+    /// step solved, each step's q appended to `out`: the number of steps solved, all of
+    /// them unless one cannot be (the solver then stands after the step before it).
+    fn sweep(&mut self, times: &[f64], out: &mut Vec<f64>) -> usize {
+        let Some(t_last) = self.inner.t else { return 0 };
+        let (nb, nd) = (self.inner.poses.len(), self.inner.laws.len());
+        let sw = &mut self.sweep;
+        // The laws' values and each step's prediction, as the steps would set them.
+        sw.laws.clear();
+        sw.how.clear();
+        let (mut rates_valid, mut dt_prev, mut t0) = (self.rates_valid, self.dt_prev, t_last);
+        let mut end = times.len();
+        'steps: for (k, &t) in times.iter().enumerate() {
+            for d in &self.inner.mech.drivers {
+                let v = match d.law.value(t) {
+                    Some(v) if v.is_finite() => v,
+                    _ => match whole_law(d, t) {
+                        Ok(j) => j.0,
+                        Err(_) => {
+                            sw.laws.truncate(k * nd);
+                            end = k;
+                            break 'steps;
+                        }
+                    },
+                };
+                sw.laws.push(v);
+            }
+            let dt = t - t0;
+            sw.how.push(if rates_valid {
+                Extrapolation::Taylor(dt)
+            } else {
+                match dt_prev.filter(|d| *d != 0.0) {
+                    Some(d) => Extrapolation::Linear(dt / d),
+                    None => Extrapolation::Hold,
+                }
+            });
+            (rates_valid, dt_prev, t0) = (false, Some(dt), t);
+        }
+        if end == 0 {
+            return 0;
+        }
+        // Body by body: the step before the last (its q: what the prediction reads), the
+        // last (its cached pose, whose origin and angle are its q: what a group reads as
+        // its bodies' last), then the steps.
+        let steps = end;
+        let stride = steps + 2;
+        sw.poses.clear();
+        sw.poses.resize(nb * stride, GROUND_POSE);
+        for (b, &p) in self.inner.poses.iter().enumerate() {
+            let q = &self.q_prev[3 * b..3 * b + 3];
+            sw.poses[b * stride] = Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE };
+            sw.poses[b * stride + 1] = p;
+        }
+        let groups = self.ops.len();
+        sw.sides.clear();
+        sw.sides.resize(groups * steps, 0.0);
+        let slack = crate::geom::tol::RESIDUAL_REL * self.inner.mech.length_scale;
+        let mut branches = Vec::with_capacity(groups);
+        for (gi, op) in self.ops.iter_mut().enumerate() {
+            branches.push(op.side);
+            let lane = Lane {
+                poses: &mut sw.poses,
+                stride,
+                k: 0,
+                laws: &sw.laws,
+                nd,
+                how: Extrapolation::Hold,
+                qd: &self.inner.qd,
+                qdd: &self.inner.qdd,
+            };
+            let (how, sides) = (&sw.how[..], &mut sw.sides[gi * steps..(gi + 1) * steps]);
+            let stop = match op.position {
+                Position::DrivenAngle { .. } => sweep_group(driven_angle, op, lane, how, sides, end, slack),
+                Position::DrivenDistance { .. } => sweep_group(driven_distance, op, lane, how, sides, end, slack),
+                Position::Rrr { .. } => sweep_group(rrr, op, lane, how, sides, end, slack),
+                Position::Rrp { .. } => sweep_group(rrp, op, lane, how, sides, end, slack),
+                Position::Rpr { .. } => sweep_group(rpr, op, lane, how, sides, end, slack),
+                Position::Prp { .. } => sweep_group(prp, op, lane, how, sides, end, slack),
+                Position::Rpp { .. } => sweep_group(rpp, op, lane, how, sides, end, slack),
+                // Not swept (positions_into steps these scenes).
+                Position::Triad(_) | Position::Newton => Some((0, Why::Parallel)),
+            };
+            if let Some((k, _)) = stop {
+                end = end.min(k);
+            }
+        }
+        if end < steps {
+            // Every group's branch after the last step solved (a group swept further than a
+            // later group could follow is taken back).
+            for (gi, op) in self.ops.iter_mut().enumerate() {
+                op.side = if end == 0 { branches[gi] } else { sw.sides[gi * steps + end - 1] };
+            }
+        }
+        if end == 0 {
+            return 0;
+        }
+        // q of every step solved, then the solver as stepping would leave it: q and the
+        // poses of the last step, the step before it for the next prediction, the time,
+        // the laws, the rates' state.
+        let n = 3 * nb;
+        let first = out.len();
+        out.resize(first + end * n, 0.0);
+        for b in (0..nb).filter(|_| n > 0) {
+            let lane = &sw.poses[b * stride + 2..b * stride + 2 + end];
+            for (q, p) in out[first..].chunks_exact_mut(n).zip(lane) {
+                q[3 * b..3 * b + 3].copy_from_slice(&[p.r.x, p.r.y, p.phi]);
+            }
+        }
+        if end >= 2 {
+            let before = out.len() - 2 * n;
+            self.q_prev.copy_from_slice(&out[before..before + n]);
+        } else {
+            self.q_prev.copy_from_slice(&self.inner.q);
+        }
+        self.inner.q.copy_from_slice(&out[out.len() - n..]);
+        for (b, p) in self.inner.poses.iter_mut().enumerate() {
+            *p = sw.poses[b * stride + end + 1];
+        }
+        if self.rates_valid {
+            // A positions-only step keeps the rates it predicted from.
+            self.qd_prev.copy_from_slice(&self.inner.qd);
+            self.qdd_prev.copy_from_slice(&self.inner.qdd);
+        }
+        let t = times[end - 1];
+        self.dt_prev = Some(t - if end >= 2 { times[end - 2] } else { t_last });
+        self.how = sw.how[end - 1];
+        self.rates_valid = false;
+        self.fallback = None;
+        self.inner.t = Some(t);
+        // Sets the laws' values (and any whole jet) as the step did; it succeeded there.
+        let _ = self.inner.eval_law_values(t);
+        end
     }
 
     /// Solves at every time, with the forces at each: the groups' positions, then Φq of the
@@ -1296,14 +1679,15 @@ impl AssurSolver {
         let pred = Predictor { how: self.how, last: &self.q_prev, qd: &self.qd_prev, qdd: &self.qdd_prev };
         let s = &mut self.inner;
         for (gi, op) in self.ops.iter_mut().enumerate() {
+            let live = &mut Live { s: &mut *s, pred: &pred };
             let done = match op.position {
-                Position::DrivenAngle { .. } => driven_angle(s, &pred, op, slack),
-                Position::DrivenDistance { .. } => driven_distance(s, &pred, op, slack),
-                Position::Rrr { .. } => rrr(s, &pred, op, slack),
-                Position::Rrp { .. } => rrp(s, &pred, op, slack),
-                Position::Rpr { .. } => rpr(s, &pred, op, slack),
-                Position::Prp { .. } => prp(s, &pred, op, slack),
-                Position::Rpp { .. } => rpp(s, &pred, op, slack),
+                Position::DrivenAngle { .. } => driven_angle(live, &op.position, &mut op.side, slack),
+                Position::DrivenDistance { .. } => driven_distance(live, &op.position, &mut op.side, slack),
+                Position::Rrr { .. } => rrr(live, &op.position, &mut op.side, slack),
+                Position::Rrp { .. } => rrp(live, &op.position, &mut op.side, slack),
+                Position::Rpr { .. } => rpr(live, &op.position, &mut op.side, slack),
+                Position::Prp { .. } => prp(live, &op.position, &mut op.side, slack),
+                Position::Rpp { .. } => rpp(live, &op.position, &mut op.side, slack),
                 Position::Triad(ref tp) => {
                     pred.write(s, &self.plans[gi].group.bodies);
                     solve_triad(s, tp).map_err(Why::Triad)
@@ -1425,15 +1809,15 @@ impl AssurSolver {
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn driven_angle(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::DrivenAngle { u, pin, reference, sign, law, .. } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let phi = pz(&s.poses, reference).phi + sign * s.laws[law].0;
+fn driven_angle<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::DrivenAngle { u, pin, reference, sign, law, .. } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let phi = pose_of(f, reference).phi + sign * f.law(law);
     // One argument reduction for both (the same bits as libm's sin and cos).
     let (sn, cn) = libm::sincos(phi);
     let cs = (cn, sn);
-    let r = glob(&s.poses, pin.known) - rot(cs, pin.local);
-    set_body(&mut s.q, &mut s.poses, u, r, phi, cs);
+    let r = glob(f, pin.known) - rot(cs, pin.local);
+    f.put(u, r, phi, cs);
     Ok(())
 }
 
@@ -1441,11 +1825,11 @@ fn driven_angle(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Re
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn driven_distance(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::DrivenDistance { u, slide, sign, law } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let (phi, cs, c, w) = slide.line(&s.poses);
-    set_body(&mut s.q, &mut s.poses, u, c + w * (sign * s.laws[law].0), phi, cs);
+fn driven_distance<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::DrivenDistance { u, slide, sign, law } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let (phi, cs, c, w) = slide.line(f);
+    f.put(u, c + w * (sign * f.law(law)), phi, cs);
     Ok(())
 }
 
@@ -1454,10 +1838,10 @@ fn driven_distance(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) ->
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn rrr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::Rrr { b1, b2, k1, k3, arm1, arm3, d1, d2, d1sq, d2sq, .. } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::Rrr { b1, b2, k1, k3, arm1, arm3, d1, d2, d1sq, d2sq, .. } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let (p1, p3) = (glob(f, k1.known), glob(f, k3.known));
     let dv = p3 - p1;
     let d = dv.norm();
     let a = (d * d + d1sq - d2sq) / (2.0 * d);
@@ -1472,15 +1856,15 @@ fn rrr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
     // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
     // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
     let m = p1 + e * a;
-    let dd = p1 + rot(predicted_rotation(s, pred, b1), arm1) - m;
+    let dd = p1 + rot(predicted_rotation(f, b1), arm1) - m;
     let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
-    let side = if choose(common - x, common + x, &mut op.side) == 0 { 1.0 } else { -1.0 };
-    let j = m + perp(e) * (side * h);
+    let root = if choose(common - x, common + x, side) == 0 { 1.0 } else { -1.0 };
+    let j = m + perp(e) * (root * h);
     // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
     let c1 = rotation_scaled(arm1, j - p1, d1sq);
     let c2 = rotation_scaled(arm3, j - p3, d2sq);
-    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
-    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
+    turn_to(f, b1, p1 - rot(c1, k1.local), c1);
+    turn_to(f, b2, p3 - rot(c2, k3.local), c2);
     Ok(())
 }
 
@@ -1489,11 +1873,11 @@ fn rrr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn rrp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, .. } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let p1 = glob(&s.poses, k1.known);
-    let (phi2, cs2, c, w) = s3.line(&s.poses);
+fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, .. } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let p1 = glob(f, k1.known);
+    let (phi2, cs2, c, w) = s3.line(f);
     let base = c + rot(cs2, a2);
     let e = base - p1;
     let b = e.dot(&w);
@@ -1506,16 +1890,16 @@ fn rrp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
     // b2's origin is c + s·w and the joint rides with it (b2's rotation is
     // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
     // along the line and |rp − c|² − s_p² off it.
-    let off = Vector::new(pred.at(s, 3 * b2), pred.at(s, 3 * b2 + 1)) - c;
+    let off = f.predicted_r(b2) - c;
     let sp = off.dot(&w);
     let across = off.norm_squared() - sp * sp;
     let (sv0, sv1) = (-b + root, -b - root);
-    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, &mut op.side);
+    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, side);
     let sv = if k == 0 { sv0 } else { sv1 };
     let j = base + w * sv;
     let c1 = rotation_scaled(arm1, j - p1, d1sq);
-    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
-    set_body(&mut s.q, &mut s.poses, b2, c + w * sv, phi2, cs2);
+    turn_to(f, b1, p1 - rot(c1, k1.local), c1);
+    f.put(b2, c + w * sv, phi2, cs2);
     Ok(())
 }
 
@@ -1524,10 +1908,10 @@ fn rrp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn rpr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::Rpr { b1, b2, k1, mid, k3 } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
+fn rpr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::Rpr { b1, b2, k1, mid, k3 } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let (p1, p3) = (glob(f, k1.known), glob(f, k3.known));
     // Slider S, guide G: rot(φ_G)·n0 · (K_S − K_G) = −n0 · (rot(α)(p − k_S) − (q1 − k_G)).
     let (ks, kg, pks, qkg) = if mid.b1_is_slider {
         (p1, p3, mid.p - k1.local, mid.q1 - k3.local)
@@ -1547,15 +1931,15 @@ fn rpr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
     // The two bodies turn together: the root whose guide normal
     // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
     let guide = if mid.b1_is_slider { b2 } else { b1 };
-    let u = dh * x - rot(predicted_rotation(s, pred, guide), mid.n0);
+    let u = dh * x - rot(predicted_rotation(f, guide), mid.n0);
     let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
-    let side = if choose(common + cross_term, common - cross_term, &mut op.side) == 0 { 1.0 } else { -1.0 };
-    let ng = dh * x + perp(dh) * (side * y);
+    let root = if choose(common + cross_term, common - cross_term, side) == 0 { 1.0 } else { -1.0 };
+    let ng = dh * x + perp(dh) * (root * y);
     let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
     let cs = compose(cg, mid.turn);
     let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
-    turn_to(s, b1, p1 - rot(c1, k1.local), c1);
-    turn_to(s, b2, p3 - rot(c2, k3.local), c2);
+    turn_to(f, b1, p1 - rot(c1, k1.local), c1);
+    turn_to(f, b2, p3 - rot(c2, k3.local), c2);
     Ok(())
 }
 
@@ -1563,11 +1947,11 @@ fn rpr(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn prp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::Prp { b1, b2, s1, a1, a2, s3 } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let (phi1, cs1, c1, w1) = s1.line(&s.poses);
-    let (phi2, cs2, c3, w3) = s3.line(&s.poses);
+fn prp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::Prp { b1, b2, s1, a1, a2, s3 } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let (phi1, cs1, c1, w1) = s1.line(f);
+    let (phi2, cs2, c3, w3) = s3.line(f);
     let e = (c3 + rot(cs2, a2)) - (c1 + rot(cs1, a1));
     // s1·w1 − s3·w3 = e.
     let det = cross(w1, -w3);
@@ -1576,8 +1960,8 @@ fn prp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
     }
     let sv1 = cross(e, -w3) / det;
     let sv3 = cross(w1, e) / det;
-    set_body(&mut s.q, &mut s.poses, b1, c1 + w1 * sv1, phi1, cs1);
-    set_body(&mut s.q, &mut s.poses, b2, c3 + w3 * sv3, phi2, cs2);
+    f.put(b1, c1 + w1 * sv1, phi1, cs1);
+    f.put(b2, c3 + w3 * sv3, phi2, cs2);
     Ok(())
 }
 
@@ -1585,18 +1969,18 @@ fn prp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
 /// signature (the prediction, the branch in `op`, the closure's slack); a failure returns
 /// why, for [`cannot_assemble`].
 #[inline(always)]
-fn rpp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), Why> {
-    let Position::Rpp { b1, b2, k1, mid, s3 } = op.position else { return Ok(()) };
-    let _ = (pred, slack); // not every kind reads both
-    let (phi2, cs2, c, w) = s3.line(&s.poses);
+fn rpp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+    let Position::Rpp { b1, b2, k1, mid, s3 } = *position else { return Ok(()) };
+    let _ = (slack, &side); // not every kind reads both
+    let (phi2, cs2, c, w) = s3.line(f);
     let (phi1, cs1) = if mid.b1_is_slider {
         (phi2 + mid.angle, compose(cs2, mid.turn))
     } else {
         (phi2 - mid.angle, compose(cs2, (mid.turn.0, -mid.turn.1)))
     };
-    let p1 = glob(&s.poses, k1.known);
+    let p1 = glob(f, k1.known);
     let r1 = p1 - rot(cs1, k1.local);
-    set_body(&mut s.q, &mut s.poses, b1, r1, phi1, cs1);
+    f.put(b1, r1, phi1, cs1);
     // n_G·(P − Q1) = 0 with b2's origin c + s·w.
     let (num, den) = if mid.b1_is_slider {
         let n = rot(cs2, mid.n0);
@@ -1610,7 +1994,7 @@ fn rpp(s: &mut Solver, pred: &Predictor, op: &mut Op, slack: f64) -> Result<(), 
     if den.abs() <= DEGENERATE_REL {
         return Err(Why::Along);
     }
-    set_body(&mut s.q, &mut s.poses, b2, c + w * (num / den), phi2, cs2);
+    f.put(b2, c + w * (num / den), phi2, cs2);
     Ok(())
 }
 
@@ -1908,10 +2292,10 @@ fn choose(d0: f64, d1: f64, side: &mut f64) -> usize {
 /// Writes body `b` at origin `r` and rotation `cs`, its angle continued from the last step
 /// (still in its cached pose) by this step's turn.
 #[inline(always)]
-fn turn_to(s: &mut Solver, b: usize, r: Vector, cs: (f64, f64)) {
-    let last = s.poses[b];
+fn turn_to<F: Frame>(f: &mut F, b: usize, r: Vector, cs: (f64, f64)) {
+    let last = f.last(b);
     let phi = last.phi + turn_between((last.c, last.s), cs);
-    set_body(&mut s.q, &mut s.poses, b, r, phi, cs);
+    f.put(b, r, phi, cs);
 }
 
 /// Newton–Raphson on one group's coordinates from the predicted q (the known bodies fixed).
@@ -2075,7 +2459,7 @@ mod tests {
                 let local = Vector::new(x, y);
                 let p = GROUND_POSE;
                 let general = p.r + p.rot(local);
-                let fast = glob(&[], Anchor { body: Attach::Ground, local });
+                let fast = glob::<[Pose]>(&[], Anchor { body: Attach::Ground, local });
                 assert_eq!(
                     (fast.x.to_bits(), fast.y.to_bits()),
                     (general.x.to_bits(), general.y.to_bits()),
@@ -2107,7 +2491,7 @@ mod tests {
             let mut q = s.q.clone();
             q[5] = last + turn;
             let pred = Predictor { how: Extrapolation::Hold, last: &q, qd: &q, qdd: &q };
-            let (c, sv) = predicted_rotation(&s, &pred, 1);
+            let (c, sv) = predicted_rotation(&Live { s: &mut s, pred: &pred }, 1);
             // A turn over 0.5 rad is not trusted: the last rotation.
             let expect = if turn.abs() <= 0.5 { last + turn } else { last };
             assert!((c - libm::cos(expect)).abs() < 2e-6 && (sv - libm::sin(expect)).abs() < 2e-6, "{last} {turn}");

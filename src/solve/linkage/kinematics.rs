@@ -1031,7 +1031,7 @@ impl Solver {
 /// where it is not finite.
 #[cold]
 #[inline(never)]
-fn whole_law(d: &super::Driver, t: f64) -> Result<(f64, f64, f64), LinkageError> {
+pub(super) fn whole_law(d: &super::Driver, t: f64) -> Result<(f64, f64, f64), LinkageError> {
     let j = d.law.eval(t);
     if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
         return Err(not_finite(d, t, j));
