@@ -155,17 +155,8 @@ pub(super) fn products(
             (states, Some(forces))
         }
         _ if out.velocity => (assur.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
-        _ => {
-            let mut states = Vec::with_capacity(scene.times.len());
-            for &t in &scene.times {
-                assur.step_positions(t).map_err(|e| solve_err(file)(e.into()))?;
-                let mut st = assur.state();
-                // Not computed: zero, and nothing reads them (no rate is measured or drawn).
-                st.qd.iter_mut().chain(st.qdd.iter_mut()).for_each(|v| *v = 0.0);
-                states.push(st);
-            }
-            (states, None)
-        }
+        // Rates not computed: zero, and nothing reads them (no rate is measured or drawn).
+        _ => (assur.run_positions_states(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
     };
     let cols = columns(scene, &states);
     let mut warnings = Vec::new();
