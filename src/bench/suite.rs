@@ -165,8 +165,9 @@ pub fn fourbar(budget: Budget) -> Result<Vec<Measurement>, Error> {
 }
 
 /// The Assur-group route on a linkage scene (solve::linkage::assur), nanoseconds per time
-/// step over the whole motion after the first (assembled) position: positions only, and
-/// positions with velocities and accelerations. Error: the worst `score` (residual,
+/// step over the whole motion after the first (assembled) position: positions only (the
+/// sweep, [`AssurSolver::positions_into`], as a run asking for positions solves them), and
+/// positions with velocities and accelerations (a step at a time). Error: the worst `score` (residual,
 /// distance) over the motion, each row on its own answers.
 fn assur(
     budget: Budget,
@@ -185,12 +186,12 @@ fn assur(
     let start = states[0].clone();
     let rest = &s.times[1..];
     let steps = rest.len().max(1) as f64;
+    let mut q = Vec::with_capacity(rest.len() * solver.q().len());
     let ns_pos = ns_per_call(budget, || {
         solver.resume(&start);
-        for &t in rest {
-            let _ = solver.step_positions(t);
-        }
-        solver.q()[0]
+        q.clear();
+        let _ = solver.positions_into(rest, &mut q);
+        q.first().copied().unwrap_or(0.0)
     }) / steps;
     let ns_full = ns_per_call(budget, || {
         solver.resume(&start);
