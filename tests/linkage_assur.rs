@@ -595,3 +595,39 @@ fn a_sweep_stops_where_stepping_fails_and_resumes_as_stepping_does() {
     AssurSolver::new(mech).unwrap().positions_into(&times, &mut whole).unwrap();
     assert!(halves.iter().zip(&whole).all(|(x, y)| x.to_bits() == y.to_bits()) && halves.len() == whole.len());
 }
+
+#[test]
+fn positions_only_states_carry_each_steps_q_residual_and_iterations() {
+    // Swept: the q of run_positions, bit for bit, each with its residual.
+    let s = linkage("shaper");
+    let states = AssurSolver::new(s.mechanism.clone()).unwrap().run_positions_states(&s.times).unwrap();
+    let pos = AssurSolver::new(s.mechanism.clone()).unwrap().run_positions(&s.times).unwrap();
+    let mut check = Solver::new(s.mechanism.clone()).unwrap();
+    assert_eq!(states.len(), s.times.len());
+    for ((st, q), &t) in states.iter().zip(&pos).zip(&s.times) {
+        assert_eq!(st.t, t);
+        assert!(st.q.iter().zip(q).all(|(a, b)| a.to_bits() == b.to_bits()), "t = {t}");
+        assert!(st.qd.iter().chain(&st.qdd).all(|&v| v == 0.0));
+        let worst = check.residuals(st).unwrap().iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        assert!(st.residual <= 1e-12 && worst <= 1e-9, "t = {t}: {} {worst:e}", st.residual);
+        assert_eq!(st.iterations, 0);
+    }
+    // Stepped (a group Newton solves): each step's own iterations, as step and state give.
+    let mut mech = linkage("fourbar-linkage").mechanism;
+    let phi2 = mech.bodies[1].angle;
+    mech.drivers[0] = Driver {
+        name: "coupler".into(),
+        target: DriverTarget::BodyAngle(1),
+        law: Expr::parse(&format!("{phi2} + 0.05*sin(3*t)")).unwrap(),
+    };
+    let times: Vec<f64> = (0..=60).map(|k| k as f64 * 0.01).collect();
+    let states = AssurSolver::new(mech.clone()).unwrap().run_positions_states(&times).unwrap();
+    let mut stepping = AssurSolver::new(mech).unwrap();
+    for (st, &t) in states.iter().zip(&times) {
+        stepping.step_positions(t).unwrap();
+        let want = stepping.state();
+        assert_eq!(st.iterations, want.iterations, "t = {t}");
+        assert!(st.q.iter().zip(&want.q).all(|(a, b)| a.to_bits() == b.to_bits()), "t = {t}");
+    }
+    assert!(states.iter().any(|st| st.iterations > 0));
+}

@@ -1329,11 +1329,22 @@ impl AssurSolver {
         Ok(flat.chunks_exact(n).map(<[f64]>::to_vec).collect())
     }
 
-    /// Positions only at every time in `times`, as states ([`AssurSolver::positions_into`]):
-    /// each step's q with its residual (relative, as [`AssurSolver::state`] gives it);
-    /// q̇ and q̈ zero, not computed.
+    /// Positions only at every time in `times`, as states: each step's q with its residual
+    /// (relative, as [`AssurSolver::state`] gives it); q̇ and q̈ zero, not computed. Swept
+    /// ([`AssurSolver::positions_into`]) when every group has a closed form, else a step
+    /// and its state at a time (each step's Newton iterations).
     pub fn run_positions_states(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
         let n = self.inner.n;
+        if !self.sweeps() {
+            let mut states = Vec::with_capacity(times.len());
+            for &t in times {
+                self.step_positions(t)?;
+                let mut st = self.state();
+                st.qd.iter_mut().chain(st.qdd.iter_mut()).for_each(|v| *v = 0.0);
+                states.push(st);
+            }
+            return Ok(states);
+        }
         let mut flat = Vec::with_capacity(times.len() * n);
         self.positions_into(times, &mut flat)?;
         let mut states = Vec::with_capacity(times.len());
@@ -1349,7 +1360,8 @@ impl AssurSolver {
                 q: q.to_vec(),
                 qd: vec![0.0; n],
                 qdd: vec![0.0; n],
-                iterations: self.fallback.unwrap_or_else(|| self.plans.iter().map(|p| p.iterations).max().unwrap_or(0)),
+                // Closed forms only: no iterations.
+                iterations: 0,
                 residual: self.inner.residual_norm().0,
                 near_singular: None,
             });
@@ -1366,7 +1378,7 @@ impl AssurSolver {
     /// finite, a group that cannot be assembled) is then stepped alone, which reports it
     /// as [`AssurSolver::step_positions`] does.
     pub fn positions_into(&mut self, times: &[f64], out: &mut Vec<f64>) -> Result<(), LinkageError> {
-        let sweeps = self.ops.iter().all(|o| !matches!(o.position, Position::Triad(_) | Position::Newton));
+        let sweeps = self.sweeps();
         let mut i = 0;
         while i < times.len() {
             if sweeps && self.inner.t.is_some() {
@@ -1381,6 +1393,12 @@ impl AssurSolver {
             i += 1;
         }
         Ok(())
+    }
+
+    /// Whether positions are swept: every group has a closed form the sweep knows (the
+    /// triad's and Newton's are stepped).
+    fn sweeps(&self) -> bool {
+        self.ops.iter().all(|o| !matches!(o.position, Position::Triad(_) | Position::Newton))
     }
 
     /// Positions at `times` by a sweep (see [`AssurSolver::positions_into`]) from the last
