@@ -6,7 +6,8 @@
 //! reactions and the power balance: what forces add per sample, target ≤ 1 µs), and a
 //! step with its forces. The Assur-group route on the shaper (issue 16: positions ≤ 5×
 //! the four-bar's closed-form dyad, with velocities and accelerations ≤ 0.15 µs): one
-//! step, and one positions-only step.
+//! step, one positions-only step, and the positions of the whole motion swept group by
+//! group (what a positions-only run does).
 
 use std::hint::black_box;
 
@@ -92,6 +93,19 @@ fn bench(c: &mut Criterion) {
         b.iter(|| {
             t += dt;
             black_box(assur.step_positions(black_box(t)).ok())
+        })
+    });
+    // The sweep a positions-only run uses: the whole motion after its first position.
+    let Ok(start) = AssurSolver::new(shaper.mechanism.clone()).and_then(|mut a| a.run(&shaper.times[..1])) else {
+        panic!("shaper does not assemble")
+    };
+    let rest = &shaper.times[1..];
+    let mut q = Vec::with_capacity(rest.len() * 3 * shaper.mechanism.bodies.len());
+    c.bench_function("linkage/shaper Assur sweep (positions, 360 steps)", |b| {
+        b.iter(|| {
+            assur.resume(&start[0]);
+            q.clear();
+            black_box(assur.positions_into(black_box(rest), &mut q).ok())
         })
     });
 }
