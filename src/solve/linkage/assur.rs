@@ -1119,10 +1119,9 @@ fn sweep_group<'a, K: Fn(&mut Lane<'a>, &Position, &mut f64, f64) -> Result<(), 
 
 /// How this step's q is predicted from the last (which `q_prev` holds; the solver's own q
 /// holds the step before it until a group overwrites its bodies' coordinates).
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 enum Extrapolation {
     /// The last q as it is (the first position, or no earlier one).
-    #[default]
     Hold,
     /// Linearly from the last two positions, Δt over the last Δt as given.
     Linear(f64),
