@@ -291,3 +291,324 @@ fn librecad_pages_hold_every_text() {
         assert!(px.iter().filter(|&&v| v < 200).count() > 1000, "{stem}: an empty page");
     }
 }
+
+/// LibreCAD 2.2's stroke font for our text style, read from LibreCAD's own font file: the
+/// independent width model of the tests below (LibreCAD draws a glyph 9 font units per text
+/// height, each glyph at the previous one's right edge plus the letter spacing, a space
+/// the word spacing; a character the font lacks as a stand-in about a letter wide).
+struct StrokeFont {
+    /// Each glyph's (left, right) edge, font units from its origin.
+    glyphs: HashMap<char, (f64, f64)>,
+    letter_spacing: f64,
+    word_spacing: f64,
+}
+
+/// The font file of the DXF's text style (`AZOMIX`) as Debian's librecad installs it.
+const AZOMIX_LFF: &str = "/usr/share/librecad/fonts/azomix.lff";
+
+impl StrokeFont {
+    fn read(path: &str) -> StrokeFont {
+        let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{path}: {e} (Debian's librecad)"));
+        let header = |name: &str| -> f64 {
+            text.lines()
+                .find_map(|l| l.strip_prefix('#').and_then(|l| l.trim().strip_prefix(name)))
+                .and_then(|v| v.trim_start_matches(':').trim().parse().ok())
+                .unwrap_or_else(|| panic!("{path}: no {name}"))
+        };
+        // "[0041] A" then strokes "x,y;x,y;..." (a value may carry a bulge "A..."), or
+        // "C0041" (another glyph's strokes).
+        let mut strokes: HashMap<u32, Vec<String>> = HashMap::new();
+        let mut current: Option<u32> = None;
+        for line in text.lines() {
+            if let Some(rest) = line.strip_prefix('[') {
+                current = rest.get(..rest.find(']').unwrap_or(0)).and_then(|h| u32::from_str_radix(h, 16).ok());
+                continue;
+            }
+            if let (Some(c), false) = (current, line.is_empty() || line.starts_with('#')) {
+                strokes.entry(c).or_default().push(line.to_string());
+            }
+        }
+        fn edges(c: u32, strokes: &HashMap<u32, Vec<String>>, depth: usize) -> Option<(f64, f64)> {
+            let mut e: Option<(f64, f64)> = None;
+            let mut add = |lo: f64, hi: f64| e = Some(e.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))));
+            for l in strokes.get(&c)? {
+                if let Some(code) = l.strip_prefix('C') {
+                    let sub = u32::from_str_radix(code.get(..4).unwrap_or(""), 16).ok();
+                    if let Some((lo, hi)) = sub.filter(|_| depth < 4).and_then(|s| edges(s, strokes, depth + 1)) {
+                        add(lo, hi);
+                    }
+                    continue;
+                }
+                for x in l.split(';').filter_map(|p| p.split(',').next()?.trim().parse::<f64>().ok()) {
+                    add(x, x);
+                }
+            }
+            e
+        }
+        let glyphs = strokes.keys().filter_map(|&c| Some((char::from_u32(c)?, edges(c, &strokes, 0)?))).collect();
+        StrokeFont { glyphs, letter_spacing: header("LetterSpacing"), word_spacing: header("WordSpacing") }
+    }
+
+    /// The ink of a left-aligned text `height` high, from its insertion point: (left, right).
+    fn ink(&self, text: &str, height: f64) -> (f64, f64) {
+        let (mut pos, mut left, mut right) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        for c in text.chars() {
+            if c == ' ' {
+                pos += self.word_spacing;
+                continue;
+            }
+            // A missing glyph: LibreCAD's stand-in, taken as wide as a capital W.
+            let (l, r) = self.glyphs.get(&c).or_else(|| self.glyphs.get(&'W')).copied().unwrap_or((0.0, 9.0));
+            left = left.min(pos + l);
+            right = right.max(pos + r);
+            pos += r + self.letter_spacing;
+        }
+        (left * height / 9.0, right * height / 9.0)
+    }
+}
+
+/// A level TEXT of the DXF: layer, where it is aligned, height, text (escapes decoded),
+/// horizontal alignment (72: 0 left, 1 centre, 2 right).
+#[derive(Debug, Clone)]
+struct DxfText {
+    layer: String,
+    at: (f64, f64),
+    height: f64,
+    text: String,
+    halign: i32,
+}
+
+fn decode_unicode_escapes(s: &str) -> String {
+    let mut out = String::new();
+    let mut rest = s;
+    while let Some(i) = rest.find("\\U+") {
+        out.push_str(&rest[..i]);
+        match rest.get(i + 3..i + 7).and_then(|h| u32::from_str_radix(h, 16).ok()).and_then(char::from_u32) {
+            Some(c) => {
+                out.push(c);
+                rest = &rest[i + 7..];
+            }
+            None => {
+                out.push_str("\\U+");
+                rest = &rest[i + 3..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Every level TEXT of the ENTITIES section.
+fn level_texts(p: &[(i32, String)]) -> Vec<DxfText> {
+    let start = p.iter().position(|(c, v)| *c == 2 && v == "ENTITIES").expect("ENTITIES section");
+    let mut out = Vec::new();
+    let mut current: Option<HashMap<i32, String>> = None;
+    let mut finish = |t: HashMap<i32, String>| {
+        let num = |c: i32| t.get(&c).and_then(|v| v.parse::<f64>().ok());
+        let halign = num(72).unwrap_or(0.0) as i32;
+        let aligned = halign != 0 || num(73).unwrap_or(0.0) != 0.0;
+        let at = if aligned { (num(11), num(21)) } else { (num(10), num(20)) };
+        if let ((Some(x), Some(y)), Some(h)) = (at, num(40))
+            && num(50).unwrap_or(0.0) == 0.0
+        {
+            out.push(DxfText {
+                layer: t.get(&8).cloned().unwrap_or_default(),
+                at: (x, y),
+                height: h,
+                text: decode_unicode_escapes(t.get(&1).map_or("", String::as_str)),
+                halign,
+            });
+        }
+    };
+    for (c, v) in &p[start..] {
+        if *c == 0 {
+            if let Some(t) = current.take() {
+                finish(t);
+            }
+            current = (v == "TEXT").then(HashMap::new);
+        } else if let Some(t) = current.as_mut() {
+            t.entry(*c).or_insert_with(|| v.clone());
+        }
+    }
+    out
+}
+
+/// The ink of a text as LibreCAD lays it out: (left, right), model units. LibreCAD moves a
+/// centred or right-aligned text by its ink's width, so its ink starts where a left-aligned
+/// one's would, that far to the left.
+fn librecad_ink(font: &StrokeFont, t: &DxfText) -> (f64, f64) {
+    let (l, r) = font.ink(&t.text, t.height);
+    let shift = match t.halign {
+        1 => -0.5 * (r - l),
+        2 => -(r - l),
+        _ => 0.0,
+    };
+    (t.at.0 + l + shift, t.at.0 + r + shift)
+}
+
+/// The closed POLYLINEs of `layer` as boxes (min x, min y, max x, max y).
+fn layer_boxes(p: &[(i32, String)], layer: &str) -> Vec<(f64, f64, f64, f64)> {
+    let start = p.iter().position(|(c, v)| *c == 2 && v == "ENTITIES").expect("ENTITIES section");
+    let mut boxes = Vec::new();
+    let mut i = start;
+    while i < p.len() {
+        if p[i] == (0, "POLYLINE".to_string())
+            && p[i + 1..].iter().take_while(|(c, _)| *c != 0).any(|(c, v)| *c == 8 && v == layer)
+        {
+            let (mut x0, mut y0, mut x1, mut y1) = (f64::INFINITY, f64::INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+            i += 1;
+            while i < p.len() && p[i] != (0, "SEQEND".to_string()) {
+                let (c, v) = &p[i];
+                if let Ok(x) = v.parse::<f64>() {
+                    if *c == 10 && p[..i].iter().rev().find(|(c, _)| *c == 0).is_some_and(|(_, v)| v == "VERTEX") {
+                        (x0, x1) = (x0.min(x), x1.max(x));
+                    } else if *c == 20 && p[..i].iter().rev().find(|(c, _)| *c == 0).is_some_and(|(_, v)| v == "VERTEX")
+                    {
+                        (y0, y1) = (y0.min(x), y1.max(x));
+                    }
+                }
+                i += 1;
+            }
+            boxes.push((x0, y0, x1, y1));
+        }
+        i += 1;
+    }
+    boxes
+}
+
+/// The triad's modes sheet in LibreCAD: each mode's heading and angles stay in their cell
+/// (the first heading, "Mode 1 · counter-clockwise · drawn in Fig. 3", ran 41 mm into the
+/// second cell when the cells were as wide as the DejaVu widths of the SVG). Checked twice:
+/// on LibreCAD's page, where the gaps between the cells hold no ink at all, and with
+/// LibreCAD's own font file, every text's ink inside its cell; the font model is held to the
+/// page (a heading measured on the page within 1 mm of the model).
+#[test]
+fn librecad_keeps_each_modes_text_in_its_cell() {
+    require_tools();
+    const DPI: u32 = 50;
+    let dir = out_dir("modes-cells");
+    write_dxf("triad-popa", &dir, &[]);
+    let dxf = dir.join("triad-popa-modes.dxf");
+    let pdf = dxf2pdf(&dxf, &dir);
+    let p = pairs(&dxf);
+    let (x_min, _) = header_point(&p, "$PLIMMIN");
+    let (_, y_max) = header_point(&p, "$PLIMMAX");
+    let cells = layer_boxes(&p, "PANELS");
+    assert_eq!(cells.len(), 8, "the eight modes' cells: {cells:?}");
+    let (w, h, px) = page_grey(&pdf, DPI);
+    let px_per_mm = DPI as f64 / 25.4;
+    let col = |x: f64| ((x - x_min) * px_per_mm).round() as i64;
+    let row = |y: f64| ((y_max - y) * px_per_mm).round() as i64;
+    let inked = |x: i64, y: i64| {
+        x >= 0 && y >= 0 && (x as usize) < w && (y as usize) < h && px[y as usize * w + x as usize] < 200
+    };
+    // The gap between two cells side by side: nothing is drawn there.
+    for a in &cells {
+        for b in &cells {
+            if (a.3 - b.3).abs() > 1e-6 || b.0 <= a.2 {
+                continue;
+            }
+            let (x0, x1) = (col(a.2) + 2, col(b.0) - 2);
+            let (y0, y1) = (row(a.3) + 2, row(a.1) - 2);
+            assert!(x1 > x0 + 5, "a gap of {} px between the cells", x1 - x0);
+            let ink: Vec<(i64, i64)> =
+                (y0..=y1).flat_map(|y| (x0..=x1).map(move |x| (x, y))).filter(|&(x, y)| inked(x, y)).collect();
+            assert!(
+                ink.is_empty(),
+                "LibreCAD draws in the gap between the cells at x {:.0}..{:.0} ({} px, e.g. {:?}): a text runs out of its cell",
+                a.2,
+                b.0,
+                ink.len(),
+                &ink[..ink.len().min(5)]
+            );
+        }
+    }
+    // Every text's ink by LibreCAD's font inside the cell that holds its insertion point.
+    let font = StrokeFont::read(AZOMIX_LFF);
+    let texts = level_texts(&p);
+    let mut checked = 0;
+    for t in &texts {
+        let Some(cell) = cells.iter().find(|c| c.0 <= t.at.0 && t.at.0 <= c.2 && c.1 <= t.at.1 && t.at.1 <= c.3) else {
+            continue;
+        };
+        let (l, r) = librecad_ink(&font, t);
+        assert!(
+            l >= cell.0 && r <= cell.2,
+            "{:?}: LibreCAD's ink {l:.1}..{r:.1} leaves its cell {:.1}..{:.1}",
+            t.text,
+            cell.0,
+            cell.2
+        );
+        checked += 1;
+    }
+    assert_eq!(checked, 16, "a heading and an angles line in each of the eight cells");
+    // The model against the page: the second cell's angles line (every glyph in the font),
+    // measured between the cell's borders.
+    let t = texts.iter().find(|t| t.text.starts_with("φ1 = 84.04°")).expect("mode 2's angles");
+    let cell = cells.iter().find(|c| c.0 <= t.at.0 && t.at.0 <= c.2 && c.1 <= t.at.1 && t.at.1 <= c.3).unwrap();
+    let (l, r) = librecad_ink(&font, t);
+    let (y0, y1) = (row(t.at.1 + 1.1 * t.height), row(t.at.1 - 0.3 * t.height));
+    let columns: Vec<i64> = (col(cell.0) + 2..=col(cell.2) - 2).filter(|&x| (y0..=y1).any(|y| inked(x, y))).collect();
+    assert!(!columns.is_empty(), "{:?} not on LibreCAD's page", t.text);
+    let (first, last) = (columns[0] as f64 / px_per_mm + x_min, *columns.last().unwrap() as f64 / px_per_mm + x_min);
+    let tol = 0.05 * t.height + 1.0 / px_per_mm;
+    assert!(
+        (first - l).abs() < tol && (last - r).abs() < tol,
+        "LibreCAD draws {:?} at {first:.1}..{last:.1}, the font model says {l:.1}..{r:.1}",
+        t.text
+    );
+}
+
+/// The frames in LibreCAD: the panels' titles, the position's text beside the mechanism's
+/// title and the force figures' captions stay at least a text height apart as LibreCAD's
+/// font draws them (the four-bar's "Acceleration polygon   k_a = 2.5 (m/s²)/mm" ran to
+/// within 0.75 heights of "Force polygons", out of its panel, and the driven triad's
+/// "Mechanism   k_l = 2 mm/mm" over its "t = 0.0000 s", when the panels were as wide as
+/// the DejaVu widths of the SVG). Checked at every position, with LibreCAD's own font file.
+#[test]
+fn librecad_keeps_panel_titles_apart() {
+    require_tools();
+    let font = StrokeFont::read(AZOMIX_LFF);
+    for scene in ["fourbar-chebyshev", "triad-driven"] {
+        let dir = out_dir(&format!("titles-{scene}"));
+        let p = pairs(&write_dxf(scene, &dir, &[]));
+        let texts = level_texts(&p);
+        // The rows of the titles and captions (on DIMENSIONS), and with them every text on
+        // their baselines (the position's text is on its position's layer).
+        let titles: Vec<&DxfText> = texts.iter().filter(|t| t.layer == "DIMENSIONS").collect();
+        let mut positions: Vec<&str> =
+            texts.iter().filter(|t| t.layer.starts_with("POS_")).map(|t| t.layer.as_str()).collect();
+        positions.sort_unstable();
+        positions.dedup();
+        assert!(positions.len() > 100, "{scene}: one layer per position");
+        let mut rows = 0;
+        for pos in &positions {
+            for base in titles.iter().map(|t| (t.at.1, t.height)) {
+                let mut row: Vec<(f64, f64, &str)> = texts
+                    .iter()
+                    .filter(|t| {
+                        (t.layer == "DIMENSIONS" || t.layer == *pos)
+                            && (t.at.1 - base.0).abs() < 1e-9
+                            && t.height == base.1
+                    })
+                    .map(|t| {
+                        let (l, r) = librecad_ink(&font, t);
+                        (l, r, t.text.as_str())
+                    })
+                    .collect();
+                row.sort_by(|a, b| a.0.total_cmp(&b.0));
+                for w in row.windows(2) {
+                    assert!(
+                        w[1].0 - w[0].1 >= base.1,
+                        "{scene}, {pos}: LibreCAD draws {:?} {:.1} text heights from {:?}",
+                        w[0].2,
+                        (w[1].0 - w[0].1) / base.1,
+                        w[1].2
+                    );
+                }
+                rows += 1;
+            }
+        }
+        assert!(rows > 0, "{scene}: no title rows");
+    }
+}

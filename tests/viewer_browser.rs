@@ -124,8 +124,9 @@ fn viewer_moves_to_the_frame_asked_for_and_plays() {
 
 /// Chromium draws a paper-sized frame's text (issue 14 item 2: the metre-sized viewBox
 /// drew letters as boxes in some renderers): a screenshot of the 90° frame SVG, opened on
-/// its own at 2.5 device pixels per CSS pixel (3.5 mm letters about 33 px high), read back
-/// by tesseract (`.ci/test` installs tesseract-ocr).
+/// its own at 2.5 device pixels per CSS pixel (3.5 mm letters about 33 px high), in a window
+/// as wide as the frame (316 mm, about 1200 CSS px), read back by tesseract (`.ci/test`
+/// installs tesseract-ocr).
 #[test]
 fn chromium_renders_a_frames_text() {
     let dir = tempfile::tempdir().unwrap();
@@ -144,7 +145,7 @@ fn chromium_renders_a_frames_text() {
         &format!("file://{}", svg.display()),
         &[
             &format!("--screenshot={}", shot.display()),
-            "--window-size=800,1000",
+            "--window-size=1300,1000",
             "--force-device-scale-factor=2.5",
             "--hide-scrollbars",
         ],

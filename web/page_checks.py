@@ -61,7 +61,10 @@ with Browser() as b:
     page.screenshot(os.path.join(SHOTS, "triad-popa-mode-3.png"))
 
 
-    # The four-bar: drag the crank pin round to 123.4567° (off the crank circle).
+    # The four-bar: drag the crank pin round to 123.4567° (off the crank circle, at twice the
+    # crank's length: the pointer moves in whole CSS pixels, and at 1.3 times the crank's
+    # length a pixel turned the crank by about a degree once the frame's panels had room
+    # for LibreCAD's widths).
     page = b.open(url("fourbar-chebyshev"), READY)
     out["fourbar_diagrams"] = page.eval("[...document.querySelectorAll('#diagrams figcaption')].map((c) => c.textContent)")
     st = json.loads(page.eval("live.points(0)"))
@@ -69,7 +72,7 @@ with Browser() as b:
     _, ax, ay = point(st, "A")
     l1 = math.hypot(ax - ox, ay - oy)
     th = math.radians(123.4567)
-    path = [(ox + 1.3 * l1 * math.cos(th * f), oy + 1.3 * l1 * math.sin(th * f)) for f in (0.25, 0.5, 0.75, 1.0)]
+    path = [(ox + 2.0 * l1 * math.cos(th * f), oy + 2.0 * l1 * math.sin(th * f)) for f in (0.25, 0.5, 0.75, 1.0)]
     at, state = drag(page, "A", path)
     out["fourbar_drag"] = {"pointer": at, "o1": [ox, oy], "state": state,
                            "drive": page.eval("+document.getElementById('stage').dataset.drive"),

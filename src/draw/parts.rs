@@ -76,6 +76,50 @@ pub fn chars_width(chars: impl Iterator<Item = char>, height: f64) -> f64 {
     height / CAP_HEIGHT_EM * chars.map(char_advance).sum::<f64>() / UNITS_PER_EM
 }
 
+/// Advance of a character in LibreCAD's stroke font for the DXF's text style (AZOMIX, see
+/// `draw::dxf::TEXT_STYLE`), in ninths of the text height (LibreCAD draws a glyph 9 font units
+/// per text height): the glyph's right edge from its origin plus the font's letter spacing
+/// of 1 unit, read from LibreCAD 2.2's `azomix.lff`; a space is its word spacing, 6.75. A
+/// character the font lacks (`·`, `–`: LibreCAD draws a stand-in glyph) and any other
+/// character not listed count as its widest letters, 10.06 (`_` and `√` are wider still).
+fn azomix_advance(c: char) -> f64 {
+    match c {
+        ' ' => 6.75,
+        '|' | '′' => 3.19,
+        '`' => 3.81,
+        '^' => 4.44,
+        '*' | '²' => 5.38,
+        '!' | '\'' | ',' | '.' | ':' | ';' | 'I' | 'i' => 6.31,
+        '(' | ')' | '[' | ']' => 6.62,
+        '1' | 'j' | 'l' | '{' | '}' => 7.25,
+        '"' | 'J' | 'c' => 7.56,
+        '$' | '+' | '-' | '/' | '<' | '=' | '>' | '?' | '\\' | '~' | '±' | '≡' | '×' | 'ε' => 8.19,
+        '0' | '2' | '3' | '5' | '6' | '7' | '8' | '9' => 8.19,
+        'C' | 'E' | 'F' | 'L' => 8.19,
+        'a' | 'b' | 'd' | 'e' | 'f' | 'g' | 'h' | 'k' | 'n' | 'o' | 'p' | 'q' | 'r' | 's' | 't' => 8.19,
+        'u' | 'v' | 'x' | 'y' | 'z' => 8.19,
+        'B' | 'P' | '°' => 8.5,
+        '4' | 'D' | 'G' | 'H' | 'K' | 'N' | 'O' | 'R' | 'S' | 'T' | 'U' | 'Z' | 'Σ' | '−' => 8.81,
+        '#' | '&' | 'A' | 'M' | 'Q' | 'V' | 'X' | 'Y' | 'm' | 'w' | 'φ' | 'π' => 9.12,
+        'ω' | '→' => 9.75,
+        '_' | '√' => 11.62,
+        _ => 10.06,
+    }
+}
+
+/// Width (model units) that `text` drawn `height` high takes in the widest of the readers we
+/// write for: per character the larger of its DejaVu Sans advance ([`text_width`]: the SVG,
+/// PNG and PDF) and its advance in LibreCAD's stroke font (the DXF's text style in LibreCAD:
+/// 0.9–1.0 text heights for most letters and digits against DejaVu's 0.8–1.0, and 0.75 for
+/// a space against 0.45). Programs that draw the DXF's TEXT with a TrueType font (ezdxf, AutoCAD,
+/// Inkscape) stay within DejaVu's widths. A layout that keeps room for a text (a cell, a
+/// panel, the gap between a title and the text beside it) measures it with this; where a
+/// writer places a text (centring, right alignment), [`text_width`] stays its estimate.
+pub fn widest_text_width(text: &str, height: f64) -> f64 {
+    let dejavu = 1.0 / (CAP_HEIGHT_EM * UNITS_PER_EM);
+    height * text.chars().map(|c| (char_advance(c) * dejavu).max(azomix_advance(c) / 9.0)).sum::<f64>()
+}
+
 /// Whether a linear dimension measured along `angle` (radians) has its text turned by half
 /// a turn to stay readable (read from below or from the right): directions in (90°, 270°].
 pub fn linear_text_flipped(angle: f64) -> bool {
@@ -714,6 +758,24 @@ mod tests {
             );
             assert_eq!(lay.text_inside, along == 5.0 && w <= 10.0);
         }
+    }
+
+    #[test]
+    fn the_widest_width_holds_librecads_drawing_and_the_dejavu_estimate() {
+        // LibreCAD 2.2's page of the triad's modes sheet: "k_l = 5 mm/mm", 12.5 high from
+        // x = 0, inked to x = 149.09 mm; its font's advances less the last letter spacing
+        // (1 of 9 units) give 149.11.
+        let azomix: f64 = "k_l = 5 mm/mm".chars().map(azomix_advance).sum();
+        assert!(((azomix - 1.0) * 12.5 / 9.0 - 149.09).abs() < 0.1, "{azomix}");
+        assert!(widest_text_width("k_l = 5 mm/mm", 12.5) >= 149.09);
+        // Never narrower than the DejaVu estimate, nor than LibreCAD's font, per character.
+        for text in ["Mode 1 · counter-clockwise · drawn in Fig. 3", "φ1 = 359.999°", "±0.1", "W", " "] {
+            let w = widest_text_width(text, 2.0);
+            assert!(w >= text_width(text, 2.0) - 1e-12, "{text}");
+            assert!(w >= text.chars().map(azomix_advance).sum::<f64>() * 2.0 / 9.0 - 1e-12, "{text}");
+        }
+        // A space: LibreCAD's word spacing, 0.75 heights (DejaVu's is 0.435).
+        assert!((widest_text_width(" ", 1.0) - 0.75).abs() < 1e-12);
     }
 
     #[test]

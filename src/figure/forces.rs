@@ -14,7 +14,7 @@
 //! loads are small) is drawn beside it, parallel, [`OFFSET`] arrowheads away, so both stay
 //! visible.
 
-use crate::draw::parts::text_width;
+use crate::draw::parts::widest_text_width;
 use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, cross, perp};
 
@@ -308,8 +308,9 @@ pub const TABLE_PITCH: f64 = 1.5;
 /// for every row of `rows` (the rows of every position of a motion).
 pub fn table_size(rows: &[Magnitude], count: usize, s: Sizes) -> Vector {
     let h = TABLE_TEXT * s.text;
-    let name_w = rows.iter().map(|r| text_width(&r.name, h)).fold(0.0, f64::max);
-    let value_w = rows.iter().map(|r| text_width(&magnitude_text(r.value, &r.unit), h)).fold(0.0, f64::max);
+    // Room for the texts as the widest reader draws them.
+    let name_w = rows.iter().map(|r| widest_text_width(&r.name, h)).fold(0.0, f64::max);
+    let value_w = rows.iter().map(|r| widest_text_width(&magnitude_text(r.value, &r.unit), h)).fold(0.0, f64::max);
     Vector::new(name_w + 1.5 * h + value_w, TABLE_PITCH * h * count as f64)
 }
 

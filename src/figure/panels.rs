@@ -19,7 +19,7 @@
 //! rows of up to [`FORCE_ROW`] items (the figures, then the table), each figure hanging from
 //! the top of its row under its caption.
 
-use crate::draw::parts::text_width;
+use crate::draw::parts::widest_text_width;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
@@ -143,7 +143,7 @@ impl ForceFigures {
         let mut out: Vec<labels::TextBox> = self
             .captions
             .iter()
-            .map(|(t, at)| labels::TextBox { min: *at, max: *at + Vector::new(text_width(t, h), h) })
+            .map(|(t, at)| labels::TextBox { min: *at, max: *at + Vector::new(widest_text_width(t, h), h) })
             .collect();
         let table_h = forces::TABLE_PITCH * forces::TABLE_TEXT * s.text * self.row_count as f64;
         out.push(labels::TextBox {
@@ -262,9 +262,9 @@ impl PanelFrame {
         let gap = PANEL_GAP_MM * k_l;
         let mech_title = format!("Mechanism   {}", length_scale_text(k_l, units));
         // Each panel at least as wide as its title (the mechanism's with the position's
-        // text right of it) and its scale bar.
+        // text right of it) and its scale bar, as the widest reader draws them.
         let wide_enough = |b: Vector, title: &str, extra: &str| {
-            let w = text_width(title, sizes.text) + text_width(extra, sizes.text) + 2.0 * sizes.text;
+            let w = widest_text_width(title, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
             Vector::new(b.x.max(w), b.y)
         };
         let mut boxes: Vec<(String, Vector)> =
@@ -349,7 +349,7 @@ impl PanelFrame {
             .map(|(title, ll, ur)| {
                 let at = self.title_at(*ll, *ur);
                 let h = self.sizes.text;
-                labels::TextBox { min: at, max: at + Vector::new(text_width(title, h), h) }
+                labels::TextBox { min: at, max: at + Vector::new(widest_text_width(title, h), h) }
             })
             .collect()
     }
@@ -511,7 +511,7 @@ impl ForcePanel {
         for (r, row) in rows.iter().enumerate() {
             let mut x = 0.0;
             for (caption, drawn, min) in row.iter() {
-                let col = drawn.x.max(text_width(caption, caption_h));
+                let col = drawn.x.max(widest_text_width(caption, caption_h));
                 let at = Vector::new(x, tops[r]);
                 captions.push((caption.clone(), Vector::new(x, tops[r])));
                 match min {

@@ -20,7 +20,7 @@
 //! k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres looks the same
 //! as one in millimetres.
 
-use crate::draw::parts::explode_dimension;
+use crate::draw::parts::{explode_dimension, widest_text_width};
 use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Orientation, Triad};
@@ -367,10 +367,12 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let heading_base = pad + s.text;
     let angles_base = heading_base + 1.8 * small_text;
     let header = angles_base + pad;
-    // Each cell as wide as its content and as the widest heading or angles line.
+    // Each cell as wide as its content and as the widest heading or angles line as the
+    // widest reader draws it (LibreCAD's stroke font: the SVG's DejaVu widths alone let
+    // the first heading run into the next cell in LibreCAD).
     let widest = m.modes.iter().enumerate().fold(0.0f64, |w, (k, c)| {
-        let heading = crate::draw::parts::text_width(&mode_heading(k + 1, c, k == m.drawn), s.text);
-        w.max(heading).max(crate::draw::parts::text_width(&mode_angles(c), small_text))
+        let heading = widest_text_width(&mode_heading(k + 1, c, k == m.drawn), s.text);
+        w.max(heading).max(widest_text_width(&mode_angles(c), small_text))
     });
     let cell_w = content.width().max(widest) + 2.0 * pad;
     let cell_h = header + content.height() + pad;

@@ -415,8 +415,8 @@ pub fn scale_bar(d: &mut Drawing, layer: usize, at: Point, length: f64, label: &
     };
     d.add(layer, text("0", at - Vector::new(gap, 0.0), crate::draw::HAlign::Right));
     d.add(layer, text(label, end + Vector::new(gap, 0.0), crate::draw::HAlign::Left));
-    let left = gap + crate::draw::parts::text_width("0", h);
-    let right = gap + crate::draw::parts::text_width(label, h);
+    let left = gap + crate::draw::parts::widest_text_width("0", h);
+    let right = gap + crate::draw::parts::widest_text_width(label, h);
     TextBox { min: at + Vector::new(-left, -tick.max(0.5 * h)), max: end + Vector::new(right, tick.max(0.5 * h)) }
 }
 
