@@ -91,7 +91,9 @@ enum Command {
     },
     /// Time every solving method against its accuracy and write a chart, CSV and table.
     Bench {
-        /// Output directory for the chart, CSV and Markdown table.
+        /// Output directory for the chart, CSV and Markdown table (the timed runs write into a
+        /// scratch directory inside it: on a RAM file system such as /dev/shm the disk stays
+        /// out of their times).
         #[arg(short, long, value_name = "DIR", default_value = "bench-out")]
         out: PathBuf,
         /// Fewer repetitions (a smoke run).
