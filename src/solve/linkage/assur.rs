@@ -34,7 +34,7 @@ use super::kinematics::{Con, NearSingular, Solver, State, con_gamma, con_jacobia
 use super::lu::Lu;
 use super::{
     Anchor, Attach, DriverTarget, GROUND_POSE, JointKind, LinkageError, MAX_NEWTON_ITERATIONS, Mechanism,
-    NEAR_SINGULAR_PIVOT_REL, Pose, pz,
+    NEAR_SINGULAR_PIVOT_REL, Pose, Poses, pz,
 };
 use crate::geom::{Vector, cross, perp, wrap_pi};
 
@@ -464,36 +464,6 @@ fn glob<P: Poses + ?Sized>(poses: &P, a: Anchor) -> Vector {
     }
 }
 
-/// Where the bodies' poses are read from: the live solver's cached poses, or one step of
-/// a sweep.
-trait Poses {
-    /// Body `b`'s pose.
-    fn pose(&self, b: usize) -> Pose;
-}
-
-impl Poses for [Pose] {
-    #[inline(always)]
-    fn pose(&self, b: usize) -> Pose {
-        self[b]
-    }
-}
-
-impl Poses for Vec<Pose> {
-    #[inline(always)]
-    fn pose(&self, b: usize) -> Pose {
-        self[b]
-    }
-}
-
-/// The pose of `a` (the ground's for the ground).
-#[inline(always)]
-fn pose_of<P: Poses + ?Sized>(poses: &P, a: Attach) -> Pose {
-    match a {
-        Attach::Ground => GROUND_POSE,
-        Attach::Body(b) => poses.pose(b),
-    }
-}
-
 /// A rotation (cos, sin) applied to a vector.
 #[inline]
 fn rot(cs: (f64, f64), v: Vector) -> Vector {
@@ -505,13 +475,13 @@ impl Slide {
     #[inline(always)]
     fn line<P: Poses + ?Sized>(&self, poses: &P) -> (f64, (f64, f64), Vector, Vector) {
         if self.u_is_slider {
-            let g = pose_of(poses, self.q1.body);
+            let g = pz(poses, self.q1.body);
             let phi = g.phi + self.angle;
             let cs = compose((g.c, g.s), self.turn);
             let w = g.rot(self.dir);
             (phi, cs, glob(poses, self.q1) - rot(cs, self.point.local), w)
         } else {
-            let s = pose_of(poses, self.point.body);
+            let s = pz(poses, self.point.body);
             let phi = s.phi - self.angle;
             let cs = compose((s.c, s.s), (self.turn.0, -self.turn.1));
             let w = rot(cs, self.dir);
@@ -1090,8 +1060,8 @@ struct Sweep {
 }
 
 /// One group over the sweep's steps `0..end`, its closed form `kernel` at each, its
-/// position's constants and branch held across the steps: the first step it cannot
-/// solve, and why.
+/// position's constants and branch held across the steps: the first step it cannot solve
+/// (stepped alone afterwards, which says why).
 #[inline(always)]
 fn sweep_group<'a, K: Fn(&mut Lane<'a>, &Position, &mut f64, f64) -> Result<(), Why>>(
     kernel: K,
@@ -1101,15 +1071,15 @@ fn sweep_group<'a, K: Fn(&mut Lane<'a>, &Position, &mut f64, f64) -> Result<(), 
     sides: &mut [f64],
     end: usize,
     slack: f64,
-) -> Option<(usize, Why)> {
+) -> Option<usize> {
     let position = op.position.clone();
     let mut side = op.side;
     for (k, (&how, after)) in how[..end].iter().zip(&mut sides[..end]).enumerate() {
         lane.k = k;
         lane.how = how;
-        if let Err(why) = kernel(&mut lane, &position, &mut side, slack) {
+        if kernel(&mut lane, &position, &mut side, slack).is_err() {
             op.side = side;
-            return Some((k, why));
+            return Some(k);
         }
         *after = side;
     }
@@ -1127,6 +1097,22 @@ enum Extrapolation {
     Linear(f64),
     /// q + q̇·Δt + ½·q̈·Δt² with the last step's rates (in `qd_prev`, `qdd_prev`).
     Taylor(f64),
+}
+
+impl Extrapolation {
+    /// How a step `dt` after the last predicts: with the last rates when they belong to the
+    /// last q (`rates_valid`), else linearly from the last two positions (`dt_prev` apart),
+    /// else the last q as it is.
+    fn of(rates_valid: bool, dt_prev: Option<f64>, dt: f64) -> Extrapolation {
+        if rates_valid {
+            Extrapolation::Taylor(dt)
+        } else {
+            match dt_prev.filter(|d| *d != 0.0) {
+                Some(d) => Extrapolation::Linear(dt / d),
+                None => Extrapolation::Hold,
+            }
+        }
+    }
 }
 
 /// This step's prediction of q, computed per coordinate where a group asks for it (a dyad
@@ -1428,14 +1414,7 @@ impl AssurSolver {
                 sw.laws.push(v);
             }
             let dt = t - t0;
-            sw.how.push(if rates_valid {
-                Extrapolation::Taylor(dt)
-            } else {
-                match dt_prev.filter(|d| *d != 0.0) {
-                    Some(d) => Extrapolation::Linear(dt / d),
-                    None => Extrapolation::Hold,
-                }
-            });
+            sw.how.push(Extrapolation::of(rates_valid, dt_prev, dt));
             (rates_valid, dt_prev, t0) = (false, Some(dt), t);
         }
         if end == 0 {
@@ -1480,9 +1459,9 @@ impl AssurSolver {
                 Position::Prp { .. } => sweep_group(prp, op, lane, how, sides, end, slack),
                 Position::Rpp { .. } => sweep_group(rpp, op, lane, how, sides, end, slack),
                 // Not swept (positions_into steps these scenes).
-                Position::Triad(_) | Position::Newton => Some((0, Why::Parallel)),
+                Position::Triad(_) | Position::Newton => Some(0),
             };
-            if let Some((k, _)) = stop {
+            if let Some(k) = stop {
                 end = end.min(k);
             }
         }
@@ -1502,7 +1481,7 @@ impl AssurSolver {
         let n = 3 * nb;
         let first = out.len();
         out.resize(first + end * n, 0.0);
-        for b in (0..nb).filter(|_| n > 0) {
+        for b in 0..nb {
             let lane = &sw.poses[b * stride + 2..b * stride + 2 + end];
             for (q, p) in out[first..].chunks_exact_mut(n).zip(lane) {
                 q[3 * b..3 * b + 3].copy_from_slice(&[p.r.x, p.r.y, p.phi]);
@@ -1661,14 +1640,7 @@ impl AssurSolver {
             self.qd_prev.copy_from_slice(&s.qd);
             self.qdd_prev.copy_from_slice(&s.qdd);
         }
-        self.how = if self.rates_valid {
-            Extrapolation::Taylor(dt)
-        } else {
-            match self.dt_prev.filter(|d| *d != 0.0) {
-                Some(d) => Extrapolation::Linear(dt / d),
-                None => Extrapolation::Hold,
-            }
-        };
+        self.how = Extrapolation::of(self.rates_valid, self.dt_prev, dt);
     }
 
     /// Solves every group at `t` from the predicted q (laws evaluated), then the rates.
@@ -1829,7 +1801,7 @@ impl AssurSolver {
 fn driven_angle<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
     let Position::DrivenAngle { u, pin, reference, sign, law, .. } = *position else { return Ok(()) };
     let _ = (slack, &side); // not every kind reads both
-    let phi = pose_of(f, reference).phi + sign * f.law(law);
+    let phi = pz(f, reference).phi + sign * f.law(law);
     // One argument reduction for both (the same bits as libm's sin and cos).
     let (sn, cn) = libm::sincos(phi);
     let cs = (cn, sn);

@@ -367,10 +367,32 @@ pub(super) fn fill_poses(q: &[f64], out: &mut Vec<Pose>) {
 pub(super) const GROUND_POSE: Pose = Pose { r: Vector::new(0.0, 0.0), phi: 0.0, c: 1.0, s: 0.0 };
 
 /// The cached pose of `a`.
-pub(super) fn pz(poses: &[Pose], a: Attach) -> Pose {
+#[inline(always)]
+pub(super) fn pz<P: Poses + ?Sized>(poses: &P, a: Attach) -> Pose {
     match a {
         Attach::Ground => GROUND_POSE,
-        Attach::Body(i) => poses[i],
+        Attach::Body(i) => poses.pose(i),
+    }
+}
+
+/// Where the bodies' cached poses are read from: a slice of them, or one step of the
+/// Assur route's sweep over many steps.
+pub(super) trait Poses {
+    /// Body `b`'s pose.
+    fn pose(&self, b: usize) -> Pose;
+}
+
+impl Poses for [Pose] {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self[b]
+    }
+}
+
+impl Poses for Vec<Pose> {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self[b]
     }
 }
 
