@@ -617,11 +617,13 @@ enum Position {
         k3: Pin,
         d1: f64,
         d2: f64,
-        /// a1 − k1 and a2 − k3 (b1's and b2's arms), d1², d2².
+        /// a1 − k1 and a2 − k3 (b1's and b2's arms), d1², d2², 1/d1², 1/d2².
         arm1: Vector,
         arm3: Vector,
         d1sq: f64,
         d2sq: f64,
+        inv_d1sq: f64,
+        inv_d2sq: f64,
     },
     Rrp {
         b1: usize,
@@ -631,9 +633,10 @@ enum Position {
         a2: Vector,
         s3: Slide,
         d1: f64,
-        /// a1 − k1 (b1's arm), d1².
+        /// a1 − k1 (b1's arm), d1², 1/d1².
         arm1: Vector,
         d1sq: f64,
+        inv_d1sq: f64,
     },
     Rpr {
         b1: usize,
@@ -723,6 +726,8 @@ impl Plan {
                     arm3: a2 - k3.local,
                     d1sq: d1 * d1,
                     d2sq: d2 * d2,
+                    inv_d1sq: 1.0 / (d1 * d1),
+                    inv_d2sq: 1.0 / (d2 * d2),
                 }
             }
             DyadKind::Rrp => {
@@ -742,6 +747,7 @@ impl Plan {
                     d1,
                     arm1: a1 - k1.local,
                     d1sq: d1 * d1,
+                    inv_d1sq: 1.0 / (d1 * d1),
                 }
             }
             DyadKind::Rpr => Position::Rpr {
@@ -871,10 +877,11 @@ fn rotation_between(from: Vector, to: Vector) -> (f64, f64) {
     (f.dot(&t), cross(f, t))
 }
 
-/// The rotation taking `from` to `to` when |from|·|to| = `lengths` (known).
+/// The rotation taking `from` to `to` when 1/(|from|·|to|) = `inv_lengths` (known: a
+/// multiplication, not a division, in a step).
 #[inline]
-fn rotation_scaled(from: Vector, to: Vector, lengths: f64) -> (f64, f64) {
-    (from.dot(&to) / lengths, cross(from, to) / lengths)
+fn rotation_scaled(from: Vector, to: Vector, inv_lengths: f64) -> (f64, f64) {
+    (from.dot(&to) * inv_lengths, cross(from, to) * inv_lengths)
 }
 
 /// atan x = x − x³/3 + x⁵/5 − …, the first seven terms (|x| ≤ 1/16: the first term left
@@ -889,18 +896,14 @@ fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
     let s = to.1 * from.0 - to.0 * from.1;
     if c > 0.0 && s.abs() <= 0.0625 * c {
         let x = s / c;
-        let x2 = x * x;
-        // Horner's rule written out (the fold's 0·x² + k₆ is k₆): the same operations in
-        // the same order as folding over the series, without a loop.
-        let k = ATAN_SERIES;
-        let mut acc = k[6];
-        acc = acc * x2 + k[5];
-        acc = acc * x2 + k[4];
-        acc = acc * x2 + k[3];
-        acc = acc * x2 + k[2];
-        acc = acc * x2 + k[1];
-        acc = acc * x2 + k[0];
-        x * acc
+        let (x2, k) = (x * x, ATAN_SERIES);
+        let x4 = x2 * x2;
+        // Estrin's scheme: the pairs, then the pairs of pairs, are independent (a shorter
+        // chain of dependent operations than Horner's rule, for the same terms).
+        let (p01, p23, p45) = (k[0] + k[1] * x2, k[2] + k[3] * x2, k[4] + k[5] * x2);
+        let p0123 = p01 + p23 * x4;
+        let p456 = p45 + k[6] * x4;
+        x * (p0123 + p456 * (x4 * x4))
     } else {
         libm::atan2(s, c)
     }
@@ -1425,8 +1428,12 @@ impl AssurSolver {
         // its bodies' last), then the steps.
         let steps = end;
         let stride = steps + 2;
-        sw.poses.clear();
-        sw.poses.resize(nb * stride, GROUND_POSE);
+        // Not cleared: a group reads only what this sweep has written (the first two
+        // entries of each body, the steps the groups before it solved, its own last
+        // steps), so the buffer only grows.
+        if sw.poses.len() < nb * stride {
+            sw.poses.resize(nb * stride, GROUND_POSE);
+        }
         for (b, &p) in self.inner.poses.iter().enumerate() {
             let q = &self.q_prev[3 * b..3 * b + 3];
             sw.poses[b * stride] = Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE };
@@ -1828,19 +1835,23 @@ fn driven_distance<F: Frame>(f: &mut F, position: &Position, side: &mut f64, sla
 /// why, for [`cannot_assemble`].
 #[inline(always)]
 fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
-    let Position::Rrr { b1, b2, k1, k3, arm1, arm3, d1, d2, d1sq, d2sq, .. } = *position else { return Ok(()) };
+    let Position::Rrr { b1, b2, k1, k3, arm1, arm3, d1, d2, d1sq, d2sq, inv_d1sq, inv_d2sq, .. } = *position else {
+        return Ok(());
+    };
     let _ = (slack, &side); // not every kind reads both
     let (p1, p3) = (glob(f, k1.known), glob(f, k3.known));
     let dv = p3 - p1;
     let d = dv.norm();
-    let a = (d * d + d1sq - d2sq) / (2.0 * d);
+    // One division for both (a multiplication by 1/d).
+    let inv_d = 1.0 / d;
+    let a = (d * d + d1sq - d2sq) * (0.5 * inv_d);
     let h2 = d1sq - a * a;
     // A miss within the residual tolerance is a tangency (a dead point).
     let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
     if !(h2 >= 0.0 && d > 0.0) {
         return Err(Why::Apart { d, d1, d2 });
     }
-    let e = dv / d;
+    let e = dv * inv_d;
     let h = h2.sqrt();
     // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
     // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
@@ -1850,8 +1861,8 @@ fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     let root = if choose(common - x, common + x, side) == 0 { 1.0 } else { -1.0 };
     let j = m + perp(e) * (root * h);
     // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
-    let c1 = rotation_scaled(arm1, j - p1, d1sq);
-    let c2 = rotation_scaled(arm3, j - p3, d2sq);
+    let c1 = rotation_scaled(arm1, j - p1, inv_d1sq);
+    let c2 = rotation_scaled(arm3, j - p3, inv_d2sq);
     turn_to(f, b1, p1 - rot(c1, k1.local), c1);
     turn_to(f, b2, p3 - rot(c2, k3.local), c2);
     Ok(())
@@ -1863,7 +1874,7 @@ fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
 /// why, for [`cannot_assemble`].
 #[inline(always)]
 fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
-    let Position::Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, .. } = *position else { return Ok(()) };
+    let Position::Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, inv_d1sq, .. } = *position else { return Ok(()) };
     let _ = (slack, &side); // not every kind reads both
     let p1 = glob(f, k1.known);
     let (phi2, cs2, c, w) = s3.line(f);
@@ -1886,7 +1897,7 @@ fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, side);
     let sv = if k == 0 { sv0 } else { sv1 };
     let j = base + w * sv;
-    let c1 = rotation_scaled(arm1, j - p1, d1sq);
+    let c1 = rotation_scaled(arm1, j - p1, inv_d1sq);
     turn_to(f, b1, p1 - rot(c1, k1.local), c1);
     f.put(b2, c + w * sv, phi2, cs2);
     Ok(())
@@ -1914,8 +1925,10 @@ fn rpr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
         return Err(Why::Passes { c0, d });
     }
     // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors.
-    let dh = dv / d;
-    let x = (-c0 / d).clamp(-1.0, 1.0);
+    // One division for both.
+    let inv_d = 1.0 / d;
+    let dh = dv * inv_d;
+    let x = (-c0 * inv_d).clamp(-1.0, 1.0);
     let y = (1.0 - x * x).max(0.0).sqrt();
     // The two bodies turn together: the root whose guide normal
     // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
@@ -1927,8 +1940,11 @@ fn rpr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
     let cs = compose(cg, mid.turn);
     let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
-    turn_to(f, b1, p1 - rot(c1, k1.local), c1);
-    turn_to(f, b2, p3 - rot(c2, k3.local), c2);
+    // Slider and guide turn together: one turn, b1's, continues both angles.
+    let (last1, last2) = (f.last(b1), f.last(b2));
+    let turn = turn_between((last1.c, last1.s), c1);
+    f.put(b1, p1 - rot(c1, k1.local), last1.phi + turn, c1);
+    f.put(b2, p3 - rot(c2, k3.local), last2.phi + turn, c2);
     Ok(())
 }
 
@@ -2054,17 +2070,22 @@ fn cannot_assemble(s: &Solver, plan: &Plan, t: f64, why: Why) -> LinkageError {
     }
 }
 
+/// Body `b`'s entries (x, y, φ or their rates) in a vector laid out as q: one bounds check
+/// for the three.
+#[inline(always)]
+fn coords(v: &[f64], b: usize) -> [f64; 3] {
+    let w = &v[3 * b..3 * b + 3];
+    [w[0], w[1], w[2]]
+}
+
 /// Velocity and acceleration of the global point `p` carried by body `a` (zero on the
 /// ground), from the body's q̇, q̈.
 #[inline(always)]
 fn point_rates(s: &Solver, a: Attach, p: Vector) -> (Vector, Vector) {
     let Attach::Body(b) = a else { return (Vector::zeros(), Vector::zeros()) };
-    let r = p - Vector::new(s.q[3 * b], s.q[3 * b + 1]);
-    let (w, e) = (s.qd[3 * b + 2], s.qdd[3 * b + 2]);
-    (
-        Vector::new(s.qd[3 * b], s.qd[3 * b + 1]) + perp(r) * w,
-        Vector::new(s.qdd[3 * b], s.qdd[3 * b + 1]) + perp(r) * e - r * (w * w),
-    )
+    let ([x, y, _], [vx, vy, w], [ax, ay, e]) = (coords(&s.q, b), coords(&s.qd, b), coords(&s.qdd, b));
+    let r = p - Vector::new(x, y);
+    (Vector::new(vx, vy) + perp(r) * w, Vector::new(ax, ay) + perp(r) * e - r * (w * w))
 }
 
 /// ω and ε of body `a` (zero for the ground).
@@ -2080,15 +2101,12 @@ fn spin(s: &Solver, a: Attach) -> (f64, f64) {
 /// `ap`, and its ω, ε.
 #[inline(always)]
 fn set_rates(s: &mut Solver, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
-    let r = Vector::new(s.q[3 * b], s.q[3 * b + 1]) - p;
+    let [x, y, _] = coords(&s.q, b);
+    let r = Vector::new(x, y) - p;
     let v = vp + perp(r) * w;
     let a = ap + perp(r) * e - r * (w * w);
-    s.qd[3 * b] = v.x;
-    s.qd[3 * b + 1] = v.y;
-    s.qd[3 * b + 2] = w;
-    s.qdd[3 * b] = a.x;
-    s.qdd[3 * b + 1] = a.y;
-    s.qdd[3 * b + 2] = e;
+    s.qd[3 * b..3 * b + 3].copy_from_slice(&[v.x, v.y, w]);
+    s.qdd[3 * b..3 * b + 3].copy_from_slice(&[a.x, a.y, e]);
 }
 
 /// A prismatic joint between an unknown body u and a known one, at the current poses: the
@@ -2135,13 +2153,30 @@ fn slide_frame(s: &Solver, sl: &Slide, u: usize) -> SlideFrame {
     }
 }
 
-/// x·c1 + y·c2 = r by Cramer's rule, with ρ = |det| / (|c1|·|c2|) (the sine of the angle
-/// between the columns: 0 at a dead point).
-#[inline(always)]
-fn solve2(c1: Vector, c2: Vector, r: Vector) -> (f64, f64, f64) {
-    let det = cross(c1, c2);
-    let rho = det.abs() / (c1.norm() * c2.norm());
-    (cross(r, c2) / det, cross(c1, r) / det, rho)
+/// The 2×2 system x·c1 + y·c2 = r of a dyad's rates, factored once for the velocities and
+/// the accelerations (the same matrix, two right-hand sides): Cramer's rule with 1/det.
+#[derive(Clone, Copy)]
+struct Cramer {
+    c1: Vector,
+    c2: Vector,
+    inv_det: f64,
+}
+
+impl Cramer {
+    /// The system of columns `c1`, `c2`, and ρ = |det| / (|c1|·|c2|) (the sine of the
+    /// angle between the columns: 0 at a dead point).
+    #[inline(always)]
+    fn new(c1: Vector, c2: Vector) -> (Cramer, f64) {
+        let det = cross(c1, c2);
+        let rho = det.abs() / (c1.norm_squared() * c2.norm_squared()).sqrt();
+        (Cramer { c1, c2, inv_det: 1.0 / det }, rho)
+    }
+
+    /// (x, y) for the right-hand side `r`.
+    #[inline(always)]
+    fn solve(&self, r: Vector) -> (f64, f64) {
+        (cross(r, self.c2) * self.inv_det, cross(self.c1, r) * self.inv_det)
+    }
 }
 
 /// Velocities and accelerations of a group from its differentiated closures (a 2×2 solve
@@ -2164,9 +2199,10 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
             let (r1k, r3k) = (point_rates(s, k1.known.body, p1), point_rates(s, k3.known.body, p3));
             let (r1, r2) = (j - p1, j - p3);
             // v_K1 + ω1⊥r1 = v_K3 + ω2⊥r2, and its derivative.
-            let (w1, w2, rho) = solve2(perp(r1), -perp(r2), r3k.0 - r1k.0);
+            let (m, rho) = Cramer::new(perp(r1), -perp(r2));
+            let (w1, w2) = m.solve(r3k.0 - r1k.0);
             let rhs = r3k.1 - r1k.1 + r1 * (w1 * w1) - r2 * (w2 * w2);
-            let (e1, e2, _) = solve2(perp(r1), -perp(r2), rhs);
+            let (e1, e2) = m.solve(rhs);
             set_rates(s, b1, p1, r1k, w1, e1);
             set_rates(s, b2, p3, r3k, w2, e2);
             Some(rho)
@@ -2186,10 +2222,11 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
             let (r1, d) = (j - k, j - f.p);
             let (w, e) = (f.omega, f.eps);
             // v_K + ω1⊥r1 = v0 + σ·ṡ·u + ω⊥d (b2 turns with its known body), and its derivative.
-            let (w1, sd, rho) = solve2(perp(r1), -f.w * f.sigma, f.v0 + perp(d) * w - rk.0);
+            let (m, rho) = Cramer::new(perp(r1), -f.w * f.sigma);
+            let (w1, sd) = m.solve(f.v0 + perp(d) * w - rk.0);
             let (_, a_slide) = f.point_rates(sd, 0.0);
             let rhs = a_slide + perp(d) * e - d * (w * w) - rk.1 + r1 * (w1 * w1);
-            let (e1, sdd, _) = solve2(perp(r1), -f.w * f.sigma, rhs);
+            let (e1, sdd) = m.solve(rhs);
             set_rates(s, b1, k, rk, w1, e1);
             let rp = f.point_rates(sd, sdd);
             set_rates(s, b2, f.p, rp, w, e);
@@ -2202,13 +2239,14 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
             let (c1, c3) = (f1.w * f1.sigma, -f3.w * f3.sigma);
             // v0₁ + σ₁ṡ₁u₁ + ω₁⊥d₁ = v0₃ + σ₃ṡ₃u₃ + ω₃⊥d₃, and its derivative.
             let rhs = f3.v0 + perp(d3) * f3.omega - f1.v0 - perp(d1) * f1.omega;
-            let (sd1, sd3, rho) = solve2(c1, c3, rhs);
+            let (m, rho) = Cramer::new(c1, c3);
+            let (sd1, sd3) = m.solve(rhs);
             let (_, a1b) = f1.point_rates(sd1, 0.0);
             let (_, a3b) = f3.point_rates(sd3, 0.0);
             let rhs = a3b + perp(d3) * f3.eps
                 - d3 * (f3.omega * f3.omega)
                 - (a1b + perp(d1) * f1.eps - d1 * (f1.omega * f1.omega));
-            let (sdd1, sdd3, _) = solve2(c1, c3, rhs);
+            let (sdd1, sdd3) = m.solve(rhs);
             let rp1 = f1.point_rates(sd1, sdd1);
             set_rates(s, b1, f1.p, rp1, f1.omega, f1.eps);
             let rp3 = f3.point_rates(sd3, sdd3);
@@ -2229,10 +2267,11 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
             let a1 = rk.1 + perp(rm1) * e - rm1 * (w * w);
             // v1(Pm) − v2(Pm) = τ·ṡm·um with v2(Pm) = v0 + σ·ṡ·u + ω⊥(Pm − P).
             let (c3, cm) = (f.w * f.sigma, wm * tau);
-            let (sd, sdm, rho) = solve2(c3, cm, v1 - f.v0 - perp(rm3) * w);
+            let (m, rho) = Cramer::new(c3, cm);
+            let (sd, sdm) = m.solve(v1 - f.v0 - perp(rm3) * w);
             let (_, a_slide) = f.point_rates(sd, 0.0);
             let rhs = a1 - a_slide - perp(rm3) * e + rm3 * (w * w) - perp(wm) * (tau * 2.0 * w * sdm);
-            let (sdd, _, _) = solve2(c3, cm, rhs);
+            let (sdd, _) = m.solve(rhs);
             set_rates(s, b1, k, rk, w, e);
             let rp = f.point_rates(sd, sdd);
             set_rates(s, b2, f.p, rp, w, e);
@@ -2245,9 +2284,10 @@ fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
             let dir = pz(&s.poses, Attach::Body(gb)).rot(-perp(mid.n0));
             let dk = pg - ps;
             // Slider and guide turn together about their pivots; P slides along the guide.
-            let (w, sd, rho) = solve2(perp(dk), -dir, rg.0 - rs.0);
+            let (m, rho) = Cramer::new(perp(dk), -dir);
+            let (w, sd) = m.solve(rg.0 - rs.0);
             let rhs = rg.1 - rs.1 + dk * (w * w) + perp(dir) * (2.0 * w * sd);
-            let (e, _, _) = solve2(perp(dk), -dir, rhs);
+            let (e, _) = m.solve(rhs);
             set_rates(s, sb, ps, rs, w, e);
             set_rates(s, gb, pg, rg, w, e);
             Some(rho)
