@@ -11,7 +11,7 @@ use mechdraw::scene::{self, Scene};
 use mechdraw::solve::expr::Expr;
 use mechdraw::solve::linkage::{
     Anchor, AssurSolver, Attach, Body, Driver, DriverTarget, GroupKind, Joint, JointKind, LinkageError, Mechanism,
-    Route, Solver, State,
+    Motion, NearSingular, Route, Solver, State,
 };
 
 fn linkage(name: &str) -> mechdraw::scene::linkage::LinkageScene {
@@ -497,8 +497,10 @@ fn a_time_step_too_coarse_for_newton_keeps_every_dyad_on_its_branch() {
 // --- the sweep ---------------------------------------------------------------------------
 
 /// `positions_into` (group by group over all the steps) against `step_positions` at each
-/// time in turn: the same q, bit for bit, or the same error after the same steps.
+/// time in turn, and `motion_into` against `step`: the same q (q̇, q̈, iterations,
+/// near-singular reports), bit for bit, or the same error after the same steps.
 fn assert_sweep_is_stepping(what: &str, mech: &Mechanism, times: &[f64]) {
+    assert_motion_is_stepping(what, mech, times);
     let mut stepping = AssurSolver::new(mech.clone()).unwrap();
     let mut stepped = Vec::new();
     let mut stepped_err = None;
@@ -524,6 +526,39 @@ fn assert_sweep_is_stepping(what: &str, mech: &Mechanism, times: &[f64]) {
             i / mech.bodies.len() / 3,
             i % (3 * mech.bodies.len())
         );
+    }
+}
+
+/// `motion_into` against `step` at each time in turn (each state read from a copy, so
+/// that reading it changes nothing of the stepping).
+fn assert_motion_is_stepping(what: &str, mech: &Mechanism, times: &[f64]) {
+    let mut stepping = AssurSolver::new(mech.clone()).unwrap();
+    let mut stepped: Vec<State> = Vec::new();
+    let mut stepped_err = None;
+    for &t in times {
+        match stepping.step(t) {
+            Ok(()) => stepped.push(stepping.clone().state()),
+            Err(e) => {
+                stepped_err = Some(e.to_string());
+                break;
+            }
+        }
+    }
+    let mut m = Motion::default();
+    let swept_err = AssurSolver::new(mech.clone()).unwrap().motion_into(times, &mut m).err().map(|e| e.to_string());
+    assert_eq!(swept_err, stepped_err, "{what}, with rates");
+    let n = 3 * mech.bodies.len();
+    assert_eq!(m.q.len(), stepped.len() * n, "{what}, with rates");
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    for (k, st) in stepped.iter().enumerate() {
+        let at = k * n..(k + 1) * n;
+        assert_eq!(bits(&m.q[at.clone()]), bits(&st.q), "{what}: q at step {k}");
+        assert_eq!(bits(&m.qd[at.clone()]), bits(&st.qd), "{what}: q̇ at step {k}");
+        assert_eq!(bits(&m.qdd[at]), bits(&st.qdd), "{what}: q̈ at step {k}");
+        assert_eq!(m.iterations[k], st.iterations, "{what}: iterations at step {k}");
+        let near = |n: Option<&NearSingular>| n.map(|n| (n.t.to_bits(), n.pivot.to_bits(), n.constraints.clone()));
+        let swept_near = m.near.iter().find(|(at, _)| *at == k).map(|(_, n)| n);
+        assert_eq!(near(swept_near), near(st.near_singular.as_ref()), "{what}: near-singular at step {k}");
     }
 }
 

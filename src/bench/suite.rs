@@ -9,7 +9,7 @@ use crate::geom::{Side, angle_of, rad};
 use crate::scene::linkage::LinkageScene;
 use crate::scene::{self, Loaded, Override, Scene};
 use crate::solve::fourbar::{Geometry, Prepared};
-use crate::solve::linkage::{AssurSolver, Solver, State};
+use crate::solve::linkage::{AssurSolver, Motion, Solver, State};
 use crate::solve::triad::{NewtonOptions, PatternOptions, Triad, all_modes, newton_to, pattern, pattern::construct};
 use std::path::Path;
 
@@ -167,8 +167,9 @@ pub fn fourbar(budget: Budget) -> Result<Vec<Measurement>, Error> {
 /// The Assur-group route on a linkage scene (solve::linkage::assur), nanoseconds per time
 /// step over the whole motion after the first (assembled) position: positions only (the
 /// sweep, [`AssurSolver::positions_into`], as a run asking for positions solves them), and
-/// positions with velocities and accelerations (a step at a time). Error: the worst `score` (residual,
-/// distance) over the motion, each row on its own answers.
+/// positions with velocities and accelerations (the sweep with rates,
+/// [`AssurSolver::motion_into`], as a run asking for them solves them). Error: the worst
+/// `score` (residual, distance) over the motion, each row on its own answers.
 fn assur(
     budget: Budget,
     problem: &str,
@@ -193,12 +194,12 @@ fn assur(
         let _ = solver.positions_into(rest, &mut q);
         q.first().copied().unwrap_or(0.0)
     }) / steps;
+    let mut motion = Motion::default();
     let ns_full = ns_per_call(budget, || {
         solver.resume(&start);
-        for &t in rest {
-            let _ = solver.step(t);
-        }
-        solver.q()[0]
+        motion.clear();
+        let _ = solver.motion_into(rest, &mut motion);
+        motion.qd.first().copied().unwrap_or(0.0)
     }) / steps;
     Ok(vec![
         Measurement::new(problem, "Assur groups", "positions", ns_pos, pos.0, pos.1),

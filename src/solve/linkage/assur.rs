@@ -949,6 +949,49 @@ trait Frame: Poses {
     fn put(&mut self, b: usize, r: Vector, phi: f64, cs: (f64, f64));
 }
 
+/// A body's q̇ and q̈ entries: (ẋ, ẏ, ω) and (ẍ, ÿ, ε).
+#[derive(Debug, Clone, Copy, Default)]
+struct Rates {
+    qd: [f64; 3],
+    qdd: [f64; 3],
+}
+
+/// What a group's closed-form rates read and write at one time step: the bodies' poses
+/// ([`Poses`]), the known bodies' rates, the laws' values and rates, the group's own
+/// bodies' rates. Implemented by the solver at its step and by a sweep's [`Lane`]: the
+/// same formulas, the same operations in the same order, so the same bits.
+trait RateFrame: Poses {
+    /// Body `b`'s q̇ and q̈ at this step.
+    fn rates(&self, b: usize) -> Rates;
+    /// Driver `d`'s law at this step: its value, first and second time derivatives.
+    fn jet(&self, d: usize) -> (f64, f64, f64);
+    /// Writes body `b`'s q̇ and q̈.
+    fn put_rates(&mut self, b: usize, r: Rates);
+}
+
+impl Poses for Solver {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> Pose {
+        self.poses[b]
+    }
+}
+
+impl RateFrame for Solver {
+    #[inline(always)]
+    fn rates(&self, b: usize) -> Rates {
+        Rates { qd: coords(&self.qd, b), qdd: coords(&self.qdd, b) }
+    }
+    #[inline(always)]
+    fn jet(&self, d: usize) -> (f64, f64, f64) {
+        self.laws[d]
+    }
+    #[inline(always)]
+    fn put_rates(&mut self, b: usize, r: Rates) {
+        self.qd[3 * b..3 * b + 3].copy_from_slice(&r.qd);
+        self.qdd[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
+    }
+}
+
 /// The live solver at the step being solved.
 struct Live<'a, 'p> {
     s: &'a mut Solver,
@@ -985,19 +1028,21 @@ impl Frame for Live<'_, '_> {
     }
 }
 
-/// Step `k` of a sweep ([`AssurSolver::positions_into`]): the sweep's poses, body by body
-/// (body b's pose at step k at `b·stride + k + 2`; the two entries before step 0 hold the
-/// step before the last and the last), the laws' values, the steps' predictions.
+/// Step `k` of a sweep ([`AssurSolver::positions_into`], [`AssurSolver::motion_into`]):
+/// the sweep's poses, body by body (body b's pose at step k at `b·stride + k + 2`; the two
+/// entries before step 0 hold the step before the last and the last), the laws' values
+/// (and rates) at each step, the steps' predictions, the bodies' rates (body b's at step k at
+/// `b·rstride + k + 2`, the entry before step 0 the last step's: a sweep of positions only
+/// keeps that entry alone, `rstride` 2).
 struct Lane<'a> {
     poses: &'a mut [Pose],
     stride: usize,
     k: usize,
-    laws: &'a [f64],
+    laws: &'a [(f64, f64, f64)],
     nd: usize,
     how: Extrapolation,
-    /// The rates of the last step before the sweep (a first step may predict from them).
-    qd: &'a [f64],
-    qdd: &'a [f64],
+    rates: &'a mut [Rates],
+    rstride: usize,
 }
 
 impl Poses for Lane<'_> {
@@ -1010,7 +1055,7 @@ impl Poses for Lane<'_> {
 impl Lane<'_> {
     /// The prediction of coordinate `j` (0: x, 1: y, 2: φ) of body `b`, as
     /// [`Predictor::at`] gives it (the two entries before step 0 hold the q of the step
-    /// before the last and of the last).
+    /// before the last and of the last; Taylor's rates are the last step's).
     #[inline(always)]
     fn predicted(&self, b: usize, j: usize) -> f64 {
         let coordinate = |p: Pose| match j {
@@ -1023,7 +1068,10 @@ impl Lane<'_> {
         match self.how {
             Extrapolation::Hold => now,
             Extrapolation::Linear(f) => now + (now - coordinate(self.poses[at])) * f,
-            Extrapolation::Taylor(dt) => now + self.qd[3 * b + j] * dt + 0.5 * self.qdd[3 * b + j] * dt * dt,
+            Extrapolation::Taylor(dt) => {
+                let r = self.rates[b * self.rstride + self.k + 1];
+                now + r.qd[j] * dt + 0.5 * r.qdd[j] * dt * dt
+            }
         }
     }
 }
@@ -1035,7 +1083,7 @@ impl Frame for Lane<'_> {
     }
     #[inline(always)]
     fn law(&self, d: usize) -> f64 {
-        self.laws[self.k * self.nd + d]
+        self.laws[self.k * self.nd + d].0
     }
     #[inline(always)]
     fn predicted_phi(&self, b: usize) -> f64 {
@@ -1051,27 +1099,47 @@ impl Frame for Lane<'_> {
     }
 }
 
-/// A sweep's buffers (kept between sweeps): every body's poses over the steps (see
-/// [`Lane`]), the laws' values and the prediction of each step, each group's branch after
-/// each step.
+impl RateFrame for Lane<'_> {
+    #[inline(always)]
+    fn rates(&self, b: usize) -> Rates {
+        self.rates[b * self.rstride + self.k + 2]
+    }
+    #[inline(always)]
+    fn jet(&self, d: usize) -> (f64, f64, f64) {
+        self.laws[self.k * self.nd + d]
+    }
+    #[inline(always)]
+    fn put_rates(&mut self, b: usize, r: Rates) {
+        self.rates[b * self.rstride + self.k + 2] = r;
+    }
+}
+
+/// A sweep's buffers (kept between sweeps): every body's poses and rates over the steps
+/// (see [`Lane`]), the laws' values (and rates) and the prediction of each step, each
+/// group's branch and (with rates) the conditioning of its rates after each step.
 #[derive(Debug, Clone, Default)]
 struct Sweep {
     poses: Vec<Pose>,
-    laws: Vec<f64>,
+    rates: Vec<Rates>,
+    laws: Vec<(f64, f64, f64)>,
     how: Vec<Extrapolation>,
     sides: Vec<f64>,
+    pivots: Vec<f64>,
 }
 
-/// One group over the sweep's steps `0..end`, its closed form `kernel` at each, its
-/// position's constants and branch held across the steps: the first step it cannot solve
-/// (stepped alone afterwards, which says why).
+/// One group over the sweep's steps `0..end`, its kind's closed form `K` at each (and, with
+/// `RATES`, its rates, whose conditioning goes into `pivots`), its position's constants
+/// and branch held across the steps: the first step it cannot solve (stepped alone
+/// afterwards, which says why: a position that cannot be assembled, rates at a dead
+/// point).
 #[inline(always)]
-fn sweep_group<'a, K: Fn(&mut Lane<'a>, &Position, &mut f64, f64) -> Result<(), Why>>(
-    kernel: K,
+#[allow(clippy::too_many_arguments)]
+fn sweep_group<const RATES: bool, K: Kernel>(
     op: &mut Op,
-    mut lane: Lane<'a>,
+    mut lane: Lane<'_>,
     how: &[Extrapolation],
     sides: &mut [f64],
+    pivots: &mut [f64],
     end: usize,
     slack: f64,
 ) -> Option<usize> {
@@ -1080,14 +1148,84 @@ fn sweep_group<'a, K: Fn(&mut Lane<'a>, &Position, &mut f64, f64) -> Result<(), 
     for (k, (&how, after)) in how[..end].iter().zip(&mut sides[..end]).enumerate() {
         lane.k = k;
         lane.how = how;
-        if kernel(&mut lane, &position, &mut side, slack).is_err() {
+        if K::position(&mut lane, &position, &mut side, slack).is_err() {
             op.side = side;
             return Some(k);
         }
         *after = side;
+        if RATES {
+            match K::rates(&mut lane, &position) {
+                Some(rho) if !(rho.is_nan() || rho <= super::SINGULAR_PIVOT_REL) => pivots[k] = rho,
+                _ => {
+                    op.side = side;
+                    return Some(k);
+                }
+            }
+        }
     }
     op.side = side;
     None
+}
+
+/// A kind's closed forms for a sweep's loop: its position and its rates at a step (static
+/// calls, inlined into the loop of each kind).
+trait Kernel {
+    /// The group's position at the lane's step.
+    fn position(lane: &mut Lane<'_>, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why>;
+    /// The group's rates at the lane's step: ρ, the conditioning of its 2×2.
+    fn rates(lane: &mut Lane<'_>, position: &Position) -> Option<f64>;
+}
+
+/// The [`Kernel`] of each kind: `Name => position's closed form, rates' closed form`.
+macro_rules! kernels {
+    ($($name:ident => $position:ident, $rates:ident;)*) => {$(
+        struct $name;
+        impl Kernel for $name {
+            #[inline(always)]
+            fn position(lane: &mut Lane<'_>, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
+                $position(lane, position, side, slack)
+            }
+            #[inline(always)]
+            fn rates(lane: &mut Lane<'_>, position: &Position) -> Option<f64> {
+                $rates(lane, position)
+            }
+        }
+    )*};
+}
+
+kernels! {
+    DrivenAngleK => driven_angle, driven_angle_rates;
+    DrivenDistanceK => driven_distance, driven_distance_rates;
+    RrrK => rrr, rrr_rates;
+    RrpK => rrp, rrp_rates;
+    RprK => rpr, rpr_rates;
+    PrpK => prp, prp_rates;
+    RppK => rpp, rpp_rates;
+}
+
+/// One group swept by its kind's closed form (see [`sweep_group`]).
+fn sweep_kind<const RATES: bool>(
+    op: &mut Op,
+    lane: Lane<'_>,
+    how: &[Extrapolation],
+    sides: &mut [f64],
+    pivots: &mut [f64],
+    end: usize,
+    slack: f64,
+) -> Option<usize> {
+    match op.position {
+        Position::DrivenAngle { .. } => sweep_group::<RATES, DrivenAngleK>(op, lane, how, sides, pivots, end, slack),
+        Position::DrivenDistance { .. } => {
+            sweep_group::<RATES, DrivenDistanceK>(op, lane, how, sides, pivots, end, slack)
+        }
+        Position::Rrr { .. } => sweep_group::<RATES, RrrK>(op, lane, how, sides, pivots, end, slack),
+        Position::Rrp { .. } => sweep_group::<RATES, RrpK>(op, lane, how, sides, pivots, end, slack),
+        Position::Rpr { .. } => sweep_group::<RATES, RprK>(op, lane, how, sides, pivots, end, slack),
+        Position::Prp { .. } => sweep_group::<RATES, PrpK>(op, lane, how, sides, pivots, end, slack),
+        Position::Rpp { .. } => sweep_group::<RATES, RppK>(op, lane, how, sides, pivots, end, slack),
+        // Not swept (a scene with these is stepped).
+        Position::Triad(_) | Position::Newton => Some(0),
+    }
 }
 
 /// How this step's q is predicted from the last (which `q_prev` holds; the solver's own q
@@ -1149,6 +1287,36 @@ impl Predictor<'_> {
                 s.q[i] = self.at(&s.q, i);
             }
         }
+    }
+}
+
+/// Positions, velocities and accelerations over a motion ([`AssurSolver::motion_into`]):
+/// each step's q, q̇, q̈ (n values a step, laid out as [`State::q`]) and the Newton
+/// iterations it took (0: closed forms only), and the reports of the steps solved close to
+/// a dead point.
+#[derive(Debug, Clone, Default)]
+pub struct Motion {
+    /// q of every step, one after another.
+    pub q: Vec<f64>,
+    /// q̇ of every step.
+    pub qd: Vec<f64>,
+    /// q̈ of every step.
+    pub qdd: Vec<f64>,
+    /// Newton iterations per step.
+    pub iterations: Vec<usize>,
+    /// The steps solved close to a singular position: (the step's index in the motion, its
+    /// report), in order.
+    pub near: Vec<(usize, NearSingular)>,
+}
+
+impl Motion {
+    /// Empties every list (keeping their memory, for the next motion).
+    pub fn clear(&mut self) {
+        self.q.clear();
+        self.qd.clear();
+        self.qdd.clear();
+        self.iterations.clear();
+        self.near.clear();
     }
 }
 
@@ -1295,12 +1463,40 @@ impl AssurSolver {
     }
 
     /// Solves at every time in `times` (positions, velocities, accelerations); the first
-    /// time is assembled in the general solver's assembly mode.
+    /// time is assembled in the general solver's assembly mode. Swept
+    /// ([`AssurSolver::motion_into`]) when every group has a closed form, else a step and
+    /// its state at a time.
     pub fn run(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
         let mut out = Vec::with_capacity(times.len());
-        for &t in times {
-            self.step(t)?;
-            out.push(self.state());
+        if !self.sweeps() {
+            for &t in times {
+                self.step(t)?;
+                out.push(self.state());
+            }
+            return Ok(out);
+        }
+        let mut m = Motion::default();
+        self.motion_into(times, &mut m)?;
+        let n = self.inner.n;
+        for (k, &t) in times.iter().enumerate() {
+            let at = k * n..(k + 1) * n;
+            // The laws at t (the drivers' rows of the residual) and q's poses, as
+            // [`AssurSolver::state`] leaves them.
+            self.inner.eval_law_values(t)?;
+            self.inner.q.copy_from_slice(&m.q[at.clone()]);
+            self.inner.residual();
+            out.push(State {
+                t,
+                q: m.q[at.clone()].to_vec(),
+                qd: m.qd[at.clone()].to_vec(),
+                qdd: m.qdd[at].to_vec(),
+                iterations: m.iterations[k],
+                residual: self.inner.residual_norm().0,
+                near_singular: match m.near.first() {
+                    Some((at, _)) if *at == k => Some(m.near.remove(0).1),
+                    _ => None,
+                },
+            });
         }
         Ok(out)
     }
@@ -1366,18 +1562,50 @@ impl AssurSolver {
     /// finite, a group that cannot be assembled) is then stepped alone, which reports it
     /// as [`AssurSolver::step_positions`] does.
     pub fn positions_into(&mut self, times: &[f64], out: &mut Vec<f64>) -> Result<(), LinkageError> {
+        let mut m = Motion { q: std::mem::take(out), ..Motion::default() };
+        let done = self.sweep_or_step(times, &mut m, false);
+        *out = m.q;
+        done
+    }
+
+    /// Positions, velocities and accelerations at every time in `times`, each step's
+    /// appended to `out` (on an error, the steps before it). The same numbers, bit for bit,
+    /// as [`AssurSolver::step`] at each time in turn, found group by group as
+    /// [`AssurSolver::positions_into`] finds positions: each group's positions and rates
+    /// over all the steps before the next group's (a group's rates need only its own
+    /// positions and the earlier groups' rates at the same time; its prediction, its last
+    /// step's rates). A step a sweep cannot solve (a law not finite, a group that cannot be
+    /// assembled, rates at a dead point) is then stepped alone, as [`AssurSolver::step`]
+    /// solves or reports it.
+    pub fn motion_into(&mut self, times: &[f64], out: &mut Motion) -> Result<(), LinkageError> {
+        self.sweep_or_step(times, out, true)
+    }
+
+    /// Sweeps (when every group has a closed form, after the first step) or steps, with or
+    /// without the rates, appending each step to `out`.
+    fn sweep_or_step(&mut self, times: &[f64], out: &mut Motion, rates: bool) -> Result<(), LinkageError> {
         let sweeps = self.sweeps();
         let mut i = 0;
         while i < times.len() {
             if sweeps && self.inner.t.is_some() {
-                let m = self.sweep(&times[i..], out);
+                let m = self.sweep(&times[i..], out, rates);
                 i += m;
                 if i == times.len() {
                     break;
                 }
             }
-            self.step_positions(times[i])?;
-            out.extend_from_slice(&self.inner.q);
+            self.advance(times[i], rates)?;
+            out.q.extend_from_slice(&self.inner.q);
+            if rates {
+                out.qd.extend_from_slice(&self.inner.qd);
+                out.qdd.extend_from_slice(&self.inner.qdd);
+                let iterations =
+                    self.fallback.unwrap_or_else(|| self.plans.iter().map(|p| p.iterations).max().unwrap_or(0));
+                out.iterations.push(iterations);
+                if let Some(near) = &self.inner.near {
+                    out.near.push((out.iterations.len() - 1, near.clone()));
+                }
+            }
             i += 1;
         }
         Ok(())
@@ -1389,59 +1617,74 @@ impl AssurSolver {
         self.ops.iter().all(|o| !matches!(o.position, Position::Triad(_) | Position::Newton))
     }
 
-    /// Positions at `times` by a sweep (see [`AssurSolver::positions_into`]) from the last
-    /// step solved, each step's q appended to `out`: the number of steps solved, all of
-    /// them unless one cannot be (the solver then stands after the step before it).
-    fn sweep(&mut self, times: &[f64], out: &mut Vec<f64>) -> usize {
+    /// Positions (and with `rates`, velocities and accelerations) at `times` by a sweep
+    /// (see [`AssurSolver::positions_into`], [`AssurSolver::motion_into`]) from the last
+    /// step solved, each step appended to `out`: the number of steps solved, all of them
+    /// unless one cannot be (the solver then stands after the step before it).
+    fn sweep(&mut self, times: &[f64], out: &mut Motion, rates: bool) -> usize {
         let Some(t_last) = self.inner.t else { return 0 };
         let (nb, nd) = (self.inner.poses.len(), self.inner.laws.len());
         let sw = &mut self.sweep;
-        // The laws' values and each step's prediction, as the steps would set them.
+        // The laws' values (and rates) and each step's prediction, as the steps would set
+        // them.
         sw.laws.clear();
         sw.how.clear();
         let (mut rates_valid, mut dt_prev, mut t0) = (self.rates_valid, self.dt_prev, t_last);
         let mut end = times.len();
         'steps: for (k, &t) in times.iter().enumerate() {
             for d in &self.inner.mech.drivers {
-                let v = match d.law.value(t) {
-                    Some(v) if v.is_finite() => v,
-                    _ => match whole_law(d, t) {
-                        Ok(j) => j.0,
-                        Err(_) => {
-                            sw.laws.truncate(k * nd);
-                            end = k;
-                            break 'steps;
-                        }
-                    },
+                let jet = if rates {
+                    let j = d.law.eval(t);
+                    (j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()).then_some((j.value, j.d1, j.d2))
+                } else {
+                    match d.law.value(t) {
+                        Some(v) if v.is_finite() => Some((v, 0.0, 0.0)),
+                        _ => whole_law(d, t).ok(),
+                    }
                 };
-                sw.laws.push(v);
+                let Some(jet) = jet else {
+                    sw.laws.truncate(k * nd);
+                    end = k;
+                    break 'steps;
+                };
+                sw.laws.push(jet);
             }
             let dt = t - t0;
             sw.how.push(Extrapolation::of(rates_valid, dt_prev, dt));
-            (rates_valid, dt_prev, t0) = (false, Some(dt), t);
+            (rates_valid, dt_prev, t0) = (rates, Some(dt), t);
         }
         if end == 0 {
             return 0;
         }
         // Body by body: the step before the last (its q: what the prediction reads), the
         // last (its cached pose, whose origin and angle are its q: what a group reads as
-        // its bodies' last), then the steps.
+        // its bodies' last), then the steps; the rates likewise (the last step's, what
+        // Taylor's prediction reads; with `rates`, then the steps').
         let steps = end;
         let stride = steps + 2;
+        let rstride = if rates { stride } else { 2 };
         // Not cleared: a group reads only what this sweep has written (the first two
         // entries of each body, the steps the groups before it solved, its own last
-        // steps), so the buffer only grows.
+        // steps), so the buffers only grow.
         if sw.poses.len() < nb * stride {
             sw.poses.resize(nb * stride, GROUND_POSE);
+        }
+        if sw.rates.len() < nb * rstride {
+            sw.rates.resize(nb * rstride, Rates::default());
         }
         for (b, &p) in self.inner.poses.iter().enumerate() {
             let q = &self.q_prev[3 * b..3 * b + 3];
             sw.poses[b * stride] = Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE };
             sw.poses[b * stride + 1] = p;
+            sw.rates[b * rstride + 1] = Rates { qd: coords(&self.inner.qd, b), qdd: coords(&self.inner.qdd, b) };
         }
         let groups = self.ops.len();
         sw.sides.clear();
         sw.sides.resize(groups * steps, 0.0);
+        sw.pivots.clear();
+        if rates {
+            sw.pivots.resize(groups * steps, 1.0);
+        }
         let slack = crate::geom::tol::RESIDUAL_REL * self.inner.mech.length_scale;
         let mut branches = Vec::with_capacity(groups);
         for (gi, op) in self.ops.iter_mut().enumerate() {
@@ -1453,20 +1696,14 @@ impl AssurSolver {
                 laws: &sw.laws,
                 nd,
                 how: Extrapolation::Hold,
-                qd: &self.inner.qd,
-                qdd: &self.inner.qdd,
+                rates: &mut sw.rates,
+                rstride,
             };
             let (how, sides) = (&sw.how[..], &mut sw.sides[gi * steps..(gi + 1) * steps]);
-            let stop = match op.position {
-                Position::DrivenAngle { .. } => sweep_group(driven_angle, op, lane, how, sides, end, slack),
-                Position::DrivenDistance { .. } => sweep_group(driven_distance, op, lane, how, sides, end, slack),
-                Position::Rrr { .. } => sweep_group(rrr, op, lane, how, sides, end, slack),
-                Position::Rrp { .. } => sweep_group(rrp, op, lane, how, sides, end, slack),
-                Position::Rpr { .. } => sweep_group(rpr, op, lane, how, sides, end, slack),
-                Position::Prp { .. } => sweep_group(prp, op, lane, how, sides, end, slack),
-                Position::Rpp { .. } => sweep_group(rpp, op, lane, how, sides, end, slack),
-                // Not swept (positions_into steps these scenes).
-                Position::Triad(_) | Position::Newton => Some(0),
+            let stop = if rates {
+                sweep_kind::<true>(op, lane, how, sides, &mut sw.pivots[gi * steps..(gi + 1) * steps], end, slack)
+            } else {
+                sweep_kind::<false>(op, lane, how, sides, &mut [], end, slack)
             };
             if let Some(k) = stop {
                 end = end.min(k);
@@ -1482,41 +1719,98 @@ impl AssurSolver {
         if end == 0 {
             return 0;
         }
-        // q of every step solved, then the solver as stepping would leave it: q and the
-        // poses of the last step, the step before it for the next prediction, the time,
-        // the laws, the rates' state.
+        // Every step solved, then the solver as stepping would leave it: q and the poses of
+        // the last step, the step before it for the next prediction, the time, the laws,
+        // the rates and their state.
         let n = 3 * nb;
-        let first = out.len();
-        out.resize(first + end * n, 0.0);
-        for b in 0..nb {
-            let lane = &sw.poses[b * stride + 2..b * stride + 2 + end];
-            for (q, p) in out[first..].chunks_exact_mut(n).zip(lane) {
-                q[3 * b..3 * b + 3].copy_from_slice(&[p.r.x, p.r.y, p.phi]);
+        let first = out.q.len();
+        out.q.resize(first + end * n, 0.0);
+        for (k, q) in out.q[first..].chunks_exact_mut(n).enumerate() {
+            for (b, w) in q.chunks_exact_mut(3).enumerate() {
+                let p = sw.poses[b * stride + 2 + k];
+                w.copy_from_slice(&[p.r.x, p.r.y, p.phi]);
             }
         }
         if end >= 2 {
-            let before = out.len() - 2 * n;
-            self.q_prev.copy_from_slice(&out[before..before + n]);
+            let before = out.q.len() - 2 * n;
+            self.q_prev.copy_from_slice(&out.q[before..before + n]);
         } else {
             self.q_prev.copy_from_slice(&self.inner.q);
         }
-        self.inner.q.copy_from_slice(&out[out.len() - n..]);
+        self.inner.q.copy_from_slice(&out.q[out.q.len() - n..]);
         for (b, p) in self.inner.poses.iter_mut().enumerate() {
             *p = sw.poses[b * stride + end + 1];
         }
-        if self.rates_valid {
-            // A positions-only step keeps the rates it predicted from.
-            self.qd_prev.copy_from_slice(&self.inner.qd);
-            self.qdd_prev.copy_from_slice(&self.inner.qdd);
-        }
         let t = times[end - 1];
+        if rates {
+            let first = out.qd.len();
+            out.qd.resize(first + end * n, 0.0);
+            out.qdd.resize(first + end * n, 0.0);
+            for b in 0..nb {
+                let lane = &sw.rates[b * rstride + 2..b * rstride + 2 + end];
+                let rows = out.qd[first..].chunks_exact_mut(n).zip(out.qdd[first..].chunks_exact_mut(n));
+                for ((qd, qdd), r) in rows.zip(lane) {
+                    qd[3 * b..3 * b + 3].copy_from_slice(&r.qd);
+                    qdd[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
+                }
+            }
+            // The rates of the step before the last (what stepping leaves swapped out),
+            // and of the last.
+            let before = if end >= 2 { end } else { 1 };
+            for b in 0..nb {
+                let r = sw.rates[b * rstride + before];
+                self.qd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qd);
+                self.qdd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
+            }
+            self.inner.qd.copy_from_slice(&out.qd[out.qd.len() - n..]);
+            self.inner.qdd.copy_from_slice(&out.qdd[out.qdd.len() - n..]);
+            // Each step's near-singular report: the group whose rates are the worst
+            // conditioned, as a step finds it.
+            let first_step = out.iterations.len();
+            out.iterations.extend(std::iter::repeat_n(0, end));
+            self.inner.near = None;
+            for (k, &tk) in times[..end].iter().enumerate() {
+                let mut worst: Option<(f64, usize)> = None;
+                for gi in 0..groups {
+                    let rho = sw.pivots[gi * steps + k];
+                    if worst.is_none_or(|(p, _)| rho < p) {
+                        worst = Some((rho, gi));
+                    }
+                }
+                if let Some((pivot, gi)) = worst.filter(|&(pivot, _)| pivot < NEAR_SINGULAR_PIVOT_REL) {
+                    let _ = self.inner.eval_law_values(tk);
+                    let near = NearSingular {
+                        t: tk,
+                        pivot,
+                        drivers: self.inner.driver_values(),
+                        constraints: self.plans[gi].constraint_names(&self.inner),
+                    };
+                    if k + 1 == end {
+                        // The last step's, as a step leaves it.
+                        self.inner.near = Some(near.clone());
+                    }
+                    out.near.push((first_step + k, near));
+                }
+            }
+            for (gi, plan) in self.plans.iter_mut().enumerate() {
+                plan.pivot = sw.pivots[gi * steps + end - 1];
+            }
+            // Sets the laws and their rates as the step did; it succeeded there.
+            let _ = self.inner.eval_laws(t);
+        } else {
+            if self.rates_valid {
+                // A positions-only step keeps the rates it predicted from.
+                self.qd_prev.copy_from_slice(&self.inner.qd);
+                self.qdd_prev.copy_from_slice(&self.inner.qdd);
+            }
+            // Sets the laws' values (and any whole jet) as the step did; it succeeded there.
+            let _ = self.inner.eval_law_values(t);
+        }
         self.dt_prev = Some(t - if end >= 2 { times[end - 2] } else { t_last });
         self.how = sw.how[end - 1];
-        self.rates_valid = false;
+        self.rates_valid = rates;
         self.fallback = None;
         self.inner.t = Some(t);
-        // Sets the laws' values (and any whole jet) as the step did; it succeeded there.
-        let _ = self.inner.eval_law_values(t);
         end
     }
 
@@ -1708,7 +2002,7 @@ impl AssurSolver {
         for gi in 0..self.plans.len() {
             let s = &mut self.inner;
             let plan = &mut self.plans[gi];
-            if let Some(rho) = closed_rates(s, &self.ops[gi].position) {
+            if let Some(rho) = closed_rates(&mut *s, &self.ops[gi].position) {
                 if rho.is_nan() || rho <= super::SINGULAR_PIVOT_REL {
                     return Err(singular_group(s, plan, t));
                 }
@@ -2081,32 +2375,33 @@ fn coords(v: &[f64], b: usize) -> [f64; 3] {
 /// Velocity and acceleration of the global point `p` carried by body `a` (zero on the
 /// ground), from the body's q̇, q̈.
 #[inline(always)]
-fn point_rates(s: &Solver, a: Attach, p: Vector) -> (Vector, Vector) {
+fn point_rates<F: RateFrame>(f: &F, a: Attach, p: Vector) -> (Vector, Vector) {
     let Attach::Body(b) = a else { return (Vector::zeros(), Vector::zeros()) };
-    let ([x, y, _], [vx, vy, w], [ax, ay, e]) = (coords(&s.q, b), coords(&s.qd, b), coords(&s.qdd, b));
-    let r = p - Vector::new(x, y);
+    let Rates { qd: [vx, vy, w], qdd: [ax, ay, e] } = f.rates(b);
+    let r = p - f.pose(b).r;
     (Vector::new(vx, vy) + perp(r) * w, Vector::new(ax, ay) + perp(r) * e - r * (w * w))
 }
 
 /// ω and ε of body `a` (zero for the ground).
 #[inline]
-fn spin(s: &Solver, a: Attach) -> (f64, f64) {
+fn spin<F: RateFrame>(f: &F, a: Attach) -> (f64, f64) {
     match a {
         Attach::Ground => (0.0, 0.0),
-        Attach::Body(b) => (s.qd[3 * b + 2], s.qdd[3 * b + 2]),
+        Attach::Body(b) => {
+            let r = f.rates(b);
+            (r.qd[2], r.qdd[2])
+        }
     }
 }
 
 /// Sets body `b`'s q̇, q̈ from its point `p` (global) with velocity `vp`, acceleration
 /// `ap`, and its ω, ε.
 #[inline(always)]
-fn set_rates(s: &mut Solver, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
-    let [x, y, _] = coords(&s.q, b);
-    let r = Vector::new(x, y) - p;
+fn set_rates<F: RateFrame>(f: &mut F, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
+    let r = f.pose(b).r - p;
     let v = vp + perp(r) * w;
     let a = ap + perp(r) * e - r * (w * w);
-    s.qd[3 * b..3 * b + 3].copy_from_slice(&[v.x, v.y, w]);
-    s.qdd[3 * b..3 * b + 3].copy_from_slice(&[a.x, a.y, e]);
+    f.put_rates(b, Rates { qd: [v.x, v.y, w], qdd: [a.x, a.y, e] });
 }
 
 /// A prismatic joint between an unknown body u and a known one, at the current poses: the
@@ -2138,18 +2433,18 @@ impl SlideFrame {
 }
 
 #[inline(always)]
-fn slide_frame(s: &Solver, sl: &Slide, u: usize) -> SlideFrame {
+fn slide_frame<F: RateFrame>(f: &F, sl: &Slide, u: usize) -> SlideFrame {
     if sl.u_is_slider {
         let g = sl.q1.body;
-        let (omega, eps) = spin(s, g);
-        let p = glob(&s.poses, Anchor { body: Attach::Body(u), local: sl.point.local });
-        let (v0, a0) = point_rates(s, g, p);
-        SlideFrame { p, w: pz(&s.poses, g).rot(sl.dir), sigma: 1.0, omega, eps, v0, a0 }
+        let (omega, eps) = spin(f, g);
+        let p = glob(f, Anchor { body: Attach::Body(u), local: sl.point.local });
+        let (v0, a0) = point_rates(f, g, p);
+        SlideFrame { p, w: pz(f, g).rot(sl.dir), sigma: 1.0, omega, eps, v0, a0 }
     } else {
-        let (omega, eps) = spin(s, sl.point.body);
-        let p = glob(&s.poses, sl.point);
-        let (v0, a0) = point_rates(s, sl.point.body, p);
-        SlideFrame { p, w: pz(&s.poses, Attach::Body(u)).rot(sl.dir), sigma: -1.0, omega, eps, v0, a0 }
+        let (omega, eps) = spin(f, sl.point.body);
+        let p = glob(f, sl.point);
+        let (v0, a0) = point_rates(f, sl.point.body, p);
+        SlideFrame { p, w: pz(f, Attach::Body(u)).rot(sl.dir), sigma: -1.0, omega, eps, v0, a0 }
     }
 }
 
@@ -2183,117 +2478,158 @@ impl Cramer {
 /// for a dyad), for the kinds that have them; `None` for the others (the group's block
 /// of Φq is solved instead). Returns ρ, the conditioning of the 2×2 (1 for a driven body).
 #[inline(always)]
-fn closed_rates(s: &mut Solver, position: &Position) -> Option<f64> {
+fn closed_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     match *position {
-        Position::DrivenAngle { u, pin, reference, sign, law } => {
-            let (wr, er) = spin(s, reference);
-            let (_, d1, d2) = s.laws[law];
-            let k = glob(&s.poses, pin.known);
-            let rk = point_rates(s, pin.known.body, k);
-            set_rates(s, u, k, rk, wr + sign * d1, er + sign * d2);
-            Some(1.0)
-        }
-        Position::Rrr { b1, b2, k1, a1, k3, .. } => {
-            let (p1, p3) = (glob(&s.poses, k1.known), glob(&s.poses, k3.known));
-            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
-            let (r1k, r3k) = (point_rates(s, k1.known.body, p1), point_rates(s, k3.known.body, p3));
-            let (r1, r2) = (j - p1, j - p3);
-            // v_K1 + ω1⊥r1 = v_K3 + ω2⊥r2, and its derivative.
-            let (m, rho) = Cramer::new(perp(r1), -perp(r2));
-            let (w1, w2) = m.solve(r3k.0 - r1k.0);
-            let rhs = r3k.1 - r1k.1 + r1 * (w1 * w1) - r2 * (w2 * w2);
-            let (e1, e2) = m.solve(rhs);
-            set_rates(s, b1, p1, r1k, w1, e1);
-            set_rates(s, b2, p3, r3k, w2, e2);
-            Some(rho)
-        }
-        Position::DrivenDistance { u, slide, law, .. } => {
-            let f = slide_frame(s, &slide, u);
-            let (_, d1, d2) = s.laws[law];
-            let rp = f.point_rates(d1, d2);
-            set_rates(s, u, f.p, rp, f.omega, f.eps);
-            Some(1.0)
-        }
-        Position::Rrp { b1, b2, k1, a1, s3, .. } => {
-            let f = slide_frame(s, &s3, b2);
-            let k = glob(&s.poses, k1.known);
-            let rk = point_rates(s, k1.known.body, k);
-            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
-            let (r1, d) = (j - k, j - f.p);
-            let (w, e) = (f.omega, f.eps);
-            // v_K + ω1⊥r1 = v0 + σ·ṡ·u + ω⊥d (b2 turns with its known body), and its derivative.
-            let (m, rho) = Cramer::new(perp(r1), -f.w * f.sigma);
-            let (w1, sd) = m.solve(f.v0 + perp(d) * w - rk.0);
-            let (_, a_slide) = f.point_rates(sd, 0.0);
-            let rhs = a_slide + perp(d) * e - d * (w * w) - rk.1 + r1 * (w1 * w1);
-            let (e1, sdd) = m.solve(rhs);
-            set_rates(s, b1, k, rk, w1, e1);
-            let rp = f.point_rates(sd, sdd);
-            set_rates(s, b2, f.p, rp, w, e);
-            Some(rho)
-        }
-        Position::Prp { b1, b2, a1, s1, s3, .. } => {
-            let (f1, f3) = (slide_frame(s, &s1, b1), slide_frame(s, &s3, b2));
-            let j = glob(&s.poses, Anchor { body: Attach::Body(b1), local: a1 });
-            let (d1, d3) = (j - f1.p, j - f3.p);
-            let (c1, c3) = (f1.w * f1.sigma, -f3.w * f3.sigma);
-            // v0₁ + σ₁ṡ₁u₁ + ω₁⊥d₁ = v0₃ + σ₃ṡ₃u₃ + ω₃⊥d₃, and its derivative.
-            let rhs = f3.v0 + perp(d3) * f3.omega - f1.v0 - perp(d1) * f1.omega;
-            let (m, rho) = Cramer::new(c1, c3);
-            let (sd1, sd3) = m.solve(rhs);
-            let (_, a1b) = f1.point_rates(sd1, 0.0);
-            let (_, a3b) = f3.point_rates(sd3, 0.0);
-            let rhs = a3b + perp(d3) * f3.eps
-                - d3 * (f3.omega * f3.omega)
-                - (a1b + perp(d1) * f1.eps - d1 * (f1.omega * f1.omega));
-            let (sdd1, sdd3) = m.solve(rhs);
-            let rp1 = f1.point_rates(sd1, sdd1);
-            set_rates(s, b1, f1.p, rp1, f1.omega, f1.eps);
-            let rp3 = f3.point_rates(sd3, sdd3);
-            set_rates(s, b2, f3.p, rp3, f3.omega, f3.eps);
-            Some(rho)
-        }
-        Position::Rpp { b1, b2, k1, mid, s3 } => {
-            // Both bodies turn with the known body of the guide: ω, ε known; b1 is pinned.
-            let f = slide_frame(s, &s3, b2);
-            let (w, e) = (f.omega, f.eps);
-            let k = glob(&s.poses, k1.known);
-            let rk = point_rates(s, k1.known.body, k);
-            let (slider, guide, tau) = if mid.b1_is_slider { (b1, b2, 1.0) } else { (b2, b1, -1.0) };
-            let pm = glob(&s.poses, Anchor { body: Attach::Body(slider), local: mid.p });
-            let wm = pz(&s.poses, Attach::Body(guide)).rot(-perp(mid.n0));
-            let (rm1, rm3) = (pm - k, pm - f.p);
-            let v1 = rk.0 + perp(rm1) * w;
-            let a1 = rk.1 + perp(rm1) * e - rm1 * (w * w);
-            // v1(Pm) − v2(Pm) = τ·ṡm·um with v2(Pm) = v0 + σ·ṡ·u + ω⊥(Pm − P).
-            let (c3, cm) = (f.w * f.sigma, wm * tau);
-            let (m, rho) = Cramer::new(c3, cm);
-            let (sd, sdm) = m.solve(v1 - f.v0 - perp(rm3) * w);
-            let (_, a_slide) = f.point_rates(sd, 0.0);
-            let rhs = a1 - a_slide - perp(rm3) * e + rm3 * (w * w) - perp(wm) * (tau * 2.0 * w * sdm);
-            let (sdd, _) = m.solve(rhs);
-            set_rates(s, b1, k, rk, w, e);
-            let rp = f.point_rates(sd, sdd);
-            set_rates(s, b2, f.p, rp, w, e);
-            Some(rho)
-        }
-        Position::Rpr { b1, b2, k1, mid, k3 } => {
-            let (ks, kg, sb, gb) = if mid.b1_is_slider { (k1, k3, b1, b2) } else { (k3, k1, b2, b1) };
-            let (ps, pg) = (glob(&s.poses, ks.known), glob(&s.poses, kg.known));
-            let (rs, rg) = (point_rates(s, ks.known.body, ps), point_rates(s, kg.known.body, pg));
-            let dir = pz(&s.poses, Attach::Body(gb)).rot(-perp(mid.n0));
-            let dk = pg - ps;
-            // Slider and guide turn together about their pivots; P slides along the guide.
-            let (m, rho) = Cramer::new(perp(dk), -dir);
-            let (w, sd) = m.solve(rg.0 - rs.0);
-            let rhs = rg.1 - rs.1 + dk * (w * w) + perp(dir) * (2.0 * w * sd);
-            let (e, _) = m.solve(rhs);
-            set_rates(s, sb, ps, rs, w, e);
-            set_rates(s, gb, pg, rg, w, e);
-            Some(rho)
-        }
+        Position::DrivenAngle { .. } => driven_angle_rates(fr, position),
+        Position::Rrr { .. } => rrr_rates(fr, position),
+        Position::DrivenDistance { .. } => driven_distance_rates(fr, position),
+        Position::Rrp { .. } => rrp_rates(fr, position),
+        Position::Prp { .. } => prp_rates(fr, position),
+        Position::Rpp { .. } => rpp_rates(fr, position),
+        Position::Rpr { .. } => rpr_rates(fr, position),
         _ => None,
     }
+}
+
+/// A crank's rates: its ω, ε from the law's, its pin's velocity and acceleration. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn driven_angle_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::DrivenAngle { u, pin, reference, sign, law } = *position else { return None };
+    let (wr, er) = spin(&*fr, reference);
+    let (_, d1, d2) = fr.jet(law);
+    let k = glob(&*fr, pin.known);
+    let rk = point_rates(&*fr, pin.known.body, k);
+    set_rates(fr, u, k, rk, wr + sign * d1, er + sign * d2);
+    Some(1.0)
+}
+
+/// An RRR dyad's rates: the two bodies' ω, ε from the joint's velocity (and acceleration) closure, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn rrr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::Rrr { b1, b2, k1, a1, k3, .. } = *position else { return None };
+    let (p1, p3) = (glob(&*fr, k1.known), glob(&*fr, k3.known));
+    let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
+    let (r1k, r3k) = (point_rates(&*fr, k1.known.body, p1), point_rates(&*fr, k3.known.body, p3));
+    let (r1, r2) = (j - p1, j - p3);
+    // v_K1 + ω1⊥r1 = v_K3 + ω2⊥r2, and its derivative.
+    let (m, rho) = Cramer::new(perp(r1), -perp(r2));
+    let (w1, w2) = m.solve(r3k.0 - r1k.0);
+    let rhs = r3k.1 - r1k.1 + r1 * (w1 * w1) - r2 * (w2 * w2);
+    let (e1, e2) = m.solve(rhs);
+    set_rates(fr, b1, p1, r1k, w1, e1);
+    set_rates(fr, b2, p3, r3k, w2, e2);
+    Some(rho)
+}
+
+/// A driven slider's rates: its sliding speed and acceleration from the law's. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn driven_distance_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::DrivenDistance { u, slide, law, .. } = *position else { return None };
+    let f = slide_frame(&*fr, &slide, u);
+    let (_, d1, d2) = fr.jet(law);
+    let rp = f.point_rates(d1, d2);
+    set_rates(fr, u, f.p, rp, f.omega, f.eps);
+    Some(1.0)
+}
+
+/// An RRP dyad's rates: b1's ω, ε and the slider's sliding speed and acceleration, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn rrp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::Rrp { b1, b2, k1, a1, s3, .. } = *position else { return None };
+    let f = slide_frame(&*fr, &s3, b2);
+    let k = glob(&*fr, k1.known);
+    let rk = point_rates(&*fr, k1.known.body, k);
+    let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
+    let (r1, d) = (j - k, j - f.p);
+    let (w, e) = (f.omega, f.eps);
+    // v_K + ω1⊥r1 = v0 + σ·ṡ·u + ω⊥d (b2 turns with its known body), and its derivative.
+    let (m, rho) = Cramer::new(perp(r1), -f.w * f.sigma);
+    let (w1, sd) = m.solve(f.v0 + perp(d) * w - rk.0);
+    let (_, a_slide) = f.point_rates(sd, 0.0);
+    let rhs = a_slide + perp(d) * e - d * (w * w) - rk.1 + r1 * (w1 * w1);
+    let (e1, sdd) = m.solve(rhs);
+    set_rates(fr, b1, k, rk, w1, e1);
+    let rp = f.point_rates(sd, sdd);
+    set_rates(fr, b2, f.p, rp, w, e);
+    Some(rho)
+}
+
+/// A PRP dyad's rates: the two sliding speeds and accelerations, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn prp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::Prp { b1, b2, a1, s1, s3, .. } = *position else { return None };
+    let (f1, f3) = (slide_frame(&*fr, &s1, b1), slide_frame(&*fr, &s3, b2));
+    let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
+    let (d1, d3) = (j - f1.p, j - f3.p);
+    let (c1, c3) = (f1.w * f1.sigma, -f3.w * f3.sigma);
+    // v0₁ + σ₁ṡ₁u₁ + ω₁⊥d₁ = v0₃ + σ₃ṡ₃u₃ + ω₃⊥d₃, and its derivative.
+    let rhs = f3.v0 + perp(d3) * f3.omega - f1.v0 - perp(d1) * f1.omega;
+    let (m, rho) = Cramer::new(c1, c3);
+    let (sd1, sd3) = m.solve(rhs);
+    let (_, a1b) = f1.point_rates(sd1, 0.0);
+    let (_, a3b) = f3.point_rates(sd3, 0.0);
+    let rhs =
+        a3b + perp(d3) * f3.eps - d3 * (f3.omega * f3.omega) - (a1b + perp(d1) * f1.eps - d1 * (f1.omega * f1.omega));
+    let (sdd1, sdd3) = m.solve(rhs);
+    let rp1 = f1.point_rates(sd1, sdd1);
+    set_rates(fr, b1, f1.p, rp1, f1.omega, f1.eps);
+    let rp3 = f3.point_rates(sd3, sdd3);
+    set_rates(fr, b2, f3.p, rp3, f3.omega, f3.eps);
+    Some(rho)
+}
+
+/// An RPP dyad's rates: the two sliding speeds and accelerations (both bodies turn with the guide's body), a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn rpp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::Rpp { b1, b2, k1, mid, s3 } = *position else { return None };
+    // Both bodies turn with the known body of the guide: ω, ε known; b1 is pinned.
+    let f = slide_frame(&*fr, &s3, b2);
+    let (w, e) = (f.omega, f.eps);
+    let k = glob(&*fr, k1.known);
+    let rk = point_rates(&*fr, k1.known.body, k);
+    let (slider, guide, tau) = if mid.b1_is_slider { (b1, b2, 1.0) } else { (b2, b1, -1.0) };
+    let pm = glob(&*fr, Anchor { body: Attach::Body(slider), local: mid.p });
+    let wm = pz(&*fr, Attach::Body(guide)).rot(-perp(mid.n0));
+    let (rm1, rm3) = (pm - k, pm - f.p);
+    let v1 = rk.0 + perp(rm1) * w;
+    let a1 = rk.1 + perp(rm1) * e - rm1 * (w * w);
+    // v1(Pm) − v2(Pm) = τ·ṡm·um with v2(Pm) = v0 + σ·ṡ·u + ω⊥(Pm − P).
+    let (c3, cm) = (f.w * f.sigma, wm * tau);
+    let (m, rho) = Cramer::new(c3, cm);
+    let (sd, sdm) = m.solve(v1 - f.v0 - perp(rm3) * w);
+    let (_, a_slide) = f.point_rates(sd, 0.0);
+    let rhs = a1 - a_slide - perp(rm3) * e + rm3 * (w * w) - perp(wm) * (tau * 2.0 * w * sdm);
+    let (sdd, _) = m.solve(rhs);
+    set_rates(fr, b1, k, rk, w, e);
+    let rp = f.point_rates(sd, sdd);
+    set_rates(fr, b2, f.p, rp, w, e);
+    Some(rho)
+}
+
+/// An RPR dyad's rates: the common ω, ε and the sliding speed, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
+/// for another kind.
+#[inline(always)]
+fn rpr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
+    let Position::Rpr { b1, b2, k1, mid, k3 } = *position else { return None };
+    let (ks, kg, sb, gb) = if mid.b1_is_slider { (k1, k3, b1, b2) } else { (k3, k1, b2, b1) };
+    let (ps, pg) = (glob(&*fr, ks.known), glob(&*fr, kg.known));
+    let (rs, rg) = (point_rates(&*fr, ks.known.body, ps), point_rates(&*fr, kg.known.body, pg));
+    let dir = pz(&*fr, Attach::Body(gb)).rot(-perp(mid.n0));
+    let dk = pg - ps;
+    // Slider and guide turn together about their pivots; P slides along the guide.
+    let (m, rho) = Cramer::new(perp(dk), -dir);
+    let (w, sd) = m.solve(rg.0 - rs.0);
+    let rhs = rg.1 - rs.1 + dk * (w * w) + perp(dir) * (2.0 * w * sd);
+    let (e, _) = m.solve(rhs);
+    set_rates(fr, sb, ps, rs, w, e);
+    set_rates(fr, gb, pg, rg, w, e);
+    Some(rho)
 }
 
 /// Which of a dyad's two roots (first: the `+` branch of its formula, second: the `−`)
@@ -2581,6 +2917,32 @@ mod tests {
                 assert!((st.qdd[k] - nw.qdd[k]).abs() < 1e-10);
             }
         }
+    }
+
+    #[test]
+    fn a_step_close_to_a_dead_point_is_reported_by_the_sweep_as_by_steps() {
+        // r = l (as below), the last time 1e-9 s short of the fold: solved, near-singular
+        // (the sweep stops there and steps, as the steps do).
+        let mut m = slider_crank();
+        if let JointKind::Revolute { b, .. } = &mut m.joints[1].kind {
+            b.local = Vector::new(1.0, 0.0);
+        }
+        m.bodies[2].angle = -0.3;
+        m.bodies[0].at = Point::new(2.0 * 0.3_f64.cos(), 0.0);
+        let end = (std::f64::consts::FRAC_PI_2 - 0.3) / 2.0 - 1e-9;
+        let times: Vec<f64> = (0..=100).map(|k| k as f64 * end / 100.0).collect();
+        let swept = AssurSolver::new(m.clone()).unwrap().run(&times).unwrap();
+        let mut stepping = AssurSolver::new(m).unwrap();
+        for (k, &t) in times.iter().enumerate() {
+            stepping.step(t).unwrap();
+            let st = stepping.clone().state();
+            let near = |s: &State| s.near_singular.as_ref().map(|n| (n.pivot.to_bits(), n.constraints.clone()));
+            assert_eq!(near(&swept[k]), near(&st), "step {k}");
+            assert!(swept[k].qd.iter().zip(&st.qd).all(|(a, b)| a.to_bits() == b.to_bits()), "step {k}");
+        }
+        // There the dyad's rates are singular to the closed form: the general solver's step
+        // solves it (as a step falls back to it), near-singular.
+        assert!(swept[100].near_singular.is_some() && swept[99].near_singular.is_none());
     }
 
     #[test]

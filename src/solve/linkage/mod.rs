@@ -23,7 +23,7 @@ mod kinematics;
 mod kinetostatics;
 mod lu;
 
-pub use assur::{AssurSolver, DrivenKind, DyadKind, Group, GroupKind, Route, decompose};
+pub use assur::{AssurSolver, DrivenKind, DyadKind, Group, GroupKind, Motion, Route, decompose};
 pub use kinematics::{NearSingular, Sliding, Solver, State};
 pub use kinetostatics::{
     Applied, AppliedKind, Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TIME_WINDOW_EPS_REL,
