@@ -1043,6 +1043,12 @@ struct Lane<'a> {
     how: Extrapolation,
     rates: &'a mut [Rates],
     rstride: usize,
+    /// The motion's rows from the sweep's first step (q, and with the rates q̇, q̈; `n`
+    /// values a step), written as the poses and rates are.
+    q: &'a mut [f64],
+    qd: &'a mut [f64],
+    qdd: &'a mut [f64],
+    n: usize,
 }
 
 impl Poses for Lane<'_> {
@@ -1096,6 +1102,8 @@ impl Frame for Lane<'_> {
     #[inline(always)]
     fn put(&mut self, b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
         self.poses[b * self.stride + self.k + 2] = Pose { r, phi, c: cs.0, s: cs.1 };
+        let at = self.k * self.n + 3 * b;
+        self.q[at..at + 3].copy_from_slice(&[r.x, r.y, phi]);
     }
 }
 
@@ -1111,6 +1119,9 @@ impl RateFrame for Lane<'_> {
     #[inline(always)]
     fn put_rates(&mut self, b: usize, r: Rates) {
         self.rates[b * self.rstride + self.k + 2] = r;
+        let at = self.k * self.n + 3 * b;
+        self.qd[at..at + 3].copy_from_slice(&r.qd);
+        self.qdd[at..at + 3].copy_from_slice(&r.qdd);
     }
 }
 
@@ -1686,6 +1697,15 @@ impl AssurSolver {
             sw.pivots.resize(groups * steps, 1.0);
         }
         let slack = crate::geom::tol::RESIDUAL_REL * self.inner.mech.length_scale;
+        // The motion's rows, written by the groups as they sweep (cut back to the steps
+        // every group solved).
+        let n = 3 * nb;
+        let first = out.q.len();
+        out.q.resize(first + steps * n, 0.0);
+        if rates {
+            out.qd.resize(first + steps * n, 0.0);
+            out.qdd.resize(first + steps * n, 0.0);
+        }
         let mut branches = Vec::with_capacity(groups);
         for (gi, op) in self.ops.iter_mut().enumerate() {
             branches.push(op.side);
@@ -1698,6 +1718,10 @@ impl AssurSolver {
                 how: Extrapolation::Hold,
                 rates: &mut sw.rates,
                 rstride,
+                q: &mut out.q[first..],
+                qd: if rates { &mut out.qd[first..] } else { &mut [] },
+                qdd: if rates { &mut out.qdd[first..] } else { &mut [] },
+                n,
             };
             let (how, sides) = (&sw.how[..], &mut sw.sides[gi * steps..(gi + 1) * steps]);
             let stop = if rates {
@@ -1716,21 +1740,17 @@ impl AssurSolver {
                 op.side = if end == 0 { branches[gi] } else { sw.sides[gi * steps + end - 1] };
             }
         }
+        out.q.truncate(first + end * n);
+        if rates {
+            out.qd.truncate(first + end * n);
+            out.qdd.truncate(first + end * n);
+        }
         if end == 0 {
             return 0;
         }
         // Every step solved, then the solver as stepping would leave it: q and the poses of
         // the last step, the step before it for the next prediction, the time, the laws,
         // the rates and their state.
-        let n = 3 * nb;
-        let first = out.q.len();
-        out.q.resize(first + end * n, 0.0);
-        for (k, q) in out.q[first..].chunks_exact_mut(n).enumerate() {
-            for (b, w) in q.chunks_exact_mut(3).enumerate() {
-                let p = sw.poses[b * stride + 2 + k];
-                w.copy_from_slice(&[p.r.x, p.r.y, p.phi]);
-            }
-        }
         if end >= 2 {
             let before = out.q.len() - 2 * n;
             self.q_prev.copy_from_slice(&out.q[before..before + n]);
@@ -1743,17 +1763,6 @@ impl AssurSolver {
         }
         let t = times[end - 1];
         if rates {
-            let first = out.qd.len();
-            out.qd.resize(first + end * n, 0.0);
-            out.qdd.resize(first + end * n, 0.0);
-            for b in 0..nb {
-                let lane = &sw.rates[b * rstride + 2..b * rstride + 2 + end];
-                let rows = out.qd[first..].chunks_exact_mut(n).zip(out.qdd[first..].chunks_exact_mut(n));
-                for ((qd, qdd), r) in rows.zip(lane) {
-                    qd[3 * b..3 * b + 3].copy_from_slice(&r.qd);
-                    qdd[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
-                }
-            }
             // The rates of the step before the last (what stepping leaves swapped out),
             // and of the last.
             let before = if end >= 2 { end } else { 1 };
