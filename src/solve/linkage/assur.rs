@@ -2500,8 +2500,8 @@ fn closed_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     }
 }
 
-/// A crank's rates: its ω, ε from the law's, its pin's velocity and acceleration. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// A crank's rates: its ω, ε from the law's, its pin's velocity and acceleration. Returns 1
+/// (no 2×2 to condition); `None` for another kind.
 #[inline(always)]
 fn driven_angle_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::DrivenAngle { u, pin, reference, sign, law } = *position else { return None };
@@ -2513,8 +2513,8 @@ fn driven_angle_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f
     Some(1.0)
 }
 
-/// An RRR dyad's rates: the two bodies' ω, ε from the joint's velocity (and acceleration) closure, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// An RRR dyad's rates: the two bodies' ω, ε from the joint's velocity (and acceleration)
+/// closure, a 2×2. Returns ρ, the 2×2's conditioning; `None` for another kind.
 #[inline(always)]
 fn rrr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Rrr { b1, b2, k1, a1, k3, .. } = *position else { return None };
@@ -2532,8 +2532,8 @@ fn rrr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     Some(rho)
 }
 
-/// A driven slider's rates: its sliding speed and acceleration from the law's. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// A driven slider's rates: its sliding speed and acceleration from the law's. Returns 1 (no
+/// 2×2 to condition); `None` for another kind.
 #[inline(always)]
 fn driven_distance_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::DrivenDistance { u, slide, law, .. } = *position else { return None };
@@ -2544,8 +2544,8 @@ fn driven_distance_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Optio
     Some(1.0)
 }
 
-/// An RRP dyad's rates: b1's ω, ε and the slider's sliding speed and acceleration, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// An RRP dyad's rates: b1's ω, ε and the slider's sliding speed and acceleration, a 2×2.
+/// Returns ρ, the 2×2's conditioning; `None` for another kind.
 #[inline(always)]
 fn rrp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Rrp { b1, b2, k1, a1, s3, .. } = *position else { return None };
@@ -2567,8 +2567,8 @@ fn rrp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     Some(rho)
 }
 
-/// A PRP dyad's rates: the two sliding speeds and accelerations, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// A PRP dyad's rates: the two sliding speeds and accelerations, a 2×2. Returns ρ, the 2×2's
+/// conditioning; `None` for another kind.
 #[inline(always)]
 fn prp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Prp { b1, b2, a1, s1, s3, .. } = *position else { return None };
@@ -2592,8 +2592,8 @@ fn prp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     Some(rho)
 }
 
-/// An RPP dyad's rates: the two sliding speeds and accelerations (both bodies turn with the guide's body), a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// An RPP dyad's rates: the two sliding speeds and accelerations (both bodies turn with the
+/// guide's body), a 2×2. Returns ρ, the 2×2's conditioning; `None` for another kind.
 #[inline(always)]
 fn rpp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Rpp { b1, b2, k1, mid, s3 } = *position else { return None };
@@ -2621,8 +2621,8 @@ fn rpp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     Some(rho)
 }
 
-/// An RPR dyad's rates: the common ω, ε and the sliding speed, a 2×2. Returns ρ, the conditioning of the 2×2 (1 for a driven body); `None`
-/// for another kind.
+/// An RPR dyad's rates: the common ω, ε and the sliding speed, a 2×2. Returns ρ, the 2×2's
+/// conditioning; `None` for another kind.
 #[inline(always)]
 fn rpr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Rpr { b1, b2, k1, mid, k3 } = *position else { return None };
