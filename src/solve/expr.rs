@@ -43,6 +43,12 @@ pub struct Jet {
 }
 
 impl Jet {
+    /// (f, f′, f″) when all three are finite, else `None`.
+    #[inline]
+    pub fn finite(self) -> Option<(f64, f64, f64)> {
+        (self.value.is_finite() && self.d1.is_finite() && self.d2.is_finite()).then_some((self.value, self.d1, self.d2))
+    }
+
     fn constant(v: f64) -> Jet {
         Jet { value: v, d1: 0.0, d2: 0.0 }
     }

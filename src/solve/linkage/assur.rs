@@ -1478,8 +1478,8 @@ impl AssurSolver {
     /// ([`AssurSolver::motion_into`]) when every group has a closed form, else a step and
     /// its state at a time.
     pub fn run(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
-        let mut out = Vec::with_capacity(times.len());
         if !self.sweeps() {
+            let mut out = Vec::with_capacity(times.len());
             for &t in times {
                 self.step(t)?;
                 out.push(self.state());
@@ -1488,25 +1488,33 @@ impl AssurSolver {
         }
         let mut m = Motion::default();
         self.motion_into(times, &mut m)?;
+        self.states(times, m)
+    }
+
+    /// The states of a motion solved at `times` (`m.qd`, `m.qdd` and `m.iterations` empty
+    /// for positions alone: q̇, q̈ zero, no iterations), each with its residual as
+    /// [`AssurSolver::state`] gives it.
+    fn states(&mut self, times: &[f64], m: Motion) -> Result<Vec<State>, LinkageError> {
         let n = self.inner.n;
+        let mut near = m.near.into_iter().peekable();
+        let mut out = Vec::with_capacity(times.len());
         for (k, &t) in times.iter().enumerate() {
             let at = k * n..(k + 1) * n;
-            // The laws at t (the drivers' rows of the residual) and q's poses, as
-            // [`AssurSolver::state`] leaves them.
+            let q = &m.q[at.clone()];
+            // The laws at t (the drivers' rows of the residual) and q's poses, as a step
+            // leaves them.
             self.inner.eval_law_values(t)?;
-            self.inner.q.copy_from_slice(&m.q[at.clone()]);
+            self.inner.q.copy_from_slice(q);
             self.inner.residual();
+            let rates = |v: &[f64]| if v.is_empty() { vec![0.0; n] } else { v[at.clone()].to_vec() };
             out.push(State {
                 t,
-                q: m.q[at.clone()].to_vec(),
-                qd: m.qd[at.clone()].to_vec(),
-                qdd: m.qdd[at].to_vec(),
-                iterations: m.iterations[k],
+                q: q.to_vec(),
+                qd: rates(&m.qd),
+                qdd: rates(&m.qdd),
+                iterations: m.iterations.get(k).copied().unwrap_or(0),
                 residual: self.inner.residual_norm().0,
-                near_singular: match m.near.first() {
-                    Some((at, _)) if *at == k => Some(m.near.remove(0).1),
-                    _ => None,
-                },
+                near_singular: near.next_if(|(step, _)| *step == k).map(|(_, report)| report),
             });
         }
         Ok(out)
@@ -1529,7 +1537,6 @@ impl AssurSolver {
     /// ([`AssurSolver::positions_into`]) when every group has a closed form, else a step
     /// and its state at a time (each step's Newton iterations).
     pub fn run_positions_states(&mut self, times: &[f64]) -> Result<Vec<State>, LinkageError> {
-        let n = self.inner.n;
         if !self.sweeps() {
             let mut states = Vec::with_capacity(times.len());
             for &t in times {
@@ -1540,28 +1547,9 @@ impl AssurSolver {
             }
             return Ok(states);
         }
-        let mut flat = Vec::with_capacity(times.len() * n);
-        self.positions_into(times, &mut flat)?;
-        let mut states = Vec::with_capacity(times.len());
-        for (k, &t) in times.iter().enumerate() {
-            let q = &flat[k * n..(k + 1) * n];
-            // The laws at t (the drivers' rows of the residual) and q's poses, as a step
-            // leaves them.
-            self.inner.eval_law_values(t)?;
-            self.inner.q.copy_from_slice(q);
-            self.inner.residual();
-            states.push(State {
-                t,
-                q: q.to_vec(),
-                qd: vec![0.0; n],
-                qdd: vec![0.0; n],
-                // Closed forms only: no iterations.
-                iterations: 0,
-                residual: self.inner.residual_norm().0,
-                near_singular: None,
-            });
-        }
-        Ok(states)
+        let mut m = Motion::default();
+        self.sweep_or_step(times, &mut m, false)?;
+        self.states(times, m)
     }
 
     /// Positions only at every time in `times`, each step's q appended to `out` (n values a
@@ -1645,8 +1633,7 @@ impl AssurSolver {
         'steps: for (k, &t) in times.iter().enumerate() {
             for d in &self.inner.mech.drivers {
                 let jet = if rates {
-                    let j = d.law.eval(t);
-                    (j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()).then_some((j.value, j.d1, j.d2))
+                    d.law.eval(t).finite()
                 } else {
                     match d.law.value(t) {
                         Some(v) if v.is_finite() => Some((v, 0.0, 0.0)),

@@ -438,10 +438,7 @@ impl Solver {
     pub(super) fn eval_laws(&mut self, t: f64) -> Result<(), LinkageError> {
         for (d, law) in self.mech.drivers.iter().zip(self.laws.iter_mut()) {
             let j = d.law.eval(t);
-            if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
-                return Err(not_finite(d, t, j));
-            }
-            *law = (j.value, j.d1, j.d2);
+            *law = j.finite().ok_or_else(|| not_finite(d, t, j))?;
         }
         Ok(())
     }
@@ -1033,10 +1030,7 @@ impl Solver {
 #[inline(never)]
 pub(super) fn whole_law(d: &super::Driver, t: f64) -> Result<(f64, f64, f64), LinkageError> {
     let j = d.law.eval(t);
-    if !(j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite()) {
-        return Err(not_finite(d, t, j));
-    }
-    Ok((j.value, j.d1, j.d2))
+    j.finite().ok_or_else(|| not_finite(d, t, j))
 }
 
 /// The error for a driver law that is not finite at `t` (out of the step's hot path).
