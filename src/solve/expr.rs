@@ -767,7 +767,13 @@ mod tests {
             let e = Expr::parse(law).unwrap();
             for t in times {
                 let (v, j) = (e.value(t).unwrap(), e.eval(t));
-                assert_eq!(v.to_bits(), j.value.to_bits(), "{law} at {t}");
+                // The same bits, or both NaN (a NaN's sign and payload are not kept by
+                // the optimiser's reordering: a release build gives −NaN for 0.25 − NaN
+                // on one path and NaN on the other).
+                assert!(
+                    v.to_bits() == j.value.to_bits() || (v.is_nan() && j.value.is_nan()),
+                    "{law} at {t}: {v} against {j:?}"
+                );
                 let all = j.value.is_finite() && j.d1.is_finite() && j.d2.is_finite();
                 assert_eq!(v.is_finite(), all, "{law} at {t}: {j:?}");
             }
