@@ -420,6 +420,81 @@ fn an_unassemblable_position_is_reported_by_group_joint_and_time() {
 }
 
 #[test]
+fn an_rpr_dyad_whose_guide_cannot_reach_the_pin_is_reported_by_group_joint_and_time() {
+    // The shaper's crank and rocker with the rocker's guide 200 mm off its pivot O3: the
+    // block's pin A must lie on it, so |A − O3| ≥ 200, and |A − O3|² = 125² + 300² +
+    // 2·300·125·sin φ1 falls below 200² for sin φ1 < −0.875 (φ1 in 241°…299°). At t = 0
+    // (φ1 = 0, A = (125, 300)) the rocker's angle θ has −125·sin θ + 300·cos θ = 200:
+    // θ = 29.4°.
+    let theta = (200.0_f64 / 325.0).acos() - 125.0_f64.atan2(300.0);
+    let text = format!(
+        r#"kind = "linkage"
+name = "offset-guide"
+units = "mm"
+time = {{ from = 0.0, to = 1.0, steps = 360 }}
+[ground]
+points = {{ O3 = [0.0, 0.0], O1 = [0.0, 300.0] }}
+[[body]]
+name = "crank"
+points = {{ O1 = [0.0, 0.0], A = [125.0, 0.0] }}
+at = [0.0, 300.0]
+angle_deg = 0.0
+[[body]]
+name = "block"
+points = {{ A = [0.0, 0.0] }}
+at = [125.0, 300.0]
+angle_deg = {deg}
+[[body]]
+name = "rocker"
+points = {{ O3 = [0.0, 0.0], L1 = [0.0, 200.0], L2 = [600.0, 200.0] }}
+at = [0.0, 0.0]
+angle_deg = {deg}
+[[joint]]
+name = "O1"
+revolute = ["ground.O1", "crank.O1"]
+[[joint]]
+name = "A"
+revolute = ["crank.A", "block.A"]
+[[joint]]
+name = "slide"
+prismatic = {{ point = "block.A", line = ["rocker.L1", "rocker.L2"] }}
+[[joint]]
+name = "O3"
+revolute = ["ground.O3", "rocker.O3"]
+[[driver]]
+joint = "O1"
+law = "2*pi*t"
+"#,
+        deg = theta.to_degrees()
+    );
+    let Scene::Linkage(s) = scene::parse(&text, "offset-guide.toml", &[]).unwrap() else { panic!("a linkage") };
+    let solver = AssurSolver::new(s.mechanism.clone()).unwrap();
+    assert!(solver.routes().iter().any(|(g, r)| g.kind == GroupKind::Dyad(mechdraw::solve::linkage::DyadKind::Rpr)
+        && *r == Route::ClosedForm));
+    let reach = |t: f64| {
+        let phi = 2.0 * std::f64::consts::PI * t;
+        (125.0 * phi.cos()).hypot(300.0 + 125.0 * phi.sin())
+    };
+    let first = s.times.iter().copied().find(|&t| reach(t) < 200.0).unwrap();
+    // Positions only (the sweep), and with the rates (the sweep with rates): the same report.
+    for err in [solver.clone().run_positions(&s.times).unwrap_err(), solver.clone().run(&s.times).unwrap_err()] {
+        match &err {
+            LinkageError::GroupCannotAssemble { group, joint, t, .. } => {
+                assert_eq!(group, "dyad RPR (block, rocker)", "{err}");
+                assert_eq!(joint, "slide", "{err}");
+                assert_eq!(*t, first, "{err}");
+            }
+            other => panic!("expected GroupCannotAssemble, got {other}"),
+        }
+        assert!(err.to_string().contains("passes"), "{err}");
+    }
+    // Up to there both routes agree.
+    let before: Vec<f64> = s.times.iter().copied().take_while(|&t| t < first).collect();
+    let (assur, newton) = both_routes(&s.mechanism, &before);
+    assert_routes_agree("offset guide", &assur, &newton, s.mechanism.length_scale, 1e-10);
+}
+
+#[test]
 fn a_mechanism_that_does_not_decompose_is_solved_by_newton() {
     // The four-bar driven by its coupler's angle: no body is set by the driver alone and
     // no two bodies close, so the three form one general group.

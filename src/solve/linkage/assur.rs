@@ -892,8 +892,13 @@ const ATAN_SERIES: [f64; 7] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0
 /// short series for the small turn of one time step, `atan2` for a larger one.
 #[inline(always)]
 fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
-    let c = to.0 * from.0 + to.1 * from.1;
-    let s = to.1 * from.0 - to.0 * from.1;
+    turn_angle(to.0 * from.0 + to.1 * from.1, to.1 * from.0 - to.0 * from.1)
+}
+
+/// The angle in (−π, π] of the vector (c, s) (any length, not both zero): a short series
+/// for a small angle (the ratio s/c: the length cancels), `atan2` for a larger one.
+#[inline(always)]
+fn turn_angle(c: f64, s: f64) -> f64 {
     if c > 0.0 && s.abs() <= 0.0625 * c {
         let x = s / c;
         let (x2, k) = (x * x, ATAN_SERIES);
@@ -2131,30 +2136,31 @@ fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     let _ = (slack, &side); // not every kind reads both
     let (p1, p3) = (glob(f, k1.known), glob(f, k3.known));
     let dv = p3 - p1;
-    let d = dv.norm();
-    // One division for both (a multiplication by 1/d).
-    let inv_d = 1.0 / d;
-    let a = (d * d + d1sq - d2sq) * (0.5 * inv_d);
-    let h2 = d1sq - a * a;
+    let dsq = dv.norm_squared();
+    // One division and one square root on the way to the joint (as the four-bar's dyad):
+    // the foot of the chord at k·dv from p1 (k = a/d), the half-chord h·e⊥ = (h/d)·dv⊥.
+    let inv_dsq = 1.0 / dsq;
+    let k = 0.5 * (1.0 + (d1sq - d2sq) * inv_dsq);
+    let h2 = d1sq - k * k * dsq;
     // A miss within the residual tolerance is a tangency (a dead point).
     let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
-    if !(h2 >= 0.0 && d > 0.0) {
-        return Err(Why::Apart { d, d1, d2 });
+    if !(h2 >= 0.0 && dsq > 0.0) {
+        return Err(Why::Apart { d: dsq.sqrt(), d1, d2 });
     }
-    let e = dv * inv_d;
-    let h = h2.sqrt();
-    // The joint is m ± h·e⊥: the root nearer the joint where b1's predicted
+    let off = perp(dv) * (h2 * inv_dsq).sqrt();
+    // The joint is m ± off: the root nearer the joint where b1's predicted
     // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
-    let m = p1 + e * a;
+    let m = p1 + dv * k;
     let dd = p1 + rot(predicted_rotation(f, b1), arm1) - m;
-    let (common, x) = (dd.norm_squared() + h * h, 2.0 * (perp(e) * h).dot(&dd));
+    let (common, x) = (dd.norm_squared() + h2, 2.0 * off.dot(&dd));
     let root = if choose(common - x, common + x, side) == 0 { 1.0 } else { -1.0 };
-    let j = m + perp(e) * (root * h);
+    let j = m + off * root;
     // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
-    let c1 = rotation_scaled(arm1, j - p1, inv_d1sq);
-    let c2 = rotation_scaled(arm3, j - p3, inv_d2sq);
-    turn_to(f, b1, p1 - rot(c1, k1.local), c1);
-    turn_to(f, b2, p3 - rot(c2, k3.local), c2);
+    let (v1, v3) = (j - p1, j - p3);
+    let c1 = rotation_scaled(arm1, v1, inv_d1sq);
+    let c2 = rotation_scaled(arm3, v3, inv_d2sq);
+    turn_arm_to(f, b1, p1 - rot(c1, k1.local), c1, arm1, v1);
+    turn_arm_to(f, b2, p3 - rot(c2, k3.local), c2, arm3, v3);
     Ok(())
 }
 
@@ -2187,8 +2193,9 @@ fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, side);
     let sv = if k == 0 { sv0 } else { sv1 };
     let j = base + w * sv;
-    let c1 = rotation_scaled(arm1, j - p1, inv_d1sq);
-    turn_to(f, b1, p1 - rot(c1, k1.local), c1);
+    let v1 = j - p1;
+    let c1 = rotation_scaled(arm1, v1, inv_d1sq);
+    turn_arm_to(f, b1, p1 - rot(c1, k1.local), c1, arm1, v1);
     f.put(b2, c + w * sv, phi2, cs2);
     Ok(())
 }
@@ -2210,23 +2217,29 @@ fn rpr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     };
     let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
     let dv = ks - kg;
-    let d = dv.norm();
-    if !(d > 0.0 && c0.abs() <= d + slack) {
-        return Err(Why::Passes { c0, d });
-    }
-    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors.
-    // One division for both.
-    let inv_d = 1.0 / d;
-    let dh = dv * inv_d;
-    let x = (-c0 * inv_d).clamp(-1.0, 1.0);
-    let y = (1.0 - x * x).max(0.0).sqrt();
-    // The two bodies turn together: the root whose guide normal
-    // dh·x ± dh⊥·y is nearer the normal at the guide's predicted angle.
+    let dsq = dv.norm_squared();
+    // |c0| ≤ |D| (+ the closure's slack, then |c0| = |D|: the guide passes through the pivot).
+    let c0 = if dsq > 0.0 && c0 * c0 <= dsq {
+        c0
+    } else {
+        let d = dsq.sqrt();
+        if !(d > 0.0 && c0.abs() <= d + slack) {
+            return Err(Why::Passes { c0, d });
+        }
+        c0.signum() * d
+    };
+    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors,
+    // (−c0·D ± √(|D|² − c0²)·D⊥)/|D|² (one division and one square root, independent).
+    let inv_dsq = 1.0 / dsq;
+    let along = dv * (-c0 * inv_dsq);
+    let across = perp(dv) * ((dsq - c0 * c0).max(0.0).sqrt() * inv_dsq);
+    // The two bodies turn together: the root whose guide normal along ± across is
+    // nearer the normal at the guide's predicted angle.
     let guide = if mid.b1_is_slider { b2 } else { b1 };
-    let u = dh * x - rot(predicted_rotation(f, guide), mid.n0);
-    let (common, cross_term) = (u.norm_squared() + y * y, 2.0 * (perp(dh) * y).dot(&u));
+    let u = along - rot(predicted_rotation(f, guide), mid.n0);
+    let (common, cross_term) = (u.norm_squared() + across.norm_squared(), 2.0 * across.dot(&u));
     let root = if choose(common + cross_term, common - cross_term, side) == 0 { 1.0 } else { -1.0 };
-    let ng = dh * x + perp(dh) * (root * y);
+    let ng = along + across * root;
     let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
     let cs = compose(cg, mid.turn);
     let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
@@ -2651,11 +2664,14 @@ fn choose(d0: f64, d1: f64, side: &mut f64) -> usize {
 }
 
 /// Writes body `b` at origin `r` and rotation `cs`, its angle continued from the last step
-/// (still in its cached pose) by this step's turn.
+/// (still in its cached pose) by this step's turn: the turn from where its `arm` (body
+/// coordinates) pointed to the global direction `v` it points now (`cs` takes `arm` along
+/// `v`). Read off `v` itself, the angle waits on fewer dependent operations than through `cs`.
 #[inline(always)]
-fn turn_to<F: Frame>(f: &mut F, b: usize, r: Vector, cs: (f64, f64)) {
+fn turn_arm_to<F: Frame>(f: &mut F, b: usize, r: Vector, cs: (f64, f64), arm: Vector, v: Vector) {
     let last = f.last(b);
-    let phi = last.phi + turn_between((last.c, last.s), cs);
+    let was = rot((last.c, last.s), arm);
+    let phi = last.phi + turn_angle(was.dot(&v), cross(was, v));
     f.put(b, r, phi, cs);
 }
 
@@ -2871,6 +2887,12 @@ mod tests {
                 let s = sb * ca - cb * sa;
                 let exact = libm::atan2(s, c);
                 assert!((got - exact).abs() <= 2.3e-16 * exact.abs(), "{a} {turn}: {got} vs {exact}");
+                // Off vectors of any length (an arm against the arm found): the same angle
+                // (to two ulps: scaling rounds c and s once more).
+                for len in [1e-3, 0.37, 600.0] {
+                    let got = turn_angle(c * len, s * len);
+                    assert!((got - exact).abs() <= 4.5e-16 * exact.abs(), "{a} {turn} ×{len}: {got} vs {exact}");
+                }
             }
         }
     }
