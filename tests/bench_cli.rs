@@ -37,6 +37,7 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
     let err = |method: &str, setting: &str| rows[&(method.to_string(), setting.to_string())];
     // Exact or converged methods sit near rounding against the independent references.
     assert!(err("closed-form dyad", "exact") < 1e-14);
+    assert!(err("closed-form dyad", "+ link angles") < 1e-14);
     assert!(err("Newton–Raphson", "tol=1e-15") < 1e-14);
     assert!(err("all modes (degree 6)", "8 modes") < 1e-13);
     assert!(err("pattern (secant)", "ε=1e-12") < 1e-13);

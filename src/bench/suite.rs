@@ -102,7 +102,8 @@ pub fn triad(budget: Budget) -> Result<Vec<Measurement>, Error> {
     Ok(out)
 }
 
-/// The four-bar: the closed-form dyad per crank angle, and the general Newton solver on
+/// The four-bar: the closed-form dyad per crank angle (B and M; and with the two link
+/// angles, what a run of the four-bar kind writes), and the general Newton solver on
 /// the same four-bar (templates/fourbar-linkage.toml) per time step at every goal. Error:
 /// the larger of the loop-closure residual and the distance of B to the second-route B of
 /// [`reference::fourbar_b`], relative to the longest link.
@@ -126,6 +127,25 @@ pub fn fourbar(budget: Budget) -> Result<Vec<Measurement>, Error> {
         prepared.position(angles[k], Side::Left).map(|p| p.b.x).unwrap_or(0.0)
     });
     let mut out = vec![Measurement::new(problem, "closed-form dyad", "exact", ns, res, dist)];
+    // The same with the two link angles a run writes (φ2 of A→B, φ3 of C→B, `atan2` each):
+    // the four-bar kind giving per position what the four-bar as a linkage gives per step
+    // (its bodies' poses). Error: also the angles' difference from the second route's, in
+    // radians.
+    let mut dist_angles = dist;
+    for &phi1 in &angles {
+        let p = prepared.position(phi1, g.branch).map_err(|e| solve_err("fourbar-chebyshev.toml", e))?;
+        if let Some(b) = reference::fourbar_b(&g, phi1) {
+            let (ab, cb) = (b - p.a, b - g.c);
+            let d2 = crate::geom::wrap_pi(libm::atan2(ab.y, ab.x) - p.phi2()).abs();
+            let d3 = crate::geom::wrap_pi(libm::atan2(cb.y, cb.x) - p.phi3()).abs();
+            dist_angles = dist_angles.max(d2).max(d3);
+        }
+    }
+    let ns = ns_per_call(budget, || {
+        k = if k + 1 == angles.len() { 0 } else { k + 1 };
+        prepared.position(angles[k], Side::Left).map(|p| p.b.x + p.phi2() + p.phi3()).unwrap_or(0.0)
+    });
+    out.push(Measurement::new(problem, "closed-form dyad", "+ link angles", ns, res, dist_angles));
 
     let Scene::Linkage(s) = parse(FOURBAR_LINKAGE, "fourbar-linkage.toml", &[])? else {
         unreachable!("fourbar-linkage.toml is a linkage scene")
