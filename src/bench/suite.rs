@@ -113,39 +113,42 @@ pub fn fourbar(budget: Budget) -> Result<Vec<Measurement>, Error> {
     let prepared = Prepared::new(&g);
     let problem = "four-bar (seed 003)";
     let angles: Vec<f64> = (0..360).map(|k| rad(k as f64)).collect();
-    let (mut res, mut dist) = (0.0_f64, 0.0_f64);
+    // Errors of B (and, for the row with the link angles, of φ2 and φ3 too, in radians)
+    // against the second route's.
+    let (mut res, mut dist, mut dist_angles) = (0.0_f64, 0.0_f64, 0.0_f64);
     for &phi1 in &angles {
         let p = prepared.position(phi1, g.branch).map_err(|e| solve_err("fourbar-chebyshev.toml", e))?;
         res = res.max(reference::fourbar_residual(&g, p.a, p.b));
         if let Some(b) = reference::fourbar_b(&g, phi1) {
             dist = dist.max((b - p.b).norm() / scale);
-        }
-    }
-    let mut k = 0usize;
-    let ns = ns_per_call(budget, || {
-        k = if k + 1 == angles.len() { 0 } else { k + 1 };
-        prepared.position(angles[k], Side::Left).map(|p| p.b.x).unwrap_or(0.0)
-    });
-    let mut out = vec![Measurement::new(problem, "closed-form dyad", "exact", ns, res, dist)];
-    // The same with the two link angles a run writes (φ2 of A→B, φ3 of C→B, `atan2` each):
-    // the four-bar kind giving per position what the four-bar as a linkage gives per step
-    // (its bodies' poses). Error: also the angles' difference from the second route's, in
-    // radians.
-    let mut dist_angles = dist;
-    for &phi1 in &angles {
-        let p = prepared.position(phi1, g.branch).map_err(|e| solve_err("fourbar-chebyshev.toml", e))?;
-        if let Some(b) = reference::fourbar_b(&g, phi1) {
             let (ab, cb) = (b - p.a, b - g.c);
             let d2 = crate::geom::wrap_pi(libm::atan2(ab.y, ab.x) - p.phi2()).abs();
             let d3 = crate::geom::wrap_pi(libm::atan2(cb.y, cb.x) - p.phi3()).abs();
             dist_angles = dist_angles.max(d2).max(d3);
         }
     }
-    let ns = ns_per_call(budget, || {
-        k = if k + 1 == angles.len() { 0 } else { k + 1 };
-        prepared.position(angles[k], Side::Left).map(|p| p.b.x + p.phi2() + p.phi3()).unwrap_or(0.0)
-    });
-    out.push(Measurement::new(problem, "closed-form dyad", "+ link angles", ns, res, dist_angles));
+    let dist_angles = dist.max(dist_angles);
+    // B and M; then with the two link angles a run writes (φ2 of A→B, φ3 of C→B, `atan2`
+    // each): the four-bar kind giving per position what the four-bar as a linkage gives per
+    // step (its bodies' poses).
+    let mut out = vec![
+        Measurement::new(
+            problem,
+            "closed-form dyad",
+            "exact",
+            per_angle(budget, &prepared, &angles, |p| p.b.x),
+            res,
+            dist,
+        ),
+        Measurement::new(
+            problem,
+            "closed-form dyad",
+            "+ link angles",
+            per_angle(budget, &prepared, &angles, |p| p.b.x + p.phi2() + p.phi3()),
+            res,
+            dist_angles,
+        ),
+    ];
 
     let Scene::Linkage(s) = parse(FOURBAR_LINKAGE, "fourbar-linkage.toml", &[])? else {
         unreachable!("fourbar-linkage.toml is a linkage scene")
@@ -182,6 +185,22 @@ pub fn fourbar(budget: Budget) -> Result<Vec<Measurement>, Error> {
     };
     out.extend(assur(budget, problem, file, &s, score)?);
     Ok(out)
+}
+
+/// Nanoseconds per position of the closed-form dyad, cycling through `angles` (B on the
+/// left): `read` takes what a caller reads of the position (statically, so inlined as a
+/// caller's own code would be).
+fn per_angle(
+    budget: Budget,
+    prepared: &Prepared,
+    angles: &[f64],
+    read: impl Fn(&crate::solve::fourbar::Position) -> f64,
+) -> f64 {
+    let mut k = 0usize;
+    ns_per_call(budget, || {
+        k = if k + 1 == angles.len() { 0 } else { k + 1 };
+        prepared.position(angles[k], Side::Left).map(|p| read(&p)).unwrap_or(0.0)
+    })
 }
 
 /// The Assur-group route on a linkage scene (solve::linkage::assur), nanoseconds per time
