@@ -38,7 +38,10 @@ use super::{
 };
 use crate::geom::{Vector, cross, perp, wrap_pi};
 
+mod forms;
 mod sweep;
+use super::lanes;
+use forms::{LineOf, PoseOf, RprForm, RrrForm};
 use sweep::Sweep;
 
 /// A joint's or a body's length below which (relative to the mechanism's size) a closed
@@ -477,18 +480,35 @@ impl Slide {
     /// (φ_u, (cos, sin) of φ_u, c, w): `u`'s angle and the line its origin runs on.
     #[inline(always)]
     fn line<P: Poses + ?Sized>(&self, poses: &P) -> (f64, (f64, f64), Vector, Vector) {
+        let l = self.line_of(poses);
+        (l.phi, l.cs, l.c.into(), l.w.into())
+    }
+
+    /// The line `u`'s origin runs on, at the cached poses.
+    #[inline(always)]
+    fn line_of<P: Poses + ?Sized>(&self, poses: &P) -> LineOf<f64> {
+        let known = if self.u_is_slider { self.q1.body } else { self.point.body };
+        let pose = match known {
+            Attach::Ground => None,
+            Attach::Body(i) => Some(PoseOf::from(poses.pose(i))),
+        };
+        self.line_at(pose)
+    }
+
+    /// The line `u`'s origin runs on when the known body is at `known` (`None`: the ground).
+    #[inline(always)]
+    fn line_at<T: lanes::Real>(&self, known: Option<PoseOf<T>>) -> LineOf<T> {
+        let g = known.unwrap_or_else(PoseOf::ground);
         if self.u_is_slider {
-            let g = pz(poses, self.q1.body);
-            let phi = g.phi + self.angle;
-            let cs = compose((g.c, g.s), self.turn);
-            let w = g.rot(self.dir);
-            (phi, cs, glob(poses, self.q1) - rot(cs, self.point.local), w)
+            let phi = g.phi + T::splat(self.angle);
+            let cs = lanes::compose(g.cs(), (T::splat(self.turn.0), T::splat(self.turn.1)));
+            let w = lanes::V2::splat(self.dir).rot(g.cs());
+            LineOf { phi, cs, c: forms::placed(known, self.q1.local) - lanes::V2::splat(self.point.local).rot(cs), w }
         } else {
-            let s = pz(poses, self.point.body);
-            let phi = s.phi - self.angle;
-            let cs = compose((s.c, s.s), (self.turn.0, -self.turn.1));
-            let w = rot(cs, self.dir);
-            (phi, cs, glob(poses, self.point) - rot(cs, self.q1.local), w)
+            let phi = g.phi - T::splat(self.angle);
+            let cs = lanes::compose(g.cs(), (T::splat(self.turn.0), T::splat(-self.turn.1)));
+            let w = lanes::V2::splat(self.dir).rot(cs);
+            LineOf { phi, cs, c: forms::placed(known, self.point.local) - lanes::V2::splat(self.q1.local).rot(cs), w }
         }
     }
 }
@@ -594,17 +614,64 @@ fn solve_triad(s: &mut Solver, tp: &TriadPlan) -> Result<(), String> {
     Ok(())
 }
 
+/// A crank's position: φ_u = φ_ref + sign·f; u pinned.
+#[derive(Debug, Clone, Copy)]
+struct DrivenAngle {
+    u: usize,
+    pin: Pin,
+    reference: Attach,
+    sign: f64,
+    law: usize,
+}
+
+/// An RRR dyad's position (see [`rrr`]).
+#[derive(Debug, Clone, Copy)]
+struct Rrr {
+    b1: usize,
+    b2: usize,
+    k1: Pin,
+    a1: Vector,
+    k3: Pin,
+    /// The links' lengths (d2 for messages), d1², d2², 1/d1², 1/d2².
+    form: RrrForm,
+    d2: f64,
+    /// a1 − k1 and a2 − k3 (b1's and b2's arms).
+    arm1: Vector,
+    arm3: Vector,
+}
+
+/// An RRP dyad's position (see [`rrp`]).
+#[derive(Debug, Clone, Copy)]
+struct Rrp {
+    b1: usize,
+    b2: usize,
+    k1: Pin,
+    a1: Vector,
+    a2: Vector,
+    s3: Slide,
+    d1: f64,
+    /// a1 − k1 (b1's arm), d1², 1/d1².
+    arm1: Vector,
+    d1sq: f64,
+    inv_d1sq: f64,
+}
+
+/// An RPR dyad's position (see [`rpr`]).
+#[derive(Debug, Clone, Copy)]
+struct Rpr {
+    b1: usize,
+    b2: usize,
+    k1: Pin,
+    mid: Mid,
+    k3: Pin,
+    /// The guide's normal, the slider's turn and the guide's offset c0.
+    form: RprForm,
+}
+
 /// How one group's position is found.
 #[derive(Debug, Clone)]
 enum Position {
-    /// φ_u = φ_ref + sign·f; u pinned.
-    DrivenAngle {
-        u: usize,
-        pin: Pin,
-        reference: Attach,
-        sign: f64,
-        law: usize,
-    },
+    DrivenAngle(DrivenAngle),
     /// u on its slide at s = sign·f.
     DrivenDistance {
         u: usize,
@@ -612,42 +679,9 @@ enum Position {
         sign: f64,
         law: usize,
     },
-    Rrr {
-        b1: usize,
-        b2: usize,
-        k1: Pin,
-        a1: Vector,
-        k3: Pin,
-        d1: f64,
-        d2: f64,
-        /// a1 − k1 and a2 − k3 (b1's and b2's arms), d1², d2², 1/d1², 1/d2².
-        arm1: Vector,
-        arm3: Vector,
-        d1sq: f64,
-        d2sq: f64,
-        inv_d1sq: f64,
-        inv_d2sq: f64,
-    },
-    Rrp {
-        b1: usize,
-        b2: usize,
-        k1: Pin,
-        a1: Vector,
-        a2: Vector,
-        s3: Slide,
-        d1: f64,
-        /// a1 − k1 (b1's arm), d1², 1/d1².
-        arm1: Vector,
-        d1sq: f64,
-        inv_d1sq: f64,
-    },
-    Rpr {
-        b1: usize,
-        b2: usize,
-        k1: Pin,
-        mid: Mid,
-        k3: Pin,
-    },
+    Rrr(Rrr),
+    Rrp(Rrp),
+    Rpr(Rpr),
     Prp {
         b1: usize,
         b2: usize,
@@ -717,21 +751,23 @@ impl Plan {
                 if d1 <= tiny || d2 <= tiny {
                     return None;
                 }
-                Position::Rrr {
+                Position::Rrr(Rrr {
                     b1,
                     b2,
                     k1,
                     a1,
                     k3,
-                    d1,
+                    form: RrrForm {
+                        d1,
+                        d1sq: d1 * d1,
+                        d2sq: d2 * d2,
+                        inv_d1sq: 1.0 / (d1 * d1),
+                        inv_d2sq: 1.0 / (d2 * d2),
+                    },
                     d2,
                     arm1: a1 - k1.local,
                     arm3: a2 - k3.local,
-                    d1sq: d1 * d1,
-                    d2sq: d2 * d2,
-                    inv_d1sq: 1.0 / (d1 * d1),
-                    inv_d2sq: 1.0 / (d2 * d2),
-                }
+                })
             }
             DyadKind::Rrp => {
                 let k1 = pin_of(mech, j1, b1)?;
@@ -740,7 +776,7 @@ impl Plan {
                 if d1 <= tiny {
                     return None;
                 }
-                Position::Rrp {
+                Position::Rrp(Rrp {
                     b1,
                     b2,
                     k1,
@@ -751,15 +787,20 @@ impl Plan {
                     arm1: a1 - k1.local,
                     d1sq: d1 * d1,
                     inv_d1sq: 1.0 / (d1 * d1),
-                }
+                })
             }
-            DyadKind::Rpr => Position::Rpr {
-                b1,
-                b2,
-                k1: pin_of(mech, j1, b1)?,
-                mid: mid_of(mech, j2, b1)?,
-                k3: pin_of(mech, j3, b2)?,
-            },
+            DyadKind::Rpr => {
+                let (k1, mid, k3) = (pin_of(mech, j1, b1)?, mid_of(mech, j2, b1)?, pin_of(mech, j3, b2)?);
+                // Slider S, guide G: rot(φ_G)·n0 · (K_S − K_G) = −n0 · (rot(α)(p − k_S) − (q1 − k_G)).
+                let (pks, qkg) = if mid.b1_is_slider {
+                    (mid.p - k1.local, mid.q1 - k3.local)
+                } else {
+                    (mid.p - k3.local, mid.q1 - k1.local)
+                };
+                let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
+                let form = RprForm { n0: mid.n0, turn: mid.turn, c0, b1_is_slider: mid.b1_is_slider };
+                Position::Rpr(Rpr { b1, b2, k1, mid, k3, form })
+            }
             DyadKind::Prp => {
                 let (a1, a2) = inner()?;
                 Position::Prp { b1, b2, s1: slide_of(mech, j1, b1)?, a1, a2, s3: slide_of(mech, j3, b2)? }
@@ -788,7 +829,7 @@ impl Plan {
                     _ => (Attach::Ground, 1.0),
                 };
                 match pin {
-                    Some(pin) => Position::DrivenAngle { u, pin, reference, sign, law: d },
+                    Some(pin) => Position::DrivenAngle(DrivenAngle { u, pin, reference, sign, law: d }),
                     None => Position::Newton,
                 }
             }
@@ -880,63 +921,20 @@ fn rotation_between(from: Vector, to: Vector) -> (f64, f64) {
     (f.dot(&t), cross(f, t))
 }
 
-/// The rotation taking `from` to `to` when 1/(|from|·|to|) = `inv_lengths` (known: a
-/// multiplication, not a division, in a step).
-#[inline]
-fn rotation_scaled(from: Vector, to: Vector, inv_lengths: f64) -> (f64, f64) {
-    (from.dot(&to) * inv_lengths, cross(from, to) * inv_lengths)
-}
-
-/// atan x = x − x³/3 + x⁵/5 − …, the first seven terms (|x| ≤ 1/16: the first term left
-/// out, x¹⁵/15, is under 2^-56 of x, below half an ulp).
-const ATAN_SERIES: [f64; 7] = [1.0, -1.0 / 3.0, 1.0 / 5.0, -1.0 / 7.0, 1.0 / 9.0, -1.0 / 11.0, 1.0 / 13.0];
-
 /// The angle in (−π, π] from rotation `from` to rotation `to` (unit (cos, sin) pairs): a
 /// short series for the small turn of one time step, `atan2` for a larger one.
 #[inline(always)]
 fn turn_between(from: (f64, f64), to: (f64, f64)) -> f64 {
-    turn_angle(to.0 * from.0 + to.1 * from.1, to.1 * from.0 - to.0 * from.1)
-}
-
-/// The angle in (−π, π] of the vector (c, s) (any length, not both zero): a short series
-/// for a small angle (the ratio s/c: the length cancels), `atan2` for a larger one.
-#[inline(always)]
-fn turn_angle(c: f64, s: f64) -> f64 {
-    if c > 0.0 && s.abs() <= 0.0625 * c {
-        let x = s / c;
-        let (x2, k) = (x * x, ATAN_SERIES);
-        let x4 = x2 * x2;
-        // Estrin's scheme: the pairs, then the pairs of pairs, are independent (a shorter
-        // chain of dependent operations than Horner's rule, for the same terms).
-        let (p01, p23, p45) = (k[0] + k[1] * x2, k[2] + k[3] * x2, k[4] + k[5] * x2);
-        let p0123 = p01 + p23 * x4;
-        let p456 = p45 + k[6] * x4;
-        x * (p0123 + p456 * (x4 * x4))
-    } else {
-        libm::atan2(s, c)
-    }
+    let (c, s) = forms::rotation_turn(from, to);
+    forms::turn_angle(c, s)
 }
 
 /// Body `b`'s rotation (cos, sin) at the angle predicted for this step (its pose still
-/// holds the last step's): the last rotation turned by the predicted change through
-/// a short series (errors below |Δ|⁷/5040 < 2e-6: the prediction only chooses a dyad's
-/// root, it is never part of a result). A predicted turn over 0.5 rad is not trusted (a
-/// time step too coarse for the motion extrapolates to any angle): the last rotation is
-/// the guess then.
+/// holds the last step's): see [`forms::predicted_turn`].
 #[inline(always)]
 fn predicted_rotation<F: Frame>(f: &F, b: usize) -> (f64, f64) {
     let last = f.last(b);
-    let d = f.predicted_phi(b) - last.phi;
-    if d.abs() <= 0.5 {
-        let d2 = d * d;
-        // Multiplications by the reciprocals (no division on the step's critical path;
-        // an ulp of difference is nothing against the series' own error).
-        let (k720, k120) = (1.0 / 720.0, 1.0 / 120.0);
-        let turn = (1.0 - d2 * (0.5 - d2 * (1.0 / 24.0 - d2 * k720)), d * (1.0 - d2 * (1.0 / 6.0 - d2 * k120)));
-        compose((last.c, last.s), turn)
-    } else {
-        (last.c, last.s)
-    }
+    forms::predicted_turn((last.c, last.s), f.predicted_phi(b) - last.phi)
 }
 
 /// What a group's closed form reads and writes at one time step: the known bodies' poses
@@ -1049,6 +1047,20 @@ enum Extrapolation {
 }
 
 impl Extrapolation {
+    /// The prediction of a coordinate now at `now`, from the step before's value `before`
+    /// (linearly) or its rate and acceleration `rates` (Taylor).
+    #[inline(always)]
+    fn apply(self, now: f64, before: impl FnOnce() -> f64, rates: impl FnOnce() -> (f64, f64)) -> f64 {
+        match self {
+            Extrapolation::Hold => now,
+            Extrapolation::Linear(f) => now + (now - before()) * f,
+            Extrapolation::Taylor(dt) => {
+                let (v, a) = rates();
+                now + v * dt + 0.5 * a * dt * dt
+            }
+        }
+    }
+
     /// How a step `dt` after the last predicts: with the last rates when they belong to the
     /// last q (`rates_valid`), else linearly from the last two positions (`dt_prev` apart),
     /// else the last q as it is.
@@ -1079,12 +1091,7 @@ impl Predictor<'_> {
     /// (the solver's own q, read before the group that owns coordinate `i` writes it).
     #[inline(always)]
     fn at(&self, before: &[f64], i: usize) -> f64 {
-        let now = self.last[i];
-        match self.how {
-            Extrapolation::Hold => now,
-            Extrapolation::Linear(f) => now + (now - before[i]) * f,
-            Extrapolation::Taylor(dt) => now + self.qd[i] * dt + 0.5 * self.qdd[i] * dt * dt,
-        }
+        self.how.apply(self.last[i], || before[i], || (self.qd[i], self.qdd[i]))
     }
 
     /// Writes the prediction of `bodies`' coordinates into `s.q` (for the groups that start
@@ -1570,11 +1577,11 @@ impl AssurSolver {
         for (gi, op) in self.ops.iter_mut().enumerate() {
             let live = &mut Live { s: &mut *s, pred: &pred };
             let done = match op.position {
-                Position::DrivenAngle { .. } => driven_angle(live, &op.position, &mut op.side, slack),
+                Position::DrivenAngle(_) => driven_angle(live, &op.position, &mut op.side, slack),
                 Position::DrivenDistance { .. } => driven_distance(live, &op.position, &mut op.side, slack),
-                Position::Rrr { .. } => rrr(live, &op.position, &mut op.side, slack),
-                Position::Rrp { .. } => rrp(live, &op.position, &mut op.side, slack),
-                Position::Rpr { .. } => rpr(live, &op.position, &mut op.side, slack),
+                Position::Rrr(_) => rrr(live, &op.position, &mut op.side, slack),
+                Position::Rrp(_) => rrp(live, &op.position, &mut op.side, slack),
+                Position::Rpr(_) => rpr(live, &op.position, &mut op.side, slack),
                 Position::Prp { .. } => prp(live, &op.position, &mut op.side, slack),
                 Position::Rpp { .. } => rpp(live, &op.position, &mut op.side, slack),
                 Position::Triad(ref tp) => {
@@ -1699,7 +1706,7 @@ impl AssurSolver {
 /// why, for [`cannot_assemble`].
 #[inline(always)]
 fn driven_angle<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
-    let Position::DrivenAngle { u, pin, reference, sign, law, .. } = *position else { return Ok(()) };
+    let Position::DrivenAngle(DrivenAngle { u, pin, reference, sign, law, .. }) = *position else { return Ok(()) };
     let _ = (slack, &side); // not every kind reads both
     let phi = pz(f, reference).phi + sign * f.law(law);
     // One argument reduction for both (the same bits as libm's sin and cos).
@@ -1728,37 +1735,19 @@ fn driven_distance<F: Frame>(f: &mut F, position: &Position, side: &mut f64, sla
 /// why, for [`cannot_assemble`].
 #[inline(always)]
 fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
-    let Position::Rrr { b1, b2, k1, k3, arm1, arm3, d1, d2, d1sq, d2sq, inv_d1sq, inv_d2sq, .. } = *position else {
+    let Position::Rrr(Rrr { b1, b2, k1, k3, arm1, arm3, ref form, d2, .. }) = *position else {
         return Ok(());
     };
-    let _ = (slack, &side); // not every kind reads both
-    let (p1, p3) = (glob(f, k1.known), glob(f, k3.known));
-    let dv = p3 - p1;
-    let dsq = dv.norm_squared();
-    // One division and one square root on the way to the joint (as the four-bar's dyad):
-    // the foot of the chord at k·dv from p1 (k = a/d), the half-chord h·e⊥ = (h/d)·dv⊥.
-    let inv_dsq = 1.0 / dsq;
-    let k = 0.5 * (1.0 + (d1sq - d2sq) * inv_dsq);
-    let h2 = d1sq - k * k * dsq;
-    // A miss within the residual tolerance is a tangency (a dead point).
-    let h2 = if h2 < 0.0 && h2 >= -2.0 * d1 * slack { 0.0 } else { h2 };
-    if !(h2 >= 0.0 && dsq > 0.0) {
-        return Err(Why::Apart { d: dsq.sqrt(), d1, d2 });
+    let (p1, p3) = (glob(f, k1.known).into(), glob(f, k3.known).into());
+    let ch = forms::rrr_chord(form, p1, p3, slack);
+    if !ch.ok {
+        return Err(Why::Apart { d: (p3 - p1).norm_squared().sqrt(), d1: form.d1, d2 });
     }
-    let off = perp(dv) * (h2 * inv_dsq).sqrt();
-    // The joint is m ± off: the root nearer the joint where b1's predicted
-    // angle puts it (|m ± n − jp|² = |jp − m|² + h² ∓ 2·n·(jp − m)).
-    let m = p1 + dv * k;
-    let dd = p1 + rot(predicted_rotation(f, b1), arm1) - m;
-    let (common, x) = (dd.norm_squared() + h2, 2.0 * off.dot(&dd));
-    let root = if choose(common - x, common + x, side) == 0 { 1.0 } else { -1.0 };
-    let j = m + off * root;
-    // |j − p1| = d1 and |j − p3| = d2 by construction: no square roots.
-    let (v1, v3) = (j - p1, j - p3);
-    let c1 = rotation_scaled(arm1, v1, inv_d1sq);
-    let c2 = rotation_scaled(arm3, v3, inv_d2sq);
-    turn_arm_to(f, b1, p1 - rot(c1, k1.local), c1, arm1, v1);
-    turn_arm_to(f, b2, p3 - rot(c2, k3.local), c2, arm3, v3);
+    let (d0, d1) = forms::rrr_distances(&ch, p1, predicted_rotation(f, b1), arm1);
+    let root = if choose(d0, d1, side) == 0 { 1.0 } else { -1.0 };
+    let at = forms::rrr_poses(form, &ch, root, p1, p3, (arm1, arm3), (k1.local, k3.local));
+    turn_arm_to(f, b1, at.r1.into(), at.c1, arm1, at.v1);
+    turn_arm_to(f, b2, at.r2.into(), at.c2, arm3, at.v3);
     Ok(())
 }
 
@@ -1768,33 +1757,20 @@ fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
 /// why, for [`cannot_assemble`].
 #[inline(always)]
 fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
-    let Position::Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, inv_d1sq, .. } = *position else { return Ok(()) };
-    let _ = (slack, &side); // not every kind reads both
-    let p1 = glob(f, k1.known);
-    let (phi2, cs2, c, w) = s3.line(f);
-    let base = c + rot(cs2, a2);
-    let e = base - p1;
-    let b = e.dot(&w);
-    let disc = b * b - e.norm_squared() + d1sq;
-    let disc = if disc < 0.0 && disc >= -2.0 * d1 * slack { 0.0 } else { disc };
-    if disc.is_nan() || disc < 0.0 {
+    let Position::Rrp(Rrp { b1, b2, k1, a2, s3, arm1, d1, d1sq, inv_d1sq, .. }) = *position else { return Ok(()) };
+    let p1 = glob(f, k1.known).into();
+    let line = s3.line_of(f);
+    let reach = forms::rrp_reach(p1, &line, a2, (d1, d1sq), slack);
+    if !reach.ok {
         return Err(Why::Reach { d1 });
     }
-    let root = disc.sqrt();
-    // b2's origin is c + s·w and the joint rides with it (b2's rotation is
-    // known): the root nearer b2's predicted origin rp, at s_p = (rp − c)·w
-    // along the line and |rp − c|² − s_p² off it.
-    let off = f.predicted_r(b2) - c;
-    let sp = off.dot(&w);
-    let across = off.norm_squared() - sp * sp;
-    let (sv0, sv1) = (-b + root, -b - root);
-    let k = choose((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across, side);
-    let sv = if k == 0 { sv0 } else { sv1 };
-    let j = base + w * sv;
-    let v1 = j - p1;
-    let c1 = rotation_scaled(arm1, v1, inv_d1sq);
-    turn_arm_to(f, b1, p1 - rot(c1, k1.local), c1, arm1, v1);
-    f.put(b2, c + w * sv, phi2, cs2);
+    // b2's origin is c + s·w and the joint rides with it (b2's rotation is known): the
+    // root nearer b2's predicted origin.
+    let ((sv0, sv1), (e0, e1)) = forms::rrp_distances(&reach, &line, f.predicted_r(b2).into());
+    let sv = if choose(e0, e1, side) == 0 { sv0 } else { sv1 };
+    let (c1, r1, v1, r2) = forms::rrp_poses(&reach, &line, sv, p1, (arm1, inv_d1sq, k1.local));
+    turn_arm_to(f, b1, r1.into(), c1, arm1, v1);
+    f.put(b2, r2.into(), line.phi, line.cs);
     Ok(())
 }
 
@@ -1804,48 +1780,24 @@ fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
 /// why, for [`cannot_assemble`].
 #[inline(always)]
 fn rpr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
-    let Position::Rpr { b1, b2, k1, mid, k3 } = *position else { return Ok(()) };
-    let _ = (slack, &side); // not every kind reads both
-    let (p1, p3) = (glob(f, k1.known), glob(f, k3.known));
-    // Slider S, guide G: rot(φ_G)·n0 · (K_S − K_G) = −n0 · (rot(α)(p − k_S) − (q1 − k_G)).
-    let (ks, kg, pks, qkg) = if mid.b1_is_slider {
-        (p1, p3, mid.p - k1.local, mid.q1 - k3.local)
-    } else {
-        (p3, p1, mid.p - k3.local, mid.q1 - k1.local)
-    };
-    let c0 = mid.n0.dot(&(rot(mid.turn, pks) - qkg));
-    let dv = ks - kg;
-    let dsq = dv.norm_squared();
-    // |c0| ≤ |D| (+ the closure's slack, then |c0| = |D|: the guide passes through the pivot).
-    let c0 = if dsq > 0.0 && c0 * c0 <= dsq {
-        c0
-    } else {
-        let d = dsq.sqrt();
-        if !(d > 0.0 && c0.abs() <= d + slack) {
-            return Err(Why::Passes { c0, d });
-        }
-        c0.signum() * d
-    };
-    // The guide's normal n_G = rot(ψ)·n0 has n_G·D̂ = −c0/|D|: two unit vectors,
-    // (−c0·D ± √(|D|² − c0²)·D⊥)/|D|² (one division and one square root, independent).
-    let inv_dsq = 1.0 / dsq;
-    let along = dv * (-c0 * inv_dsq);
-    let across = perp(dv) * ((dsq - c0 * c0).max(0.0).sqrt() * inv_dsq);
-    // The two bodies turn together: the root whose guide normal along ± across is
-    // nearer the normal at the guide's predicted angle.
-    let guide = if mid.b1_is_slider { b2 } else { b1 };
-    let u = along - rot(predicted_rotation(f, guide), mid.n0);
-    let (common, cross_term) = (u.norm_squared() + across.norm_squared(), 2.0 * across.dot(&u));
-    let root = if choose(common + cross_term, common - cross_term, side) == 0 { 1.0 } else { -1.0 };
-    let ng = along + across * root;
-    let cg = (mid.n0.dot(&ng), cross(mid.n0, ng));
-    let cs = compose(cg, mid.turn);
-    let (c1, c2) = if mid.b1_is_slider { (cs, cg) } else { (cg, cs) };
+    let Position::Rpr(Rpr { b1, b2, k1, k3, ref form, .. }) = *position else { return Ok(()) };
+    let (p1, p3) = (glob(f, k1.known).into(), glob(f, k3.known).into());
+    let (ks, kg) = if form.b1_is_slider { (p1, p3) } else { (p3, p1) };
+    let normal = forms::rpr_normal(form, ks, kg, slack);
+    if !normal.ok {
+        return Err(Why::Passes { c0: form.c0, d: (ks - kg).norm_squared().sqrt() });
+    }
+    // The two bodies turn together: the root whose guide normal is nearer the normal at
+    // the guide's predicted angle.
+    let guide = if form.b1_is_slider { b2 } else { b1 };
+    let (d0, d1) = forms::rpr_distances(form, &normal, predicted_rotation(f, guide));
+    let root = if choose(d0, d1, side) == 0 { 1.0 } else { -1.0 };
+    let (c1, c2) = forms::rpr_rotations(form, &normal, root);
     // Slider and guide turn together: one turn, b1's, continues both angles.
     let (last1, last2) = (f.last(b1), f.last(b2));
     let turn = turn_between((last1.c, last1.s), c1);
-    f.put(b1, p1 - rot(c1, k1.local), last1.phi + turn, c1);
-    f.put(b2, p3 - rot(c2, k3.local), last2.phi + turn, c2);
+    f.put(b1, Vector::from(p1 - lanes::V2::splat(k1.local).rot(c1)), last1.phi + turn, c1);
+    f.put(b2, Vector::from(p3 - lanes::V2::splat(k3.local).rot(c2)), last2.phi + turn, c2);
     Ok(())
 }
 
@@ -2087,13 +2039,13 @@ impl Cramer {
 #[inline(always)]
 fn closed_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     match *position {
-        Position::DrivenAngle { .. } => driven_angle_rates(fr, position),
-        Position::Rrr { .. } => rrr_rates(fr, position),
+        Position::DrivenAngle(_) => driven_angle_rates(fr, position),
+        Position::Rrr(_) => rrr_rates(fr, position),
         Position::DrivenDistance { .. } => driven_distance_rates(fr, position),
-        Position::Rrp { .. } => rrp_rates(fr, position),
+        Position::Rrp(_) => rrp_rates(fr, position),
         Position::Prp { .. } => prp_rates(fr, position),
         Position::Rpp { .. } => rpp_rates(fr, position),
-        Position::Rpr { .. } => rpr_rates(fr, position),
+        Position::Rpr(_) => rpr_rates(fr, position),
         _ => None,
     }
 }
@@ -2102,7 +2054,7 @@ fn closed_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
 /// (no 2×2 to condition); `None` for another kind.
 #[inline(always)]
 fn driven_angle_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::DrivenAngle { u, pin, reference, sign, law } = *position else { return None };
+    let Position::DrivenAngle(DrivenAngle { u, pin, reference, sign, law }) = *position else { return None };
     let (wr, er) = spin(&*fr, reference);
     let (_, d1, d2) = fr.jet(law);
     let k = glob(&*fr, pin.known);
@@ -2115,7 +2067,7 @@ fn driven_angle_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f
 /// closure, a 2×2. Returns ρ, the 2×2's conditioning; `None` for another kind.
 #[inline(always)]
 fn rrr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::Rrr { b1, b2, k1, a1, k3, .. } = *position else { return None };
+    let Position::Rrr(Rrr { b1, b2, k1, a1, k3, .. }) = *position else { return None };
     let (p1, p3) = (glob(&*fr, k1.known), glob(&*fr, k3.known));
     let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
     let (r1k, r3k) = (point_rates(&*fr, k1.known.body, p1), point_rates(&*fr, k3.known.body, p3));
@@ -2146,7 +2098,7 @@ fn driven_distance_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Optio
 /// Returns ρ, the 2×2's conditioning; `None` for another kind.
 #[inline(always)]
 fn rrp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::Rrp { b1, b2, k1, a1, s3, .. } = *position else { return None };
+    let Position::Rrp(Rrp { b1, b2, k1, a1, s3, .. }) = *position else { return None };
     let f = slide_frame(&*fr, &s3, b2);
     let k = glob(&*fr, k1.known);
     let rk = point_rates(&*fr, k1.known.body, k);
@@ -2223,7 +2175,7 @@ fn rpp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
 /// conditioning; `None` for another kind.
 #[inline(always)]
 fn rpr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::Rpr { b1, b2, k1, mid, k3 } = *position else { return None };
+    let Position::Rpr(Rpr { b1, b2, k1, mid, k3, .. }) = *position else { return None };
     let (ks, kg, sb, gb) = if mid.b1_is_slider { (k1, k3, b1, b2) } else { (k3, k1, b2, b1) };
     let (ps, pg) = (glob(&*fr, ks.known), glob(&*fr, kg.known));
     let (rs, rg) = (point_rates(&*fr, ks.known.body, ps), point_rates(&*fr, kg.known.body, pg));
@@ -2266,11 +2218,10 @@ fn choose(d0: f64, d1: f64, side: &mut f64) -> usize {
 /// coordinates) pointed to the global direction `v` it points now (`cs` takes `arm` along
 /// `v`). Read off `v` itself, the angle waits on fewer dependent operations than through `cs`.
 #[inline(always)]
-fn turn_arm_to<F: Frame>(f: &mut F, b: usize, r: Vector, cs: (f64, f64), arm: Vector, v: Vector) {
+fn turn_arm_to<F: Frame>(f: &mut F, b: usize, r: Vector, cs: (f64, f64), arm: Vector, v: lanes::V2<f64>) {
     let last = f.last(b);
-    let was = rot((last.c, last.s), arm);
-    let phi = last.phi + turn_angle(was.dot(&v), cross(was, v));
-    f.put(b, r, phi, cs);
+    let (c, s) = forms::arm_turn((last.c, last.s), arm, v);
+    f.put(b, r, last.phi + forms::turn_angle(c, s), cs);
 }
 
 /// Newton–Raphson on one group's coordinates from the predicted q (the known bodies fixed).
@@ -2488,7 +2439,7 @@ mod tests {
                 // Off vectors of any length (an arm against the arm found): the same angle
                 // (to two ulps: scaling rounds c and s once more).
                 for len in [1e-3, 0.37, 600.0] {
-                    let got = turn_angle(c * len, s * len);
+                    let got = forms::turn_angle(c * len, s * len);
                     assert!((got - exact).abs() <= 4.5e-16 * exact.abs(), "{a} {turn} ×{len}: {got} vs {exact}");
                 }
             }

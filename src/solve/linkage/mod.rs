@@ -21,6 +21,7 @@
 pub mod assur;
 mod kinematics;
 mod kinetostatics;
+mod lanes;
 mod lu;
 
 pub use assur::{AssurSolver, DrivenKind, DyadKind, Group, GroupKind, Motion, Route, decompose};

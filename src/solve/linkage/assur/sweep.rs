@@ -2,24 +2,89 @@
 //! next group ([`AssurSolver::positions_into`], [`AssurSolver::motion_into`]). A group needs
 //! only the groups before it at the same step, its own last two positions (its prediction)
 //! and its branch, so a sweep holds each group's constants across the steps and gives the
-//! bits of stepping: the closed forms are the step's own, read and written through a
-//! [`Lane`] instead of the live solver.
+//! bits of stepping.
+//!
+//! The crank and the RRR, RRP and RPR dyads are solved four steps at a time ([`Batch`]): a
+//! dyad's root at a step depends on its prediction, which depends on the roots before it,
+//! so the sweep first places every step on the branch the group is on (the roots need no
+//! prediction then), then checks each step's choice as the step makes it ([`choose`], from
+//! the prediction of the positions just placed) and places the rest again from the first
+//! step that changes branch (at a dead point). The closed forms' stages are the step's own
+//! ([`forms`], over [`Real`]), so every lane holds the step's bits. The other kinds are
+//! swept a step at a time through a [`Lane`], by the step's closed forms themselves.
 
+use super::super::lanes::{F4, Lanes, Real, V2};
+use super::forms::{self, PoseOf};
 use super::*;
 
-/// Step `k` of a sweep ([`AssurSolver::positions_into`], [`AssurSolver::motion_into`]):
-/// the sweep's poses, body by body (body b's pose at step k at `b·stride + k + 2`; the two
-/// entries before step 0 hold the step before the last and the last), the laws' values
-/// (and rates) at each step, the steps' predictions, the bodies' rates (body b's at step k at
-/// `b·rstride + k + 2`, the entry before step 0 the last step's: a sweep of positions only
-/// keeps that entry alone, `rstride` 2).
-struct Lane<'a> {
-    poses: &'a mut [Pose],
+/// A pose's fields in [`Tracks`].
+const X: usize = 0;
+const Y: usize = 1;
+const PHI: usize = 2;
+const COS: usize = 3;
+const SIN: usize = 4;
+const FIELDS: usize = 5;
+
+/// Every body's poses over a sweep's steps, field by field (x, y, φ, cos φ, sin φ): body
+/// b's field f at entry i at `(5·b + f)·stride + i`, step k at entry k + 2 (entries 0 and 1
+/// hold the step before the last and the last).
+#[derive(Debug, Clone, Default)]
+struct Tracks {
+    v: Vec<f64>,
     stride: usize,
+}
+
+impl Tracks {
+    /// Room for `bodies` over `steps` (not cleared: a group reads only what the sweep has
+    /// written — the first two entries of each body, the steps the groups before it solved,
+    /// its own last steps — so the buffer only grows).
+    fn reset(&mut self, bodies: usize, steps: usize) {
+        self.stride = steps + 2;
+        let len = FIELDS * bodies * self.stride;
+        if self.v.len() < len {
+            self.v.resize(len, 0.0);
+        }
+    }
+
+    #[inline(always)]
+    fn at(&self, b: usize, f: usize, i: usize) -> usize {
+        (FIELDS * b + f) * self.stride + i
+    }
+
+    /// Body `b`'s pose at entry `i`.
+    #[inline(always)]
+    fn pose(&self, b: usize, i: usize) -> Pose {
+        let f = |f| self.v[self.at(b, f, i)];
+        Pose { r: Vector::new(f(X), f(Y)), phi: f(PHI), c: f(COS), s: f(SIN) }
+    }
+
+    #[inline(always)]
+    fn set(&mut self, b: usize, i: usize, p: Pose) {
+        for (f, v) in [(X, p.r.x), (Y, p.r.y), (PHI, p.phi), (COS, p.c), (SIN, p.s)] {
+            let at = self.at(b, f, i);
+            self.v[at] = v;
+        }
+    }
+}
+
+/// Step `k` of a sweep ([`AssurSolver::positions_into`], [`AssurSolver::motion_into`]):
+/// the sweep's poses ([`Tracks`]), the laws' values (and rates) at each step, the steps'
+/// predictions, the bodies' rates (body b's at step k at `b·rstride + k + 2`, the entry
+/// before step 0 the last step's: a sweep of positions only keeps that entry alone,
+/// `rstride` 2). A [`Batch`] kind reads it four steps at a time.
+struct Lane<'a> {
+    tracks: &'a mut Tracks,
     k: usize,
-    laws: &'a [(f64, f64, f64)],
+    /// The laws' jets step by step (driver d's at step k at `k·nd + d`; with the rates).
+    jets: &'a [(f64, f64, f64)],
     nd: usize,
     how: Extrapolation,
+    /// Each step's ratio of linear extrapolation, NaN where it is not linear.
+    linear: &'a [f64],
+    /// Driver d's law value at step k at `d·count + k`.
+    values: &'a [f64],
+    count: usize,
+    steps: usize,
     rates: &'a mut [Rates],
     rstride: usize,
     /// The motion's rows from the sweep's first step (q, and with the rates q̇, q̈; `n`
@@ -28,12 +93,14 @@ struct Lane<'a> {
     qd: &'a mut [f64],
     qdd: &'a mut [f64],
     n: usize,
+    /// A batch's scratch planes (see [`View`]).
+    scratch: &'a mut [f64],
 }
 
 impl Poses for Lane<'_> {
     #[inline(always)]
     fn pose(&self, b: usize) -> Pose {
-        self.poses[b * self.stride + self.k + 2]
+        self.tracks.pose(b, self.k + 2)
     }
 }
 
@@ -43,32 +110,27 @@ impl Lane<'_> {
     /// before the last and of the last; Taylor's rates are the last step's).
     #[inline(always)]
     fn predicted(&self, b: usize, j: usize) -> f64 {
-        let coordinate = |p: Pose| match j {
-            0 => p.r.x,
-            1 => p.r.y,
-            _ => p.phi,
-        };
-        let at = b * self.stride + self.k;
-        let now = coordinate(self.poses[at + 1]);
-        match self.how {
-            Extrapolation::Hold => now,
-            Extrapolation::Linear(f) => now + (now - coordinate(self.poses[at])) * f,
-            Extrapolation::Taylor(dt) => {
-                let r = self.rates[b * self.rstride + self.k + 1];
-                now + r.qd[j] * dt + 0.5 * r.qdd[j] * dt * dt
-            }
-        }
+        let (tr, k) = (&*self.tracks, self.k);
+        let now = tr.v[tr.at(b, j, k + 1)];
+        self.how.apply(
+            now,
+            || tr.v[tr.at(b, j, k)],
+            || {
+                let r = self.rates[b * self.rstride + k + 1];
+                (r.qd[j], r.qdd[j])
+            },
+        )
     }
 }
 
 impl Frame for Lane<'_> {
     #[inline(always)]
     fn last(&self, b: usize) -> Pose {
-        self.poses[b * self.stride + self.k + 1]
+        self.tracks.pose(b, self.k + 1)
     }
     #[inline(always)]
     fn law(&self, d: usize) -> f64 {
-        self.laws[self.k * self.nd + d].0
+        self.values[d * self.count + self.k]
     }
     #[inline(always)]
     fn predicted_phi(&self, b: usize) -> f64 {
@@ -80,7 +142,7 @@ impl Frame for Lane<'_> {
     }
     #[inline(always)]
     fn put(&mut self, b: usize, r: Vector, phi: f64, cs: (f64, f64)) {
-        self.poses[b * self.stride + self.k + 2] = Pose { r, phi, c: cs.0, s: cs.1 };
+        self.tracks.set(b, self.k + 2, Pose { r, phi, c: cs.0, s: cs.1 });
         let at = self.k * self.n + 3 * b;
         self.q[at..at + 3].copy_from_slice(&[r.x, r.y, phi]);
     }
@@ -93,7 +155,7 @@ impl RateFrame for Lane<'_> {
     }
     #[inline(always)]
     fn jet(&self, d: usize) -> (f64, f64, f64) {
-        self.laws[self.k * self.nd + d]
+        self.jets[self.k * self.nd + d]
     }
     #[inline(always)]
     fn put_rates(&mut self, b: usize, r: Rates) {
@@ -106,15 +168,25 @@ impl RateFrame for Lane<'_> {
 
 /// A sweep's buffers (kept between sweeps): every body's poses and rates over the steps
 /// (see [`Lane`]), the laws' values (and rates) and the prediction of each step, each
-/// group's branch and (with rates) the conditioning of its rates after each step.
+/// group's branch and (with rates) the conditioning of its rates after each step, a
+/// batch's scratch.
 #[derive(Debug, Clone, Default)]
 pub(super) struct Sweep {
-    poses: Vec<Pose>,
+    tracks: Tracks,
     rates: Vec<Rates>,
-    laws: Vec<(f64, f64, f64)>,
+    jets: Vec<(f64, f64, f64)>,
+    values: Vec<f64>,
     how: Vec<Extrapolation>,
+    linear: Vec<f64>,
     sides: Vec<f64>,
     pivots: Vec<f64>,
+    scratch: Vec<f64>,
+}
+
+/// Whether ρ, a group's conditioning at a step, lets its rates be solved there.
+#[inline(always)]
+fn solvable(rho: Option<f64>) -> Option<f64> {
+    rho.filter(|rho| !(rho.is_nan() || *rho <= super::super::SINGULAR_PIVOT_REL))
 }
 
 /// One group over the sweep's steps `0..end`, its kind's closed form `K` at each (and, with
@@ -144,9 +216,9 @@ fn sweep_group<const RATES: bool, K: Kernel>(
         }
         *after = side;
         if RATES {
-            match K::rates(&mut lane, &position) {
-                Some(rho) if !(rho.is_nan() || rho <= super::super::SINGULAR_PIVOT_REL) => pivots[k] = rho,
-                _ => {
+            match solvable(K::rates(&mut lane, &position)) {
+                Some(rho) => pivots[k] = rho,
+                None => {
                     op.side = side;
                     return Some(k);
                 }
@@ -166,10 +238,9 @@ trait Kernel {
     fn rates(lane: &mut Lane<'_>, position: &Position) -> Option<f64>;
 }
 
-/// The [`Kernel`] of each kind: `Name => position's closed form, rates' closed form`.
+/// The [`Kernel`] of each kind: `Type => position's closed form, rates' closed form`.
 macro_rules! kernels {
     ($($name:ident => $position:ident, $rates:ident;)*) => {$(
-        struct $name;
         impl Kernel for $name {
             #[inline(always)]
             fn position(lane: &mut Lane<'_>, position: &Position, side: &mut f64, slack: f64) -> Result<(), Why> {
@@ -183,17 +254,574 @@ macro_rules! kernels {
     )*};
 }
 
+/// The kinds swept a step at a time (the others are their [`Batch`] constants).
+struct DrivenDistanceK;
+struct PrpK;
+struct RppK;
+
 kernels! {
-    DrivenAngleK => driven_angle, driven_angle_rates;
+    DrivenAngle => driven_angle, driven_angle_rates;
     DrivenDistanceK => driven_distance, driven_distance_rates;
-    RrrK => rrr, rrr_rates;
-    RrpK => rrp, rrp_rates;
-    RprK => rpr, rpr_rates;
+    Rrr => rrr, rrr_rates;
+    Rrp => rrp, rrp_rates;
+    Rpr => rpr, rpr_rates;
     PrpK => prp, prp_rates;
     RppK => rpp, rpp_rates;
 }
 
-/// One group swept by its kind's closed form (see [`sweep_group`]).
+/// A batch's view of a sweep's buffers, taken once for a range of steps (the slices'
+/// bounds then stay in registers across its loops): the tracks' values (see [`Tracks`]),
+/// every driver's law values step by step, each step's linear ratio, and scratch planes,
+/// each a value per step.
+struct View<'a> {
+    v: &'a mut [f64],
+    stride: usize,
+    /// Driver d's law value at step k at `d·count + k`.
+    values: &'a [f64],
+    count: usize,
+    /// The scratch planes' length.
+    steps: usize,
+    linear: &'a [f64],
+    scratch: &'a mut [f64],
+    rates: &'a [Rates],
+    rstride: usize,
+    /// The motion's rows (see [`Lane`]), `n` values a step.
+    q: &'a mut [f64],
+    n: usize,
+}
+
+/// Scratch planes a batch keeps from its positions for its turns and its choices.
+const SCRATCH: usize = 11;
+
+impl View<'_> {
+    #[inline(always)]
+    fn at(&self, b: usize, f: usize, i: usize) -> usize {
+        (FIELDS * b + f) * self.stride + i
+    }
+
+    /// Field `f` of body `b` at entries i.. (T::N of them).
+    #[inline(always)]
+    fn load<T: Lanes>(&self, b: usize, f: usize, i: usize) -> T {
+        let at = self.at(b, f, i);
+        T::load(&self.v[at..at + T::N])
+    }
+
+    #[inline(always)]
+    fn store<T: Lanes>(&mut self, b: usize, f: usize, i: usize, v: T) {
+        let at = self.at(b, f, i);
+        v.store(&mut self.v[at..at + T::N]);
+    }
+
+    /// The pose of `a` at entries i.. (`None`: the ground).
+    #[inline(always)]
+    fn pose_of<T: Lanes>(&self, a: Attach, i: usize) -> Option<PoseOf<T>> {
+        let Attach::Body(b) = a else { return None };
+        let r = V2::new(self.load(b, X, i), self.load(b, Y, i));
+        Some(PoseOf { r, phi: self.load(b, PHI, i), c: self.load(b, COS, i), s: self.load(b, SIN, i) })
+    }
+
+    /// The global position of anchor `a` at entries i...
+    #[inline(always)]
+    fn place<T: Lanes>(&self, a: Anchor, i: usize) -> V2<T> {
+        match a.body {
+            Attach::Ground => forms::placed(None, a.local),
+            Attach::Body(b) => {
+                let r = V2::new(self.load(b, X, i), self.load(b, Y, i));
+                forms::placed(
+                    Some(PoseOf { r, phi: T::splat(0.0), c: self.load(b, COS, i), s: self.load(b, SIN, i) }),
+                    a.local,
+                )
+            }
+        }
+    }
+
+    /// The rotation of body `b` at entries i...
+    #[inline(always)]
+    fn rotation<T: Lanes>(&self, b: usize, i: usize) -> (T, T) {
+        (self.load(b, COS, i), self.load(b, SIN, i))
+    }
+
+    /// Driver `d`'s law values at steps k...
+    #[inline(always)]
+    fn law<T: Lanes>(&self, d: usize, k: usize) -> T {
+        let at = d * self.count + k;
+        T::load(&self.values[at..at + T::N])
+    }
+
+    /// The linear prediction of coordinate `j` of body `b` at steps k.. (each predicted
+    /// linearly), as [`Lane::predicted`] gives it.
+    #[inline(always)]
+    fn predicted_linearly<T: Lanes>(&self, b: usize, j: usize, k: usize) -> T {
+        let now: T = self.load(b, j, k + 1);
+        now + (now - self.load(b, j, k)) * T::load(&self.linear[k..k + T::N])
+    }
+
+    /// The prediction of coordinate `j` of body `b` at step k by `how`, as
+    /// [`Lane::predicted`] gives it.
+    #[inline(always)]
+    fn predicted(&self, b: usize, j: usize, k: usize, how: Extrapolation) -> f64 {
+        how.apply(
+            self.v[self.at(b, j, k + 1)],
+            || self.v[self.at(b, j, k)],
+            || {
+                let r = self.rates[b * self.rstride + k + 1];
+                (r.qd[j], r.qdd[j])
+            },
+        )
+    }
+
+    /// Scratch plane `p` at steps k...
+    #[inline(always)]
+    fn kept<T: Lanes>(&self, p: usize, k: usize) -> T {
+        let at = p * self.steps + k;
+        T::load(&self.scratch[at..at + T::N])
+    }
+
+    #[inline(always)]
+    fn keep<T: Lanes>(&mut self, p: usize, k: usize, v: T) {
+        let at = p * self.steps + k;
+        v.store(&mut self.scratch[at..at + T::N]);
+    }
+
+    #[inline(always)]
+    fn kept2<T: Lanes>(&self, p: usize, k: usize) -> V2<T> {
+        V2::new(self.kept(p, k), self.kept(p + 1, k))
+    }
+
+    #[inline(always)]
+    fn keep2<T: Lanes>(&mut self, p: usize, k: usize, v: V2<T>) {
+        self.keep(p, k, v.x);
+        self.keep(p + 1, k, v.y);
+    }
+
+    /// Writes the pose fields `fields` of body `b` at entries i...
+    #[inline(always)]
+    fn put<T: Lanes, const F: usize>(&mut self, b: usize, i: usize, fields: [(usize, T); F]) {
+        for (f, v) in fields {
+            self.store(b, f, i, v);
+        }
+    }
+}
+
+impl Lane<'_> {
+    /// The batch's view of the lane's buffers (see [`View`]).
+    #[inline(always)]
+    fn view(&mut self) -> View<'_> {
+        View {
+            v: &mut self.tracks.v[..],
+            stride: self.tracks.stride,
+            values: self.values,
+            count: self.count,
+            steps: self.steps,
+            linear: self.linear,
+            scratch: &mut self.scratch[..],
+            rates: self.rates,
+            rstride: self.rstride,
+            q: &mut self.q[..],
+            n: self.n,
+        }
+    }
+}
+
+/// A kind a sweep solves four steps at a time: its closed form's stages ([`forms`]) over
+/// [`Lanes`] of steps, from its constants (`Self`, copied out of its [`Position`]).
+trait Batch: Kernel + Copy {
+    /// Whether the kind chooses between two roots (a crank has one).
+    const ROOTS: bool;
+    /// The kind's constants in `p`.
+    fn of(p: &Position) -> Self;
+    /// Positions at steps k.. (T::N of them) on the branch `side`: the poses the step's
+    /// closed form puts, but for the angles continued by a turn, whose φ entries get the
+    /// turn later ([`Batch::turn`]); the lanes where the closed form finds a position.
+    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask;
+    /// The turns at steps k.., into the φ entries of the bodies whose angles they continue
+    /// (the first two of [`Batch::bodies`]; their last angles added by [`place_range`]).
+    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize);
+    /// The group's bodies: those whose angles are continued by turns, then the others.
+    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]);
+    /// Which of steps k.. would take the other root than `side` ([`choose`]'s rule), each
+    /// from its prediction `pred(body, coordinate)` of the positions placed before it.
+    fn flips<T: Lanes>(
+        &self,
+        w: &View<'_>,
+        k: usize,
+        side: f64,
+        slack: f64,
+        pred: impl Fn(usize, usize) -> T,
+    ) -> T::Mask;
+}
+
+/// The lanes where [`choose`] at squared distances `d0`, `d1` takes the other root than the
+/// branch `side` (+1: the first, −1: the second; never 0 here).
+#[inline(always)]
+fn flipped<T: Real>(d0: T, d1: T, side: f64) -> T::Mask {
+    let sixteen = T::splat(16.0);
+    let first = d0.le(d1 / sixteen);
+    if side > 0.0 { !first & d1.le(d0 / sixteen) } else { first }
+}
+
+/// Positions of steps `from..to` of a [`Batch`] kind on the branch `side`: placed four
+/// steps at a time, then the turns, then the angles and the motion's rows. Returns the
+/// first step it cannot place (`to`: none).
+fn place_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, side: f64, slack: f64) -> usize {
+    let mut w = l.view();
+    let mut end = to;
+    let mut k = from;
+    while k + F4::N <= to {
+        if let Some(i) = F4::first_false(kind.place::<F4>(&mut w, k, side, slack)) {
+            end = k + i;
+            break;
+        }
+        k += F4::N;
+    }
+    if end == to {
+        while k < to {
+            if !kind.place::<f64>(&mut w, k, side, slack) {
+                end = k;
+                break;
+            }
+            k += 1;
+        }
+    }
+    let mut k = from;
+    while k + F4::N <= end {
+        kind.turn::<F4>(&mut w, k);
+        k += F4::N;
+    }
+    for k in k..end {
+        kind.turn::<f64>(&mut w, k);
+    }
+    // Each turned body's angle: the last one plus its turn, summed in a register (through
+    // memory, each sum would wait on the store before it); every body's row of the motion.
+    let (turned, others) = kind.bodies();
+    let n = w.n;
+    let mut angle = turned.map(|b| b.map(|b| w.v[w.at(b, PHI, from + 1)]));
+    for k in from..end {
+        for (b, sum) in turned.iter().zip(&mut angle) {
+            if let (Some(b), Some(sum)) = (*b, sum.as_mut()) {
+                let at = w.at(b, PHI, k + 2);
+                *sum += w.v[at];
+                w.v[at] = *sum;
+                let row = k * n + 3 * b;
+                let (x, y) = (w.v[w.at(b, X, k + 2)], w.v[w.at(b, Y, k + 2)]);
+                w.q[row..row + 3].copy_from_slice(&[x, y, *sum]);
+            }
+        }
+        for b in others.into_iter().flatten() {
+            let row = k * n + 3 * b;
+            let (x, y, phi) = (w.v[w.at(b, X, k + 2)], w.v[w.at(b, Y, k + 2)], w.v[w.at(b, PHI, k + 2)]);
+            w.q[row..row + 3].copy_from_slice(&[x, y, phi]);
+        }
+    }
+    end
+}
+
+/// One group of a [`Batch`] kind over the sweep's steps `0..end`, as [`sweep_group`]
+/// solves it: its positions placed on the branch it is on, then each step's choice checked
+/// (and with `RATES`, its rates solved) in order; where a step takes the other root, the
+/// steps from it are placed again on that branch.
+#[allow(clippy::too_many_arguments)]
+fn sweep_batch<const RATES: bool, K: Batch>(
+    op: &mut Op,
+    mut l: Lane<'_>,
+    how: &[Extrapolation],
+    sides: &mut [f64],
+    pivots: &mut [f64],
+    end: usize,
+    slack: f64,
+) -> Option<usize> {
+    let p = op.position.clone();
+    let kind = K::of(&p);
+    let mut side = op.side;
+    let mut from = 0;
+    // No branch yet (the first step after the assembly): that step chooses by the step's
+    // own closed form.
+    if K::ROOTS && side == 0.0 && end > 0 {
+        l.how = how[0];
+        if K::position(&mut l, &p, &mut side, slack).is_err() || (RATES && !rates_at::<K>(&mut l, &p, pivots)) {
+            op.side = side;
+            return Some(0);
+        }
+        sides[0] = side;
+        from = 1;
+    }
+    let placed = place_range(&mut l, kind, from, end, side, slack);
+    let stop = (placed < end).then_some(placed);
+    if RATES {
+        for k in from..placed {
+            l.k = k;
+            l.how = how[k];
+            let flips = K::ROOTS && {
+                let w = l.view();
+                kind.flips::<f64>(&w, k, side, slack, |b, j| w.predicted(b, j, k, how[k]))
+            };
+            if flips {
+                side = -side;
+                place_range(&mut l, kind, k, placed, side, slack);
+            }
+            sides[k] = side;
+            if !rates_at::<K>(&mut l, &p, pivots) {
+                op.side = side;
+                return Some(k);
+            }
+        }
+    } else if K::ROOTS {
+        let mut k = from;
+        while k < placed {
+            // Four steps at once where each is predicted linearly, else one.
+            let four = k + F4::N <= placed && l.linear[k..k + F4::N].iter().all(|f| !f.is_nan());
+            let (n, flip) = if four {
+                let w = l.view();
+                let m = kind.flips::<F4>(&w, k, side, slack, |b, j| w.predicted_linearly(b, j, k));
+                (F4::N, F4::first_true(m))
+            } else {
+                let w = l.view();
+                (1, kind.flips::<f64>(&w, k, side, slack, |b, j| w.predicted(b, j, k, how[k])).then_some(0))
+            };
+            match flip {
+                None => {
+                    sides[k..k + n].fill(side);
+                    k += n;
+                }
+                Some(i) => {
+                    // The step takes the other root (its choice is decided whatever the
+                    // branch): it and the steps after it are placed again on it.
+                    sides[k..k + i].fill(side);
+                    side = -side;
+                    place_range(&mut l, kind, k + i, placed, side, slack);
+                    sides[k + i] = side;
+                    k += i + 1;
+                }
+            }
+        }
+    } else {
+        sides[from..placed].fill(side);
+    }
+    op.side = side;
+    stop
+}
+
+/// The rates of a [`Batch`] kind at the lane's step, their conditioning into `pivots`:
+/// whether they could be solved.
+#[inline(always)]
+fn rates_at<K: Kernel>(l: &mut Lane<'_>, p: &Position, pivots: &mut [f64]) -> bool {
+    match solvable(K::rates(l, p)) {
+        Some(rho) => {
+            pivots[l.k] = rho;
+            true
+        }
+        None => false,
+    }
+}
+
+/// The turn whose vector is (c, s) (see [`forms::turn_series`]): the series, `atan2` where
+/// it does not hold.
+#[inline(always)]
+fn turn_of<T: Lanes>((c, s): (T, T)) -> T {
+    let (t, holds) = forms::turn_series(c, s);
+    t.patch(holds, |i| libm::atan2(s.lane(i), c.lane(i)))
+}
+
+/// The line of a slide at entries i.. (turning with its known body).
+#[inline(always)]
+fn line_at<T: Lanes>(w: &View<'_>, s: &Slide, i: usize) -> forms::LineOf<T> {
+    let known = if s.u_is_slider { s.q1.body } else { s.point.body };
+    s.line_at(w.pose_of(known, i))
+}
+
+/// Body `b`'s predicted rotation at steps k.., from `pred`, the prediction of its angle (as
+/// the step's `predicted_rotation`).
+#[inline(always)]
+fn predicted_rotation_at<T: Lanes>(w: &View<'_>, b: usize, k: usize, pred: T) -> (T, T) {
+    let last_phi: T = w.load(b, PHI, k + 1);
+    forms::predicted_turn(w.rotation(b, k + 1), pred - last_phi)
+}
+
+impl Batch for DrivenAngle {
+    const ROOTS: bool = false;
+    fn of(p: &Position) -> DrivenAngle {
+        let Position::DrivenAngle(c) = p else { unreachable!("a crank") };
+        *c
+    }
+    #[inline(always)]
+    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, _: f64, _: f64) -> T::Mask {
+        let i = k + 2;
+        let reference = w.pose_of::<T>(self.reference, i).unwrap_or_else(PoseOf::ground);
+        let phi = reference.phi + T::splat(self.sign) * w.law(self.law, k);
+        // One argument reduction for both (the same bits as libm's sin and cos), a step at
+        // a time.
+        let (sn, cn) = phi.map2(libm::sincos);
+        let r = w.place::<T>(self.pin.known, i) - V2::splat(self.pin.local).rot((cn, sn));
+        w.put(self.u, i, [(X, r.x), (Y, r.y), (PHI, phi), (COS, cn), (SIN, sn)]);
+        T::mask(true)
+    }
+    #[inline(always)]
+    fn turn<T: Lanes>(&self, _: &mut View<'_>, _: usize) {}
+    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
+        ([None, None], [Some(self.u), None])
+    }
+    #[inline(always)]
+    fn flips<T: Lanes>(&self, _: &View<'_>, _: usize, _: f64, _: f64, _: impl Fn(usize, usize) -> T) -> T::Mask {
+        T::mask(false)
+    }
+}
+
+/// An RRR dyad's scratch planes: the directions from its pivots to the joint (its turns),
+/// its first pivot, the chord's foot, offset and h² (its choices).
+const RRR_V1: usize = 0;
+const RRR_V3: usize = 2;
+const RRR_P1: usize = 4;
+const RRR_M: usize = 6;
+const RRR_OFF: usize = 8;
+const RRR_H2: usize = 10;
+
+impl Batch for Rrr {
+    const ROOTS: bool = true;
+    fn of(p: &Position) -> Rrr {
+        let Position::Rrr(c) = p else { unreachable!("an RRR dyad") };
+        *c
+    }
+    #[inline(always)]
+    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask {
+        let i = k + 2;
+        let (p1, p3) = (w.place::<T>(self.k1.known, i), w.place::<T>(self.k3.known, i));
+        let ch = forms::rrr_chord(&self.form, p1, p3, slack);
+        let at = forms::rrr_poses(
+            &self.form,
+            &ch,
+            T::splat(side),
+            p1,
+            p3,
+            (self.arm1, self.arm3),
+            (self.k1.local, self.k3.local),
+        );
+        w.put(self.b1, i, [(X, at.r1.x), (Y, at.r1.y), (COS, at.c1.0), (SIN, at.c1.1)]);
+        w.put(self.b2, i, [(X, at.r2.x), (Y, at.r2.y), (COS, at.c2.0), (SIN, at.c2.1)]);
+        w.keep2(RRR_V1, k, at.v1);
+        w.keep2(RRR_V3, k, at.v3);
+        w.keep2(RRR_P1, k, p1);
+        w.keep2(RRR_M, k, ch.m);
+        w.keep2(RRR_OFF, k, ch.off);
+        w.keep(RRR_H2, k, ch.h2);
+        ch.ok
+    }
+    #[inline(always)]
+    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize) {
+        for (v, b, arm) in [(RRR_V1, self.b1, self.arm1), (RRR_V3, self.b2, self.arm3)] {
+            let t = turn_of(forms::arm_turn(w.rotation::<T>(b, k + 1), arm, w.kept2(v, k)));
+            w.store(b, PHI, k + 2, t);
+        }
+    }
+    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
+        ([Some(self.b1), Some(self.b2)], [None, None])
+    }
+    #[inline(always)]
+    fn flips<T: Lanes>(&self, w: &View<'_>, k: usize, side: f64, _: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
+        let ch =
+            forms::Chord { m: w.kept2(RRR_M, k), off: w.kept2(RRR_OFF, k), h2: w.kept(RRR_H2, k), ok: T::mask(true) };
+        let predicted = predicted_rotation_at(w, self.b1, k, pred(self.b1, PHI));
+        let (d0, d1) = forms::rrr_distances(&ch, w.kept2(RRR_P1, k), predicted, self.arm1);
+        flipped(d0, d1, side)
+    }
+}
+
+/// An RRP dyad's scratch plane: the direction from its pivot to the joint (its turns).
+const RRP_V1: usize = 0;
+
+impl Batch for Rrp {
+    const ROOTS: bool = true;
+    fn of(p: &Position) -> Rrp {
+        let Position::Rrp(c) = p else { unreachable!("an RRP dyad") };
+        *c
+    }
+    #[inline(always)]
+    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask {
+        let i = k + 2;
+        let p1 = w.place::<T>(self.k1.known, i);
+        let line = line_at::<T>(w, &self.s3, i);
+        let reach = forms::rrp_reach(p1, &line, self.a2, (self.d1, self.d1sq), slack);
+        let sv = if side > 0.0 { -reach.b + reach.root } else { -reach.b - reach.root };
+        let (c1, r1, v1, r2) = forms::rrp_poses(&reach, &line, sv, p1, (self.arm1, self.inv_d1sq, self.k1.local));
+        w.put(self.b1, i, [(X, r1.x), (Y, r1.y), (COS, c1.0), (SIN, c1.1)]);
+        w.put(self.b2, i, [(X, r2.x), (Y, r2.y), (PHI, line.phi), (COS, line.cs.0), (SIN, line.cs.1)]);
+        w.keep2(RRP_V1, k, v1);
+        reach.ok
+    }
+    #[inline(always)]
+    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize) {
+        let t = turn_of(forms::arm_turn(w.rotation::<T>(self.b1, k + 1), self.arm1, w.kept2(RRP_V1, k)));
+        w.store(self.b1, PHI, k + 2, t);
+    }
+    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
+        ([Some(self.b1), None], [Some(self.b2), None])
+    }
+    #[inline(always)]
+    fn flips<T: Lanes>(
+        &self,
+        w: &View<'_>,
+        k: usize,
+        side: f64,
+        slack: f64,
+        pred: impl Fn(usize, usize) -> T,
+    ) -> T::Mask {
+        let i = k + 2;
+        let p1 = w.place::<T>(self.k1.known, i);
+        let line = line_at::<T>(w, &self.s3, i);
+        let reach = forms::rrp_reach(p1, &line, self.a2, (self.d1, self.d1sq), slack);
+        let (_, (e0, e1)) = forms::rrp_distances(&reach, &line, V2::new(pred(self.b2, X), pred(self.b2, Y)));
+        flipped(e0, e1, side)
+    }
+}
+
+impl Batch for Rpr {
+    const ROOTS: bool = true;
+    fn of(p: &Position) -> Rpr {
+        let Position::Rpr(c) = p else { unreachable!("an RPR dyad") };
+        *c
+    }
+    #[inline(always)]
+    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask {
+        let i = k + 2;
+        let (p1, p3) = (w.place::<T>(self.k1.known, i), w.place::<T>(self.k3.known, i));
+        let (ks, kg) = if self.form.b1_is_slider { (p1, p3) } else { (p3, p1) };
+        let normal = forms::rpr_normal(&self.form, ks, kg, slack);
+        let (c1, c2) = forms::rpr_rotations(&self.form, &normal, T::splat(side));
+        let (r1, r2) = (p1 - V2::splat(self.k1.local).rot(c1), p3 - V2::splat(self.k3.local).rot(c2));
+        w.put(self.b1, i, [(X, r1.x), (Y, r1.y), (COS, c1.0), (SIN, c1.1)]);
+        w.put(self.b2, i, [(X, r2.x), (Y, r2.y), (COS, c2.0), (SIN, c2.1)]);
+        normal.ok
+    }
+    #[inline(always)]
+    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize) {
+        // Slider and guide turn together: one turn, b1's, continues both angles.
+        let t = turn_of(forms::rotation_turn(w.rotation::<T>(self.b1, k + 1), w.rotation(self.b1, k + 2)));
+        w.store(self.b1, PHI, k + 2, t);
+        w.store(self.b2, PHI, k + 2, t);
+    }
+    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
+        ([Some(self.b1), Some(self.b2)], [None, None])
+    }
+    #[inline(always)]
+    fn flips<T: Lanes>(
+        &self,
+        w: &View<'_>,
+        k: usize,
+        side: f64,
+        slack: f64,
+        pred: impl Fn(usize, usize) -> T,
+    ) -> T::Mask {
+        let i = k + 2;
+        let (p1, p3) = (w.place::<T>(self.k1.known, i), w.place::<T>(self.k3.known, i));
+        let (ks, kg) = if self.form.b1_is_slider { (p1, p3) } else { (p3, p1) };
+        let normal = forms::rpr_normal(&self.form, ks, kg, slack);
+        let guide = if self.form.b1_is_slider { self.b2 } else { self.b1 };
+        let (d0, d1) = forms::rpr_distances(&self.form, &normal, predicted_rotation_at(w, guide, k, pred(guide, PHI)));
+        flipped(d0, d1, side)
+    }
+}
+
+/// One group swept: a [`Batch`] kind four steps at a time ([`sweep_batch`]), another kind a
+/// step at a time ([`sweep_group`]).
 fn sweep_kind<const RATES: bool>(
     op: &mut Op,
     lane: Lane<'_>,
@@ -204,13 +832,13 @@ fn sweep_kind<const RATES: bool>(
     slack: f64,
 ) -> Option<usize> {
     match op.position {
-        Position::DrivenAngle { .. } => sweep_group::<RATES, DrivenAngleK>(op, lane, how, sides, pivots, end, slack),
+        Position::DrivenAngle(_) => sweep_batch::<RATES, DrivenAngle>(op, lane, how, sides, pivots, end, slack),
         Position::DrivenDistance { .. } => {
             sweep_group::<RATES, DrivenDistanceK>(op, lane, how, sides, pivots, end, slack)
         }
-        Position::Rrr { .. } => sweep_group::<RATES, RrrK>(op, lane, how, sides, pivots, end, slack),
-        Position::Rrp { .. } => sweep_group::<RATES, RrpK>(op, lane, how, sides, pivots, end, slack),
-        Position::Rpr { .. } => sweep_group::<RATES, RprK>(op, lane, how, sides, pivots, end, slack),
+        Position::Rrr(_) => sweep_batch::<RATES, Rrr>(op, lane, how, sides, pivots, end, slack),
+        Position::Rrp(_) => sweep_batch::<RATES, Rrp>(op, lane, how, sides, pivots, end, slack),
+        Position::Rpr(_) => sweep_batch::<RATES, Rpr>(op, lane, how, sides, pivots, end, slack),
         Position::Prp { .. } => sweep_group::<RATES, PrpK>(op, lane, how, sides, pivots, end, slack),
         Position::Rpp { .. } => sweep_group::<RATES, RppK>(op, lane, how, sides, pivots, end, slack),
         // Not swept (a scene with these is stepped).
@@ -227,31 +855,56 @@ impl AssurSolver {
         let Some(t_last) = self.inner.t else { return 0 };
         let (nb, nd) = (self.inner.poses.len(), self.inner.laws.len());
         let sw = &mut self.sweep;
-        // The laws' values (and rates) and each step's prediction, as the steps would set
-        // them.
-        sw.laws.clear();
-        sw.how.clear();
-        let (mut rates_valid, mut dt_prev, mut t0) = (self.rates_valid, self.dt_prev, t_last);
-        let mut end = times.len();
-        'steps: for (k, &t) in times.iter().enumerate() {
-            for d in &self.inner.mech.drivers {
-                let jet = if rates {
-                    d.law.eval(t).finite()
-                } else {
-                    match d.law.value(t) {
-                        Some(v) if v.is_finite() => Some((v, 0.0, 0.0)),
-                        _ => whole_law(d, t).ok(),
-                    }
-                };
-                let Some(jet) = jet else {
-                    sw.laws.truncate(k * nd);
-                    end = k;
-                    break 'steps;
-                };
-                sw.laws.push(jet);
+        // The laws at every step (each driver's values, and with the rates the whole jets),
+        // as the steps would evaluate them: the steps before the first where a law is not
+        // finite.
+        let count = times.len();
+        let drivers = &self.inner.mech.drivers;
+        let mut end = count;
+        sw.values.clear();
+        sw.jets.clear();
+        if rates {
+            'steps: for (k, &t) in times.iter().enumerate() {
+                for d in drivers {
+                    let Some(jet) = d.law.eval(t).finite() else {
+                        sw.jets.truncate(k * nd);
+                        end = k;
+                        break 'steps;
+                    };
+                    sw.jets.push(jet);
+                }
             }
+            sw.values.resize(nd * count, 0.0);
+            for (k, jets) in sw.jets.chunks_exact(nd.max(1)).enumerate().take(end) {
+                for (d, jet) in jets.iter().enumerate() {
+                    sw.values[d * count + k] = jet.0;
+                }
+            }
+        } else {
+            for (di, d) in drivers.iter().enumerate() {
+                for &t in &times[..end] {
+                    let value = match d.law.value(t) {
+                        Some(v) if v.is_finite() => Some(v),
+                        _ => whole_law(d, t).ok().map(|jet| jet.0),
+                    };
+                    let Some(value) = value else {
+                        end = sw.values.len() - di * count;
+                        break;
+                    };
+                    sw.values.push(value);
+                }
+                sw.values.resize((di + 1) * count, f64::NAN);
+            }
+        }
+        // Each step's prediction.
+        sw.how.clear();
+        sw.linear.clear();
+        let (mut rates_valid, mut dt_prev, mut t0) = (self.rates_valid, self.dt_prev, t_last);
+        for &t in &times[..end] {
             let dt = t - t0;
-            sw.how.push(Extrapolation::of(rates_valid, dt_prev, dt));
+            let how = Extrapolation::of(rates_valid, dt_prev, dt);
+            sw.how.push(how);
+            sw.linear.push(if let Extrapolation::Linear(f) = how { f } else { f64::NAN });
             (rates_valid, dt_prev, t0) = (rates, Some(dt), t);
         }
         if end == 0 {
@@ -262,21 +915,22 @@ impl AssurSolver {
         // its bodies' last), then the steps; the rates likewise (the last step's, what
         // Taylor's prediction reads; with `rates`, then the steps').
         let steps = end;
-        let stride = steps + 2;
-        let rstride = if rates { stride } else { 2 };
+        let rstride = if rates { steps + 2 } else { 2 };
         // Not cleared: a group reads only what this sweep has written (the first two
         // entries of each body, the steps the groups before it solved, its own last
         // steps), so the buffers only grow.
-        if sw.poses.len() < nb * stride {
-            sw.poses.resize(nb * stride, GROUND_POSE);
-        }
+        sw.tracks.reset(nb, steps);
         if sw.rates.len() < nb * rstride {
             sw.rates.resize(nb * rstride, Rates::default());
         }
+        if sw.scratch.len() < SCRATCH * steps {
+            sw.scratch.resize(SCRATCH * steps, 0.0);
+        }
+
         for (b, &p) in self.inner.poses.iter().enumerate() {
             let q = &self.q_prev[3 * b..3 * b + 3];
-            sw.poses[b * stride] = Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE };
-            sw.poses[b * stride + 1] = p;
+            sw.tracks.set(b, 0, Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE });
+            sw.tracks.set(b, 1, p);
             sw.rates[b * rstride + 1] = Rates { qd: coords(&self.inner.qd, b), qdd: coords(&self.inner.qdd, b) };
         }
         let groups = self.ops.len();
@@ -300,18 +954,22 @@ impl AssurSolver {
         for (gi, op) in self.ops.iter_mut().enumerate() {
             branches.push(op.side);
             let lane = Lane {
-                poses: &mut sw.poses,
-                stride,
+                tracks: &mut sw.tracks,
                 k: 0,
-                laws: &sw.laws,
+                jets: &sw.jets,
                 nd,
                 how: Extrapolation::Hold,
+                linear: &sw.linear,
+                values: &sw.values,
+                count,
+                steps,
                 rates: &mut sw.rates,
                 rstride,
                 q: &mut out.q[first..],
                 qd: if rates { &mut out.qd[first..] } else { &mut [] },
                 qdd: if rates { &mut out.qdd[first..] } else { &mut [] },
                 n,
+                scratch: &mut sw.scratch[..SCRATCH * steps],
             };
             let (how, sides) = (&sw.how[..], &mut sw.sides[gi * steps..(gi + 1) * steps]);
             let stop = if rates {
@@ -349,7 +1007,7 @@ impl AssurSolver {
         }
         self.inner.q.copy_from_slice(&out.q[out.q.len() - n..]);
         for (b, p) in self.inner.poses.iter_mut().enumerate() {
-            *p = sw.poses[b * stride + end + 1];
+            *p = sw.tracks.pose(b, end + 1);
         }
         let t = times[end - 1];
         if rates {
