@@ -210,6 +210,8 @@ pub(super) trait Lanes: Real {
     fn load(s: &[f64]) -> Self;
     /// Writes the values into `s[0..N]`.
     fn store(self, s: &mut [f64]);
+    /// Lane i from `f(i)`.
+    fn gather(f: impl FnMut(usize) -> f64) -> Self;
     /// Lane by lane, the pair `f` gives for each value.
     fn map2(self, f: impl FnMut(f64) -> (f64, f64)) -> (Self, Self);
     /// The first lane where `m` is false (`None`: true in every lane).
@@ -231,6 +233,10 @@ impl Lanes for f64 {
     #[inline(always)]
     fn store(self, s: &mut [f64]) {
         s[0] = self;
+    }
+    #[inline(always)]
+    fn gather(mut f: impl FnMut(usize) -> f64) -> f64 {
+        f(0)
     }
     #[inline(always)]
     fn map2(self, mut f: impl FnMut(f64) -> (f64, f64)) -> (f64, f64) {
@@ -263,6 +269,10 @@ impl Lanes for F4 {
     #[inline(always)]
     fn store(self, s: &mut [f64]) {
         F4::store(self, s)
+    }
+    #[inline(always)]
+    fn gather(f: impl FnMut(usize) -> f64) -> F4 {
+        F4::new(std::array::from_fn(f))
     }
     #[inline(always)]
     fn map2(self, mut f: impl FnMut(f64) -> (f64, f64)) -> (F4, F4) {

@@ -81,6 +81,8 @@ struct Lane<'a> {
     how: Extrapolation,
     /// Each step's ratio of linear extrapolation, NaN where it is not linear.
     linear: &'a [f64],
+    /// Each step's time step for Taylor's prediction, NaN where it is not Taylor's.
+    taylor: &'a [f64],
     /// Driver d's law value at step k at `d·count + k`.
     values: &'a [f64],
     count: usize,
@@ -178,6 +180,7 @@ pub(super) struct Sweep {
     values: Vec<f64>,
     how: Vec<Extrapolation>,
     linear: Vec<f64>,
+    taylor: Vec<f64>,
     sides: Vec<f64>,
     pivots: Vec<f64>,
     scratch: Vec<f64>,
@@ -282,6 +285,8 @@ struct View<'a> {
     /// The scratch planes' length.
     steps: usize,
     linear: &'a [f64],
+    /// Each step's time step for Taylor's prediction, NaN where it is not Taylor's.
+    taylor: &'a [f64],
     scratch: &'a mut [f64],
     rates: &'a [Rates],
     rstride: usize,
@@ -356,6 +361,17 @@ impl View<'_> {
         now + (now - self.load(b, j, k)) * T::load(&self.linear[k..k + T::N])
     }
 
+    /// The prediction of coordinate `j` of body `b` at steps k.. (each predicted by Taylor,
+    /// from the rates of the step before), as [`Lane::predicted`] gives it.
+    #[inline(always)]
+    fn predicted_by_rates<T: Lanes>(&self, b: usize, j: usize, k: usize) -> T {
+        let now: T = self.load(b, j, k + 1);
+        let at = b * self.rstride + k + 1;
+        let (v, a) = (T::gather(|i| self.rates[at + i].qd[j]), T::gather(|i| self.rates[at + i].qdd[j]));
+        let dt = T::load(&self.taylor[k..k + T::N]);
+        now + v * dt + T::splat(0.5) * a * dt * dt
+    }
+
     /// The prediction of coordinate `j` of body `b` at step k by `how`, as
     /// [`Lane::predicted`] gives it.
     #[inline(always)]
@@ -414,6 +430,7 @@ impl Lane<'_> {
             count: self.count,
             steps: self.steps,
             linear: self.linear,
+            taylor: self.taylor,
             scratch: &mut self.scratch[..],
             rates: self.rates,
             rstride: self.rstride,
@@ -547,58 +564,78 @@ fn sweep_batch<const RATES: bool, K: Batch>(
     }
     let placed = place_range(&mut l, kind, from, end, side, slack);
     let stop = (placed < end).then_some(placed);
-    if RATES {
-        for k in from..placed {
-            l.k = k;
-            l.how = how[k];
-            let flips = K::ROOTS && {
-                let w = l.view();
-                kind.flips::<f64>(&w, k, side, slack, |b, j| w.predicted(b, j, k, how[k]))
-            };
-            if flips {
-                side = -side;
-                place_range(&mut l, kind, k, placed, side, slack);
+    // The steps whose choice is checked (`from..checked`) and whose rates are solved
+    // (`from..rated`): a step's check reads the rates of the step before it (Taylor's
+    // prediction), so the rates go first, up to the first step where they cannot be solved.
+    let (mut checked, mut rated) = (from, from);
+    loop {
+        let mut failed = None;
+        if RATES {
+            while rated < placed {
+                l.k = rated;
+                l.how = how[rated];
+                if !rates_at::<K>(&mut l, &p, pivots) {
+                    failed = Some(rated);
+                    break;
+                }
+                rated += 1;
             }
-            sides[k] = side;
-            if !rates_at::<K>(&mut l, &p, pivots) {
+        }
+        let limit = failed.map_or(placed, |f| f + 1);
+        let flip = if K::ROOTS { first_flip(&l.view(), kind, checked, limit, side, how, slack) } else { None };
+        let Some(at) = flip else {
+            sides[checked..limit].fill(side);
+            if failed.is_some() {
                 op.side = side;
-                return Some(k);
+                return failed;
             }
-        }
-    } else if K::ROOTS {
-        let mut k = from;
-        while k < placed {
-            // Four steps at once where each is predicted linearly, else one.
-            let four = k + F4::N <= placed && l.linear[k..k + F4::N].iter().all(|f| !f.is_nan());
-            let (n, flip) = if four {
-                let w = l.view();
-                let m = kind.flips::<F4>(&w, k, side, slack, |b, j| w.predicted_linearly(b, j, k));
-                (F4::N, F4::first_true(m))
-            } else {
-                let w = l.view();
-                (1, kind.flips::<f64>(&w, k, side, slack, |b, j| w.predicted(b, j, k, how[k])).then_some(0))
-            };
-            match flip {
-                None => {
-                    sides[k..k + n].fill(side);
-                    k += n;
-                }
-                Some(i) => {
-                    // The step takes the other root (its choice is decided whatever the
-                    // branch): it and the steps after it are placed again on it.
-                    sides[k..k + i].fill(side);
-                    side = -side;
-                    place_range(&mut l, kind, k + i, placed, side, slack);
-                    sides[k + i] = side;
-                    k += i + 1;
-                }
-            }
-        }
-    } else {
-        sides[from..placed].fill(side);
+            break;
+        };
+        // The step takes the other root (its choice is decided whatever the branch): it
+        // and the steps after it are placed again on that branch.
+        sides[checked..at].fill(side);
+        side = -side;
+        place_range(&mut l, kind, at, placed, side, slack);
+        sides[at] = side;
+        (checked, rated) = (at + 1, at);
     }
     op.side = side;
     stop
+}
+
+/// The first of steps `from..to` (placed, with the rates their predictions read) whose
+/// choice takes the other root than `side`: four steps at once where each is predicted
+/// linearly, or each by Taylor, else one.
+fn first_flip<K: Batch>(
+    w: &View<'_>,
+    kind: K,
+    from: usize,
+    to: usize,
+    side: f64,
+    how: &[Extrapolation],
+    slack: f64,
+) -> Option<usize> {
+    let mut k = from;
+    while k < to {
+        let four = k + F4::N <= to;
+        let flip = if four && w.linear[k..k + F4::N].iter().all(|f| !f.is_nan()) {
+            F4::first_true(kind.flips::<F4>(w, k, side, slack, |b, j| w.predicted_linearly(b, j, k)))
+        } else if four && w.taylor[k..k + F4::N].iter().all(|f| !f.is_nan()) {
+            F4::first_true(kind.flips::<F4>(w, k, side, slack, |b, j| w.predicted_by_rates(b, j, k)))
+        } else {
+            let flip = kind.flips::<f64>(w, k, side, slack, |b, j| w.predicted(b, j, k, how[k]));
+            k += 1;
+            if flip {
+                return Some(k - 1);
+            }
+            continue;
+        };
+        if let Some(i) = flip {
+            return Some(k + i);
+        }
+        k += F4::N;
+    }
+    None
 }
 
 /// The rates of a [`Batch`] kind at the lane's step, their conditioning into `pivots`:
@@ -896,15 +933,23 @@ impl AssurSolver {
                 sw.values.resize((di + 1) * count, f64::NAN);
             }
         }
-        // Each step's prediction.
+        // Each step's prediction (and its ratio or time step, for the batches).
+        for v in [&mut sw.linear, &mut sw.taylor] {
+            v.clear();
+            v.resize(end, f64::NAN);
+        }
         sw.how.clear();
-        sw.linear.clear();
+        sw.how.resize(end, Extrapolation::Hold);
         let (mut rates_valid, mut dt_prev, mut t0) = (self.rates_valid, self.dt_prev, t_last);
-        for &t in &times[..end] {
+        let steps = sw.how.iter_mut().zip(&mut sw.linear).zip(&mut sw.taylor);
+        for (((how, linear), taylor), &t) in steps.zip(&times[..end]) {
             let dt = t - t0;
-            let how = Extrapolation::of(rates_valid, dt_prev, dt);
-            sw.how.push(how);
-            sw.linear.push(if let Extrapolation::Linear(f) = how { f } else { f64::NAN });
+            *how = Extrapolation::of(rates_valid, dt_prev, dt);
+            match *how {
+                Extrapolation::Linear(f) => *linear = f,
+                Extrapolation::Taylor(dt) => *taylor = dt,
+                Extrapolation::Hold => {}
+            }
             (rates_valid, dt_prev, t0) = (rates, Some(dt), t);
         }
         if end == 0 {
@@ -960,6 +1005,7 @@ impl AssurSolver {
                 nd,
                 how: Extrapolation::Hold,
                 linear: &sw.linear,
+                taylor: &sw.taylor,
                 values: &sw.values,
                 count,
                 steps,
