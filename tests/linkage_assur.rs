@@ -681,21 +681,40 @@ fn a_sweep_stops_where_stepping_fails_and_resumes_as_stepping_does() {
     mech.drivers[0].law = Expr::parse("20*t + 0*log(0.05 - t)").unwrap();
     assert_sweep_is_stepping("law not finite", &mech, &times);
     // Sweeps after a resume (its first step predicted from the state's rates) continue
-    // as steps from it do.
-    let (mech, times) = fourbar(1.0);
-    let start = AssurSolver::new(mech.clone()).unwrap().run(&times[..1]).unwrap().remove(0);
-    let mut a = AssurSolver::new(mech.clone()).unwrap();
-    a.resume(&start);
-    let mut b = a.clone();
-    let mut swept = Vec::new();
-    a.positions_into(&times[1..], &mut swept).unwrap();
-    let mut stepped = Vec::new();
-    for &t in &times[1..] {
-        b.step_positions(t).unwrap();
-        stepped.extend_from_slice(b.q());
+    // as steps from it do: by a solver new but for the state, and by one that has swept a
+    // whole motion before (every group's branch set: the first step is swept too).
+    for shaper in [false, true] {
+        let (mech, times) = if shaper { (linkage("shaper").mechanism, linkage("shaper").times) } else { fourbar(1.0) };
+        let start = AssurSolver::new(mech.clone()).unwrap().run(&times[..1]).unwrap().remove(0);
+        let mut used = AssurSolver::new(mech.clone()).unwrap();
+        used.run(&times).unwrap();
+        for (what, mut a) in [("new", AssurSolver::new(mech.clone()).unwrap()), ("used", used)] {
+            a.resume(&start);
+            let mut b = a.clone();
+            let mut swept = Vec::new();
+            a.positions_into(&times[1..], &mut swept).unwrap();
+            let mut stepped = Vec::new();
+            for &t in &times[1..] {
+                b.step_positions(t).unwrap();
+                stepped.extend_from_slice(b.q());
+            }
+            assert!(swept.iter().zip(&stepped).all(|(x, y)| x.to_bits() == y.to_bits()), "{what}, shaper {shaper}");
+            assert_eq!(swept.len(), stepped.len());
+            // With the rates too.
+            a.resume(&start);
+            b.resume(&start);
+            let mut m = Motion::default();
+            a.motion_into(&times[1..], &mut m).unwrap();
+            let mut q = Vec::new();
+            for &t in &times[1..] {
+                b.step(t).unwrap();
+                q.extend_from_slice(b.q());
+            }
+            assert!(m.q.iter().zip(&q).all(|(x, y)| x.to_bits() == y.to_bits()), "{what}, shaper {shaper}, rates");
+            assert_eq!(m.q.len(), q.len());
+        }
     }
-    assert!(swept.iter().zip(&stepped).all(|(x, y)| x.to_bits() == y.to_bits()));
-    assert_eq!(swept.len(), stepped.len());
+    let (mech, times) = fourbar(1.0);
     // And a sweep in two parts is one sweep.
     let mut halves = Vec::new();
     let mut c = AssurSolver::new(mech.clone()).unwrap();

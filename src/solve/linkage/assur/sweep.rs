@@ -25,44 +25,51 @@ const COS: usize = 3;
 const SIN: usize = 4;
 const FIELDS: usize = 5;
 
-/// Every body's poses over a sweep's steps, field by field (x, y, φ, cos φ, sin φ): body
-/// b's field f at entry i at `(5·b + f)·stride + i`, step k at entry k + 2 (entries 0 and 1
-/// hold the step before the last and the last).
+/// Every body's poses over a sweep's steps, body by body and field by field (x, y, φ,
+/// cos φ, sin φ): body b's field f at entry i at `bodies[b][f·stride + i]`, step k at entry
+/// k + 2 (entries 0 and 1 hold the step before the last and the last). Each body its own
+/// buffer, so that a batch writes its group's bodies while it reads the bodies before them.
 #[derive(Debug, Clone, Default)]
 struct Tracks {
-    v: Vec<f64>,
+    bodies: Vec<Vec<f64>>,
     stride: usize,
 }
 
 impl Tracks {
     /// Room for `bodies` over `steps` (not cleared: a group reads only what the sweep has
     /// written — the first two entries of each body, the steps the groups before it solved,
-    /// its own last steps — so the buffer only grows).
+    /// its own last steps — so the buffers only grow).
     fn reset(&mut self, bodies: usize, steps: usize) {
         self.stride = steps + 2;
-        let len = FIELDS * bodies * self.stride;
-        if self.v.len() < len {
-            self.v.resize(len, 0.0);
+        if self.bodies.len() < bodies {
+            self.bodies.resize_with(bodies, Vec::new);
+        }
+        for v in &mut self.bodies {
+            if v.len() < FIELDS * self.stride {
+                v.resize(FIELDS * self.stride, 0.0);
+            }
         }
     }
 
+    /// Field `f` of body `b` at entry `i`.
     #[inline(always)]
-    fn at(&self, b: usize, f: usize, i: usize) -> usize {
-        (FIELDS * b + f) * self.stride + i
+    fn get(&self, b: usize, f: usize, i: usize) -> f64 {
+        self.bodies[b][f * self.stride + i]
     }
 
     /// Body `b`'s pose at entry `i`.
     #[inline(always)]
     fn pose(&self, b: usize, i: usize) -> Pose {
-        let f = |f| self.v[self.at(b, f, i)];
+        let f = |f| self.get(b, f, i);
         Pose { r: Vector::new(f(X), f(Y)), phi: f(PHI), c: f(COS), s: f(SIN) }
     }
 
     #[inline(always)]
     fn set(&mut self, b: usize, i: usize, p: Pose) {
-        for (f, v) in [(X, p.r.x), (Y, p.r.y), (PHI, p.phi), (COS, p.c), (SIN, p.s)] {
-            let at = self.at(b, f, i);
-            self.v[at] = v;
+        let stride = self.stride;
+        let v = &mut self.bodies[b];
+        for (f, x) in [(X, p.r.x), (Y, p.r.y), (PHI, p.phi), (COS, p.c), (SIN, p.s)] {
+            v[f * stride + i] = x;
         }
     }
 }
@@ -113,10 +120,9 @@ impl Lane<'_> {
     #[inline(always)]
     fn predicted(&self, b: usize, j: usize) -> f64 {
         let (tr, k) = (&*self.tracks, self.k);
-        let now = tr.v[tr.at(b, j, k + 1)];
         self.how.apply(
-            now,
-            || tr.v[tr.at(b, j, k)],
+            tr.get(b, j, k + 1),
+            || tr.get(b, j, k),
             || {
                 let r = self.rates[b * self.rstride + k + 1];
                 (r.qd[j], r.qdd[j])
@@ -272,200 +278,216 @@ kernels! {
     RppK => rpp, rpp_rates;
 }
 
-/// A batch's view of a sweep's buffers, taken once for a range of steps (the slices'
-/// bounds then stay in registers across its loops): the tracks' values (see [`Tracks`]),
-/// every driver's law values step by step, each step's linear ratio, and scratch planes,
-/// each a value per step.
-struct View<'a> {
-    v: &'a mut [f64],
-    stride: usize,
-    /// Driver d's law value at step k at `d·count + k`.
-    values: &'a [f64],
-    count: usize,
-    /// The scratch planes' length.
-    steps: usize,
+/// A body's fields over a batch's range of steps `from..to`: entries `from..to + 2` of each
+/// (index c + 2 is step from + c, c + 1 and c the two steps before it).
+type Planes<'a> = [&'a [f64]; FIELDS];
+
+/// What a [`Batch`] kind reads and writes over a range of steps, each slice cut to the range
+/// (so that the loops' indices are within every bound by construction): the known bodies it
+/// reads and its own bodies, by the roles its [`Roles`] give them, its law's values, each
+/// step's linear ratio and Taylor's time step, its own bodies' last rates (Taylor's
+/// prediction), and the scratch planes it keeps from its positions for its turns and
+/// choices.
+struct Io<'a> {
+    /// The known bodies (`None`: the ground).
+    known: [Option<Planes<'a>>; 2],
+    /// The group's bodies (an absent one's slices empty).
+    own: [[&'a mut [f64]; FIELDS]; 2],
+    law: &'a [f64],
     linear: &'a [f64],
-    /// Each step's time step for Taylor's prediction, NaN where it is not Taylor's.
     taylor: &'a [f64],
-    scratch: &'a mut [f64],
-    rates: &'a [Rates],
-    rstride: usize,
-    /// The motion's rows (see [`Lane`]), `n` values a step.
-    q: &'a mut [f64],
-    n: usize,
+    /// The own bodies' rates of the step before each step (empty without rates).
+    rates: [&'a [Rates]; 2],
+    scratch: [&'a mut [f64]; SCRATCH],
 }
 
 /// Scratch planes a batch keeps from its positions for its turns and its choices.
 const SCRATCH: usize = 11;
 
-impl View<'_> {
+/// The bodies a [`Batch`] kind reads and writes: the known bodies of its two roles (the
+/// ground, or a body solved before its group), its own bodies (the second absent for a
+/// crank), which of them keep a continued angle by a turn, and its law.
+struct Roles {
+    known: [Attach; 2],
+    own: [Option<usize>; 2],
+    turned: [bool; 2],
+    law: Option<usize>,
+}
+
+impl Io<'_> {
+    /// The pose of known role `r` at index `i` (`None`: the ground).
     #[inline(always)]
-    fn at(&self, b: usize, f: usize, i: usize) -> usize {
-        (FIELDS * b + f) * self.stride + i
+    fn known_pose<T: Lanes>(&self, r: usize, i: usize) -> Option<PoseOf<T>> {
+        let p = self.known[r]?;
+        let f = |f: usize| T::load(&p[f][i..i + T::N]);
+        Some(PoseOf { r: V2::new(f(X), f(Y)), phi: f(PHI), c: f(COS), s: f(SIN) })
     }
 
-    /// Field `f` of body `b` at entries i.. (T::N of them).
+    /// The global position of the point `local` of known role `r` at step c.
     #[inline(always)]
-    fn load<T: Lanes>(&self, b: usize, f: usize, i: usize) -> T {
-        let at = self.at(b, f, i);
-        T::load(&self.v[at..at + T::N])
-    }
-
-    #[inline(always)]
-    fn store<T: Lanes>(&mut self, b: usize, f: usize, i: usize, v: T) {
-        let at = self.at(b, f, i);
-        v.store(&mut self.v[at..at + T::N]);
-    }
-
-    /// The pose of `a` at entries i.. (`None`: the ground).
-    #[inline(always)]
-    fn pose_of<T: Lanes>(&self, a: Attach, i: usize) -> Option<PoseOf<T>> {
-        let Attach::Body(b) = a else { return None };
-        let r = V2::new(self.load(b, X, i), self.load(b, Y, i));
-        Some(PoseOf { r, phi: self.load(b, PHI, i), c: self.load(b, COS, i), s: self.load(b, SIN, i) })
-    }
-
-    /// The global position of anchor `a` at entries i...
-    #[inline(always)]
-    fn place<T: Lanes>(&self, a: Anchor, i: usize) -> V2<T> {
-        match a.body {
-            Attach::Ground => forms::placed(None, a.local),
-            Attach::Body(b) => {
-                let r = V2::new(self.load(b, X, i), self.load(b, Y, i));
-                forms::placed(
-                    Some(PoseOf { r, phi: T::splat(0.0), c: self.load(b, COS, i), s: self.load(b, SIN, i) }),
-                    a.local,
-                )
+    fn place<T: Lanes>(&self, r: usize, local: Vector, c: usize) -> V2<T> {
+        match self.known[r] {
+            None => forms::placed(None, local),
+            Some(p) => {
+                let f = |f: usize| T::load(&p[f][c + 2..c + 2 + T::N]);
+                let pose = PoseOf { r: V2::new(f(X), f(Y)), phi: T::splat(0.0), c: f(COS), s: f(SIN) };
+                forms::placed(Some(pose), local)
             }
         }
     }
 
-    /// The rotation of body `b` at entries i...
+    /// Field `f` of own role `r` at index `i`.
     #[inline(always)]
-    fn rotation<T: Lanes>(&self, b: usize, i: usize) -> (T, T) {
-        (self.load(b, COS, i), self.load(b, SIN, i))
+    fn own<T: Lanes>(&self, r: usize, f: usize, i: usize) -> T {
+        T::load(&self.own[r][f][i..i + T::N])
     }
 
-    /// Driver `d`'s law values at steps k...
+    /// Writes fields of own role `r` at step c.
     #[inline(always)]
-    fn law<T: Lanes>(&self, d: usize, k: usize) -> T {
-        let at = d * self.count + k;
-        T::load(&self.values[at..at + T::N])
+    fn put<T: Lanes, const F: usize>(&mut self, r: usize, c: usize, fields: [(usize, T); F]) {
+        for (f, v) in fields {
+            v.store(&mut self.own[r][f][c + 2..c + 2 + T::N]);
+        }
     }
 
-    /// The linear prediction of coordinate `j` of body `b` at steps k.. (each predicted
-    /// linearly), as [`Lane::predicted`] gives it.
+    /// The rotation of own role `r` at index `i`.
     #[inline(always)]
-    fn predicted_linearly<T: Lanes>(&self, b: usize, j: usize, k: usize) -> T {
-        let now: T = self.load(b, j, k + 1);
-        now + (now - self.load(b, j, k)) * T::load(&self.linear[k..k + T::N])
+    fn rotation<T: Lanes>(&self, r: usize, i: usize) -> (T, T) {
+        (self.own(r, COS, i), self.own(r, SIN, i))
     }
 
-    /// The prediction of coordinate `j` of body `b` at steps k.. (each predicted by Taylor,
-    /// from the rates of the step before), as [`Lane::predicted`] gives it.
+    /// Scratch plane `p` at step c.
     #[inline(always)]
-    fn predicted_by_rates<T: Lanes>(&self, b: usize, j: usize, k: usize) -> T {
-        let now: T = self.load(b, j, k + 1);
-        let at = b * self.rstride + k + 1;
-        let (v, a) = (T::gather(|i| self.rates[at + i].qd[j]), T::gather(|i| self.rates[at + i].qdd[j]));
-        let dt = T::load(&self.taylor[k..k + T::N]);
+    fn kept<T: Lanes>(&self, p: usize, c: usize) -> T {
+        T::load(&self.scratch[p][c..c + T::N])
+    }
+
+    #[inline(always)]
+    fn keep<T: Lanes>(&mut self, p: usize, c: usize, v: T) {
+        v.store(&mut self.scratch[p][c..c + T::N]);
+    }
+
+    #[inline(always)]
+    fn kept2<T: Lanes>(&self, p: usize, c: usize) -> V2<T> {
+        V2::new(self.kept(p, c), self.kept(p + 1, c))
+    }
+
+    #[inline(always)]
+    fn keep2<T: Lanes>(&mut self, p: usize, c: usize, v: V2<T>) {
+        self.keep(p, c, v.x);
+        self.keep(p + 1, c, v.y);
+    }
+
+    /// The prediction of coordinate `j` of own role `r` at steps c.., each predicted
+    /// linearly, as [`Lane::predicted`] gives it.
+    #[inline(always)]
+    fn predicted_linearly<T: Lanes>(&self, r: usize, j: usize, c: usize) -> T {
+        let now: T = self.own(r, j, c + 1);
+        now + (now - self.own(r, j, c)) * T::load(&self.linear[c..c + T::N])
+    }
+
+    /// The prediction of coordinate `j` of own role `r` at steps c.., each predicted by
+    /// Taylor from the rates of the step before, as [`Lane::predicted`] gives it.
+    #[inline(always)]
+    fn predicted_by_rates<T: Lanes>(&self, r: usize, j: usize, c: usize) -> T {
+        let now: T = self.own(r, j, c + 1);
+        let rates = &self.rates[r][c..c + T::N];
+        let (v, a) = (T::gather(|i| rates[i].qd[j]), T::gather(|i| rates[i].qdd[j]));
+        let dt = T::load(&self.taylor[c..c + T::N]);
         now + v * dt + T::splat(0.5) * a * dt * dt
     }
 
-    /// The prediction of coordinate `j` of body `b` at step k by `how`, as
+    /// The prediction of coordinate `j` of own role `r` at step c by `how`, as
     /// [`Lane::predicted`] gives it.
     #[inline(always)]
-    fn predicted(&self, b: usize, j: usize, k: usize, how: Extrapolation) -> f64 {
-        how.apply(
-            self.v[self.at(b, j, k + 1)],
-            || self.v[self.at(b, j, k)],
-            || {
-                let r = self.rates[b * self.rstride + k + 1];
-                (r.qd[j], r.qdd[j])
-            },
-        )
-    }
-
-    /// Scratch plane `p` at steps k...
-    #[inline(always)]
-    fn kept<T: Lanes>(&self, p: usize, k: usize) -> T {
-        let at = p * self.steps + k;
-        T::load(&self.scratch[at..at + T::N])
-    }
-
-    #[inline(always)]
-    fn keep<T: Lanes>(&mut self, p: usize, k: usize, v: T) {
-        let at = p * self.steps + k;
-        v.store(&mut self.scratch[at..at + T::N]);
-    }
-
-    #[inline(always)]
-    fn kept2<T: Lanes>(&self, p: usize, k: usize) -> V2<T> {
-        V2::new(self.kept(p, k), self.kept(p + 1, k))
-    }
-
-    #[inline(always)]
-    fn keep2<T: Lanes>(&mut self, p: usize, k: usize, v: V2<T>) {
-        self.keep(p, k, v.x);
-        self.keep(p + 1, k, v.y);
-    }
-
-    /// Writes the pose fields `fields` of body `b` at entries i...
-    #[inline(always)]
-    fn put<T: Lanes, const F: usize>(&mut self, b: usize, i: usize, fields: [(usize, T); F]) {
-        for (f, v) in fields {
-            self.store(b, f, i, v);
-        }
+    fn predicted(&self, r: usize, j: usize, c: usize, how: Extrapolation) -> f64 {
+        let plane = &self.own[r][j];
+        how.apply(plane[c + 1], || plane[c], || (self.rates[r][c].qd[j], self.rates[r][c].qdd[j]))
     }
 }
 
 impl Lane<'_> {
-    /// The batch's view of the lane's buffers (see [`View`]).
-    #[inline(always)]
-    fn view(&mut self) -> View<'_> {
-        View {
-            v: &mut self.tracks.v[..],
-            stride: self.tracks.stride,
-            values: self.values,
-            count: self.count,
-            steps: self.steps,
-            linear: self.linear,
-            taylor: self.taylor,
-            scratch: &mut self.scratch[..],
-            rates: self.rates,
-            rstride: self.rstride,
-            q: &mut self.q[..],
-            n: self.n,
+    /// Runs `f` on the [`Io`] of `roles` over steps `from..to`: the own bodies' buffers taken
+    /// out of the tracks meanwhile (the known ones are read in place), and the rows of
+    /// the motion.
+    fn with_io<R>(
+        &mut self,
+        roles: &Roles,
+        from: usize,
+        to: usize,
+        f: impl FnOnce(&mut Io<'_>, &mut [f64], usize) -> R,
+    ) -> R {
+        let stride = self.tracks.stride;
+        let mut taken = roles.own.map(|b| b.map(|b| std::mem::take(&mut self.tracks.bodies[b])).unwrap_or_default());
+        let result = {
+            let bodies = &self.tracks.bodies;
+            let known = roles.known.map(|a| match a {
+                Attach::Ground => None,
+                Attach::Body(b) => {
+                    let v = &bodies[b][..];
+                    Some(std::array::from_fn(|f| &v[f * stride + from..f * stride + to + 2]))
+                }
+            });
+            let [a, b] = &mut taken;
+            let own = [a, b].map(|v| {
+                let mut rest = &mut v[..];
+                std::array::from_fn(|_| {
+                    if rest.len() < stride {
+                        return &mut [][..];
+                    }
+                    let (plane, tail) = std::mem::take(&mut rest).split_at_mut(stride);
+                    rest = tail;
+                    &mut plane[from..to + 2]
+                })
+            });
+            let law = roles.law.map_or(&[][..], |d| &self.values[d * self.count + from..d * self.count + to]);
+            // Each step's last rates: the sweep's (with the rates), else the one entry kept
+            // before its first step.
+            let rates = roles.own.map(|b| {
+                let Some(b) = b else { return &[][..] };
+                let (lo, hi) = (b * self.rstride + from + 1, b * self.rstride + (to + 1).min(self.rstride));
+                self.rates.get(lo..hi).unwrap_or(&[])
+            });
+            let mut rest = &mut self.scratch[..];
+            let steps = self.steps;
+            let scratch = std::array::from_fn(|_| {
+                let (plane, tail) = std::mem::take(&mut rest).split_at_mut(steps);
+                rest = tail;
+                &mut plane[from..to]
+            });
+            let mut io =
+                Io { known, own, law, linear: &self.linear[from..to], taylor: &self.taylor[from..to], rates, scratch };
+            f(&mut io, &mut self.q[from * self.n..to * self.n], self.n)
+        };
+        for (b, v) in roles.own.iter().zip(taken) {
+            if let Some(b) = *b {
+                self.tracks.bodies[b] = v;
+            }
         }
+        result
     }
 }
 
 /// A kind a sweep solves four steps at a time: its closed form's stages ([`forms`]) over
-/// [`Lanes`] of steps, from its constants (`Self`, copied out of its [`Position`]).
+/// [`Lanes`] of steps, from its constants (`Self`, copied out of its [`Position`]), on the
+/// bodies of its [`Roles`] through an [`Io`] (step from + c at index c).
 trait Batch: Kernel + Copy {
     /// Whether the kind chooses between two roots (a crank has one).
     const ROOTS: bool;
     /// The kind's constants in `p`.
     fn of(p: &Position) -> Self;
-    /// Positions at steps k.. (T::N of them) on the branch `side`: the poses the step's
+    /// The bodies it reads and writes.
+    fn roles(&self) -> Roles;
+    /// Positions at steps c.. (T::N of them) on the branch `side`: the poses the step's
     /// closed form puts, but for the angles continued by a turn, whose φ entries get the
     /// turn later ([`Batch::turn`]); the lanes where the closed form finds a position.
-    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask;
-    /// The turns at steps k.., into the φ entries of the bodies whose angles they continue
-    /// (the first two of [`Batch::bodies`]; their last angles added by [`place_range`]).
-    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize);
-    /// The group's bodies: those whose angles are continued by turns, then the others.
-    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]);
-    /// Which of steps k.. would take the other root than `side` ([`choose`]'s rule), each
-    /// from its prediction `pred(body, coordinate)` of the positions placed before it.
-    fn flips<T: Lanes>(
-        &self,
-        w: &View<'_>,
-        k: usize,
-        side: f64,
-        slack: f64,
-        pred: impl Fn(usize, usize) -> T,
-    ) -> T::Mask;
+    fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask;
+    /// The turns at steps c.., into the φ entries of the own bodies [`Roles::turned`] names
+    /// (their last angles added by [`place_range`]).
+    fn turn<T: Lanes>(&self, io: &mut Io<'_>, c: usize);
+    /// Which of steps c.. would take the other root than `side` ([`choose`]'s rule), each
+    /// from its prediction `pred(role, coordinate)` of the positions placed before it.
+    fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask;
 }
 
 /// The lanes where [`choose`] at squared distances `d0`, `d1` takes the other root than the
@@ -481,62 +503,60 @@ fn flipped<T: Real>(d0: T, d1: T, side: f64) -> T::Mask {
 /// steps at a time, then the turns, then the angles and the motion's rows. Returns the
 /// first step it cannot place (`to`: none).
 fn place_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, side: f64, slack: f64) -> usize {
-    let mut w = l.view();
-    let mut end = to;
-    let mut k = from;
-    while k + F4::N <= to {
-        if let Some(i) = F4::first_false(kind.place::<F4>(&mut w, k, side, slack)) {
-            end = k + i;
-            break;
-        }
-        k += F4::N;
-    }
-    if end == to {
-        while k < to {
-            if !kind.place::<f64>(&mut w, k, side, slack) {
-                end = k;
+    let roles = kind.roles();
+    l.with_io(&roles, from, to, |io, q, n| {
+        let steps = to - from;
+        let mut end = steps;
+        let mut c = 0;
+        while c + F4::N <= steps {
+            if let Some(i) = F4::first_false(kind.place::<F4>(io, c, side, slack)) {
+                end = c + i;
                 break;
             }
-            k += 1;
+            c += F4::N;
         }
-    }
-    let mut k = from;
-    while k + F4::N <= end {
-        kind.turn::<F4>(&mut w, k);
-        k += F4::N;
-    }
-    for k in k..end {
-        kind.turn::<f64>(&mut w, k);
-    }
-    // Each turned body's angle: the last one plus its turn, summed in a register (through
-    // memory, each sum would wait on the store before it); every body's row of the motion.
-    let (turned, others) = kind.bodies();
-    let n = w.n;
-    let mut angle = turned.map(|b| b.map(|b| w.v[w.at(b, PHI, from + 1)]));
-    for k in from..end {
-        for (b, sum) in turned.iter().zip(&mut angle) {
-            if let (Some(b), Some(sum)) = (*b, sum.as_mut()) {
-                let at = w.at(b, PHI, k + 2);
-                *sum += w.v[at];
-                w.v[at] = *sum;
-                let row = k * n + 3 * b;
-                let (x, y) = (w.v[w.at(b, X, k + 2)], w.v[w.at(b, Y, k + 2)]);
-                w.q[row..row + 3].copy_from_slice(&[x, y, *sum]);
+        if end == steps {
+            while c < steps {
+                if !kind.place::<f64>(io, c, side, slack) {
+                    end = c;
+                    break;
+                }
+                c += 1;
             }
         }
-        for b in others.into_iter().flatten() {
-            let row = k * n + 3 * b;
-            let (x, y, phi) = (w.v[w.at(b, X, k + 2)], w.v[w.at(b, Y, k + 2)], w.v[w.at(b, PHI, k + 2)]);
-            w.q[row..row + 3].copy_from_slice(&[x, y, phi]);
+        let mut c = 0;
+        while c + F4::N <= end {
+            kind.turn::<F4>(io, c);
+            c += F4::N;
         }
-    }
-    end
+        for c in c..end {
+            kind.turn::<f64>(io, c);
+        }
+        // Each turned body's angle: the last one plus its turn, summed in a register (through
+        // memory, each sum would wait on the store before it); every body's row of the
+        // motion.
+        for ((own, b), turned) in io.own.iter_mut().zip(roles.own).zip(roles.turned) {
+            let Some(b) = b else { continue };
+            let [x, y, phi, ..] = own;
+            if turned {
+                let mut angle = phi[1];
+                for c in 0..end {
+                    angle += phi[c + 2];
+                    phi[c + 2] = angle;
+                }
+            }
+            for (c, row) in q.chunks_exact_mut(n).take(end).enumerate() {
+                row[3 * b..3 * b + 3].copy_from_slice(&[x[c + 2], y[c + 2], phi[c + 2]]);
+            }
+        }
+        from + end
+    })
 }
 
 /// One group of a [`Batch`] kind over the sweep's steps `0..end`, as [`sweep_group`]
-/// solves it: its positions placed on the branch it is on, then each step's choice checked
-/// (and with `RATES`, its rates solved) in order; where a step takes the other root, the
-/// steps from it are placed again on that branch.
+/// solves it: its positions placed on the branch it is on, then (with `RATES`) its rates
+/// solved, then each step's choice checked; where a step takes the other root, the steps
+/// from it are placed again on that branch.
 #[allow(clippy::too_many_arguments)]
 fn sweep_batch<const RATES: bool, K: Batch>(
     op: &mut Op,
@@ -582,7 +602,7 @@ fn sweep_batch<const RATES: bool, K: Batch>(
             }
         }
         let limit = failed.map_or(placed, |f| f + 1);
-        let flip = if K::ROOTS { first_flip(&l.view(), kind, checked, limit, side, how, slack) } else { None };
+        let flip = if K::ROOTS { first_flip(&mut l, kind, checked, limit, side, how) } else { None };
         let Some(at) = flip else {
             sides[checked..limit].fill(side);
             if failed.is_some() {
@@ -607,35 +627,39 @@ fn sweep_batch<const RATES: bool, K: Batch>(
 /// choice takes the other root than `side`: four steps at once where each is predicted
 /// linearly, or each by Taylor, else one.
 fn first_flip<K: Batch>(
-    w: &View<'_>,
+    l: &mut Lane<'_>,
     kind: K,
     from: usize,
     to: usize,
     side: f64,
     how: &[Extrapolation],
-    slack: f64,
 ) -> Option<usize> {
-    let mut k = from;
-    while k < to {
-        let four = k + F4::N <= to;
-        let flip = if four && w.linear[k..k + F4::N].iter().all(|f| !f.is_nan()) {
-            F4::first_true(kind.flips::<F4>(w, k, side, slack, |b, j| w.predicted_linearly(b, j, k)))
-        } else if four && w.taylor[k..k + F4::N].iter().all(|f| !f.is_nan()) {
-            F4::first_true(kind.flips::<F4>(w, k, side, slack, |b, j| w.predicted_by_rates(b, j, k)))
-        } else {
-            let flip = kind.flips::<f64>(w, k, side, slack, |b, j| w.predicted(b, j, k, how[k]));
-            k += 1;
-            if flip {
-                return Some(k - 1);
+    let roles = kind.roles();
+    l.with_io(&roles, from, to, |io, _, _| {
+        let (io, steps) = (&*io, to - from);
+        let mut c = 0;
+        while c < steps {
+            let four = c + F4::N <= steps;
+            let flip = if four && io.linear[c..c + F4::N].iter().all(|f| !f.is_nan()) {
+                F4::first_true(kind.flips::<F4>(io, c, side, |r, j| io.predicted_linearly(r, j, c)))
+            } else if four && io.taylor[c..c + F4::N].iter().all(|f| !f.is_nan()) {
+                F4::first_true(kind.flips::<F4>(io, c, side, |r, j| io.predicted_by_rates(r, j, c)))
+            } else {
+                let how = how[from + c];
+                let flip = kind.flips::<f64>(io, c, side, |r, j| io.predicted(r, j, c, how));
+                c += 1;
+                if flip {
+                    return Some(from + c - 1);
+                }
+                continue;
+            };
+            if let Some(i) = flip {
+                return Some(from + c + i);
             }
-            continue;
-        };
-        if let Some(i) = flip {
-            return Some(k + i);
+            c += F4::N;
         }
-        k += F4::N;
-    }
-    None
+        None
+    })
 }
 
 /// The rates of a [`Batch`] kind at the lane's step, their conditioning into `pivots`:
@@ -659,19 +683,17 @@ fn turn_of<T: Lanes>((c, s): (T, T)) -> T {
     t.patch(holds, |i| libm::atan2(s.lane(i), c.lane(i)))
 }
 
-/// The line of a slide at entries i.. (turning with its known body).
+/// Own role `r`'s predicted rotation at steps c.., from `pred`, the prediction of its angle
+/// (as the step's `predicted_rotation`).
 #[inline(always)]
-fn line_at<T: Lanes>(w: &View<'_>, s: &Slide, i: usize) -> forms::LineOf<T> {
-    let known = if s.u_is_slider { s.q1.body } else { s.point.body };
-    s.line_at(w.pose_of(known, i))
+fn predicted_rotation_at<T: Lanes>(io: &Io<'_>, r: usize, c: usize, pred: T) -> (T, T) {
+    let last_phi: T = io.own(r, PHI, c + 1);
+    forms::predicted_turn(io.rotation(r, c + 1), pred - last_phi)
 }
 
-/// Body `b`'s predicted rotation at steps k.., from `pred`, the prediction of its angle (as
-/// the step's `predicted_rotation`).
-#[inline(always)]
-fn predicted_rotation_at<T: Lanes>(w: &View<'_>, b: usize, k: usize, pred: T) -> (T, T) {
-    let last_phi: T = w.load(b, PHI, k + 1);
-    forms::predicted_turn(w.rotation(b, k + 1), pred - last_phi)
+/// The known body a slide's line turns with.
+fn line_body(s: &Slide) -> Attach {
+    if s.u_is_slider { s.q1.body } else { s.point.body }
 }
 
 impl Batch for DrivenAngle {
@@ -680,25 +702,29 @@ impl Batch for DrivenAngle {
         let Position::DrivenAngle(c) = p else { unreachable!("a crank") };
         *c
     }
+    fn roles(&self) -> Roles {
+        Roles {
+            known: [self.pin.known.body, self.reference],
+            own: [Some(self.u), None],
+            turned: [false; 2],
+            law: Some(self.law),
+        }
+    }
     #[inline(always)]
-    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, _: f64, _: f64) -> T::Mask {
-        let i = k + 2;
-        let reference = w.pose_of::<T>(self.reference, i).unwrap_or_else(PoseOf::ground);
-        let phi = reference.phi + T::splat(self.sign) * w.law(self.law, k);
+    fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, _: f64, _: f64) -> T::Mask {
+        let reference = io.known_pose::<T>(1, c + 2).unwrap_or_else(PoseOf::ground);
+        let phi = reference.phi + T::splat(self.sign) * T::load(&io.law[c..c + T::N]);
         // One argument reduction for both (the same bits as libm's sin and cos), a step at
         // a time.
         let (sn, cn) = phi.map2(libm::sincos);
-        let r = w.place::<T>(self.pin.known, i) - V2::splat(self.pin.local).rot((cn, sn));
-        w.put(self.u, i, [(X, r.x), (Y, r.y), (PHI, phi), (COS, cn), (SIN, sn)]);
+        let r = io.place::<T>(0, self.pin.known.local, c) - V2::splat(self.pin.local).rot((cn, sn));
+        io.put(0, c, [(X, r.x), (Y, r.y), (PHI, phi), (COS, cn), (SIN, sn)]);
         T::mask(true)
     }
     #[inline(always)]
-    fn turn<T: Lanes>(&self, _: &mut View<'_>, _: usize) {}
-    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
-        ([None, None], [Some(self.u), None])
-    }
+    fn turn<T: Lanes>(&self, _: &mut Io<'_>, _: usize) {}
     #[inline(always)]
-    fn flips<T: Lanes>(&self, _: &View<'_>, _: usize, _: f64, _: f64, _: impl Fn(usize, usize) -> T) -> T::Mask {
+    fn flips<T: Lanes>(&self, _: &Io<'_>, _: usize, _: f64, _: impl Fn(usize, usize) -> T) -> T::Mask {
         T::mask(false)
     }
 }
@@ -718,10 +744,17 @@ impl Batch for Rrr {
         let Position::Rrr(c) = p else { unreachable!("an RRR dyad") };
         *c
     }
+    fn roles(&self) -> Roles {
+        Roles {
+            known: [self.k1.known.body, self.k3.known.body],
+            own: [Some(self.b1), Some(self.b2)],
+            turned: [true; 2],
+            law: None,
+        }
+    }
     #[inline(always)]
-    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask {
-        let i = k + 2;
-        let (p1, p3) = (w.place::<T>(self.k1.known, i), w.place::<T>(self.k3.known, i));
+    fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask {
+        let (p1, p3) = (io.place::<T>(0, self.k1.known.local, c), io.place::<T>(1, self.k3.known.local, c));
         let ch = forms::rrr_chord(&self.form, p1, p3, slack);
         let at = forms::rrr_poses(
             &self.form,
@@ -732,38 +765,44 @@ impl Batch for Rrr {
             (self.arm1, self.arm3),
             (self.k1.local, self.k3.local),
         );
-        w.put(self.b1, i, [(X, at.r1.x), (Y, at.r1.y), (COS, at.c1.0), (SIN, at.c1.1)]);
-        w.put(self.b2, i, [(X, at.r2.x), (Y, at.r2.y), (COS, at.c2.0), (SIN, at.c2.1)]);
-        w.keep2(RRR_V1, k, at.v1);
-        w.keep2(RRR_V3, k, at.v3);
-        w.keep2(RRR_P1, k, p1);
-        w.keep2(RRR_M, k, ch.m);
-        w.keep2(RRR_OFF, k, ch.off);
-        w.keep(RRR_H2, k, ch.h2);
+        io.put(0, c, [(X, at.r1.x), (Y, at.r1.y), (COS, at.c1.0), (SIN, at.c1.1)]);
+        io.put(1, c, [(X, at.r2.x), (Y, at.r2.y), (COS, at.c2.0), (SIN, at.c2.1)]);
+        io.keep2(RRR_V1, c, at.v1);
+        io.keep2(RRR_V3, c, at.v3);
+        io.keep2(RRR_P1, c, p1);
+        io.keep2(RRR_M, c, ch.m);
+        io.keep2(RRR_OFF, c, ch.off);
+        io.keep(RRR_H2, c, ch.h2);
         ch.ok
     }
     #[inline(always)]
-    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize) {
-        for (v, b, arm) in [(RRR_V1, self.b1, self.arm1), (RRR_V3, self.b2, self.arm3)] {
-            let t = turn_of(forms::arm_turn(w.rotation::<T>(b, k + 1), arm, w.kept2(v, k)));
-            w.store(b, PHI, k + 2, t);
+    fn turn<T: Lanes>(&self, io: &mut Io<'_>, c: usize) {
+        for (r, v, arm) in [(0, RRR_V1, self.arm1), (1, RRR_V3, self.arm3)] {
+            let t = turn_of(forms::arm_turn(io.rotation::<T>(r, c + 1), arm, io.kept2(v, c)));
+            t.store(&mut io.own[r][PHI][c + 2..c + 2 + T::N]);
         }
     }
-    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
-        ([Some(self.b1), Some(self.b2)], [None, None])
-    }
     #[inline(always)]
-    fn flips<T: Lanes>(&self, w: &View<'_>, k: usize, side: f64, _: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
-        let ch =
-            forms::Chord { m: w.kept2(RRR_M, k), off: w.kept2(RRR_OFF, k), h2: w.kept(RRR_H2, k), ok: T::mask(true) };
-        let predicted = predicted_rotation_at(w, self.b1, k, pred(self.b1, PHI));
-        let (d0, d1) = forms::rrr_distances(&ch, w.kept2(RRR_P1, k), predicted, self.arm1);
+    fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
+        let ch = forms::Chord {
+            m: io.kept2(RRR_M, c),
+            off: io.kept2(RRR_OFF, c),
+            h2: io.kept(RRR_H2, c),
+            ok: T::mask(true),
+        };
+        let predicted = predicted_rotation_at(io, 0, c, pred(0, PHI));
+        let (d0, d1) = forms::rrr_distances(&ch, io.kept2(RRR_P1, c), predicted, self.arm1);
         flipped(d0, d1, side)
     }
 }
 
-/// An RRP dyad's scratch plane: the direction from its pivot to the joint (its turns).
+/// An RRP dyad's scratch planes: the direction from its pivot to the joint (its turns); its
+/// roots' sliding distance and half-spread, its line's origin and direction (its choices).
 const RRP_V1: usize = 0;
+const RRP_B: usize = 2;
+const RRP_ROOT: usize = 3;
+const RRP_C: usize = 4;
+const RRP_W: usize = 6;
 
 impl Batch for Rrp {
     const ROOTS: bool = true;
@@ -771,44 +810,57 @@ impl Batch for Rrp {
         let Position::Rrp(c) = p else { unreachable!("an RRP dyad") };
         *c
     }
+    fn roles(&self) -> Roles {
+        Roles {
+            known: [self.k1.known.body, line_body(&self.s3)],
+            own: [Some(self.b1), Some(self.b2)],
+            turned: [true, false],
+            law: None,
+        }
+    }
     #[inline(always)]
-    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask {
-        let i = k + 2;
-        let p1 = w.place::<T>(self.k1.known, i);
-        let line = line_at::<T>(w, &self.s3, i);
+    fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask {
+        let p1 = io.place::<T>(0, self.k1.known.local, c);
+        let line = self.s3.line_at(io.known_pose(1, c + 2));
         let reach = forms::rrp_reach(p1, &line, self.a2, (self.d1, self.d1sq), slack);
         let sv = if side > 0.0 { -reach.b + reach.root } else { -reach.b - reach.root };
         let (c1, r1, v1, r2) = forms::rrp_poses(&reach, &line, sv, p1, (self.arm1, self.inv_d1sq, self.k1.local));
-        w.put(self.b1, i, [(X, r1.x), (Y, r1.y), (COS, c1.0), (SIN, c1.1)]);
-        w.put(self.b2, i, [(X, r2.x), (Y, r2.y), (PHI, line.phi), (COS, line.cs.0), (SIN, line.cs.1)]);
-        w.keep2(RRP_V1, k, v1);
+        io.put(0, c, [(X, r1.x), (Y, r1.y), (COS, c1.0), (SIN, c1.1)]);
+        io.put(1, c, [(X, r2.x), (Y, r2.y), (PHI, line.phi), (COS, line.cs.0), (SIN, line.cs.1)]);
+        io.keep2(RRP_V1, c, v1);
+        io.keep(RRP_B, c, reach.b);
+        io.keep(RRP_ROOT, c, reach.root);
+        io.keep2(RRP_C, c, line.c);
+        io.keep2(RRP_W, c, line.w);
         reach.ok
     }
     #[inline(always)]
-    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize) {
-        let t = turn_of(forms::arm_turn(w.rotation::<T>(self.b1, k + 1), self.arm1, w.kept2(RRP_V1, k)));
-        w.store(self.b1, PHI, k + 2, t);
-    }
-    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
-        ([Some(self.b1), None], [Some(self.b2), None])
+    fn turn<T: Lanes>(&self, io: &mut Io<'_>, c: usize) {
+        let t = turn_of(forms::arm_turn(io.rotation::<T>(0, c + 1), self.arm1, io.kept2(RRP_V1, c)));
+        t.store(&mut io.own[0][PHI][c + 2..c + 2 + T::N]);
     }
     #[inline(always)]
-    fn flips<T: Lanes>(
-        &self,
-        w: &View<'_>,
-        k: usize,
-        side: f64,
-        slack: f64,
-        pred: impl Fn(usize, usize) -> T,
-    ) -> T::Mask {
-        let i = k + 2;
-        let p1 = w.place::<T>(self.k1.known, i);
-        let line = line_at::<T>(w, &self.s3, i);
-        let reach = forms::rrp_reach(p1, &line, self.a2, (self.d1, self.d1sq), slack);
-        let (_, (e0, e1)) = forms::rrp_distances(&reach, &line, V2::new(pred(self.b2, X), pred(self.b2, Y)));
+    fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
+        let reach = forms::Reach {
+            base: V2::new(T::splat(0.0), T::splat(0.0)),
+            b: io.kept(RRP_B, c),
+            root: io.kept(RRP_ROOT, c),
+            ok: T::mask(true),
+        };
+        let line = forms::LineOf {
+            phi: T::splat(0.0),
+            cs: (T::splat(1.0), T::splat(0.0)),
+            c: io.kept2(RRP_C, c),
+            w: io.kept2(RRP_W, c),
+        };
+        let (_, (e0, e1)) = forms::rrp_distances(&reach, &line, V2::new(pred(1, X), pred(1, Y)));
         flipped(e0, e1, side)
     }
 }
+
+/// An RPR dyad's scratch planes: the guide normal's two parts (its choices).
+const RPR_ALONG: usize = 0;
+const RPR_ACROSS: usize = 2;
 
 impl Batch for Rpr {
     const ROOTS: bool = true;
@@ -816,43 +868,40 @@ impl Batch for Rpr {
         let Position::Rpr(c) = p else { unreachable!("an RPR dyad") };
         *c
     }
+    fn roles(&self) -> Roles {
+        Roles {
+            known: [self.k1.known.body, self.k3.known.body],
+            own: [Some(self.b1), Some(self.b2)],
+            turned: [true; 2],
+            law: None,
+        }
+    }
     #[inline(always)]
-    fn place<T: Lanes>(&self, w: &mut View<'_>, k: usize, side: f64, slack: f64) -> T::Mask {
-        let i = k + 2;
-        let (p1, p3) = (w.place::<T>(self.k1.known, i), w.place::<T>(self.k3.known, i));
+    fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask {
+        let (p1, p3) = (io.place::<T>(0, self.k1.known.local, c), io.place::<T>(1, self.k3.known.local, c));
         let (ks, kg) = if self.form.b1_is_slider { (p1, p3) } else { (p3, p1) };
         let normal = forms::rpr_normal(&self.form, ks, kg, slack);
         let (c1, c2) = forms::rpr_rotations(&self.form, &normal, T::splat(side));
         let (r1, r2) = (p1 - V2::splat(self.k1.local).rot(c1), p3 - V2::splat(self.k3.local).rot(c2));
-        w.put(self.b1, i, [(X, r1.x), (Y, r1.y), (COS, c1.0), (SIN, c1.1)]);
-        w.put(self.b2, i, [(X, r2.x), (Y, r2.y), (COS, c2.0), (SIN, c2.1)]);
+        io.put(0, c, [(X, r1.x), (Y, r1.y), (COS, c1.0), (SIN, c1.1)]);
+        io.put(1, c, [(X, r2.x), (Y, r2.y), (COS, c2.0), (SIN, c2.1)]);
+        io.keep2(RPR_ALONG, c, normal.along);
+        io.keep2(RPR_ACROSS, c, normal.across);
         normal.ok
     }
     #[inline(always)]
-    fn turn<T: Lanes>(&self, w: &mut View<'_>, k: usize) {
+    fn turn<T: Lanes>(&self, io: &mut Io<'_>, c: usize) {
         // Slider and guide turn together: one turn, b1's, continues both angles.
-        let t = turn_of(forms::rotation_turn(w.rotation::<T>(self.b1, k + 1), w.rotation(self.b1, k + 2)));
-        w.store(self.b1, PHI, k + 2, t);
-        w.store(self.b2, PHI, k + 2, t);
-    }
-    fn bodies(&self) -> ([Option<usize>; 2], [Option<usize>; 2]) {
-        ([Some(self.b1), Some(self.b2)], [None, None])
+        let t = turn_of(forms::rotation_turn(io.rotation::<T>(0, c + 1), io.rotation(0, c + 2)));
+        t.store(&mut io.own[0][PHI][c + 2..c + 2 + T::N]);
+        t.store(&mut io.own[1][PHI][c + 2..c + 2 + T::N]);
     }
     #[inline(always)]
-    fn flips<T: Lanes>(
-        &self,
-        w: &View<'_>,
-        k: usize,
-        side: f64,
-        slack: f64,
-        pred: impl Fn(usize, usize) -> T,
-    ) -> T::Mask {
-        let i = k + 2;
-        let (p1, p3) = (w.place::<T>(self.k1.known, i), w.place::<T>(self.k3.known, i));
-        let (ks, kg) = if self.form.b1_is_slider { (p1, p3) } else { (p3, p1) };
-        let normal = forms::rpr_normal(&self.form, ks, kg, slack);
-        let guide = if self.form.b1_is_slider { self.b2 } else { self.b1 };
-        let (d0, d1) = forms::rpr_distances(&self.form, &normal, predicted_rotation_at(w, guide, k, pred(guide, PHI)));
+    fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
+        let normal =
+            forms::Normal { along: io.kept2(RPR_ALONG, c), across: io.kept2(RPR_ACROSS, c), ok: T::mask(true) };
+        let guide = if self.form.b1_is_slider { 1 } else { 0 };
+        let (d0, d1) = forms::rpr_distances(&self.form, &normal, predicted_rotation_at(io, guide, c, pred(guide, PHI)));
         flipped(d0, d1, side)
     }
 }
