@@ -39,6 +39,7 @@ use super::{
 use crate::geom::{Vector, cross, perp, wrap_pi};
 
 mod forms;
+mod rates;
 mod sweep;
 use super::lanes;
 use forms::{LineOf, PoseOf, RprForm, RrrForm};
@@ -1931,106 +1932,37 @@ fn coords(v: &[f64], b: usize) -> [f64; 3] {
     [w[0], w[1], w[2]]
 }
 
-/// Velocity and acceleration of the global point `p` carried by body `a` (zero on the
-/// ground), from the body's q̇, q̈.
-#[inline(always)]
-fn point_rates<F: RateFrame>(f: &F, a: Attach, p: Vector) -> (Vector, Vector) {
-    let Attach::Body(b) = a else { return (Vector::zeros(), Vector::zeros()) };
-    let Rates { qd: [vx, vy, w], qdd: [ax, ay, e] } = f.rates(b);
-    let r = p - f.pose(b).r;
-    (Vector::new(vx, vy) + perp(r) * w, Vector::new(ax, ay) + perp(r) * e - r * (w * w))
-}
+/// A [`RateFrame`] read as [`rates::Motions`] on `f64` (a step's bodies).
+struct Step<'a, F>(&'a F);
 
-/// ω and ε of body `a` (zero for the ground).
-#[inline]
-fn spin<F: RateFrame>(f: &F, a: Attach) -> (f64, f64) {
-    match a {
-        Attach::Ground => (0.0, 0.0),
-        Attach::Body(b) => {
-            let r = f.rates(b);
-            (r.qd[2], r.qdd[2])
-        }
-    }
-}
-
-/// Sets body `b`'s q̇, q̈ from its point `p` (global) with velocity `vp`, acceleration
-/// `ap`, and its ω, ε.
-#[inline(always)]
-fn set_rates<F: RateFrame>(f: &mut F, b: usize, p: Vector, (vp, ap): (Vector, Vector), w: f64, e: f64) {
-    let r = f.pose(b).r - p;
-    let v = vp + perp(r) * w;
-    let a = ap + perp(r) * e - r * (w * w);
-    f.put_rates(b, Rates { qd: [v.x, v.y, w], qdd: [a.x, a.y, e] });
-}
-
-/// A prismatic joint between an unknown body u and a known one, at the current poses: the
-/// global point `p` where the sliding point is, the line's unit direction `w` (global),
-/// ω and ε (u's, locked to the known body's), σ = +1 when u slides on the known body's
-/// line and −1 when u carries the line, and the velocity `v0` and acceleration `a0` of
-/// u's material point at `p` less its sliding terms: that point moves at
-/// v0 + σ·ṡ·w and a0 + σ·(2ω·ṡ⊥w + s̈·w), ṡ the sliding speed.
-struct SlideFrame {
-    p: Vector,
-    w: Vector,
-    sigma: f64,
-    omega: f64,
-    eps: f64,
-    v0: Vector,
-    a0: Vector,
-}
-
-impl SlideFrame {
-    /// Velocity and acceleration of u's material point at `p` for sliding speed `sd` and
-    /// acceleration `sdd`.
-    #[inline]
-    fn point_rates(&self, sd: f64, sdd: f64) -> (Vector, Vector) {
-        (
-            self.v0 + self.w * (self.sigma * sd),
-            self.a0 + (perp(self.w) * (2.0 * self.omega * sd) + self.w * sdd) * self.sigma,
-        )
-    }
-}
-
-#[inline(always)]
-fn slide_frame<F: RateFrame>(f: &F, sl: &Slide, u: usize) -> SlideFrame {
-    if sl.u_is_slider {
-        let g = sl.q1.body;
-        let (omega, eps) = spin(f, g);
-        let p = glob(f, Anchor { body: Attach::Body(u), local: sl.point.local });
-        let (v0, a0) = point_rates(f, g, p);
-        SlideFrame { p, w: pz(f, g).rot(sl.dir), sigma: 1.0, omega, eps, v0, a0 }
-    } else {
-        let (omega, eps) = spin(f, sl.point.body);
-        let p = glob(f, sl.point);
-        let (v0, a0) = point_rates(f, sl.point.body, p);
-        SlideFrame { p, w: pz(f, Attach::Body(u)).rot(sl.dir), sigma: -1.0, omega, eps, v0, a0 }
-    }
-}
-
-/// The 2×2 system x·c1 + y·c2 = r of a dyad's rates, factored once for the velocities and
-/// the accelerations (the same matrix, two right-hand sides): Cramer's rule with 1/det.
-#[derive(Clone, Copy)]
-struct Cramer {
-    c1: Vector,
-    c2: Vector,
-    inv_det: f64,
-}
-
-impl Cramer {
-    /// The system of columns `c1`, `c2`, and ρ = |det| / (|c1|·|c2|) (the sine of the
-    /// angle between the columns: 0 at a dead point).
+impl<F: RateFrame> rates::Motions<f64> for Step<'_, F> {
     #[inline(always)]
-    fn new(c1: Vector, c2: Vector) -> (Cramer, f64) {
-        let det = cross(c1, c2);
-        let rho = det.abs() / (c1.norm_squared() * c2.norm_squared()).sqrt();
-        (Cramer { c1, c2, inv_det: 1.0 / det }, rho)
+    fn pose(&self, b: usize) -> PoseOf<f64> {
+        PoseOf::from(self.0.pose(b))
     }
-
-    /// (x, y) for the right-hand side `r`.
     #[inline(always)]
-    fn solve(&self, r: Vector) -> (f64, f64) {
-        (cross(r, self.c2) * self.inv_det, cross(self.c1, r) * self.inv_det)
+    fn rates(&self, b: usize) -> rates::RatesOf<f64> {
+        let Rates { qd: [vx, vy, w], qdd: [ax, ay, e] } = self.0.rates(b);
+        rates::RatesOf { v: lanes::V2::new(vx, vy), w, a: lanes::V2::new(ax, ay), e }
     }
+}
+
+/// Writes body `b`'s rates.
+#[inline(always)]
+fn put_rates<F: RateFrame>(fr: &mut F, b: usize, r: rates::RatesOf<f64>) {
+    fr.put_rates(b, Rates { qd: [r.v.x, r.v.y, r.w], qdd: [r.a.x, r.a.y, r.e] });
+}
+
+/// Writes a dyad's bodies' rates; its conditioning ρ.
+#[inline(always)]
+fn put_dyad<F: RateFrame>(
+    fr: &mut F,
+    (b1, b2): (usize, usize),
+    ([r1, r2], rho): ([rates::RatesOf<f64>; 2], f64),
+) -> f64 {
+    put_rates(fr, b1, r1);
+    put_rates(fr, b2, r2);
+    rho
 }
 
 /// Velocities and accelerations of a group from its differentiated closures (a 2×2 solve
@@ -2054,32 +1986,20 @@ fn closed_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
 /// (no 2×2 to condition); `None` for another kind.
 #[inline(always)]
 fn driven_angle_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::DrivenAngle(DrivenAngle { u, pin, reference, sign, law }) = *position else { return None };
-    let (wr, er) = spin(&*fr, reference);
-    let (_, d1, d2) = fr.jet(law);
-    let k = glob(&*fr, pin.known);
-    let rk = point_rates(&*fr, pin.known.body, k);
-    set_rates(fr, u, k, rk, wr + sign * d1, er + sign * d2);
+    let Position::DrivenAngle(c) = position else { return None };
+    let (_, d1, d2) = fr.jet(c.law);
+    let r = rates::crank(c, &Step(&*fr), (d1, d2));
+    put_rates(fr, c.u, r);
     Some(1.0)
 }
 
-/// An RRR dyad's rates: the two bodies' ω, ε from the joint's velocity (and acceleration)
-/// closure, a 2×2. Returns ρ, the 2×2's conditioning; `None` for another kind.
+/// An RRR dyad's rates (see [`rates::rrr`]): ρ, the 2×2's conditioning; `None` for another
+/// kind.
 #[inline(always)]
 fn rrr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::Rrr(Rrr { b1, b2, k1, a1, k3, .. }) = *position else { return None };
-    let (p1, p3) = (glob(&*fr, k1.known), glob(&*fr, k3.known));
-    let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
-    let (r1k, r3k) = (point_rates(&*fr, k1.known.body, p1), point_rates(&*fr, k3.known.body, p3));
-    let (r1, r2) = (j - p1, j - p3);
-    // v_K1 + ω1⊥r1 = v_K3 + ω2⊥r2, and its derivative.
-    let (m, rho) = Cramer::new(perp(r1), -perp(r2));
-    let (w1, w2) = m.solve(r3k.0 - r1k.0);
-    let rhs = r3k.1 - r1k.1 + r1 * (w1 * w1) - r2 * (w2 * w2);
-    let (e1, e2) = m.solve(rhs);
-    set_rates(fr, b1, p1, r1k, w1, e1);
-    set_rates(fr, b2, p3, r3k, w2, e2);
-    Some(rho)
+    let Position::Rrr(c) = position else { return None };
+    let r = rates::rrr(c, &Step(&*fr));
+    Some(put_dyad(fr, (c.b1, c.b2), r))
 }
 
 /// A driven slider's rates: its sliding speed and acceleration from the law's. Returns 1 (no
@@ -2087,108 +2007,46 @@ fn rrr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
 #[inline(always)]
 fn driven_distance_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::DrivenDistance { u, slide, law, .. } = *position else { return None };
-    let f = slide_frame(&*fr, &slide, u);
     let (_, d1, d2) = fr.jet(law);
-    let rp = f.point_rates(d1, d2);
-    set_rates(fr, u, f.p, rp, f.omega, f.eps);
+    let r = rates::slider(&Step(&*fr), &slide, u, (d1, d2));
+    put_rates(fr, u, r);
     Some(1.0)
 }
 
-/// An RRP dyad's rates: b1's ω, ε and the slider's sliding speed and acceleration, a 2×2.
-/// Returns ρ, the 2×2's conditioning; `None` for another kind.
+/// An RRP dyad's rates (see [`rates::rrp`]): ρ, the 2×2's conditioning; `None` for another
+/// kind.
 #[inline(always)]
 fn rrp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::Rrp(Rrp { b1, b2, k1, a1, s3, .. }) = *position else { return None };
-    let f = slide_frame(&*fr, &s3, b2);
-    let k = glob(&*fr, k1.known);
-    let rk = point_rates(&*fr, k1.known.body, k);
-    let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
-    let (r1, d) = (j - k, j - f.p);
-    let (w, e) = (f.omega, f.eps);
-    // v_K + ω1⊥r1 = v0 + σ·ṡ·u + ω⊥d (b2 turns with its known body), and its derivative.
-    let (m, rho) = Cramer::new(perp(r1), -f.w * f.sigma);
-    let (w1, sd) = m.solve(f.v0 + perp(d) * w - rk.0);
-    let (_, a_slide) = f.point_rates(sd, 0.0);
-    let rhs = a_slide + perp(d) * e - d * (w * w) - rk.1 + r1 * (w1 * w1);
-    let (e1, sdd) = m.solve(rhs);
-    set_rates(fr, b1, k, rk, w1, e1);
-    let rp = f.point_rates(sd, sdd);
-    set_rates(fr, b2, f.p, rp, w, e);
-    Some(rho)
+    let Position::Rrp(c) = position else { return None };
+    let r = rates::rrp(c, &Step(&*fr));
+    Some(put_dyad(fr, (c.b1, c.b2), r))
 }
 
-/// A PRP dyad's rates: the two sliding speeds and accelerations, a 2×2. Returns ρ, the 2×2's
-/// conditioning; `None` for another kind.
+/// A PRP dyad's rates (see [`rates::prp`]): ρ, the 2×2's conditioning; `None` for another
+/// kind.
 #[inline(always)]
 fn prp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Prp { b1, b2, a1, s1, s3, .. } = *position else { return None };
-    let (f1, f3) = (slide_frame(&*fr, &s1, b1), slide_frame(&*fr, &s3, b2));
-    let j = glob(&*fr, Anchor { body: Attach::Body(b1), local: a1 });
-    let (d1, d3) = (j - f1.p, j - f3.p);
-    let (c1, c3) = (f1.w * f1.sigma, -f3.w * f3.sigma);
-    // v0₁ + σ₁ṡ₁u₁ + ω₁⊥d₁ = v0₃ + σ₃ṡ₃u₃ + ω₃⊥d₃, and its derivative.
-    let rhs = f3.v0 + perp(d3) * f3.omega - f1.v0 - perp(d1) * f1.omega;
-    let (m, rho) = Cramer::new(c1, c3);
-    let (sd1, sd3) = m.solve(rhs);
-    let (_, a1b) = f1.point_rates(sd1, 0.0);
-    let (_, a3b) = f3.point_rates(sd3, 0.0);
-    let rhs =
-        a3b + perp(d3) * f3.eps - d3 * (f3.omega * f3.omega) - (a1b + perp(d1) * f1.eps - d1 * (f1.omega * f1.omega));
-    let (sdd1, sdd3) = m.solve(rhs);
-    let rp1 = f1.point_rates(sd1, sdd1);
-    set_rates(fr, b1, f1.p, rp1, f1.omega, f1.eps);
-    let rp3 = f3.point_rates(sd3, sdd3);
-    set_rates(fr, b2, f3.p, rp3, f3.omega, f3.eps);
-    Some(rho)
+    let r = rates::prp(&Step(&*fr), (b1, b2), a1, (&s1, &s3));
+    Some(put_dyad(fr, (b1, b2), r))
 }
 
-/// An RPP dyad's rates: the two sliding speeds and accelerations (both bodies turn with the
-/// guide's body), a 2×2. Returns ρ, the 2×2's conditioning; `None` for another kind.
+/// An RPP dyad's rates (see [`rates::rpp`]): ρ, the 2×2's conditioning; `None` for another
+/// kind.
 #[inline(always)]
 fn rpp_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
     let Position::Rpp { b1, b2, k1, mid, s3 } = *position else { return None };
-    // Both bodies turn with the known body of the guide: ω, ε known; b1 is pinned.
-    let f = slide_frame(&*fr, &s3, b2);
-    let (w, e) = (f.omega, f.eps);
-    let k = glob(&*fr, k1.known);
-    let rk = point_rates(&*fr, k1.known.body, k);
-    let (slider, guide, tau) = if mid.b1_is_slider { (b1, b2, 1.0) } else { (b2, b1, -1.0) };
-    let pm = glob(&*fr, Anchor { body: Attach::Body(slider), local: mid.p });
-    let wm = pz(&*fr, Attach::Body(guide)).rot(-perp(mid.n0));
-    let (rm1, rm3) = (pm - k, pm - f.p);
-    let v1 = rk.0 + perp(rm1) * w;
-    let a1 = rk.1 + perp(rm1) * e - rm1 * (w * w);
-    // v1(Pm) − v2(Pm) = τ·ṡm·um with v2(Pm) = v0 + σ·ṡ·u + ω⊥(Pm − P).
-    let (c3, cm) = (f.w * f.sigma, wm * tau);
-    let (m, rho) = Cramer::new(c3, cm);
-    let (sd, sdm) = m.solve(v1 - f.v0 - perp(rm3) * w);
-    let (_, a_slide) = f.point_rates(sd, 0.0);
-    let rhs = a1 - a_slide - perp(rm3) * e + rm3 * (w * w) - perp(wm) * (tau * 2.0 * w * sdm);
-    let (sdd, _) = m.solve(rhs);
-    set_rates(fr, b1, k, rk, w, e);
-    let rp = f.point_rates(sd, sdd);
-    set_rates(fr, b2, f.p, rp, w, e);
-    Some(rho)
+    let r = rates::rpp(&Step(&*fr), (b1, b2), k1, &mid, &s3);
+    Some(put_dyad(fr, (b1, b2), r))
 }
 
-/// An RPR dyad's rates: the common ω, ε and the sliding speed, a 2×2. Returns ρ, the 2×2's
-/// conditioning; `None` for another kind.
+/// An RPR dyad's rates (see [`rates::rpr`]): ρ, the 2×2's conditioning; `None` for another
+/// kind.
 #[inline(always)]
 fn rpr_rates<F: RateFrame>(fr: &mut F, position: &Position) -> Option<f64> {
-    let Position::Rpr(Rpr { b1, b2, k1, mid, k3, .. }) = *position else { return None };
-    let (ks, kg, sb, gb) = if mid.b1_is_slider { (k1, k3, b1, b2) } else { (k3, k1, b2, b1) };
-    let (ps, pg) = (glob(&*fr, ks.known), glob(&*fr, kg.known));
-    let (rs, rg) = (point_rates(&*fr, ks.known.body, ps), point_rates(&*fr, kg.known.body, pg));
-    let dir = pz(&*fr, Attach::Body(gb)).rot(-perp(mid.n0));
-    let dk = pg - ps;
-    // Slider and guide turn together about their pivots; P slides along the guide.
-    let (m, rho) = Cramer::new(perp(dk), -dir);
-    let (w, sd) = m.solve(rg.0 - rs.0);
-    let rhs = rg.1 - rs.1 + dk * (w * w) + perp(dir) * (2.0 * w * sd);
-    let (e, _) = m.solve(rhs);
-    set_rates(fr, sb, ps, rs, w, e);
-    set_rates(fr, gb, pg, rg, w, e);
-    Some(rho)
+    let Position::Rpr(c) = position else { return None };
+    let r = rates::rpr(c, &Step(&*fr));
+    Some(put_dyad(fr, (c.b1, c.b2), r))
 }
 
 /// Which of a dyad's two roots (first: the `+` branch of its formula, second: the `−`)

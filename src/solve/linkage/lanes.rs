@@ -378,6 +378,14 @@ impl<T: Real> Sub for V2<T> {
     }
 }
 
+impl<T: Real> Neg for V2<T> {
+    type Output = V2<T>;
+    #[inline(always)]
+    fn neg(self) -> V2<T> {
+        V2 { x: -self.x, y: -self.y }
+    }
+}
+
 impl From<crate::geom::Vector> for V2<f64> {
     #[inline(always)]
     fn from(v: crate::geom::Vector) -> V2<f64> {

@@ -15,20 +15,25 @@
 
 use super::super::lanes::{F4, Lanes, Real, V2};
 use super::forms::{self, PoseOf};
+use super::rates;
 use super::*;
 
-/// A pose's fields in [`Tracks`].
+/// A body's fields in [`Tracks`]: its pose (x, y, φ, cos φ, sin φ), its rates (ẋ, ẏ, ω from
+/// `QD`) and their derivatives (ẍ, ÿ, ε from `QDD`).
 const X: usize = 0;
 const Y: usize = 1;
 const PHI: usize = 2;
 const COS: usize = 3;
 const SIN: usize = 4;
-const FIELDS: usize = 5;
+const QD: usize = 5;
+const QDD: usize = 8;
+const FIELDS: usize = 11;
 
-/// Every body's poses over a sweep's steps, body by body and field by field (x, y, φ,
-/// cos φ, sin φ): body b's field f at entry i at `bodies[b][f·stride + i]`, step k at entry
-/// k + 2 (entries 0 and 1 hold the step before the last and the last). Each body its own
-/// buffer, so that a batch writes its group's bodies while it reads the bodies before them.
+/// Every body's poses and rates over a sweep's steps, body by body and field by field (see
+/// [`X`]…[`QDD`]): body b's field f at entry i at `bodies[b][f·stride + i]`, step k at entry
+/// k + 2 (entries 0 and 1 hold the step before the last and the last; the rates of the step
+/// before the last are not kept). Each body its own buffer, so that a batch writes its
+/// group's bodies while it reads the bodies before them.
 #[derive(Debug, Clone, Default)]
 struct Tracks {
     bodies: Vec<Vec<f64>>,
@@ -64,6 +69,23 @@ impl Tracks {
         Pose { r: Vector::new(f(X), f(Y)), phi: f(PHI), c: f(COS), s: f(SIN) }
     }
 
+    /// Body `b`'s rates at entry `i`.
+    #[inline(always)]
+    fn rates(&self, b: usize, i: usize) -> Rates {
+        let f = |f| self.get(b, f, i);
+        Rates { qd: [f(QD), f(QD + 1), f(QD + 2)], qdd: [f(QDD), f(QDD + 1), f(QDD + 2)] }
+    }
+
+    #[inline(always)]
+    fn set_rates(&mut self, b: usize, i: usize, r: Rates) {
+        let stride = self.stride;
+        let v = &mut self.bodies[b];
+        for j in 0..3 {
+            v[(QD + j) * stride + i] = r.qd[j];
+            v[(QDD + j) * stride + i] = r.qdd[j];
+        }
+    }
+
     #[inline(always)]
     fn set(&mut self, b: usize, i: usize, p: Pose) {
         let stride = self.stride;
@@ -75,10 +97,8 @@ impl Tracks {
 }
 
 /// Step `k` of a sweep ([`AssurSolver::positions_into`], [`AssurSolver::motion_into`]):
-/// the sweep's poses ([`Tracks`]), the laws' values (and rates) at each step, the steps'
-/// predictions, the bodies' rates (body b's at step k at `b·rstride + k + 2`, the entry
-/// before step 0 the last step's: a sweep of positions only keeps that entry alone,
-/// `rstride` 2). A [`Batch`] kind reads it four steps at a time.
+/// the sweep's poses and rates ([`Tracks`]), the laws' values (and rates) at each step, the
+/// steps' predictions. A [`Batch`] kind reads it four steps at a time.
 struct Lane<'a> {
     tracks: &'a mut Tracks,
     k: usize,
@@ -94,8 +114,6 @@ struct Lane<'a> {
     values: &'a [f64],
     count: usize,
     steps: usize,
-    rates: &'a mut [Rates],
-    rstride: usize,
     /// The motion's rows from the sweep's first step (q, and with the rates q̇, q̈; `n`
     /// values a step), written as the poses and rates are.
     q: &'a mut [f64],
@@ -123,10 +141,7 @@ impl Lane<'_> {
         self.how.apply(
             tr.get(b, j, k + 1),
             || tr.get(b, j, k),
-            || {
-                let r = self.rates[b * self.rstride + k + 1];
-                (r.qd[j], r.qdd[j])
-            },
+            || (tr.get(b, QD + j, k + 1), tr.get(b, QDD + j, k + 1)),
         )
     }
 }
@@ -159,7 +174,7 @@ impl Frame for Lane<'_> {
 impl RateFrame for Lane<'_> {
     #[inline(always)]
     fn rates(&self, b: usize) -> Rates {
-        self.rates[b * self.rstride + self.k + 2]
+        self.tracks.rates(b, self.k + 2)
     }
     #[inline(always)]
     fn jet(&self, d: usize) -> (f64, f64, f64) {
@@ -167,7 +182,7 @@ impl RateFrame for Lane<'_> {
     }
     #[inline(always)]
     fn put_rates(&mut self, b: usize, r: Rates) {
-        self.rates[b * self.rstride + self.k + 2] = r;
+        self.tracks.set_rates(b, self.k + 2, r);
         let at = self.k * self.n + 3 * b;
         self.qd[at..at + 3].copy_from_slice(&r.qd);
         self.qdd[at..at + 3].copy_from_slice(&r.qdd);
@@ -181,7 +196,6 @@ impl RateFrame for Lane<'_> {
 #[derive(Debug, Clone, Default)]
 pub(super) struct Sweep {
     tracks: Tracks,
-    rates: Vec<Rates>,
     jets: Vec<(f64, f64, f64)>,
     values: Vec<f64>,
     how: Vec<Extrapolation>,
@@ -294,11 +308,17 @@ struct Io<'a> {
     /// The group's bodies (an absent one's slices empty).
     own: [[&'a mut [f64]; FIELDS]; 2],
     law: &'a [f64],
+    /// The laws' jets step by step (`nd` a step; with the rates).
+    jets: &'a [(f64, f64, f64)],
+    nd: usize,
     linear: &'a [f64],
     taylor: &'a [f64],
-    /// The own bodies' rates of the step before each step (empty without rates).
-    rates: [&'a [Rates]; 2],
     scratch: [&'a mut [f64]; SCRATCH],
+    /// The motion's rows over the range (q, and with the rates q̇, q̈), `n` values a step.
+    q: &'a mut [f64],
+    qd: &'a mut [f64],
+    qdd: &'a mut [f64],
+    n: usize,
 }
 
 /// Scratch planes a batch keeps from its positions for its turns and its choices.
@@ -391,8 +411,7 @@ impl Io<'_> {
     #[inline(always)]
     fn predicted_by_rates<T: Lanes>(&self, r: usize, j: usize, c: usize) -> T {
         let now: T = self.own(r, j, c + 1);
-        let rates = &self.rates[r][c..c + T::N];
-        let (v, a) = (T::gather(|i| rates[i].qd[j]), T::gather(|i| rates[i].qdd[j]));
+        let (v, a): (T, T) = (self.own(r, QD + j, c + 1), self.own(r, QDD + j, c + 1));
         let dt = T::load(&self.taylor[c..c + T::N]);
         now + v * dt + T::splat(0.5) * a * dt * dt
     }
@@ -401,8 +420,8 @@ impl Io<'_> {
     /// [`Lane::predicted`] gives it.
     #[inline(always)]
     fn predicted(&self, r: usize, j: usize, c: usize, how: Extrapolation) -> f64 {
-        let plane = &self.own[r][j];
-        how.apply(plane[c + 1], || plane[c], || (self.rates[r][c].qd[j], self.rates[r][c].qdd[j]))
+        let own = &self.own[r];
+        how.apply(own[j][c + 1], || own[j][c], || (own[QD + j][c + 1], own[QDD + j][c + 1]))
     }
 }
 
@@ -410,13 +429,7 @@ impl Lane<'_> {
     /// Runs `f` on the [`Io`] of `roles` over steps `from..to`: the own bodies' buffers taken
     /// out of the tracks meanwhile (the known ones are read in place), and the rows of
     /// the motion.
-    fn with_io<R>(
-        &mut self,
-        roles: &Roles,
-        from: usize,
-        to: usize,
-        f: impl FnOnce(&mut Io<'_>, &mut [f64], usize) -> R,
-    ) -> R {
+    fn with_io<R>(&mut self, roles: &Roles, from: usize, to: usize, f: impl FnOnce(&mut Io<'_>) -> R) -> R {
         let stride = self.tracks.stride;
         let mut taken = roles.own.map(|b| b.map(|b| std::mem::take(&mut self.tracks.bodies[b])).unwrap_or_default());
         let result = {
@@ -441,13 +454,6 @@ impl Lane<'_> {
                 })
             });
             let law = roles.law.map_or(&[][..], |d| &self.values[d * self.count + from..d * self.count + to]);
-            // Each step's last rates: the sweep's (with the rates), else the one entry kept
-            // before its first step.
-            let rates = roles.own.map(|b| {
-                let Some(b) = b else { return &[][..] };
-                let (lo, hi) = (b * self.rstride + from + 1, b * self.rstride + (to + 1).min(self.rstride));
-                self.rates.get(lo..hi).unwrap_or(&[])
-            });
             let mut rest = &mut self.scratch[..];
             let steps = self.steps;
             let scratch = std::array::from_fn(|_| {
@@ -455,9 +461,22 @@ impl Lane<'_> {
                 rest = tail;
                 &mut plane[from..to]
             });
-            let mut io =
-                Io { known, own, law, linear: &self.linear[from..to], taylor: &self.taylor[from..to], rates, scratch };
-            f(&mut io, &mut self.q[from * self.n..to * self.n], self.n)
+            let n = self.n;
+            let mut io = Io {
+                known,
+                own,
+                law,
+                jets: if self.jets.is_empty() { &[] } else { &self.jets[from * self.nd..to * self.nd] },
+                nd: self.nd,
+                linear: &self.linear[from..to],
+                taylor: &self.taylor[from..to],
+                scratch,
+                q: &mut self.q[from * n..to * n],
+                qd: if self.qd.is_empty() { &mut [] } else { &mut self.qd[from * n..to * n] },
+                qdd: if self.qdd.is_empty() { &mut [] } else { &mut self.qdd[from * n..to * n] },
+                n,
+            };
+            f(&mut io)
         };
         for (b, v) in roles.own.iter().zip(taken) {
             if let Some(b) = *b {
@@ -485,6 +504,9 @@ trait Batch: Kernel + Copy {
     /// The turns at steps c.., into the φ entries of the own bodies [`Roles::turned`] names
     /// (their last angles added by [`place_range`]).
     fn turn<T: Lanes>(&self, io: &mut Io<'_>, c: usize);
+    /// The rates of its own bodies at steps c.. (their poses placed, the bodies before them
+    /// solved), and ρ, the conditioning of its 2×2 (1 for a driven body).
+    fn rates<T: Lanes>(&self, m: &At<'_>, c: usize) -> ([rates::RatesOf<T>; 2], T);
     /// Which of steps c.. would take the other root than `side` ([`choose`]'s rule), each
     /// from its prediction `pred(role, coordinate)` of the positions placed before it.
     fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask;
@@ -504,7 +526,7 @@ fn flipped<T: Real>(d0: T, d1: T, side: f64) -> T::Mask {
 /// first step it cannot place (`to`: none).
 fn place_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, side: f64, slack: f64) -> usize {
     let roles = kind.roles();
-    l.with_io(&roles, from, to, |io, q, n| {
+    l.with_io(&roles, from, to, |io| {
         let steps = to - from;
         let mut end = steps;
         let mut c = 0;
@@ -535,22 +557,145 @@ fn place_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, side
         // Each turned body's angle: the last one plus its turn, summed in a register (through
         // memory, each sum would wait on the store before it); every body's row of the
         // motion.
+        let n = io.n;
         for ((own, b), turned) in io.own.iter_mut().zip(roles.own).zip(roles.turned) {
             let Some(b) = b else { continue };
             let [x, y, phi, ..] = own;
-            if turned {
-                let mut angle = phi[1];
-                for c in 0..end {
-                    angle += phi[c + 2];
-                    phi[c + 2] = angle;
+            let (x, y, (last, phi)) = (&x[2..end + 2], &y[2..end + 2], phi[1..end + 2].split_at_mut(1));
+            let rows = io.q.chunks_exact_mut(n).map(|row| &mut row[3 * b..3 * b + 3]);
+            let mut angle = last[0];
+            for (((row, &x), &y), phi) in rows.zip(x).zip(y).zip(phi) {
+                if turned {
+                    angle += *phi;
+                    *phi = angle;
                 }
-            }
-            for (c, row) in q.chunks_exact_mut(n).take(end).enumerate() {
-                row[3 * b..3 * b + 3].copy_from_slice(&[x[c + 2], y[c + 2], phi[c + 2]]);
+                row.copy_from_slice(&[x, y, *phi]);
             }
         }
         from + end
     })
+}
+
+/// A batch's [`Io`] read as [`rates::Motions`] at step c: its bodies by their roles.
+struct At<'a> {
+    io: &'a Io<'a>,
+    roles: &'a Roles,
+    c: usize,
+}
+
+impl At<'_> {
+    /// Body `b`'s fields (one of the roles' bodies).
+    #[inline(always)]
+    fn body(&self, b: usize) -> Planes<'_> {
+        let (io, roles) = (self.io, self.roles);
+        for r in 0..2 {
+            if roles.own[r] == Some(b) {
+                let own = &io.own[r];
+                return std::array::from_fn(|f| &own[f][..]);
+            }
+        }
+        for r in 0..2 {
+            if let (Attach::Body(k), Some(p)) = (roles.known[r], io.known[r])
+                && k == b
+            {
+                return p;
+            }
+        }
+        unreachable!("body {b} is not one of the group's roles")
+    }
+
+    /// Field `f` of `planes` at steps c...
+    #[inline(always)]
+    fn at<T: Lanes>(&self, planes: &Planes<'_>, f: usize) -> T {
+        let i = self.c + 2;
+        T::load(&planes[f][i..i + T::N])
+    }
+
+    /// Driver `d`'s first and second time derivatives at steps c...
+    #[inline(always)]
+    fn law_rates<T: Lanes>(&self, d: usize) -> (T, T) {
+        let (jets, nd, c) = (self.io.jets, self.io.nd, self.c);
+        (T::gather(|i| jets[(c + i) * nd + d].1), T::gather(|i| jets[(c + i) * nd + d].2))
+    }
+}
+
+impl<T: Lanes> rates::Motions<T> for At<'_> {
+    #[inline(always)]
+    fn pose(&self, b: usize) -> PoseOf<T> {
+        let p = self.body(b);
+        let f = |f| self.at(&p, f);
+        PoseOf { r: V2::new(f(X), f(Y)), phi: f(PHI), c: f(COS), s: f(SIN) }
+    }
+    #[inline(always)]
+    fn rates(&self, b: usize) -> rates::RatesOf<T> {
+        let p = self.body(b);
+        let f = |f| self.at(&p, f);
+        rates::RatesOf { v: V2::new(f(QD), f(QD + 1)), w: f(QD + 2), a: V2::new(f(QDD), f(QDD + 1)), e: f(QDD + 2) }
+    }
+}
+
+/// The rates of steps `from..to` of a [`Batch`] kind (positions placed), four steps at a
+/// time, each step's conditioning into `pivots`: the first step whose rates cannot be
+/// solved (a dead point; `to`: none), before which every step's rates are in the tracks and
+/// the motion's rows.
+fn rates_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, pivots: &mut [f64]) -> usize {
+    let roles = kind.roles();
+    l.with_io(&roles, from, to, |io| {
+        let steps = to - from;
+        let pivots = &mut pivots[from..to];
+        let mut end = steps;
+        let mut c = 0;
+        while c < steps {
+            let four = c + F4::N <= steps;
+            let bad = if four {
+                rates_at_c::<K, F4>(kind, io, &roles, c, pivots)
+            } else {
+                rates_at_c::<K, f64>(kind, io, &roles, c, pivots)
+            };
+            if let Some(i) = bad {
+                end = c + i;
+                break;
+            }
+            c += if four { F4::N } else { 1 };
+        }
+        let n = io.n;
+        for (own, b) in io.own.iter().zip(roles.own) {
+            let Some(b) = b else { continue };
+            for (rows, at) in [(&mut *io.qd, QD), (&mut *io.qdd, QDD)] {
+                let (x, y, w) = (&own[at][2..end + 2], &own[at + 1][2..end + 2], &own[at + 2][2..end + 2]);
+                let rows = rows.chunks_exact_mut(n).map(|row| &mut row[3 * b..3 * b + 3]);
+                for (((row, &x), &y), &w) in rows.zip(x).zip(y).zip(w) {
+                    row.copy_from_slice(&[x, y, w]);
+                }
+            }
+        }
+        from + end
+    })
+}
+
+/// The rates of a [`Batch`] kind at steps c.. into its own bodies' tracks, each step's ρ
+/// into `pivots`: the first lane where they cannot be solved.
+#[inline(always)]
+fn rates_at_c<K: Batch, T: Lanes>(
+    kind: K,
+    io: &mut Io<'_>,
+    roles: &Roles,
+    c: usize,
+    pivots: &mut [f64],
+) -> Option<usize> {
+    let (out, rho) = kind.rates::<T>(&At { io, roles, c }, c);
+    for (r, o) in out.into_iter().enumerate() {
+        if roles.own[r].is_none() {
+            continue;
+        }
+        let put = |io: &mut Io<'_>, f: usize, v: T| v.store(&mut io.own[r][f][c + 2..c + 2 + T::N]);
+        for (f, v) in [(QD, o.v.x), (QD + 1, o.v.y), (QD + 2, o.w), (QDD, o.a.x), (QDD + 1, o.a.y), (QDD + 2, o.e)] {
+            put(io, f, v);
+        }
+    }
+    rho.store(&mut pivots[c..c + T::N]);
+    // As `solvable`: not NaN and above the singular pivot.
+    T::first_false(rho.gt(T::splat(super::super::SINGULAR_PIVOT_REL)))
 }
 
 /// One group of a [`Batch`] kind over the sweep's steps `0..end`, as [`sweep_group`]
@@ -590,16 +735,9 @@ fn sweep_batch<const RATES: bool, K: Batch>(
     let (mut checked, mut rated) = (from, from);
     loop {
         let mut failed = None;
-        if RATES {
-            while rated < placed {
-                l.k = rated;
-                l.how = how[rated];
-                if !rates_at::<K>(&mut l, &p, pivots) {
-                    failed = Some(rated);
-                    break;
-                }
-                rated += 1;
-            }
+        if RATES && rated < placed {
+            let solved = rates_range(&mut l, kind, rated, placed, pivots);
+            failed = (solved < placed).then_some(solved);
         }
         let limit = failed.map_or(placed, |f| f + 1);
         let flip = if K::ROOTS { first_flip(&mut l, kind, checked, limit, side, how) } else { None };
@@ -635,7 +773,7 @@ fn first_flip<K: Batch>(
     how: &[Extrapolation],
 ) -> Option<usize> {
     let roles = kind.roles();
-    l.with_io(&roles, from, to, |io, _, _| {
+    l.with_io(&roles, from, to, |io| {
         let (io, steps) = (&*io, to - from);
         let mut c = 0;
         while c < steps {
@@ -711,6 +849,11 @@ impl Batch for DrivenAngle {
         }
     }
     #[inline(always)]
+    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+        let r = rates::crank(self, m, m.law_rates(self.law));
+        ([r, r], T::splat(1.0))
+    }
+    #[inline(always)]
     fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, _: f64, _: f64) -> T::Mask {
         let reference = io.known_pose::<T>(1, c + 2).unwrap_or_else(PoseOf::ground);
         let phi = reference.phi + T::splat(self.sign) * T::load(&io.law[c..c + T::N]);
@@ -751,6 +894,10 @@ impl Batch for Rrr {
             turned: [true; 2],
             law: None,
         }
+    }
+    #[inline(always)]
+    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+        rates::rrr(self, m)
     }
     #[inline(always)]
     fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask {
@@ -819,6 +966,10 @@ impl Batch for Rrp {
         }
     }
     #[inline(always)]
+    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+        rates::rrp(self, m)
+    }
+    #[inline(always)]
     fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask {
         let p1 = io.place::<T>(0, self.k1.known.local, c);
         let line = self.s3.line_at(io.known_pose(1, c + 2));
@@ -875,6 +1026,10 @@ impl Batch for Rpr {
             turned: [true; 2],
             law: None,
         }
+    }
+    #[inline(always)]
+    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+        rates::rpr(self, m)
     }
     #[inline(always)]
     fn place<T: Lanes>(&self, io: &mut Io<'_>, c: usize, side: f64, slack: f64) -> T::Mask {
@@ -1009,14 +1164,10 @@ impl AssurSolver {
         // its bodies' last), then the steps; the rates likewise (the last step's, what
         // Taylor's prediction reads; with `rates`, then the steps').
         let steps = end;
-        let rstride = if rates { steps + 2 } else { 2 };
         // Not cleared: a group reads only what this sweep has written (the first two
         // entries of each body, the steps the groups before it solved, its own last
         // steps), so the buffers only grow.
         sw.tracks.reset(nb, steps);
-        if sw.rates.len() < nb * rstride {
-            sw.rates.resize(nb * rstride, Rates::default());
-        }
         if sw.scratch.len() < SCRATCH * steps {
             sw.scratch.resize(SCRATCH * steps, 0.0);
         }
@@ -1025,7 +1176,7 @@ impl AssurSolver {
             let q = &self.q_prev[3 * b..3 * b + 3];
             sw.tracks.set(b, 0, Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE });
             sw.tracks.set(b, 1, p);
-            sw.rates[b * rstride + 1] = Rates { qd: coords(&self.inner.qd, b), qdd: coords(&self.inner.qdd, b) };
+            sw.tracks.set_rates(b, 1, Rates { qd: coords(&self.inner.qd, b), qdd: coords(&self.inner.qdd, b) });
         }
         let groups = self.ops.len();
         sw.sides.clear();
@@ -1058,8 +1209,6 @@ impl AssurSolver {
                 values: &sw.values,
                 count,
                 steps,
-                rates: &mut sw.rates,
-                rstride,
                 q: &mut out.q[first..],
                 qd: if rates { &mut out.qd[first..] } else { &mut [] },
                 qdd: if rates { &mut out.qdd[first..] } else { &mut [] },
@@ -1110,7 +1259,7 @@ impl AssurSolver {
             // and of the last.
             let before = if end >= 2 { end } else { 1 };
             for b in 0..nb {
-                let r = sw.rates[b * rstride + before];
+                let r = sw.tracks.rates(b, before);
                 self.qd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qd);
                 self.qdd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
             }
