@@ -7,11 +7,12 @@
 //! The crank and the RRR, RRP and RPR dyads are solved four steps at a time ([`Batch`]): a
 //! dyad's root at a step depends on its prediction, which depends on the roots before it,
 //! so the sweep first places every step on the branch the group is on (the roots need no
-//! prediction then), then checks each step's choice as the step makes it ([`choose`], from
-//! the prediction of the positions just placed) and places the rest again from the first
-//! step that changes branch (at a dead point). The closed forms' stages are the step's own
-//! ([`forms`], over [`Real`]), so every lane holds the step's bits. The other kinds are
-//! swept a step at a time through a [`Lane`], by the step's closed forms themselves.
+//! prediction then), solves their rates (with the rates), then checks each step's choice as
+//! the step makes it ([`choose`], from the prediction of the positions and rates just
+//! solved) and places the rest again from the first step that changes branch (at a dead
+//! point). The closed forms' stages are the step's own ([`forms`], [`rates`], over
+//! [`Real`]), so every lane holds the step's bits. The other kinds are swept a step at a
+//! time through a [`Lane`], by the step's closed forms themselves.
 
 use super::super::lanes::{F4, Lanes, Real, V2};
 use super::forms::{self, PoseOf};
@@ -110,9 +111,10 @@ struct Lane<'a> {
     linear: &'a [f64],
     /// Each step's time step for Taylor's prediction, NaN where it is not Taylor's.
     taylor: &'a [f64],
-    /// Driver d's law value at step k at `d·count + k`.
+    /// Driver d's law value at step k at `d·count + k` (`count` the times asked for).
     values: &'a [f64],
     count: usize,
+    /// The steps swept (the scratch planes' length).
     steps: usize,
     /// The motion's rows from the sweep's first step (q, and with the rates q̇, q̈; `n`
     /// values a step), written as the poses and rates are.
@@ -120,7 +122,7 @@ struct Lane<'a> {
     qd: &'a mut [f64],
     qdd: &'a mut [f64],
     n: usize,
-    /// A batch's scratch planes (see [`View`]).
+    /// A batch's scratch planes, [`SCRATCH`] of `steps` values (see [`Io`]).
     scratch: &'a mut [f64],
 }
 
@@ -298,10 +300,10 @@ type Planes<'a> = [&'a [f64]; FIELDS];
 
 /// What a [`Batch`] kind reads and writes over a range of steps, each slice cut to the range
 /// (so that the loops' indices are within every bound by construction): the known bodies it
-/// reads and its own bodies, by the roles its [`Roles`] give them, its law's values, each
-/// step's linear ratio and Taylor's time step, its own bodies' last rates (Taylor's
-/// prediction), and the scratch planes it keeps from its positions for its turns and
-/// choices.
+/// reads and its own bodies (poses and rates), by the roles its [`Roles`] give them, its
+/// law's values and the laws' jets, each step's linear ratio and Taylor's time step, the
+/// scratch planes it keeps from its positions for its turns and choices, and the motion's
+/// rows.
 struct Io<'a> {
     /// The known bodies (`None`: the ground).
     known: [Option<Planes<'a>>; 2],
