@@ -336,6 +336,24 @@ struct Roles {
     law: Option<usize>,
 }
 
+impl Roles {
+    /// A dyad pinned to its known bodies at `k1` and `k3`, both its bodies' angles continued
+    /// by turns.
+    fn pivoted(k1: Pin, k3: Pin, [b1, b2]: [usize; 2]) -> Roles {
+        Roles { known: [k1.known.body, k3.known.body], own: [Some(b1), Some(b2)], turned: [true; 2], law: None }
+    }
+}
+
+/// A dyad kind's constants out of its [`Position`] ([`Batch::of`]).
+macro_rules! dyad_of {
+    ($kind:ident) => {
+        fn of(p: &Position) -> $kind {
+            let Position::$kind(c) = p else { unreachable!(concat!("a dyad ", stringify!($kind))) };
+            *c
+        }
+    };
+}
+
 impl Io<'_> {
     /// The pose of known role `r` at index `i` (`None`: the ground).
     #[inline(always)]
@@ -508,7 +526,7 @@ trait Batch: Kernel + Copy {
     fn turn<T: Lanes>(&self, io: &mut Io<'_>, c: usize);
     /// The rates of its own bodies at steps c.. (their poses placed, the bodies before them
     /// solved), and ρ, the conditioning of its 2×2 (1 for a driven body).
-    fn rates<T: Lanes>(&self, m: &At<'_>, c: usize) -> ([rates::RatesOf<T>; 2], T);
+    fn rates<T: Lanes>(&self, m: &At<'_>) -> ([rates::RatesOf<T>; 2], T);
     /// Which of steps c.. would take the other root than `side` ([`choose`]'s rule), each
     /// from its prediction `pred(role, coordinate)` of the positions placed before it.
     fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask;
@@ -685,7 +703,7 @@ fn rates_at_c<K: Batch, T: Lanes>(
     c: usize,
     pivots: &mut [f64],
 ) -> Option<usize> {
-    let (out, rho) = kind.rates::<T>(&At { io, roles, c }, c);
+    let (out, rho) = kind.rates::<T>(&At { io, roles, c });
     for (r, o) in out.into_iter().enumerate() {
         if roles.own[r].is_none() {
             continue;
@@ -851,7 +869,7 @@ impl Batch for DrivenAngle {
         }
     }
     #[inline(always)]
-    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+    fn rates<T: Lanes>(&self, m: &At<'_>) -> ([rates::RatesOf<T>; 2], T) {
         let r = rates::crank(self, m, m.law_rates(self.law));
         ([r, r], T::splat(1.0))
     }
@@ -885,20 +903,12 @@ const RRR_H2: usize = 10;
 
 impl Batch for Rrr {
     const ROOTS: bool = true;
-    fn of(p: &Position) -> Rrr {
-        let Position::Rrr(c) = p else { unreachable!("an RRR dyad") };
-        *c
-    }
+    dyad_of!(Rrr);
     fn roles(&self) -> Roles {
-        Roles {
-            known: [self.k1.known.body, self.k3.known.body],
-            own: [Some(self.b1), Some(self.b2)],
-            turned: [true; 2],
-            law: None,
-        }
+        Roles::pivoted(self.k1, self.k3, [self.b1, self.b2])
     }
     #[inline(always)]
-    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+    fn rates<T: Lanes>(&self, m: &At<'_>) -> ([rates::RatesOf<T>; 2], T) {
         rates::rrr(self, m)
     }
     #[inline(always)]
@@ -955,10 +965,7 @@ const RRP_W: usize = 6;
 
 impl Batch for Rrp {
     const ROOTS: bool = true;
-    fn of(p: &Position) -> Rrp {
-        let Position::Rrp(c) = p else { unreachable!("an RRP dyad") };
-        *c
-    }
+    dyad_of!(Rrp);
     fn roles(&self) -> Roles {
         Roles {
             known: [self.k1.known.body, line_body(&self.s3)],
@@ -968,7 +975,7 @@ impl Batch for Rrp {
         }
     }
     #[inline(always)]
-    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+    fn rates<T: Lanes>(&self, m: &At<'_>) -> ([rates::RatesOf<T>; 2], T) {
         rates::rrp(self, m)
     }
     #[inline(always)]
@@ -1017,20 +1024,12 @@ const RPR_ACROSS: usize = 2;
 
 impl Batch for Rpr {
     const ROOTS: bool = true;
-    fn of(p: &Position) -> Rpr {
-        let Position::Rpr(c) = p else { unreachable!("an RPR dyad") };
-        *c
-    }
+    dyad_of!(Rpr);
     fn roles(&self) -> Roles {
-        Roles {
-            known: [self.k1.known.body, self.k3.known.body],
-            own: [Some(self.b1), Some(self.b2)],
-            turned: [true; 2],
-            law: None,
-        }
+        Roles::pivoted(self.k1, self.k3, [self.b1, self.b2])
     }
     #[inline(always)]
-    fn rates<T: Lanes>(&self, m: &At<'_>, _: usize) -> ([rates::RatesOf<T>; 2], T) {
+    fn rates<T: Lanes>(&self, m: &At<'_>) -> ([rates::RatesOf<T>; 2], T) {
         rates::rpr(self, m)
     }
     #[inline(always)]
