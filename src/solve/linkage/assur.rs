@@ -1744,7 +1744,7 @@ fn rrr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     if !ch.ok {
         return Err(Why::Apart { d: (p3 - p1).norm_squared().sqrt(), d1: form.d1, d2 });
     }
-    let (d0, d1) = forms::rrr_distances(&ch, p1, predicted_rotation(f, b1), arm1);
+    let (d0, d1) = forms::rrr_distances((ch.m, ch.off, ch.h2), p1, predicted_rotation(f, b1), arm1);
     let root = if choose(d0, d1, side) == 0 { 1.0 } else { -1.0 };
     let at = forms::rrr_poses(form, &ch, root, p1, p3, (arm1, arm3), (k1.local, k3.local));
     turn_arm_to(f, b1, at.r1.into(), at.c1, arm1, at.v1);
@@ -1767,7 +1767,8 @@ fn rrp<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     }
     // b2's origin is c + s·w and the joint rides with it (b2's rotation is known): the
     // root nearer b2's predicted origin.
-    let ((sv0, sv1), (e0, e1)) = forms::rrp_distances(&reach, &line, f.predicted_r(b2).into());
+    let ((sv0, sv1), (e0, e1)) =
+        forms::rrp_distances((reach.b, reach.root), (line.c, line.w), f.predicted_r(b2).into());
     let sv = if choose(e0, e1, side) == 0 { sv0 } else { sv1 };
     let (c1, r1, v1, r2) = forms::rrp_poses(&reach, &line, sv, p1, (arm1, inv_d1sq, k1.local));
     turn_arm_to(f, b1, r1.into(), c1, arm1, v1);
@@ -1791,7 +1792,7 @@ fn rpr<F: Frame>(f: &mut F, position: &Position, side: &mut f64, slack: f64) -> 
     // The two bodies turn together: the root whose guide normal is nearer the normal at
     // the guide's predicted angle.
     let guide = if form.b1_is_slider { b2 } else { b1 };
-    let (d0, d1) = forms::rpr_distances(form, &normal, predicted_rotation(f, guide));
+    let (d0, d1) = forms::rpr_distances(form, (normal.along, normal.across), predicted_rotation(f, guide));
     let root = if choose(d0, d1, side) == 0 { 1.0 } else { -1.0 };
     let (c1, c2) = forms::rpr_rotations(form, &normal, root);
     // Slider and guide turn together: one turn, b1's, continues both angles.

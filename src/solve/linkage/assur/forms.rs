@@ -154,9 +154,14 @@ pub(super) fn rrr_chord<T: Real>(c: &RrrForm, p1: V2<T>, p3: V2<T>, slack: f64) 
 /// The squared distances of an RRR dyad's two roots to where b1's predicted rotation
 /// `pred` puts the joint (|m ± off − jp|² = |jp − m|² + h² ∓ 2·off·(jp − m)).
 #[inline(always)]
-pub(super) fn rrr_distances<T: Real>(ch: &Chord<T>, p1: V2<T>, pred: (T, T), arm1: crate::geom::Vector) -> (T, T) {
-    let dd = p1 + V2::splat(arm1).rot(pred) - ch.m;
-    let (common, x) = (dd.norm_squared() + ch.h2, T::splat(2.0) * ch.off.dot(dd));
+pub(super) fn rrr_distances<T: Real>(
+    (m, off, h2): (V2<T>, V2<T>, T),
+    p1: V2<T>,
+    pred: (T, T),
+    arm1: crate::geom::Vector,
+) -> (T, T) {
+    let dd = p1 + V2::splat(arm1).rot(pred) - m;
+    let (common, x) = (dd.norm_squared() + h2, T::splat(2.0) * off.dot(dd));
     (common - x, common + x)
 }
 
@@ -236,11 +241,11 @@ pub(super) fn rrp_reach<T: Real>(
 /// The sliding distances of an RRP dyad's two roots, and their squared distances to b2's
 /// predicted origin `rp` (at s_p = (rp − c)·w along the line and |rp − c|² − s_p² off it).
 #[inline(always)]
-pub(super) fn rrp_distances<T: Real>(re: &Reach<T>, line: &LineOf<T>, rp: V2<T>) -> ((T, T), (T, T)) {
-    let off = rp - line.c;
-    let sp = off.dot(line.w);
+pub(super) fn rrp_distances<T: Real>((b, root): (T, T), (c, w): (V2<T>, V2<T>), rp: V2<T>) -> ((T, T), (T, T)) {
+    let off = rp - c;
+    let sp = off.dot(w);
     let across = off.norm_squared() - sp * sp;
-    let (sv0, sv1) = (-re.b + re.root, -re.b - re.root);
+    let (sv0, sv1) = (-b + root, -b - root);
     ((sv0, sv1), ((sv0 - sp) * (sv0 - sp) + across, (sv1 - sp) * (sv1 - sp) + across))
 }
 
@@ -304,9 +309,9 @@ pub(super) fn rpr_normal<T: Real>(c: &RprForm, ks: V2<T>, kg: V2<T>, slack: f64)
 /// The squared distances of an RPR dyad's two guide normals to the normal at the guide's
 /// predicted rotation `pred`.
 #[inline(always)]
-pub(super) fn rpr_distances<T: Real>(c: &RprForm, nm: &Normal<T>, pred: (T, T)) -> (T, T) {
-    let u = nm.along - V2::splat(c.n0).rot(pred);
-    let (common, cross_term) = (u.norm_squared() + nm.across.norm_squared(), T::splat(2.0) * nm.across.dot(u));
+pub(super) fn rpr_distances<T: Real>(c: &RprForm, (along, across): (V2<T>, V2<T>), pred: (T, T)) -> (T, T) {
+    let u = along - V2::splat(c.n0).rot(pred);
+    let (common, cross_term) = (u.norm_squared() + across.norm_squared(), T::splat(2.0) * across.dot(u));
     (common + cross_term, common - cross_term)
 }
 

@@ -943,14 +943,9 @@ impl Batch for Rrr {
     }
     #[inline(always)]
     fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
-        let ch = forms::Chord {
-            m: io.kept2(RRR_M, c),
-            off: io.kept2(RRR_OFF, c),
-            h2: io.kept(RRR_H2, c),
-            ok: T::mask(true),
-        };
+        let chord = (io.kept2(RRR_M, c), io.kept2(RRR_OFF, c), io.kept(RRR_H2, c));
         let predicted = predicted_rotation_at(io, 0, c, pred(0, PHI));
-        let (d0, d1) = forms::rrr_distances(&ch, io.kept2(RRR_P1, c), predicted, self.arm1);
+        let (d0, d1) = forms::rrr_distances(chord, io.kept2(RRR_P1, c), predicted, self.arm1);
         flipped(d0, d1, side)
     }
 }
@@ -1001,19 +996,8 @@ impl Batch for Rrp {
     }
     #[inline(always)]
     fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
-        let reach = forms::Reach {
-            base: V2::new(T::splat(0.0), T::splat(0.0)),
-            b: io.kept(RRP_B, c),
-            root: io.kept(RRP_ROOT, c),
-            ok: T::mask(true),
-        };
-        let line = forms::LineOf {
-            phi: T::splat(0.0),
-            cs: (T::splat(1.0), T::splat(0.0)),
-            c: io.kept2(RRP_C, c),
-            w: io.kept2(RRP_W, c),
-        };
-        let (_, (e0, e1)) = forms::rrp_distances(&reach, &line, V2::new(pred(1, X), pred(1, Y)));
+        let (roots, line) = ((io.kept(RRP_B, c), io.kept(RRP_ROOT, c)), (io.kept2(RRP_C, c), io.kept2(RRP_W, c)));
+        let (_, (e0, e1)) = forms::rrp_distances(roots, line, V2::new(pred(1, X), pred(1, Y)));
         flipped(e0, e1, side)
     }
 }
@@ -1054,10 +1038,9 @@ impl Batch for Rpr {
     }
     #[inline(always)]
     fn flips<T: Lanes>(&self, io: &Io<'_>, c: usize, side: f64, pred: impl Fn(usize, usize) -> T) -> T::Mask {
-        let normal =
-            forms::Normal { along: io.kept2(RPR_ALONG, c), across: io.kept2(RPR_ACROSS, c), ok: T::mask(true) };
+        let normal = (io.kept2(RPR_ALONG, c), io.kept2(RPR_ACROSS, c));
         let guide = if self.form.b1_is_slider { 1 } else { 0 };
-        let (d0, d1) = forms::rpr_distances(&self.form, &normal, predicted_rotation_at(io, guide, c, pred(guide, PHI)));
+        let (d0, d1) = forms::rpr_distances(&self.form, normal, predicted_rotation_at(io, guide, c, pred(guide, PHI)));
         flipped(d0, d1, side)
     }
 }
