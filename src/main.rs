@@ -6,7 +6,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 use mechdraw::draw::dxf::{Dimensions, DxfOptions, DxfVersion};
-use mechdraw::figure::sheet::Paper;
+use mechdraw::figure::shared::sheet::Paper;
 use mechdraw::run::RunOptions;
 use mechdraw::scene::{self, Override};
 

@@ -19,7 +19,7 @@ use std::path::PathBuf;
 use crate::Error;
 use crate::draw::Drawing;
 use crate::draw::svg::{self, SvgOptions};
-use crate::figure::animation::{Drive, DriveState};
+use crate::figure::shared::animation::{Drive, DriveState};
 use crate::geom::Point;
 use crate::run::bytes::{self, WriteOptions};
 use crate::run::products::{Picture, Products};
@@ -693,7 +693,7 @@ pub mod js {
         }
     }
 
-    fn state_json(st: &crate::figure::animation::DriveState) -> String {
+    fn state_json(st: &crate::figure::shared::animation::DriveState) -> String {
         let points: Vec<serde_json::Value> = st.points.iter().map(|(n, p)| serde_json::json!([n, p.x, p.y])).collect();
         serde_json::json!({ "label": st.label, "points": points, "residual": st.residual }).to_string()
     }

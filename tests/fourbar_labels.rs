@@ -9,7 +9,7 @@ mod common;
 
 use mechdraw::draw::{Drawing, HAlign, Shape};
 use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
-use mechdraw::figure::polygon::MARK_RADIUS;
+use mechdraw::figure::shared::polygon::MARK_RADIUS;
 use mechdraw::geom::{Point, Vector};
 use mechdraw::run::RunOptions;
 use mechdraw::run::products::Picture;

@@ -5,7 +5,7 @@
 
 mod common;
 
-use mechdraw::figure::sheet::Paper;
+use mechdraw::figure::shared::sheet::Paper;
 use mechdraw::run::RunOptions;
 use mechdraw::run::products::Picture;
 use mechdraw::scene::{self, Override};

@@ -10,8 +10,8 @@ mod common;
 
 use mechdraw::draw::svg::{SvgOptions, to_string};
 use mechdraw::draw::{Drawing, Shape};
-use mechdraw::figure::linkage_forces::{body_forces, body_polygon, closure};
-use mechdraw::figure::linkage_polygon::polygons_of;
+use mechdraw::figure::linkage::forces::{body_forces, body_polygon, closure};
+use mechdraw::figure::linkage::polygon::polygons_of;
 use mechdraw::geom::Vector;
 use mechdraw::run::{RunOptions, products};
 use mechdraw::scene::linkage::LinkageScene;
@@ -174,7 +174,7 @@ fn linkage_sheets_have_a_page_per_sample_at_measured_scales() {
     let tmp = tempfile::tempdir().unwrap();
     let opts = RunOptions {
         out_dir: Some(tmp.path().to_path_buf()),
-        sheets: Some(mechdraw::figure::sheet::Paper::A4),
+        sheets: Some(mechdraw::figure::shared::sheet::Paper::A4),
         ..RunOptions::default()
     };
     let p = products(&l, &opts).unwrap();

@@ -7,8 +7,8 @@
 
 mod common;
 
-use mechdraw::figure::linkage_polygon::polygons;
-use mechdraw::figure::polygon::PointPolygon;
+use mechdraw::figure::linkage::polygon::polygons;
+use mechdraw::figure::shared::polygon::PointPolygon;
 use mechdraw::geom::{Vector, perp};
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::linkage::{Anchor, Attach, JointKind, Mechanism, Solver, State};

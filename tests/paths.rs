@@ -7,7 +7,7 @@
 mod common;
 
 use mechdraw::draw::{Drawing, Shape};
-use mechdraw::figure::vocab::{PATH_TOLERANCE_MM, distance_to_segment};
+use mechdraw::figure::shared::vocab::{PATH_TOLERANCE_MM, distance_to_segment};
 use mechdraw::geom::Point;
 use mechdraw::run::products::{Picture, Products};
 use mechdraw::scene::{self, Override};

@@ -183,7 +183,7 @@ fn sheets_are_written_like_the_picture_right_after_it() {
 #[test]
 fn with_png_every_svg_has_its_png_next_to_it_frames_and_printed_pages_too() {
     let (_, loaded) = templates().into_iter().find(|(s, _)| s == "fourbar-chebyshev").unwrap();
-    let opts = RunOptions { sheets: Some(mechdraw::figure::sheet::Paper::A4), ..RunOptions::default() };
+    let opts = RunOptions { sheets: Some(mechdraw::figure::shared::sheet::Paper::A4), ..RunOptions::default() };
     let products = mechdraw::run::products(&loaded, &opts).unwrap();
     let files = bytes::to_files(&products, &WriteOptions { png: true, ..WriteOptions::default() }).unwrap();
     let names: Vec<&str> = files.iter().map(|(n, _)| n.as_str()).collect();

@@ -13,7 +13,7 @@ use std::path::Path;
 use std::process::Command;
 
 use mechdraw::draw::{Bounds, Drawing, Shape};
-use mechdraw::figure::sheet::{Panel, Paper};
+use mechdraw::figure::shared::sheet::{Panel, Paper};
 use mechdraw::geom::Point;
 use mechdraw::run::RunOptions;
 use mechdraw::run::bytes::{self, WriteOptions};
@@ -145,7 +145,7 @@ fn every_polygon_fills_at_least_half_of_its_panel_less_its_letters() {
                     .unwrap_or_else(|| panic!("{}: {layer} is in no panel", page.stem));
                 let area = Panel::of_outline(*frame, paper.sizes()).area;
                 // Fitted to the area less room for the letters at its outer points.
-                let room = 2.0 * mechdraw::figure::sheet_polygons::LETTER_ROOM * paper.sizes().text;
+                let room = 2.0 * mechdraw::figure::shared::sheet_polygons::LETTER_ROOM * paper.sizes().text;
                 let (w, h) =
                     ((area.width() - room).max(0.5 * area.width()), (area.height() - room).max(0.5 * area.height()));
                 let fill = (e.width() / w).max(e.height() / h);

@@ -9,7 +9,7 @@ mod common;
 
 use mechdraw::draw::parts::explode_dimension;
 use mechdraw::draw::{Drawing, Entity, HAlign, Shape, VAlign};
-use mechdraw::figure::labels::TextBox;
+use mechdraw::figure::shared::labels::TextBox;
 use mechdraw::geom::Point;
 use mechdraw::run::RunOptions;
 use mechdraw::run::products::Products;

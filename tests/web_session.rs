@@ -194,7 +194,7 @@ fn the_triad_lists_its_eight_assembly_modes_and_the_pattern_methods_angle() {
 }
 
 /// A point by name in a drive state.
-fn point_of(st: &mechdraw::figure::animation::DriveState, name: &str) -> mechdraw::geom::Point {
+fn point_of(st: &mechdraw::figure::shared::animation::DriveState, name: &str) -> mechdraw::geom::Point {
     st.points.iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no point {name}")).1
 }
 
@@ -257,7 +257,7 @@ fn dragging_a_shaper_point_keeps_every_joint_together() {
         assert!(((a - o3).x * u.y - (a - o3).y * u.x).abs() <= 1e-9 * 600.0, "the block is on the rocker");
         // The drive went where rocker.B is nearest the pointer: no nearby time is nearer.
         let (k, t) = session.dragged().unwrap();
-        let d = |st: &mechdraw::figure::animation::DriveState| (point_of(st, "rocker.B") - target).norm();
+        let d = |st: &mechdraw::figure::shared::animation::DriveState| (point_of(st, "rocker.B") - target).norm();
         let here = d(&st);
         let drive = match &session.products().unwrap().picture {
             mechdraw::run::products::Picture::Motion(a) => a.drive.as_ref().unwrap(),

@@ -6,7 +6,7 @@
 use super::Measurement;
 use super::basins::{Basin, Strip};
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
-use crate::figure::labels::{Polygon, TextBox};
+use crate::figure::shared::labels::{Polygon, TextBox};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::triad::Configuration;
 

@@ -753,7 +753,7 @@ mod tests {
             };
             let over: Vec<crate::scene::Override> = set.iter().map(|s| s.parse().unwrap()).collect();
             let loaded = crate::scene::load(&path, &over).unwrap();
-            let sheets = matches!(kind, "fourbar" | "linkage").then_some(crate::figure::sheet::Paper::A4);
+            let sheets = matches!(kind, "fourbar" | "linkage").then_some(crate::figure::shared::sheet::Paper::A4);
             let opts = crate::run::RunOptions { sheets, ..Default::default() };
             let p = crate::run::products(&loaded, &opts).unwrap();
             let mut drawings: Vec<(Drawing, SvgOptions)> = Vec::new();

@@ -9,8 +9,8 @@
 //! worst-case tolerance.
 
 use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, Shape, VAlign, parts};
-use crate::figure::plot::{self, Histogram};
-use crate::figure::vocab::{self, Sizes};
+use crate::figure::shared::plot::{self, Histogram};
+use crate::figure::shared::vocab::{self, Sizes};
 use crate::geom::Point;
 use crate::solve::chain::graph::{Analysis, fmt_value};
 use crate::solve::chain::{Dimension, Form, MonteCarlo, Stack};

@@ -25,8 +25,8 @@ use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shap
 use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
 use crate::solve::triad::{Configuration, Orientation, Triad};
 
-use super::labels::{self, TextBox};
-use super::vocab::{self, ModelUnits, Sizes};
+use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
 
 /// Width of the seed's polylines (`Pline A1 "W" "0.5" "0.5" A2 A3 "Close"`), drawing
 /// millimetres.

@@ -31,7 +31,7 @@ use crate::Error;
 use crate::draw::dxf::{self, DxfOptions};
 use crate::draw::svg::{self, SvgOptions};
 use crate::draw::{Drawing, pdf, raster};
-use crate::figure::animation::Animation;
+use crate::figure::shared::animation::Animation;
 
 /// Width of the SVG frames and pictures, pixels (their viewBox is in model units).
 pub const FRAME_WIDTH_PX: u32 = 1000;

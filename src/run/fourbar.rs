@@ -15,11 +15,11 @@ use super::solve_err;
 use crate::Error;
 use std::sync::Arc;
 
-use crate::figure::animation::{Animation, Drive, DriveState};
+use crate::figure::fourbar::sheet::FourbarSheets;
 use crate::figure::fourbar::{Layout, ModelUnits, Show, angle_text};
-use crate::figure::fourbar_sheet::FourbarSheets;
-use crate::figure::plot::{self, Diagram, Series};
-use crate::figure::sheet::{self, Paper};
+use crate::figure::shared::animation::{Animation, Drive, DriveState};
+use crate::figure::shared::plot::{self, Diagram, Series};
+use crate::figure::shared::sheet::{self, Paper};
 use crate::geom::{self, Point, Side, Vector, deg};
 use crate::report::{self, Csv};
 use crate::scene::Units;

@@ -9,11 +9,11 @@ use serde_json::{Value, json};
 
 use super::products::Sheet;
 use crate::draw::Bounds;
-use crate::figure::centres::centres_sheet;
+use crate::figure::fourbar::centres::centres_sheet;
+use crate::figure::fourbar::joukowski::{LeverPanel, LeverUnits, joukowski_sheet};
 use crate::figure::fourbar::{ModelUnits, angle_text};
-use crate::figure::joukowski::{LeverPanel, LeverUnits, joukowski_sheet};
-use crate::figure::plot::{Level, Mark, Marks};
-use crate::figure::vocab::length_scale;
+use crate::figure::shared::plot::{Level, Mark, Marks};
+use crate::figure::shared::vocab::length_scale;
 use crate::geom::{Point, Vector, deg};
 use crate::report::Csv;
 use crate::solve::fourbar::joukowski::{Lever, lever};

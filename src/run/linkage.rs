@@ -12,13 +12,13 @@ use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
 use crate::draw::{Aci, LineType};
-use crate::figure::animation::{Animation, Drive, DriveState};
 use crate::figure::linkage as fig;
-use crate::figure::linkage_forces;
-use crate::figure::linkage_frame::{LinkageFrames, RunForces, Show};
-use crate::figure::linkage_sheet::LinkageSheets;
-use crate::figure::plot::{Diagram, Series, diagram};
-use crate::figure::sheet::{self, Paper};
+use crate::figure::linkage::forces as linkage_forces;
+use crate::figure::linkage::frame::{LinkageFrames, RunForces, Show};
+use crate::figure::linkage::sheet::LinkageSheets;
+use crate::figure::shared::animation::{Animation, Drive, DriveState};
+use crate::figure::shared::plot::{Diagram, Series, diagram};
+use crate::figure::shared::sheet::{self, Paper};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
 use crate::scene::Units;
@@ -538,8 +538,8 @@ pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
         })
         .collect();
     let units = match scene.units {
-        crate::scene::Units::Mm => crate::figure::vocab::ModelUnits::MM,
-        crate::scene::Units::Si => crate::figure::vocab::ModelUnits::SI,
+        crate::scene::Units::Mm => crate::figure::shared::vocab::ModelUnits::MM,
+        crate::scene::Units::Si => crate::figure::shared::vocab::ModelUnits::SI,
     };
     fig::LinkageFigure::new(&scene.mechanism, |a| scene.point_name(a), traced).with_units(units)
 }

@@ -40,7 +40,7 @@ pub struct RunOptions {
     pub dxf: crate::draw::dxf::DxfOptions,
     /// `--sheets a4|a3`: one printed page per position (`sheets/<name>/<position>.svg`)
     /// and `<name>-sheets.pdf` (four-bar and linkage scenes).
-    pub sheets: Option<crate::figure::sheet::Paper>,
+    pub sheets: Option<crate::figure::shared::sheet::Paper>,
     /// The `--set KEY=VALUE` changes the scene was loaded with: the live page applies them
     /// to the scene file's text when it opens.
     pub sets: Vec<String>,

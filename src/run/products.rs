@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use crate::Error;
 use crate::draw::{Bounds, Drawing};
-use crate::figure::animation::Animation;
+use crate::figure::shared::animation::Animation;
 use crate::report::Csv;
 
 /// The scene's picture: one drawing, or a motion.

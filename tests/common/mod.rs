@@ -188,7 +188,7 @@ pub struct TextBox {
 /// Every text of `d` with its box.
 pub fn text_boxes(d: &mechdraw::draw::Drawing) -> Vec<TextBox> {
     use mechdraw::draw::{HAlign, Shape, VAlign};
-    use mechdraw::figure::labels::{CIRCLE_RADIUS, label_width};
+    use mechdraw::figure::shared::labels::{CIRCLE_RADIUS, label_width};
     use mechdraw::geom::{Point, Vector};
     let circles: Vec<(Point, f64)> = d
         .entities

@@ -9,8 +9,8 @@
 //! the mechanism's size) and draws each physical vector (m/s, m/s², N …) at a scale per
 //! printed millimetre ([`Scale::on_paper`]); every panel carries a [`scale_bar`].
 
-use super::labels::TextBox;
 use crate::draw::{Aci, Drawing, Entity, Shape};
+use crate::figure::shared::labels::TextBox;
 use crate::geom::{Point, Vector, perp};
 
 /// Length unit of the model, for scale texts.
@@ -220,7 +220,7 @@ pub fn unit_or(v: Vector, fallback: Vector) -> Vector {
 
 /// A vector: an arrow from `from` by `v` (drawn units); nothing for a vector shorter than
 /// a hundredth of the arrowhead. Its name, if any, goes through the letter placer
-/// ([`super::labels::Polygon`]) with the other letters of the drawing.
+/// ([`crate::figure::shared::labels::Polygon`]) with the other letters of the drawing.
 pub fn vector(d: &mut Drawing, layer: usize, from: Point, v: Vector, s: Sizes) {
     if v.norm().is_nan() || v.norm() <= 0.01 * s.head {
         return;

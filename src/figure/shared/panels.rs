@@ -23,10 +23,10 @@ use crate::draw::parts::widest_text_width;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
-use super::forces::{self, ForcePolygon, Magnitude};
-use super::labels;
-use super::polygon::{self, PointPolygon};
-use super::vocab::{
+use crate::figure::shared::forces::{self, ForcePolygon, Magnitude};
+use crate::figure::shared::labels;
+use crate::figure::shared::polygon::{self, PointPolygon};
+use crate::figure::shared::vocab::{
     ModelUnits, Scale, Sizes, bar_value, content_drawing, layer_of, layers, length_scale, length_scale_text,
     nice_scale, scale_bar, scale_bar_room, scale_text,
 };

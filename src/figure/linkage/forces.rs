@@ -1,5 +1,5 @@
 //! Force figures of any linkage (issue 15 §2), as [`ForcePolygon`]s for the shared
-//! [`super::forces::draw`] (the four-bar's dyad and crank polygons are drawn by the same
+//! [`crate::figure::shared::forces::draw`] (the four-bar's dyad and crank polygons are drawn by the same
 //! code): for each moving body, the polygon of everything acting on it — its inertia force
 //! `Fi<n>` and weight `G<n>` (n the body's number, from 1; the ground is 0), the loads by
 //! their names, a distance driver's force, and the reactions of its joints — chained from
@@ -21,7 +21,7 @@ use crate::solve::linkage::{
     Applied, AppliedKind, Attach, DriverTarget, Dynamics, Forces, JointKind, Mechanism, State, applied_forces,
 };
 
-use super::forces::{ForcePolygon, Magnitude, NamedVector, Resultant};
+use crate::figure::shared::forces::{ForcePolygon, Magnitude, NamedVector, Resultant};
 
 /// Longest joint name used as is in a reaction's name (`RO1`); longer ones take the bodies'
 /// numbers (`R32`).

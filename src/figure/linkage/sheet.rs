@@ -1,22 +1,22 @@
 //! Any linkage on printed sheets (issue 15 §3): one page per position with the mechanism
 //! (its traced paths, at one k_l for the run), the velocity polygon, the acceleration
 //! polygon and the force polygons (one per body), each in its own panel
-//! ([`super::sheet`]), drawn by the same code as the four-bar's sheets
-//! ([`super::sheet_polygons`]: each polygon at its own nice scale on each page) and the
-//! linkage's frames ([`super::linkage::mechanism`], [`super::linkage_polygon`],
-//! [`super::linkage_forces`]), in paper millimetres.
+//! ([`crate::figure::shared::sheet`]), drawn by the same code as the four-bar's sheets
+//! ([`crate::figure::shared::sheet_polygons`]: each polygon at its own nice scale on each page) and the
+//! linkage's frames ([`crate::figure::linkage::mechanism`], [`crate::figure::linkage::polygon`],
+//! [`crate::figure::linkage::forces`]), in paper millimetres.
 
 use crate::draw::Drawing;
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
-use super::linkage::{self as fig, LinkageFigure};
-use super::linkage_forces::{body_forces, body_polygon};
-use super::linkage_frame::{Show, time_text};
-use super::linkage_polygon::polygons_of;
-use super::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
-use super::sheet_polygons::{self, PageFit, PagePolygons, PageScales, Shown};
-use super::vocab::{layer_of, layers};
+use crate::figure::linkage::forces::{body_forces, body_polygon};
+use crate::figure::linkage::frame::{Show, time_text};
+use crate::figure::linkage::polygon::polygons_of;
+use crate::figure::linkage::{self as fig, LinkageFigure};
+use crate::figure::shared::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
+use crate::figure::shared::sheet_polygons::{self, PageFit, PagePolygons, PageScales, Shown};
+use crate::figure::shared::vocab::{layer_of, layers};
 
 /// What every page of a run shares: the layout, the mechanism's scale and placement, the
 /// figure and the traced paths on paper.

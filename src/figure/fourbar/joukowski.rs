@@ -14,9 +14,9 @@ use crate::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlig
 use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
 
-use super::fourbar::angle_text;
-use super::labels::{self};
-use super::vocab::{
+use crate::figure::fourbar::angle_text;
+use crate::figure::shared::labels::{self};
+use crate::figure::shared::vocab::{
     ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, scale_text, unit_or,
     vector,
 };

@@ -5,14 +5,14 @@
 //! here draws them without knowing which mechanism they come from.
 //!
 //! Points are numbered: [`POLE`] (0) is the pole, `i + 1` the `i`-th of
-//! [`PointPolygon::points`]. The letters are placed by [`super::labels`], so that they stay
+//! [`PointPolygon::points`]. The letters are placed by [`crate::figure::shared::labels`], so that they stay
 //! readable in a small polygon.
 
 use crate::draw::{Drawing, Shape};
 use crate::geom::{Point, Vector};
 
-use super::labels;
-use super::vocab::{self, Scale, Sizes, layer_of, layers, unit_or, vector};
+use crate::figure::shared::labels;
+use crate::figure::shared::vocab::{self, Scale, Sizes, layer_of, layers, unit_or, vector};
 
 /// Radius of a marked point's dot ([`PointPolygon::marks`]), in joint radii.
 pub const MARK_RADIUS: f64 = 0.35;
@@ -176,7 +176,7 @@ pub fn draw_keeping_off(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::vocab::{ModelUnits, content_drawing};
+    use crate::figure::shared::vocab::{ModelUnits, content_drawing};
 
     /// A triangle polygon: p → a, p → b, a → b, with b also reached as a component.
     fn triangle() -> PointPolygon {

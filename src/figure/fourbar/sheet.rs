@@ -1,12 +1,12 @@
 //! The four-bar on printed sheets (issue 14, item 3): one page per position with the
 //! mechanism, the velocity polygon, the acceleration polygon and the force polygons, each
-//! in its own panel ([`super::sheet`]), drawn by the same functions as the animation
-//! (`figure::fourbar::mechanism`, [`super::polygon::draw`], [`super::forces::draw`] on the
+//! in its own panel ([`crate::figure::shared::sheet`]), drawn by the same functions as the animation
+//! (`figure::fourbar::mechanism`, [`crate::figure::shared::polygon::draw`], [`crate::figure::shared::forces::draw`] on the
 //! four-bar's adapters), in paper millimetres.
 //!
 //! Scales: the mechanism has one k_l for the whole run (a nice value at which the whole
 //! motion, the coupler curve included, fits its panel), so that pages compare; each polygon
-//! gets its own nice scale on each page ([`super::sheet::fit`]: it fills about two thirds of
+//! gets its own nice scale on each page ([`crate::figure::shared::sheet::fit`]: it fills about two thirds of
 //! its panel, at least half), unlike the animation, whose polygons keep the run's fixed
 //! scales. Every scale is printed in its panel's title and in the title block.
 
@@ -14,13 +14,13 @@ use crate::draw::Drawing;
 use crate::geom::{Point, Vector, deg};
 use crate::solve::fourbar::{Forces, Geometry, Position};
 
-use super::fourbar::{
+use crate::figure::fourbar::{
     Show, acceleration_polygon, angle_text, crank_polygon, dyad_polygon, mechanism, velocity_polygon,
 };
-use super::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
-pub use super::sheet_polygons::PageScales;
-use super::sheet_polygons::{self, PageFit, PagePolygons, Shown};
-use super::vocab::{ModelUnits, ground, layer_of, layers, path};
+use crate::figure::shared::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
+pub use crate::figure::shared::sheet_polygons::PageScales;
+use crate::figure::shared::sheet_polygons::{self, PageFit, PagePolygons, Shown};
+use crate::figure::shared::vocab::{ModelUnits, ground, layer_of, layers, path};
 
 /// What every page of a run shares: the layout, the mechanism's scale and placement, the
 /// coupler curve on paper.

@@ -1,5 +1,5 @@
 //! Velocity and acceleration polygons of any linkage, as [`PointPolygon`] values for the
-//! shared [`super::polygon::draw`] (the four-bar's polygons are drawn by the same code).
+//! shared [`crate::figure::shared::polygon::draw`] (the four-bar's polygons are drawn by the same code).
 //!
 //! The points are the named points of the moving bodies (one point per name: `crank.A` and
 //! `block.A` pinned together are one point `a`); a point pinned to the ground is the pole.
@@ -27,7 +27,7 @@
 use crate::geom::{Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, State};
 
-use super::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
+use crate::figure::shared::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
 
 /// Relative tolerance (of the body's largest point offset) under which two body points
 /// are taken as the same point (a body point at a ground pivot).

@@ -13,9 +13,9 @@ use crate::geom::{Point, Vector};
 use crate::solve::fourbar::centres::{Centre, Centres, centres};
 use crate::solve::fourbar::{Geometry, Position};
 
-use super::fourbar::{angle_text, mechanism};
-use super::labels::{self, TextBox};
-use super::vocab::{ModelUnits, Sizes, content_drawing, ground, layer_of, layers, length_scale_text};
+use crate::figure::fourbar::{angle_text, mechanism};
+use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::vocab::{ModelUnits, Sizes, content_drawing, ground, layer_of, layers, length_scale_text};
 
 /// Layer of the centres' circles and names.
 pub const CENTRES: layers::Layer = ("CENTRES", Aci::RED, LineType::Continuous);

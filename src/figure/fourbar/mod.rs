@@ -5,9 +5,9 @@
 //! of a_B about C, image points b′, m′); and, with forces, the force polygons of the dyad
 //! and of the crank. This file only adapts the four-bar's results to the shared
 //! vocabulary: small adapters build the polygons as named points
-//! ([`super::polygon::PointPolygon`]) and named vectors
-//! ([`super::forces::ForcePolygon`]) from `Kinematics` and `Forces`; the drawing code
-//! knows no four-bar field. Every letter is placed by [`super::labels`].
+//! ([`crate::figure::shared::polygon::PointPolygon`]) and named vectors
+//! ([`crate::figure::shared::forces::ForcePolygon`]) from `Kinematics` and `Forces`; the drawing code
+//! knows no four-bar field. Every letter is placed by [`crate::figure::shared::labels`].
 //!
 //! # Layout and scales
 //! One [`Layout`] is computed per run from every position, so all frames share one window
@@ -30,22 +30,26 @@
 //! panel titles, scales) on the content layers `MECHANISM`, `COUPLER_CURVE`, `DIMENSIONS`.
 //! [`Layout::moving`] draws one position on the content layers `MECHANISM`, `VELOCITY`,
 //! `ACCELERATION`, `FORCES`, `CONSTRUCTION`, `TEXT`. An SVG frame is base + moving
-//! ([`Layout::frame`]); the DXF ([`crate::figure::animation::Animation::all_positions`], from the run's animation) moves each position's entities onto
+//! ([`Layout::frame`]); the DXF ([`crate::figure::shared::animation::Animation::all_positions`], from the run's animation) moves each position's entities onto
 //! its own layer `POS_000`…`POS_359`, keeping the content's colour and line type on each
 //! entity, so that a CAD user switches positions by layer and tells contents by colour.
+
+pub mod centres;
+pub mod joukowski;
+pub mod sheet;
 
 use crate::draw::{Drawing, Shape};
 use crate::geom::{Point, Vector, cross, perp};
 use crate::solve::fourbar::{ExternalForce, Forces, Link, LinkLoad};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
-use super::forces::{self, ForcePolygon, NamedVector, Resultant};
-use super::labels;
-pub use super::panels::TABLE_CAPTION;
-use super::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
-use super::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
-pub use super::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
-use super::vocab::{ground, ground_extent, joint, layer_of, layers, link, path, turn_arrow, unit_or};
+use crate::figure::shared::forces::{self, ForcePolygon, NamedVector, Resultant};
+use crate::figure::shared::labels;
+pub use crate::figure::shared::panels::TABLE_CAPTION;
+use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
+use crate::figure::shared::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
+pub use crate::figure::shared::vocab::{ModelUnits, Scale, Sizes, nice_scale, scale_text};
+use crate::figure::shared::vocab::{ground, ground_extent, joint, layer_of, layers, link, path, turn_arrow, unit_or};
 
 /// Largest extent of the mechanism's motion on paper, millimetres: k_l is the nice value
 /// that draws it at most this long.
@@ -741,7 +745,7 @@ pub(crate) mod tests {
 
     #[test]
     fn polygon_letters_never_overlap_over_the_template_motion() {
-        use super::super::labels::TextBox;
+        use crate::figure::shared::labels::TextBox;
         let (g, motion, lay) = template_motion();
         assert_eq!(motion.positions.len(), 360);
         let mut overlaps = [0usize; 3];
@@ -778,7 +782,7 @@ pub(crate) mod tests {
 
     #[test]
     fn polygon_letters_stay_near_their_points_over_the_template_motion() {
-        use super::super::labels::{COINCIDENT, SAME_POINT, max_distance, max_leader_distance};
+        use crate::figure::shared::labels::{COINCIDENT, SAME_POINT, max_distance, max_leader_distance};
         let (g, motion, lay) = template_motion();
         let (sv, pv) = lay.frame.velocity.unwrap();
         let (sa, pa) = lay.frame.acceleration.unwrap();

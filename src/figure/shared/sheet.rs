@@ -14,13 +14,13 @@ use std::str::FromStr;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
-use super::vocab::{Sizes, content_drawing, nice_scale, scale_bar_room};
+use crate::figure::shared::vocab::{Sizes, content_drawing, nice_scale, scale_bar_room};
 
 /// Thinnest stroke on a sheet, paper mm (frame lines, construction lines, pole circles).
 pub const HAIRLINE_MM: f64 = 0.25;
 
 /// The layer of the sheet's own lines and texts (border, title block, table, panel frames).
-pub const SHEET_LAYER: crate::figure::vocab::layers::Layer =
+pub const SHEET_LAYER: crate::figure::shared::vocab::layers::Layer =
     ("SHEET", crate::draw::Aci::BLACK, crate::draw::LineType::Continuous);
 
 /// Fraction of a panel's drawing area a figure should fill (its larger extent): "about two

@@ -1,9 +1,9 @@
 //! The graph-analytical frame of any linkage (issue 15 §2, §3): the mechanism with the
 //! paths of its traced points in the first panel and, through the shared
 //! [`PanelFrame`] (the four-bar's frames are drawn by the same code), its velocity polygon
-//! and acceleration polygon ([`super::linkage_polygon`]: Coriolis components at moving
+//! and acceleration polygon ([`crate::figure::linkage::polygon`]: Coriolis components at moving
 //! guides), and with forces one force polygon per moving body
-//! ([`super::linkage_forces`]), the table of magnitudes, and the reactions and loads drawn
+//! ([`crate::figure::linkage::forces`]), the table of magnitudes, and the reactions and loads drawn
 //! on the mechanism at the force scale.
 //!
 //! Scales are fixed for the run (chosen from every position), so that the animation does
@@ -13,12 +13,12 @@ use crate::draw::Drawing;
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
-use super::forces::{self, ForcePolygon};
-use super::linkage::{self as fig, LinkageFigure};
-use super::linkage_forces::{body_forces, body_polygon, caption, magnitudes, on_mechanism};
-use super::linkage_polygon::{LinkagePolygons, polygons_of};
-use super::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
-use super::vocab::{layer_of, layers};
+use crate::figure::linkage::forces::{body_forces, body_polygon, caption, magnitudes, on_mechanism};
+use crate::figure::linkage::polygon::{LinkagePolygons, polygons_of};
+use crate::figure::linkage::{self as fig, LinkageFigure};
+use crate::figure::shared::forces::{self, ForcePolygon};
+use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
+use crate::figure::shared::vocab::{layer_of, layers};
 
 /// Largest extent of the mechanism's motion on paper, millimetres (as the four-bar's).
 pub const MECHANISM_MM: f64 = 100.0;

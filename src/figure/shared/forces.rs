@@ -9,7 +9,7 @@
 //! Every vector is named. A name goes beside its vector's middle, preferably on the outside
 //! of the polygon; a name that finds no free place there (a short vector among others in a
 //! small polygon) goes further out with a leader line to its vector's middle
-//! ([`super::labels::Polygon::name_with_leader`]), clear of the other names. A resultant
+//! ([`crate::figure::shared::labels::Polygon::name_with_leader`]), clear of the other names. A resultant
 //! that would lie on a side already drawn (R_B, R_C^t and R_C on one line when the rocker's
 //! loads are small) is drawn beside it, parallel, [`OFFSET`] arrowheads away, so both stay
 //! visible.
@@ -18,8 +18,8 @@ use crate::draw::parts::widest_text_width;
 use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, cross, perp};
 
-use super::labels::{self, TextBox};
-use super::vocab::{Scale, Sizes, layer_of, layers, unit_or};
+use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::vocab::{Scale, Sizes, layer_of, layers, unit_or};
 
 /// Colour of the resultants of a polygon (the reactions found from it).
 pub const RESULTANT: Aci = Aci::RED;
@@ -123,7 +123,7 @@ pub fn draw(
     }
     let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
-    super::vocab::pole(d, l, pole, s);
+    crate::figure::shared::vocab::pole(d, l, pole, s);
     names.letter(pole, &poly.pole, s.text, pole - centroid, None);
     // Every segment drawn so far, for resultants to keep off.
     let mut drawn: Vec<(Point, Point)> = Vec::new();
@@ -391,7 +391,7 @@ pub fn draw_on_mechanism(d: &mut Drawing, arrows: &[ForceArrow], s: Sizes) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::figure::vocab::{ModelUnits, content_drawing};
+    use crate::figure::shared::vocab::{ModelUnits, content_drawing};
 
     /// A weight held by two ropes: W down, then the ropes' forces T1, T2 close the triangle;
     /// a resultant T1 + T2 drawn across it, and a short force P.

@@ -13,13 +13,18 @@
 //! millimetres; the drawings carry `paper_mm_per_unit = 1/k_l` and the base prints
 //! `k_l = 5 mm/mm` with a scale bar under the motion.
 
+pub mod forces;
+pub mod frame;
+pub mod polygon;
+pub mod sheet;
+
 use crate::draw::{Aci, DimStyle, Drawing, LineType};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
-use super::forces::ForceArrow;
-use super::labels::{self, TextBox};
-use super::vocab::{self, ModelUnits, Sizes};
+use crate::figure::shared::forces::ForceArrow;
+use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
 
 /// Largest extent of the motion (every body point over every position) on paper,
 /// millimetres.
@@ -220,7 +225,7 @@ pub fn mechanism(
 }
 
 /// [`mechanism`] with the names of the force arrows `arrows` (drawn on the mechanism by
-/// [`super::forces::draw_on_mechanism`]) placed with the points' names, clear of them, on
+/// [`crate::figure::shared::forces::draw_on_mechanism`]) placed with the points' names, clear of them, on
 /// the `FORCES` layer.
 pub fn mechanism_with_forces(
     d: &mut Drawing,

@@ -1,16 +1,16 @@
 //! The polygon panels of a printed sheet, for any mechanism (issue 15 §3: one figure
 //! pipeline; the four-bar's and the linkage's sheets both draw through here): each polygon
-//! at its own nice scale on each page ([`super::sheet::fit`]: it fills about two thirds of
+//! at its own nice scale on each page ([`crate::figure::shared::sheet::fit`]: it fills about two thirds of
 //! its panel, at least half), centred in its panel; the force figures side by side in rows
 //! of up to [`FIGURES_PER_ROW`] at one scale; a scale bar at the foot of every panel.
 
 use crate::draw::Drawing;
 use crate::geom::{Point, Vector};
 
-use super::forces::{self, ForcePolygon};
-use super::polygon::{self, PointPolygon};
-use super::sheet::{self, Fit, SheetLayout};
-use super::vocab::{ModelUnits, Scale, bar_value, layer_of, layers, scale_bar, scale_text};
+use crate::figure::shared::forces::{self, ForcePolygon};
+use crate::figure::shared::polygon::{self, PointPolygon};
+use crate::figure::shared::sheet::{self, Fit, SheetLayout};
+use crate::figure::shared::vocab::{ModelUnits, Scale, bar_value, layer_of, layers, scale_bar, scale_text};
 
 /// Gap between force figures on a sheet, in the largest figure's extents.
 pub const FIGURE_GAP: f64 = 0.15;
@@ -76,7 +76,7 @@ pub struct PageFit {
 
 /// The room a polygon is fitted to in a panel's `area`: [`LETTER_ROOM`] letter heights less
 /// each way, for the letters at its outer points.
-fn letter_room(area: crate::draw::Bounds, s: super::vocab::Sizes) -> Vector {
+fn letter_room(area: crate::draw::Bounds, s: crate::figure::shared::vocab::Sizes) -> Vector {
     let room = 2.0 * LETTER_ROOM * s.text;
     Vector::new((area.width() - room).max(0.5 * area.width()), (area.height() - room).max(0.5 * area.height()))
 }
@@ -181,7 +181,7 @@ impl PageFit {
     }
 
     /// Draws the polygons in their panels, each at its scale (the drawing in paper mm).
-    pub fn draw(&self, d: &mut Drawing, polys: PagePolygons, s: super::vocab::Sizes) {
+    pub fn draw(&self, d: &mut Drawing, polys: PagePolygons, s: crate::figure::shared::vocab::Sizes) {
         if let (Some(poly), Some((f, pole))) = (polys.velocity, self.velocity) {
             polygon::draw(d, poly, layers::VELOCITY, Scale::on_paper(f.per_mm, 1.0), pole, s);
         }
