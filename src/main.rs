@@ -68,6 +68,10 @@ enum Command {
         /// `exploded` (plain lines, arcs, arrowheads and text that every reader shows).
         #[arg(long, value_name = "HOW", default_value = "entities")]
         dxf_dimensions: Dimensions,
+        /// Synthesis scenes: write the construction, the check table and the design
+        /// (DIR/<name>-design.toml) but not the design's whole run.
+        #[arg(long)]
+        no_analysis: bool,
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
@@ -131,7 +135,20 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Run { scene, out, set, json, png, no_frames, sheets, drag, dxf_version, dxf_dimensions, quiet } => {
+        Command::Run {
+            scene,
+            out,
+            set,
+            json,
+            png,
+            no_frames,
+            sheets,
+            drag,
+            dxf_version,
+            dxf_dimensions,
+            no_analysis,
+            quiet,
+        } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
             let opts = RunOptions {
                 out_dir: Some(out),
@@ -143,6 +160,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 sheets,
                 sets: set.clone(),
                 picture_only: false,
+                no_analysis,
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

@@ -13,6 +13,7 @@ pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
 pub mod products;
+pub mod synthesis;
 mod triad;
 
 pub use products::Products;
@@ -49,13 +50,16 @@ pub struct RunOptions {
     /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
     /// make everything anyway. The picture and the warnings are the same either way.
     pub picture_only: bool,
+    /// `--no-analysis`: a synthesis writes its construction, its check table and the design
+    /// (`<name>-design.toml`) but not the design's whole run.
+    pub no_analysis: bool,
 }
 
 /// Whether [`RunOptions::picture_only`] makes less than a whole run of `scene`: it does for
 /// the kinds whose runs sweep many positions (four-bar, linkage); a triad's or a chain's run
 /// is made whole.
 pub fn picture_alone(scene: &Scene) -> bool {
-    matches!(scene, Scene::Fourbar(_) | Scene::Linkage(_))
+    matches!(scene, Scene::Fourbar(_) | Scene::Linkage(_) | Scene::Synthesis(_))
 }
 
 /// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
@@ -89,11 +93,11 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             message: format!("only a linkage scene can be dragged; {file} is a {} scene", loaded.scene.kind()),
         });
     }
-    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_) | Scene::Linkage(_)) {
+    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_) | Scene::Linkage(_) | Scene::Synthesis(_)) {
         return Err(Error::Option {
             option: "--sheets".into(),
             message: format!(
-                "per-position sheets are drawn for four-bar and linkage scenes; {file} is a {} scene",
+                "per-position sheets are drawn for four-bar and linkage scenes (and a synthesis's design); {file} is a {} scene",
                 loaded.scene.kind()
             ),
         });
@@ -103,6 +107,7 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
         Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, opts.picture_only),
         Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, opts.picture_only),
         Scene::Chain(s) => chain::products(s, &file),
+        Scene::Synthesis(s) => synthesis::products(s, &file, opts),
     }
 }
 

@@ -406,10 +406,17 @@ pub struct Expr {
 }
 
 impl Expr {
-    /// Parses `source`; the error says where it went wrong.
+    /// Parses `source`, an expression of `t`; the error says where it went wrong.
     pub fn parse(source: &str) -> Result<Expr, ParseError> {
+        Expr::parse_in(source, "t")
+    }
+
+    /// Parses `source`, an expression of the variable `var` (a name that is not a constant
+    /// or a function: `x` for a function to generate); [`Expr::eval`] takes the variable's
+    /// value.
+    pub fn parse_in(source: &str, var: &str) -> Result<Expr, ParseError> {
         let tokens = lex(source)?;
-        let mut p = Parser { tokens: &tokens, pos: 0, source };
+        let mut p = Parser { tokens: &tokens, pos: 0, source, var };
         let root = p.expr()?;
         if let Some(tok) = p.peek() {
             return Err(p.error_at(tok.col, format!("unexpected {} after a complete expression", tok.kind)));
@@ -578,6 +585,8 @@ struct Parser<'a> {
     tokens: &'a [Token],
     pos: usize,
     source: &'a str,
+    /// The variable's name (`t` for a law).
+    var: &'a str,
 }
 
 impl Parser<'_> {
@@ -644,9 +653,10 @@ impl Parser<'_> {
 
     fn primary(&mut self) -> Result<Node, ParseError> {
         let Some(tok) = self.peek().cloned() else {
-            return Err(
-                self.error_at(self.end_col(), "the expression ends here; expected a number, t, a name or `(`".into())
-            );
+            return Err(self.error_at(
+                self.end_col(),
+                format!("the expression ends here; expected a number, {}, a name or `(`", self.var),
+            ));
         };
         self.pos += 1;
         match tok.kind {
@@ -668,19 +678,25 @@ impl Parser<'_> {
                         }
                         _ => Err(self.error_at(
                             tok.col + name.chars().count(),
-                            format!("function `{}` needs its argument in parentheses, e.g. {}(t)", f.name(), f.name()),
+                            format!(
+                                "function `{}` needs its argument in parentheses, e.g. {}({})",
+                                f.name(),
+                                f.name(),
+                                self.var
+                            ),
                         )),
                     }
                 } else {
                     match name.as_str() {
-                        "t" => Ok(Node::T),
+                        v if v == self.var => Ok(Node::T),
                         "pi" => Ok(Node::Const(std::f64::consts::PI)),
                         "e" => Ok(Node::Const(std::f64::consts::E)),
                         "deg" => Ok(Node::Const(std::f64::consts::PI / 180.0)),
                         _ => Err(self.error_at(
                             tok.col,
                             format!(
-                                "unknown name `{name}`: the variable is t, constants are pi, e, deg, functions are {}",
+                                "unknown name `{name}`: the variable is {}, constants are pi, e, deg, functions are {}",
+                                self.var,
                                 FUNCS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
                             ),
                         )),
@@ -688,9 +704,11 @@ impl Parser<'_> {
                 }
             }
             Kind::Op(c) => {
-                Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, t, a name or `(`")))
+                Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, {}, a name or `(`", self.var)))
             }
-            Kind::RParen => Err(self.error_at(tok.col, "unexpected `)`; expected a number, t, a name or `(`".into())),
+            Kind::RParen => {
+                Err(self.error_at(tok.col, format!("unexpected `)`; expected a number, {}, a name or `(`", self.var)))
+            }
         }
     }
 

@@ -410,7 +410,13 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
             linetype: Some(LineType::Dashed),
             shape: Shape::Line { from: Point::new(0.0, y), to: Point::new(PLOT_WIDTH, y) },
         });
-        let at = Point::new(PLOT_WIDTH - 1.0, y + 1.0);
+        // Above the line, or under it when the line runs along the frame's top (where the
+        // title is).
+        let at = if y > PLOT_HEIGHT - TEXT_H - 1.0 {
+            Point::new(PLOT_WIDTH - 1.0, y - 1.0 - TEXT_H)
+        } else {
+            Point::new(PLOT_WIDTH - 1.0, y + 1.0)
+        };
         text(dr, l.text, at, TEXT_H, &v.label, (HAlign::Right, VAlign::Baseline), 0.0);
     }
     for m in marks.points.iter().filter(|m| m.x.is_finite() && m.y.is_finite()) {

@@ -236,8 +236,9 @@ impl Local {
             b,
             c: self.c,
             d,
-            o1: frame.point(o1),
-            pivot_c: frame.point(cpt),
+            // Exactly on the axis: the frame's rotation would leave 1e-15 of noise in C's y.
+            o1: Point::origin(),
+            pivot_c: Point::new(d, 0.0),
             b1: frame.point(b1),
             b2: frame.point(b2),
             a1: frame.point(a1),

@@ -30,7 +30,7 @@ pub struct Pose {
 }
 
 /// The way the input must turn through the positions 1 → 2 → 3.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "lowercase")]
 pub enum Turning {
     /// Either way (the input's motor can turn either way).
