@@ -10,7 +10,7 @@ use crate::Error;
 use crate::figure::shared::plot::{Diagram as Plot, Level, Mark, Marks, Series, diagram_marked};
 use crate::figure::synthesis::{crank_rocker as fig, deg, len};
 use crate::run::products::Diagram;
-use crate::solve::synthesis::crank_rocker::{Choice, Design, Requirement, Synthesis, synthesise};
+use crate::solve::synthesis::crank_rocker::{Choice, Circle, Design, Requirement, Synthesis, synthesise};
 use crate::solve::synthesis::time_ratio;
 
 pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
@@ -135,7 +135,15 @@ fn summary(req: &Requirement, syn: &Synthesis) -> serde_json::Value {
 fn report(syn: &Synthesis, u: &str) -> Vec<String> {
     let d = &syn.design;
     let mut lines = vec![
-        format!("θ = {}; crank pivot on the {:?} circle k (radius {} {u})", deg(d.theta), d.circle, len(d.radius)),
+        format!(
+            "θ = {}; crank pivot on the circle k {} (radius {} {u})",
+            deg(d.theta),
+            match d.circle {
+                Circle::Far => "on the far side of B1B2 from C (d > c)",
+                Circle::Near => "on C's side of B1B2 (d < c)",
+            },
+            len(d.radius)
+        ),
         format!(
             "crank O1A = {} {u}, coupler AB = {} {u}, rocker CB = {} {u}, ground O1C = {} {u}",
             len(d.a),
