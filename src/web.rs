@@ -240,6 +240,15 @@ impl Session {
         })))
     }
 
+    /// The scene a synthesis designed, as its file `<name>-design.toml` reads (what "open the
+    /// design" switches the page to: a `fourbar` or `linkage` scene, opened with
+    /// [`Session::new`]); `None` for the other kinds. Made with every change, picture-only
+    /// answers included.
+    pub fn design_text(&self) -> Option<String> {
+        let p = self.made.shown();
+        p.texts.iter().find(|t| t.suffix == "-design.toml").map(|t| t.text.clone())
+    }
+
     /// The warnings of the scene as it stands (gaps, dead points, γ_min, ...), one line each.
     pub fn warnings(&self) -> &[String] {
         &self.made.shown().warnings
@@ -678,6 +687,12 @@ pub mod js {
         /// The warnings, one a line.
         pub fn warnings(&self) -> String {
             self.0.warnings().join("\n")
+        }
+
+        /// A synthesis's designed scene (`<name>-design.toml`), to open in the page; `""` for
+        /// the other kinds.
+        pub fn design(&self) -> String {
+            self.0.design_text().unwrap_or_default()
         }
 
         /// The files of the scene as it stands (without frames), for downloads.

@@ -1,5 +1,5 @@
 //! The crank-rocker for ψ and K, constructed: the rocker CB in its extremes CB1, CB2 (given,
-//! the swing ψ dimensioned at C), the chord B1B2 with B2P ⟂ B1B2 and ∠B2B1P = 90° − θ, the
+//! the swing ψ dimensioned at C), the chord B1B2 with B2P ⊥ B1B2 and ∠B2B1P = 90° − θ, the
 //! circle k on the diameter B1P (centre O), the crank pivot O1 on it seeing B1B2 under θ,
 //! the arc O1B1 swung onto O1B2 to E (B2E = 2a), the crank circle, on the far circle the
 //! forbidden arc FG with CB1 and CB2 produced, and the mechanism at the stretched extreme
@@ -25,7 +25,7 @@ pub fn construction(d: &Design, choice: &str, units: ModelUnits) -> Drawing {
     c.line(d.pivot_c, d.b1, Style::Given);
     c.line(d.pivot_c, d.b2, Style::Given);
     c.angle(d.pivot_c, d.b1, d.b2, r_dim, &format!("ψ = {}", angle_text(d.psi)));
-    // θ's construction: the chord, B2P ⟂ B1B2, B1P at 90° − θ, the circle k on B1P.
+    // θ's construction: the chord, B2P ⊥ B1B2, B1P at 90° − θ, the circle k on B1P.
     c.line(d.b1, d.b2, Style::Construction);
     c.line(d.b2, d.p, Style::Construction);
     c.line(d.b1, d.p, Style::Construction);
@@ -86,7 +86,7 @@ fn caption(d: &Design, choice: &str) -> Vec<String> {
     let mut lines = vec![
         format!("Given: rocker CB = c = {}, swing ψ = {}, time ratio K = {}; {choice}.", len(d.c), deg(d.psi), len(k)),
         format!(
-            "θ = 180°·(K − 1)/(K + 1) = {}; circle k through B1, B2 sees B1B2 under θ (B2P ⟂ B1B2, ∠B2B1P = 90° − θ).",
+            "θ = 180°·(K − 1)/(K + 1) = {}; circle k through B1, B2 sees B1B2 under θ (B2P ⊥ B1B2, ∠B2B1P = 90° − θ).",
             deg(d.theta)
         ),
         format!(

@@ -5,7 +5,7 @@
 //! hexagon's vertices at 150°, 90°, 30° projected onto the diameter at the precision points
 //! x1, x2, x3.
 
-use super::{Construction, Style, angle_text, deg, len};
+use super::{Construction, Style, angle_text, deg, len, signed_angle_text};
 use crate::draw::{Bounds, Drawing};
 use crate::figure::shared::vocab::ModelUnits;
 use crate::geom::{Point, Vector};
@@ -42,8 +42,8 @@ pub fn construction(d: &Design, req: &Requirement, function: &str, units: ModelU
     c.arc_through(cp, d.c, &[bs, bf], 0.0, Style::Given);
     c.angle(o1, as_, af, 1.15 * d.a, &format!("Δφ = {}", angle_text((req.input.1 - req.input.0).abs())));
     c.angle(cp, bs, bf, 1.15 * d.c, &format!("Δψ = {}", angle_text((req.output.1 - req.output.0).abs())));
-    c.angle(o1, ahead(cp), a[0], 0.4 * d.a, &format!("φ1 = {}", angle_text(d.phi[0] + d.crank_turn)));
-    c.angle(cp, ahead(cp), b[0], 0.4 * d.c, &format!("ψ1 = {}", angle_text(d.psi[0] + d.rocker_turn)));
+    c.angle(o1, ahead(cp), a[0], 0.4 * d.a, &format!("φ1 = {}", signed_angle_text(d.phi[0] + d.crank_turn)));
+    c.angle(cp, ahead(cp), b[0], 0.4 * d.c, &format!("ψ1 = {}", signed_angle_text(d.psi[0] + d.rocker_turn)));
     c.pivot(o1);
     c.pivot(cp);
     c.letter(o1, "O1");

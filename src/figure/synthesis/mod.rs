@@ -227,6 +227,17 @@ impl Construction {
         let layer = self.layer(Style::Mechanism);
         vocab::guide(&mut self.d, layer, a, b, self.s);
         self.lines.push((a, b));
+        // The hatch's band under the guide, for letters to keep off.
+        let u = (b - a).try_normalize(0.0).unwrap_or(Vector::new(1.0, 0.0));
+        let down = -perp(u);
+        let (near, far) = (0.5 * self.s.slider_height, 0.5 * self.s.slider_height + 0.6 * self.s.ground);
+        let corners = [a + down * near, b + down * near, a + down * far - u * self.s.ground, b + down * far];
+        let (mut min, mut max) = (corners[0], corners[0]);
+        for p in corners {
+            min = Point::new(min.x.min(p.x), min.y.min(p.y));
+            max = Point::new(max.x.max(p.x), max.y.max(p.y));
+        }
+        self.keep_off.push(TextBox { min, max });
     }
 
     /// A joint (a small circle) at `p`.
@@ -360,12 +371,40 @@ impl Construction {
             self.d.text(text, at, 1.2 * self.s.text, title);
             let top = Point::new(b.min.x, b.min.y - 2.0 * self.s.text);
             let small = 0.8 * self.s.text;
+            // The caption wrapped to the figure's width (at least CAPTION_MM of paper).
+            let width = b.width().max(CAPTION_MM * self.k_l);
+            let lines: Vec<String> = lines.iter().flat_map(|l| wrap(l, small, width)).collect();
+            let lines = lines.as_slice();
             caption(&mut self.d, text, top, lines, small);
             let below = top - Vector::new(0.0, 1.8 * small * lines.len() as f64);
             length_scale_block(&mut self.d, text, below, self.k_l, self.units, self.s);
         }
         self.d
     }
+}
+
+/// The narrowest a caption is wrapped to, paper millimetres.
+pub const CAPTION_MM: f64 = 150.0;
+
+/// `line` broken at spaces into lines no wider than `width` (model units) in text
+/// `height` high (measured with the bundled font's advances); a word wider than `width`
+/// stays whole on its own line. Continuation lines are indented by two spaces.
+pub fn wrap(line: &str, height: f64, width: f64) -> Vec<String> {
+    let mut out: Vec<String> = Vec::new();
+    let mut current = String::new();
+    for word in line.split(' ') {
+        let candidate = if current.is_empty() { word.to_string() } else { format!("{current} {word}") };
+        if !current.is_empty() && crate::draw::parts::text_width(&candidate, height) > width {
+            out.push(std::mem::take(&mut current));
+            current = format!("  {word}");
+        } else {
+            current = candidate;
+        }
+    }
+    if !current.is_empty() {
+        out.push(current);
+    }
+    out
 }
 
 /// The bounding box of `points`, widened by `margin` on every side.
@@ -390,6 +429,15 @@ pub fn len(v: f64) -> String {
 /// An angle in degrees as a caption writes it (`36°`, `24.6243°`).
 pub fn deg(rad: f64) -> String {
     format!("{}°", len(rad.to_degrees()))
+}
+
+/// A signed angle in degrees as a dimension writes it: two decimals at most, in
+/// (−180°, 180°] (`−36.58°`).
+pub fn signed_angle_text(rad: f64) -> String {
+    let d = crate::geom::wrap_pi(rad).to_degrees();
+    let s = format!("{d:.2}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    format!("{}°", if s == "-0" { "0" } else { s }.replace('-', "−"))
 }
 
 /// An angle in degrees as a dimension on the drawing writes it: two decimals at most

@@ -58,7 +58,7 @@ pub fn construction(d: &Design, units: ModelUnits) -> Drawing {
     let mut lines = vec![
         format!("Given: ram stroke H = {}, time ratio K = {}.", len(d.stroke), len(k)),
         format!(
-            "θ = 180°·(K − 1)/(K + 1) = {} = the rocker's swing; at the extremes the crank is ⟂ to the rocker: sin(θ/2) = r/d.",
+            "θ = 180°·(K − 1)/(K + 1) = {} = the rocker's swing; at the extremes the crank is ⊥ to the rocker: sin(θ/2) = r/d.",
             deg(d.theta)
         ),
         format!(

@@ -1,5 +1,5 @@
 //! The offset slider-crank for H and K, constructed: the guide with the slider's extremes
-//! B1, B2 (given, H dimensioned), B2P ⟂ B1B2 and ∠B2B1P = 90° − θ, the circle k on B1P, the
+//! B1, B2 (given, H dimensioned), B2P ⊥ B1B2 and ∠B2B1P = 90° − θ, the circle k on B1P, the
 //! line parallel to the guide at the offset e meeting k at the crank pivot O1, θ at O1,
 //! O1B1 swung onto O1B2 at E (B2E = 2a), the crank circle, and the mechanism at the
 //! stretched extreme (solid) and at the folded one (thin).
@@ -38,7 +38,8 @@ pub fn construction(d: &Design, choice: &str, units: ModelUnits) -> Drawing {
     // θ at O1, the swing of O1B1 onto O1B2, the crank circle.
     c.line(d.o, d.b1, Style::Construction);
     c.line(d.o, d.b2, Style::Construction);
-    c.angle(d.o, d.b1, d.b2, 0.5 * (d.a + (d.b1 - d.o).norm()), &format!("θ = {}", angle_text(d.theta)));
+    // The angle is small and low over the guide: named θ, its value in the caption.
+    c.angle(d.o, d.b1, d.b2, 0.5 * (d.a + (d.b1 - d.o).norm()), "θ");
     c.arc(d.o, (d.b1 - d.o).norm(), d.b1, d.e_point, Style::Construction);
     c.point(d.e_point, "E", Style::Construction);
     c.segment_name(d.o, d.b1, "b − a");

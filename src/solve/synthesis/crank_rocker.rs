@@ -4,7 +4,7 @@
 //!
 //! 1. θ = 180°·(K − 1)/(K + 1);
 //! 2. the rocker CB of length c drawn in its two extremes CB1, CB2, ψ apart;
-//! 3. the circle k through B1 and B2 on which the chord B1B2 is seen under θ (B2P ⟂ B1B2,
+//! 3. the circle k through B1 and B2 on which the chord B1B2 is seen under θ (B2P ⊥ B1B2,
 //!    ∠B2B1P = 90° − θ, B1P a diameter); the crank pivot O1 anywhere on its arc — there are
 //!    two such circles, one on each side of the chord, and on the one away from C the arc
 //!    FG between the rocker lines CB1, CB2 produced is forbidden (there the crank would pass
@@ -95,7 +95,7 @@ pub struct Design {
     pub centre: Point,
     /// Radius of the circle k.
     pub radius: f64,
-    /// The end of the diameter from B1 (the textbook's P: B2P ⟂ B1B2).
+    /// The end of the diameter from B1 (the textbook's P: B2P ⊥ B1B2).
     pub p: Point,
     /// Which circle O1 is on.
     pub circle: Circle,

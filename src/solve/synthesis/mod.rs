@@ -182,7 +182,7 @@ pub fn positive(what: &'static str, value: f64) -> Result<f64, SynthesisError> {
 /// angle `theta` (0 < θ < π): every point X of that arc has ∠pXq = θ (inscribed angle).
 /// Returns its centre and radius: R = |pq|/(2·sin θ), the centre on the chord's
 /// perpendicular bisector at R·cos θ from the chord, on `side` (on the other side when
-/// θ > 90°). The textbook draws it through the right triangle p q P: q P ⟂ pq and
+/// θ > 90°). The textbook draws it through the right triangle p q P: q P ⊥ pq and
 /// ∠qpP = 90° − θ, so pP is a diameter and P = 2·centre − p.
 pub fn seeing_circle(p: Point, q: Point, theta: f64, side: Side) -> (Point, f64) {
     let chord = q - p;

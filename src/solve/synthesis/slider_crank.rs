@@ -65,7 +65,7 @@ pub struct Design {
     pub centre: Point,
     /// Its radius.
     pub radius: f64,
-    /// The end of its diameter from B1 (B2P ⟂ B1B2).
+    /// The end of its diameter from B1 (B2P ⊥ B1B2).
     pub p: Point,
     /// Excess angle θ.
     pub theta: f64,
