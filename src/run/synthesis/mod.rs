@@ -1,7 +1,7 @@
 //! The synthesis pipeline: the requirement solved ([`crate::solve::synthesis`]), the
 //! construction drawn ([`crate::figure::synthesis`]), the design written as a scene file
-//! (`<name>-design.toml`, [`design`]), that file parsed back and analysed by mechdraw's own
-//! solvers for the check table ([`check`]), and — unless `--no-analysis` (or the live page's
+//! (`<name>-design.toml`, `design.rs`), that file parsed back and analysed by mechdraw's own
+//! solvers for the check table (`check.rs`), and — unless `--no-analysis` (or the live page's
 //! picture-only answer) — the design's whole run beside it, under its own name.
 //!
 //! Files: `<name>.dxf`, `<name>.svg` (the construction), `<name>.csv` (the check table:

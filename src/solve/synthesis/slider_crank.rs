@@ -108,7 +108,7 @@ fn at(h: f64, theta: f64, e: f64) -> Option<Design> {
     let (m, r) = seeing_circle(b1, b2, theta, Side::Left);
     let dy = e - m.y;
     let s2 = r * r - dy * dy;
-    if !(s2 > 0.0) {
+    if s2.is_nan() || s2 <= 0.0 {
         return None;
     }
     let o = Point::new(m.x - s2.sqrt(), e);
