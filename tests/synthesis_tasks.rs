@@ -289,3 +289,13 @@ fn scene_text(r: &motion::Requirement) -> String {
         r.b1.y
     )
 }
+
+#[test]
+fn a_name_whose_design_name_is_too_long_is_refused_at_the_name() {
+    let name = "n".repeat(98);
+    let text = format!(
+        "kind = \"synthesis\"\ntask = \"slider-crank\"\nname = \"{name}\"\nunits = \"mm\"\nstroke = 50.0\ntime_ratio = 1.2\n"
+    );
+    let e = scene::parse(&text, "long.toml", &[]).unwrap_err().to_string();
+    assert!(e.contains("field `name`") && e.contains("<name>-design"), "{e}");
+}

@@ -189,6 +189,10 @@ pub(super) fn check(mut table: toml::Table, file: &str) -> Result<SynthesisScene
 /// The common fields: the name and the crank speed.
 fn common(name: &str, omega1: Option<f64>) -> Result<(String, f64), FieldError> {
     let name = super::check_name(name)?;
+    // The design is written as `<name>-design.toml` and runs under that name: it must pass
+    // the same check.
+    super::check_name(&format!("{name}-design"))
+        .map_err(|e| FieldError::new("name", format!("{} (the design is written as `<name>-design`)", e.message)))?;
     let omega1 = finite("omega1", omega1.unwrap_or(DEFAULT_OMEGA1))?;
     if omega1 == 0.0 {
         return Err(FieldError::new(

@@ -731,6 +731,17 @@ impl Parser<'_> {
 mod tests {
     use super::*;
 
+    #[test]
+    fn a_function_of_x_reads_x_and_names_it_in_its_errors() {
+        let f = Expr::parse_in("log10(x) + x^2", "x").unwrap();
+        assert_eq!(f.eval(10.0).value, 101.0);
+        assert!((f.eval(2.0).d1 - (1.0 / (2.0 * std::f64::consts::LN_10) + 4.0)).abs() < 1e-15);
+        let e = Expr::parse_in("sin(t)", "x").unwrap_err();
+        assert!(e.message.starts_with("unknown name `t`: the variable is x"), "{}", e.message);
+        let e = Expr::parse_in("x +", "x").unwrap_err();
+        assert!(e.message.contains("expected a number, x, a name"), "{}", e.message);
+    }
+
     fn v(s: &str) -> f64 {
         Expr::parse(s).unwrap().eval(0.0).value
     }

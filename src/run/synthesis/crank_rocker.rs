@@ -5,11 +5,11 @@ use serde_json::json;
 
 use super::check::{self, Row, TOL_REL};
 use super::design::{self, FourbarDesign};
-use super::{Context, Made, pt, serr};
+use super::{Context, FamilyChart, Made, pt, serr};
 use crate::Error;
-use crate::figure::shared::plot::{Diagram as Plot, Level, Mark, Marks, Series, diagram_marked};
 use crate::figure::synthesis::{crank_rocker as fig, deg, len};
 use crate::run::products::Diagram;
+use crate::solve::fourbar::Geometry;
 use crate::solve::synthesis::crank_rocker::{Choice, Circle, Design, Requirement, Synthesis, synthesise};
 use crate::solve::synthesis::time_ratio;
 
@@ -25,7 +25,7 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
         Choice::BestTransmission => "the crank pivot with the largest γ_min".into(),
     };
     let picture = fig::construction(d, &choice, cx.units());
-    let f = FourbarDesign {
+    let geometry = Geometry {
         o1: d.o1,
         c: d.pivot_c,
         l1: d.a,
@@ -33,10 +33,9 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
         l_bm: 0.5 * d.b,
         alpha: 0.0,
         l_bc: d.c,
-        omega1: cx.scene.omega1,
-        sweep_deg: (0.0, 359.0, 1.0),
         branch: d.branch,
     };
+    let f = FourbarDesign { geometry, omega1: cx.scene.omega1, sweep_deg: (0.0, 359.0, 1.0) };
     let what = format!(
         "ψ = {}, K = {}; crank a = {}, coupler b = {}, rocker c = {}, ground d = {} (M is AB's middle)",
         deg(d.psi),
@@ -69,28 +68,16 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
 
 /// γ_min over the family, the design and the best marked.
 fn family_chart(syn: &Synthesis, unit: &str) -> Diagram {
-    let (x, y): (Vec<f64>, Vec<f64>) =
-        syn.family.samples.iter().map(|(d, g)| (*d, g.map_or(f64::NAN, f64::to_degrees))).unzip();
-    let plot = Plot {
-        title: "Crank-rocker family: smallest transmission angle against the ground length".into(),
+    FamilyChart {
+        title: "Crank-rocker family: smallest transmission angle against the ground length",
         x_label: format!("O1C = d [{unit}]"),
-        y_label: "γ_min [°]".into(),
-        series: vec![Series { label: "γ_min".into(), x, y }],
-    };
-    let d = &syn.design;
-    let mut points = vec![Mark { x: d.d, y: d.gamma_min.to_degrees(), label: format!("design: d = {}", len(d.d)) }];
-    let (bd, bg) = syn.family.best;
-    if (bd - d.d).abs() > 1e-6 * d.c {
-        points.push(Mark { x: bd, y: bg.to_degrees(), label: format!("best: γ_min = {}", deg(bg)) });
+        symbol: "d",
+        samples: syn.family.samples.iter().map(|(d, g)| (*d, g.unwrap_or(f64::NAN))).collect(),
+        design: (syn.design.d, syn.design.gamma_min),
+        best: syn.family.best,
+        apart: 1e-6 * syn.design.c,
     }
-    let marks = Marks {
-        levels: vec![Level {
-            y: crate::solve::fourbar::transmission::GAMMA_LIMIT_DEG,
-            label: "40° (usual limit)".into(),
-        }],
-        points,
-    };
-    Diagram { stem: "family".into(), drawing: diagram_marked(&plot, &marks) }
+    .diagram()
 }
 
 fn design_json(d: &Design) -> serde_json::Value {

@@ -11,6 +11,7 @@ use std::fmt::Write;
 
 use crate::geom::{Point, Side, angle_of};
 use crate::scene::Units;
+use crate::solve::fourbar::Geometry;
 use crate::solve::synthesis::{quick_return, slider_crank};
 
 /// A number as TOML reads it back exactly (`-0` written as `0.0`).
@@ -37,29 +38,16 @@ fn side_text(s: Side) -> &'static str {
     }
 }
 
-/// A four-bar as the `fourbar` kind writes it.
+/// A four-bar as the `fourbar` kind writes it: its geometry (the solver's type: pivots,
+/// links, coupler point, assembly mode), the crank's speed and the crank angles swept.
 #[derive(Debug, Clone)]
 pub struct FourbarDesign {
-    /// Crank pivot O1.
-    pub o1: Point,
-    /// Rocker pivot C.
-    pub c: Point,
-    /// Crank O1A.
-    pub l1: f64,
-    /// Coupler AB.
-    pub l_ab: f64,
-    /// B to the coupler point M.
-    pub l_bm: f64,
-    /// Angle from ray B→A to ray B→M, radians.
-    pub alpha: f64,
-    /// Rocker BC.
-    pub l_bc: f64,
+    /// Pivots, links, the coupler point M (l_bm, alpha) and the assembly mode.
+    pub geometry: Geometry,
     /// Crank speed, rad/s.
     pub omega1: f64,
     /// Crank angles swept: from, to, step (degrees).
     pub sweep_deg: (f64, f64, f64),
-    /// Assembly mode.
-    pub branch: Side,
 }
 
 /// The `fourbar` scene of `f`, named `name`, with `header` comment lines first.
@@ -71,17 +59,18 @@ pub fn fourbar(name: &str, units: Units, header: &[String], f: &FourbarDesign) -
     let _ = writeln!(s, "kind = \"fourbar\"");
     let _ = writeln!(s, "name = \"{name}\"");
     let _ = writeln!(s, "units = \"{}\"", units_text(units));
-    let _ = writeln!(s, "o1 = {}", pt(f.o1));
-    let _ = writeln!(s, "c = {}", pt(f.c));
-    let _ = writeln!(s, "l1 = {}          # O1A", num(f.l1));
-    let _ = writeln!(s, "l_ab = {}", num(f.l_ab));
-    let _ = writeln!(s, "l_bm = {}", num(f.l_bm));
-    let _ = writeln!(s, "alpha_deg = {}   # angle from ray B→A to ray B→M", num(f.alpha.to_degrees()));
-    let _ = writeln!(s, "l_bc = {}", num(f.l_bc));
+    let g = &f.geometry;
+    let _ = writeln!(s, "o1 = {}", pt(g.o1));
+    let _ = writeln!(s, "c = {}", pt(g.c));
+    let _ = writeln!(s, "l1 = {}          # O1A", num(g.l1));
+    let _ = writeln!(s, "l_ab = {}", num(g.l_ab));
+    let _ = writeln!(s, "l_bm = {}", num(g.l_bm));
+    let _ = writeln!(s, "alpha_deg = {}   # angle from ray B→A to ray B→M", num(g.alpha.to_degrees()));
+    let _ = writeln!(s, "l_bc = {}", num(g.l_bc));
     let _ = writeln!(s, "omega1 = {}      # rad/s, counter-clockwise positive", num(f.omega1));
     let (from, to, step) = f.sweep_deg;
     let _ = writeln!(s, "phi1_deg = {{ from = {}, to = {}, step = {} }}", num(from), num(to), num(step));
-    let _ = writeln!(s, "branch = \"{}\"    # B's side of the directed line A→C", side_text(f.branch));
+    let _ = writeln!(s, "branch = \"{}\"    # B's side of the directed line A→C", side_text(g.branch));
     let _ = writeln!(s, "outputs = [\"position\", \"velocity\", \"acceleration\"]");
     s
 }

@@ -26,7 +26,7 @@ pub(super) fn made(cx: &Context, req: &Requirement, function: &Expr) -> Result<M
     let (s0, s1) = (crank_deg(req.input.0), crank_deg(req.input.1));
     let (from, to) = (s0.min(s1), s0.max(s1));
     let omega = if s1 >= s0 { cx.scene.omega1.abs() } else { -cx.scene.omega1.abs() };
-    let fd = FourbarDesign {
+    let geometry = Geometry {
         o1: d.o1(),
         c: d.pivot_c(),
         l1: d.a,
@@ -34,10 +34,9 @@ pub(super) fn made(cx: &Context, req: &Requirement, function: &Expr) -> Result<M
         l_bm: 0.5 * d.b,
         alpha: 0.0,
         l_bc: d.c,
-        omega1: omega,
-        sweep_deg: (from, to, (to - from) / 180.0),
         branch: d.sides[0],
     };
+    let fd = FourbarDesign { geometry, omega1: omega, sweep_deg: (from, to, (to - from) / 180.0) };
     let what = format!(
         "y = {} on [{}, {}]: crank angle φ1 = {}° + φ, rocker angle φ3 = {}° + ψ (M is AB's middle)",
         function.source(),

@@ -197,6 +197,60 @@ fn table(c: &Check) -> Csv {
     csv
 }
 
+/// A family of designs charted: γ_min (radians, NaN where the choice gives none) against
+/// the free choice `x`, the design and the family's best marked, the usual 40° limit drawn.
+struct FamilyChart<'a> {
+    /// The chart's title.
+    title: &'a str,
+    /// The free choice's axis label, with its unit.
+    x_label: String,
+    /// The free choice's symbol on the marks (`d`, `e`).
+    symbol: &'a str,
+    /// Samples (x, γ_min).
+    samples: Vec<(f64, f64)>,
+    /// The design: (x, γ_min).
+    design: (f64, f64),
+    /// The family's best: (x, γ_min).
+    best: (f64, f64),
+    /// How far the best must lie from the design to be marked apart.
+    apart: f64,
+}
+
+impl FamilyChart<'_> {
+    fn diagram(self) -> Diagram {
+        use crate::figure::shared::plot::{Diagram as Plot, Level, Mark, Marks, Series, diagram_marked};
+        use crate::figure::synthesis::{deg, len};
+        let (x, y): (Vec<f64>, Vec<f64>) = self.samples.iter().map(|(x, g)| (*x, g.to_degrees())).unzip();
+        let plot = Plot {
+            title: self.title.into(),
+            x_label: self.x_label,
+            y_label: "γ_min [°]".into(),
+            series: vec![Series { label: "γ_min".into(), x, y }],
+        };
+        let (dx, dg) = self.design;
+        let mut points =
+            vec![Mark { x: dx, y: dg.to_degrees(), label: format!("design: {} = {}", self.symbol, len(dx)) }];
+        let (bx, bg) = self.best;
+        if (bx - dx).abs() > self.apart {
+            points.push(Mark { x: bx, y: bg.to_degrees(), label: format!("best: γ_min = {}", deg(bg)) });
+        }
+        let limit = crate::solve::fourbar::transmission::GAMMA_LIMIT_DEG;
+        let marks = Marks { levels: vec![Level { y: limit, label: "40° (usual limit)".into() }], points };
+        Diagram { stem: "family".into(), drawing: diagram_marked(&plot, &marks) }
+    }
+}
+
+/// The rows of a stroke's check: H and K by the analysis of the linkage scene `text`.
+fn stroke_rows(cx: &Context, text: &str, stroke: f64, time_ratio: f64) -> Result<Vec<Row>, Error> {
+    let parsed = cx.parse(text)?;
+    let scene = check::linkage_scene(&parsed).map_err(|e| cx.internal(e))?;
+    let (h, k) = check::stroke(scene).map_err(|e| cx.internal(e))?;
+    Ok(vec![
+        Row::new(format!("H [{}]", cx.unit()), stroke, h, TOL_REL * stroke),
+        Row::new("K", time_ratio, k, TOL_REL * time_ratio),
+    ])
+}
+
 /// A synthesis error as the run's error.
 fn serr(file: &str) -> impl Fn(crate::solve::synthesis::SynthesisError) -> Error + '_ {
     move |e| solve_err(file)(e.into())

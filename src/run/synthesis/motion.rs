@@ -9,13 +9,14 @@ use super::{Context, Made, pt, serr};
 use crate::Error;
 use crate::figure::synthesis::{deg, len, motion as fig};
 use crate::geom::wrap_pi;
+use crate::solve::fourbar::Geometry;
 use crate::solve::synthesis::motion::{Design, Requirement, synthesise};
 
 pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
     let d = synthesise(req).map_err(serr(cx.file))?;
     let u = cx.unit();
     let omega = if d.ccw == Some(false) { -cx.scene.omega1.abs() } else { cx.scene.omega1.abs() };
-    let f = FourbarDesign {
+    let geometry = Geometry {
         o1: d.o_a,
         c: d.o_b,
         l1: d.l_in,
@@ -23,10 +24,9 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
         l_bm: d.l_bp,
         alpha: d.alpha,
         l_bc: d.l_out,
-        omega1: omega,
-        sweep_deg: (0.0, 359.0, 1.0),
         branch: d.sides[0],
     };
+    let f = FourbarDesign { geometry, omega1: omega, sweep_deg: (0.0, 359.0, 1.0) };
     let what = format!(
         "{} positions of the coupler point M (P) and line; crank {}, coupler {}, rocker {}, ground {}",
         d.poses.len(),

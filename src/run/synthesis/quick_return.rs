@@ -3,8 +3,8 @@
 
 use serde_json::json;
 
-use super::check::{self, Row, TOL_REL};
-use super::{Context, Made, design, pt, serr};
+use super::check;
+use super::{Context, Made, design, pt, serr, stroke_rows};
 use crate::Error;
 use crate::figure::synthesis::{deg, len, quick_return as fig};
 use crate::solve::synthesis::quick_return::{Requirement, Size, synthesise};
@@ -23,13 +23,7 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
         len(d.ram_height)
     );
     let text = design::shaper(&cx.design_name, cx.scene.units, &cx.header(&what), &d, cx.scene.omega1);
-    let parsed = cx.parse(&text)?;
-    let (h, k) =
-        check::stroke(check::linkage_scene(&parsed).map_err(|e| cx.internal(e))?).map_err(|e| cx.internal(e))?;
-    let rows = vec![
-        Row::new(format!("H [{u}]"), req.stroke, h, TOL_REL * req.stroke),
-        Row::new("K", req.time_ratio, k, TOL_REL * req.time_ratio),
-    ];
+    let rows = stroke_rows(cx, &text, req.stroke, req.time_ratio)?;
     let route = "linkage solver: the Assur groups over one crank turn, the ram's extremes refined where its speed along the guide changes sign (solve::stroke)".to_string();
     let mut warnings = Vec::new();
     if d.block_reach > d.rocker {

@@ -3,10 +3,9 @@
 
 use serde_json::json;
 
-use super::check::{self, Row, TOL_REL};
-use super::{Context, Made, design, pt, serr};
+use super::check;
+use super::{Context, FamilyChart, Made, design, pt, serr, stroke_rows};
 use crate::Error;
-use crate::figure::shared::plot::{Diagram as Plot, Level, Mark, Marks, Series, diagram_marked};
 use crate::figure::synthesis::{deg, len, slider_crank as fig};
 use crate::run::products::Diagram;
 use crate::solve::synthesis::slider_crank::{Choice, Requirement, Synthesis, synthesise};
@@ -28,13 +27,7 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
         len(d.e)
     );
     let text = design::slider_crank(&cx.design_name, cx.scene.units, &cx.header(&what), d, cx.scene.omega1);
-    let parsed = cx.parse(&text)?;
-    let (h, k) =
-        check::stroke(check::linkage_scene(&parsed).map_err(|e| cx.internal(e))?).map_err(|e| cx.internal(e))?;
-    let rows = vec![
-        Row::new(format!("H [{u}]"), req.stroke, h, TOL_REL * req.stroke),
-        Row::new("K", req.time_ratio, k, TOL_REL * req.time_ratio),
-    ];
+    let rows = stroke_rows(cx, &text, req.stroke, req.time_ratio)?;
     let route = "linkage solver: the Assur groups over one crank turn, the slider's extremes refined where its speed along the guide changes sign (solve::stroke)".to_string();
     Ok(Made {
         picture: fig::construction(d, &choice, cx.units()),
@@ -69,25 +62,14 @@ pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
 
 /// γ_min over the offsets, the design and the best marked.
 fn family_chart(syn: &Synthesis, unit: &str) -> Diagram {
-    let (x, y): (Vec<f64>, Vec<f64>) = syn.family.samples.iter().map(|(e, g)| (*e, g.to_degrees())).unzip();
-    let plot = Plot {
-        title: "Offset slider-crank family: smallest transmission angle against the offset".into(),
+    FamilyChart {
+        title: "Offset slider-crank family: smallest transmission angle against the offset",
         x_label: format!("offset e [{unit}]"),
-        y_label: "γ_min [°]".into(),
-        series: vec![Series { label: "γ_min".into(), x, y }],
-    };
-    let d = &syn.design;
-    let mut points = vec![Mark { x: d.e, y: d.gamma_min.to_degrees(), label: format!("design: e = {}", len(d.e)) }];
-    let (be, bg) = syn.family.best;
-    if (be - d.e).abs() > 1e-6 * d.stroke {
-        points.push(Mark { x: be, y: bg.to_degrees(), label: format!("best: γ_min = {}", deg(bg)) });
+        symbol: "e",
+        samples: syn.family.samples.clone(),
+        design: (syn.design.e, syn.design.gamma_min),
+        best: syn.family.best,
+        apart: 1e-6 * syn.design.stroke,
     }
-    let marks = Marks {
-        levels: vec![Level {
-            y: crate::solve::fourbar::transmission::GAMMA_LIMIT_DEG,
-            label: "40° (usual limit)".into(),
-        }],
-        points,
-    };
-    Diagram { stem: "family".into(), drawing: diagram_marked(&plot, &marks) }
+    .diagram()
 }
