@@ -11,10 +11,15 @@ use crate::figure::synthesis::{crank_rocker as fig, deg, len};
 use crate::run::products::Diagram;
 use crate::solve::fourbar::Geometry;
 use crate::solve::synthesis::crank_rocker::{Choice, Circle, Design, Requirement, Synthesis, synthesise};
-use crate::solve::synthesis::time_ratio;
+use crate::solve::synthesis::{SynthesisError, time_ratio};
 
 pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
-    let syn = synthesise(req).map_err(serr(cx.file))?;
+    let field = |e: &SynthesisError| match (e, req.choice) {
+        (SynthesisError::OutOfFamily { .. }, Choice::Ground(_)) => Some("ground".to_string()),
+        (SynthesisError::OutOfFamily { .. }, Choice::ExtremeToGround(_)) => Some("extreme_to_ground_deg".to_string()),
+        _ => None,
+    };
+    let syn = synthesise(req).map_err(serr(cx.file, field))?;
     let d = &syn.design;
     let u = cx.unit();
     let choice = match req.choice {

@@ -14,6 +14,7 @@ use crate::geom::{Side, wrap_pi};
 use crate::run::products::Diagram;
 use crate::solve::expr::Expr;
 use crate::solve::fourbar::Geometry;
+use crate::solve::synthesis::SynthesisError;
 use crate::solve::synthesis::function::{Design, Requirement, synthesise};
 
 /// Samples of x over the range for the structural error.
@@ -21,7 +22,11 @@ const ERROR_SAMPLES: usize = 201;
 
 pub(super) fn made(cx: &Context, req: &Requirement, function: &Expr) -> Result<Made, Error> {
     let f = |x: f64| function.eval(x).value;
-    let d = synthesise(req, &f).map_err(serr(cx.file))?;
+    let field = |e: &SynthesisError| match e {
+        SynthesisError::PrecisionPointOutside { index, .. } => Some(format!("precision_x[{}]", index - 1)),
+        _ => None,
+    };
+    let d = synthesise(req, &f).map_err(serr(cx.file, field))?;
     let crank_deg = |phi: f64| (phi + d.crank_turn).to_degrees();
     let (s0, s1) = (crank_deg(req.input.0), crank_deg(req.input.1));
     let (from, to) = (s0.min(s1), s0.max(s1));

@@ -29,6 +29,7 @@ use crate::figure::shared::vocab::ModelUnits;
 use crate::report::Csv;
 use crate::scene::synthesis::{SynthesisScene, Task};
 use crate::scene::{Loaded, Units};
+use crate::solve::synthesis::SynthesisError;
 
 pub use check::{Check, Row, TOL_FUNCTION, TOL_POSE, TOL_REL};
 
@@ -251,9 +252,18 @@ fn stroke_rows(cx: &Context, text: &str, stroke: f64, time_ratio: f64) -> Result
     ])
 }
 
-/// A synthesis error as the run's error.
-fn serr(file: &str) -> impl Fn(crate::solve::synthesis::SynthesisError) -> Error + '_ {
-    move |e| solve_err(file)(e.into())
+/// A synthesis error as the run's error: a field error when one field of the scene is to
+/// blame (`field` says which, from the error), else the solver's error.
+fn serr<'a>(
+    file: &'a str,
+    field: impl Fn(&SynthesisError) -> Option<String> + 'a,
+) -> impl Fn(SynthesisError) -> Error + 'a {
+    move |e| match field(&e) {
+        Some(field) => {
+            Error::Scene(crate::scene::SceneError::Field { file: file.to_string(), field, message: e.to_string() })
+        }
+        None => solve_err(file)(e.into()),
+    }
 }
 
 /// A point as JSON.

@@ -13,7 +13,7 @@ use crate::solve::fourbar::Geometry;
 use crate::solve::synthesis::motion::{Design, Requirement, synthesise};
 
 pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
-    let d = synthesise(req).map_err(serr(cx.file))?;
+    let d = synthesise(req).map_err(serr(cx.file, |_| None))?;
     let u = cx.unit();
     let omega = if d.ccw == Some(false) { -cx.scene.omega1.abs() } else { cx.scene.omega1.abs() };
     let geometry = Geometry {

@@ -7,10 +7,15 @@ use super::check;
 use super::{Context, Made, design, pt, serr, stroke_rows};
 use crate::Error;
 use crate::figure::synthesis::{deg, len, quick_return as fig};
+use crate::solve::synthesis::SynthesisError;
 use crate::solve::synthesis::quick_return::{Requirement, Size, synthesise};
 
 pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
-    let d = synthesise(req).map_err(serr(cx.file))?;
+    let field = |e: &SynthesisError| match e {
+        SynthesisError::OutOfFamily { what: "the link BE", .. } => Some("link".to_string()),
+        _ => None,
+    };
+    let d = synthesise(req).map_err(serr(cx.file, field))?;
     let u = cx.unit();
     let what = format!(
         "H = {}, K = {}; crank {}, O1O3 {}, rocker {}, link {}, ram guide at {}",

@@ -8,10 +8,16 @@ use super::{Context, FamilyChart, Made, design, pt, serr, stroke_rows};
 use crate::Error;
 use crate::figure::synthesis::{deg, len, slider_crank as fig};
 use crate::run::products::Diagram;
+use crate::solve::synthesis::SynthesisError;
 use crate::solve::synthesis::slider_crank::{Choice, Requirement, Synthesis, synthesise};
 
 pub(super) fn made(cx: &Context, req: &Requirement) -> Result<Made, Error> {
-    let syn = synthesise(req).map_err(serr(cx.file))?;
+    let field = |e: &SynthesisError| match e {
+        SynthesisError::OutOfFamily { what: "the offset e", .. } => Some("offset".to_string()),
+        SynthesisError::OutOfFamily { what: "the time ratio K", .. } => Some("time_ratio".to_string()),
+        _ => None,
+    };
+    let syn = synthesise(req).map_err(serr(cx.file, field))?;
     let d = &syn.design;
     let u = cx.unit();
     let choice = match req.choice {
