@@ -1,8 +1,8 @@
 //! The synthesis pipeline: the requirement solved ([`crate::solve::synthesis`]), the
 //! construction drawn ([`crate::figure::synthesis`]), the design written as a scene file
 //! (`<name>-design.toml`, `design.rs`), that file parsed back and analysed by mechdraw's own
-//! solvers for the check table (`check.rs`), and — unless `--no-analysis` (or the live page's
-//! picture-only answer) — the design's whole run beside it, under its own name.
+//! solvers for the check table (`check.rs`), and — unless `--no-analysis` — the design's
+//! whole run beside it, under its own name.
 //!
 //! Files: `<name>.dxf`, `<name>.svg` (the construction), `<name>.csv` (the check table:
 //! quantity, required, achieved, error, tolerance, ok), `<name>-design.toml`, `<name>.json`,
@@ -123,7 +123,9 @@ pub(super) fn products(scene: &SynthesisScene, file: &str, opts: &RunOptions) ->
         ));
     }
     let design_scene = cx.parse(&made.design)?;
-    let derived = if opts.no_analysis || opts.picture_only {
+    // The design's run (picture-only when only the picture is asked for: the warnings are
+    // the same either way, as RunOptions::picture_only promises).
+    let derived = if opts.no_analysis {
         Vec::new()
     } else {
         let loaded = Loaded { path: PathBuf::from(cx.design_file()), scene: design_scene, text: made.design.clone() };
