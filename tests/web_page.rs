@@ -302,12 +302,19 @@ fn dragging_c_in_edit_mode_moves_c_in_the_toml_and_keeps_every_comment() {
     assert_eq!(e["error"], "", "{e}");
     let (before, after) = (e["before"].as_str().unwrap(), e["after"].as_str().unwrap());
     assert_eq!(before, template_text("fourbar-chebyshev"));
-    // c moved by the drag's offset (the pointer snapped to the page's grid), written in place.
+    // c moved by the drag's offset (5 grid steps right, 2 up: the pointer snapped to the
+    // page's grid), written in place.
     let grid = num(&e["grid"]["step"]);
-    assert!(grid <= 0.005 + 1e-12, "grid {grid}");
+    assert!(grid <= 0.005 + 1e-12, "the grid is {grid} m for a 0.08 m ground link");
     let c: Vec<f64> = e["c"].as_array().unwrap().iter().map(num).collect();
-    assert!((c[0] - 0.09).abs() < 1e-12 && (c[1] - 0.005).abs() < 1e-12, "c = {c:?}");
-    assert_eq!(after, before.replace("c = [0.08, 0.0]", "c = [0.09, 0.005]"), "one value changed, nothing else");
+    let target: Vec<f64> = e["target"].as_array().unwrap().iter().map(num).collect();
+    assert!((target[0] - (0.08 + 5.0 * grid)).abs() < 1e-12 && (target[1] - 2.0 * grid).abs() < 1e-12);
+    assert!((c[0] - target[0]).abs() < 1e-12 && (c[1] - target[1]).abs() < 1e-12, "c = {c:?}, dragged to {target:?}");
+    let line = after.lines().find(|l| l.starts_with("c = ")).unwrap();
+    let written: toml::Table = line.parse().unwrap();
+    let w: Vec<f64> = written["c"].as_array().unwrap().iter().map(|v| v.as_float().unwrap()).collect();
+    assert_eq!(w, c, "the TOML's c is the field's");
+    assert_eq!(after, before.replace("c = [0.08, 0.0]", line), "one value changed, nothing else");
     assert_eq!(e["session_text"], e["after"]);
     for line in before.lines().filter(|l| l.contains('#')) {
         let comment = &line[line.find('#').unwrap()..];
@@ -390,7 +397,9 @@ fn the_chebyshev_four_bar_built_by_clicks_gives_the_templates_numbers() {
     assert!(out.status.success());
     let rows = csv_rows(&std::fs::read_to_string(tmp.path().join("fourbar-chebyshev.csv")).unwrap());
     let row = rows.iter().find(|r| r["phi1_deg"] == 90.0).unwrap();
-    let close = |a: f64, b: f64, what: &str| assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{what}: {a} vs the template's {b}");
+    let close = |a: f64, b: f64, what: &str| {
+        assert!((a - b).abs() <= 1e-9 * (1.0 + b.abs()), "{what}: {a} vs the template's {b}")
+    };
     for (mine, theirs) in [("link1.A", "A"), ("link2.B", "B"), ("link2.C", "M")] {
         let (x, y) = point(st, mine);
         close(x, row[&format!("{theirs}_x")], mine);
@@ -407,9 +416,19 @@ fn the_chebyshev_four_bar_built_by_clicks_gives_the_templates_numbers() {
     let toml = b["toml"].as_str().unwrap();
     let path = tmp.path().join("built.toml");
     std::fs::write(&path, toml).unwrap();
-    let out = common::mechdraw().arg("run").arg(&path).args(["--no-frames", "-q", "--out"]).arg(tmp.path().join("b")).output().unwrap();
+    let out = common::mechdraw()
+        .arg("run")
+        .arg(&path)
+        .args(["--no-frames", "-q", "--out"])
+        .arg(tmp.path().join("b"))
+        .output()
+        .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let on_disk = std::fs::read_dir(tmp.path().join("b")).unwrap().filter_map(|e| e.ok()).find(|e| e.path().extension().is_some_and(|x| x == "csv")).unwrap();
+    let on_disk = std::fs::read_dir(tmp.path().join("b"))
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .find(|e| e.path().extension().is_some_and(|x| x == "csv"))
+        .unwrap();
     assert_eq!(std::fs::read_to_string(on_disk.path()).unwrap(), b["csv"].as_str().unwrap());
 }
 

@@ -184,8 +184,10 @@ with Browser() as b:
     page.eval("document.querySelector('header [data-mode=edit]').click()")
     grid = page.eval("grid()")
     _, cx, cy = next(p for p in page.eval("JSON.parse(live.edit_points(+slider.value))") if p[0] == "C")
-    target = (cx + 0.01, cy + 0.005)
-    drag(page, "C", [(cx + 0.005, cy + 0.002), target], edit=True)
+    # A known offset on the page's grid: 5 steps right, 2 up.
+    step = grid["step"]
+    target = (round(cx + 5 * step, 9), round(cy + 2 * step, 9))
+    drag(page, "C", [(cx + 2 * step, cy + step), target], edit=True)
     settle(page)
     after = page.eval("document.getElementById('scene').value")
     fields = page.eval("Object.fromEntries([...document.querySelectorAll('input[type=number][data-path]')].map((f) => [f.dataset.path, +f.value]))")

@@ -28,9 +28,9 @@ use rayon::prelude::*;
 
 use super::products::{Diagram, Page, Picture, Products, Sheet};
 use crate::Error;
+use crate::draw::Drawing;
 use crate::draw::dxf::{self, DxfOptions};
 use crate::draw::svg::{self, SvgOptions};
-use crate::draw::Drawing;
 use crate::figure::shared::animation::Animation;
 
 /// Width of the SVG frames and pictures, pixels (their viewBox is in model units).
@@ -284,8 +284,7 @@ fn pdf_bytes(_pages: &[Page], what: &str) -> Result<Vec<u8>, Error> {
 
 /// What a build without a writer says when its output is asked for.
 #[cfg(not(all(feature = "png", feature = "pdf")))]
-const NOT_IN_THIS_BUILD: &str =
-    "this build has no {} writer (the live page leaves it to the command line: `mechdraw run` has it; a library build needs the Cargo feature `{f}`)";
+const NOT_IN_THIS_BUILD: &str = "this build has no {} writer (the live page leaves it to the command line: `mechdraw run` has it; a library build needs the Cargo feature `{f}`)";
 
 fn dxf_bytes(d: &Drawing, opts: &DxfOptions, name: &str) -> Result<Vec<u8>, Error> {
     dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })

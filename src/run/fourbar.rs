@@ -111,7 +111,9 @@ pub(super) fn products(
                         track: plot::track(&d, &marks),
                     }
                 }
-                _ => products::Diagram { stem, drawing: plot::diagram(&d), track: plot::track(&d, &Default::default()) },
+                _ => {
+                    products::Diagram { stem, drawing: plot::diagram(&d), track: plot::track(&d, &Default::default()) }
+                }
             })
             .collect();
         let pages = match paper {

@@ -333,15 +333,11 @@ pub(super) fn products(
             .collect();
         // And one per reaction and driver force, against the same abscissa.
         if let Some(f) = &forces {
-            diagrams.extend(
-                force_diagrams(scene, f, &x_label, &x)
-                    .into_iter()
-                    .map(|(stem, d)| products::Diagram {
-                        stem,
-                        drawing: diagram(&d),
-                        track: track(&d, &Default::default()),
-                    }),
-            );
+            diagrams.extend(force_diagrams(scene, f, &x_label, &x).into_iter().map(|(stem, d)| products::Diagram {
+                stem,
+                drawing: diagram(&d),
+                track: track(&d, &Default::default()),
+            }));
         }
 
         // CSV.

@@ -79,7 +79,13 @@ impl LivePage {
     fn strs(&self, module: Module) -> Vec<&str> {
         let script: Vec<&str> = match module {
             Module::Inline => {
-                vec!["<script>\n", GLUE, "\n</script>\n<script>window.MECHDRAW_WASM = \"", MODULE_BASE64, "\";</script>"]
+                vec![
+                    "<script>\n",
+                    GLUE,
+                    "\n</script>\n<script>window.MECHDRAW_WASM = \"",
+                    MODULE_BASE64,
+                    "\";</script>",
+                ]
             }
             Module::Beside => vec!["<script src=\"", MODULE_SCRIPT, "\"></script>"],
         };
@@ -130,7 +136,7 @@ pub fn gallery(scenes: &[(String, String)], dir: &std::path::Path) -> Result<Vec
     let mut out = super::output::Output::new(dir)?;
     let script = module_script();
     let pieces: Vec<&[u8]> = script.iter().map(|s| s.as_bytes()).collect();
-    out.write_pieces(MODULE_SCRIPT.to_string(), &pieces)?;
+    out.write_pieces(MODULE_SCRIPT, &pieces)?;
     let mut index = String::from(
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width, \
          initial-scale=1\"><link rel=\"icon\" href=\"data:,\"><title>mechdraw live</title></head>\n<body>\n<h1>mechdraw live</h1>\n<p>Each page solves and draws \
@@ -177,7 +183,10 @@ mod tests {
         let page = LivePage::new("name = \"x\"\n", "x.toml", &["a=1".into()]);
         let joined: Vec<u8> = page.pieces(Module::Inline).concat();
         assert!(joined == live_page("name = \"x\"\n", "x.toml", &["a=1".into()]).into_bytes());
-        assert!(page.pieces(Module::Inline).iter().any(|p| p.as_ptr() == MODULE_BASE64.as_ptr()), "the module is not copied");
+        assert!(
+            page.pieces(Module::Inline).iter().any(|p| p.as_ptr() == MODULE_BASE64.as_ptr()),
+            "the module is not copied"
+        );
         // In the gallery the page loads the module from the script beside it.
         let beside = String::from_utf8(page.pieces(Module::Beside).concat()).unwrap();
         assert!(beside.contains("<script src=\"mechdraw-module.js\"></script>") && !beside.contains(MODULE_BASE64));
@@ -189,7 +198,10 @@ mod tests {
             std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("web/dist/mechdraw_bg.wasm")).unwrap();
         let packed = base64::engine::general_purpose::STANDARD.decode(MODULE_BASE64).expect("base64");
         let back = miniz_oxide::inflate::decompress_to_vec(&packed).expect("raw deflate");
-        assert!(back == wasm, "web/dist/mechdraw_bg.wasm.b64 inflates to web/dist/mechdraw_bg.wasm: run bash web/dist.sh");
+        assert!(
+            back == wasm,
+            "web/dist/mechdraw_bg.wasm.b64 inflates to web/dist/mechdraw_bg.wasm: run bash web/dist.sh"
+        );
     }
 
     #[test]

@@ -292,8 +292,17 @@ mod tests {
 
     #[test]
     fn document_and_table_edits_agree() {
-        let text = "l12 = 50.0\nr = [1.0, 2.0, 3.0]\n[pattern]\ntol = 1e-5\n[[force]]\nat = \"M\"\nvalue = [0.0, -50.0]\n";
-        for spec in ["l12=55", "r[2]=84.5", "pattern.tol=1e-7", "force[0].value[1]=-20", "name=demo-2", "o1=[15, 30]", "a.b.c=1"] {
+        let text =
+            "l12 = 50.0\nr = [1.0, 2.0, 3.0]\n[pattern]\ntol = 1e-5\n[[force]]\nat = \"M\"\nvalue = [0.0, -50.0]\n";
+        for spec in [
+            "l12=55",
+            "r[2]=84.5",
+            "pattern.tol=1e-7",
+            "force[0].value[1]=-20",
+            "name=demo-2",
+            "o1=[15, 30]",
+            "a.b.c=1",
+        ] {
             let table: toml::Table = edit(text, spec).unwrap().parse().unwrap();
             assert_eq!(table, apply(text, spec).unwrap(), "{spec}");
         }

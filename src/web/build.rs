@@ -114,7 +114,8 @@ pub fn apply(text: &str, file: &str, step: &Step, decimals: usize) -> Result<Str
     let t = table(text, file)?;
     if t.get("kind").and_then(toml::Value::as_str) != Some("linkage") {
         return Err(PageError::Build(
-            "the build tools draw a linkage (kind = \"linkage\"); start one with New, or edit this scene's fields".into(),
+            "the build tools draw a linkage (kind = \"linkage\"); start one with New, or edit this scene's fields"
+                .into(),
         ));
     }
     let sk = sketch(&t);
@@ -274,7 +275,10 @@ impl Builder {
             if let Some(n) = letters.clone().find(|n| free(n)) {
                 return n;
             }
-            return (1..).flat_map(|i| letters.clone().map(move |l| format!("{l}{i}"))).find(|n| free(n)).unwrap_or_default();
+            return (1..)
+                .flat_map(|i| letters.clone().map(move |l| format!("{l}{i}")))
+                .find(|n| free(n))
+                .unwrap_or_default();
         }
         (1..).map(|i| format!("{prefix}{i}")).find(|n| free(n)).unwrap_or_default()
     }
@@ -308,7 +312,8 @@ impl Builder {
 
     fn array_of_tables(&mut self, key: &str) -> Result<&mut toml_edit::ArrayOfTables, PageError> {
         let item = self.doc.entry(key).or_insert(toml_edit::Item::ArrayOfTables(toml_edit::ArrayOfTables::new()));
-        item.as_array_of_tables_mut().ok_or_else(|| PageError::Build(format!("`{key}` is not a list of [[{key}]] tables")))
+        item.as_array_of_tables_mut()
+            .ok_or_else(|| PageError::Build(format!("`{key}` is not a list of [[{key}]] tables")))
     }
 
     fn body_names(&self) -> Vec<String> {
@@ -572,7 +577,8 @@ mod tests {
         ] {
             t = step(&t, s.clone()).unwrap_or_else(|e| panic!("{s}: {e}"));
         }
-        let fields = [("body[1].points.B[0]", "0.1"), ("body[1].points.C", "[0.2, 0.0]"), ("body[2].points.O2[0]", "0.1")];
+        let fields =
+            [("body[1].points.B[0]", "0.1"), ("body[1].points.C", "[0.2, 0.0]"), ("body[2].points.O2[0]", "0.1")];
         crate::web::edit::set(&t, "built.toml", &fields.map(|(p, v)| (p.to_string(), v.to_string()))).unwrap()
     }
 

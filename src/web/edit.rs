@@ -27,7 +27,10 @@ pub(super) fn document(text: &str, file: &str) -> Result<toml_edit::DocumentMut,
     // The command line's message (toml's parser), and its line numbers, for a bad text.
     table(text, file)?;
     text.parse::<toml_edit::DocumentMut>().map_err(|e| {
-        Error::from(crate::scene::SceneError::Syntax { file: file.to_string(), message: e.to_string().trim_end().to_string() })
+        Error::from(crate::scene::SceneError::Syntax {
+            file: file.to_string(),
+            message: e.to_string().trim_end().to_string(),
+        })
     })
 }
 
@@ -61,11 +64,9 @@ mod tests {
     fn a_field_change_touches_one_value() {
         let out = set(FOURBAR, "f.toml", &[("l_bc".into(), "0.2".into())]).unwrap();
         assert_eq!(out, FOURBAR.replace("l_bc = 0.10", "l_bc = 0.2"));
-        let out = set(FOURBAR, "f.toml", &[("c[0]".into(), "0.09".into()), ("dynamics.m3".into(), "0.2".into())]).unwrap();
-        assert_eq!(
-            out,
-            FOURBAR.replace("c = [0.08, 0.0]", "c = [0.09, 0.0]").replace("m3 = 0.125 ", "m3 = 0.2 ")
-        );
+        let out =
+            set(FOURBAR, "f.toml", &[("c[0]".into(), "0.09".into()), ("dynamics.m3".into(), "0.2".into())]).unwrap();
+        assert_eq!(out, FOURBAR.replace("c = [0.08, 0.0]", "c = [0.09, 0.0]").replace("m3 = 0.125 ", "m3 = 0.2 "));
         // Every comment is still there.
         let comments = |t: &str| t.lines().filter(|l| l.contains('#')).count();
         assert_eq!(comments(&out), comments(FOURBAR));

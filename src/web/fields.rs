@@ -26,6 +26,9 @@ pub struct Parameter {
     pub min: f64,
     /// The slider's range, high end.
     pub max: f64,
+    /// A detail most students leave alone (a body's starting placement, the origin of its
+    /// frame): the page shows it folded away under its group.
+    pub detail: bool,
 }
 
 impl Parameter {
@@ -71,10 +74,16 @@ struct Meaning {
     label: String,
     group: String,
     role: Role,
+    detail: bool,
 }
 
 fn meaning(label: impl Into<String>, group: impl Into<String>, role: Role) -> Option<Meaning> {
-    Some(Meaning { label: label.into(), group: group.into(), role })
+    Some(Meaning { label: label.into(), group: group.into(), role, detail: false })
+}
+
+/// [`meaning`] of a detail ([`Parameter::detail`]).
+fn detail(label: impl Into<String>, group: impl Into<String>, role: Role) -> Option<Meaning> {
+    Some(Meaning { label: label.into(), group: group.into(), role, detail: true })
 }
 
 /// Every number in the scene `table` (as its text parses), depth first in the file's order,
@@ -100,9 +109,20 @@ pub fn parameters(table: &toml::Table) -> Vec<Parameter> {
                 label: path.clone(),
                 group: "other".into(),
                 role: if integer { Role::Count } else { Role::Plain },
+                detail: false,
             });
             let (min, max) = range(m.role, value, integer);
-            Parameter { unit: unit(m.role, length).to_string(), label: m.label, group: m.group, path, value, integer, min, max }
+            Parameter {
+                unit: unit(m.role, length).to_string(),
+                label: m.label,
+                group: m.group,
+                path,
+                value,
+                integer,
+                min,
+                max,
+                detail: m.detail,
+            }
         })
         .collect()
 }
@@ -218,9 +238,7 @@ fn fourbar(path: &str, table: &toml::Table) -> Option<Meaning> {
                 let who = format!("load {}", i + 1);
                 return match rest {
                     ".at[0]" | ".at[1]" => meaning(format!("{who}: at {}", xy(rest)), "loads", Role::Coordinate),
-                    ".force[0]" | ".force[1]" => {
-                        meaning(format!("{who}: F{}", xy(rest)), "loads", Role::Force)
-                    }
+                    ".force[0]" | ".force[1]" => meaning(format!("{who}: F{}", xy(rest)), "loads", Role::Force),
                     ".torque" => meaning(format!("{who}: torque"), "loads", Role::Torque),
                     ".phi1_deg[0]" => meaning(format!("{who}: from φ1"), "loads", Role::Angle),
                     ".phi1_deg[1]" => meaning(format!("{who}: to φ1"), "loads", Role::Angle),
@@ -280,19 +298,24 @@ fn linkage(path: &str, table: &toml::Table) -> Option<Meaning> {
             return body_point(table, i, &body, point);
         }
         return match rest {
-            ".at[0]" | ".at[1]" => meaning(format!("{body}: placed at {} (a guess)", xy(rest)), body, Role::Coordinate),
-            ".angle_deg" => meaning(format!("{body}: placed at angle (a guess)"), body, Role::Angle),
+            ".at[0]" | ".at[1]" => detail(format!("{body}: placed at {} (a guess)", xy(rest)), body, Role::Coordinate),
+            ".angle_deg" => detail(format!("{body}: placed at angle (a guess)"), body, Role::Angle),
             ".mass" => meaning(format!("{body}: mass"), body, Role::Mass),
-            ".centroid[0]" | ".centroid[1]" => meaning(format!("{body}: centroid {}", xy(rest)), body, Role::Coordinate),
+            ".centroid[0]" | ".centroid[1]" => {
+                meaning(format!("{body}: centroid {}", xy(rest)), body, Role::Coordinate)
+            }
             ".inertia" => meaning(format!("{body}: J"), body, Role::Inertia),
             _ => None,
         };
     }
     if let Some(i) = index_after(path, "joint") {
         let joint = item_name(table, "joint", i);
-        return path
-            .ends_with(".prismatic.angle_deg")
-            .then(|| Meaning { label: format!("joint {joint}: locked angle"), group: "joints".into(), role: Role::Angle });
+        return path.ends_with(".prismatic.angle_deg").then(|| Meaning {
+            label: format!("joint {joint}: locked angle"),
+            group: "joints".into(),
+            role: Role::Angle,
+            detail: false,
+        });
     }
     if let Some(i) = index_after(path, "load") {
         let load = item_name(table, "load", i);
@@ -321,6 +344,10 @@ fn body_point(table: &toml::Table, i: usize, body: &str, point: &str) -> Option<
     };
     let (first, origin) = points.iter().next().map(|(n, v)| (n.as_str(), coords(v)))?;
     let here = coords(points.get(name)?)?;
+    if name == first && origin == Some((0.0, 0.0)) {
+        // The origin of the body's frame: where the others are measured from.
+        return detail(format!("{body}: {name} {} (its frame's origin)", xy(point)), body, Role::Coordinate);
+    }
     let on_axis = origin == Some((0.0, 0.0)) && name != first && here.1 == 0.0;
     if on_axis && point.ends_with("[0]") {
         return meaning(format!("{body} {first}{name}"), body, Role::Length);
@@ -422,6 +449,9 @@ mod tests {
         let a = find(&ps, "body[0].points.A[0]");
         assert_eq!((a.label.as_str(), a.unit.as_str(), a.group.as_str()), ("crank OA", "mm", "crank"));
         assert_eq!(find(&ps, "body[0].points.A[1]").label, "crank: A off OA");
+        // The frame's origin and the starting placement are details, folded away.
+        assert!(find(&ps, "body[0].points.O[0]").detail && find(&ps, "body[1].at[0]").detail);
+        assert!(!find(&ps, "body[0].points.A[0]").detail && !find(&ps, "body[1].mass").detail);
         assert_eq!(find(&ps, "body[1].mass").unit, "kg");
         assert_eq!(find(&ps, "time.steps").label, "steps");
         assert_eq!(find(&ps, "ground.points.G2[0]").label, "G2 x");

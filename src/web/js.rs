@@ -85,14 +85,14 @@ impl Live {
     }
 
     /// Every number of the scene as JSON: `[{"path", "value", "integer", "label", "unit",
-    /// "group", "min", "max"}, ...]`.
+    /// "group", "min", "max", "detail"}, ...]`.
     pub fn parameters(&self) -> Result<String, String> {
         let ps = self.0.parameters().map_err(msg)?;
         let list: Vec<serde_json::Value> = ps
             .iter()
             .map(|p| {
                 serde_json::json!({ "path": p.path, "value": p.value, "integer": p.integer, "label": p.label,
-                    "unit": p.unit, "group": p.group, "min": p.min, "max": p.max })
+                    "unit": p.unit, "group": p.group, "min": p.min, "max": p.max, "detail": p.detail })
             })
             .collect();
         Ok(serde_json::Value::Array(list).to_string())
@@ -207,7 +207,12 @@ impl Live {
     pub fn files(&self) -> Result<Files, String> {
         let p = self.0.products().map_err(msg)?;
         let files = self.0.files().map_err(msg)?;
-        Ok(Files(SceneFiles { files, summary: p.summary.clone(), report: p.report.clone(), warnings: p.warnings.clone() }))
+        Ok(Files(SceneFiles {
+            files,
+            summary: p.summary.clone(),
+            report: p.report.clone(),
+            warnings: p.warnings.clone(),
+        }))
     }
 }
 

@@ -129,18 +129,17 @@ impl<'a> Linkage<'a> {
             .iter()
             .enumerate()
             .filter_map(|(index, b)| {
-                let points = b
-                    .get("points")?
-                    .as_table()?
-                    .iter()
-                    .filter_map(|(n, v)| Some((n.clone(), coords(v)?)))
-                    .collect();
+                let points =
+                    b.get("points")?.as_table()?.iter().filter_map(|(n, v)| Some((n.clone(), coords(v)?))).collect();
                 Some(Body {
                     index,
                     name: b.get("name")?.as_str()?.to_string(),
                     points,
                     at: b.get("at").and_then(coords).unwrap_or(Point::origin()),
-                    angle_deg: b.get("angle_deg").and_then(|a| a.as_float().or(a.as_integer().map(|i| i as f64))).unwrap_or(0.0),
+                    angle_deg: b
+                        .get("angle_deg")
+                        .and_then(|a| a.as_float().or(a.as_integer().map(|i| i as f64)))
+                        .unwrap_or(0.0),
                 })
             })
             .collect();
@@ -209,7 +208,13 @@ impl<'a> Linkage<'a> {
     }
 
     /// The body's changes when its points `names` go to `target`.
-    fn reshape(&self, b: &Body, names: &[String], target: Point, decimals: usize) -> Result<Vec<(String, String)>, String> {
+    fn reshape(
+        &self,
+        b: &Body,
+        names: &[String],
+        target: Point,
+        decimals: usize,
+    ) -> Result<Vec<(String, String)>, String> {
         let world = |n: &str| at(self.state, &format!("{}.{n}", b.name));
         let key = |n: &str| format!("body[{}].points.{n}", b.index);
         if b.points.len() == 1 {
@@ -236,11 +241,8 @@ impl<'a> Linkage<'a> {
                 .iter()
                 .filter(|n| **n != p0.0)
                 .map(|n| {
-                    let local = if canonical && *n == p1.0 {
-                        Point::new((target - w0).norm(), 0.0)
-                    } else {
-                        to_body(target)
-                    };
+                    let local =
+                        if canonical && *n == p1.0 { Point::new((target - w0).norm(), 0.0) } else { to_body(target) };
                     (key(n), pair(local, decimals))
                 })
                 .collect());
@@ -276,7 +278,10 @@ impl<'a> Linkage<'a> {
         if (o_old - Point::origin()).norm() > 0.0 || delta != 0.0 {
             let a0 = b.angle_deg.to_radians();
             out.push((format!("body[{}].at", b.index), pair(b.at + rotate(o_old.coords, a0), decimals)));
-            out.push((format!("body[{}].angle_deg", b.index), number(b.angle_deg + delta.to_degrees(), ANGLE_DECIMALS)));
+            out.push((
+                format!("body[{}].angle_deg", b.index),
+                number(b.angle_deg + delta.to_degrees(), ANGLE_DECIMALS),
+            ));
         }
         Ok(out)
     }
@@ -307,7 +312,10 @@ mod tests {
         let a = at(&st, "A").unwrap();
         let expect_ab = number((Point::new(0.05, 0.12) - a).norm(), 4);
         assert_eq!(ch, vec![("l_ab".into(), expect_ab), ("l_bc".into(), number((0.03f64).hypot(0.12), 4))]);
-        assert_eq!(changes(&t, &st, "C", Point::new(0.09, 0.005), 4).unwrap(), vec![("c".into(), "[0.09, 0.005]".into())]);
+        assert_eq!(
+            changes(&t, &st, "C", Point::new(0.09, 0.005), 4).unwrap(),
+            vec![("c".into(), "[0.09, 0.005]".into())]
+        );
         // M straight on from B along AB: alpha 180°.
         let b = at(&st, "B").unwrap();
         let m = b + (b - a);

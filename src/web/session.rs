@@ -130,7 +130,8 @@ impl Session {
         if let Some(p) = full.get() {
             return Ok(p);
         }
-        let p = run::products(&loaded(&self.text, &self.file)?, &RunOptions { no_frames: true, ..RunOptions::default() })?;
+        let p =
+            run::products(&loaded(&self.text, &self.file)?, &RunOptions { no_frames: true, ..RunOptions::default() })?;
         Ok(full.get_or_init(|| p))
     }
 
@@ -314,7 +315,8 @@ impl Session {
     /// dimensions it carries ([`super::reshape`]), written with `decimals` decimals, and the
     /// scene is solved again; on an error (the new shape cannot be assembled) nothing changes.
     pub fn reshape(&mut self, point: &str, target: Point, k: usize, decimals: usize) -> Result<(), PageError> {
-        let state = self.shown_state(k).ok_or_else(|| PageError::Reshape("only a motion's points can be dragged".into()))?;
+        let state =
+            self.shown_state(k).ok_or_else(|| PageError::Reshape("only a motion's points can be dragged".into()))?;
         let changes = super::reshape::changes(&table(&self.text, &self.file)?, &state, point, target, decimals)
             .map_err(PageError::Reshape)?;
         Ok(self.set_many(&changes)?)

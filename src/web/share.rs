@@ -25,7 +25,9 @@ pub enum ShareError {
     #[error("the share link is not a mechdraw scene link (it should read #scene=v1.…)")]
     NotALink,
     /// A format this build does not read. Example: `#scene=v2.…`.
-    #[error("the share link is in format {0}, from a newer mechdraw; this page reads {FORMAT}: open it with a newer page, or ask for the .toml file")]
+    #[error(
+        "the share link is in format {0}, from a newer mechdraw; this page reads {FORMAT}: open it with a newer page, or ask for the .toml file"
+    )]
     Newer(String),
     /// The data is not base64, does not inflate, or fails its checksum. Example: a link cut
     /// short by a mail program.
@@ -89,7 +91,8 @@ mod tests {
         assert!(decode(&link.replacen("v1.", "v2.", 1)).unwrap_err().to_string().contains("newer mechdraw"));
         assert_eq!(decode("hello"), Err(ShareError::NotALink));
         assert!(matches!(decode("v1.@@@"), Err(ShareError::Damaged(_))));
-        let not_text = format!("v1.{}", URL_SAFE_NO_PAD.encode(miniz_oxide::deflate::compress_to_vec_zlib(&[0xff, 0xfe], 9)));
+        let not_text =
+            format!("v1.{}", URL_SAFE_NO_PAD.encode(miniz_oxide::deflate::compress_to_vec_zlib(&[0xff, 0xfe], 9)));
         assert_eq!(decode(&not_text), Err(ShareError::NotText));
     }
 }
