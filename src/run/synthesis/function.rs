@@ -135,7 +135,7 @@ fn error_chart(g: &Geometry, d: &Design, req: &Requirement, function: &Expr) -> 
         levels: vec![Level { y: 0.0, label: String::new() }],
         points: (0..3).map(|j| Mark { x: d.x[j], y: 0.0, label: format!("x{}", j + 1) }).collect(),
     };
-    (Diagram { stem: "structural-error".into(), drawing: diagram_marked(&plot, &marks) }, gap)
+    (Diagram { stem: "structural-error".into(), drawing: diagram_marked(&plot, &marks), track: Vec::new() }, gap)
 }
 
 fn summary(req: &Requirement, d: &Design, function: &Expr) -> serde_json::Value {

@@ -239,7 +239,8 @@ impl FamilyChart<'_> {
         }
         let limit = crate::solve::fourbar::transmission::GAMMA_LIMIT_DEG;
         let marks = Marks { levels: vec![Level { y: limit, label: "40° (usual limit)".into() }], points };
-        Diagram { stem: "family".into(), drawing: diagram_marked(&plot, &marks) }
+        // Not against the positions of a motion: no track for the page's marker.
+        Diagram { stem: "family".into(), drawing: diagram_marked(&plot, &marks), track: Vec::new() }
     }
 }
 
