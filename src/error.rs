@@ -26,6 +26,17 @@ pub enum Error {
         /// What is wrong and what would be valid.
         message: String,
     },
+    /// A name would make an output path that is not a plain file inside the output
+    /// directory (checked by [`crate::run::paths::RelPath`]). Example: a name `../x`.
+    #[error(
+        "cannot write `{path}`: {message}; a name that becomes part of a file name uses letters, digits, '-', '_' and '.', not starting with '.'"
+    )]
+    OutputPath {
+        /// The path relative to the output directory (quoted short).
+        path: String,
+        /// Which part is wrong and why.
+        message: String,
+    },
     /// Writing an output failed.
     #[error("cannot write {path}: {source}")]
     Io {
@@ -49,7 +60,7 @@ impl Error {
     /// failures to write output.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::Scene(_) | Error::Solve { .. } | Error::Option { .. } => 2,
+            Error::Scene(_) | Error::Solve { .. } | Error::Option { .. } | Error::OutputPath { .. } => 2,
             Error::Io { .. } | Error::Export { .. } => 1,
         }
     }

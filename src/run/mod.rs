@@ -12,6 +12,7 @@ mod linkage;
 pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
+pub mod paths;
 pub mod products;
 mod triad;
 
@@ -131,7 +132,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: opts.dxf };
     // The live page `<name>.html` (every kind), unless --no-frames: written while the
     // products become files.
-    let page_rel = format!("{}.html", p.name);
+    let page_rel = paths::RelPath::join(&[&format!("{}.html", p.name)])?;
     let (order, page) = rayon::join(
         || bytes::write(&p, &wopts, &tick, &out),
         || -> Result<bool, Error> {

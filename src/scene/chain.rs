@@ -394,8 +394,10 @@ fn check_dependents(
         let left = resolve(i, 0, &ends[0])?;
         let right = resolve(i, 1, &ends[1])?;
         let name = name.unwrap_or_else(|| format!("Z{}", i + 1));
-        if name.is_empty() || names.contains(&name) {
-            return Err(FieldError::new(format!("dependent[{i}].name"), format!("\"{name}\" is empty or used twice")));
+        // It names the dimension's histogram, diagrams/<scene>/<name>-histogram.svg.
+        let name = super::check_file_name(&format!("dependent[{i}].name"), &name)?;
+        if names.contains(&name) {
+            return Err(FieldError::new(format!("dependent[{i}].name"), format!("\"{name}\" is used twice")));
         }
         names.push(name.clone());
         if let Some([lsl, usl]) = spec

@@ -893,6 +893,8 @@ fn check_joints(
     for (k, j) in raw.iter().enumerate() {
         let field = format!("joint[{k}]");
         let name = j.name.clone().unwrap_or_else(|| format!("J{}", k + 1));
+        // It names the joint's force diagrams, diagrams/<scene>/<joint>.R.svg.
+        let name = super::check_file_name(&format!("{field}.name"), &name)?;
         if joints.iter().any(|x| x.name == name) {
             return Err(FieldError::new(format!("{field}.name"), format!("a joint named `{name}` already exists")));
         }
@@ -1011,7 +1013,8 @@ fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result
             },
             _ => return Err(FieldError::new(field, "give exactly one of `body = \"...\"` or `joint = \"...\"`")),
         };
-        let name = d.name.clone().unwrap_or(default_name);
+        // It names the driver's force diagram, diagrams/<scene>/drive.<driver>.svg.
+        let name = super::check_file_name(&format!("{field}.name"), &d.name.clone().unwrap_or(default_name))?;
         if drivers.iter().any(|x: &Driver| x.name == name) {
             return Err(FieldError::new(
                 format!("{field}.name"),

@@ -259,18 +259,37 @@ fn unknown_or_missing(message: &str) -> Option<&str> {
     None
 }
 
-/// Checks a scene `name`: it becomes a file stem, so it must be a plain file name.
-pub fn check_name(name: &str) -> Result<String, FieldError> {
-    let ok = !name.is_empty()
-        && name.len() <= 100
+/// Most characters of a name that becomes part of a file name.
+pub const MAX_NAME_CHARS: usize = 100;
+
+/// Whether `name` can be part of an output file name: 1 to [`MAX_NAME_CHARS`] ASCII
+/// letters, digits, `-`, `_` and `.`, not starting with `.` (so never `.`, `..`, a hidden
+/// file, a separator or a drive).
+pub fn is_file_name(name: &str) -> bool {
+    !name.is_empty()
+        && name.len() <= MAX_NAME_CHARS
         && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
-        && !name.starts_with('.');
-    if ok {
-        Ok(name.to_string())
-    } else {
-        Err(FieldError::new(
-            "name",
-            format!("\"{name}\" cannot be a file name: use letters, digits, '-', '_' and '.', not starting with '.'"),
-        ))
+        && !name.starts_with('.')
+}
+
+/// Checks a name that becomes part of output file names (the scene's `name`, a chain's
+/// dependent dimension, a joint or a driver of a linkage): see [`is_file_name`]. The
+/// message quotes at most [`crate::text::QUOTE_CHARS`] characters of it.
+pub fn check_file_name(field: &str, name: &str) -> Result<String, FieldError> {
+    if is_file_name(name) {
+        return Ok(name.to_string());
     }
+    Err(FieldError::new(
+        field,
+        format!(
+            "\"{}\" cannot be part of a file name: use 1 to {MAX_NAME_CHARS} letters, digits, '-', '_' and '.', not starting with '.'",
+            crate::text::excerpt(name)
+        ),
+    ))
+}
+
+/// Checks a scene `name`: it becomes a file stem, so it must be a plain file name
+/// ([`check_file_name`]).
+pub fn check_name(name: &str) -> Result<String, FieldError> {
+    check_file_name("name", name)
 }
