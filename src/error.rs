@@ -45,6 +45,16 @@ pub enum Error {
         /// The I/O error.
         source: std::io::Error,
     },
+    /// A number that is not finite (NaN, infinite) reached an output: the run writes nothing.
+    /// Inputs whose results would overflow are refused at their field, so this names a
+    /// quantity that is undefined where it was asked for. Example: a drawing text `inf N`.
+    #[error("cannot write {what}: {at} is not a finite number (nothing was written)")]
+    NonFinite {
+        /// The file.
+        what: String,
+        /// Where in it (entity and layer, row and column, key path).
+        at: String,
+    },
     /// An output could not be produced (DXF or PNG encoding).
     #[error("cannot produce {what}: {message}")]
     Export {
@@ -61,7 +71,7 @@ impl Error {
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Scene(_) | Error::Solve { .. } | Error::Option { .. } | Error::OutputPath { .. } => 2,
-            Error::Io { .. } | Error::Export { .. } => 1,
+            Error::Io { .. } | Error::Export { .. } | Error::NonFinite { .. } => 1,
         }
     }
 }

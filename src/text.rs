@@ -55,6 +55,22 @@ pub fn window(text: &str, column: usize) -> (String, usize) {
     (part, col)
 }
 
+/// The first word of `text` that is how Rust writes a number that is not finite: `NaN` or
+/// `inf` (also `-inf`, `+inf`, `infinity`), standing alone (not inside a longer word such as
+/// `info` or `inflection`).
+///
+/// ```
+/// use mechdraw::text::non_finite_word;
+/// assert_eq!(non_finite_word("|R_A| = inf N"), Some("inf"));
+/// assert_eq!(non_finite_word("Me1,NaN,3"), Some("NaN"));
+/// assert_eq!(non_finite_word("information; 1e300 N"), None);
+/// ```
+pub fn non_finite_word(text: &str) -> Option<&str> {
+    let word = |c: char| c.is_alphanumeric() || c == '_';
+    text.split(|c: char| !word(c))
+        .find(|w| matches!(*w, "NaN" | "nan" | "inf" | "infinity" | "Infinity" | "INF" | "NAN"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,6 +26,7 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
+use super::finite::{check_csv, check_drawing};
 use super::paths::RelPath;
 use super::products::{Diagram, Page, Picture, Products, Sheet};
 use crate::Error;
@@ -138,7 +139,9 @@ fn extra_files(p: &Products, opts: &WriteOptions) -> Result<Vec<Owned>, Error> {
     let mut files = Vec::new();
     sheet_files(&mut files, name, &p.sheets, opts)?;
     for t in &p.tables {
-        files.push((path(&[], &format!("{name}{}", t.suffix), "csv")?, t.csv.to_bytes()));
+        let csv = path(&[], &format!("{name}{}", t.suffix), "csv")?;
+        check_csv(&t.csv, csv.as_str())?;
+        files.push((csv, t.csv.to_bytes()));
     }
     let json_path = path(&[], name, "json")?;
     let json = serde_json::to_string_pretty(&p.summary)
@@ -161,6 +164,7 @@ fn view(v: &[Owned]) -> Vec<File<'_>> {
 /// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
 fn still_files(files: &mut Vec<Owned>, stem: &str, d: &Drawing, opts: &WriteOptions) -> Result<(), Error> {
     let dxf = path(&[], stem, "dxf")?;
+    check_drawing(d, dxf.as_str())?;
     files.push((dxf.clone(), dxf_bytes(d, &opts.dxf, &dxf)?));
     picture_files(files, &[], stem, picture_svg(d), opts.png)
 }
@@ -216,6 +220,7 @@ fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<Owne
     let per: Vec<Vec<Owned>> = diagrams
         .par_iter()
         .map(|d| {
+            check_drawing(&d.drawing, path(&["diagrams", name], &d.stem, "svg")?.as_str())?;
             let s = svg::to_string(&d.drawing, &SvgOptions::default());
             let mut v = Vec::with_capacity(2);
             picture_files(&mut v, &["diagrams", name], &d.stem, s, png)?;
@@ -234,6 +239,9 @@ fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<Owned>, Error
         return Ok(Vec::new());
     }
     let pdf_name = path(&[], &format!("{name}-sheets"), "pdf")?;
+    for p in pages {
+        check_drawing(&p.drawing, &format!("{pdf_name}, page {}", p.stem))?;
+    }
     let (doc, svgs) = rayon::join(
         || {
             let v: Vec<pdf::Page<'_>> = pages
@@ -315,8 +323,13 @@ fn motion(
 ) -> Result<Vec<RelPath>, Error> {
     let name = &p.name;
     let poses = a.poses();
-    let svg_opts = frame_options(a, &poses);
     let dxf_name = path(&[], name, "dxf")?;
+    check_drawing(&a.base, dxf_name.as_str())?;
+    poses.par_iter().enumerate().try_for_each(|(k, pose)| {
+        let position = a.names.get(k).map_or_else(|| k.to_string(), |n| n.to_lowercase());
+        check_drawing(pose, &format!("{dxf_name} and frames/{name}/{position}.svg"))
+    })?;
+    let svg_opts = frame_options(a, &poses);
     // The DXF's pieces first, on every core (its jobs are the largest part of the run; the
     // sheets, the tables and the JSON meanwhile), then the file written on one core while
     // the frames, the diagrams and the printed pages are made on the other.
