@@ -501,11 +501,18 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let length_scale = length_scale(&ground_points, &bodies)?;
     let joints = check_joints(&raw.joint, &ground_points, &bodies, length_scale)?;
     let drivers = check_drivers(&raw.driver, &bodies, &joints)?;
+    for (k, d) in drivers.iter().enumerate() {
+        let field = format!("driver[{k}].law");
+        check_law_range(&field, &d.law, &times, (None, true), MAX_LAW, "a driver's value")?;
+    }
     check_degrees_of_freedom(&bodies, &joints, &drivers)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
     let dynamics = check_dynamics(&raw, raw.units, &ground_points, &mechanism)?;
+    if let Some(d) = &dynamics {
+        check_load_ranges(&d.loads, &times)?;
+    }
     let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
     let outputs = check_outputs(raw.outputs.as_deref(), dynamics.is_some(), &raw.measure, &measures)?;
     Ok(LinkageScene {
@@ -520,6 +527,65 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         polygons,
         outputs,
     })
+}
+
+/// Largest magnitude of a driver law's value (rad or the scene's unit), rate (per s) and
+/// acceleration (per s²) at the scene's times: beyond it the kinematics overflow (an
+/// acceleration ω²·l at 1e15 rad/s and 1e15 units is 1e45, its inertia force 1e75 N).
+pub const MAX_LAW: f64 = 1e15;
+
+/// Refuses an expression whose value (and with `rates`, its rate or acceleration) is finite
+/// but beyond ±`max` at one of `times` (within the window when given), naming the field,
+/// the time and the value. A value that is not finite is the solver's to report (with the
+/// time).
+fn check_law_range(
+    field: &str,
+    law: &Expr,
+    times: &[f64],
+    (window, with_rates): (Option<&TimeWindow>, bool),
+    max: f64,
+    what: &str,
+) -> Result<(), FieldError> {
+    for &t in times.iter().filter(|t| window.is_none_or(|w| w.contains(**t))) {
+        let j = law.eval(t);
+        let parts: &[(f64, &str)] = if with_rates {
+            &[(j.value, ""), (j.d1, " (its rate, per s)"), (j.d2, " (its acceleration, per s²)")]
+        } else {
+            &[(j.value, "")]
+        };
+        if let Some((v, which)) = parts.iter().find(|(v, _)| v.is_finite() && v.abs() > max) {
+            return Err(FieldError::new(
+                field,
+                format!(
+                    "`{}` gives {v:e}{which} at t = {t} s: {what} must stay within ±{max:e} over the motion",
+                    crate::text::excerpt(law.source())
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The loads' expressions within their ranges ([`super::MAX_FORCE_N`], [`super::MAX_TORQUE_N_M`])
+/// at the scene's times in their windows.
+fn check_load_ranges(loads: &[Load], times: &[f64]) -> Result<(), FieldError> {
+    for (k, load) in loads.iter().enumerate() {
+        let w = (load.window.as_ref(), false);
+        match &load.action {
+            LoadAction::Force { force, .. } => {
+                for (i, v) in force.iter().enumerate() {
+                    if let LoadValue::Law(e) = v {
+                        check_law_range(&format!("load[{k}].force[{i}]"), e, times, w, MAX_FORCE_N, "a force in N")?;
+                    }
+                }
+            }
+            LoadAction::Torque { torque: LoadValue::Law(e), .. } => {
+                check_law_range(&format!("load[{k}].torque"), e, times, w, MAX_TORQUE_N_M, "a torque in N·m")?;
+            }
+            LoadAction::Torque { .. } => {}
+        }
+    }
+    Ok(())
 }
 
 /// `outputs`: known names, `"forces"` only with masses or loads, and every measured
