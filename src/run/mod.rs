@@ -186,7 +186,8 @@ pub const PNG_WIDTH_PX: u32 = 1600;
 pub const MAX_DRAWN_POSITIONS: usize = 3600;
 
 /// Refuses, before solving, a scene whose motion has more than [`MAX_DRAWN_POSITIONS`]
-/// positions to draw (see [`check_drawn`]); a still scene draws one.
+/// positions to draw (the message names the field that sets their number); a still scene
+/// draws one.
 pub fn check_positions(scene: &Scene, file: &str) -> Result<(), Error> {
     let (count, field, advice) = match scene {
         Scene::Fourbar(s) => (s.spec.sweep.count(), "phi1_deg.step", "use a larger step"),

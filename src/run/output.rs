@@ -5,9 +5,10 @@
 //!
 //! - Staging: `DIR/.mechdraw-partial-<pid>-<n>/`, holding `new/` (the run's files), `old/`
 //!   (what the commit replaces, kept until it has finished) and `lock`, a file the live
-//!   run holds an advisory lock on ([`std::fs::File::try_lock`]). A later run removes the
-//!   staging directories whose lock it can take (their run has died: the system released
-//!   the lock), and those without a lock file older than [`STALE_WITHOUT_LOCK`].
+//!   run holds an advisory lock on (`flock`, on Unix). A later run removes the staging
+//!   directories whose lock it can take (their run has died: the system released the
+//!   lock), and those without a lock file older than [`STALE_WITHOUT_LOCK`]. Elsewhere than
+//!   on Unix there is no lock, and a staging directory is stale by its age alone.
 //! - Signals ([`remove_staging_on_signals`], the command line installs it): the handler
 //!   waits for the files being written and any commit in progress (which then rolls back),
 //!   removes every staging directory of the process and exits with 128 + the signal's
@@ -20,7 +21,7 @@
 //!   of a commit can leave a mix; the old files are then in the stale staging's `old/`
 //!   until the next run removes it.
 //!
-//! Every path written goes through [`Output::target`]: a path relative to the staging
+//! Every path written goes through `Output::target`: a path relative to the staging
 //! directory made only of plain parts (no root, prefix, `.`, `..` or empty part), the
 //! second line of defence behind [`super::paths::RelPath`].
 
@@ -93,10 +94,12 @@ impl Output {
             fs::create_dir_all(&staging).map_err(io(&staging))?;
             let lock_path = staging.join("lock");
             let lock = File::create(&lock_path).map_err(io(&lock_path))?;
-            lock.try_lock().map_err(|e| Error::Io {
-                path: lock_path.display().to_string(),
-                source: std::io::Error::other(format!("cannot lock the staging directory: {e}")),
-            })?;
+            if !try_lock(&lock) {
+                return Err(Error::Io {
+                    path: lock_path.display().to_string(),
+                    source: std::io::Error::other("cannot lock the staging directory"),
+                });
+            }
             let new = staging.join("new");
             fs::create_dir(&new).map_err(io(&new))?;
             Ok((lock, new))
@@ -248,8 +251,8 @@ fn remove_stale(dir: &Path) {
         let dead = match File::open(path.join("lock")) {
             // The lock taken: no live run holds it. It is released when `lock` is dropped,
             // after the directory is gone.
-            Ok(lock) => lock.try_lock().is_ok(),
-            Err(_) => entry
+            Ok(lock) if cfg!(unix) => try_lock(&lock),
+            _ => entry
                 .metadata()
                 .and_then(|m| m.modified())
                 .is_ok_and(|t| t.elapsed().is_ok_and(|age| age > STALE_WITHOUT_LOCK)),
@@ -258,6 +261,18 @@ fn remove_stale(dir: &Path) {
             let _ = fs::remove_dir_all(&path);
         }
     }
+}
+
+/// Takes the exclusive advisory lock on `file` without waiting; whether it was free.
+#[cfg(unix)]
+fn try_lock(file: &File) -> bool {
+    rustix::fs::flock(file, rustix::fs::FlockOperation::NonBlockingLockExclusive).is_ok()
+}
+
+/// No advisory locks here: every staging directory counts as held (stale by age alone).
+#[cfg(not(unix))]
+fn try_lock(_: &File) -> bool {
+    true
 }
 
 /// The kind of an entry, symbolic links not followed (a link is replaced, never entered).
