@@ -392,17 +392,22 @@ fn interrupt_fourbar(out: &Path, signal: &str) -> Option<i32> {
     child.wait().unwrap().code()
 }
 
+/// A successful run of the triad into `out` (another scene's files in the directory).
+fn run_triad_into(out: &Path) {
+    let o = common::mechdraw()
+        .args(["run", template("triad-popa.toml").to_str().unwrap(), "-q", "--out"])
+        .arg(out)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+}
+
 #[test]
 fn sigint_or_sigterm_during_a_run_leave_the_directory_exactly_as_before() {
     let tmp = tempfile::tempdir().unwrap();
     let out = tmp.path().join("out");
     // Another scene's outputs are there already.
-    let o = common::mechdraw()
-        .args(["run", template("triad-popa.toml").to_str().unwrap(), "-q", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    run_triad_into(&out);
     let before = snapshot(&out);
     for (signal, code) in [("-INT", 130), ("-TERM", 143)] {
         assert_eq!(interrupt_fourbar(&out, signal), Some(code), "{signal}");
@@ -420,12 +425,7 @@ fn a_later_run_removes_what_a_killed_run_left() {
     assert!(snapshot(&out).iter().any(|(n, _)| n.starts_with(".mechdraw-partial-")), "{:?}", names(&snapshot(&out)));
     // ...until the next run into the same directory, which takes its lock (the process that
     // held it is gone) and removes it.
-    let o = common::mechdraw()
-        .args(["run", template("triad-popa.toml").to_str().unwrap(), "-q", "--out"])
-        .arg(&out)
-        .output()
-        .unwrap();
-    assert!(o.status.success(), "{}", stderr(&o));
+    run_triad_into(&out);
     let after = snapshot(&out);
     assert!(after.iter().all(|(n, _)| !n.starts_with('.')), "{:?}", names(&after));
     assert!(after.iter().any(|(n, _)| n == "triad-popa.svg"));
