@@ -291,7 +291,7 @@ pub fn check(raw: RawTriadScene) -> Result<TriadScene, FieldError> {
             return Err(FieldError::new(
                 "mode",
                 format!(
-                    "must be a whole number ≥ 1 (the assembly modes are numbered from 1 as the report lists them), got {m}"
+                    "must be 1 or more, a whole number ≥ 1 (the assembly modes are numbered from 1 as the report lists them), got {m}"
                 ),
             ));
         }
