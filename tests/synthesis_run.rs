@@ -145,3 +145,73 @@ fn the_live_session_follows_a_change_of_psi_and_hands_over_the_design() {
     assert!(e.contains("field `time_ratio`"), "{e}");
     assert_eq!(s.frame(0).unwrap(), after);
 }
+
+/// A grip of the session's edit points.
+fn grip(s: &Session, name: &str) -> (f64, f64) {
+    let p = s.edit_points(0).unwrap().into_iter().find(|(n, _)| n == name).unwrap_or_else(|| panic!("no grip {name}"));
+    (p.1.x, p.1.y)
+}
+
+#[test]
+fn dragging_a_constructions_point_changes_its_field_and_the_point_follows_the_pointer() {
+    // (template, point, target, the field's new text): after the drag the construction is
+    // solved again and the point is where it was dropped (its coordinate the drag sets).
+    let cases: &[(&str, &str, (f64, f64), &str)] = &[
+        ("synthesis-motion", "P2", (55.0, 20.0), "{ at = [55.0, 20.0], angle_deg = -25.0 }"),
+        ("synthesis-motion", "A1", (-25.0, -40.0), "a1 = [-25.0, -40.0]"),
+        ("synthesis-crank-rocker", "C", (50.0, 0.0), "ground = 50.0"),
+        ("synthesis-slider-crank", "B2", (80.0, -12.0), "offset = 12.0"),
+        ("synthesis-shaper", "E1", (250.0, 580.0), "ram_height = 580.0"),
+        ("synthesis-shaper", "O1", (0.0, 320.0), "crank = "),
+        ("synthesis-function", "C", (120.0, 0.0), "ground = 120.0"),
+    ];
+    for &(name, point, (x, y), written) in cases {
+        let file = format!("{name}.toml");
+        let text = std::fs::read_to_string(common::root().join("templates").join(&file)).unwrap();
+        let mut s = Session::new(&text, &file).unwrap();
+        let (before, design) = (s.frame(0).unwrap(), s.design_text().unwrap());
+        s.reshape(point, mechdraw::geom::Point::new(x, y), 0, 1).unwrap_or_else(|e| panic!("{name} {point}: {e}"));
+        assert!(s.scene_text().contains(written), "{name} {point}:\n{}", s.scene_text());
+        // Every comment of the template is still there.
+        assert_eq!(
+            s.scene_text().matches('#').count(),
+            text.matches('#').count() - usize::from(point == "C" && name.contains("rocker")),
+            "{name}"
+        );
+        assert_ne!(s.frame(0).unwrap(), before, "{name} {point}: the construction is drawn again");
+        assert_ne!(s.design_text().unwrap(), design, "{name} {point}: the design follows");
+        // The design still meets the requirement by mechdraw's analysis (no failed check).
+        assert!(s.warnings().iter().all(|w| !w.starts_with("check:")), "{name}: {:?}", s.warnings());
+        let (gx, gy) = grip(&s, point);
+        match point {
+            "B2" => assert!((gy - y).abs() < 1e-9, "{name} {point}: the guide at the pointer's height ({gy})"),
+            "E1" => assert!((gy - y).abs() < 1e-9, "{name} {point}: at the pointer's height ({gy})"),
+            // The crank is written on the 0.1 grid: O1O3 = crank / sin(θ/2) within 0.05 / sin(θ/2).
+            "O1" => assert!((gy - y).abs() < 0.2, "{name} {point}: at the pointer's height ({gy})"),
+            "C" => assert!((gx - x).abs() < 1e-9 && gy.abs() < 1e-9, "{name} {point}: at ({gx}, {gy})"),
+            _ => assert!((gx - x).abs() < 1e-9 && (gy - y).abs() < 1e-9, "{name} {point}: at ({gx}, {gy})"),
+        }
+    }
+}
+
+#[test]
+fn dragging_a_positions_line_turns_it_and_a_point_without_a_field_is_refused() {
+    let file = "synthesis-motion.toml";
+    let text = std::fs::read_to_string(common::root().join("templates").join(file)).unwrap();
+    let mut s = Session::new(&text, file).unwrap();
+    let (ax, ay) = grip(&s, "P3");
+    // The line's end dragged to 40° below the horizontal through P3.
+    let r = 30.0;
+    let (tx, ty) = (ax + r * (-40f64).to_radians().cos(), ay + r * (-40f64).to_radians().sin());
+    s.reshape("P3 line", mechdraw::geom::Point::new(tx, ty), 0, 3).unwrap();
+    assert!(s.scene_text().contains("{ at = [100.0, 0.0], angle_deg = -40.0 }"), "{}", s.scene_text());
+    let e = s.reshape("O1", mechdraw::geom::Point::new(0.0, 0.0), 0, 1).unwrap_err().to_string();
+    assert!(e.contains("`O1` carries nothing") && e.contains("P1, P1 line"), "{e}");
+    // A drag that would need a negative length is refused and changes nothing.
+    let file = "synthesis-crank-rocker.toml";
+    let text = std::fs::read_to_string(common::root().join("templates").join(file)).unwrap();
+    let mut s = Session::new(&text, file).unwrap();
+    let e = s.reshape("C", mechdraw::geom::Point::new(-5.0, 0.0), 0, 1).unwrap_err().to_string();
+    assert!(e.contains("ground O1C would be -5.0"), "{e}");
+    assert_eq!(s.scene_text(), text);
+}
