@@ -75,10 +75,12 @@ impl Context<'_> {
         self.scene.units.length()
     }
 
-    /// The header of the design file: where it comes from.
+    /// The header of the design file: where it comes from (the scene file's name alone: the
+    /// same bytes from any directory, and from the live page).
     fn header(&self, what: &str) -> Vec<String> {
+        let from = std::path::Path::new(self.file).file_name().map_or(self.file.into(), |n| n.to_string_lossy());
         vec![
-            format!("Designed by mechdraw from {} (task {}): {what}.", self.file, self.scene.task.name()),
+            format!("Designed by mechdraw from {from} (task {}): {what}.", self.scene.task.name()),
             "Run it with `mechdraw run` like any scene; docs/synthesis.md says how it was found.".into(),
         ]
     }
