@@ -271,15 +271,28 @@ fn sample_drawing_audits_clean_and_reads_back() {
     }
 
     // Text: every value round-trips (Greek letters, °, ′, ≈); justified text is placed at
-    // its alignment point, including the one at the origin.
+    // its alignment point, including the one at the origin; the width factor keeps
+    // LibreCAD's wider font in the text's box, and a centred single character is written
+    // left-aligned where it is centred between LibreCAD's glyph and DejaVu's
+    // (`librecad::text_fit`, whose unit tests hold both to those rules).
     let texts = info["texts"].as_array().unwrap();
-    let expected: Vec<(&str, Point, u8, u8, f64)> = d
+    let expected: Vec<(&str, Point, u8, u8, f64, f64)> = d
         .entities
         .iter()
         .filter_map(|e| match &e.shape {
-            Shape::Text { at, value, halign, valign, rotation, .. } => Some((
-                value.as_str(),
-                *at,
+            Shape::Text { at, height, value, halign, valign, rotation } => {
+                Some((value, *at, *height, *halign, *valign, *rotation))
+            }
+            _ => None,
+        })
+        .map(|(value, at, height, halign, valign, rotation)| {
+            let fit = dxf::librecad::text_fit(at, height, value, halign, valign, rotation);
+            (value.as_str(), fit.at, fit.halign, fit.valign, rotation, fit.width)
+        })
+        .map(|(value, at, halign, valign, rotation, width)| {
+            (
+                value,
+                at,
                 match halign {
                     HAlign::Left => 0,
                     HAlign::Center => 1,
@@ -291,13 +304,15 @@ fn sample_drawing_audits_clean_and_reads_back() {
                     VAlign::Top => 3,
                 },
                 rotation.to_degrees(),
-            )),
-            _ => None,
+                width,
+            )
         })
         .collect();
     assert_eq!(texts.len(), expected.len());
-    for (t, (value, at, h, v, rot)) in texts.iter().zip(&expected) {
+    assert!(expected.iter().any(|e| e.5 < 1.0), "some text is narrowed for LibreCAD");
+    for (t, (value, at, h, v, rot, width)) in texts.iter().zip(&expected) {
         assert_eq!(t["text"].as_str().unwrap(), *value);
+        assert_eq!(t["width"].as_f64().unwrap(), *width, "{value}: width factor");
         assert_eq!(t["halign"].as_u64().unwrap(), *h as u64, "{value}");
         assert_eq!(t["valign"].as_u64().unwrap(), *v as u64, "{value}");
         let pl = t["placement"].as_array().unwrap();

@@ -107,6 +107,11 @@ pub struct Layer {
     pub color: Aci,
     /// Line type of entities on the layer that have none of their own.
     pub linetype: LineType,
+    /// Whether the layer is shown when the file is opened. A DXF layer that is off keeps its
+    /// entities (the user switches it on in the layer manager; R12 writes a negative colour
+    /// in the LAYER table); the SVG and PDF writers draw every layer of the drawing they are
+    /// given. New layers are on.
+    pub on: bool,
 }
 
 /// Horizontal text alignment relative to the insertion point.
@@ -331,7 +336,7 @@ impl Drawing {
     /// An empty drawing with layer `"0"` and the given dimension style.
     pub fn new(dim_style: DimStyle) -> Drawing {
         Drawing {
-            layers: vec![Layer { name: "0".into(), color: Aci::BLACK, linetype: LineType::Continuous }],
+            layers: vec![Layer { name: "0".into(), color: Aci::BLACK, linetype: LineType::Continuous, on: true }],
             entities: Vec::new(),
             dim_style,
             paper_mm_per_unit: None,
@@ -344,8 +349,16 @@ impl Drawing {
         if let Some(i) = self.layers.iter().position(|l| l.name == name) {
             return i;
         }
-        self.layers.push(Layer { name: name.to_string(), color, linetype });
+        self.layers.push(Layer { name: name.to_string(), color, linetype, on: true });
         self.layers.len() - 1
+    }
+
+    /// Switches the layer `name` on or off ([`Layer::on`]); nothing happens when the drawing
+    /// has no such layer.
+    pub fn set_layer_on(&mut self, name: &str, on: bool) {
+        if let Some(l) = self.layers.iter_mut().find(|l| l.name == name) {
+            l.on = on;
+        }
     }
 
     /// Adds `shape` on `layer` in the layer's colour and line type.

@@ -77,34 +77,11 @@ pub fn chars_width(chars: impl Iterator<Item = char>, height: f64) -> f64 {
 }
 
 /// Advance of a character in LibreCAD's stroke font for the DXF's text style (AZOMIX, see
-/// `draw::dxf::TEXT_STYLE`), in ninths of the text height (LibreCAD draws a glyph 9 font units
-/// per text height): the glyph's right edge from its origin plus the font's letter spacing
-/// of 1 unit, read from LibreCAD 2.2's `azomix.lff`; a space is its word spacing, 6.75. A
-/// character the font lacks (`·`, `–`: LibreCAD draws a stand-in glyph) and any other
-/// character not listed count as its widest letters, 10.06 (`_` and `√` are wider still).
+/// `draw::dxf::TEXT_STYLE`), in ninths of the text height: [`super::dxf::librecad::advance`]
+/// (the glyph's right edge plus the letter spacing; the word spacing for a space; a
+/// character the font lacks as wide as the stand-in LibreCAD draws).
 fn azomix_advance(c: char) -> f64 {
-    match c {
-        ' ' => 6.75,
-        '|' | '′' => 3.19,
-        '`' => 3.81,
-        '^' => 4.44,
-        '*' | '²' => 5.38,
-        '!' | '\'' | ',' | '.' | ':' | ';' | 'I' | 'i' => 6.31,
-        '(' | ')' | '[' | ']' => 6.62,
-        '1' | 'j' | 'l' | '{' | '}' => 7.25,
-        '"' | 'J' | 'c' => 7.56,
-        '$' | '+' | '-' | '/' | '<' | '=' | '>' | '?' | '\\' | '~' | '±' | '≡' | '×' | 'ε' => 8.19,
-        '0' | '2' | '3' | '5' | '6' | '7' | '8' | '9' => 8.19,
-        'C' | 'E' | 'F' | 'L' => 8.19,
-        'a' | 'b' | 'd' | 'e' | 'f' | 'g' | 'h' | 'k' | 'n' | 'o' | 'p' | 'q' | 'r' | 's' | 't' => 8.19,
-        'u' | 'v' | 'x' | 'y' | 'z' => 8.19,
-        'B' | 'P' | '°' => 8.5,
-        '4' | 'D' | 'G' | 'H' | 'K' | 'N' | 'O' | 'R' | 'S' | 'T' | 'U' | 'Z' | 'Σ' | '−' => 8.81,
-        '#' | '&' | 'A' | 'M' | 'Q' | 'V' | 'X' | 'Y' | 'm' | 'w' | 'φ' | 'π' => 9.12,
-        'ω' | '→' => 9.75,
-        '_' | '√' => 11.62,
-        _ => 10.06,
-    }
+    super::dxf::librecad::advance(c)
 }
 
 /// Width (model units) that `text` drawn `height` high takes in the widest of the readers we

@@ -25,7 +25,9 @@
 //!   `$TEXTSTYLE` and `$DIMTXSTY` = [`TEXT_STYLE`]. R12 has no `$INSUNITS`/`$MEASUREMENT`
 //!   (R2000+ states mm and metric).
 //! - TABLES: LTYPE `CONTINUOUS` and `DASHED` (pattern from [`parts::dash_pattern`], scaled to
-//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD` and
+//!   the drawing); LAYER with each layer's ACI colour and line type (a layer that is not
+//!   [`super::Layer::on`] is off and frozen: a negative colour and flag 1, since AutoCAD and
+//!   ezdxf hide a layer that is off, LibreCAD one that is frozen); STYLE `STANDARD` and
 //!   [`TEXT_STYLE`]; DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`;
 //!   VPORT `*ACTIVE` centred on the drawing. Every record has its handle (group 5; 105 in
 //!   DIMSTYLE, where 5 is `$DIMBLK`): FreeCAD reads no LAYER without one.
@@ -57,7 +59,8 @@
 //! VERTEX and SEQEND on the POLYLINE's layer (the crate writes them on layer 0), the
 //! alignment point 11/21 of justified text at (0, 0) (the crate omits a zero point, and
 //! ezdxf's renderer then fails), `$PINSBASE` and `$DIMTXSTY` in R12, for R12 the removal of
-//! subclass markers (group 100, R13+ only), and DIMSTYLE handles in group 105.
+//! subclass markers (group 100, R13+ only), DIMSTYLE handles in group 105, and the frozen
+//! flag (70 = 1) of a layer that is off.
 //!
 //! [`DxfVersion::R2000`] (AC1015) and [`DxfVersion::R2007`] (AC1021) are there for programs
 //! that want a newer file (R2007: UTF-8 text, which GDAL, dxf-parser, dxfgrabber and FreeCAD
@@ -81,6 +84,7 @@ use dxf::enums::{AcadVersion, DimensionType, HorizontalTextJustification, Vertic
 use dxf::tables::{Layer as DxfLayer, LineType as DxfLineType};
 use dxf::{Block, Color, Point as DxfPoint};
 
+pub mod librecad;
 mod r12;
 mod scale;
 
@@ -310,14 +314,15 @@ pub fn to_bytes_via_crate(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8
     crate_bytes(&drawing, opts)
 }
 
-/// The validated drawing in millimetres (borrowed when it already is).
+/// The validated drawing in millimetres, its texts written with characters the text style
+/// has ([`librecad::for_azomix`]); borrowed when it already is all that.
 fn prepare<'a>(drawing: &'a Drawing, opts: &DxfOptions) -> Result<Cow<'a, Drawing>, DxfError> {
     let k = opts.mm_per_unit;
     if !(k.is_finite() && k > 0.0) {
         return Err(DxfError::BadScale { mm_per_unit: k });
     }
     validate(drawing)?;
-    if k == 1.0 {
+    if k == 1.0 && !drawing.entities.iter().any(|e| scale::text_of(&e.shape).is_some_and(librecad::lacks_glyphs)) {
         return Ok(Cow::Borrowed(drawing));
     }
     let scaled = scale::scaled(drawing, k);
@@ -666,12 +671,15 @@ fn setup_tables(doc: &mut dxf::Drawing, drawing: &Drawing, bounds: &Bounds, exte
             for l in doc.layers_mut().filter(|l| l.name == "0") {
                 l.color = layer_color(layer.color);
                 l.line_type_name = linetype_name(layer.linetype).to_string();
+                l.is_layer_on = layer.on;
             }
         } else {
             doc.add_layer(DxfLayer {
                 name: layer.name.clone(),
                 color: layer_color(layer.color),
                 line_type_name: linetype_name(layer.linetype).to_string(),
+                // Off: the crate writes the colour negative; fix_up freezes it too.
+                is_layer_on: layer.on,
                 ..Default::default()
             });
         }
@@ -736,8 +744,18 @@ enum Prim<'a> {
     Solid([Point; 4]),
     /// TEXT, rotation in degrees (snapped): `at` the alignment point (11/21, written for
     /// justified text), `insert` the left end of the baseline (10/20) computed from the
-    /// estimated text width ([`text_insertion`]).
-    Text { at: Point, insert: Point, height: f64, value: &'a str, halign: HAlign, valign: VAlign, rotation_deg: f64 },
+    /// estimated text width ([`text_insertion`]), `width` the width factor (41, written
+    /// when not 1). Alignment, point and width factor as [`librecad::text_fit`] makes them.
+    Text {
+        at: Point,
+        insert: Point,
+        height: f64,
+        value: &'a str,
+        halign: HAlign,
+        valign: VAlign,
+        rotation_deg: f64,
+        width: f64,
+    },
 }
 
 /// Calls `f` with the DXF entities of a shape other than a dimension, in order. A filled
@@ -774,15 +792,19 @@ fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
                 solids(&tri, &mut f);
             }
         }
-        Shape::Text { at, height, value, halign, valign, rotation } => f(Prim::Text {
-            at: *at,
-            insert: text_insertion(*at, *height, value, *halign, *valign, *rotation),
-            height: *height,
-            value,
-            halign: *halign,
-            valign: *valign,
-            rotation_deg: deg(normalize_angle(*rotation)),
-        }),
+        Shape::Text { at, height, value, halign, valign, rotation } => {
+            let fit = librecad::text_fit(*at, *height, value, *halign, *valign, *rotation);
+            f(Prim::Text {
+                at: fit.at,
+                insert: text_insertion(fit.at, *height, value, fit.halign, fit.valign, *rotation),
+                height: *height,
+                value,
+                halign: fit.halign,
+                valign: fit.valign,
+                rotation_deg: deg(normalize_angle(*rotation)),
+                width: fit.width,
+            })
+        }
         Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
     }
 }
@@ -828,12 +850,13 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
             EntityType::Polyline(poly)
         }
         Prim::Solid([a, b, c, d]) => EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d))),
-        Prim::Text { at, insert, height, value, halign, valign, rotation_deg } => {
+        Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
             let mut t = Text {
                 location: pt(insert),
                 text_height: height,
                 value: value.to_string(),
                 rotation: rotation_deg,
+                relative_x_scale_factor: width,
                 text_style_name: TEXT_STYLE.to_string(),
                 horizontal_text_justification: match halign {
                     HAlign::Left => HorizontalTextJustification::Left,
@@ -1083,6 +1106,16 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
                 for (k, (c, v)) in var.into_iter().enumerate() {
                     record.insert(next + k, Pair::owned(c, v));
                 }
+            }
+        }
+        // A layer that is off (negative colour) is frozen too (flag 1): LibreCAD, QCAD and
+        // others read a layer's visibility from the flag alone and show an off layer.
+        if kind == "LAYER"
+            && section == "TABLES"
+            && record.iter().any(|p| p.code == 62 && p.value.trim().starts_with('-'))
+        {
+            for pair in record.iter_mut().filter(|p| p.code == 70) {
+                pair.value = Cow::Borrowed("     1");
             }
         }
         // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).

@@ -357,13 +357,16 @@ fn prim(o: &mut Vec<u8>, next: &mut u64, p: Prim, style: Style) {
             handle(o, take(next));
             layer(o, style.layer);
         }
-        Prim::Text { at, insert, height, value, halign, valign, rotation_deg } => {
+        Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
             common(o, b"TEXT", take(next), style);
             point(o, b" 10", b" 20", b" 30", insert);
             float(o, b" 40", height);
             string(o, b"  1", value);
             if rotation_deg != 0.0 {
                 float(o, b" 50", rotation_deg);
+            }
+            if width != 1.0 {
+                float(o, b" 41", width);
             }
             string(o, b"  7", TEXT_STYLE);
             match halign {

@@ -1,12 +1,24 @@
 //! Model units to millimetres: the drawing scaled about the origin before it is written, so
-//! that every DXF mechdraw writes is in millimetres (a scene in metres is written × 1000).
-//! Figures keep drawing in model units; only the writer's output changes.
+//! that every DXF mechdraw writes is in millimetres (a scene in metres is written × 1000),
+//! and its texts written with the characters the text style's font has
+//! ([`super::librecad::for_azomix`]). Figures keep drawing in model units; only the
+//! writer's output changes.
 
+use super::librecad::for_azomix;
 use crate::draw::{DimStyle, Drawing, Entity, Shape};
 use crate::geom::Point;
 
+/// The text a shape writes (a TEXT's, a dimension's), if any.
+pub(super) fn text_of(shape: &Shape) -> Option<&str> {
+    match shape {
+        Shape::Text { value, .. } => Some(value),
+        Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => Some(text),
+        _ => None,
+    }
+}
+
 /// `d` with every coordinate, length, width, text height and dimension size multiplied by
-/// `k` (> 0); angles, texts, layers and colours unchanged.
+/// `k` (> 0) and every text [`for_azomix`]; angles, layers and colours unchanged.
 pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
     let p = |q: &Point| Point::from(q.coords * k);
     let shape = |s: &Shape| match s {
@@ -23,7 +35,7 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
         Shape::Text { at, height, value, halign, valign, rotation } => Shape::Text {
             at: p(at),
             height: height * k,
-            value: value.clone(),
+            value: for_azomix(value).into_owned(),
             halign: *halign,
             valign: *valign,
             rotation: *rotation,
@@ -33,7 +45,7 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
             first: p(first),
             second: p(second),
             radius: radius * k,
-            text: text.clone(),
+            text: for_azomix(text).into_owned(),
         },
         Shape::LinearDimension { p1, p2, line_at, angle, text } => {
             Shape::LinearDimension { p1: p(p1), p2: p(p2), line_at: p(line_at), angle: *angle, text: text.clone() }

@@ -147,11 +147,17 @@ impl Animation {
 
     /// The whole motion in one drawing (for the DXF): the base on its content layers and
     /// each position on its own layer ([`Animation::names`]), every entity keeping its
-    /// colour and line type. `poses[k]` is position `k`'s moving part.
+    /// colour and line type. `poses[k]` is position `k`'s moving part. The first position's
+    /// layer is on and every other position's off ([`crate::draw::Layer::on`]), so that the
+    /// file opens as one drawing of the mechanism (the base and position 0) and the user
+    /// switches positions on and off in the layer manager.
     pub fn all_positions(&self, poses: &[Drawing]) -> Drawing {
         let mut d = self.base.clone();
-        for (name, pose) in self.names.iter().zip(poses) {
+        for (k, (name, pose)) in self.names.iter().zip(poses).enumerate() {
             d.append_on_layer(pose, name);
+            if k > 0 {
+                d.set_layer_on(name, false);
+            }
         }
         d
     }
