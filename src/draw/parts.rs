@@ -344,40 +344,102 @@ pub fn linear_layout_placed(
 /// is returned unchanged.
 pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
     let mut out = Vec::new();
-    let asz = style.arrow_size;
-    let th = style.text_height;
     match shape {
         Shape::AngularDimension { vertex, first, second, radius, text } => {
-            let a1 = angle_of(first - vertex);
-            let a2 = angle_of(second - vertex);
-            let sweep = normalize_angle(a2 - a1);
-            // Extension lines from the ray points out to the arc when the arc lies beyond them.
-            for (p, a) in [(first, a1), (second, a2)] {
-                let d = (p - vertex).norm();
-                if d < *radius {
-                    out.push(Shape::Line { from: polar(*vertex, d, a), to: polar(*vertex, radius + 0.5 * asz, a) });
-                }
-            }
-            out.push(Shape::Arc { center: *vertex, radius: *radius, start: a1, end: a1 + sweep });
-            // Arrowheads tangent to the arc, pointing at its ends.
-            let step = (asz / radius).min(0.4 * sweep.max(1e-9));
-            let p_start = polar(*vertex, *radius, a1);
-            let p_end = polar(*vertex, *radius, a1 + sweep);
-            arrow_shapes(polar(*vertex, *radius, a1 + step), p_start, asz, &mut out);
-            arrow_shapes(polar(*vertex, *radius, a1 + sweep - step), p_end, asz, &mut out);
-            out.push(Shape::Text {
-                at: angular_text_mid(*vertex, *first, *second, *radius, text, style),
-                height: th,
-                value: text.clone(),
-                halign: HAlign::Center,
-                valign: VAlign::Middle,
-                rotation: 0.0,
+            let parts = angular_parts(*vertex, *first, *second, *radius, text, style);
+            out.extend(parts.extensions.into_iter().flatten());
+            out.push(Shape::Arc {
+                center: *vertex,
+                radius: *radius,
+                start: parts.start,
+                end: parts.start + parts.sweep,
             });
+            out.extend(parts.heads.into_iter().flatten());
+            out.push(parts.text);
         }
         Shape::LinearDimension { .. } => explode_linear_into(shape, LinearMarks::default(), style, &mut out),
         other => out.push(other.clone()),
     }
     out
+}
+
+/// An angular dimension's parts, as [`explode_dimension`] draws them.
+struct AngularParts {
+    /// Extension lines from the first and second ray points out past the arc, when the arc
+    /// lies beyond them.
+    extensions: [Option<Shape>; 2],
+    /// Direction of the first ray, radians.
+    start: f64,
+    /// Counter-clockwise sweep from the first ray to the second, in [0, 2π).
+    sweep: f64,
+    /// The arrowheads at the arc's start and end (none where the arc has no length).
+    heads: [Option<Shape>; 2],
+    /// The text, placed by [`angular_text_mid`].
+    text: Shape,
+}
+
+fn angular_parts(
+    vertex: Point,
+    first: Point,
+    second: Point,
+    radius: f64,
+    text: &str,
+    style: &DimStyle,
+) -> AngularParts {
+    let asz = style.arrow_size;
+    let a1 = angle_of(first - vertex);
+    let a2 = angle_of(second - vertex);
+    let sweep = normalize_angle(a2 - a1);
+    // Extension lines from the ray points out to the arc when the arc lies beyond them.
+    let extension = |p: Point, a: f64| {
+        let d = (p - vertex).norm();
+        (d < radius).then(|| Shape::Line { from: polar(vertex, d, a), to: polar(vertex, radius + 0.5 * asz, a) })
+    };
+    // Arrowheads tangent to the arc, pointing at its ends.
+    let step = (asz / radius).min(0.4 * sweep.max(1e-9));
+    let head = |from: f64, to: f64| {
+        arrow(polar(vertex, radius, from), polar(vertex, radius, to), asz)
+            .map(|(_, tri)| Shape::Filled { points: tri.to_vec() })
+    };
+    AngularParts {
+        extensions: [extension(first, a1), extension(second, a2)],
+        start: a1,
+        sweep,
+        heads: [head(a1 + step, a1), head(a1 + sweep - step, a1 + sweep)],
+        text: Shape::Text {
+            at: angular_text_mid(vertex, first, second, radius, text, style),
+            height: style.text_height,
+            value: text.to_string(),
+            halign: HAlign::Center,
+            valign: VAlign::Middle,
+            rotation: 0.0,
+        },
+    }
+}
+
+/// An angular dimension split at its bisector into two halves (a DXF writer writes an angle
+/// of 180° or more so, each half a 2-line angular DIMENSION under 180°, the only angular
+/// kind LibreCAD draws): the first half's parts (the first extension line, the arc from the
+/// first ray to the bisector, the arrowhead at its start and the whole dimension's text) and
+/// the second's (the second extension line, the arc on to the second ray, the arrowhead at
+/// its end), so that the two together draw exactly what [`explode_dimension`] draws; and the
+/// point where the arc meets the bisector. `None` for a shape that is not an angular
+/// dimension.
+pub fn explode_angular_halves(shape: &Shape, style: &DimStyle) -> Option<([Vec<Shape>; 2], Point)> {
+    let Shape::AngularDimension { vertex, first, second, radius, text } = shape else { return None };
+    let parts = angular_parts(*vertex, *first, *second, *radius, text, style);
+    let mid = parts.start + 0.5 * parts.sweep;
+    let arc = |start: f64, end: f64| Shape::Arc { center: *vertex, radius: *radius, start, end };
+    let [e1, e2] = parts.extensions;
+    let [h1, h2] = parts.heads;
+    let mut one: Vec<Shape> = e1.into_iter().collect();
+    one.push(arc(parts.start, mid));
+    one.extend(h1);
+    one.push(parts.text);
+    let mut two: Vec<Shape> = e2.into_iter().collect();
+    two.push(arc(mid, parts.start + parts.sweep));
+    two.extend(h2);
+    Some(([one, two], polar(*vertex, *radius, mid)))
 }
 
 /// A linear dimension broken into lines, arrowheads (and the base circle) and its text as

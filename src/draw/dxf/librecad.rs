@@ -14,8 +14,8 @@
 //! `tests/dxf_librecad.rs`). LibreCAD honours a TEXT's width factor (group 41) and scales
 //! the glyphs and their spacing by it; TrueType readers (AutoCAD, ezdxf) do the same.
 //!
-//! What the writer does with this ([`text_fit`]): every TEXT gets the width factor (at most
-//! 1) that keeps LibreCAD's ink inside the box DejaVu Sans gives the text, so anything a
+//! What the writer does with this ([`text_fit`]): every TEXT gets the width factor, at most
+//! one, that keeps LibreCAD's ink inside the box DejaVu Sans gives the text, so anything a
 //! figure keeps clear of that box stays clear in LibreCAD too; a centred single character
 //! (a link's number in its circle) is written left-aligned at the point that centres it
 //! halfway between LibreCAD's glyph and DejaVu's, so that both are off by under 0.07

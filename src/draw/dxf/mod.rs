@@ -516,11 +516,11 @@ fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions) {
                     }
                     continue;
                 }
-                dim_count += 1;
-                let block_name = format!("*D{dim_count}");
-                add_dimension_block(doc, &block_name, &e.shape, drawing, &common);
-                if let Some(dim) = dimension_entity(&e.shape, &block_name, &style) {
-                    doc.add_entity(common.entity(dim));
+                for piece in dimension_pieces(&e.shape, &style) {
+                    dim_count += 1;
+                    let block_name = format!("*D{dim_count}");
+                    add_dimension_block(doc, &block_name, &piece.geometry, &common);
+                    doc.add_entity(common.entity(dimension_entity(&piece, &block_name)));
                 }
             }
             shape => {
@@ -887,15 +887,15 @@ fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
     all.into_iter().map(|p| crate_entity(doc, p)).collect()
 }
 
-/// The anonymous block `name` with the dimension's exploded geometry, on the dimension's
-/// layer in its colour (explicit rather than BYBLOCK: ezdxf's renderer draws BYBLOCK
-/// dimension geometry black) and line type CONTINUOUS (dimensions are never dashed, as in
-/// the SVG).
-fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, shape: &Shape, drawing: &Drawing, dim: &Common) {
+/// The anonymous block `name` with a dimension's exploded geometry (`geometry`, a
+/// [`DimPiece`]'s), on the dimension's layer in its colour (explicit rather than BYBLOCK:
+/// ezdxf's renderer draws BYBLOCK dimension geometry black) and line type CONTINUOUS
+/// (dimensions are never dashed, as in the SVG).
+fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, geometry: &[Shape], dim: &Common) {
     let common = Common { layer: dim.layer.clone(), color: dim.color.clone(), linetype: CONTINUOUS };
     let mut entities = Vec::new();
-    for part in explode_dimension(shape, &drawing.dim_style) {
-        for specific in simple_entities(doc, &part) {
+    for part in geometry {
+        for specific in simple_entities(doc, part) {
             entities.push(common.entity(specific));
         }
     }
@@ -911,7 +911,7 @@ enum DimPrim {
     /// 2-line (type 2, `two_line`; what AutoCAD's DIMANGULAR makes when two lines are
     /// picked, and the only angular dimension LibreCAD 2.2 draws): the first line 13→14
     /// (vertex → first ray point), the second 15→10 (vertex → second ray point), 16 on the
-    /// arc. 3-point (type 5, for angles of 180° and more, which two lines cannot hold): 13/14
+    /// arc. 3-point (type 5, for an angle within [`TWO_LINE_MARGIN`] of 0° or 360°): 13/14
     /// the ray points, 15 the vertex, 10 and 16 on the arc.
     Angular { two_line: bool, def1: Point, text_at: Point, defs: [Point; 4] },
     /// Rotated linear (type 0): 10 on the dimension line, 13/14 the feature points, 50 the
@@ -919,55 +919,94 @@ enum DimPrim {
     Rotated { on_line: Point, text_mid: Point, p1: Point, p2: Point, angle_deg: f64 },
 }
 
-/// The DIMENSION geometry of a dimension shape (`None` for other shapes).
-fn dimension_prim(shape: &Shape, style: &super::DimStyle) -> Option<DimPrim> {
+/// The text override of the second half of an angle of 180° or more: a space, which AutoCAD,
+/// ezdxf and LibreCAD draw as no text (the first half carries the angle's text).
+pub const NO_TEXT: &str = " ";
+
+/// One DIMENSION entity of a dimension shape: its definition points, its text (the
+/// override) and the geometry its anonymous block holds.
+#[derive(Debug, Clone)]
+struct DimPiece<'a> {
+    prim: DimPrim,
+    text: &'a str,
+    geometry: Vec<Shape>,
+}
+
+/// The DIMENSION entities of a dimension shape (none for other shapes). An angle between
+/// [`TWO_LINE_MARGIN`] and 180° minus it is one 2-line angular dimension; one from 180° (less
+/// the margin) up to a full turn (less twice it) is two, split at its bisector
+/// ([`parts::explode_angular_halves`]: LibreCAD draws no angular dimension of 180° or more,
+/// and two lines cannot hold one), the first with the text, the second with [`NO_TEXT`], so
+/// that readers which draw the blocks show one dimension and LibreCAD, which redraws each,
+/// shows the whole arc with its text (and two arrowheads where the halves meet); nearer 0°
+/// or 360° one 3-point dimension. A linear dimension is one rotated dimension.
+fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPiece<'a>> {
+    use std::f64::consts::PI;
     match shape {
         Shape::AngularDimension { vertex, first, second, radius, text } => {
             let a1 = angle_of(first - vertex);
             let sweep = normalize_angle(angle_of(second - vertex) - a1);
-            let on_arc = polar(*vertex, *radius, a1 + 0.5 * sweep);
+            let on_arc = |a: f64| polar(*vertex, *radius, a);
             // Where the exploded block draws the text.
             let text_at = parts::angular_text_mid(*vertex, *first, *second, *radius, text, style);
-            let two_line = sweep > TWO_LINE_MARGIN && sweep < std::f64::consts::PI - TWO_LINE_MARGIN;
-            Some(if two_line {
-                DimPrim::Angular { two_line, def1: *second, text_at, defs: [*vertex, *first, *vertex, on_arc] }
-            } else {
-                DimPrim::Angular { two_line, def1: on_arc, text_at, defs: [*first, *second, *vertex, on_arc] }
-            })
+            let whole = || explode_dimension(shape, style);
+            if sweep > TWO_LINE_MARGIN && sweep < PI - TWO_LINE_MARGIN {
+                let defs = [*vertex, *first, *vertex, on_arc(a1 + 0.5 * sweep)];
+                let prim = DimPrim::Angular { two_line: true, def1: *second, text_at, defs };
+                return vec![DimPiece { prim, text, geometry: whole() }];
+            }
+            if (PI - TWO_LINE_MARGIN..2.0 * (PI - TWO_LINE_MARGIN)).contains(&sweep) {
+                if let Some(([one, two], mid)) = parts::explode_angular_halves(shape, style) {
+                    let (q1, q3) = (on_arc(a1 + 0.25 * sweep), on_arc(a1 + 0.75 * sweep));
+                    let first_half =
+                        DimPrim::Angular { two_line: true, def1: mid, text_at, defs: [*vertex, *first, *vertex, q1] };
+                    let second_half = DimPrim::Angular {
+                        two_line: true,
+                        def1: *second,
+                        text_at: q3,
+                        defs: [*vertex, mid, *vertex, q3],
+                    };
+                    return vec![
+                        DimPiece { prim: first_half, text, geometry: one },
+                        DimPiece { prim: second_half, text: NO_TEXT, geometry: two },
+                    ];
+                }
+            }
+            let on_mid = on_arc(a1 + 0.5 * sweep);
+            let prim =
+                DimPrim::Angular { two_line: false, def1: on_mid, text_at, defs: [*first, *second, *vertex, on_mid] };
+            vec![DimPiece { prim, text, geometry: whole() }]
         }
         Shape::LinearDimension { p1, p2, line_at, angle, text } => {
             // The text's middle where the exploded block draws it (inside or beside an
             // extension line).
             let lay = parts::linear_layout(*p1, *p2, *line_at, *angle, text, style);
-            Some(DimPrim::Rotated {
+            let prim = DimPrim::Rotated {
                 on_line: lay.f2,
                 text_mid: lay.text_mid,
                 p1: *p1,
                 p2: *p2,
                 angle_deg: deg(normalize_angle(*angle)),
-            })
+            };
+            vec![DimPiece { prim, text, geometry: explode_dimension(shape, style) }]
         }
-        _ => None,
+        _ => Vec::new(),
     }
 }
 
-/// The DIMENSION entity for a dimension shape, pointing at `block_name` (crate path).
-fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) -> Option<EntityType> {
-    let text = match shape {
-        Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => text.as_str(),
-        _ => return None,
-    };
+/// The DIMENSION entity of a piece, pointing at `block_name` (crate path).
+fn dimension_entity(piece: &DimPiece, block_name: &str) -> EntityType {
     let base = |def1: Point, text_mid: Point, kind: DimensionType| DimensionBase {
         block_name: block_name.to_string(),
         definition_point_1: pt(def1),
         text_mid_point: pt(text_mid),
         dimension_type: kind,
-        text: text.to_string(),
+        text: piece.text.to_string(),
         is_block_reference_referenced_by_this_block_only: true,
         is_at_user_defined_location: true,
         ..Default::default()
     };
-    Some(match dimension_prim(shape, style)? {
+    match piece.prim {
         DimPrim::Angular { two_line, def1, text_at, defs: [p13, p14, p15, p16] } => {
             // The crate has no 2-line angular type; the 3-point one has the same groups (its
             // R2000 subclass marker is renamed in fix_up).
@@ -987,7 +1026,7 @@ fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) ->
             rotation_angle: angle_deg,
             ..Default::default()
         }),
-    })
+    }
 }
 
 /// One group-code/value pair of the crate's output: its code as written (with the padding),
@@ -1363,27 +1402,47 @@ mod tests {
         assert_eq!(header_value("$DIMASZ"), 3.0);
     }
 
+    /// LibreCAD draws no angular dimension of 180° or more (issue 29): such an angle is two
+    /// 2-line dimensions split at its bisector, the first with the text, the second with
+    /// none, whose sweeps add up to the angle; together their blocks hold what the whole
+    /// dimension draws.
     #[test]
-    fn angles_of_180_degrees_and_more_are_3_point_dimensions() {
-        let mut d = drawing();
+    fn angles_of_180_degrees_and_more_are_two_2_line_halves() {
         let o = Point::new(0.0, 0.0);
-        for (second, text) in [(Point::new(-1.0, 0.0), "180"), (Point::new(0.0, -1.0), "270")] {
-            d.add(
-                0,
-                Shape::AngularDimension {
-                    vertex: o,
-                    first: Point::new(1.0, 0.0),
-                    second,
-                    radius: 5.0,
-                    text: text.into(),
-                },
-            );
-        }
-        let p = write(&d);
-        for dim in records(&p, "DIMENSION") {
-            assert_eq!(get(&dim, 70)[0].trim(), format!("{}", 5 | 32 | 128), "{:?}", get(&dim, 1));
-            // 13/14 the ray points, 15 the vertex.
-            assert_eq!((f(&dim, 13), f(&dim, 23), f(&dim, 15)), (vec![1.0], vec![0.0], vec![0.0]));
+        for (deg_sweep, text) in [(180.0, "180"), (270.0, "270"), (300.0, "φ1 = 300°")] {
+            let mut d = drawing();
+            let second = polar(o, 1.0, f64::to_radians(deg_sweep));
+            let dim = Shape::AngularDimension {
+                vertex: o,
+                first: Point::new(1.0, 0.0),
+                second,
+                radius: 5.0,
+                text: text.into(),
+            };
+            d.add(0, dim.clone());
+            let p = write(&d);
+            let dims = records(&p, "DIMENSION");
+            assert_eq!(dims.len(), 2, "{text}");
+            let escaped = text.replace('φ', "\\U+03C6").replace('°', "\\U+00B0");
+            assert_eq!((get(&dims[0], 1), get(&dims[1], 1)), (vec![escaped.as_str()], vec![NO_TEXT]));
+            // Each a 2-line angular dimension: 13→14 and 15→10 its lines from the vertex.
+            let dir = |r: &[(i32, String)], c: i32| f(r, c + 10)[0].atan2(f(r, c)[0]).to_degrees();
+            let mut total = 0.0;
+            for dim in &dims {
+                assert_eq!(get(dim, 70)[0].trim(), format!("{}", 2 | 32 | 128));
+                assert_eq!(
+                    (f(dim, 13), f(dim, 23), f(dim, 15), f(dim, 25)),
+                    (vec![0.0], vec![0.0], vec![0.0], vec![0.0])
+                );
+                let sweep = (dir(dim, 10) - dir(dim, 14)).rem_euclid(360.0);
+                assert!(sweep < 180.0, "{text}: a half of {sweep}°");
+                total += sweep;
+            }
+            assert!((total - deg_sweep).abs() < 1e-9, "{text}: halves add up to {total}°");
+            // The two blocks hold the whole dimension's parts: two arcs that make its arc, two
+            // arrowheads, one text.
+            let kinds = |k: &str| records(&p, k).len();
+            assert_eq!((kinds("ARC"), kinds("SOLID"), kinds("TEXT")), (2, 2, 1), "{text}");
         }
     }
 

@@ -17,8 +17,8 @@
 use std::io::Write;
 
 use super::{
-    CONTINUOUS, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, build_head, dimension_prim,
-    entity_linetype, fix_up, prims, snap,
+    CONTINUOUS, DimPiece, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, build_head,
+    dimension_pieces, entity_linetype, fix_up, prims, snap,
 };
 use crate::draw::parts::explode_dimension;
 use crate::draw::{Drawing, Entity, HAlign, Shape, VAlign};
@@ -154,13 +154,19 @@ fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64
     for e in entities {
         match &e.shape {
             shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
-                for part in explode_dimension(shape, &drawing.dim_style) {
-                    prims(&part, |p| handles += of(p));
+                if dimensions == Dimensions::Exploded {
+                    for part in explode_dimension(shape, &drawing.dim_style) {
+                        prims(&part, |p| handles += of(p));
+                    }
+                    continue;
                 }
-                if dimensions != Dimensions::Exploded {
+                for piece in dimension_pieces(shape, &drawing.dim_style) {
                     dims += 1;
-                    // The BLOCK and its BLOCK_RECORD, and the DIMENSION when there is one.
-                    handles += 2 + u64::from(dimension_prim(shape, &drawing.dim_style).is_some());
+                    // The block's entities, the BLOCK and its BLOCK_RECORD, the DIMENSION.
+                    for part in &piece.geometry {
+                        prims(part, |p| handles += of(p));
+                    }
+                    handles += 3;
                 }
             }
             shape => prims(shape, |p| handles += of(p)),
@@ -233,12 +239,14 @@ impl<'a> Body<'a> {
                         prims(&part, |p| prim(out, next, p, part_style));
                     }
                 }
-                shape @ (Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. }) => {
-                    self.dim_count += 1;
-                    name.clear();
-                    name.push_str("*D");
-                    name.push_str(&self.dim_count.to_string());
-                    self.dimension(shape, text, &name, style);
+                shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                    for piece in dimension_pieces(shape, &drawing.dim_style) {
+                        self.dim_count += 1;
+                        name.clear();
+                        name.push_str("*D");
+                        name.push_str(&self.dim_count.to_string());
+                        self.dimension(&piece, &name, style);
+                    }
                 }
                 shape => {
                     let next = &mut self.next;
@@ -249,9 +257,9 @@ impl<'a> Body<'a> {
         }
     }
 
-    /// The dimension's anonymous block (its exploded geometry on the dimension's layer in its
-    /// colour, line type CONTINUOUS) and the DIMENSION entity.
-    fn dimension(&mut self, shape: &Shape, text: &str, name: &str, style: Style) {
+    /// A dimension piece's anonymous block (its exploded geometry on the dimension's layer in
+    /// its colour, line type CONTINUOUS) and its DIMENSION entity.
+    fn dimension(&mut self, piece: &DimPiece, name: &str, style: Style) {
         let block_handle = self.next;
         // The BLOCK, then its BLOCK_RECORD (not written to R12).
         self.next += 2;
@@ -262,19 +270,18 @@ impl<'a> Body<'a> {
         string(b, b"  3", name);
         b.extend_from_slice(b"  1\r\n\r\n");
         let part_style = Style { linetype: Some(CONTINUOUS), ..style };
-        for part in explode_dimension(shape, &self.drawing.dim_style) {
-            prims(&part, |p| prim(b, &mut self.next, p, part_style));
+        for part in &piece.geometry {
+            prims(part, |p| prim(b, &mut self.next, p, part_style));
         }
         b.extend_from_slice(b"  0\r\nENDBLK\r\n");
         handle(b, block_handle);
         b.extend_from_slice(b"  8\r\n0\r\n");
 
-        let Some(dim) = dimension_prim(shape, &self.drawing.dim_style) else { return };
         let o = &mut self.entities;
         common(o, b"DIMENSION", self.next, style);
         self.next += 1;
         string(o, b"  2", name);
-        let (def1, text_mid, flags) = match dim {
+        let (def1, text_mid, flags) = match piece.prim {
             DimPrim::Angular { two_line, def1, text_at, .. } => {
                 (def1, text_at, if two_line { 2 } else { 5 } | 32 | 128)
             }
@@ -283,9 +290,9 @@ impl<'a> Body<'a> {
         point(o, b" 10", b" 20", b" 30", def1);
         point(o, b" 11", b" 21", b" 31", text_mid);
         short(o, b" 70", flags);
-        string(o, b"  1", text);
+        string(o, b"  1", piece.text);
         o.extend_from_slice(b"  3\r\nSTANDARD\r\n");
-        match dim {
+        match piece.prim {
             DimPrim::Angular { defs: [p13, p14, p15, p16], .. } => {
                 point(o, b" 13", b" 23", b" 33", p13);
                 point(o, b" 14", b" 24", b" 34", p14);
