@@ -205,6 +205,25 @@ pub enum Shape {
         /// Rotation, radians counter-clockwise.
         rotation: f64,
     },
+    /// A caption that states a drawing scale (`Velocity polygon   k_v = 0.1 (m/s)/mm`), its
+    /// value written by each writer for the millimetres it draws a model unit in
+    /// ([`ScaleCaption::text`]): on paper in the SVG and PDF, in the DXF's own millimetres
+    /// in the DXF. So a length measured where the user measures, times the printed k, is
+    /// the value (design.md §4). Placed and aligned as a [`Shape::Text`].
+    ScaleText {
+        /// Insertion point, interpreted with `halign` and `valign`.
+        at: Point,
+        /// Cap height in model units.
+        height: f64,
+        /// What the caption says.
+        caption: ScaleCaption,
+        /// Horizontal alignment.
+        halign: HAlign,
+        /// Vertical alignment.
+        valign: VAlign,
+        /// Rotation, radians counter-clockwise.
+        rotation: f64,
+    },
     /// An angular dimension (AutoCAD `DIMANGULAR`, 3-point form): the angle swept
     /// counter-clockwise from the ray `vertex→first` to the ray `vertex→second`, drawn as an
     /// arc of radius `radius` about `vertex` with arrowheads and `text` at its middle.
@@ -234,6 +253,65 @@ pub enum Shape {
         /// The text shown (e.g. `25 ±0.1`).
         text: String,
     },
+}
+
+/// A scale stated in words: `before`, the scale's value in the medium it is written to,
+/// `after` (`Velocity polygon   k_v = ` 0.1 ` (m/s)/mm`). The value is a quantity per
+/// millimetre of the medium: [`ScaleCaption::per_unit`] (the quantity per model unit the
+/// figure draws) over the medium's millimetres per model unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScaleCaption {
+    /// The text before the value (`Mechanism   k_l = `).
+    pub before: String,
+    /// The quantity one model unit of the drawing stands for, in the caption's unit: 1 for a
+    /// length scale (a model unit is a model unit), `k_v` × the paper millimetres per model
+    /// unit for a velocity polygon drawn at `k_v` per paper millimetre.
+    pub per_unit: f64,
+    /// The text after the value, with the unit per millimetre (` (m/s)/mm`).
+    pub after: String,
+    /// Paper millimetres per model unit of the figure the caption is on: the medium of
+    /// [`ScaleCaption::on_paper`], for a writer that has no scale of its own.
+    pub paper_mm_per_unit: f64,
+}
+
+impl ScaleCaption {
+    /// A caption for a scale of `per_mm` per paper millimetre on a figure printed at
+    /// `paper_mm_per_unit` paper millimetres per model unit.
+    pub fn new(before: impl Into<String>, per_mm: f64, after: impl Into<String>, paper_mm_per_unit: f64) -> Self {
+        ScaleCaption {
+            before: before.into(),
+            per_unit: per_mm * paper_mm_per_unit,
+            after: after.into(),
+            paper_mm_per_unit,
+        }
+    }
+
+    /// The caption for a medium that draws a model unit `mm_per_unit` millimetres long:
+    /// the value [`ScaleCaption::per_unit`] / `mm_per_unit`, written in plain decimals
+    /// (no exponent) to 10 significant digits.
+    pub fn text(&self, mm_per_unit: f64) -> String {
+        format!("{}{}{}", self.before, plain_decimal(self.per_unit / mm_per_unit), self.after)
+    }
+
+    /// The caption on the figure's paper.
+    pub fn on_paper(&self) -> String {
+        self.text(self.paper_mm_per_unit)
+    }
+}
+
+/// `v` in plain decimals with 10 significant digits, trailing zeros trimmed (`0.04`, `2500`,
+/// `0.000125`); a non-finite value as `?`.
+pub fn plain_decimal(v: f64) -> String {
+    if !v.is_finite() {
+        return "?".into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let decimals = (9.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 300.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { s.as_str() };
+    s.to_string()
 }
 
 /// How a linear dimension marks its two ends.
@@ -303,6 +381,17 @@ pub struct Drawing {
     /// `None` for a drawing with no paper scale. The SVG writer sizes the page in mm from it
     /// (`width="…mm"`, viewBox in paper mm); the DXF ignores it (model space is true size).
     pub paper_mm_per_unit: Option<f64>,
+}
+
+impl Shape {
+    /// A [`Shape::ScaleText`] as the [`Shape::Text`] a medium drawing a model unit
+    /// `mm_per_unit` millimetres long writes (its paper's when `None`); `None` for any other
+    /// shape.
+    pub fn scale_text_in(&self, mm_per_unit: Option<f64>) -> Option<Shape> {
+        let Shape::ScaleText { at, height, caption, halign, valign, rotation } = self else { return None };
+        let value = caption.text(mm_per_unit.unwrap_or(caption.paper_mm_per_unit));
+        Some(Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation })
+    }
 }
 
 /// Axis-aligned bounding box in model units.
@@ -410,6 +499,14 @@ impl Drawing {
         self.entities.push(entity);
     }
 
+    /// A left/baseline [`Shape::ScaleText`] without rotation.
+    pub fn scale_text(&mut self, layer: usize, at: Point, height: f64, caption: ScaleCaption) {
+        self.add(
+            layer,
+            Shape::ScaleText { at, height, caption, halign: HAlign::Left, valign: VAlign::Baseline, rotation: 0.0 },
+        );
+    }
+
     /// Convenience: a left/baseline text without rotation.
     pub fn text(&mut self, layer: usize, at: Point, height: f64, value: impl Into<String>) {
         self.add(
@@ -480,6 +577,12 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
             add(*to);
         }
         Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
+        Shape::ScaleText { at, height, caption, halign, valign, rotation } => {
+            let value = caption.on_paper();
+            let text =
+                Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation };
+            shape_extent_points(&text, style, add);
+        }
         Shape::Text { at, height, value, halign, .. } => {
             // The writers' width estimate (DejaVu Sans advances).
             let w = parts::text_width(value, *height);

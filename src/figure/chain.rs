@@ -8,7 +8,7 @@
 //! the dependent dimensions are below the axis on layer `DEPENDENT`, in red, with their
 //! worst-case tolerance.
 
-use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, Shape, VAlign, parts};
+use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, ScaleCaption, Shape, VAlign, parts};
 use crate::figure::shared::plot::{self, Histogram};
 use crate::figure::shared::vocab::{self, Sizes};
 use crate::geom::Point;
@@ -342,7 +342,8 @@ pub fn chain(
     }
     // The length scale and its bar under the feature names, at the axis's start.
     let at = Point::new(xmin - margin, lowest - 1.5 * th);
-    dr.text(axis, at, sizes.small_text(), format!("k_l = {} {units}/mm", vocab::scale_text(k_l)));
+    let caption = ScaleCaption::new("k_l = ", k_l, format!(" {units}/mm"), 1.0 / k_l);
+    dr.scale_text(axis, at, sizes.small_text(), caption);
     let value = vocab::bar_value(k_l);
     let bar_at = at + Point::new(2.0 * sizes.small_text(), -2.0 * sizes.small_text()).coords;
     vocab::scale_bar(&mut dr, axis, bar_at, value, &format!("{} {units}", vocab::scale_text(value)), sizes);

@@ -314,15 +314,16 @@ pub fn to_bytes_via_crate(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8
     crate_bytes(&drawing, opts)
 }
 
-/// The validated drawing in millimetres, its texts written with characters the text style
-/// has ([`librecad::for_azomix`]); borrowed when it already is all that.
+/// The validated drawing in millimetres, its scale captions stating the DXF's scales and
+/// its texts written with characters the text style has ([`librecad::for_azomix`]);
+/// borrowed when it already is all that.
 fn prepare<'a>(drawing: &'a Drawing, opts: &DxfOptions) -> Result<Cow<'a, Drawing>, DxfError> {
     let k = opts.mm_per_unit;
     if !(k.is_finite() && k > 0.0) {
         return Err(DxfError::BadScale { mm_per_unit: k });
     }
     validate(drawing)?;
-    if k == 1.0 && !drawing.entities.iter().any(|e| scale::text_of(&e.shape).is_some_and(librecad::lacks_glyphs)) {
+    if k == 1.0 && !drawing.entities.iter().any(|e| scale::changes(&e.shape)) {
         return Ok(Cow::Borrowed(drawing));
     }
     let scaled = scale::scaled(drawing, k);
@@ -357,6 +358,7 @@ fn kind(shape: &Shape) -> &'static str {
         Shape::Filled { .. } => "filled polygon",
         Shape::Arrow { .. } => "arrow",
         Shape::Text { .. } => "text",
+        Shape::ScaleText { .. } => "scale caption",
         Shape::AngularDimension { .. } => "angular dimension",
         Shape::LinearDimension { .. } => "linear dimension",
     }
@@ -400,7 +402,9 @@ fn validate(drawing: &Drawing) -> Result<(), DxfError> {
             Shape::Polyline { points, width, .. } => pts_ok(points) && width.is_finite(),
             Shape::Filled { points } => pts_ok(points),
             Shape::Arrow { from, to, head } => pts_ok(&[*from, *to]) && head.is_finite(),
-            Shape::Text { at, height, rotation, .. } => pts_ok(&[*at]) && height.is_finite() && rotation.is_finite(),
+            Shape::Text { at, height, rotation, .. } | Shape::ScaleText { at, height, rotation, .. } => {
+                pts_ok(&[*at]) && height.is_finite() && rotation.is_finite()
+            }
             Shape::AngularDimension { vertex, first, second, radius, .. } => {
                 pts_ok(&[*vertex, *first, *second]) && radius.is_finite()
             }
@@ -419,7 +423,9 @@ fn validate(drawing: &Drawing) -> Result<(), DxfError> {
                 return Err(bad("a filled polygon needs at least three vertices"));
             }
             Shape::Arrow { head, .. } if *head < 0.0 => return Err(bad("the head length must not be negative")),
-            Shape::Text { height, .. } if *height <= 0.0 => return Err(bad("the text height must be positive")),
+            Shape::Text { height, .. } | Shape::ScaleText { height, .. } if *height <= 0.0 => {
+                return Err(bad("the text height must be positive"));
+            }
             Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
                 if !(style.text_height.is_finite() && style.text_height > 0.0) {
                     return Err(bad("the drawing's dimension text height must be positive"));
@@ -805,7 +811,8 @@ fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
                 width: fit.width,
             })
         }
-        Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
+        // Written as TEXT by `prepare`; dimensions by the writers.
+        Shape::ScaleText { .. } | Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
     }
 }
 

@@ -4,21 +4,25 @@
 //! ([`super::librecad::for_azomix`]). Figures keep drawing in model units; only the
 //! writer's output changes.
 
-use super::librecad::for_azomix;
+use super::librecad::{for_azomix, lacks_glyphs};
 use crate::draw::{DimStyle, Drawing, Entity, Shape};
 use crate::geom::Point;
 
-/// The text a shape writes (a TEXT's, a dimension's), if any.
-pub(super) fn text_of(shape: &Shape) -> Option<&str> {
+/// Whether [`scaled`] changes `shape` at a scale of 1: a scale caption (written as TEXT),
+/// a text with characters the DXF's font lacks.
+pub(super) fn changes(shape: &Shape) -> bool {
     match shape {
-        Shape::Text { value, .. } => Some(value),
-        Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => Some(text),
-        _ => None,
+        Shape::ScaleText { .. } => true,
+        Shape::Text { value, .. } => lacks_glyphs(value),
+        Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => lacks_glyphs(text),
+        _ => false,
     }
 }
 
 /// `d` with every coordinate, length, width, text height and dimension size multiplied by
-/// `k` (> 0) and every text [`for_azomix`]; angles, layers and colours unchanged.
+/// `k` (> 0), every [`Shape::ScaleText`] a TEXT stating its scale per millimetre of the
+/// DXF (a model unit is `k` of them), and every text [`for_azomix`]; angles, layers and
+/// colours unchanged.
 pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
     let p = |q: &Point| Point::from(q.coords * k);
     let shape = |s: &Shape| match s {
@@ -36,6 +40,15 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
             at: p(at),
             height: height * k,
             value: for_azomix(value).into_owned(),
+            halign: *halign,
+            valign: *valign,
+            rotation: *rotation,
+        },
+        // A scale caption says the scale of the DXF's millimetres.
+        Shape::ScaleText { at, height, caption, halign, valign, rotation } => Shape::Text {
+            at: p(at),
+            height: height * k,
+            value: for_azomix(&caption.text(k)).into_owned(),
             halign: *halign,
             valign: *valign,
             rotation: *rotation,

@@ -9,7 +9,8 @@
 //! the mechanism's size) and draws each physical vector (m/s, m/s², N …) at a scale per
 //! printed millimetre ([`Scale::on_paper`]); every panel carries a [`scale_bar`].
 
-use crate::draw::{Aci, Drawing, Entity, Shape};
+use crate::draw::parts::widest_text_width;
+use crate::draw::{Aci, Drawing, Entity, ScaleCaption, Shape};
 use crate::figure::shared::labels::TextBox;
 use crate::geom::{Point, Vector, perp};
 
@@ -82,6 +83,22 @@ pub fn length_scale(extent: f64, target_mm: f64) -> f64 {
 /// paper millimetre; `k_l = 2 mm/mm` for a scene in millimetres drawn at 1:2).
 pub fn length_scale_text(k_l: f64, units: ModelUnits) -> String {
     format!("k_l = {} {}/mm", scale_text(k_l), units.length)
+}
+
+/// The caption of a figure's length scale, `before` then `k_l = 0.002 m/mm` (model units
+/// per millimetre: on the figure's paper, printed at 1/`k_l` paper millimetres per model
+/// unit, in the SVG and PDF; `k_l = 0.001 m/mm` or `1 mm/mm` in the DXF, which draws the
+/// mechanism 1:1).
+pub fn length_caption(before: &str, k_l: f64, units: ModelUnits) -> ScaleCaption {
+    ScaleCaption::new(format!("{before}k_l = "), k_l, format!(" {}/mm", units.length), 1.0 / k_l)
+}
+
+/// The width a scale caption takes in the widest reader ([`widest_text_width`]), as the
+/// SVG states it (on its paper) or the DXF (in millimetres of the model, `units`), whichever
+/// is wider.
+pub fn caption_width(caption: &ScaleCaption, units: ModelUnits, height: f64) -> f64 {
+    let paper = widest_text_width(&caption.on_paper(), height);
+    paper.max(widest_text_width(&caption.text(units.mm_per_unit), height))
 }
 
 /// Cap height of letters on paper, millimetres (ISO 3098's 3.5 mm).
