@@ -72,8 +72,8 @@ fn printed_scale(d: &Drawing, title: &str, key: &str) -> f64 {
     let text = d
         .entities
         .iter()
-        .find_map(|e| match &e.shape {
-            Shape::Text { value, .. } if value.starts_with(title) => Some(value.clone()),
+        .find_map(|e| match e.shape.scale_text_in(None) {
+            Some(Shape::Text { value, .. }) if value.starts_with(title) => Some(value),
             _ => None,
         })
         .unwrap_or_else(|| panic!("no title {title}"));

@@ -606,6 +606,40 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
 mod tests {
     use super::*;
 
+    /// A caption states its scale per millimetre of the medium: the four-bar's velocity
+    /// polygon at k_v = 0.1 (m/s)/mm on paper at k_l = 0.0025 m/mm (400 paper mm per metre)
+    /// is 0.04 (m/s)/mm in a DXF that draws a metre as 1000 mm.
+    #[test]
+    fn a_scale_caption_states_the_scale_of_its_medium() {
+        let c = ScaleCaption::new("k_v = ", 0.1, " (m/s)/mm", 1.0 / 0.0025);
+        assert_eq!(c.on_paper(), "k_v = 0.1 (m/s)/mm");
+        assert_eq!(c.text(1000.0), "k_v = 0.04 (m/s)/mm");
+        let shape = Shape::ScaleText {
+            at: Point::new(1.0, 2.0),
+            height: 3.0,
+            caption: c,
+            halign: HAlign::Right,
+            valign: VAlign::Top,
+            rotation: 0.5,
+        };
+        let text = |mm| match shape.scale_text_in(mm) {
+            Some(Shape::Text { value, at, halign: HAlign::Right, valign: VAlign::Top, .. })
+                if at == Point::new(1.0, 2.0) =>
+            {
+                value
+            }
+            other => panic!("{other:?}"),
+        };
+        assert_eq!((text(None), text(Some(1000.0))), ("k_v = 0.1 (m/s)/mm".into(), "k_v = 0.04 (m/s)/mm".into()));
+        for (v, s) in [(0.001, "0.001"), (2500.0, "2500"), (1.25e-4, "0.000125"), (1e5, "100000"), (0.1 + 0.2, "0.3")] {
+            assert_eq!(plain_decimal(v), s);
+        }
+        assert_eq!(
+            (plain_decimal(0.0), plain_decimal(f64::NAN), plain_decimal(-0.5)),
+            ("0".into(), "?".into(), "-0.5".into())
+        );
+    }
+
     #[test]
     fn arc_bounds_cover_only_the_drawn_part() {
         let mut d = Drawing::new(DimStyle { text_height: 1.0, arrow_size: 1.0 });

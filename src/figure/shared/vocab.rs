@@ -116,14 +116,10 @@ pub fn bar_value(per_mm: f64) -> f64 {
     nice_scale(per_mm * BAR_MM)
 }
 
-/// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
+/// Formats a scale value in plain decimals, as a drawing writes numbers (no exponent:
+/// `0.01`, `2.5`, `100000`, `0.00002`; [`crate::draw::plain_decimal`]).
 pub fn scale_text(v: f64) -> String {
-    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
-        let s = format!("{v:e}");
-        return s;
-    }
-    let s = format!("{v:.6}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
+    crate::draw::plain_decimal(v)
 }
 
 /// Content layers of a mechanism figure with polygons: name, colour, line type.
@@ -538,7 +534,9 @@ mod tests {
         assert_eq!(nice_scale(f64::NAN), 1.0);
         assert_eq!(scale_text(0.01), "0.01");
         assert_eq!(scale_text(2.5), "2.5");
-        assert_eq!(scale_text(2e-5), "2e-5");
+        assert_eq!(scale_text(2e-5), "0.00002");
+        assert_eq!(scale_text(1e5), "100000");
+        assert_eq!(scale_text(0.1 + 0.2), "0.3");
     }
 
     #[test]
