@@ -516,9 +516,7 @@ fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions) {
                 if opts.dimensions == Dimensions::Exploded {
                     let part_common = Common { linetype: CONTINUOUS, ..common };
                     for part in explode_dimension(&e.shape, &style) {
-                        for specific in simple_entities(doc, &part) {
-                            doc.add_entity(part_common.entity(specific));
-                        }
+                        add_simple(doc, &part, true, &part_common);
                     }
                     continue;
                 }
@@ -529,12 +527,21 @@ fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions) {
                     doc.add_entity(common.entity(dimension_entity(&piece, &block_name)));
                 }
             }
-            shape => {
-                for specific in simple_entities(doc, shape) {
-                    doc.add_entity(common.entity(specific));
-                }
-            }
+            shape => add_simple(doc, shape, opts.dimensions == Dimensions::Exploded, &common),
         }
+    }
+}
+
+/// Adds the DXF entities of a shape other than a dimension to model space (crate path),
+/// each built and added in turn, so that handles run as the hand-written R12 path gives
+/// them (a POLYLINE's vertices, the POLYLINE, then the next entity); `outlined` as
+/// [`prims`].
+fn add_simple(doc: &mut dxf::Drawing, shape: &Shape, outlined: bool, common: &Common) {
+    let mut all = Vec::new();
+    prims(shape, outlined, |p| all.push(p));
+    for p in all {
+        let specific = crate_entity(doc, p);
+        doc.add_entity(common.entity(specific));
     }
 }
 
@@ -748,6 +755,9 @@ enum Prim<'a> {
     Polyline { points: &'a [Point], closed: bool, width: f64 },
     /// SOLID, corners in the order written (1-2-3-4).
     Solid([Point; 4]),
+    /// A triangle's outline: a closed POLYLINE of width 0 (an arrowhead's, for readers that
+    /// drop SOLID).
+    Outline([Point; 3]),
     /// TEXT, rotation in degrees (snapped): `at` the alignment point (11/21, written for
     /// justified text), `insert` the left end of the baseline (10/20) computed from the
     /// estimated text width ([`text_insertion`]), `width` the width factor (41, written
@@ -768,8 +778,10 @@ enum Prim<'a> {
 /// polygon is a triangle as 1-2-3-3, a quad a-b-c-d in SOLID's 1-2-4-3 order (a, b, d, c),
 /// larger polygons a fan of triangles (exact for convex outlines); an arrow a LINE and the
 /// SOLID head; a zero-sweep arc nothing (as in the SVG; DXF would read equal angles as a
-/// full turn).
-fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
+/// full turn). With `outlined` (the exploded mode, for readers that drop SOLID: FreeCAD)
+/// a filled polygon and an arrowhead are followed by their outline, a closed POLYLINE of
+/// width 0.
+fn prims<'a>(shape: &'a Shape, outlined: bool, mut f: impl FnMut(Prim<'a>)) {
     let solids = |points: &[Point], f: &mut dyn FnMut(Prim<'a>)| match points {
         [a, b, c] => f(Prim::Solid([*a, *b, *c, *c])),
         [a, b, c, d] => f(Prim::Solid([*a, *b, *d, *c])),
@@ -791,11 +803,19 @@ fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
         }
         Shape::Line { from, to } => f(Prim::Line { from: *from, to: *to }),
         Shape::Polyline { points, closed, width } => f(Prim::Polyline { points, closed: *closed, width: *width }),
-        Shape::Filled { points } => solids(points, &mut f),
+        Shape::Filled { points } => {
+            solids(points, &mut f);
+            if outlined {
+                f(Prim::Polyline { points, closed: true, width: 0.0 });
+            }
+        }
         Shape::Arrow { from, to, head } => {
             if let Some((base, tri)) = arrow(*from, *to, *head) {
                 f(Prim::Line { from: *from, to: base });
                 solids(&tri, &mut f);
+                if outlined {
+                    f(Prim::Outline(tri));
+                }
             }
         }
         Shape::Text { at, height, value, halign, valign, rotation } => {
@@ -846,16 +866,8 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
             EntityType::Arc(Arc::new(pt(center), radius, start_deg, end_deg))
         }
         Prim::Line { from, to } => EntityType::Line(Line::new(pt(from), pt(to))),
-        Prim::Polyline { points, closed, width } => {
-            let mut poly =
-                Polyline { default_starting_width: width, default_ending_width: width, ..Default::default() };
-            poly.set_is_closed(closed);
-            for p in points {
-                let v = Vertex { starting_width: width, ending_width: width, ..Vertex::new(pt(*p)) };
-                poly.add_vertex(doc, v);
-            }
-            EntityType::Polyline(poly)
-        }
+        Prim::Polyline { points, closed, width } => crate_polyline(doc, points, closed, width),
+        Prim::Outline(tri) => crate_polyline(doc, &tri, true, 0.0),
         Prim::Solid([a, b, c, d]) => EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d))),
         Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
             let mut t = Text {
@@ -887,10 +899,21 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
     }
 }
 
-/// DXF entities for a shape other than a dimension (crate path).
-fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
+/// A POLYLINE with its vertices (their handles taken from `doc`, as the crate numbers them).
+fn crate_polyline(doc: &mut dxf::Drawing, points: &[Point], closed: bool, width: f64) -> EntityType {
+    let mut poly = Polyline { default_starting_width: width, default_ending_width: width, ..Default::default() };
+    poly.set_is_closed(closed);
+    for p in points {
+        let v = Vertex { starting_width: width, ending_width: width, ..Vertex::new(pt(*p)) };
+        poly.add_vertex(doc, v);
+    }
+    EntityType::Polyline(poly)
+}
+
+/// DXF entities for a shape other than a dimension (crate path); `outlined` as [`prims`].
+fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape, outlined: bool) -> Vec<EntityType> {
     let mut all = Vec::new();
-    prims(shape, |p| all.push(p));
+    prims(shape, outlined, |p| all.push(p));
     all.into_iter().map(|p| crate_entity(doc, p)).collect()
 }
 
@@ -902,7 +925,7 @@ fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, geometry: &[Shape], d
     let common = Common { layer: dim.layer.clone(), color: dim.color.clone(), linetype: CONTINUOUS };
     let mut entities = Vec::new();
     for part in geometry {
-        for specific in simple_entities(doc, part) {
+        for specific in simple_entities(doc, part, false) {
             entities.push(common.entity(specific));
         }
     }

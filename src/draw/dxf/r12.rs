@@ -147,6 +147,7 @@ fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64
     // A polyline takes its vertices, the POLYLINE and its SEQEND; every other entity one.
     let of = |p: Prim| match p {
         Prim::Polyline { points, .. } => points.len() as u64 + 2,
+        Prim::Outline(tri) => tri.len() as u64 + 2,
         _ => 1,
     };
     let mut handles = 0u64;
@@ -156,7 +157,7 @@ fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64
             shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
                 if dimensions == Dimensions::Exploded {
                     for part in explode_dimension(shape, &drawing.dim_style) {
-                        prims(&part, |p| handles += of(p));
+                        prims(&part, true, |p| handles += of(p));
                     }
                     continue;
                 }
@@ -164,12 +165,12 @@ fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64
                     dims += 1;
                     // The block's entities, the BLOCK and its BLOCK_RECORD, the DIMENSION.
                     for part in &piece.geometry {
-                        prims(part, |p| handles += of(p));
+                        prims(part, false, |p| handles += of(p));
                     }
                     handles += 3;
                 }
             }
-            shape => prims(shape, |p| handles += of(p)),
+            shape => prims(shape, dimensions == Dimensions::Exploded, |p| handles += of(p)),
         }
     }
     (handles, dims)
@@ -236,7 +237,7 @@ impl<'a> Body<'a> {
                     let next = &mut self.next;
                     let out = &mut self.entities;
                     for part in explode_dimension(shape, &drawing.dim_style) {
-                        prims(&part, |p| prim(out, next, p, part_style));
+                        prims(&part, true, |p| prim(out, next, p, part_style));
                     }
                 }
                 shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
@@ -251,7 +252,7 @@ impl<'a> Body<'a> {
                 shape => {
                     let next = &mut self.next;
                     let out = &mut self.entities;
-                    prims(shape, |p| prim(out, next, p, style));
+                    prims(shape, self.dimensions == Dimensions::Exploded, |p| prim(out, next, p, style));
                 }
             }
         }
@@ -271,7 +272,7 @@ impl<'a> Body<'a> {
         b.extend_from_slice(b"  1\r\n\r\n");
         let part_style = Style { linetype: Some(CONTINUOUS), ..style };
         for part in &piece.geometry {
-            prims(part, |p| prim(b, &mut self.next, p, part_style));
+            prims(part, false, |p| prim(b, &mut self.next, p, part_style));
         }
         b.extend_from_slice(b"  0\r\nENDBLK\r\n");
         handle(b, block_handle);
@@ -335,35 +336,8 @@ fn prim(o: &mut Vec<u8>, next: &mut u64, p: Prim, style: Style) {
             point(o, b" 12", b" 22", b" 32", c);
             point(o, b" 13", b" 23", b" 33", d);
         }
-        Prim::Polyline { points, closed, width } => {
-            // The crate numbers the vertices as they are added, before the POLYLINE.
-            let first_vertex = *next;
-            *next += points.len() as u64;
-            common(o, b"POLYLINE", take(next), style);
-            o.extend_from_slice(b" 66\r\n     1\r\n 10\r\n0.0\r\n 20\r\n0.0\r\n 30\r\n0.0\r\n");
-            if closed {
-                short(o, b" 70", 1);
-            }
-            if width != 0.0 {
-                float(o, b" 40", width);
-                float(o, b" 41", width);
-            }
-            for (k, p) in points.iter().enumerate() {
-                // Vertices and SEQEND: the polyline's layer, no colour or line type of their own.
-                o.extend_from_slice(b"  0\r\nVERTEX\r\n");
-                handle(o, first_vertex + k as u64);
-                layer(o, style.layer);
-                point(o, b" 10", b" 20", b" 30", *p);
-                if width != 0.0 {
-                    float(o, b" 40", width);
-                    float(o, b" 41", width);
-                }
-                o.extend_from_slice(b" 70\r\n     0\r\n 50\r\n0.0\r\n");
-            }
-            o.extend_from_slice(b"  0\r\nSEQEND\r\n");
-            handle(o, take(next));
-            layer(o, style.layer);
-        }
+        Prim::Polyline { points, closed, width } => polyline(o, next, points, closed, width, style),
+        Prim::Outline(tri) => polyline(o, next, &tri, true, 0.0, style),
         Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
             common(o, b"TEXT", take(next), style);
             point(o, b" 10", b" 20", b" 30", insert);
@@ -391,6 +365,37 @@ fn prim(o: &mut Vec<u8>, next: &mut u64, p: Prim, style: Style) {
             }
         }
     }
+}
+
+/// A POLYLINE with its VERTEXes and SEQEND, taking handles from `next`: the crate numbers
+/// the vertices as they are added, before the POLYLINE.
+fn polyline(o: &mut Vec<u8>, next: &mut u64, points: &[Point], closed: bool, width: f64, style: Style) {
+    let first_vertex = *next;
+    *next += points.len() as u64;
+    common(o, b"POLYLINE", take(next), style);
+    o.extend_from_slice(b" 66\r\n     1\r\n 10\r\n0.0\r\n 20\r\n0.0\r\n 30\r\n0.0\r\n");
+    if closed {
+        short(o, b" 70", 1);
+    }
+    if width != 0.0 {
+        float(o, b" 40", width);
+        float(o, b" 41", width);
+    }
+    for (k, p) in points.iter().enumerate() {
+        // Vertices and SEQEND: the polyline's layer, no colour or line type of their own.
+        o.extend_from_slice(b"  0\r\nVERTEX\r\n");
+        handle(o, first_vertex + k as u64);
+        layer(o, style.layer);
+        point(o, b" 10", b" 20", b" 30", *p);
+        if width != 0.0 {
+            float(o, b" 40", width);
+            float(o, b" 41", width);
+        }
+        o.extend_from_slice(b" 70\r\n     0\r\n 50\r\n0.0\r\n");
+    }
+    o.extend_from_slice(b"  0\r\nSEQEND\r\n");
+    handle(o, take(next));
+    layer(o, style.layer);
 }
 
 /// The current handle, advancing `next`.

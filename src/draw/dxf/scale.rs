@@ -61,7 +61,8 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
             text: for_azomix(text).into_owned(),
         },
         Shape::LinearDimension { p1, p2, line_at, angle, text } => {
-            Shape::LinearDimension { p1: p(p1), p2: p(p2), line_at: p(line_at), angle: *angle, text: text.clone() }
+            let text = for_azomix(text).into_owned();
+            Shape::LinearDimension { p1: p(p1), p2: p(p2), line_at: p(line_at), angle: *angle, text }
         }
     };
     Drawing {
