@@ -9,7 +9,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use mechdraw::draw::dxf::{self, Dimensions, DxfOptions, DxfVersion};
-use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign, svg};
+use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, LinearMarks, Shape, VAlign, svg};
 use mechdraw::geom::{Point, Vector};
 use serde_json::Value;
 
@@ -135,7 +135,17 @@ fn sample_drawing() -> Drawing {
             text: "reflex".into(),
         },
     );
-    d.add(dims, Shape::LinearDimension { p1: a0, p2: b0, line_at: p(40.0, -12.0), angle: 0.0, text: "60".into() });
+    d.add(
+        dims,
+        Shape::LinearDimension {
+            p1: a0,
+            p2: b0,
+            line_at: p(40.0, -12.0),
+            angle: 0.0,
+            text: "60".into(),
+            marks: LinearMarks::default(),
+        },
+    );
     let ab = b - a;
     d.add_colored(
         dims,
@@ -146,9 +156,20 @@ fn sample_drawing() -> Drawing {
             line_at: a + Vector::new(-ab.y, ab.x).normalize() * 8.0,
             angle: ab.y.atan2(ab.x),
             text: format!("{:.2}", ab.norm()),
+            marks: LinearMarks::default(),
         },
     );
-    d.add(dims, Shape::LinearDimension { p1: b0, p2: b, line_at: p(90.0, 30.0), angle: PI / 2.0, text: "35".into() });
+    d.add(
+        dims,
+        Shape::LinearDimension {
+            p1: b0,
+            p2: b,
+            line_at: p(90.0, 30.0),
+            angle: PI / 2.0,
+            text: "35".into(),
+            marks: LinearMarks::default(),
+        },
+    );
     d.add(
         dims,
         Shape::LinearDimension {
@@ -157,6 +178,7 @@ fn sample_drawing() -> Drawing {
             line_at: p(30.0, 60.0),
             angle: 200f64.to_radians(),
             text: "~".into(),
+            marks: LinearMarks::default(),
         },
     );
     d
@@ -501,6 +523,7 @@ fn metres_are_written_as_millimetres() {
             line_at: p(0.0, -0.02),
             angle: 0.0,
             text: "80".into(),
+            marks: LinearMarks::default(),
         },
     );
     let opts = DxfOptions { mm_per_unit: 1000.0, ..DxfOptions::default() };

@@ -252,6 +252,9 @@ pub enum Shape {
         angle: f64,
         /// The text shown (e.g. `25 ±0.1`).
         text: String,
+        /// The marks at its ends and where its text sits along the line (the default: an
+        /// arrowhead at each end, the text placed by [`parts::linear_layout`]).
+        marks: LinearMarks,
     },
 }
 

@@ -1,7 +1,7 @@
 //! Composite shapes (arrows, dimensions) broken into simple ones. Both writers use these,
 //! so the DXF dimension blocks and the SVG show the same geometry.
 
-use super::{DimEnds, DimStyle, HAlign, LinearMarks, Shape, VAlign};
+use super::{DimEnds, DimStyle, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
 
 /// Half-width of an arrowhead relative to its length.
@@ -357,7 +357,7 @@ pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
             out.extend(parts.heads.into_iter().flatten());
             out.push(parts.text);
         }
-        Shape::LinearDimension { .. } => explode_linear_into(shape, LinearMarks::default(), style, &mut out),
+        Shape::LinearDimension { .. } => explode_linear_into(shape, style, &mut out),
         other => out.push(other.clone()),
     }
     out
@@ -443,19 +443,12 @@ pub fn explode_angular_halves(shape: &Shape, style: &DimStyle) -> Option<([Vec<S
 }
 
 /// A linear dimension broken into lines, arrowheads (and the base circle) and its text as
-/// `marks` asks ([`LinearMarks`]); any other shape is returned unchanged. With the default
-/// marks this is [`explode_dimension`].
-pub fn explode_linear(shape: &Shape, marks: LinearMarks, style: &DimStyle) -> Vec<Shape> {
-    let mut out = Vec::new();
-    explode_linear_into(shape, marks, style, &mut out);
-    out
-}
-
-fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out: &mut Vec<Shape>) {
+/// its marks ask ([`LinearMarks`]).
+fn explode_linear_into(shape: &Shape, style: &DimStyle, out: &mut Vec<Shape>) {
     let asz = style.arrow_size;
     let th = style.text_height;
     match shape {
-        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+        Shape::LinearDimension { p1, p2, line_at, angle, text, marks } => {
             let lay = linear_layout_placed(*p1, *p2, *line_at, *angle, text, marks.text_along, style);
             let (f1, f2) = (lay.f1, lay.f2);
             for (p, f) in [(p1, f1), (p2, f2)] {
@@ -530,6 +523,7 @@ fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out:
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::draw::LinearMarks;
 
     #[test]
     fn arrow_head_points_at_the_tip_and_is_shortened_on_short_vectors() {
@@ -647,7 +641,14 @@ mod tests {
             let p1 = Point::new(5.0, 7.0);
             let p2 = p1 + u * 40.0;
             let line_at = p1 + perp(u) * 6.0;
-            let dim = Shape::LinearDimension { p1, p2, line_at, angle, text: "40 ±0.1".into() };
+            let dim = Shape::LinearDimension {
+                p1,
+                p2,
+                line_at,
+                angle,
+                text: "40 ±0.1".into(),
+                marks: LinearMarks::default(),
+            };
             let (at, rotation) = exploded_text(&dim, &style);
             let lay = linear_layout(p1, p2, line_at, angle, "40 ±0.1", &style);
             assert!(lay.text_inside && lay.arrows_inside);
@@ -679,7 +680,8 @@ mod tests {
                 let p2 = p1 + u * len;
                 let line_at = p1 - perp(u) * 4.0;
                 let text = "Z1 = 17 ±0.3";
-                let dim = Shape::LinearDimension { p1, p2, line_at, angle, text: text.into() };
+                let dim =
+                    Shape::LinearDimension { p1, p2, line_at, angle, text: text.into(), marks: LinearMarks::default() };
                 let lay = linear_layout(p1, p2, line_at, angle, text, &style);
                 assert!(!lay.text_inside);
                 assert_eq!(lay.arrows_inside, arrows_inside, "len {len}");
@@ -713,6 +715,12 @@ mod tests {
         }
     }
 
+    /// `dim` (a linear dimension) with `marks`, exploded.
+    fn with_marks(dim: &Shape, marks: LinearMarks, style: &DimStyle) -> Vec<Shape> {
+        let Shape::LinearDimension { p1, p2, line_at, angle, text, .. } = dim.clone() else { panic!("not linear") };
+        explode_dimension(&Shape::LinearDimension { p1, p2, line_at, angle, text, marks }, style)
+    }
+
     #[test]
     fn a_dimension_from_its_base_has_a_circle_at_the_base_and_one_arrowhead_at_the_end() {
         let style = DimStyle { text_height: 2.0, arrow_size: 1.8 };
@@ -724,9 +732,10 @@ mod tests {
                 line_at: Point::new(0.0, 7.0),
                 angle: 0.0,
                 text: "40".into(),
+                marks: LinearMarks::default(),
             };
             let marks = LinearMarks { ends: DimEnds::FromBase, text_along: None };
-            let parts = explode_linear(&dim, marks, &style);
+            let parts = with_marks(&dim, marks, &style);
             let circles: Vec<(Point, f64)> = parts
                 .iter()
                 .filter_map(|s| match s {
@@ -761,11 +770,12 @@ mod tests {
             line_at: Point::new(0.0, 5.0),
             angle: 0.0,
             text: "10 ±0.1".into(),
+            marks: LinearMarks::default(),
         };
         let w = text_width("10 ±0.1", 2.0);
         for along in [5.0, 30.0, -12.0] {
             let marks = LinearMarks { ends: DimEnds::FromBase, text_along: Some(along) };
-            let parts = explode_linear(&dim, marks, &style);
+            let parts = with_marks(&dim, marks, &style);
             let (at, _) = parts
                 .iter()
                 .find_map(|s| match s {

@@ -564,7 +564,7 @@ fn arc_path(d: &mut Vec<u8>, f: &Frame, center: Point, radius: f64, start: f64, 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::DimStyle;
+    use crate::draw::{DimStyle, LinearMarks};
 
     #[test]
     fn y_is_flipped_once_and_viewbox_fits_content() {
@@ -718,6 +718,7 @@ mod tests {
                 line_at: p(0.0, -4.0),
                 angle: 0.0,
                 text: "10 ±0.1".into(),
+                marks: LinearMarks::default(),
             },
         );
         d.add(c, Shape::Arrow { from: p(3.0, 3.0), to: p(3.0, 3.0), head: 1.0 });

@@ -1007,10 +1007,10 @@ fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPie
                 DimPrim::Angular { two_line: false, def1: on_mid, text_at, defs: [*first, *second, *vertex, on_mid] };
             vec![DimPiece { prim, text, geometry: whole() }]
         }
-        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+        Shape::LinearDimension { p1, p2, line_at, angle, text, marks } => {
             // The text's middle where the exploded block draws it (inside or beside an
-            // extension line).
-            let lay = parts::linear_layout(*p1, *p2, *line_at, *angle, text, style);
+            // extension line, or where the figure placed it).
+            let lay = parts::linear_layout_placed(*p1, *p2, *line_at, *angle, text, marks.text_along, style);
             let prim = DimPrim::Rotated {
                 on_line: lay.f2,
                 text_mid: lay.text_mid,
@@ -1301,7 +1301,7 @@ fn push_pair(out: &mut String, code: &str, value: &str) {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::draw::{DimStyle, Entity};
+    use crate::draw::{DimStyle, Entity, LinearMarks};
 
     /// The file as (group code, value) pairs.
     fn pairs(bytes: &[u8]) -> Vec<(i32, String)> {
@@ -1388,6 +1388,7 @@ mod tests {
                 line_at: Point::new(0.0, -5.0),
                 angle: 0.0,
                 text: "10".into(),
+                marks: LinearMarks::default(),
             },
         );
         let p = write(&d);
@@ -1740,6 +1741,7 @@ mod tests {
                         line_at: p(0.0, -5.0),
                         angle,
                         text: format!("{a}"),
+                        marks: LinearMarks::default(),
                     },
                 );
             }

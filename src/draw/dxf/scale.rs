@@ -5,7 +5,7 @@
 //! writer's output changes.
 
 use super::librecad::{for_azomix, lacks_glyphs};
-use crate::draw::{DimStyle, Drawing, Entity, Shape};
+use crate::draw::{DimStyle, Drawing, Entity, LinearMarks, Shape};
 use crate::geom::Point;
 
 /// Whether [`scaled`] changes `shape` at a scale of 1: a scale caption (written as TEXT),
@@ -60,9 +60,11 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
             radius: radius * k,
             text: for_azomix(text).into_owned(),
         },
-        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+        Shape::LinearDimension { p1, p2, line_at, angle, text, marks } => {
             let text = for_azomix(text).into_owned();
-            Shape::LinearDimension { p1: p(p1), p2: p(p2), line_at: p(line_at), angle: *angle, text }
+            // The text's place along the line is a length too.
+            let marks = LinearMarks { text_along: marks.text_along.map(|s| s * k), ..*marks };
+            Shape::LinearDimension { p1: p(p1), p2: p(p2), line_at: p(line_at), angle: *angle, text, marks }
         }
     };
     Drawing {
