@@ -381,7 +381,10 @@ fn sample_drawing_audits_clean_and_reads_back() {
                 if sweep < 180.0 {
                     vec![(2, sweep, text.clone(), 2, 1)]
                 } else {
-                    vec![(2, 0.5 * sweep, text.clone(), 1, 1), (2, 0.5 * sweep, " ".to_string(), 1, 0)]
+                    // The part with the text 170° (its text well away from both rays), the
+                    // rest at least 10°; over 340°, halves.
+                    let first = (0.5 * sweep).max(170f64.min(sweep - 10.0));
+                    vec![(2, first, text.clone(), 1, 1), (2, sweep - first, " ".to_string(), 1, 0)]
                 }
             }
             Shape::LinearDimension { p1, p2, angle, text, .. } => {
@@ -407,8 +410,8 @@ fn sample_drawing_audits_clean_and_reads_back() {
             assert_eq!(dim["block_texts"][0].as_str().unwrap(), text);
         }
     }
-    // The reflex angle is over 180°: two halves.
-    assert!(truth.iter().any(|(_, v, t, ..)| *v > 90.0 && t == " "));
+    // The reflex angle is over 180°: two parts.
+    assert!(truth.iter().any(|(_, _, t, ..)| t == " "));
 
     // Header: dimension sizes and extents.
     assert_eq!(info["header"]["$DIMTXT"].as_f64(), Some(d.dim_style.text_height));

@@ -417,18 +417,18 @@ fn angular_parts(
     }
 }
 
-/// An angular dimension split at its bisector into two halves (a DXF writer writes an angle
-/// of 180° or more so, each half a 2-line angular DIMENSION under 180°, the only angular
-/// kind LibreCAD draws): the first half's parts (the first extension line, the arc from the
-/// first ray to the bisector, the arrowhead at its start and the whole dimension's text) and
-/// the second's (the second extension line, the arc on to the second ray, the arrowhead at
-/// its end), so that the two together draw exactly what [`explode_dimension`] draws; and the
-/// point where the arc meets the bisector. `None` for a shape that is not an angular
-/// dimension.
-pub fn explode_angular_halves(shape: &Shape, style: &DimStyle) -> Option<([Vec<Shape>; 2], Point)> {
-    let Shape::AngularDimension { vertex, first, second, radius, text } = shape else { return None };
-    let parts = angular_parts(*vertex, *first, *second, *radius, text, style);
-    let mid = parts.start + 0.5 * parts.sweep;
+/// An angular dimension split into two parts, the first sweeping `first` radians from the
+/// first ray (a DXF writer writes an angle of 180° or more so, each part a 2-line angular
+/// DIMENSION under 180°, the only angular kind LibreCAD draws): the first part's shapes
+/// (the first extension line, the arc from the first ray to the split, the arrowhead at its
+/// start and the whole dimension's text) and the second's (the second extension line, the
+/// arc on to the second ray, the arrowhead at its end), so that the two together draw
+/// exactly what [`explode_dimension`] draws; and the point where the arc is split. `None`
+/// for a shape that is not an angular dimension.
+pub fn explode_angular_split(shape: &Shape, first: f64, style: &DimStyle) -> Option<([Vec<Shape>; 2], Point)> {
+    let Shape::AngularDimension { vertex, first: ray, second, radius, text } = shape else { return None };
+    let parts = angular_parts(*vertex, *ray, *second, *radius, text, style);
+    let mid = parts.start + first;
     let arc = |start: f64, end: f64| Shape::Arc { center: *vertex, radius: *radius, start, end };
     let [e1, e2] = parts.extensions;
     let [h1, h2] = parts.heads;

@@ -118,6 +118,8 @@ pub const TEXT_STYLE: &str = "AZOMIX";
 /// The font file of [`TEXT_STYLE`]: a TrueType font with Greek letters that Windows CAD
 /// programs have (ezdxf and others substitute a font of their own when it is missing).
 pub const TEXT_FONT_FILE: &str = "arial.ttf";
+/// `$DWGCODEPAGE` of an R2007 file, whose text is UTF-8: Windows' name for UTF-8.
+pub const R2007_CODE_PAGE: &str = "ANSI_65001";
 /// Transparency "opaque" (group 440, R2004+): the flag 0x02000000 with alpha 255.
 const OPAQUE: i32 = 0x0200_00FF;
 /// Values smaller than this in magnitude are written as 0, so that rounding noise such as
@@ -565,6 +567,13 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
         DxfVersion::R2007 => AcadVersion::R2007,
     };
     h.handles_enabled = true;
+    // R2007 text is UTF-8: the code page says so (ANSI_65001, Windows' UTF-8), so that GDAL
+    // reads it as UTF-8 (it recodes from the stated code page: from ANSI_1252 it garbled φ1
+    // into "Ï 1"); LibreCAD, FreeCAD, ezdxf and dxf-parser read it either way (reader
+    // matrix, issue 29). R2000 text is ASCII (escapes) and R12 has no such variable.
+    if opts.version == DxfVersion::R2007 {
+        h.drawing_code_page = R2007_CODE_PAGE.to_string();
+    }
     // The file is in millimetres (stated from R2000 on; R12 has no such variables).
     h.default_drawing_units = dxf::enums::Units::Millimeters;
     h.drawing_units = dxf::enums::DrawingUnits::Metric;
@@ -962,13 +971,22 @@ struct DimPiece<'a> {
     geometry: Vec<Shape>,
 }
 
+/// The sweep of the part of an angle of 180° or more that carries its text, radians: 170°
+/// (the text at its middle, well away from both rays, where LibreCAD writes it along the
+/// arc) while the rest keeps at least 10°, and half the angle once that would leave the
+/// rest 170° or more (over 340°).
+fn text_part(sweep: f64) -> f64 {
+    let (most, least) = (170f64.to_radians(), 10f64.to_radians());
+    (0.5 * sweep).max(most.min(sweep - least))
+}
+
 /// The DIMENSION entities of a dimension shape (none for other shapes). An angle between
 /// [`TWO_LINE_MARGIN`] and 180° minus it is one 2-line angular dimension; one from 180° (less
-/// the margin) up to a full turn (less twice it) is two, split at its bisector
-/// ([`parts::explode_angular_halves`]: LibreCAD draws no angular dimension of 180° or more,
+/// the margin) up to a full turn (less twice it) is two, split where [`text_part`] says
+/// ([`parts::explode_angular_split`]: LibreCAD draws no angular dimension of 180° or more,
 /// and two lines cannot hold one), the first with the text, the second with [`NO_TEXT`], so
 /// that readers which draw the blocks show one dimension and LibreCAD, which redraws each,
-/// shows the whole arc with its text (and two arrowheads where the halves meet); nearer 0°
+/// shows the whole arc with its text (and two arrowheads where the parts meet); nearer 0°
 /// or 360° one 3-point dimension. A linear dimension is one rotated dimension.
 fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPiece<'a>> {
     use std::f64::consts::PI;
@@ -986,8 +1004,10 @@ fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPie
                 return vec![DimPiece { prim, text, geometry: whole() }];
             }
             if (PI - TWO_LINE_MARGIN..2.0 * (PI - TWO_LINE_MARGIN)).contains(&sweep) {
-                if let Some(([one, two], mid)) = parts::explode_angular_halves(shape, style) {
-                    let (q1, q3) = (on_arc(a1 + 0.25 * sweep), on_arc(a1 + 0.75 * sweep));
+                let first_sweep = text_part(sweep);
+                if let Some(([one, two], mid)) = parts::explode_angular_split(shape, first_sweep, style) {
+                    let rest = sweep - first_sweep;
+                    let (q1, q3) = (on_arc(a1 + 0.5 * first_sweep), on_arc(a1 + first_sweep + 0.5 * rest));
                     let first_half =
                         DimPrim::Angular { two_line: true, def1: mid, text_at, defs: [*vertex, *first, *vertex, q1] };
                     let second_half = DimPrim::Angular {
