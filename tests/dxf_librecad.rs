@@ -399,7 +399,7 @@ impl StrokeFont {
 }
 
 /// A level TEXT of the DXF: layer, where it is aligned, height, text (escapes decoded),
-/// horizontal alignment (72: 0 left, 1 centre, 2 right).
+/// horizontal alignment (72: 0 left, 1 centre, 2 right), width factor (41).
 #[derive(Debug, Clone)]
 struct DxfText {
     layer: String,
@@ -407,6 +407,7 @@ struct DxfText {
     height: f64,
     text: String,
     halign: i32,
+    width: f64,
 }
 
 fn decode_unicode_escapes(s: &str) -> String {
@@ -448,6 +449,7 @@ fn level_texts(p: &[(i32, String)]) -> Vec<DxfText> {
                 height: h,
                 text: decode_unicode_escapes(t.get(&1).map_or("", String::as_str)),
                 halign,
+                width: num(41).unwrap_or(1.0),
             });
         }
     };
@@ -466,9 +468,10 @@ fn level_texts(p: &[(i32, String)]) -> Vec<DxfText> {
 
 /// The ink of a text as LibreCAD lays it out: (left, right), model units. LibreCAD moves a
 /// centred or right-aligned text by its ink's width, so its ink starts where a left-aligned
-/// one's would, that far to the left.
+/// one's would, that far to the left; it narrows glyphs and spacing by the width factor.
 fn librecad_ink(font: &StrokeFont, t: &DxfText) -> (f64, f64) {
     let (l, r) = font.ink(&t.text, t.height);
+    let (l, r) = (l * t.width, r * t.width);
     let shift = match t.halign {
         1 => -0.5 * (r - l),
         2 => -(r - l),
@@ -642,4 +645,83 @@ fn librecad_keeps_panel_titles_apart() {
         }
         assert!(rows > 0, "{scene}: no title rows");
     }
+}
+
+/// The writer's table of LibreCAD's glyphs (`draw::dxf::librecad::glyph`, what the width
+/// factors and the centring of single characters are computed from) is LibreCAD's own font
+/// file, character by character; the characters it says the font lacks are not in it.
+#[test]
+fn the_writers_glyph_table_is_librecads_font() {
+    use mechdraw::draw::dxf::librecad::{advance, glyph};
+    let font = StrokeFont::read(AZOMIX_LFF);
+    assert_eq!((font.letter_spacing, font.word_spacing), (1.0, 6.75));
+    let listed =
+        (0x21u32..0x7f).filter_map(char::from_u32).chain("°±²³′″µ×÷−≈≤≥≡→←↑↓∞√ΣΔΩαβγδεθλμπρστφωψΦΨΓΛΘΠ".chars());
+    let mut checked = 0;
+    for c in listed {
+        let ours = glyph(c).unwrap_or_else(|| panic!("{c:?} missing from the writer's table"));
+        let lff = font.glyphs.get(&c).copied().unwrap_or_else(|| panic!("{c:?} missing from {AZOMIX_LFF}"));
+        assert!(
+            (ours.0 - lff.0).abs() < 1e-9 && (ours.1 - lff.1).abs() < 1e-9,
+            "{c:?}: ours {ours:?}, LibreCAD's {lff:?}"
+        );
+        assert!((advance(c) - (lff.1 + font.letter_spacing)).abs() < 1e-9, "{c:?}");
+        checked += 1;
+    }
+    assert!(checked > 130);
+    for c in ['·', '–', '—'] {
+        assert!(glyph(c).is_none() && !font.glyphs.contains_key(&c), "{c:?}");
+    }
+}
+
+/// Text laid out for DejaVu Sans (every layout's measure) stays in its box in LibreCAD: the
+/// writer gives each TEXT the width factor that keeps LibreCAD's wider glyphs inside it, so
+/// nothing a figure keeps clear of the box is touched there (issue 29: the chain's
+/// "38 ±0.1" ran onto the F1 extension line, force names merged, "RBgas"); and every
+/// character written is one LibreCAD's font has (`·` and `–` were drawn as a stand-in).
+/// Checked on every level TEXT of the triad, the chain, the four-bar and the slider-crank,
+/// with LibreCAD's own font file.
+#[test]
+fn every_text_stays_in_its_box_in_librecads_font() {
+    let font = StrokeFont::read(AZOMIX_LFF);
+    let mut checked = 0;
+    for (scene, extra) in [
+        ("triad-popa", &["--dxf-dimensions", "exploded"][..]),
+        ("chain-humienny-2", &["--dxf-dimensions", "exploded"][..]),
+        ("fourbar-chebyshev", &["--positions", "0,90,180,270"][..]),
+        ("slider-crank", &["--positions", "0,0.05,0.1"][..]),
+    ] {
+        let dir = out_dir(&format!("boxes-{scene}"));
+        let dxf = write_dxf(scene, &dir, extra);
+        for t in level_texts(&pairs(&dxf)) {
+            for c in t.text.chars().filter(|c| *c != ' ') {
+                assert!(font.glyphs.contains_key(&c), "{scene}: {:?} has {c:?}, which LibreCAD's font lacks", t.text);
+            }
+            if t.text.chars().count() < 2 {
+                // A single centred character is written left-aligned, centred between
+                // LibreCAD's glyph and DejaVu's (unit tests of `librecad::text_fit`).
+                continue;
+            }
+            let w = mechdraw::draw::parts::text_width(&t.text, t.height);
+            let (l, r) = librecad_ink(&font, &t);
+            let x = t.at.0;
+            let (lo, hi) = match t.halign {
+                1 => (x - 0.5 * w, x + 0.5 * w),
+                2 => (x - w, x),
+                _ => (x, x + w),
+            };
+            let tol = 0.02 * t.height;
+            // A right-aligned text ends its first glyph's left edge past its point in LibreCAD
+            // (it centres and right-aligns by ink): within half a height.
+            let hi = if t.halign == 2 { hi + 0.5 * t.height } else { hi };
+            assert!(
+                l >= lo - tol && r <= hi + tol,
+                "{scene}: LibreCAD draws {:?} (on {}) at {l:.2}..{r:.2}, its box is {lo:.2}..{hi:.2}",
+                t.text,
+                t.layer
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked > 200, "{checked} texts");
 }

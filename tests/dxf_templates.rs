@@ -15,9 +15,11 @@ fn every_template_in_every_version_and_encoding_audits_clean() {
         let stem = path.file_stem().unwrap().to_string_lossy().into_owned();
         for version in DxfVersion::ALL {
             for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
-                let dir = common::root()
-                    .join("target/test-out/dxf_templates")
-                    .join(format!("{stem}-{}-{}", version.name(), dimensions.name()));
+                let dir = common::root().join("target/test-out/dxf_templates").join(format!(
+                    "{stem}-{}-{}",
+                    version.name(),
+                    dimensions.name()
+                ));
                 let _ = std::fs::remove_dir_all(&dir);
                 let mut cmd = common::mechdraw();
                 cmd.arg("run").arg(&path).args(["--out", dir.to_str().unwrap(), "--no-frames", "-q"]);
