@@ -291,7 +291,7 @@ pub fn linear_layout(p1: Point, p2: Point, line_at: Point, angle: f64, text: &st
 }
 
 /// [`linear_layout`] with the text's middle at `text_along` (see
-/// [`LinearMarks::text_along`]) when given; `text_inside` then says whether the placed box
+/// [`super::LinearMarks::text_along`]) when given; `text_inside` then says whether the placed box
 /// lies between the extension lines.
 pub fn linear_layout_placed(
     p1: Point,
@@ -443,7 +443,7 @@ pub fn explode_angular_split(shape: &Shape, first: f64, style: &DimStyle) -> Opt
 }
 
 /// A linear dimension broken into lines, arrowheads (and the base circle) and its text as
-/// its marks ask ([`LinearMarks`]).
+/// its marks ask ([`super::LinearMarks`]).
 fn explode_linear_into(shape: &Shape, style: &DimStyle, out: &mut Vec<Shape>) {
     let asz = style.arrow_size;
     let th = style.text_height;
