@@ -152,6 +152,10 @@ impl Csv {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::number;
 

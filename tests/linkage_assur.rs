@@ -4,6 +4,11 @@
 //! decompose; its decomposition named; an unassemblable position reported by group, joint
 //! and time.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::{Point, Vector, rotate};

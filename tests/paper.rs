@@ -8,6 +8,11 @@
 //! in viewBox millimetres) and the scales printed in the panel titles; the values it
 //! compares with come from the run's JSON summary.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::path::{Path, PathBuf};

@@ -6,6 +6,11 @@
 //! a length measured on a sheet times the scale printed in its panel is the value (k_v × mm
 //! = |v|); the files on disk are the in-memory bytes; a golden PNG of the page at φ1 = 90°.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::collections::BTreeMap;

@@ -2,6 +2,11 @@
 //! the six constraint equations, a dense scan of phi1 written here from scratch, poses
 //! built backwards, a tangent and a singular (double-root) pose, and invariance.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 use mechdraw::geom::{Point, Vector, deg, rad, rotate};
 use mechdraw::solve::triad::{
     Configuration, NewtonOptions, Orientation, PatternOptions, Triad, TriadError, all_modes, newton, pattern,

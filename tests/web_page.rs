@@ -8,6 +8,11 @@
 //! Needs the pages: `bash web/build.sh` (`.ci/test` runs it: it needs the wasm32 target and
 //! wasm-bindgen-cli) and Debian's chromium.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::collections::BTreeMap;

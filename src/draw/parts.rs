@@ -489,6 +489,10 @@ fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out:
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
 

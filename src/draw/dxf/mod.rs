@@ -1197,6 +1197,10 @@ fn push_pair(out: &mut String, code: &str, value: &str) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::draw::{DimStyle, Entity};
