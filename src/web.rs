@@ -34,6 +34,9 @@ pub struct WebOptions {
     pub frames: bool,
     /// PNG copies of every SVG (`--png`).
     pub png: bool,
+    /// One printed sheet per position and their PDF (`--sheets a4|a3`; four-bar and
+    /// linkage scenes).
+    pub sheets: Option<crate::figure::shared::sheet::Paper>,
 }
 
 /// One scene's run in memory.
@@ -56,7 +59,7 @@ pub struct SceneFiles {
 /// on the command line). The error's text is what the command line prints after `error: `.
 pub fn scene_files(text: &str, file: &str, opts: WebOptions) -> Result<SceneFiles, Error> {
     let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])?, text: text.to_string() };
-    let ropts = RunOptions { png: opts.png, no_frames: !opts.frames, ..RunOptions::default() };
+    let ropts = RunOptions { png: opts.png, no_frames: !opts.frames, sheets: opts.sheets, ..RunOptions::default() };
     let p = run::products(&loaded, &ropts)?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;
@@ -702,6 +705,18 @@ pub mod js {
     /// motion's frames and viewer when `frames`; throws the command line's error message.
     #[wasm_bindgen]
     pub fn run_scene(toml: &str, file: &str, frames: bool) -> Result<Files, String> {
-        scene_files(toml, file, WebOptions { frames, png: false }).map(Files).map_err(|e| e.to_string())
+        scene_files(toml, file, WebOptions { frames, ..WebOptions::default() }).map(Files).map_err(|e| e.to_string())
+    }
+
+    /// [`run_scene`] with the command line's `--png` and `--sheets` (`""`, `"a4"` or `"a3"`):
+    /// every file `mechdraw run` can write, for the tests that compare the module's bytes
+    /// with the native build's (tests/wasm_bytes.rs).
+    #[wasm_bindgen]
+    pub fn run_scene_with(toml: &str, file: &str, frames: bool, png: bool, sheets: &str) -> Result<Files, String> {
+        let sheets = match sheets {
+            "" => None,
+            paper => Some(paper.parse()?),
+        };
+        scene_files(toml, file, WebOptions { frames, png, sheets }).map(Files).map_err(|e| e.to_string())
     }
 }

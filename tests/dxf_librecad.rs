@@ -190,6 +190,10 @@ fn angular_texts_read(dxf: &Path, pdf: &Path, wanted: &[&str]) -> Vec<(String, S
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_draws_the_triads_angular_dimensions_on_a_real_page() {
     require_tools();
     for version in ["R12", "R2000", "R2007"] {
@@ -210,6 +214,10 @@ fn librecad_draws_the_triads_angular_dimensions_on_a_real_page() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_draws_the_chains_tolerances_on_a_real_page() {
     require_tools();
     let dir = out_dir("chain");
@@ -271,6 +279,10 @@ fn page_grey(pdf: &Path, dpi: u32) -> (usize, usize, Vec<u8>) {
 /// page. Checked on the page itself: nothing is drawn within 3 mm of its edges (the
 /// triad's first caption line ran off the right edge when the limits held the bounds alone).
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_pages_hold_every_text() {
     require_tools();
     const DPI: u32 = 50;
@@ -488,6 +500,10 @@ fn layer_boxes(p: &[(i32, String)], layer: &str) -> Vec<(f64, f64, f64, f64)> {
 /// LibreCAD's own font file, every text's ink inside its cell; the font model is held to the
 /// page (a heading measured on the page within 1 mm of the model).
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_keeps_each_modes_text_in_its_cell() {
     require_tools();
     const DPI: u32 = 50;
@@ -571,6 +587,10 @@ fn librecad_keeps_each_modes_text_in_its_cell() {
 /// "Mechanism   k_l = 2 mm/mm" over its "t = 0.0000 s", when the panels were as wide as
 /// the DejaVu widths of the SVG). Checked at every position, with LibreCAD's own font file.
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_keeps_panel_titles_apart() {
     require_tools();
     let font = StrokeFont::read(AZOMIX_LFF);

@@ -221,6 +221,10 @@ fn ocr(png: &Path) -> String {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs rsvg-convert (librsvg2-bin) and tesseract: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librsvg_and_resvg_render_the_four_bar_frames_text() {
     let missing: Vec<&str> = ["rsvg-convert", "tesseract"]
         .into_iter()

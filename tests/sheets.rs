@@ -44,6 +44,10 @@ fn angles(p: &Products) -> Vec<f64> {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs poppler-utils (pdfinfo, pdftotext): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_pdf_has_a_page_per_position_each_with_its_crank_angle() {
     let l = loaded("30");
     let tmp = tempfile::tempdir().unwrap();

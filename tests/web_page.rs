@@ -77,6 +77,10 @@ fn point(state: &Value, name: &str) -> (f64, f64) {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
     let (_, json, _) = cli(&template("triad-popa"), &[]);
     let shown = observed()["triad"]["modes"].as_str().unwrap();
@@ -93,6 +97,10 @@ fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_triad_mode_picked_on_the_page_is_the_one_the_picture_draws() {
     let pick = &observed()["triad_pick"];
     assert_eq!(pick["error"], "", "{pick}");
@@ -110,6 +118,10 @@ fn a_triad_mode_picked_on_the_page_is_the_one_the_picture_draws() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn dragging_the_crank_pin_turns_the_crank_to_the_pointer() {
     let d = &observed()["fourbar_drag"];
     let (px, py) = (num(&d["pointer"][0]), num(&d["pointer"][1]));
@@ -136,6 +148,10 @@ fn dragging_the_crank_pin_turns_the_crank_to_the_pointer() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_four_bars_page_shows_every_diagram_the_cli_draws() {
     let (files, _, _) = cli(&template("fourbar-chebyshev"), &[]);
     let mut cli: Vec<String> = files
@@ -151,6 +167,10 @@ fn the_four_bars_page_shows_every_diagram_the_cli_draws() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn dragging_a_shaper_point_keeps_every_joint() {
     let st = &observed()["shaper_drag"]["state"];
     assert!(num(&st["residual"]) <= 1e-9);
@@ -169,6 +189,10 @@ fn dragging_a_shaper_point_keeps_every_joint() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_non_grashof_length_shows_the_command_lines_gaps() {
     let (_, json, stderr) = cli(&template("fourbar-chebyshev"), &["l_bc=0.2"]);
     let page = &observed()["fourbar_lbc"];
@@ -182,6 +206,10 @@ fn a_non_grashof_length_shows_the_command_lines_gaps() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn an_invalid_toml_edit_shows_the_command_lines_message_and_keeps_the_picture() {
     let page = &observed()["fourbar_bad_toml"];
     assert_eq!(page["picture_kept"], true);
@@ -198,6 +226,10 @@ fn an_invalid_toml_edit_shows_the_command_lines_message_and_keeps_the_picture() 
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn downloads_are_the_command_lines_bytes() {
     let offered = observed()["downloads"].as_object().unwrap();
     assert_eq!(offered.len(), common::template_paths().len(), "a page per template");
