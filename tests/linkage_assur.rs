@@ -215,7 +215,7 @@ fn random_chain(rng: &mut Rng, kinds: &[&str]) -> Mechanism {
     let mut m = Build { bodies: vec![], joints: vec![], drivers: vec![] };
     let phi0 = rng.range(0.0, 6.0);
     let crank = m.body("crank", Point::origin(), phi0);
-    if kinds.len() % 2 == 0 {
+    if kinds.len().is_multiple_of(2) {
         m.revolute("O", Attach::Ground, Attach::Body(crank), Point::origin());
         m.drivers.push(Driver {
             name: "O".into(),

@@ -104,21 +104,21 @@ fn scan(t: &Triad, ccw: bool, steps: usize) -> Vec<f64> {
         for i in 0..=steps {
             let x = i as f64 * h;
             let y = f(x);
-            if let Some((px, py)) = prev {
-                if py.is_some() != y.is_some() {
-                    // Interval end between px and x: bisect to its last existing point.
-                    let (mut inside, mut outside) = if py.is_some() { (px, x) } else { (x, px) };
-                    for _ in 0..80 {
-                        let mid = 0.5 * (inside + outside);
-                        if f(mid).is_some() { inside = mid } else { outside = mid }
-                    }
-                    if let Some(v) = f(inside) {
-                        if py.is_some() {
-                            samples.push((inside, v));
-                            push_run(&mut samples, &mut roots);
-                        } else {
-                            samples.push((inside, v));
-                        }
+            if let Some((px, py)) = prev
+                && py.is_some() != y.is_some()
+            {
+                // Interval end between px and x: bisect to its last existing point.
+                let (mut inside, mut outside) = if py.is_some() { (px, x) } else { (x, px) };
+                for _ in 0..80 {
+                    let mid = 0.5 * (inside + outside);
+                    if f(mid).is_some() { inside = mid } else { outside = mid }
+                }
+                if let Some(v) = f(inside) {
+                    if py.is_some() {
+                        samples.push((inside, v));
+                        push_run(&mut samples, &mut roots);
+                    } else {
+                        samples.push((inside, v));
                     }
                 }
             }

@@ -168,10 +168,10 @@ fn parse_cmap(text: &[u8]) -> CMap {
         let s = find(text, begin, from)? + begin.len();
         Some((s, find(text, end, s)?))
     };
-    if let Some((s, e)) = section(b"begincodespacerange", b"endcodespacerange", 0) {
-        if let Some(h) = hex_strings(&text[s..e]).first() {
-            bytes = h.len().div_ceil(2).max(1);
-        }
+    if let Some((s, e)) = section(b"begincodespacerange", b"endcodespacerange", 0)
+        && let Some(h) = hex_strings(&text[s..e]).first()
+    {
+        bytes = h.len().div_ceil(2).max(1);
     }
     let mut at = 0;
     while let Some((s, e)) = section(b"beginbfchar", b"endbfchar", at) {

@@ -371,10 +371,10 @@ impl Shape {
                 if let Some(term) = Term::of(b) {
                     return Shape::Shift { k: a.eval(0.0), term, k_first: true, sub };
                 }
-            } else if !b.depends_on_t() {
-                if let Some(term) = Term::of(a) {
-                    return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
-                }
+            } else if !b.depends_on_t()
+                && let Some(term) = Term::of(a)
+            {
+                return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
             }
         }
         Shape::Tree

@@ -1093,12 +1093,11 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
             }
         }
         if version != DxfVersion::R12 {
-            if is_header {
-                if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED") {
-                    if let Some(pair) = record.get_mut(at + 1) {
-                        pair.value = format!("{handle_seed:X}").into();
-                    }
-                }
+            if is_header
+                && let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED")
+                && let Some(pair) = record.get_mut(at + 1)
+            {
+                pair.value = format!("{handle_seed:X}").into();
             }
             match kind.as_ref() {
                 "TABLE" => {
