@@ -6,11 +6,11 @@
 //!
 //! | files | compared | module |
 //! |---|---|---|
-//! | `.csv` | cell by cell; numbers within a relative tolerance of their column's scale | [`table`] |
-//! | `.json` | leaf by leaf; numbers as for a CSV, a key path (indices dropped) as the column | [`json`] |
-//! | `.svg`, `.png` | rasterised (resvg, the bundled font, as the golden tests) and compared pixel by pixel with a channel tolerance; a red/white diff PNG for each changed picture | [`picture`] |
-//! | `.dxf` | entity by entity: counts per type and layer, the largest coordinate difference, texts | [`dxf`] |
-//! | `.pdf` | the page count and each page's text | [`pdf`] |
+//! | `.csv` | cell by cell; numbers within a relative tolerance of their column's scale | `table` |
+//! | `.json` | leaf by leaf; numbers as for a CSV, a key path (indices dropped) as the column | `json` |
+//! | `.svg`, `.png` | rasterised (resvg, the bundled font, as the golden tests) and compared pixel by pixel with a channel tolerance; a red/white diff PNG for each changed picture | `picture` |
+//! | `.dxf` | entity by entity: counts per type and layer, the largest coordinate difference, texts | `dxf` |
+//! | `.pdf` | the page count and each page's text | `pdf` |
 //! | anything else (`.html`) | bytes | |
 //!
 //! The verdict: [`Report::passed`] when nothing was added or removed and every changed file
