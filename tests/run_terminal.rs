@@ -46,3 +46,18 @@ fn verbose_lists_every_file_and_quiet_nothing() {
     let (err, _, _tmp) = run(&["--quiet"]);
     assert_eq!(err, "");
 }
+
+/// The linkage report's time span as a person writes it (issue 30: fourbar-linkage printed
+/// `t = 0..0.3141592653589793 s`, its `to = π/10` in every digit).
+#[test]
+fn a_linkage_reports_its_time_span_to_six_decimals() {
+    let tmp = tempfile::tempdir().unwrap();
+    let o = common::mechdraw()
+        .current_dir(common::root())
+        .args(["run", "templates/fourbar-linkage.toml", "--no-frames", "--out"])
+        .arg(tmp.path())
+        .output()
+        .unwrap();
+    let err = String::from_utf8(o.stderr).unwrap();
+    assert!(err.contains("361 positions, t = 0..0.314159 s;"), "{err}");
+}
