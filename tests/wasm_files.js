@@ -1,11 +1,10 @@
 // The WebAssembly module's files for a list of jobs, run in Node's V8 (the browser's engine):
 //   node tests/wasm_files.js MODULE_DIR JOBS.json
 // MODULE_DIR holds what web/build.sh makes (mechdraw.js, the wasm-bindgen glue, and
-// mechdraw_bg.wasm). JOBS.json is a list of {"text", "file", "out", "frames", "png", "sheets"}:
-// each job's scene text is run through the module's run_scene_with (the command line's
-// `mechdraw run` with --no-frames unless frames, --png, --sheets) and every file it returns is
-// written under its "out" directory. Used by tests/wasm_bytes.rs, which compares them with the
-// native build's bytes.
+// mechdraw_bg.wasm). JOBS.json is a list of {"text", "file", "out", "frames"}: each job's scene
+// text is run through the module's run_scene (the command line's `mechdraw run`, with
+// --no-frames unless frames) and every file it returns is written under its "out" directory.
+// Used by tests/wasm_bytes.rs, which compares them with the native build's bytes.
 const fs = require("fs"), vm = require("vm"), path = require("path");
 const [dir, jobsFile] = process.argv.slice(2);
 globalThis.self = globalThis;
@@ -15,7 +14,7 @@ vm.runInThisContext(fs.readFileSync(path.join(dir, "mechdraw.js"), "utf8"));
   for (const job of JSON.parse(fs.readFileSync(jobsFile, "utf8"))) {
     let files;
     try {
-      files = wasm_bindgen.run_scene_with(job.text, job.file, job.frames, job.png, job.sheets);
+      files = wasm_bindgen.run_scene(job.text, job.file, job.frames);
     } catch (e) {
       console.error(`${job.file}: ${e}`);
       process.exit(1);
