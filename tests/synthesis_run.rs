@@ -202,7 +202,8 @@ fn dragging_a_positions_line_turns_it_and_a_point_without_a_field_is_refused() {
     let (ax, ay) = grip(&s, "P3");
     // The line's end dragged to 40° below the horizontal through P3.
     let r = 30.0;
-    let (tx, ty) = (ax + r * (-40f64).to_radians().cos(), ay + r * (-40f64).to_radians().sin());
+    let a = (-40f64).to_radians();
+    let (tx, ty) = (ax + r * libm::cos(a), ay + r * libm::sin(a));
     s.reshape("P3 line", mechdraw::geom::Point::new(tx, ty), 0, 3).unwrap();
     assert!(s.scene_text().contains("{ at = [100.0, 0.0], angle_deg = -40.0 }"), "{}", s.scene_text());
     let e = s.reshape("O1", mechdraw::geom::Point::new(0.0, 0.0), 0, 1).unwrap_err().to_string();

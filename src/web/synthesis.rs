@@ -89,13 +89,11 @@ pub fn reshape(
     edit::set(&doc.to_string(), file, &set).map_err(|e: Error| e.to_string())
 }
 
-/// The drag's (`--set` path, value) changes and the top-level keys it drops.
-fn changes(
-    scene: &SynthesisScene,
-    point: &str,
-    target: Point,
-    decimals: usize,
-) -> Result<(Vec<(String, String)>, Vec<&'static str>), String> {
+/// A drag's (`--set` path, value) changes and the top-level keys it drops.
+type Changes = (Vec<(String, String)>, Vec<&'static str>);
+
+/// The drag's changes.
+fn changes(scene: &SynthesisScene, point: &str, target: Point, decimals: usize) -> Result<Changes, String> {
     let n = |v: f64| number(v, decimals);
     let one = |path: &str, v: String| vec![(path.to_string(), v)];
     let names = || grips(scene).into_iter().map(|(n, _)| n).collect::<Vec<_>>().join(", ");

@@ -308,7 +308,14 @@ impl Construction {
     pub fn distance(&mut self, a: Point, b: Point, offset: f64, text: &str) {
         let u = (b - a).normalize();
         let at = a + perp(u) * offset;
-        let dim = Shape::LinearDimension { p1: a, p2: b, line_at: at, angle: angle_of(u), text: text.to_string() };
+        let dim = Shape::LinearDimension {
+            p1: a,
+            p2: b,
+            line_at: at,
+            angle: angle_of(u),
+            text: text.to_string(),
+            marks: Default::default(),
+        };
         self.dim_texts.extend(dimension_text_box(&dim, &self.d.dim_style));
         keep_letters_off_dimension(&mut self.dims, &dim, &self.d.dim_style);
         let layer = self.dimensions();

@@ -166,7 +166,7 @@ pub fn shaper(name: &str, units: Units, header: &[String], d: &quick_return::Des
     let a0 = d.o1 + crate::geom::Vector::new(d.crank, 0.0);
     let rocker_angle = angle_of(a0 - d.o3);
     let b0 = d.o3 + crate::geom::Vector::new(libm::cos(rocker_angle), libm::sin(rocker_angle)) * d.rocker;
-    let e0 = Point::new(b0.x + (d.link * d.link - (h - b0.y).powi(2)).sqrt(), h);
+    let e0 = Point::new(b0.x + (d.link * d.link - (h - b0.y) * (h - b0.y)).sqrt(), h);
     body(&mut s, "crank", &[("O1", Point::origin()), ("A", Point::new(d.crank, 0.0))], d.o1, 0.0);
     body(&mut s, "block", &[("A", Point::origin())], a0, rocker_angle);
     body(&mut s, "rocker", &[("O3", Point::origin()), ("B", Point::new(d.rocker, 0.0))], d.o3, rocker_angle);

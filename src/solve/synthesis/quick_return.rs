@@ -124,7 +124,7 @@ pub fn synthesise(req: &Requirement) -> Result<Design, SynthesisError> {
             valid: format!("BE ≥ {reach_needed:.6}, or a guide height nearer the arc"),
         });
     }
-    let e = b.map(|p| Point::new(p.x + (link * link - (ram_height - p.y).powi(2)).sqrt(), ram_height));
+    let e = b.map(|p| Point::new(p.x + (link * link - (ram_height - p.y) * (ram_height - p.y)).sqrt(), ram_height));
     // The tangent points: A on O3B at distance d·cos(θ/2) from O3.
     let a = dirs.map(|t| o3 + unit(t) * (ground * libm::cos(half)));
     let crank_at = a.map(|p| angle_of(p - o1));

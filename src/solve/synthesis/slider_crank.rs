@@ -208,7 +208,8 @@ mod tests {
             let s = synthesise(&Requirement { stroke: 50.0, time_ratio: 1.2, choice }).unwrap();
             let d = &s.design;
             // The textbook closed form: H = √((l+r)² − e²) − √((l−r)² − e²).
-            let h = ((d.b + d.a).powi(2) - d.e * d.e).sqrt() - ((d.b - d.a).powi(2) - d.e * d.e).sqrt();
+            let (sum, diff) = (d.b + d.a, d.b - d.a);
+            let h = (sum * sum - d.e * d.e).sqrt() - (diff * diff - d.e * d.e).sqrt();
             assert!((h - 50.0).abs() < 1e-12 * 50.0, "{choice:?}: H = {h}");
             let theta = libm::asin(d.e / (d.b - d.a)) - libm::asin(d.e / (d.b + d.a));
             assert!((super::super::time_ratio(theta) - 1.2).abs() < 1e-12, "{choice:?}");
