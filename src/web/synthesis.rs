@@ -19,6 +19,7 @@
 //! | `function` | C (O1 at the origin) | `ground` |
 
 use super::edit::{self, number};
+use super::reshape::pair;
 use crate::Error;
 use crate::geom::{Point, Vector, angle_of};
 use crate::scene::synthesis::{SynthesisScene, Task};
@@ -139,9 +140,4 @@ fn changes(scene: &SynthesisScene, point: &str, target: Point, decimals: usize) 
         (Task::Function { .. }, "C") => (one("ground", n(positive("the ground O1C", target.x)?)), vec![]),
         _ => return refuse(),
     })
-}
-
-/// `[x, y]` on the grid.
-fn pair(p: Point, decimals: usize) -> String {
-    format!("[{}, {}]", number(p.x, decimals), number(p.y, decimals))
 }
