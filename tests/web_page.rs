@@ -585,6 +585,10 @@ fn the_download_menu_shows_each_files_size() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_synthesis_page_drags_a_required_position_and_the_construction_follows() {
     let d = &observed()["synthesis_drag"];
     assert_eq!(d["error"], "", "{d}");
@@ -626,6 +630,10 @@ fn a_synthesis_page_drags_a_required_position_and_the_construction_follows() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_synthesis_page_follows_psi_and_opens_the_design_undo_comes_back() {
     let p = &observed()["synthesis_psi"];
     assert_eq!(p["refused"], "", "{p}");
