@@ -4,7 +4,8 @@
 //! `l_bc` in its field and a refused value in another, reshapes the four-bar by dragging C
 //! in edit mode, undoes and redoes, shares a link and opens it in a fresh tab, builds the
 //! Chebyshev four-bar from an empty page by clicks, drags the crank with a finger on a
-//! phone-sized screen, opens bad files and links, downloads the files — and this test
+//! phone-sized screen, opens bad files and links, downloads the files, drags a synthesis's
+//! required position, changes its ψ and opens its design — and this test
 //! compares what the pages show with the command line and with closed forms. Screenshots are
 //! kept in target/web/screens/ for people to look at.
 //!
