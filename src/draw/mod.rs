@@ -10,6 +10,7 @@
 //! so a drawing prints at any scale.
 
 pub mod dxf;
+pub mod font;
 pub mod parts;
 pub mod pdf;
 pub mod raster;
@@ -442,6 +443,29 @@ impl Drawing {
     }
 }
 
+/// The corners of a text's box as drawn in DejaVu Sans ([`font::measure`]: its advances,
+/// from the baseline less its deepest descender to its highest glyph, at least the cap
+/// height), turned with the text about its insertion point: lower-left, lower-right,
+/// upper-right, upper-left. `None` for a shape that is not a text.
+pub fn text_corners(shape: &Shape) -> Option<[Point; 4]> {
+    let Shape::Text { at, height, value, halign, valign, rotation } = shape else { return None };
+    let e = font::measure(value, *height);
+    let x0 = match halign {
+        HAlign::Left => 0.0,
+        HAlign::Center => -0.5 * e.width,
+        HAlign::Right => -e.width,
+    };
+    let base = match valign {
+        VAlign::Baseline => 0.0,
+        VAlign::Middle => -0.5 * height,
+        VAlign::Top => -height,
+    };
+    let (y0, y1) = (base - e.descent, base + e.ascent);
+    let (sin, cos) = if *rotation == 0.0 { (0.0, 1.0) } else { (libm::sin(*rotation), libm::cos(*rotation)) };
+    let turn = |x: f64, y: f64| *at + Vector::new(cos * x - sin * y, sin * x + cos * y);
+    Some([turn(x0, y0), turn(x0 + e.width, y0), turn(x0 + e.width, y1), turn(x0, y1)])
+}
+
 /// Calls `add` with points whose bounding box covers the shape (dimensions: their
 /// exploded geometry, as drawn).
 fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Point)) {
@@ -467,16 +491,10 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
             add(*to);
         }
         Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
-        Shape::Text { at, height, value, halign, .. } => {
-            // The writers' width estimate (DejaVu Sans advances).
-            let w = parts::text_width(value, *height);
-            let x0 = match halign {
-                HAlign::Left => at.x,
-                HAlign::Center => at.x - w / 2.0,
-                HAlign::Right => at.x - w,
-            };
-            add(Point::new(x0, at.y - 0.3 * height));
-            add(Point::new(x0 + w, at.y + height));
+        Shape::Text { .. } => {
+            if let Some([a, b, c, d]) = text_corners(shape) {
+                [a, b, c, d].into_iter().for_each(&mut *add);
+            }
         }
         Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
             for part in parts::explode_dimension(shape, style) {
