@@ -20,6 +20,11 @@ use skrifa::instance::{LocationRef, Size};
 /// font size to the text height / 0.73, so a text height is a cap height.
 pub const CAP_HEIGHT_EM: f64 = 0.73;
 
+/// How far round letters overshoot the baseline and the cap height (`o`, `a`, `O`: 0.01–0.015
+/// em in DejaVu Sans), in ems: a text whose glyphs stay within this of the line counts as
+/// standing on the baseline and ending at the cap height.
+pub const OVERSHOOT_EM: f64 = 0.02;
+
 /// One character's metrics, in ems: its advance, and the lowest and highest points of its
 /// glyph (y up from the baseline; both 0 for a space).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -71,7 +76,8 @@ pub fn glyph(c: char) -> Glyph {
 
 /// The extent of a text drawn `height` high (cap height), model units: its width (the sum of
 /// its advances), and how far its glyphs reach above and below the baseline — at least the
-/// cap height above, at least nothing below.
+/// cap height above, at least nothing below (round letters' overshoot, [`OVERSHOOT_EM`],
+/// aside).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct TextExtent {
     /// Width, from the text's start to the end of its last advance.
@@ -99,6 +105,8 @@ pub fn measure_chars(chars: impl Iterator<Item = char>, height: f64) -> TextExte
         }
     }
     let em = height / CAP_HEIGHT_EM;
+    let low = if low > -OVERSHOOT_EM { 0.0 } else { low };
+    let high = if high < CAP_HEIGHT_EM + OVERSHOOT_EM { CAP_HEIGHT_EM } else { high };
     TextExtent { width: advance * em, ascent: high * em, descent: -low * em }
 }
 
@@ -133,9 +141,11 @@ mod tests {
         assert!((e.width - (1995.0 + 1300.0) / 2048.0 * em).abs() < 0.01 * em, "{e:?}");
         assert!((e.descent + glyph('p').y_min * em).abs() < 1e-12);
         assert!((e.ascent - h).abs() < 0.01 * h, "{e:?}");
-        // No descender: nothing below the baseline; `b` reaches a little above the capitals.
+        // No descender: nothing below the baseline (`a` overshoots it by 0.01 em); `b` reaches
+        // a little above the capitals.
         let e = measure("ab", h);
-        assert!(e.descent.abs() < 0.01 * h && e.ascent > h);
+        assert!(e.descent == 0.0 && e.ascent > 1.03 * h, "{e:?}");
+        assert!((measure("ao", h).ascent - h).abs() < 1e-12);
         assert_eq!(measure("", h).width, 0.0);
         // A character the font lacks takes the .notdef box, never nothing.
         assert!(glyph('\u{10FFFD}').advance > 0.3);

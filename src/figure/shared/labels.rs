@@ -31,7 +31,7 @@
 //! Everything here is deterministic: the same polygon gives the same letters in the same
 //! places.
 
-use crate::draw::parts::chars_width;
+use crate::draw::font;
 use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
@@ -73,15 +73,23 @@ pub struct TextBox {
 }
 
 impl TextBox {
-    /// The estimated box of `text`, `height` high, centred at `centre`: [`label_width`] wide,
-    /// one height tall.
+    /// The box of `text`, `height` high, drawn centred at `centre` (as [`draw_placed`] draws
+    /// a label: the middle of its capitals at `centre`), measured in the font it is drawn in
+    /// ([`font::measure`]): its advances wide, from its deepest descender to its highest
+    /// glyph (at least the cap height) tall.
     pub fn centred(centre: Point, text: &str, height: f64) -> TextBox {
-        TextBox::around(centre, TextBox::half_size(text, height))
+        let (half, shift) = TextBox::half_size(text, height);
+        TextBox::around(centre - shift, half)
     }
 
-    /// Half the width and half the height of [`TextBox::centred`]'s box.
-    fn half_size(text: &str, height: f64) -> Vector {
-        Vector::new(0.5 * label_width(text, height), 0.5 * height)
+    /// Half the width and half the height of [`TextBox::centred`]'s box, and the shift from
+    /// the box's centre to the text's centre (the middle of its capitals).
+    fn half_size(text: &str, height: f64) -> (Vector, Vector) {
+        let e = font::measure(text, height);
+        // Box from (baseline − descent) to (baseline + ascent), the baseline half a height
+        // under the text's centre.
+        let middle = -0.5 * height + 0.5 * (e.ascent - e.descent);
+        (Vector::new(0.5 * e.width, 0.5 * (e.ascent + e.descent)), Vector::new(0.0, -middle))
     }
 
     /// The box with half-sizes `half` centred at `centre`.
@@ -142,10 +150,11 @@ struct Letter {
 }
 
 impl Letter {
-    /// Half the width and half the height of its box.
-    fn half(&self) -> Vector {
+    /// Half the width and half the height of its box, and the shift from the box's centre
+    /// to where its text is drawn (a circle's box is centred on its text).
+    fn half(&self) -> (Vector, Vector) {
         if self.circled {
-            Vector::new(CIRCLE_RADIUS * self.height, CIRCLE_RADIUS * self.height)
+            (Vector::new(CIRCLE_RADIUS * self.height, CIRCLE_RADIUS * self.height), Vector::zeros())
         } else {
             TextBox::half_size(&self.text, self.height)
         }
@@ -280,7 +289,7 @@ impl Polygon {
         let mut out = Vec::with_capacity(letters.len());
         for l in letters.iter() {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
-            let half = l.half();
+            let (half, shift) = l.half();
             let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
             // Every candidate's box and leader lie inside `reach` (with room for rounding):
             // what lies wholly outside it is neither overlapped nor crossed by any of them.
@@ -345,7 +354,7 @@ impl Polygon {
                 blockers.push(bx);
                 lines.extend(leader.map(|s| (s, segment_box(s))));
                 out.push(Placed {
-                    centre: c,
+                    centre: c + shift,
                     text: l.text.clone(),
                     height: l.height,
                     color: l.color,
@@ -437,14 +446,10 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
     out
 }
 
-/// Estimated width of a label: [`text_width`](crate::draw::parts::text_width), with
-/// [`SAME_POINT`] as wide as `=` (DejaVu Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
-/// and a combined label `a≡b≡m` would print over its neighbours).
+/// Width of a label `height` high: its advances in the font it is drawn in
+/// ([`font::width`]).
 pub fn label_width(text: &str, height: f64) -> f64 {
-    // `SAME_POINT` is one character, replaced by one.
-    const SAME: char = '≡';
-    const _: () = assert!(SAME_POINT.len() == SAME.len_utf8());
-    chars_width(text.chars().map(|c| if c == SAME { '=' } else { c }), height)
+    font::width(text, height)
 }
 
 /// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
@@ -455,7 +460,8 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
-    candidates_in(at, TextBox::half_size(text, height), height, dir, 0.0, &RINGS)
+    let (half, shift) = TextBox::half_size(text, height);
+    candidates_in(at, half, height, dir, 0.0, &RINGS).map(move |c| c + shift)
 }
 
 /// Candidate centres for a box of half-sizes `half` whose edge keeps `clear` more than
@@ -504,14 +510,14 @@ fn candidates_reach(at: Point, half: Vector, height: f64, clear: f64, rings: &[f
 /// The farthest a label's centre can be from its point: the last ring in the worst
 /// direction.
 pub fn max_distance(text: &str, height: f64) -> f64 {
-    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    RINGS[RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(hw, hh))
+    let (half, shift) = TextBox::half_size(text, height);
+    RINGS[RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(half.x, half.y)) + shift.norm()
 }
 
 /// The farthest a name with a leader ([`Polygon::name_with_leader`]) can be from its point.
 pub fn max_leader_distance(text: &str, height: f64) -> f64 {
-    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(hw, hh))
+    let (half, shift) = TextBox::half_size(text, height);
+    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(half.x, half.y)) + shift.norm()
 }
 
 #[cfg(test)]
@@ -612,7 +618,7 @@ mod tests {
         let mut out = Vec::new();
         for l in &letters {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
-            let half = l.half();
+            let (half, shift) = l.half();
             let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
             for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
                 let bx = TextBox::around(c, half);
@@ -633,7 +639,7 @@ mod tests {
                 boxes.push(bx);
                 leaders.extend(leader);
                 let (text, height, color, circled) = (l.text.clone(), l.height, l.color, l.circled);
-                out.push(Placed { centre: c, text, height, color, leader, circled });
+                out.push(Placed { centre: c + shift, text, height, color, leader, circled });
             }
         }
         out
