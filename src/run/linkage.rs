@@ -181,6 +181,7 @@ pub(super) fn products(
         acceleration: p.acceleration && out.acceleration,
         forces: p.forces && out.forces,
         points: p.points.clone(),
+        per_body: p.per_body,
     };
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
@@ -1057,7 +1058,7 @@ fn sheet_pages(
     show: Show,
     names: &[String],
 ) -> Vec<products::Page> {
-    let sheets = LinkageSheets::new(paper, &scene.name, figure, states, show, forces.is_some());
+    let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some());
     let n = states.len();
     states
         .par_iter()

@@ -296,6 +296,9 @@ pub struct RawPolygons {
     pub forces: Option<bool>,
     /// The points shown, by name (default: every body point).
     pub points: Option<Vec<String>>,
+    /// `"groups"` (one force figure per Assur group, the default) or `"bodies"` (one per
+    /// moving body).
+    pub force_figures: Option<String>,
 }
 
 /// What the frames draw beside the mechanism (from `[polygons]`).
@@ -309,6 +312,8 @@ pub struct Polygons {
     pub forces: bool,
     /// The points shown (`None`: every body point).
     pub points: Option<Vec<String>>,
+    /// One force figure per moving body instead of one per Assur group.
+    pub per_body: bool,
 }
 
 /// `[diagrams]`.
@@ -601,11 +606,25 @@ fn check_polygons(raw: Option<&RawPolygons>, mech: &Mechanism) -> Result<Polygon
             }
         }
     }
+    let per_body = match raw.force_figures.as_deref() {
+        None | Some("groups") => false,
+        Some("bodies") => true,
+        Some(other) => {
+            return Err(FieldError::new(
+                "polygons.force_figures",
+                format!(
+                    "`{other}` is not a choice: \"groups\" (one force figure per Assur group, the default) or \
+                     \"bodies\" (one per moving body)"
+                ),
+            ));
+        }
+    };
     Ok(Polygons {
         velocity: raw.velocity.unwrap_or(true),
         acceleration: raw.acceleration.unwrap_or(true),
         forces: raw.forces.unwrap_or(true),
         points: raw.points,
+        per_body,
     })
 }
 

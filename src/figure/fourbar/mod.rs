@@ -467,6 +467,8 @@ pub fn dyad_polygon(f: &Forces) -> ForcePolygon {
             resultant("RB", p_f, int, 0.7),
             resultant("RC", p_fi3, int, 0.3),
         ],
+        // R_C^t and R_A^t close it.
+        found: 2,
     }
 }
 
@@ -485,6 +487,7 @@ pub fn crank_polygon(f: &Forces) -> ForcePolygon {
         pole: "f1".into(),
         chain,
         resultants: vec![Resultant { name: "RO".into(), from, to: 0, name_at: 0.5 }],
+        found: 0,
     }
 }
 

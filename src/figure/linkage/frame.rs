@@ -13,7 +13,7 @@ use crate::draw::Drawing;
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
-use crate::figure::linkage::forces::{body_forces, body_polygon, caption, magnitudes, on_mechanism};
+use crate::figure::linkage::forces::{ForceFigures, magnitudes, on_mechanism};
 use crate::figure::linkage::polygon::{LinkagePolygons, polygons_of};
 use crate::figure::linkage::{self as fig, LinkageFigure};
 use crate::figure::shared::forces::{self, ForcePolygon};
@@ -34,11 +34,13 @@ pub struct Show {
     pub forces: bool,
     /// The points the polygons show, by name (`None`: every joint point).
     pub points: Option<Vec<String>>,
+    /// One force figure per moving body instead of one per Assur group.
+    pub per_body: bool,
 }
 
 impl Default for Show {
     fn default() -> Show {
-        Show { velocity: true, acceleration: true, forces: true, points: None }
+        Show { velocity: true, acceleration: true, forces: true, points: None, per_body: false }
     }
 }
 
@@ -62,6 +64,8 @@ pub struct LinkageFrames {
     pub spans: Vec<Option<(Point, Point)>>,
     /// N·m to the moment unit of the table (1000 in a mm scene).
     moment_per_nm: f64,
+    /// The force figures drawn.
+    figures: ForceFigures,
 }
 
 /// Every body point and guide end over the motion.
@@ -108,16 +112,17 @@ impl LinkageFrames {
             show.acceleration.then(|| polys.iter().flat_map(|p| p.acceleration.physical_points()).collect());
         let moment_unit = format!("N·{}", units.length);
         let moment_per_nm = 1000.0 / units.mm_per_unit;
+        let force_figures = ForceFigures::new(mech, show.per_body);
         let force_spec = forces.filter(|_| show.forces).map(|rf| {
-            let per_body: Vec<Vec<Vec<_>>> =
-                states.iter().zip(rf.forces).map(|(s, f)| body_forces(mech, rf.dynamics, s, f)).collect();
-            let figures = (0..mech.bodies.len())
-                .map(|b| {
-                    let e = per_body
-                        .iter()
-                        .map(|bf| Extent::of(body_polygon(b, &bf[b]).physical_points()))
-                        .fold(None, Extent::union);
-                    (caption(mech, b), e)
+            let polygons: Vec<Vec<ForcePolygon>> =
+                states.iter().zip(rf.forces).map(|(s, f)| force_figures.polygons(mech, rf.dynamics, s, f)).collect();
+            let figures = force_figures
+                .captions(mech)
+                .into_iter()
+                .enumerate()
+                .map(|(i, caption)| {
+                    let e = polygons.iter().map(|p| Extent::of(p[i].physical_points())).fold(None, Extent::union);
+                    (caption, e)
                 })
                 .collect();
             let rows: Vec<_> =
@@ -150,7 +155,7 @@ impl LinkageFrames {
             forces: frame.forces.is_some(),
             ..show
         };
-        LinkageFrames { frame, show, spans, moment_per_nm }
+        LinkageFrames { frame, show, spans, moment_per_nm, figures: force_figures }
     }
 
     /// What every frame shares: the traced points' paths, the panels' titles with their
@@ -192,8 +197,7 @@ impl LinkageFrames {
             .then(|| polygons_of(mech, state, self.show.points.as_deref()));
         let moment_unit = format!("N·{}", self.frame.units.length);
         let figures: Option<(Vec<ForcePolygon>, _)> = force.map(|(dynamics, f)| {
-            let per_body = body_forces(mech, dynamics, state, f);
-            let polys = per_body.iter().enumerate().map(|(b, bf)| body_polygon(b, bf)).collect();
+            let polys = self.figures.polygons(mech, dynamics, state, f);
             (polys, magnitudes(mech, f, &moment_unit, self.moment_per_nm))
         });
         let figures = figures.as_ref().map(|(p, m)| (&p[..], &m[..]));

@@ -10,7 +10,7 @@ use crate::draw::Drawing;
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
-use crate::figure::linkage::forces::{body_forces, body_polygon};
+use crate::figure::linkage::forces::ForceFigures;
 use crate::figure::linkage::frame::{Show, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
@@ -38,6 +38,8 @@ pub struct LinkageSheets {
     paths: Drawing,
     /// The ground guides' spans on paper.
     spans: Vec<Option<(Point, Point)>>,
+    /// The force figures drawn.
+    figures: ForceFigures,
 }
 
 impl LinkageSheets {
@@ -46,6 +48,7 @@ impl LinkageSheets {
     pub fn new(
         paper: Paper,
         name: &str,
+        mech: &Mechanism,
         figure: &LinkageFigure,
         states: &[State],
         show: Show,
@@ -80,7 +83,8 @@ impl LinkageSheets {
         let mut paths = Drawing::new(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head });
         let tl = fig::trajectory_layer(&mut paths);
         fig::trajectories(&mut paths, tl, &paper_figure, &paper_refs);
-        LinkageSheets { layout, show, k_l, name: name.to_string(), origin, paper_figure, paths, spans }
+        let figures = ForceFigures::new(mech, show.per_body);
+        LinkageSheets { layout, show, k_l, name: name.to_string(), origin, paper_figure, paths, spans, figures }
     }
 
     /// The page of one position: `table` its values, `sheet` its number (from 1) and the
@@ -97,9 +101,8 @@ impl LinkageSheets {
         let shown = shown(&self.show);
         let polys =
             (shown.velocity || shown.acceleration).then(|| polygons_of(mech, state, self.show.points.as_deref()));
-        let figures: Option<Vec<_>> = force.filter(|_| shown.forces).map(|(dynamics, f)| {
-            body_forces(mech, dynamics, state, f).iter().enumerate().map(|(b, bf)| body_polygon(b, bf)).collect()
-        });
+        let figures: Option<Vec<_>> =
+            force.filter(|_| shown.forces).map(|(dynamics, f)| self.figures.polygons(mech, dynamics, state, f));
         let page_polys = PagePolygons {
             velocity: polys.as_ref().filter(|_| shown.velocity).map(|p| &p.velocity),
             acceleration: polys.as_ref().filter(|_| shown.acceleration).map(|p| &p.acceleration),

@@ -75,6 +75,9 @@ pub struct ForcePolygon {
     pub chain: Vec<NamedVector>,
     /// Resultants drawn across it.
     pub resultants: Vec<Resultant>,
+    /// How many of the chain's last vectors are the unknowns that closing the polygon finds
+    /// (the dyad's R_C^t and R_A^t): drawn in [`RESULTANT`] red, as the resultants.
+    pub found: usize,
 }
 
 impl ForcePolygon {
@@ -127,13 +130,15 @@ pub fn draw(
     names.letter(pole, &poly.pole, s.text, pole - centroid, None);
     // Every segment drawn so far, for resultants to keep off.
     let mut drawn: Vec<(Point, Point)> = Vec::new();
+    let first_found = poly.chain.len().saturating_sub(poly.found);
     for (i, nv) in poly.chain.iter().enumerate() {
         let seg = (pts[i], pts[i + 1]);
-        if arrow(d, l, None, seg, s) {
+        let color = (i >= first_found).then_some(RESULTANT);
+        if arrow(d, l, color, seg, s) {
             drawn.push(seg);
         }
         names.segment(seg.0, seg.1);
-        name(&mut names, seg, &nv.name, nv.v, 0.5, centroid, None, s);
+        name(&mut names, seg, &nv.name, nv.v, 0.5, centroid, color, s);
     }
     for r in &poly.resultants {
         let seg = (pts[r.from], pts[r.to]);
@@ -405,6 +410,7 @@ mod tests {
                 NamedVector::new("T2", Vector::new(-4.0, 5.0)),
             ],
             resultants: vec![Resultant { name: "T".into(), from: 2, to: 4, name_at: 0.5 }],
+            found: 0,
         }
     }
 
@@ -467,7 +473,7 @@ mod tests {
             })
             .collect();
         chain.push(NamedVector::new("R", Vector::new(30.0, 0.0)));
-        let poly = ForcePolygon { pole: "f".into(), chain, resultants: vec![] };
+        let poly = ForcePolygon { pole: "f".into(), chain, resultants: vec![], found: 0 };
         let mut d = drawing(s);
         let boxes = draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s, &[]);
         assert_eq!(boxes.len(), 10);
