@@ -107,7 +107,8 @@ fn frames_draw_the_polygons_at_the_printed_scales() {
         let paper = d.paper_mm_per_unit.unwrap();
         let k_v = printed_scale(&d, "Velocity polygon", "k_v");
         let k_a = printed_scale(&d, "Acceleration polygon", "k_a");
-        let k_f = printed_scale(&d, "Force polygons", "k_f");
+        // Each force figure has its own scale, in its caption: R_A is found in the dyad's.
+        let k_f = printed_scale(&d, "Dyad 2–3 (RRP)", "k_f");
         // Some velocity arrow from the pole measures |v_A| at k_v, another |v_B| …
         let measured = |layer: &str, k: f64| -> Vec<f64> {
             arrows(&d, layer).iter().map(|(a, b)| (b - a).norm() * paper * k).collect()
@@ -118,7 +119,7 @@ fn frames_draw_the_polygons_at_the_printed_scales() {
         let st = &states[k];
         has(&measured("VELOCITY", k_v), st.velocity(crank_pin).norm(), "|v_A|");
         has(&measured("ACCELERATION", k_a), st.acceleration(crank_pin).norm(), "|a_A|");
-        // The reaction at the crank pin, on the mechanism and in the polygons, at k_f.
+        // The reaction at the crank pin in the dyad's polygon, at its k_f.
         let joint_a = s.mechanism.joints.iter().position(|j| j.name == "A").unwrap();
         has(&measured("FORCES", k_f), forces[k].reactions[joint_a].force.norm(), "|R_A|");
     }

@@ -50,6 +50,7 @@ pub(super) fn products(
         velocity: spec.outputs.velocity,
         acceleration: spec.outputs.acceleration,
         forces: spec.outputs.forces && !motion.forces.is_empty(),
+        scales: super::scale_choice(scene.frame_scales),
     };
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
     let external = spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
@@ -142,11 +143,11 @@ pub(super) fn products(
             let (spec, layout) = (spec.clone(), layout.clone());
             Box::new(move |k, s_deg| {
                 let (pos, force) = solve_at(&spec, sides.get(k).copied().unwrap_or(spec.geometry.branch), s_deg)?;
-                Ok(layout.moving(&spec.geometry, &pos, force.as_ref().filter(|_| show.forces)))
+                Ok(layout.moving(k, &spec.geometry, &pos, force.as_ref().filter(|_| show.forces)))
             })
         },
     };
-    let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
+    let pose = move |k: usize| layout.moving(k, &geom, &positions[k], forces.get(k).filter(|_| show.forces));
     Ok(extras.with_motion(
         name.clone(),
         super::mm_per_unit(scene.units),
@@ -639,9 +640,9 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
     .filter_map(|(n, on)| on.then_some(n))
     .collect();
     let len = layout.frame.units.length;
-    let scale = |s: Option<(crate::figure::fourbar::Scale, Point)>, unit: String| {
-        s.map(|(s, _)| ScaleRecord { value: s.per_mm, unit })
-    };
+    // The first frame's scales (each frame prints its own with scales per frame).
+    let first = layout.frame.scales_at(0);
+    let scale = |s: Option<f64>, unit: String| s.map(|value| ScaleRecord { value, unit });
     let s = Summary {
         kind: "fourbar",
         name: &scene.name,
@@ -656,9 +657,9 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         dead_points: &motion.dead_points,
         scales: Scales {
             k_l: ScaleRecord { value: layout.frame.k_l, unit: format!("{len}/mm") },
-            k_v: scale(layout.frame.velocity, format!("({len}/s)/mm")),
-            k_a: scale(layout.frame.acceleration, format!("({len}/s²)/mm")),
-            k_f: scale(layout.frame.forces, "N/mm".to_string()),
+            k_v: scale(first.k_v, format!("({len}/s)/mm")),
+            k_a: scale(first.k_a, format!("({len}/s²)/mm")),
+            k_f: scale(first.k_f.first().copied(), "N/mm".to_string()),
         },
         positions: Vec::new(),
     };
@@ -677,14 +678,18 @@ fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String
     }
     let k_l = crate::figure::fourbar::scale_text(layout.frame.k_l);
     s.push_str(&format!("; k_l = {k_l} {}/mm", layout.frame.units.length));
+    let first = layout.frame.scales_at(0);
     for (n, sc, u) in [
-        ("k_v", layout.frame.velocity, format!("({}/s)/mm", layout.frame.units.length)),
-        ("k_a", layout.frame.acceleration, format!("({}/s²)/mm", layout.frame.units.length)),
-        ("k_f", layout.frame.forces, "N/mm".to_string()),
+        ("k_v", first.k_v, format!("({}/s)/mm", layout.frame.units.length)),
+        ("k_a", first.k_a, format!("({}/s²)/mm", layout.frame.units.length)),
+        ("k_f", first.k_f.first().copied(), "N/mm".to_string()),
     ] {
-        if let Some((sc, _)) = sc {
-            s.push_str(&format!("; {n} = {} {u}", crate::figure::fourbar::scale_text(sc.per_mm)));
+        if let Some(sc) = sc {
+            s.push_str(&format!("; {n} = {} {u}", crate::figure::fourbar::scale_text(sc)));
         }
+    }
+    if layout.show.scales == crate::figure::fourbar::ScaleChoice::PerFrame {
+        s.push_str(" at the first frame (each frame prints its own)");
     }
     s.push('\n');
     s

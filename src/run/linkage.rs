@@ -182,6 +182,7 @@ pub(super) fn products(
         forces: p.forces && out.forces,
         points: p.points.clone(),
         per_body: p.per_body,
+        scales: super::scale_choice(scene.frame_scales),
     };
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
@@ -379,13 +380,13 @@ pub(super) fn products(
             Box::new(move |k, t| {
                 let (state, force) = at.solve(k, t)?;
                 let force = at.dynamics.as_ref().zip(force.as_ref());
-                Ok(frames.moving(&figure, &mech, &state, force))
+                Ok(frames.moving(k, &figure, &mech, &state, force))
             })
         },
     };
     let pose = move |k: usize| {
         let force = dynamics.as_ref().zip(forces.get(k));
-        frames.moving(&figure, &mech, &states[k], force)
+        frames.moving(k, &figure, &mech, &states[k], force)
     };
     Ok(extras.with_motion(
         scene.name.clone(),

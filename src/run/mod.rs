@@ -198,3 +198,12 @@ pub(crate) fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -
 pub(crate) fn solve_err(file: &str) -> impl FnOnce(crate::solve::SolveError) -> Error + '_ {
     move |source| Error::Solve { file: file.to_string(), source }
 }
+
+/// The figures' scale choice for the scene's `[frames] scales`.
+fn scale_choice(s: crate::scene::FrameScales) -> crate::figure::shared::panels::ScaleChoice {
+    use crate::figure::shared::panels::ScaleChoice;
+    match s {
+        crate::scene::FrameScales::PerFrame => ScaleChoice::PerFrame,
+        crate::scene::FrameScales::Fixed => ScaleChoice::Fixed,
+    }
+}

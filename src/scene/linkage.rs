@@ -265,6 +265,8 @@ pub struct RawLinkageScene {
     pub load: Vec<RawLoad>,
     /// What the frames draw beside the mechanism.
     pub polygons: Option<RawPolygons>,
+    /// How the frames are drawn.
+    pub frames: Option<super::RawFrames>,
     /// What is computed: `"position"`, `"velocity"`, `"acceleration"`, `"forces"`.
     pub outputs: Option<Vec<String>>,
 }
@@ -428,6 +430,8 @@ pub struct LinkageScene {
     pub dynamics: Option<Dynamics>,
     /// What the frames draw beside the mechanism.
     pub polygons: Polygons,
+    /// How the frames' polygon scales are chosen.
+    pub frame_scales: super::FrameScales,
     /// What is computed.
     pub outputs: Outputs,
 }
@@ -509,6 +513,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
     let dynamics = check_dynamics(&raw, raw.units, &ground_points, &mechanism)?;
     let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
+    let frame_scales = super::check_frames(raw.frames.as_ref())?;
     let outputs = check_outputs(raw.outputs.as_deref(), dynamics.is_some(), &raw.measure, &measures)?;
     Ok(LinkageScene {
         name,
@@ -520,6 +525,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         diagram_axis,
         dynamics,
         polygons,
+        frame_scales,
         outputs,
     })
 }

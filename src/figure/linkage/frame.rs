@@ -17,7 +17,7 @@ use crate::figure::linkage::forces::{ForceFigures, magnitudes, on_mechanism};
 use crate::figure::linkage::polygon::{LinkagePolygons, polygons_of};
 use crate::figure::linkage::{self as fig, LinkageFigure};
 use crate::figure::shared::forces::{self, ForcePolygon};
-use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
+use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec, ScaleChoice};
 use crate::figure::shared::vocab::{layer_of, layers};
 
 /// Largest extent of the mechanism's motion on paper, millimetres (as the four-bar's).
@@ -36,11 +36,20 @@ pub struct Show {
     pub points: Option<Vec<String>>,
     /// One force figure per moving body instead of one per Assur group.
     pub per_body: bool,
+    /// How the frames' polygon scales are chosen (the scene's `[frames] scales`).
+    pub scales: ScaleChoice,
 }
 
 impl Default for Show {
     fn default() -> Show {
-        Show { velocity: true, acceleration: true, forces: true, points: None, per_body: false }
+        Show {
+            velocity: true,
+            acceleration: true,
+            forces: true,
+            points: None,
+            per_body: false,
+            scales: ScaleChoice::default(),
+        }
     }
 }
 
@@ -107,9 +116,9 @@ impl LinkageFrames {
         } else {
             Vec::new()
         };
-        let velocity = show.velocity.then(|| polys.iter().flat_map(|p| p.velocity.physical_points()).collect());
+        let velocity = show.velocity.then(|| polys.iter().map(|p| Extent::of(p.velocity.physical_points())).collect());
         let acceleration =
-            show.acceleration.then(|| polys.iter().flat_map(|p| p.acceleration.physical_points()).collect());
+            show.acceleration.then(|| polys.iter().map(|p| Extent::of(p.acceleration.physical_points())).collect());
         let moment_unit = format!("N·{}", units.length);
         let moment_per_nm = 1000.0 / units.mm_per_unit;
         let force_figures = ForceFigures::new(mech, show.per_body);
@@ -120,10 +129,7 @@ impl LinkageFrames {
                 .captions(mech)
                 .into_iter()
                 .enumerate()
-                .map(|(i, caption)| {
-                    let e = polygons.iter().map(|p| Extent::of(p[i].physical_points())).fold(None, Extent::union);
-                    (caption, e)
-                })
+                .map(|(i, caption)| (caption, polygons.iter().map(|p| Extent::of(p[i].physical_points())).collect()))
                 .collect();
             let rows: Vec<_> =
                 rf.forces.iter().flat_map(|f| magnitudes(mech, f, &moment_unit, moment_per_nm)).collect();
@@ -147,6 +153,7 @@ impl LinkageFrames {
             velocity,
             acceleration,
             forces: force_spec,
+            scales: show.scales,
         });
         let spans = fig::guide_spans(fig, &motion, &frame.sizes);
         let show = Show {
@@ -172,6 +179,7 @@ impl LinkageFrames {
     /// forces are shown), the polygons, the force figures and the table.
     pub fn moving(
         &self,
+        k: usize,
         fig: &LinkageFigure,
         mech: &Mechanism,
         state: &State,
@@ -181,8 +189,8 @@ impl LinkageFrames {
         let s = self.frame.sizes;
         self.frame.draw_position_text(&mut d, time_text(state.t));
         let force = force.filter(|_| self.show.forces);
-        let arrows = match (force, self.frame.forces) {
-            (Some((dynamics, f)), Some((scale, _))) => {
+        let arrows = match (force, self.frame.mechanism_forces) {
+            (Some((dynamics, f)), Some(scale)) => {
                 let links = links_of(fig, &state.q);
                 let pts: Vec<Point> = links.iter().flat_map(|(a, b)| [*a, *b]).collect();
                 let inside = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64);
@@ -203,7 +211,7 @@ impl LinkageFrames {
         let figures = figures.as_ref().map(|(p, m)| (&p[..], &m[..]));
         let vel = polys.as_ref().filter(|_| self.show.velocity).map(|p| &p.velocity);
         let acc = polys.as_ref().filter(|_| self.show.acceleration).map(|p| &p.acceleration);
-        self.frame.draw_polygons(&mut d, vel, acc, figures);
+        self.frame.draw_polygons(&mut d, k, vel, acc, figures);
         d
     }
 }

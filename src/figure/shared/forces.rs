@@ -119,10 +119,26 @@ pub fn draw(
     s: Sizes,
     keep_off: &[TextBox],
 ) -> Vec<TextBox> {
+    draw_within(d, poly, scale, pole, s, keep_off, None)
+}
+
+/// [`draw`], the names inside `within` (the figure's panel) where they can be.
+pub fn draw_within(
+    d: &mut Drawing,
+    poly: &ForcePolygon,
+    scale: Scale,
+    pole: Point,
+    s: Sizes,
+    keep_off: &[TextBox],
+    within: Option<TextBox>,
+) -> Vec<TextBox> {
     let l = layer_of(d, layers::FORCES);
     let mut names = labels::Polygon::of_names();
     for b in keep_off {
         names.keep_off(*b);
+    }
+    if let Some(w) = within {
+        names.keep_within(w);
     }
     let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);

@@ -198,6 +198,8 @@ pub struct Polygon {
     segments: Vec<(Point, Point)>,
     obstacles: Vec<TextBox>,
     merge: bool,
+    /// The box every label should stay inside (its panel), when set.
+    within: Option<TextBox>,
 }
 
 impl Polygon {
@@ -258,6 +260,18 @@ impl Polygon {
         self.obstacles.push(b);
     }
 
+    /// The box every label should stay inside (its panel): a candidate reaching out of it
+    /// scores as if it overlapped a letter.
+    pub fn keep_within(&mut self, b: TextBox) {
+        self.within = Some(b);
+    }
+
+    /// Whether `bx` leaves the box labels should stay inside.
+    fn outside(&self, bx: &TextBox) -> bool {
+        self.within
+            .is_some_and(|w| bx.min.x < w.min.x || bx.min.y < w.min.y || bx.max.x > w.max.x || bx.max.y > w.max.y)
+    }
+
     /// A segment of the polygon that letters should not cover.
     pub fn segment(&mut self, a: Point, b: Point) {
         if a.x.is_finite() && a.y.is_finite() && b.x.is_finite() && b.y.is_finite() {
@@ -307,7 +321,7 @@ impl Polygon {
                 let bound = best.as_ref().map(|(s, ..)| *s);
                 // Overlapped letters counted only until the candidate has lost.
                 let most_hits = bound.map_or(usize::MAX, |s| s.0);
-                let mut hits = 0;
+                let mut hits = usize::from(self.outside(&bx));
                 for b in blockers_near {
                     if b.overlaps(&bx) {
                         hits += 1;
@@ -623,7 +637,8 @@ mod tests {
             for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
                 let bx = TextBox::around(c, half);
                 let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
-                let hits = boxes.iter().chain(&p.obstacles).filter(|b| b.overlaps(&bx)).count();
+                let hits =
+                    boxes.iter().chain(&p.obstacles).filter(|b| b.overlaps(&bx)).count() + usize::from(p.outside(&bx));
                 let through =
                     leader.map_or(0, |(a, b)| boxes.iter().chain(&p.obstacles).filter(|x| x.crosses(a, b)).count());
                 let crossed = p.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();

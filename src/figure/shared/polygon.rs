@@ -128,12 +128,30 @@ pub fn draw_keeping_off(
     s: Sizes,
     keep_off: &[labels::TextBox],
 ) {
+    draw_within(d, poly, layer, scale, pole, s, keep_off, None);
+}
+
+/// [`draw_keeping_off`], its letters inside `within` (its panel) where they can be.
+#[allow(clippy::too_many_arguments)]
+pub fn draw_within(
+    d: &mut Drawing,
+    poly: &PointPolygon,
+    layer: layers::Layer,
+    scale: Scale,
+    pole: Point,
+    s: Sizes,
+    keep_off: &[labels::TextBox],
+    within: Option<labels::TextBox>,
+) {
     let l = layer_of(d, layer);
     let c = layer_of(d, layers::CONSTRUCTION);
     let pts = poly.drawn_points(scale, pole);
     let mut letters = labels::Polygon::of_points();
     for b in keep_off {
         letters.keep_off(*b);
+    }
+    if let Some(w) = within {
+        letters.keep_within(w);
     }
     // Directions: full dashed lines through their point, reaching a little past the point
     // found on both sides.

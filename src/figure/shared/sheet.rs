@@ -263,6 +263,49 @@ pub fn finest(extent: Vector, area: Vector) -> Fit {
     Fit { per_mm, fill: full / per_mm }
 }
 
+/// The fill of `area` (its tighter direction) by a figure of physical `extent` at `per_mm`
+/// (physical units per paper mm; `area` in paper mm).
+pub fn fill(extent: Vector, area: Vector, per_mm: f64) -> f64 {
+    (extent.x / area.x).max(extent.y / area.y) / per_mm
+}
+
+/// The least fill of its area a figure keeps from frame to frame before it takes a finer
+/// scale ([`frame_scales`]): half.
+pub const MIN_FRAME_FILL: f64 = 0.5;
+
+/// The scale of a figure at each frame of an animation (issue 31: every polygon readable at
+/// every position), physical units per paper mm, for the figure's physical size `extents[k]`
+/// (width, height; `None` or zero where nothing is drawn) at frame `k` in an area `area`
+/// (paper mm): each frame keeps the previous frame's scale while the figure fills between
+/// [`MIN_FRAME_FILL`] and all of the area at it, and else takes [`fit`]'s (a nice scale at
+/// which it fills between half and all of it). The scale so changes in steps, and only
+/// when it must (hysteresis: a figure that grows and shrinks a little about a step does not
+/// make the animation flicker); a frame with nothing to draw keeps the last scale (1 before
+/// any). The live page and the frames use this one choice ([`scale_near`] between frames).
+pub fn frame_scales(extents: &[Option<Vector>], area: Vector) -> Vec<f64> {
+    let mut out = Vec::with_capacity(extents.len());
+    let mut last: Option<f64> = None;
+    for e in extents {
+        let k = scale_near(last, *e, area);
+        last = Some(k);
+        out.push(k);
+    }
+    out
+}
+
+/// The scale of a figure of physical size `extent` in `area` (paper mm) after a frame drawn
+/// at `previous` (see [`frame_scales`]): `previous` while the figure fills between
+/// [`MIN_FRAME_FILL`] and all of the area at it, else [`fit`]'s.
+pub fn scale_near(previous: Option<f64>, extent: Option<Vector>, area: Vector) -> f64 {
+    let drawable = extent.filter(|e| e.x.is_finite() && e.y.is_finite() && e.x.max(e.y) > 0.0);
+    match (previous, drawable) {
+        (Some(k), None) => k,
+        (None, None) => 1.0,
+        (Some(k), Some(e)) if (MIN_FRAME_FILL..=1.0).contains(&fill(e, area, k)) => k,
+        (_, Some(e)) => fit(e, area).per_mm,
+    }
+}
+
 /// Where to put a figure's origin (its pole) so that the figure spanning `min`…`max`
 /// (physical units, relative to the origin) at `per_mm` is centred in `area`.
 pub fn centre(min: Vector, max: Vector, per_mm: f64, area: Bounds) -> Point {
@@ -407,6 +450,36 @@ mod tests {
             }
         }
         assert_eq!(fit(Vector::zeros(), area).per_mm, 1.0);
+    }
+
+    #[test]
+    fn frame_scales_step_only_when_the_figure_leaves_half_to_all_of_its_area() {
+        let area = Vector::new(100.0, 80.0);
+        // A figure breathing between 60 and 95 units wide: one scale throughout (it fills
+        // 0.6–0.95 of the area at 1 unit/mm).
+        let breathing: Vec<Option<Vector>> =
+            (0..40).map(|k| Some(Vector::new(77.5 + 17.5 * (k as f64 * 0.5).sin(), 10.0))).collect();
+        let k = frame_scales(&breathing, area);
+        assert!(k.iter().all(|&x| x == k[0]), "{k:?}");
+        // A figure growing from 10 to 1000 units: steps up, always filling half to all.
+        let growing: Vec<Option<Vector>> =
+            (0..200).map(|i| Some(Vector::new(10.0 * 10f64.powf(i as f64 / 100.0), 5.0))).collect();
+        let k = frame_scales(&growing, area);
+        for (e, k) in growing.iter().zip(&k) {
+            let f = fill(e.unwrap(), area, *k);
+            assert!((MIN_FRAME_FILL..=1.0).contains(&f), "{e:?} at {k}: fill {f}");
+        }
+        let steps = k.windows(2).filter(|w| w[0] != w[1]).count();
+        assert!((3..=8).contains(&steps), "{steps} steps over two decades: {k:?}");
+        // Nothing to draw keeps the last scale.
+        assert_eq!(frame_scales(&[Some(Vector::new(50.0, 1.0)), None, Some(Vector::zeros())], area), vec![1.0; 3]);
+        assert_eq!(frame_scales(&[None], area), vec![1.0]);
+        // Coming down from a coarser scale, a figure keeps it while it fills half the area
+        // (fit alone would take the finer one at once).
+        let e = Some(Vector::new(130.0, 1.0));
+        assert_eq!(fit(e.unwrap(), area).per_mm, 2.0);
+        assert_eq!(scale_near(Some(2.5), e, area), 2.5);
+        assert_eq!(scale_near(Some(5.0), e, area), 2.0);
     }
 
     #[test]

@@ -130,9 +130,11 @@ pub mod layers {
     pub const DIMENSIONS: Layer = ("DIMENSIONS", Aci::BLACK, LineType::Continuous);
     /// Per-position text (the crank angle).
     pub const TEXT: Layer = ("TEXT", Aci::BLACK, LineType::Continuous);
+    /// The frames of an animation's panels: thin light grey rectangles.
+    pub const PANELS: Layer = ("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
     /// Every content layer, in drawing order (later on top).
-    pub const ALL: [Layer; 8] =
-        [COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
+    pub const ALL: [Layer; 9] =
+        [PANELS, COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
 }
 
 /// A drawing with the content layers created in drawing order.
