@@ -627,7 +627,19 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         .positions
         .par_iter()
         .enumerate()
-        .map(|(i, p)| Value::Object(position_record(p, forces_at(motion, i, forces), qs).into_iter().collect()))
+        .map(|(i, p)| {
+            let mut record = position_record(p, forces_at(motion, i, forces), qs);
+            // The scales this position's frame is drawn at (each frame its own by default).
+            let k = layout.frame.scales_at(i);
+            let mut scales = serde_json::Map::new();
+            scales.extend(k.k_v.map(|v| ("k_v".to_string(), Value::from(v))));
+            scales.extend(k.k_a.map(|v| ("k_a".to_string(), Value::from(v))));
+            if !k.k_f.is_empty() {
+                scales.insert("k_f".to_string(), Value::from(k.k_f.clone()));
+            }
+            record.insert("scales".to_string(), Value::Object(scales));
+            Value::Object(record.into_iter().collect())
+        })
         .collect();
     let outputs = [
         ("position", true),
@@ -800,8 +812,8 @@ fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUn
     sheet::Table { header, rows }
 }
 
-/// The printed pages, one per position (in parallel): `sheets/<name>/<position>.svg` and
-/// the PDF.
+/// The printed pages, a set per position (in parallel): `sheets/<name>/<position>-<page>.svg`
+/// (`mechanism`, `polygons`, `forces`) and the PDF with every page in order.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -814,23 +826,33 @@ fn sheet_pages(
     names: &[String],
 ) -> Vec<products::Page> {
     let geom = scene.spec.geometry;
+    let rows =
+        motion.positions.first().map_or(0, |p| sheet_table(p, forces_at(motion, 0, show.forces), qs, units).rows.len());
+    let (external, loads) =
+        scene.spec.dynamics.as_ref().map_or((&[][..], &[][..]), |d| (d.forces.as_slice(), d.loads.as_slice()));
     let sheets =
-        FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units);
-    let n = motion.positions.len();
-    motion
+        FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units, rows)
+            .with_loads(external, loads);
+    let per = sheets.per_position();
+    let total = motion.positions.len() * per;
+    let sets: Vec<Vec<products::Page>> = motion
         .positions
         .par_iter()
         .enumerate()
         .map(|(i, p)| {
             let f = forces_at(motion, i, show.forces);
             let table = sheet_table(p, f, qs, units);
-            let (drawing, _) = sheets.page(&geom, p, f, &table, (i + 1, n));
-            products::Page {
-                stem: names[i].to_lowercase(),
-                drawing,
-                window: paper.bounds(),
-                hairline_mm: sheet::HAIRLINE_MM,
-            }
+            let set = sheets.pages(&geom, p, f, &table, (i * per + 1, total));
+            set.pages
+                .into_iter()
+                .map(|(kind, drawing)| products::Page {
+                    stem: format!("{}-{kind}", names[i].to_lowercase()),
+                    drawing,
+                    window: paper.bounds(),
+                    hairline_mm: sheet::HAIRLINE_MM,
+                })
+                .collect()
         })
-        .collect()
+        .collect();
+    sets.into_iter().flatten().collect()
 }

@@ -1059,21 +1059,27 @@ fn sheet_pages(
     show: Show,
     names: &[String],
 ) -> Vec<products::Page> {
-    let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some());
-    let n = states.len();
-    states
+    let rows = states.first().map_or(0, |_| sheet_table(plots, 0, forces.map(|(_, f)| (scene, &f[0]))).rows.len());
+    let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows);
+    let per = sheets.per_position();
+    let total = states.len() * per;
+    let sets: Vec<Vec<products::Page>> = states
         .par_iter()
         .enumerate()
         .map(|(k, st)| {
             let force = forces.map(|(d, f)| (d, &f[k]));
             let table = sheet_table(plots, k, force.map(|(_, f)| (scene, f)));
-            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (k + 1, n));
-            products::Page {
-                stem: names[k].to_lowercase(),
-                drawing,
-                window: paper.bounds(),
-                hairline_mm: sheet::HAIRLINE_MM,
-            }
+            sheets
+                .pages(&scene.mechanism, st, force, &table, (k * per + 1, total))
+                .into_iter()
+                .map(|(kind, drawing)| products::Page {
+                    stem: format!("{}-{kind}", names[k].to_lowercase()),
+                    drawing,
+                    window: paper.bounds(),
+                    hairline_mm: sheet::HAIRLINE_MM,
+                })
+                .collect()
         })
-        .collect()
+        .collect();
+    sets.into_iter().flatten().collect()
 }

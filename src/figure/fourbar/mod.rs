@@ -88,6 +88,9 @@ pub struct Layout {
     pub link_loads: Vec<LinkLoad>,
 }
 
+/// Where a polygon is drawn: its scale and its pole.
+pub type Place = (Scale, Point);
+
 /// Caption of the dyad's force polygon.
 pub const DYAD_CAPTION: &str = "Dyad 2–3 (Fig. 4)";
 /// Caption of the crank's force polygon.
@@ -225,7 +228,7 @@ impl Layout {
 
     /// The velocity and acceleration polygons' scales and poles at position `k` of the run
     /// (`pos`), as [`Layout::moving`] draws them.
-    pub fn polygon_places(&self, k: usize, pos: &Position) -> (Option<(Scale, Point)>, Option<(Scale, Point)>) {
+    pub fn polygon_places(&self, k: usize, pos: &Position) -> (Option<Place>, Option<Place>) {
         let Some(kin) = pos.kin.as_ref() else { return (None, None) };
         let k_l = self.frame.k_l;
         let v =
@@ -240,7 +243,7 @@ impl Layout {
 
     /// The force figures' (the dyad's, the crank's) scales and poles at position `k` with
     /// forces `f`, as [`Layout::moving`] draws them.
-    pub fn force_places(&self, k: usize, f: &Forces) -> Vec<(Scale, Point)> {
+    pub fn force_places(&self, k: usize, f: &Forces) -> Vec<Place> {
         let Some(cells) = &self.frame.forces else { return Vec::new() };
         [dyad_polygon(f), crank_polygon(f)]
             .iter()

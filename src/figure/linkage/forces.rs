@@ -253,7 +253,7 @@ pub fn group_polygon(
     let total_known = after_known.last().copied().unwrap_or(0);
     let found_start = |k: usize| total_known + found[k + 1..].iter().map(Vec::len).sum::<usize>();
     let mut resultants = Vec::new();
-    for k in 0..n.saturating_sub(1) {
+    for (k, &end_known) in after_known.iter().enumerate().take(n.saturating_sub(1)) {
         let front = &fig.bodies[..=k];
         let between: Vec<usize> = fig
             .inside
@@ -276,7 +276,7 @@ pub fn group_polygon(
                 })
                 .unwrap_or(fig.bodies[0]);
             let name = reaction_on(mech, f, j, on).name;
-            resultants.push(Resultant { name, from: after_known[k], to: found_start(k), name_at: 0.5 });
+            resultants.push(Resultant { name, from: end_known, to: found_start(k), name_at: 0.5 });
         }
     }
     let found_count = found.iter().map(Vec::len).sum();

@@ -217,7 +217,7 @@ impl LinkageFrames {
 }
 
 /// The bodies' outlines as segments at `q`, for force arrows to keep off.
-fn links_of(fig: &LinkageFigure, q: &[f64]) -> Vec<(Point, Point)> {
+pub(crate) fn links_of(fig: &LinkageFigure, q: &[f64]) -> Vec<(Point, Point)> {
     let mut out = Vec::new();
     for (i, b) in fig.bodies.iter().enumerate() {
         let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();

@@ -376,11 +376,13 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
 /// sized to the rows (at most 0.9 letter height).
 fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
     let ncols = table.header.len();
-    if ncols == 0 {
+    if ncols == 0 || b.width() <= 0.0 || b.height() <= 0.0 {
         return;
     }
     let pad = 0.6 * s.text;
-    let n = table.rows.len() + 1;
+    let sets = table_sets(b, table.rows.len(), ncols, s);
+    let per_set = table.rows.len().div_ceil(sets).max(1);
+    let n = per_set + 1;
     let row = ((b.height() - 2.0 * pad) / n as f64).min(2.0 * s.text);
     let h = (0.5 * row).min(0.9 * s.text);
     // Columns: the name and the unit a little wider than the numbers.
@@ -396,38 +398,56 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
         })
         .collect();
     let total: f64 = weights.iter().sum();
-    let width = b.width() - 2.0 * pad;
-    let mut edges = vec![b.min.x + pad];
-    for w in &weights {
-        edges.push(edges.last().copied().unwrap_or(0.0) + width * w / total);
-    }
+    let set_w = (b.width() - 2.0 * pad) / sets as f64;
     let top = b.max.y - pad;
-    let cell = |d: &mut Drawing, r: usize, c: usize, value: &str| {
-        let y = top - (r as f64 + 0.5) * row;
-        let numeric = c > 0 && c + 1 < ncols;
-        let (x, halign) =
-            if numeric { (edges[c + 1] - 1.2 * pad, HAlign::Right) } else { (edges[c] + 0.3 * pad, HAlign::Left) };
-        d.add(
-            l,
-            Shape::Text {
-                at: Point::new(x, y),
-                height: h,
-                value: value.to_string(),
-                halign,
-                valign: VAlign::Middle,
-                rotation: 0.0,
-            },
-        );
-    };
-    for (c, v) in table.header.iter().enumerate() {
-        cell(d, 0, c, v);
-    }
-    d.add(l, Shape::Line { from: Point::new(b.min.x + pad, top - row), to: Point::new(b.max.x - pad, top - row) });
-    for (r, cells) in table.rows.iter().enumerate() {
-        for (c, v) in cells.iter().enumerate().take(ncols) {
-            cell(d, r + 1, c, v);
+    for set in 0..sets {
+        let x0 = b.min.x + pad + set as f64 * set_w;
+        let mut edges = vec![x0];
+        for w in &weights {
+            edges.push(edges.last().copied().unwrap_or(0.0) + (set_w - pad) * w / total);
+        }
+        let cell = |d: &mut Drawing, r: usize, c: usize, value: &str| {
+            let y = top - (r as f64 + 0.5) * row;
+            let numeric = c > 0 && c + 1 < ncols;
+            let (x, halign) =
+                if numeric { (edges[c + 1] - 1.2 * pad, HAlign::Right) } else { (edges[c] + 0.3 * pad, HAlign::Left) };
+            d.add(
+                l,
+                Shape::Text {
+                    at: Point::new(x, y),
+                    height: h,
+                    value: value.to_string(),
+                    halign,
+                    valign: VAlign::Middle,
+                    rotation: 0.0,
+                },
+            );
+        };
+        for (c, v) in table.header.iter().enumerate() {
+            cell(d, 0, c, v);
+        }
+        d.add(l, Shape::Line { from: Point::new(x0, top - row), to: Point::new(x0 + set_w - pad, top - row) });
+        for (r, cells) in table.rows.iter().skip(set * per_set).take(per_set).enumerate() {
+            for (c, v) in cells.iter().enumerate().take(ncols) {
+                cell(d, r + 1, c, v);
+            }
         }
     }
+}
+
+/// The height of a table row on a sheet, in letter heights: its text 0.9 letters high.
+pub const TABLE_ROW: f64 = 1.8;
+/// The least width of one set of a table's columns, in letter heights per column.
+pub const TABLE_COLUMN_MIN: f64 = 7.0;
+
+/// Into how many sets of columns side by side a table of `rows` rows and `ncols` columns is
+/// split in the box `b` so that its rows keep [`TABLE_ROW`] letters of height (one set when
+/// it fits, at most as many as the box's width holds).
+pub fn table_sets(b: Bounds, rows: usize, ncols: usize, s: Sizes) -> usize {
+    let pad = 0.6 * s.text;
+    let fits = |sets: usize| (rows.div_ceil(sets) + 1) as f64 * TABLE_ROW * s.text <= b.height() - 2.0 * pad + 1e-9;
+    let most = ((b.width() - 2.0 * pad) / (TABLE_COLUMN_MIN * s.text * ncols as f64)).floor().max(1.0) as usize;
+    (1..=most).find(|&k| fits(k)).unwrap_or(most)
 }
 
 #[cfg(test)]
@@ -476,8 +496,9 @@ mod tests {
         assert_eq!(frame_scales(&[None], area), vec![1.0]);
         // Coming down from a coarser scale, a figure keeps it while it fills half the area
         // (fit alone would take the finer one at once).
-        let e = Some(Vector::new(130.0, 1.0));
-        assert_eq!(fit(e.unwrap(), area).per_mm, 2.0);
+        let size = Vector::new(130.0, 1.0);
+        let e = Some(size);
+        assert_eq!(fit(size, area).per_mm, 2.0);
         assert_eq!(scale_near(Some(2.5), e, area), 2.5);
         assert_eq!(scale_near(Some(5.0), e, area), 2.0);
     }

@@ -70,6 +70,27 @@ pub fn nice_scale(raw: f64) -> f64 {
     10.0 * mag
 }
 
+/// The mantissas of the drafting scales a mechanism is drawn at (GOST 2.302's reduction
+/// scales 1:2, 1:2.5, 1:4, 1:5, 1:10, 1:15, …, and their decades): a sheet's k_l is one of
+/// these × 10ᵏ. They are finer than the nice scales of the polygons (no mantissa more than
+/// 1.6 from the next), so that a mechanism can fill its panel.
+pub const DRAFTING_MANTISSAS: [f64; 6] = [1.0, 1.5, 2.0, 2.5, 4.0, 5.0];
+
+/// The smallest drafting scale ([`DRAFTING_MANTISSAS`] × 10ᵏ) at least `raw`; 1 for a zero
+/// or non-finite `raw`.
+pub fn drafting_scale(raw: f64) -> f64 {
+    if !(raw.is_finite() && raw > 0.0) {
+        return 1.0;
+    }
+    let mag = libm::pow(10f64, libm::log10(raw).floor());
+    for m in DRAFTING_MANTISSAS.iter().chain(&[10.0]) {
+        if m * mag >= raw * (1.0 - 1e-12) {
+            return m * mag;
+        }
+    }
+    10.0 * mag
+}
+
 /// The length scale k_l of a figure, model units per paper millimetre: the nice value
 /// (1, 2, 2.5, 5 × 10ᵏ) that draws a model extent `extent` (model units) at most
 /// `target_mm` paper millimetres long (0.002 m/mm draws a 0.2 m mechanism 100 mm long).
@@ -524,6 +545,14 @@ mod tests {
         assert_eq!(scale_text(0.01), "0.01");
         assert_eq!(scale_text(2.5), "2.5");
         assert_eq!(scale_text(2e-5), "2e-5");
+    }
+
+    #[test]
+    fn drafting_scales_round_up_to_the_next_gost_mantissa() {
+        for (raw, k) in [(0.0013, 0.0015), (0.0016, 0.002), (3.0, 4.0), (4.4, 5.0), (0.9, 1.0), (150.0, 150.0)] {
+            assert!((drafting_scale(raw) - k).abs() < 1e-12 * k, "{raw} -> {}", drafting_scale(raw));
+        }
+        assert_eq!(drafting_scale(f64::NAN), 1.0);
     }
 
     #[test]
