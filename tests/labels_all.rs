@@ -75,6 +75,10 @@ fn every_text_of_every_drawing_of_every_template_can_be_read() {
         ));
     }
     eprintln!("{}", counts.join("\n"));
+    // Every finding in target/labels_all.txt, to look at.
+    let all: Vec<&String> = overlaps.iter().chain(&crossed).chain(&outside).collect();
+    let list: String = all.iter().map(|s| format!("{s}\n")).collect();
+    std::fs::write(common::root().join("target/labels_all.txt"), list).unwrap();
     assert!(checked > 1000, "{checked} drawings");
     let show = |v: &[String]| v.iter().take(25).cloned().collect::<Vec<_>>();
     assert!(

@@ -73,6 +73,7 @@ pub(super) fn products(
     let mut curve = runs(&motion.positions, step, |p| p.m);
     close_full_turn(&mut curve, &motion.positions, step);
     let base = layout.base(&geom, &curve);
+    let layout = layout.with_backdrop(&base);
     let names = position_names(&motion.positions, spec.sweep.from_deg, step);
     let labels = motion.positions.iter().map(|p| format!("φ1 = {}°", angle_text(deg(p.phi1)))).collect();
     let extras = if picture_only {

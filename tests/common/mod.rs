@@ -325,6 +325,27 @@ pub fn strokes_of(shape: &mechdraw::draw::Shape) -> Vec<Stroke> {
     }
 }
 
+/// The distance between the segment a–b and the box lo–hi (0 when they meet).
+pub fn segment_box_distance(
+    a: mechdraw::geom::Vector,
+    b: mechdraw::geom::Vector,
+    lo: mechdraw::geom::Vector,
+    hi: mechdraw::geom::Vector,
+) -> f64 {
+    use mechdraw::geom::Vector;
+    if segment_crosses_box(a, b, lo, hi) {
+        return 0.0;
+    }
+    let to_segment = |p: Vector| {
+        let ab = b - a;
+        let t = if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        (p - (a + ab * t)).norm()
+    };
+    let to_box = |p: Vector| (Vector::new(p.x.clamp(lo.x, hi.x), p.y.clamp(lo.y, hi.y)) - p).norm();
+    let corners = [lo, Vector::new(hi.x, lo.y), hi, Vector::new(lo.x, hi.y)];
+    corners.iter().map(|c| to_segment(*c)).chain([to_box(a), to_box(b)]).fold(f64::INFINITY, f64::min)
+}
+
 /// Whether the segment a–b passes through the interior of the box lo–hi (Liang–Barsky).
 pub fn segment_crosses_box(
     a: mechdraw::geom::Vector,
@@ -352,9 +373,10 @@ pub fn segment_crosses_box(
 }
 
 /// The texts of `d` crossed by a stroke of another element: (text, what crosses it). A stroke
-/// crosses a text when it passes through the inside of its box grown by half the stroke's
-/// width (less a millionth of the text's height, so that a leader ending on the box's edge
-/// does not count); a circled number's own circle does not count.
+/// crosses a text when it passes through the inside of its box (shrunk by a millionth of the
+/// text's height, so that a leader ending on the box's edge does not count) or, drawn wide,
+/// comes nearer to the box than half its width; a circled number's own circle does not
+/// count.
 pub fn crossed_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
     use mechdraw::draw::Shape;
     use mechdraw::geom::{Point, Vector};
@@ -430,9 +452,12 @@ pub fn crossed_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
                     (near - c).norm() < *r - eps && (far - c).norm() > *r + eps
                 }
                 Ink::Pieces(pieces) => pieces.iter().any(|s| {
-                    let grow = 0.5 * s.width - eps;
-                    let g = Vector::new(grow, grow);
-                    segment_crosses_box(local(s.from), local(s.to), t.local.0 - g, t.local.1 + g)
+                    let (a, b) = (local(s.from), local(s.to));
+                    let (lo, hi) = (t.local.0, t.local.1);
+                    // Through the box, or (a wide stroke) nearer to it than half its width.
+                    let g = Vector::new(eps, eps);
+                    segment_crosses_box(a, b, lo + g, hi - g)
+                        || (s.width > 0.0 && segment_box_distance(a, b, lo, hi) < 0.5 * s.width - eps)
                 }),
             };
             if hit {

@@ -133,7 +133,7 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
         for q in [g.o1, g.c] {
             ground(&mut d, mech, q, s);
         }
-        let boxes = mechanism(&mut d, &g, &p, &[], None, s);
+        let boxes = mechanism(&mut d, &g, &p, &[], None, s, labels::Around::default());
         let notes = draw_centres(&mut d, &centres(&g, &p), &win, s, &boxes, off);
         let title = format!("φ1 = {}°", angle_text(pos.phi1.to_degrees()));
         let at = Point::new(win.min.x + 0.5 * s.text, win.max.y + 0.6 * s.text);

@@ -86,6 +86,9 @@ pub struct Layout {
     pub external: Vec<ExternalForce>,
     /// The link loads, drawn where they act ([`Layout::with_link_loads`]).
     pub link_loads: Vec<LinkLoad>,
+    /// What every frame shares ([`Layout::base`]), for each frame's letters to keep off
+    /// ([`Layout::with_backdrop`]).
+    pub backdrop: Option<Drawing>,
 }
 
 /// Where a polygon is drawn: its scale and its pole.
@@ -156,7 +159,7 @@ impl Layout {
             forces: force_spec,
             scales: show.scales,
         });
-        Layout { show, frame, omega1: None, external: Vec::new(), link_loads: Vec::new() }
+        Layout { show, frame, omega1: None, external: Vec::new(), link_loads: Vec::new(), backdrop: None }
     }
 
     /// The layout with the crank's angular velocity `omega1` (rad/s, CCW positive: the ω1
@@ -172,6 +175,13 @@ impl Layout {
     /// where and when they act: `F1` on the crank, `F2` on the coupler, `F3` on the rocker).
     pub fn with_link_loads(mut self, loads: &[LinkLoad]) -> Layout {
         self.link_loads = loads.to_vec();
+        self
+    }
+
+    /// The layout with what every frame shares drawn once ([`Layout::base`]): each frame's
+    /// letters keep clear of it (the coupler curve, the ground symbols, the titles).
+    pub fn with_backdrop(mut self, base: &Drawing) -> Layout {
+        self.backdrop = Some(base.clone());
         self
     }
 
@@ -215,7 +225,17 @@ impl Layout {
         };
         let omega1 = self.omega1.or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
         forces::draw_on_mechanism(&mut d, &arrows, s);
-        let _ = mechanism(&mut d, geom, pos, &arrows, omega1, s);
+        let (ll, ur) = self.frame.mechanism_panel();
+        let within = Some(labels::TextBox { min: ll, max: ur });
+        let _ = mechanism(
+            &mut d,
+            geom,
+            pos,
+            &arrows,
+            omega1,
+            s,
+            labels::Around { backdrop: self.backdrop.as_ref(), within },
+        );
         let kin = pos.kin.as_ref();
         let velocity = kin.map(|k| velocity_figure(pos, geom.c, k));
         let acceleration = kin.map(|k| acceleration_polygon(pos, geom.c, k));
@@ -291,6 +311,7 @@ pub(crate) fn mechanism(
     arrows: &[forces::ForceArrow],
     omega1: Option<f64>,
     s: Sizes,
+    around: labels::Around<'_>,
 ) -> Vec<labels::TextBox> {
     let mech = layer_of(d, layers::MECHANISM);
     let frc = layer_of(d, layers::FORCES);
@@ -359,6 +380,9 @@ pub(crate) fn mechanism(
         let v = a.arrow.1 - a.arrow.0;
         letters.letter(a.arrow.1, &a.force.name, s.text, v, None);
     }
+    // Clear of everything drawn so far and around.
+    letters.keep_off_drawing(d);
+    letters.around(around);
     // Letters and numbers on the mechanism's layer, force names on the forces' layer.
     let placed = letters.place();
     let on_mechanism = placed.len() - arrows.len();

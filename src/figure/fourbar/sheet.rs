@@ -17,6 +17,7 @@ use crate::figure::fourbar::{
     link_loads_on_mechanism, links_of, mechanism, on_mechanism, velocity_figure,
 };
 use crate::figure::shared::forces;
+use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
 use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
 use crate::figure::shared::sheet_pages::{
@@ -250,7 +251,9 @@ impl FourbarSheets {
         };
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let omega1 = Some(self.omega1).filter(|w| *w != 0.0).or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
-        let _ = mechanism(&mut d, &on_paper, &p, &arrows, omega1, s);
+        let outline = page.layout.panels[0].outline;
+        let within = Some(TextBox { min: outline.min, max: outline.max });
+        let _ = mechanism(&mut d, &on_paper, &p, &arrows, omega1, s, Around { backdrop: None, within });
         d
     }
 }

@@ -17,6 +17,7 @@ use crate::figure::linkage::forces::{ForceFigures, magnitudes, on_mechanism};
 use crate::figure::linkage::polygon::{LinkagePolygons, polygons_of};
 use crate::figure::linkage::{self as fig, LinkageFigure};
 use crate::figure::shared::forces::{self, ForcePolygon};
+use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec, ScaleChoice};
 use crate::figure::shared::vocab::{layer_of, layers};
 
@@ -75,6 +76,8 @@ pub struct LinkageFrames {
     moment_per_nm: f64,
     /// The force figures drawn.
     figures: ForceFigures,
+    /// What every frame shares (for the letters of each to keep off), once drawn.
+    backdrop: Option<Drawing>,
 }
 
 /// Every body point and guide end over the motion.
@@ -162,7 +165,10 @@ impl LinkageFrames {
             forces: frame.forces.is_some(),
             ..show
         };
-        LinkageFrames { frame, show, spans, moment_per_nm, figures: force_figures }
+        let mut out = LinkageFrames { frame, show, spans, moment_per_nm, figures: force_figures, backdrop: None };
+        let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
+        out.backdrop = Some(out.base(fig, &motion));
+        out
     }
 
     /// What every frame shares: the traced points' paths, the panels' titles with their
@@ -200,7 +206,9 @@ impl LinkageFrames {
         };
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let layer = layer_of(&d, layers::MECHANISM);
-        fig::mechanism_with_forces(&mut d, layer, fig, &state.q, &self.spans, &arrows, &s);
+        let (ll, ur) = self.frame.mechanism_panel();
+        let around = Around { backdrop: self.backdrop.as_ref(), within: Some(TextBox { min: ll, max: ur }) };
+        fig::mechanism_with_forces(&mut d, layer, fig, &state.q, &self.spans, &arrows, &s, around);
         let polys = (self.show.velocity || self.show.acceleration)
             .then(|| polygons_of(mech, state, self.show.points.as_deref()));
         let moment_unit = format!("N·{}", self.frame.units.length);

@@ -221,12 +221,13 @@ pub fn mechanism(
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) {
-    mechanism_with_forces(d, layer, fig, q, spans, &[], style);
+    mechanism_with_forces(d, layer, fig, q, spans, &[], style, labels::Around::default());
 }
 
 /// [`mechanism`] with the names of the force arrows `arrows` (drawn on the mechanism by
 /// [`crate::figure::shared::forces::draw_on_mechanism`]) placed with the points' names, clear of them, on
-/// the `FORCES` layer.
+/// the `FORCES` layer; every name clear of what `d` already holds and of `around`.
+#[allow(clippy::too_many_arguments)]
 pub fn mechanism_with_forces(
     d: &mut Drawing,
     layer: usize,
@@ -235,6 +236,7 @@ pub fn mechanism_with_forces(
     spans: &[Option<(Point, Point)>],
     arrows: &[ForceArrow],
     style: &Style,
+    around: labels::Around<'_>,
 ) {
     let s = *style;
     // The names go through the letter placer, clear of the joints, the bodies' outlines,
@@ -317,6 +319,8 @@ pub fn mechanism_with_forces(
     for a in arrows {
         letters.letter(a.arrow.1, &a.force.name, s.text, a.arrow.1 - a.arrow.0, None);
     }
+    letters.keep_off_drawing(d);
+    letters.around(around);
     if arrows.is_empty() {
         letters.draw(d, layer);
         return;

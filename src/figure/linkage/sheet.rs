@@ -17,6 +17,7 @@ use crate::figure::linkage::frame::{Show, links_of, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
 use crate::figure::shared::forces;
+use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
 use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
 use crate::figure::shared::sheet_pages::{
@@ -227,7 +228,9 @@ impl LinkageSheets {
         };
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let mech_layer = layer_of(&d, layers::MECHANISM);
-        fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, &s);
+        let outline = layout.panels[0].outline;
+        let around = Around { backdrop: None, within: Some(TextBox { min: outline.min, max: outline.max }) };
+        fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, &s, around);
         d
     }
 }

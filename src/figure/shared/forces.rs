@@ -146,6 +146,9 @@ pub fn draw_within(
     names.letter(pole, &poly.pole, s.text, pole - centroid, None);
     // Every segment drawn so far, for resultants to keep off.
     let mut drawn: Vec<(Point, Point)> = Vec::new();
+    // The names: (drawn segment, name, force, where along it, colour).
+    type Named<'a> = ((Point, Point), &'a str, Vector, f64, Option<Aci>);
+    let mut named: Vec<Named<'_>> = Vec::new();
     let first_found = poly.chain.len().saturating_sub(poly.found);
     for (i, nv) in poly.chain.iter().enumerate() {
         let seg = (pts[i], pts[i + 1]);
@@ -154,7 +157,7 @@ pub fn draw_within(
             drawn.push(seg);
         }
         names.segment(seg.0, seg.1);
-        name(&mut names, seg, &nv.name, nv.v, 0.5, centroid, color, s);
+        named.push((seg, &nv.name, nv.v, 0.5, color));
     }
     for r in &poly.resultants {
         let seg = (pts[r.from], pts[r.to]);
@@ -164,8 +167,16 @@ pub fn draw_within(
         }
         names.segment(placed.0, placed.1);
         let v = pts[r.to] - pts[r.from];
-        name(&mut names, placed, &r.name, v, r.name_at, centroid, Some(RESULTANT), s);
+        named.push((placed, &r.name, v, r.name_at, Some(RESULTANT)));
     }
+    // The shortest vectors' names first: they have the fewest places beside them (a long
+    // vector's name finds room anywhere along it).
+    named.sort_by(|a, b| (a.0.1 - a.0.0).norm().total_cmp(&(b.0.1 - b.0.0).norm()));
+    for (seg, text, v, at, color) in named {
+        name(&mut names, seg, text, v, at, centroid, color, s);
+    }
+    // Off everything drawn so far (this figure's arrows, the other figures, texts).
+    names.keep_off_drawing(d);
     names.draw(d, l)
 }
 

@@ -62,6 +62,14 @@ pub const SAME_POINT: &str = "≡";
 const TURNS: [f64; 16] = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0, 5.0, -5.0, 6.0, -6.0, 7.0, -7.0, 8.0];
 /// The step between directions tried: 22.5°.
 const TURN: f64 = std::f64::consts::PI / 8.0;
+/// Directions tried for a name with a leader, in multiples of [`TURN_FINE`]: twice as many,
+/// so that a leader can pass between the letters around a crowded point.
+const TURNS_FINE: [f64; 32] = [
+    0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0, 5.0, -5.0, 6.0, -6.0, 7.0, -7.0, 8.0, -8.0, 9.0, -9.0, 10.0,
+    -10.0, 11.0, -11.0, 12.0, -12.0, 13.0, -13.0, 14.0, -14.0, 15.0, -15.0, 16.0,
+];
+/// The step between the directions of [`TURNS_FINE`]: 11.25°.
+const TURN_FINE: f64 = std::f64::consts::PI / 16.0;
 
 /// An axis-aligned box (an estimated text box), model units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -131,7 +139,7 @@ impl TextBox {
 /// crosses, segments its box crosses.
 type Score = (usize, usize, usize);
 /// A segment: its two ends.
-type Segment = (Point, Point);
+pub type Segment = (Point, Point);
 
 /// One letter waiting to be placed.
 #[derive(Debug, Clone)]
@@ -159,6 +167,17 @@ impl Letter {
             TextBox::half_size(&self.text, self.height)
         }
     }
+}
+
+/// What letters placed into a drawing keep clear of besides what the drawing holds: what is
+/// drawn elsewhere on the same frame (its shared part: paths, titles), and the panel they stay
+/// inside.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Around<'a> {
+    /// Drawn elsewhere on the same page or frame: its strokes and texts are kept off.
+    pub backdrop: Option<&'a Drawing>,
+    /// The panel the letters stay inside.
+    pub within: Option<TextBox>,
 }
 
 /// A placed label: where its text's centre goes, and what is drawn with it.
@@ -272,6 +291,38 @@ impl Polygon {
             .is_some_and(|w| bx.min.x < w.min.x || bx.min.y < w.min.y || bx.max.x > w.max.x || bx.max.y > w.max.y)
     }
 
+    /// Every stroke of `shapes` ([`strokes`]) as a segment letters should not cover.
+    pub fn keep_off_shapes<'a>(&mut self, shapes: impl IntoIterator<Item = &'a Shape>) {
+        for shape in shapes {
+            for (a, b) in strokes(shape) {
+                self.segment(a, b);
+            }
+        }
+    }
+
+    /// Everything drawn in `d` so far: its strokes as segments letters should not cover,
+    /// its texts as boxes they must not overlap.
+    pub fn keep_off_drawing(&mut self, d: &Drawing) {
+        self.keep_off_shapes(d.entities.iter().map(|e| &e.shape));
+        for e in &d.entities {
+            if let Some(c) = crate::draw::text_corners(&e.shape) {
+                let min = c.iter().fold(c[0], |m, p| Point::new(m.x.min(p.x), m.y.min(p.y)));
+                let max = c.iter().fold(c[0], |m, p| Point::new(m.x.max(p.x), m.y.max(p.y)));
+                self.keep_off(TextBox { min, max });
+            }
+        }
+    }
+
+    /// Keeps the letters clear of what `around` holds ([`Around`]).
+    pub fn around(&mut self, around: Around<'_>) {
+        if let Some(b) = around.backdrop {
+            self.keep_off_drawing(b);
+        }
+        if let Some(w) = around.within {
+            self.keep_within(w);
+        }
+    }
+
     /// A segment of the polygon that letters should not cover.
     pub fn segment(&mut self, a: Point, b: Point) {
         if a.x.is_finite() && a.y.is_finite() && b.x.is_finite() && b.y.is_finite() {
@@ -316,7 +367,7 @@ impl Polygon {
             near_lines.clear();
             near_lines.extend(lines.iter().filter(|(_, b)| !apart(b)).copied());
             let (blockers_near, lines_near): (&[TextBox], &[(Segment, TextBox)]) = (&near_blockers, &near_lines);
-            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, l.leader) {
                 let bx = TextBox::around(c, half);
                 let bound = best.as_ref().map(|(s, ..)| *s);
                 // Overlapped letters counted only until the candidate has lost.
@@ -436,6 +487,58 @@ fn leader_line(at: Point, centre: Point, half: Vector, height: f64) -> Option<(P
     ((at - edge).norm() >= LEADER_MIN * height).then_some((at, edge))
 }
 
+/// Largest angle a chord of a circle or an arc stands for in [`strokes`]: 5° (the chord
+/// is then within 0.1 % of the radius of the arc).
+const CHORD: f64 = std::f64::consts::PI / 36.0;
+
+/// The strokes of a drawn shape as straight segments, as a reader draws them: a line; a
+/// polyline's sides (a wide one's two edges, half its width either side); an arrow's shaft
+/// and its head's sides; a filled shape's outline; circles and arcs as chords of at most 5°.
+/// Texts and dimensions give none (a dimension's text is placed by its own rules).
+pub fn strokes(shape: &Shape) -> Vec<Segment> {
+    let ring = |c: Point, r: f64, start: f64, sweep: f64| {
+        let n = ((sweep.abs() / CHORD).ceil() as usize).max(1);
+        let at = |k: usize| {
+            let a = start + sweep * k as f64 / n as f64;
+            c + Vector::new(libm::cos(a), libm::sin(a)) * r
+        };
+        (0..n).map(|k| (at(k), at(k + 1))).collect::<Vec<_>>()
+    };
+    let closed = |pts: &[Point]| (0..pts.len()).map(|i| (pts[i], pts[(i + 1) % pts.len()])).collect::<Vec<_>>();
+    match shape {
+        Shape::Circle { center, radius } => ring(*center, *radius, 0.0, std::f64::consts::TAU),
+        Shape::Arc { center, radius, start, end } => {
+            ring(*center, *radius, *start, crate::draw::parts::arc_sweep(*start, *end))
+        }
+        Shape::Line { from, to } => vec![(*from, *to)],
+        Shape::Polyline { points, closed: c, width } => {
+            let sides: Vec<Segment> =
+                if *c && points.len() > 2 { closed(points) } else { points.windows(2).map(|w| (w[0], w[1])).collect() };
+            if *width <= 0.0 {
+                return sides;
+            }
+            // The band's two edges.
+            sides
+                .into_iter()
+                .flat_map(|(a, b)| {
+                    let n = crate::geom::perp(unit(b - a, Vector::new(1.0, 0.0))) * (0.5 * width);
+                    [(a + n, b + n), (a - n, b - n)]
+                })
+                .collect()
+        }
+        Shape::Filled { points } => closed(points),
+        Shape::Arrow { from, to, head } => match crate::draw::parts::arrow(*from, *to, *head) {
+            Some((base, tri)) => {
+                let mut out = vec![(*from, base)];
+                out.extend(closed(&tri));
+                out
+            }
+            None => vec![(*from, *to)],
+        },
+        Shape::Text { .. } | Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => Vec::new(),
+    }
+}
+
 /// The bounding box of a segment.
 fn segment_box((a, b): Segment) -> TextBox {
     TextBox { min: Point::new(a.x.min(b.x), a.y.min(b.y)), max: Point::new(a.x.max(b.x), a.y.max(b.y)) }
@@ -475,30 +578,34 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
     let (half, shift) = TextBox::half_size(text, height);
-    candidates_in(at, half, height, dir, 0.0, &RINGS).map(move |c| c + shift)
+    candidates_in(at, half, height, dir, 0.0, false).map(move |c| c + shift)
 }
 
 /// Candidate centres for a box of half-sizes `half` whose edge keeps `clear` more than
-/// [`LABEL_GAP`] from `at`, at the distances `rings`.
+/// [`LABEL_GAP`] from `at`, at the distances [`RINGS`] (a name with a leader: [`LEADER_RINGS`],
+/// in twice as many directions).
 fn candidates_in(
     at: Point,
     half: Vector,
     height: f64,
     dir: Vector,
     clear: f64,
-    rings: &[f64],
-) -> impl Iterator<Item = Point> + '_ {
+    leader: bool,
+) -> impl Iterator<Item = Point> {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
     let base = libm::atan2(u0.y, u0.x);
     let (hw, hh) = (half.x, half.y);
+    // Names with a leader go further out and try twice as many directions.
+    let (rings, turns, turn): (&[f64], &[f64], f64) =
+        if leader { (&LEADER_RINGS, &TURNS_FINE, TURN_FINE) } else { (&RINGS, &TURNS, TURN) };
     // Lazy: most letters take their first candidate, so the directions are not computed
     // ahead (a run places some ten thousand letters); each direction (and its reach) is
     // computed once, on the first ring, and kept for the others.
-    let mut dirs = [(Vector::zeros(), 0.0); TURNS.len()];
+    let mut dirs = [(Vector::zeros(), 0.0); TURNS_FINE.len()];
     let mut known = 0;
-    rings.iter().flat_map(move |&ring| (0..TURNS.len()).map(move |i| (ring, i))).map(move |(ring, i)| {
+    rings.iter().flat_map(move |&ring| (0..turns.len()).map(move |i| (ring, i))).map(move |(ring, i)| {
         if i == known {
-            let a = base + TURNS[i] * TURN;
+            let a = base + turns[i] * turn;
             let u = Vector::new(libm::cos(a), libm::sin(a));
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
@@ -633,8 +740,7 @@ mod tests {
         for l in &letters {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
             let (half, shift) = l.half();
-            let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
-            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, l.leader) {
                 let bx = TextBox::around(c, half);
                 let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
                 let hits =

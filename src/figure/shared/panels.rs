@@ -637,7 +637,10 @@ impl PanelFrame {
                 keep_off.extend(self.draw_slot_scale(d, slot, scale.per_mm));
             }
             let within = self.panel_of(slot);
-            polygon::draw_within(d, poly, layer, scale, pole, s, &keep_off, within);
+            // Construction lines within the polygon's area and the letters' room around it.
+            let room = Vector::new(LETTER_ROOM * s.text, LETTER_ROOM * s.text);
+            let clip = labels::TextBox { min: slot.area.min - room, max: slot.area.max + room };
+            polygon::draw_within(d, poly, layer, scale, pole, s, &keep_off, within, Some(clip));
         }
         if let (Some((figures, rows)), Some(cells)) = (force, &self.forces) {
             let within = self.panels.last().map(|p| labels::TextBox { min: p.1, max: p.2 });

@@ -166,7 +166,18 @@ impl PolygonsPage {
         for (((poly, layer, unit), (per_mm, pole)), panel) in polygons.iter().zip(&self.places).zip(&self.layout.panels)
         {
             let within = TextBox { min: panel.outline.min, max: panel.outline.max };
-            polygon::draw_within(d, poly, *layer, Scale::on_paper(*per_mm, 1.0), *pole, s, &[], Some(within));
+            let clip = TextBox { min: panel.area.min, max: panel.area.max };
+            polygon::draw_within(
+                d,
+                poly,
+                *layer,
+                Scale::on_paper(*per_mm, 1.0),
+                *pole,
+                s,
+                &[],
+                Some(within),
+                Some(clip),
+            );
             let value = bar_value(*per_mm);
             scale_bar(d, dims, panel.bar_at(s), value / per_mm, &format!("{} {unit}", scale_text(value)), s);
         }
