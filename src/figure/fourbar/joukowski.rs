@@ -108,7 +108,10 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             Point::new(hi.x, hi.y + title_room),
             Point::new(lo.x, hi.y + title_room),
         ];
+        let frame_box = labels::TextBox { min: corners[0], max: corners[2] };
         d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        let title = format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg));
+        d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         let arrows: Vec<(&LeverForce, bool)> =
             lever.forces.iter().map(|f| (f, false)).chain(lever.balancing.iter().map(|f| (f, true))).collect();
         let dir = |f: &LeverForce| unit_or(f.force, Vector::zeros()) * arrow;
@@ -162,6 +165,9 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             }
             names.segment(from, from + v);
         }
+        // Clear of everything drawn (the polygon, the arrows, the title) and inside the panel.
+        letters.keep_off_drawing(&d);
+        letters.keep_within(frame_box);
         let boxes = letters.draw(&mut d, vel);
         for b in boxes {
             names.keep_off(b);
@@ -170,11 +176,11 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             let from = at(f.image);
             let v = dir(f);
             let color = balancing.then_some(Aci::RED);
-            names.letter(from + v * 0.6, &f.name, small, perp(v), color);
+            names.name_with_leader(from + v * 0.6, &f.name, small, perp(v), color);
         }
+        names.keep_off_drawing(&d);
+        names.keep_within(frame_box);
         names.draw(&mut d, frc);
-        let title = format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg));
-        d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         // The table: load, its image point, |F| [N], M_p [N·(unit)/s].
         let largest = arrows.iter().map(|(f, _)| f.moment.abs()).fold(0.0, f64::max);
         let left = lo.x + 0.5 * s.text;

@@ -304,7 +304,23 @@ impl Polygon {
     /// its texts as boxes they must not overlap.
     pub fn keep_off_drawing(&mut self, d: &Drawing) {
         self.keep_off_shapes(d.entities.iter().map(|e| &e.shape));
+        // A circled number's box is its circle's square.
+        let circles: Vec<(Point, f64)> = d
+            .entities
+            .iter()
+            .filter_map(|e| match e.shape {
+                Shape::Circle { center, radius } => Some((center, radius)),
+                _ => None,
+            })
+            .collect();
         for e in &d.entities {
+            if let Shape::Text { at, height, .. } = &e.shape {
+                let r = CIRCLE_RADIUS * height;
+                if circles.iter().any(|(c, cr)| c == at && (cr - r).abs() <= 1e-12 * r) {
+                    self.keep_off(TextBox::around(*at, Vector::new(r, r)));
+                    continue;
+                }
+            }
             if let Some(c) = crate::draw::text_corners(&e.shape) {
                 let min = c.iter().fold(c[0], |m, p| Point::new(m.x.min(p.x), m.y.min(p.y)));
                 let max = c.iter().fold(c[0], |m, p| Point::new(m.x.max(p.x), m.y.max(p.y)));
@@ -485,6 +501,112 @@ fn leader_line(at: Point, centre: Point, half: Vector, height: f64) -> Option<(P
     }
     let edge = centre + v * t;
     ((at - edge).norm() >= LEADER_MIN * height).then_some((at, edge))
+}
+
+/// Of the texts `candidates` (in order of preference), the first whose box (as drawn:
+/// [`crate::draw::text_corners`]) overlaps no text and is crossed by no stroke of `d` (but
+/// those on the layers `breakable`, which [`break_around`] interrupts under it) and stays
+/// inside `within`; else the one with the fewest such conflicts (the first on a tie). `None`
+/// for no candidate. For a text that has a few good places (a diagram's label).
+pub fn first_free(d: &Drawing, candidates: Vec<Shape>, within: Option<TextBox>, breakable: &[usize]) -> Option<Shape> {
+    let mut p = Polygon::of_names();
+    let mut solid = d.clone();
+    solid.entities.retain(|e| !breakable.contains(&e.layer));
+    p.keep_off_drawing(&solid);
+    let conflicts = |shape: &Shape| -> usize {
+        let Some(c) = crate::draw::text_corners(shape) else { return usize::MAX };
+        let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+        let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+        let bx = TextBox { min, max };
+        let outside = within.is_some_and(|w| min.x < w.min.x || min.y < w.min.y || max.x > w.max.x || max.y > w.max.y);
+        p.obstacles.iter().filter(|o| o.overlaps(&bx)).count()
+            + p.segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count()
+            + usize::from(outside)
+    };
+    let mut best: Option<(usize, Shape)> = None;
+    for c in candidates {
+        let n = conflicts(&c);
+        if n == 0 {
+            return Some(c);
+        }
+        if best.as_ref().is_none_or(|(b, _)| n < *b) {
+            best = Some((n, c));
+        }
+    }
+    best.map(|(_, c)| c)
+}
+
+/// Breaks the thin lines and circles on `layer` of `d` where they pass through one of
+/// `boxes` grown by `gap` (a drafting convention: a construction line or a grid line is
+/// interrupted where a text is written over it, ISO 129-1's "not crossed by any line"): a
+/// line becomes the pieces outside the boxes, a circle the arcs outside them (to 0.5°).
+pub fn break_around(d: &mut Drawing, layer: usize, boxes: &[TextBox], gap: f64) {
+    if boxes.is_empty() {
+        return;
+    }
+    let grown: Vec<TextBox> = boxes
+        .iter()
+        .map(|b| TextBox { min: b.min - Vector::new(gap, gap), max: b.max + Vector::new(gap, gap) })
+        .collect();
+    let inside = |p: Point| grown.iter().any(|b| p.x > b.min.x && p.x < b.max.x && p.y > b.min.y && p.y < b.max.y);
+    let mut out = Vec::with_capacity(d.entities.len());
+    for e in std::mem::take(&mut d.entities) {
+        let pieces: Option<Vec<Shape>> = match (&e.shape, e.layer == layer) {
+            (Shape::Line { from, to }, true) if grown.iter().any(|b| b.crosses(*from, *to)) => {
+                // Sampled finely along the line, the runs outside every box kept.
+                let n = 400;
+                let at = |k: usize| *from + (*to - *from) * (k as f64 / n as f64);
+                Some(
+                    runs(n, |k| !inside(at(k)))
+                        .into_iter()
+                        .map(|(i, j)| Shape::Line { from: at(i), to: at(j) })
+                        .collect(),
+                )
+            }
+            (Shape::Circle { center, radius }, true) => {
+                let n = 720;
+                let angle = |k: usize| std::f64::consts::TAU * k as f64 / n as f64;
+                let at = |k: usize| *center + Vector::new(libm::cos(angle(k)), libm::sin(angle(k))) * *radius;
+                let keep = runs(n, |k| !inside(at(k)));
+                (keep.len() != 1 || keep[0] != (0, n)).then(|| {
+                    keep.into_iter()
+                        .map(|(i, j)| Shape::Arc { center: *center, radius: *radius, start: angle(i), end: angle(j) })
+                        .collect()
+                })
+            }
+            _ => None,
+        };
+        match pieces {
+            Some(p) => out.extend(p.into_iter().map(|shape| Entity { shape, ..e.clone() })),
+            None => out.push(e),
+        }
+    }
+    d.entities = out;
+}
+
+/// The runs `(first, last)` of consecutive samples `0..=n` for which `keep` holds (a run
+/// of one sample dropped).
+fn runs(n: usize, keep: impl Fn(usize) -> bool) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut start: Option<usize> = None;
+    for k in 0..=n {
+        match (keep(k), start) {
+            (true, None) => start = Some(k),
+            (false, Some(s)) => {
+                if k - 1 > s {
+                    out.push((s, k - 1));
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(s) = start
+        && n > s
+    {
+        out.push((s, n));
+    }
+    out
 }
 
 /// Largest angle a chord of a circle or an arc stands for in [`strokes`]: 5° (the chord
