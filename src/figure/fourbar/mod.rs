@@ -872,7 +872,7 @@ pub(crate) mod tests {
                 .collect();
             for (poly, at, text, h) in polygon_letters(&lay, &d) {
                 // Force names and the centroids' letters may go further out, with a leader.
-                let leader = poly == 2 || text.starts_with('c');
+                let leader = poly == 2 || text.starts_with('c') || text.starts_with('n');
                 let reach = if leader { max_leader_distance(&text, h) } else { max_distance(&text, h) }
                     + COINCIDENT * h
                     + 1e-9 * h;

@@ -188,7 +188,10 @@ pub fn draw_within(
     letters.keep_off_drawing(d);
     for (i, p) in poly.points.iter().enumerate() {
         let at = pts[i + 1];
-        if poly.marks.contains(&(i + 1)) {
+        // A centroid's image, and a construction's point (where a component starts: n_BA,
+        // the Coriolis k), may take its letter further out with a leader.
+        let construction = poly.sides.iter().any(|s| s.kind == SideKind::Component && s.from == i + 1);
+        if poly.marks.contains(&(i + 1)) || construction {
             letters.name_with_leader(at, &p.name, s.text, at - pts[p.from], None);
         } else {
             letters.letter(at, &p.name, s.text, at - pts[p.from], None);
