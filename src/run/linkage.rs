@@ -623,13 +623,15 @@ fn force_diagrams(scene: &LinkageScene, forces: &[Forces], x_label: &str, x: &[f
     }
     for (d, driver) in mech.drivers.iter().enumerate() {
         let name = &driver.name;
+        // Named as the table and the sheets name it (Me1, Fe1).
+        let symbol = linkage_forces::driver_name(mech, d);
         let (title, y_label) = match driver.target {
             DriverTarget::JointDistance(_) => {
-                (format!("Driving force of driver {name} (along its guide)"), format!("F_{name} [N]"))
+                (format!("Balancing force {symbol} of driver {name} (along its guide)"), format!("{symbol} [N]"))
             }
             _ => (
-                format!("Driving torque of driver {name} (balancing moment, positive with the driver)"),
-                format!("M_{name} [N·m]"),
+                format!("Balancing moment {symbol} of driver {name} (positive with the driver)"),
+                format!("{symbol} [N·m]"),
             ),
         };
         out.push(plot(format!("drive.{name}"), title, y_label, forces.iter().map(|f| f.drivers[d]).collect()));
@@ -1019,8 +1021,17 @@ struct DragSummary<'a> {
 /// One sample's values for its sheet: each measured quantity (its diagram's symbol and
 /// unit) and, with forces, every reaction's magnitude and the drivers' forces, 4
 /// significant digits ([`sheet::number`]).
-fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScene, &Forces)>) -> sheet::Table {
+fn sheet_table(
+    scene: &LinkageScene,
+    plots: &[Plot],
+    k: usize,
+    forces: Option<(&crate::solve::linkage::Dynamics, &State, &Forces)>,
+) -> sheet::Table {
     let header = ["", "value", "unit"].map(String::from).to_vec();
+    // One unit system on the page: the scene's (the diagrams draw velocities in m/s; a mm
+    // scene's sheet in mm/s, as its polygons).
+    let per_m = 1.0 / metres_per_unit(scene.units);
+    let lu = scene.units.length();
     let mut rows: Vec<Vec<String>> = plots
         .iter()
         .map(|p| {
@@ -1028,18 +1039,25 @@ fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScene, &Forces)
                 Some((n, u)) => (n.to_string(), u.trim_end_matches(']').to_string()),
                 None => (p.y_label.clone(), String::new()),
             };
+            let (factor, unit) = match unit.as_str() {
+                "m/s" => (per_m, format!("{lu}/s")),
+                "m/s²" => (per_m, format!("{lu}/s²")),
+                _ => (1.0, unit),
+            };
             // A value below 1e-9 of its series' largest is rounding noise (ω = 1e-15 rad/s
             // at a dead centre) and prints as 0.
             let largest = p.values.iter().filter(|v| v.is_finite()).fold(0.0, |m: f64, v| m.max(v.abs()));
             let v = p.values[k];
-            let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v) };
+            let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v * factor) };
             vec![name, text, unit]
         })
         .collect();
-    if let Some((scene, f)) = forces {
-        let lu = scene.units.length();
-        let per_nm = 1.0 / metres_per_unit(scene.units);
-        for m in linkage_forces::magnitudes(&scene.mechanism, f, &format!("N·{lu}"), per_nm) {
+    if let Some((dynamics, state, f)) = forces {
+        let mech = &scene.mechanism;
+        // Every applied force (inertia forces, weights, loads), then the reactions and the
+        // drivers' forces.
+        let applied = linkage_forces::applied_magnitudes(mech, dynamics, state, f);
+        for m in applied.into_iter().chain(linkage_forces::magnitudes(mech, f, &format!("N·{lu}"), per_m)) {
             rows.push(vec![m.name, sheet::number(m.value), m.unit]);
         }
     }
@@ -1059,7 +1077,11 @@ fn sheet_pages(
     show: Show,
     names: &[String],
 ) -> Vec<products::Page> {
-    let rows = states.first().map_or(0, |_| sheet_table(plots, 0, forces.map(|(_, f)| (scene, &f[0]))).rows.len());
+    // The table's rows: the most any sample has (a load acts only on part of the motion).
+    let rows = (0..states.len())
+        .map(|k| sheet_table(scene, plots, k, forces.map(|(d, f)| (d, &states[k], &f[k]))).rows.len())
+        .max()
+        .unwrap_or(0);
     let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows);
     let per = sheets.per_position();
     let total = states.len() * per;
@@ -1068,7 +1090,7 @@ fn sheet_pages(
         .enumerate()
         .map(|(k, st)| {
             let force = forces.map(|(d, f)| (d, &f[k]));
-            let table = sheet_table(plots, k, force.map(|(_, f)| (scene, f)));
+            let table = sheet_table(scene, plots, k, force.map(|(d, f)| (d, st, f)));
             sheets
                 .pages(&scene.mechanism, st, force, &table, (k * per + 1, total))
                 .into_iter()

@@ -43,18 +43,9 @@ pub struct LeverUnits {
     pub moment: &'static str,
 }
 
-/// `v` to four significant digits (no exponent for ordinary magnitudes).
+/// `v` to four significant digits, never with an exponent ([`crate::figure::shared::sheet::number`]).
 pub fn sig4(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let mag = libm::log10(v.abs()).floor() as i32;
-    if !(-4..6).contains(&mag) {
-        return format!("{v:.3e}");
-    }
-    let decimals = (3 - mag).max(0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".into() } else { s }
+    crate::figure::shared::sheet::number(v)
 }
 
 /// Length of a load's arrow on the lever, in panel sizes: the loads differ by two orders
@@ -226,6 +217,7 @@ mod tests {
         assert_eq!(sig4(1490.12), "1490");
         assert_eq!(sig4(0.0123456), "0.01235");
         assert_eq!(sig4(0.0), "0");
-        assert_eq!(sig4(1.5e7), "1.500e7");
+        assert_eq!(sig4(1.5e7), "15000000");
+        assert_eq!(sig4(-2.5e-6), "-0.000002500");
     }
 }

@@ -367,23 +367,42 @@ pub fn magnitudes(mech: &Mechanism, f: &Forces, moment_unit: &str, moment_per_nm
             rows.push(row(couple, f.reactions[j].torque * moment_per_nm, moment_unit));
         }
     }
-    for (driver, value) in mech.drivers.iter().zip(&f.drivers) {
-        let (kind, body) = match driver.target {
-            DriverTarget::BodyAngle(i) => ("Me", Attach::Body(i)),
-            DriverTarget::JointAngle(j) | DriverTarget::JointDistance(j) => {
-                let (a, b) = joint_bodies(&mech.joints[j].kind);
-                let kind = if matches!(driver.target, DriverTarget::JointAngle(_)) { "Me" } else { "Fe" };
-                (kind, if b == Attach::Ground { a } else { b })
-            }
-        };
-        let name = format!("{kind}{}", number(body));
-        if kind == "Me" {
+    for (d, value) in f.drivers.iter().enumerate() {
+        let name = driver_name(mech, d);
+        if name.starts_with("Me") {
             rows.push(row(name, value * moment_per_nm, moment_unit));
         } else {
             rows.push(row(name, *value, "N"));
         }
     }
     rows
+}
+
+/// The name of driver `d`'s force, as the table, the diagrams and the sheets write it: `Me<n>`
+/// for an angular driver (the balancing moment on body n, seed 003's Me1), `Fe<n>` for a
+/// distance driver (the balancing force on body n).
+pub fn driver_name(mech: &Mechanism, d: usize) -> String {
+    let Some(driver) = mech.drivers.get(d) else { return String::new() };
+    let (kind, body) = match driver.target {
+        DriverTarget::BodyAngle(i) => ("Me", Attach::Body(i)),
+        DriverTarget::JointAngle(j) | DriverTarget::JointDistance(j) => {
+            let (a, b) = joint_bodies(&mech.joints[j].kind);
+            let kind = if matches!(driver.target, DriverTarget::JointAngle(_)) { "Me" } else { "Fe" };
+            (kind, if b == Attach::Ground { a } else { b })
+        }
+    };
+    format!("{kind}{}", number(body))
+}
+
+/// The table's rows of the forces applied to the bodies at one sample (`Fi2`, `G2`, each
+/// load by its name; a distance driver's force is in [`magnitudes`]): |F|, N, in the order
+/// the solver lists them.
+pub fn applied_magnitudes(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Forces) -> Vec<Magnitude> {
+    applied_forces(mech, dynamics, state, f)
+        .iter()
+        .filter(|a| !matches!(a.kind, AppliedKind::Driver(_)))
+        .map(|a| Magnitude { name: applied_name(dynamics, a), value: a.force.norm(), unit: "N".to_string() })
+        .collect()
 }
 
 /// The sum of the forces on a body ([`body_forces`]), N: zero when its polygon closes

@@ -21,8 +21,11 @@ use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec, ScaleChoice};
 use crate::figure::shared::vocab::{layer_of, layers};
 
-/// Largest extent of the mechanism's motion on paper, millimetres (as the four-bar's).
-pub const MECHANISM_MM: f64 = 100.0;
+/// Largest extent of the mechanism's motion on paper, millimetres: the mechanism the largest
+/// figure of the frame (a linkage's motion is long: the shaper's 950 mm at 1:5).
+pub const MECHANISM_MM: f64 = 200.0;
+/// The size of a polygon's panel on paper, millimetres.
+pub const POLYGON_MM: f64 = 120.0;
 
 /// What a linkage frame shows beside its mechanism (the scene's `[polygons]` table).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -150,7 +153,7 @@ impl LinkageFrames {
             mechanism,
             size: mechanism.size(),
             mechanism_mm: MECHANISM_MM,
-            polygon_mm: Some(MECHANISM_MM),
+            polygon_mm: Some(POLYGON_MM),
             pad: |s| (3.5 * s.joint + 1.6 * s.text, 2.0 * s.joint),
             position_text,
             velocity,
@@ -208,7 +211,8 @@ impl LinkageFrames {
         let layer = layer_of(&d, layers::MECHANISM);
         let (ll, ur) = self.frame.mechanism_panel();
         let around = Around { backdrop: self.backdrop.as_ref(), within: Some(TextBox { min: ll, max: ur }) };
-        fig::mechanism_with_forces(&mut d, layer, fig, &state.q, &self.spans, &arrows, &s, around);
+        let omega = fig.crank.map(|(b, _)| state.angular(Attach::Body(b)).1);
+        fig::mechanism_with_forces(&mut d, layer, fig, &state.q, &self.spans, &arrows, omega, &s, around);
         let polys = (self.show.velocity || self.show.acceleration)
             .then(|| polygons_of(mech, state, self.show.points.as_deref()));
         let moment_unit = format!("N·{}", self.frame.units.length);

@@ -270,8 +270,10 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
         v_sides.push(vector(*guide, *sliding));
         v_dirs.push(Direction { through: *guide, dir: guide_dir(state, kind), reaches: *sliding });
     }
+    // The pole p, named p₀ when a point's letter is p (a piston P).
+    let velocity_pole = if v_points.iter().any(|p| p.name == "p") { "p₀" } else { "p" };
     let velocity = PointPolygon {
-        pole: "p".into(),
+        pole: velocity_pole.into(),
         pole_away: (1..=n.min(2)).collect(),
         points: v_points,
         directions: v_dirs,

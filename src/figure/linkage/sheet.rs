@@ -230,7 +230,8 @@ impl LinkageSheets {
         let mech_layer = layer_of(&d, layers::MECHANISM);
         let outline = layout.panels[0].outline;
         let around = Around { backdrop: None, within: Some(TextBox { min: outline.min, max: outline.max }) };
-        fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, &s, around);
+        let omega = self.paper_figure.crank.map(|(b, _)| state.angular(Attach::Body(b)).1);
+        fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, omega, &s, around);
         d
     }
 }

@@ -10,7 +10,7 @@
 //! # Layout and scales
 //! One [`PanelFrame`] is computed per run from every position, so all frames share one
 //! window and the mechanism keeps one length scale k_l (model units per paper millimetre, a
-//! nice value [`length_scale`]) that draws its motion at most `mechanism_mm` long on paper;
+//! drafting scale [`drafting_scale`]) that draws its motion at most `mechanism_mm` long on paper;
 //! the drawings carry `paper_mm_per_unit = 1/k_l`. Panels sit in a grid: up to three in a
 //! row, four as 2 × 2; the force panel holds its figures in cells, in rows of up to
 //! [`FORCE_ROW`] items (the figures, then the table), each under its caption.
@@ -38,7 +38,7 @@ use crate::figure::shared::labels;
 use crate::figure::shared::polygon::{self, PointPolygon};
 use crate::figure::shared::sheet;
 use crate::figure::shared::vocab::{
-    ModelUnits, Scale, Sizes, bar_value, content_drawing, layer_of, layers, length_scale, length_scale_text,
+    ModelUnits, Scale, Sizes, bar_value, content_drawing, drafting_scale, layer_of, layers, length_scale_text,
     nice_scale, scale_bar, scale_bar_room, scale_text,
 };
 
@@ -299,7 +299,8 @@ impl PanelFrame {
         let units = spec.units;
         let mech = spec.mechanism;
         let size = spec.size.max(f64::MIN_POSITIVE);
-        let k_l = length_scale(size, spec.mechanism_mm);
+        // A drafting scale (1, 1.5, 2, 2.5, 4, 5 × 10ᵏ): the mechanism as large as it may be.
+        let k_l = drafting_scale(size / spec.mechanism_mm);
         let paper = 1.0 / k_l;
         let sizes = Sizes::on_paper(k_l);
         let bar_room = scale_bar_room(sizes);

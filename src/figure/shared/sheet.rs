@@ -210,8 +210,9 @@ pub struct Table {
     pub rows: Vec<Vec<String>>,
 }
 
-/// A number for a table: 4 significant digits (what a graphical construction is read to),
-/// without exponent between 1e-4 and 1e6, trailing zeros kept so that columns align.
+/// A number for a drawing: 4 significant digits (what a graphical construction is read to;
+/// a value of 1000 or more to the unit: 1833229), in decimals, never with an exponent,
+/// trailing zeros kept so that columns align.
 pub fn number(v: f64) -> String {
     if !v.is_finite() {
         return "–".to_string();
@@ -220,10 +221,7 @@ pub fn number(v: f64) -> String {
         return "0".to_string();
     }
     let mag = libm::log10(v.abs()).floor();
-    if !(-4.0..6.0).contains(&mag) {
-        return format!("{v:.3e}");
-    }
-    let decimals = (3.0 - mag).max(0.0) as usize;
+    let decimals = (3.0 - mag).clamp(0.0, 20.0) as usize;
     let s = format!("{v:.decimals$}");
     if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".to_string() } else { s }
 }
@@ -510,7 +508,9 @@ mod tests {
         assert_eq!(number(1490.04), "1490");
         assert_eq!(number(20.0), "20.00");
         assert_eq!(number(0.0), "0");
-        assert_eq!(number(-1e-7), "-1.000e-7");
+        assert_eq!(number(-1e-7), "-0.0000001000");
+        assert_eq!(number(-1833229.4), "-1833229");
+        assert_eq!(number(529411.765), "529412");
         assert_eq!(number(f64::NAN), "–");
     }
 

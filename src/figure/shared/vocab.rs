@@ -120,14 +120,16 @@ pub fn bar_value(per_mm: f64) -> f64 {
     nice_scale(per_mm * BAR_MM)
 }
 
-/// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
+/// Formats a scale value as a drawing writes it: in decimals, never with an exponent (`0.01`,
+/// `2.5`, `0.00002`, `200000`), to 6 significant digits.
 pub fn scale_text(v: f64) -> String {
-    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
-        let s = format!("{v:e}");
-        return s;
+    if !v.is_finite() || v == 0.0 {
+        return "0".to_string();
     }
-    let s = format!("{v:.6}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
+    let mag = libm::log10(v.abs()).floor();
+    let decimals = (5.0 - mag).clamp(0.0, 20.0) as usize;
+    let s = format!("{v:.decimals$}");
+    if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s }
 }
 
 /// Content layers of a mechanism figure with polygons: name, colour, line type.
@@ -544,7 +546,9 @@ mod tests {
         assert_eq!(nice_scale(f64::NAN), 1.0);
         assert_eq!(scale_text(0.01), "0.01");
         assert_eq!(scale_text(2.5), "2.5");
-        assert_eq!(scale_text(2e-5), "2e-5");
+        assert_eq!(scale_text(2e-5), "0.00002");
+        assert_eq!(scale_text(2e5), "200000");
+        assert_eq!(scale_text(0.0025), "0.0025");
     }
 
     #[test]
