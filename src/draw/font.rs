@@ -1,8 +1,10 @@
-//! The metrics of the bundled DejaVu Sans ([`super::raster::FONT`]), the font every SVG, PNG
-//! and PDF we write draws its text in: each character's advance and the vertical extent of
-//! its glyph, read from the font file itself (skrifa, as the PDF writer reads it). A text's
-//! box ([`measure`]) is what a figure's letter placer keeps clear and what the overlap tests
-//! check, so that both measure the text as the reader draws it.
+//! The metrics of DejaVu Sans, the font every SVG, PNG and PDF we write draws its text in
+//! (the PNG and PDF writers bundle it: assets/fonts), for the characters a drawing writes:
+//! each character's advance and the vertical extent of its glyph, in font units, read from
+//! the font file once into [`font_table`](self) (a test checks the table against the font).
+//! A text's box ([`measure`]) is what a figure's letter placer keeps clear and what the
+//! overlap tests check, so that both measure the text as the reader draws it. The table
+//! lets the live page's module (built without the font: docs/web.md) measure alike.
 //!
 //! Sizes: a text's `height` is its cap height (the writers set the font size to
 //! `height / CAP_HEIGHT_EM`), so widths, ascents and descents come out in the units of the
@@ -10,11 +12,10 @@
 //! may kern DejaVu's few kerned pairs, which only narrows a text), so a text's width is the
 //! sum of its advances.
 
-use std::sync::OnceLock;
+#[path = "font_table.rs"]
+mod font_table;
 
-use rustc_hash::FxHashMap;
-use skrifa::MetadataProvider;
-use skrifa::instance::{LocationRef, Size};
+use font_table::{GLYPHS, NOTDEF, UNITS_PER_EM};
 
 /// Cap height of DejaVu Sans, in ems (1493 of 2048 font units): the SVG writer sets the
 /// font size to the text height / 0.73, so a text height is a cap height.
@@ -37,41 +38,15 @@ pub struct Glyph {
     pub y_max: f64,
 }
 
-/// Every character the font maps, with its metrics, and the `.notdef` glyph's metrics for
-/// the others (what a reader draws for a character the font lacks).
-struct Table {
-    glyphs: FxHashMap<char, Glyph>,
-    missing: Glyph,
-}
-
-fn table() -> &'static Table {
-    static TABLE: OnceLock<Table> = OnceLock::new();
-    TABLE.get_or_init(|| {
-        // The font is compiled in: a broken file is a broken build, caught by the tests
-        // below; the fallback keeps a drawing (an estimate of 0.6 em a character) rather
-        // than a panic.
-        let fallback = Glyph { advance: 0.6, y_min: -0.24, y_max: 0.76 };
-        let Ok(font) = skrifa::FontRef::new(super::raster::FONT) else {
-            return Table { glyphs: FxHashMap::default(), missing: fallback };
-        };
-        let upem = f64::from(font.metrics(Size::unscaled(), LocationRef::default()).units_per_em);
-        let gm = font.glyph_metrics(Size::unscaled(), LocationRef::default());
-        let glyph = |gid: skrifa::GlyphId| {
-            let advance = gm.advance_width(gid).map_or(fallback.advance, |a| f64::from(a) / upem);
-            let (y_min, y_max) =
-                gm.bounds(gid).map_or((0.0, 0.0), |b| (f64::from(b.y_min) / upem, f64::from(b.y_max) / upem));
-            Glyph { advance, y_min, y_max }
-        };
-        let glyphs =
-            font.charmap().mappings().filter_map(|(code, gid)| Some((char::from_u32(code)?, glyph(gid)))).collect();
-        Table { glyphs, missing: glyph(skrifa::GlyphId::NOTDEF) }
-    })
-}
-
-/// The metrics of `c` in DejaVu Sans (the `.notdef` box for a character it lacks).
+/// The metrics of `c` in DejaVu Sans (the `.notdef` box for a character the table lacks:
+/// what a reader draws for a character the font lacks).
 pub fn glyph(c: char) -> Glyph {
-    let t = table();
-    t.glyphs.get(&c).copied().unwrap_or(t.missing)
+    let (advance, y_min, y_max) = match GLYPHS.binary_search_by_key(&(c as u32), |g| g.0) {
+        Ok(i) => (GLYPHS[i].1, GLYPHS[i].2, GLYPHS[i].3),
+        Err(_) => NOTDEF,
+    };
+    let em = f64::from(UNITS_PER_EM);
+    Glyph { advance: f64::from(advance) / em, y_min: f64::from(y_min) / em, y_max: f64::from(y_max) / em }
 }
 
 /// The extent of a text drawn `height` high (cap height), model units: its width (the sum of
@@ -115,9 +90,76 @@ pub fn width(text: &str, height: f64) -> f64 {
     measure(text, height).width
 }
 
+/// The characters the table holds: Basic Latin, Latin-1, Greek, general punctuation (′ ″ –
+/// — …), super- and subscripts, arrows, mathematical operators (− ≡ ≈ ≤ √ ∠ …).
+pub const TABLE_RANGES: [(u32, u32); 7] = [
+    (0x20, 0x7E),
+    (0xA0, 0xFF),
+    (0x370, 0x3FF),
+    (0x2000, 0x206F),
+    (0x2070, 0x209F),
+    (0x2190, 0x21FF),
+    (0x2200, 0x22FF),
+];
+
+/// The table's text, written from the font: every character of [`TABLE_RANGES`] the font
+/// maps, with its advance and its glyph's lowest and highest points (font units), and
+/// `.notdef`'s.
+#[cfg(all(test, feature = "pdf"))]
+fn table_from_font() -> String {
+    use skrifa::MetadataProvider;
+    use skrifa::instance::{LocationRef, Size};
+    let font = skrifa::FontRef::new(super::FONT).expect("the bundled font reads");
+    let upem = font.metrics(Size::unscaled(), LocationRef::default()).units_per_em;
+    let gm = font.glyph_metrics(Size::unscaled(), LocationRef::default());
+    let charmap = font.charmap();
+    let entry = |gid: skrifa::GlyphId| {
+        let adv = gm.advance_width(gid).unwrap_or(0.0).round() as i16;
+        let (lo, hi) = gm.bounds(gid).map_or((0, 0), |b| (b.y_min.round() as i16, b.y_max.round() as i16));
+        (adv, lo, hi)
+    };
+    let mut out = String::from(
+        "//! DejaVu Sans's metrics for the characters a drawing writes (font units): generated from\n\
+         //! assets/fonts/DejaVuSans.ttf by `UPDATE_FONT_TABLE=1 cargo test --lib font`; a test\n\
+         //! checks it against the font.\n\n",
+    );
+    out.push_str(&format!("/// Font units per em.\npub const UNITS_PER_EM: u16 = {upem};\n\n"));
+    let (a, lo, hi) = entry(skrifa::GlyphId::NOTDEF);
+    out.push_str(&format!(
+        "/// `.notdef`: advance, lowest and highest point.\npub const NOTDEF: (i16, i16, i16) = ({a}, {lo}, {hi});\n\n"
+    ));
+    out.push_str("/// (character, advance, lowest point, highest point), sorted by character.\n");
+    out.push_str("#[rustfmt::skip]\npub const GLYPHS: &[(u32, i16, i16, i16)] = &[\n");
+    for (from, to) in TABLE_RANGES {
+        for code in from..=to {
+            let Some(c) = char::from_u32(code) else { continue };
+            let Some(gid) = charmap.map(c) else { continue };
+            let (a, lo, hi) = entry(gid);
+            out.push_str(&format!("    (0x{code:04X}, {a}, {lo}, {hi}),\n"));
+        }
+    }
+    out.push_str("];\n");
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[cfg(feature = "pdf")]
+    #[test]
+    fn the_table_is_the_fonts() {
+        let fresh = table_from_font();
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/draw/font_table.rs");
+        if std::env::var_os("UPDATE_FONT_TABLE").is_some_and(|v| v == "1") {
+            std::fs::write(path, &fresh).unwrap();
+        }
+        let committed = std::fs::read_to_string(path).unwrap();
+        assert!(
+            committed == fresh,
+            "src/draw/font_table.rs differs from the font: UPDATE_FONT_TABLE=1 cargo test --lib font"
+        );
+    }
 
     #[test]
     fn advances_and_extents_are_the_fonts_own() {
@@ -129,8 +171,11 @@ mod tests {
         // Descenders reach below the baseline, capitals to the cap height.
         assert!(glyph('p').y_min < -0.2 && glyph('φ').y_min < -0.2 && glyph('a').y_min > -0.02);
         assert!((glyph('H').y_max - CAP_HEIGHT_EM).abs() < 0.002);
-        // A space has no ink.
+        // A space has no ink; ≡, ′ and the subscripts are in the table.
         assert_eq!((glyph(' ').y_min, glyph(' ').y_max), (0.0, 0.0));
+        for c in ['≡', '′', '₀', '²', 'π', 'ω', '→'] {
+            assert!(GLYPHS.binary_search_by_key(&(c as u32), |g| g.0).is_ok(), "{c}");
+        }
     }
 
     #[test]
@@ -147,7 +192,7 @@ mod tests {
         assert!(e.descent == 0.0 && e.ascent > 1.03 * h, "{e:?}");
         assert!((measure("ao", h).ascent - h).abs() < 1e-12);
         assert_eq!(measure("", h).width, 0.0);
-        // A character the font lacks takes the .notdef box, never nothing.
+        // A character the table lacks takes the .notdef box, never nothing.
         assert!(glyph('\u{10FFFD}').advance > 0.3);
     }
 }
