@@ -154,7 +154,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
         }
         // Each has its letter.
         let names: Vec<String> = texts(d).into_iter().filter(|t| t.layer == "ACCELERATION").map(|t| t.value).collect();
-        for n in ["c1'", "c21'", "c22'", "c3'"] {
+        for n in ["c1′", "c21′", "c22′", "c3′"] {
             assert!(names.iter().any(|x| x.split('≡').any(|p| p == n)), "no {n} in {names:?}");
         }
     }

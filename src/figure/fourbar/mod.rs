@@ -469,15 +469,15 @@ pub(crate) fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematic
         pole_away: vec![a1, b1],
         // The points first, then the ends of the normal components, then the centroids.
         points: vec![
-            point("a'", POLE, k.a_a),
-            point("b'", POLE, k.a_b),
-            point("m'", POLE, k.a_m),
+            point("a′", POLE, k.a_a),
+            point("b′", POLE, k.a_b),
+            point("m′", POLE, k.a_m),
             point("nBA", a1, k.a_ba_n),
             point("nBC", POLE, k.a_bc_n),
-            point("c1'", POLE, k.a_g1),
-            point("c21'", POLE, k.a_g21),
-            point("c22'", POLE, k.a_g22),
-            point("c3'", POLE, k.a_g3),
+            point("c1′", POLE, k.a_g1),
+            point("c21′", POLE, k.a_g21),
+            point("c22′", POLE, k.a_g22),
+            point("c3′", POLE, k.a_g3),
         ],
         // Tangential directions: ⊥AB through n_BA, ⊥BC through n_BC.
         directions: vec![
@@ -883,15 +883,15 @@ pub(crate) mod tests {
                         (0, "b") => (at - (pv + sv.draw(k.v_b))).norm(),
                         (0, "m") => (at - (pv + sv.draw(k.v_m))).norm(),
                         (1, "π") => (at - pa).norm(),
-                        (1, "a'") => (at - (pa + sa.draw(k.a_a))).norm(),
-                        (1, "b'") => (at - (pa + sa.draw(k.a_b))).norm(),
-                        (1, "m'") => (at - (pa + sa.draw(k.a_m))).norm(),
+                        (1, "a′") => (at - (pa + sa.draw(k.a_a))).norm(),
+                        (1, "b′") => (at - (pa + sa.draw(k.a_b))).norm(),
+                        (1, "m′") => (at - (pa + sa.draw(k.a_m))).norm(),
                         (1, "nBA") => (at - (pa + sa.draw(k.a_a + k.a_ba_n))).norm(),
                         (1, "nBC") => (at - (pa + sa.draw(k.a_bc_n))).norm(),
-                        (1, "c1'") => (at - (pa + sa.draw(k.a_g1))).norm(),
-                        (1, "c21'") => (at - (pa + sa.draw(k.a_g21))).norm(),
-                        (1, "c22'") => (at - (pa + sa.draw(k.a_g22))).norm(),
-                        (1, "c3'") => (at - (pa + sa.draw(k.a_g3))).norm(),
+                        (1, "c1′") => (at - (pa + sa.draw(k.a_g1))).norm(),
+                        (1, "c21′") => (at - (pa + sa.draw(k.a_g21))).norm(),
+                        (1, "c22′") => (at - (pa + sa.draw(k.a_g22))).norm(),
+                        (1, "c3′") => (at - (pa + sa.draw(k.a_g3))).norm(),
                         (2, _) => sides
                             .iter()
                             .map(|&(a, b)| {

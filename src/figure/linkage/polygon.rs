@@ -286,7 +286,7 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
         .points
         .iter()
         .zip(&motions)
-        .map(|(p, (_, a))| NamedPoint { name: format!("{}'", p.name.to_lowercase()), from: POLE, v: *a })
+        .map(|(p, (_, a))| NamedPoint { name: format!("{}′", p.name.to_lowercase()), from: POLE, v: *a })
         .collect();
     let mut a_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
     let mut a_dirs = Vec::new();
