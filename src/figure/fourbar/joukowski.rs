@@ -101,7 +101,11 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         ];
         let frame_box = labels::TextBox { min: corners[0], max: corners[2] };
         d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
-        let title = format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg));
+        let title = if lever.crank_speed != panel.omega1 {
+            format!("Joukowski's lever   φ1 = {}°, ω1 = 0", angle_text(panel.phi1_deg))
+        } else {
+            format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg))
+        };
         d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         let arrows: Vec<(&LeverForce, bool)> =
             lever.forces.iter().map(|f| (f, false)).chain(lever.balancing.iter().map(|f| (f, true))).collect();
@@ -191,12 +195,19 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             line(&mut d, text, Point::new(m_x, y), small, sig4(m), HAlign::Right);
         }
         let me1 = lever.me1.map_or("—".to_string(), sig4);
+        // A standing crank: the polygon of virtual velocities, the crank at 1 rad/s.
+        let standing = lever.crank_speed != panel.omega1;
+        let (polygon, divisor) = if standing {
+            ("polygon at ω1 = 1 rad/s (virtual), 90° cw", "(1 rad/s)")
+        } else {
+            ("velocity polygon turned 90° clockwise", "ω1")
+        };
         let lines = [
-            "velocity polygon turned 90° clockwise".to_string(),
+            polygon.to_string(),
             format!("k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
             "Σ M_p(F_i) = Σ F_i·v_i (without F_b)".to_string(),
             format!("  = {} N·{speed}", sig4(lever.moment)),
-            format!("Me1 = −Σ M_p(F_i) / ω1 = {me1} {}", units.moment),
+            format!("Me1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
             format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),
         ];
         let y0 = top - (rows as f64 + 0.5) * row;
