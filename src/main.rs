@@ -149,6 +149,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 sheets,
                 sets: set.clone(),
                 picture_only: false,
+                held_scales: Vec::new(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

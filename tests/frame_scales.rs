@@ -191,3 +191,50 @@ fn every_linkage_frame_fills_its_panels_at_printed_scales_that_measure_true() {
         let _ = Vector::zeros();
     }
 }
+
+#[test]
+fn after_a_change_each_polygon_keeps_its_scale_until_it_would_leave_or_shrink_under_half_its_panel() {
+    // The live page's choice (PanelFrame::hold): the four-bar at ω1 = 20 rad/s, then at 23
+    // (velocities 1.15 times, accelerations 1.3225 times, the forces changed).
+    let path = common::root().join("templates/fourbar-chebyshev.toml");
+    let layout = |omega1: &str| {
+        let over = ["phi1_deg.step=10".parse().unwrap(), format!("omega1={omega1}").parse().unwrap()];
+        let Scene::Fourbar(s) = scene::load(&path, &over).unwrap().scene else { panic!() };
+        let motion = solve_motion(&s.spec).unwrap();
+        let show = Show { velocity: true, acceleration: true, forces: true, scales: ScaleChoice::PerFrame };
+        let lay = Layout::new(&s.spec.geometry, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
+        (s, motion, lay)
+    };
+    let (_, first, lay0) = layout("20.0");
+    let before: Vec<_> = (0..first.positions.len()).map(|k| lay0.frame.scales_at(k)).collect();
+    let (s, motion, mut lay) = layout("23.0");
+    let fresh: Vec<_> = (0..motion.positions.len()).map(|k| lay.frame.scales_at(k)).collect();
+    lay.frame.hold(&before);
+    let (mut kept, mut fresh_kept) = (0, 0);
+    for (k, pos) in motion.positions.iter().enumerate() {
+        let d = lay.moving(k, &s.spec.geometry, pos, Some(&motion.forces[k]));
+        // Every polygon and force figure fills half to all of its panel, its printed scale
+        // the one held.
+        check_frame("held", &d, &lay.frame, k);
+        let now = lay.frame.scales_at(k);
+        for (layer, slot, was, is, fresh) in [
+            ("VELOCITY", &lay.frame.velocity, before[k].k_v, now.k_v, fresh[k].k_v),
+            ("ACCELERATION", &lay.frame.acceleration, before[k].k_a, now.k_a, fresh[k].k_a),
+        ] {
+            let (was, is) = (was.unwrap(), is.unwrap());
+            fresh_kept += usize::from(fresh == Some(was));
+            if was == is {
+                kept += 1;
+                continue;
+            }
+            // Re-chosen only where at the earlier scale it would have left its panel or
+            // filled less than half of it.
+            let at_was = fill(&d, layer, slot.as_ref().unwrap()) * is / was;
+            assert!(
+                !(0.5 + 1e-9..=1.0 - 1e-9).contains(&at_was),
+                "frame {k}: {layer} re-chosen ({was} → {is}) though it fills {at_was:.3} at {was}"
+            );
+        }
+    }
+    assert!(kept > fresh_kept, "{kept} scales held, a fresh run keeps {fresh_kept}");
+}

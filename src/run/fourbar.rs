@@ -34,12 +34,8 @@ use crate::solve::fourbar::{
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
 
-pub(super) fn products(
-    scene: &FourbarScene,
-    file: &str,
-    paper: Option<Paper>,
-    picture_only: bool,
-) -> Result<Products, Error> {
+pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
+    let (paper, picture_only) = (opts.sheets, opts.picture_only);
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
     let units = match scene.units {
@@ -55,9 +51,10 @@ pub(super) fn products(
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
     let external = spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
     let link_loads = spec.dynamics.as_ref().map_or(&[][..], |d| d.loads.as_slice());
-    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units)
+    let mut layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units)
         .with_drive(spec.omega1, external)
         .with_link_loads(link_loads);
+    layout.frame.hold(&opts.held_scales);
     let mut warnings = motion.warnings();
     if motion.positions.is_empty() {
         warnings.push("no crank angle of the sweep could be assembled: nothing to draw".to_string());
@@ -154,6 +151,7 @@ pub(super) fn products(
             })
         },
     };
+    let frame_scales = (0..positions.len()).map(|k| layout.frame.scales_at(k)).collect();
     let pose = move |k: usize| layout.moving(k, &geom, &positions[k], forces.get(k).filter(|_| show.forces));
     Ok(extras.with_motion(
         name.clone(),
@@ -161,6 +159,7 @@ pub(super) fn products(
         Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive),
         PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
         warnings,
+        frame_scales,
     ))
 }
 

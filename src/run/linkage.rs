@@ -127,13 +127,8 @@ fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error
     Ok((anchor, Point::new(nums[0], nums[1])))
 }
 
-pub(super) fn products(
-    scene: &LinkageScene,
-    file: &str,
-    drag: &[String],
-    paper: Option<Paper>,
-    picture_only: bool,
-) -> Result<Products, Error> {
+pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
+    let (drag, paper, picture_only) = (&opts.drag, opts.sheets, opts.picture_only);
     let serr = solve_err(file);
     let mut solver = match Solver::new(scene.mechanism.clone()) {
         Ok(s) => s,
@@ -203,7 +198,8 @@ pub(super) fn products(
     };
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
-    let frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
+    let mut frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
+    frames.frame.hold(&opts.held_scales);
     let base = frames.base(&figure, &motion);
     let window = frames.frame.window;
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
@@ -401,6 +397,7 @@ pub(super) fn products(
             })
         },
     };
+    let frame_scales = (0..states.len()).map(|k| frames.frame.scales_at(k)).collect();
     let pose = move |k: usize| {
         let force = dynamics.as_ref().zip(forces.get(k));
         frames.moving(k, &figure, &mech, &states[k], force)
@@ -411,6 +408,7 @@ pub(super) fn products(
         Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
         PositionsSource { field: "time.steps", advice: "use fewer steps" },
         warnings,
+        frame_scales,
     ))
 }
 
@@ -541,6 +539,7 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         summary,
         report,
         warnings: Vec::new(),
+        frame_scales: Vec::new(),
     })
 }
 
@@ -1036,8 +1035,8 @@ struct DragSummary<'a> {
 }
 
 /// One sample's values for its sheet: each measured quantity (its diagram's symbol and
-/// unit) and, with forces, every reaction's magnitude and the drivers' forces, 4
-/// significant digits ([`sheet::number`]).
+/// unit) and, with forces, every applied force, every reaction's magnitude and the
+/// drivers' forces, 4 significant digits ([`sheet::number`]); rounding noise as 0.
 fn sheet_table(
     scene: &LinkageScene,
     plots: &[Plot],
@@ -1074,8 +1073,16 @@ fn sheet_table(
         // Every applied force (inertia forces, weights, loads), then the reactions and the
         // drivers' forces.
         let applied = linkage_forces::applied_magnitudes(mech, dynamics, state, f);
-        for m in applied.into_iter().chain(linkage_forces::magnitudes(mech, f, &format!("N·{lu}"), per_m)) {
-            rows.push(vec![m.name, sheet::number(m.value), m.unit]);
+        let all: Vec<_> =
+            applied.into_iter().chain(linkage_forces::magnitudes(mech, f, &format!("N·{lu}"), per_m)).collect();
+        // A value below 1e-9 of the largest of its unit on the page is rounding noise (the
+        // inertia force 7e-14 N of a slider at rest) and prints as 0.
+        let largest = |unit: &str| {
+            all.iter().filter(|m| m.unit == unit && m.value.is_finite()).fold(0.0, |a: f64, m| a.max(m.value.abs()))
+        };
+        for m in &all {
+            let text = if m.value.abs() < 1e-9 * largest(&m.unit) { "0".to_string() } else { sheet::number(m.value) };
+            rows.push(vec![m.name.clone(), text, m.unit.clone()]);
         }
     }
     sheet::Table { header, rows }

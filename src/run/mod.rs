@@ -51,6 +51,12 @@ pub struct RunOptions {
     /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
     /// make everything anyway. The picture and the warnings are the same either way.
     pub picture_only: bool,
+    /// The scales an earlier run of the same motion drew each frame's polygons at
+    /// ([`Products::frame_scales`]): each polygon keeps its scale at a position while it
+    /// fills half to all of its panel there (the live page, so that a polygon visibly grows
+    /// as a field's slider moves: [`PanelFrame::hold`](crate::figure::shared::panels::PanelFrame::hold)).
+    /// Empty: the frames' own choice, as the command line makes it.
+    pub held_scales: Vec<crate::figure::shared::panels::FrameScales>,
 }
 
 /// Whether [`RunOptions::picture_only`] makes less than a whole run of `scene`: it does for
@@ -102,8 +108,8 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
     }
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
-        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, opts.picture_only),
-        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, opts.picture_only),
+        Scene::Fourbar(s) => fourbar::products(s, &file, opts),
+        Scene::Linkage(s) => linkage::products(s, &file, opts),
         Scene::Chain(s) => chain::products(s, &file),
     }
 }

@@ -3,6 +3,7 @@
 //! turns it into named files (DXF, SVG, frames, viewer, PNG, CSV, JSON) and
 //! [`super::output`] puts those on disk. A kind never names a file or calls a writer.
 
+use crate::figure::shared::panels::FrameScales;
 use serde::Serialize;
 
 use crate::Error;
@@ -114,6 +115,10 @@ pub struct Products {
     pub report: String,
     /// Warnings (skipped positions, dead points, ...), one line each.
     pub warnings: Vec<String>,
+    /// The scales each frame of a motion draws its polygons and force figures at, one per
+    /// position (empty for a still picture or a kind without polygons): what
+    /// [`RunOptions::held_scales`](super::RunOptions) takes from an earlier run.
+    pub frame_scales: Vec<FrameScales>,
 }
 
 /// What a run makes besides its picture and warnings (all of it empty, the summary `Null`,
@@ -144,6 +149,7 @@ impl Extras {
         animation: Animation,
         positions: PositionsSource,
         warnings: Vec<String>,
+        frame_scales: Vec<FrameScales>,
     ) -> Products {
         Products {
             name,
@@ -157,6 +163,7 @@ impl Extras {
             summary: self.summary,
             report: self.report,
             warnings,
+            frame_scales,
         }
     }
 }

@@ -190,6 +190,9 @@ pub struct Slot {
     pub scales: Vec<f64>,
     /// The pole when the scale is fixed (`None`: centred in the area at each position).
     pub pole: Option<Point>,
+    /// The figure's physical size (width, height) at each position its scales were chosen
+    /// for (per frame; empty for a fixed scale).
+    pub sides: Vec<Option<Vector>>,
 }
 
 impl Slot {
@@ -432,23 +435,18 @@ impl PanelFrame {
                         max: ur - Vector::new(room, title_room + room),
                     };
                     let points = &fixed_points(&spec.velocity, &spec.acceleration, p.which);
-                    let (scales, pole) = match k {
+                    let (scales, pole, sides) = match k {
                         Some(k) => {
                             // The run's extent centred in the area.
                             let scale = Scale::on_paper(k, paper);
                             let mid = Point::from((area.min.coords + area.max.coords) / 2.0);
                             let pole = mid - scale.draw(all.map_or(Vector::zeros(), |e| (e.min + e.max) / 2.0));
-                            (vec![k], Some(pole))
+                            (vec![k], Some(pole), Vec::new())
                         }
                         None => {
                             let a = Vector::new(area.width(), area.height()) / k_l;
-                            (
-                                sheet::frame_scales(
-                                    &points.iter().map(|e| e.map(|e| e.sides())).collect::<Vec<_>>(),
-                                    a,
-                                ),
-                                None,
-                            )
+                            let sides: Vec<Option<Vector>> = points.iter().map(|e| e.map(|e| e.sides())).collect();
+                            (sheet::frame_scales(&sides, a), None, sides)
                         }
                     };
                     let slot = Slot {
@@ -460,6 +458,7 @@ impl PanelFrame {
                         bar_at: Some(bar_at(ll)),
                         scales,
                         pole,
+                        sides,
                     };
                     let panel_title = if slot.pole.is_some() { slot.title_with(slot.scales[0]) } else { String::new() };
                     if slot.pole.is_some() {
@@ -528,6 +527,38 @@ impl PanelFrame {
             k_v: self.velocity.as_ref().and_then(at),
             k_a: self.acceleration.as_ref().and_then(at),
             k_f: self.forces.as_ref().map_or_else(Vec::new, |f| f.figures.iter().filter_map(at).collect()),
+        }
+    }
+
+    /// The scales per frame chosen again after an earlier run of the same motion drawn at
+    /// `previous[k]` at position `k` (the live page's picture before a field changed): each
+    /// polygon and force figure keeps its earlier scale at a position while it fills half to
+    /// all of its area there ([`sheet::held_scales`]). Nothing changes with fixed scales or
+    /// when `previous` has another number of positions (or of force figures).
+    pub fn hold(&mut self, previous: &[FrameScales]) {
+        if self.choice != ScaleChoice::PerFrame {
+            return;
+        }
+        let k_l = self.k_l;
+        let held = |slot: &mut Slot, earlier: Vec<Option<f64>>| {
+            if slot.pole.is_none() && earlier.len() == slot.sides.len() {
+                let area = Vector::new(slot.area.width(), slot.area.height()) / k_l;
+                slot.scales = sheet::held_scales(&earlier, &slot.sides, area);
+            }
+        };
+        if let Some(slot) = &mut self.velocity {
+            held(slot, previous.iter().map(|f| f.k_v).collect());
+        }
+        if let Some(slot) = &mut self.acceleration {
+            held(slot, previous.iter().map(|f| f.k_a).collect());
+        }
+        if let Some(cells) = &mut self.forces {
+            let n = cells.figures.len();
+            if previous.iter().all(|f| f.k_f.len() == n) {
+                for (i, slot) in cells.figures.iter_mut().enumerate() {
+                    held(slot, previous.iter().map(|f| f.k_f.get(i).copied()).collect());
+                }
+            }
         }
     }
 
@@ -762,6 +793,8 @@ struct ForceLayout {
     table_width: f64,
     /// Each figure's scales at each position (per frame).
     scales: Vec<Vec<f64>>,
+    /// Each figure's physical size at each position (per frame).
+    sides: Vec<Vec<Option<Vector>>>,
     /// Height of the captions.
     caption_h: f64,
     /// The strip of a cell's scale bar, and the bar's inset from the cell's left.
@@ -783,7 +816,7 @@ impl ForceLayout {
         let cell_side = FORCE_CELL_FRACTION * target_mm * k_l;
         // Each figure's content size (and per frame its scales), then the table.
         let mut items: Vec<(String, Vector)> = Vec::new();
-        let mut scales = Vec::new();
+        let (mut scales, mut all_sides) = (Vec::new(), Vec::new());
         for ((caption, per_position), all) in fs.figures.iter().zip(&extents) {
             let (content, widest) = match spec.scales {
                 ScaleChoice::Fixed => {
@@ -800,6 +833,7 @@ impl ForceLayout {
                         .max_by(|a, b| widest_text_width(a, caption_h).total_cmp(&widest_text_width(b, caption_h)))
                         .unwrap_or_else(|| caption.clone());
                     scales.push(k);
+                    all_sides.push(sides);
                     (Vector::new(cell_side + 2.0 * room, cell_side + 2.0 * room + bar_room), widest)
                 }
             };
@@ -846,6 +880,7 @@ impl ForceLayout {
             row_count: fs.row_count,
             table_width: table.x,
             scales,
+            sides: all_sides,
             caption_h,
             bar_room,
             bar_inset: 2.0 * sizes.small_text(),
@@ -877,6 +912,7 @@ impl ForceLayout {
                         bar_at: None,
                         scales: vec![self.common],
                         pole: Some(min - scale.draw(e.min)),
+                        sides: Vec::new(),
                     }
                 }
                 ScaleChoice::PerFrame => Slot {
@@ -892,6 +928,7 @@ impl ForceLayout {
                     bar_at: Some(ll + Vector::new(self.bar_inset, 0.5 * self.bar_room)),
                     scales: self.scales.get(i).cloned().unwrap_or_default(),
                     pole: None,
+                    sides: self.sides.get(i).cloned().unwrap_or_default(),
                 },
             };
             figures.push(slot);

@@ -281,12 +281,24 @@ pub const MIN_FRAME_FILL: f64 = 0.5;
 /// make the animation flicker); a frame with nothing to draw keeps the last scale (1 before
 /// any). The live page and the frames use this one choice ([`scale_near`] between frames).
 pub fn frame_scales(extents: &[Option<Vector>], area: Vector) -> Vec<f64> {
+    held_scales(&[], extents, area)
+}
+
+/// [`frame_scales`] after an earlier run of the same motion drawn at `previous[k]` at frame
+/// `k` (the live page's picture before a field's slider moved; `None` or missing where it
+/// drew nothing): each frame keeps its earlier scale while the figure fills between
+/// [`MIN_FRAME_FILL`] and all of the area at it, so a polygon visibly grows and shrinks as
+/// a length or a load changes, and takes another only when it would leave its area or
+/// shrink under half of it; a frame without an earlier scale follows the frame before it,
+/// as [`frame_scales`] does.
+pub fn held_scales(previous: &[Option<f64>], extents: &[Option<Vector>], area: Vector) -> Vec<f64> {
     let mut out = Vec::with_capacity(extents.len());
     let mut last: Option<f64> = None;
-    for e in extents {
-        let k = scale_near(last, *e, area);
-        last = Some(k);
-        out.push(k);
+    for (k, e) in extents.iter().enumerate() {
+        let before = previous.get(k).copied().flatten().or(last);
+        let scale = scale_near(before, *e, area);
+        last = Some(scale);
+        out.push(scale);
     }
     out
 }
@@ -499,6 +511,32 @@ mod tests {
         assert_eq!(fit(size, area).per_mm, 2.0);
         assert_eq!(scale_near(Some(2.5), e, area), 2.5);
         assert_eq!(scale_near(Some(5.0), e, area), 2.0);
+    }
+
+    #[test]
+    fn held_scales_keep_an_earlier_runs_scale_while_the_figure_fills_half_to_all_of_its_area() {
+        let area = Vector::new(100.0, 80.0);
+        let e = |w: f64| Some(Vector::new(w, 1.0));
+        let same = |w: f64| vec![e(w); 6];
+        // An earlier run drew a figure 200 units wide at 2.5 units/mm (fill 0.8). Shrunk to
+        // 130 units it keeps 2.5 (fill 0.52), where a fresh run takes 2 (fill 0.65): the
+        // student sees it shrink.
+        let before = frame_scales(&same(200.0), area);
+        assert_eq!(before, vec![2.5; 6]);
+        let prev: Vec<Option<f64>> = before.iter().copied().map(Some).collect();
+        assert_eq!(held_scales(&prev, &same(130.0), area), vec![2.5; 6]);
+        assert_eq!(frame_scales(&same(130.0), area), vec![2.0; 6]);
+        // Grown to 240 units (fill 0.96) it is held; to 260 it would leave the area:
+        // re-chosen (5 units/mm, fill 0.52).
+        assert_eq!(held_scales(&prev, &same(240.0), area), vec![2.5; 6]);
+        assert_eq!(held_scales(&prev, &same(260.0), area), vec![5.0; 6]);
+        // Shrunk under half (120 units, fill 0.48): re-chosen (2 units/mm, fill 0.6).
+        assert_eq!(held_scales(&prev, &same(120.0), area), vec![2.0; 6]);
+        // Each frame its own earlier scale; a frame without one follows the frame before.
+        let prev = [Some(2.5), Some(1.0), None, Some(2.0)];
+        assert_eq!(held_scales(&prev, &[e(130.0), e(90.0), e(60.0), e(110.0)], area), vec![2.5, 1.0, 1.0, 2.0]);
+        // No earlier run: the frame-to-frame choice.
+        assert_eq!(held_scales(&[], &same(130.0), area), frame_scales(&same(130.0), area));
     }
 
     #[test]
