@@ -1,6 +1,7 @@
 //! Force figures per Assur group (issue 31, seed 003 Figs. 4 and 5 for any linkage): on every
-//! linkage template with forces, one figure per group of the decomposition in solving order
-//! (the driven crank's, each dyad's), and at every sample each figure closes, its found sides
+//! linkage template with forces (and triad-driven given masses: a class-3 group), one figure
+//! per group of the decomposition in solving order (the driven crank's, each dyad's or
+//! triad's), and at every sample each figure closes, its found sides
 //! are the solver's reactions on the group's bodies (and a distance driver's force), and its
 //! resultant is the reaction between the group's bodies — to 1e-9 of the figure's largest
 //! force. The reactions are read from the solver's Lagrange multipliers by the sign
@@ -16,7 +17,12 @@ use mechdraw::scene::{self, Scene};
 use mechdraw::solve::linkage::{Attach, Forces, GroupKind, JointKind, Mechanism, Solver, State, decompose};
 
 fn run(template: &str) -> (LinkageScene, Vec<State>, Vec<Forces>) {
-    let loaded = scene::load(&common::root().join("templates").join(template), &[]).unwrap();
+    run_with(template, &[])
+}
+
+fn run_with(template: &str, set: &[&str]) -> (LinkageScene, Vec<State>, Vec<Forces>) {
+    let over: Vec<scene::Override> = set.iter().map(|s| s.parse().unwrap()).collect();
+    let loaded = scene::load(&common::root().join("templates").join(template), &over).unwrap();
     let Scene::Linkage(s) = loaded.scene else { panic!("not a linkage scene") };
     let d = s.dynamics.clone().expect("forces");
     let (states, forces) = Solver::new(s.mechanism.clone()).unwrap().run_kinetostatics(&s.times, &d).unwrap();
@@ -60,10 +66,35 @@ fn reaction(mech: &Mechanism, f: &Forces, name: &str) -> Option<Vector> {
     })
 }
 
+/// The linkage templates with forces, and triad-driven given masses (a class-3 group: its
+/// figure chains the triad's four bodies).
+const TRIAD_MASSES: &[&str] = &[
+    "body[0].mass=1",
+    "body[1].mass=2",
+    "body[2].mass=1",
+    "body[3].mass=1.5",
+    "body[4].mass=3",
+    "body[4].inertia=0.01",
+    "dynamics.g=[0.0, -9.81]",
+    "time.steps=36",
+];
+
 #[test]
 fn one_figure_per_group_closes_at_the_solvers_reactions() {
-    for template in ["shaper-forces.toml", "slider-crank.toml"] {
-        let (s, states, forces) = run(template);
+    let mut runs: Vec<(String, &[&str])> = common::template_paths()
+        .iter()
+        .filter(|t| std::fs::read_to_string(t).unwrap().contains("kind = \"linkage\""))
+        .filter_map(|t| {
+            let name = t.file_name().unwrap().to_string_lossy().to_string();
+            let loaded = scene::load(t, &[]).unwrap();
+            matches!(&loaded.scene, Scene::Linkage(s) if s.dynamics.is_some()).then_some((name, &[][..]))
+        })
+        .collect();
+    assert!(runs.len() >= 2, "{runs:?}");
+    runs.push(("triad-driven.toml".to_string(), TRIAD_MASSES));
+    for (template, set) in &runs {
+        let template = template.as_str();
+        let (s, states, forces) = run_with(template, set);
         let mech = &s.mechanism;
         let dynamics = s.dynamics.as_ref().unwrap();
         let groups = decompose(mech);
@@ -73,8 +104,12 @@ fn one_figure_per_group_closes_at_the_solvers_reactions() {
         // The driven crank's figure first, then the dyads by their bodies and kind.
         assert!(matches!(groups[0].kind, GroupKind::Driven(_)) && captions[0] == "Crank 1 (driver)", "{captions:?}");
         for (g, c) in groups.iter().zip(&captions).skip(1) {
-            let GroupKind::Dyad(k) = g.kind else { panic!("{template}: {g:?}") };
-            assert_eq!(*c, format!("Dyad {}–{} ({})", g.bodies[0] + 1, g.bodies[1] + 1, k.name()));
+            let list: Vec<String> = g.bodies.iter().map(|b| (b + 1).to_string()).collect();
+            match g.kind {
+                GroupKind::Dyad(k) => assert_eq!(*c, format!("Dyad {} ({})", list.join("–"), k.name())),
+                GroupKind::Triad => assert_eq!(*c, format!("Triad {}", list.join("–"))),
+                _ => panic!("{template}: {g:?}"),
+            }
         }
         let mut checked = 0;
         for (state, f) in states.iter().zip(&forces) {
