@@ -4,7 +4,10 @@
 //! resultant drawn beside a side it would lie on: up to two arrowheads out), and each
 //! frame's printed scale measures true: the longest vector drawn from a polygon's pole,
 //! measured on the frame's paper and multiplied by the scale printed in its title, is the
-//! solver's largest velocity (acceleration) of the polygon's points, to 1e-9. With
+//! solver's largest velocity (acceleration) of the polygon's points drawn from the pole, to
+//! 1e-9 (both polygons of the four-bar and of every linkage). After a change (the live
+//! page), each polygon keeps its earlier scale until it would leave its panel or fill less
+//! than half of it. With
 //! `[frames] scales = "fixed"` one scale serves the whole run.
 
 mod common;
@@ -176,17 +179,23 @@ fn every_linkage_frame_fills_its_panels_at_printed_scales_that_measure_true() {
         for (k, st) in states.iter().enumerate() {
             let force = s.dynamics.as_ref().zip(forces.as_ref().map(|f| &f[k]));
             let d = frames.moving(k, &fig, mech, st, force);
-            let (k_v, _) = check_frame(&stem, &d, &frames.frame, k);
-            // Measured: the longest velocity from the pole is the largest point velocity.
+            let (k_v, k_a) = check_frame(&stem, &d, &frames.frame, k);
+            // Measured: the longest velocity (acceleration) from the pole is the largest of
+            // the points drawn from it.
             let poly = mechdraw::figure::linkage::polygon::polygons(mech, st);
-            let v_max = poly.velocity.points.iter().filter(|p| p.from == 0).map(|p| p.v.norm()).fold(0.0, f64::max);
-            let (_, pole) = frames.frame.velocity.as_ref().unwrap().place(
-                k,
-                mechdraw::figure::shared::panels::Extent::of(poly.velocity.physical_points()),
-                frames.frame.k_l,
-            );
-            let measured = longest_from(&d, "VELOCITY", pole) * k_v.unwrap();
-            assert!((measured - v_max).abs() <= 1e-9 * v_max.max(1e-300), "{stem} frame {k}: {measured} vs {v_max}");
+            for (p, slot, layer, printed) in [
+                (&poly.velocity, &frames.frame.velocity, "VELOCITY", k_v),
+                (&poly.acceleration, &frames.frame.acceleration, "ACCELERATION", k_a),
+            ] {
+                let largest = p.points.iter().filter(|p| p.from == 0).map(|p| p.v.norm()).fold(0.0, f64::max);
+                let extent = mechdraw::figure::shared::panels::Extent::of(p.physical_points());
+                let (_, pole) = slot.as_ref().unwrap().place(k, extent, frames.frame.k_l);
+                let measured = longest_from(&d, layer, pole) * printed.unwrap();
+                assert!(
+                    (measured - largest).abs() <= 1e-9 * largest.max(1e-300),
+                    "{stem} frame {k}: {layer} {measured} vs {largest}"
+                );
+            }
         }
         let _ = Vector::zeros();
     }
