@@ -867,12 +867,7 @@ fn sheet_pages(
             let set = sheets.pages(&geom, p, f, &table, (i * per + 1, total));
             set.pages
                 .into_iter()
-                .map(|(kind, drawing)| products::Page {
-                    stem: format!("{}-{kind}", names[i].to_lowercase()),
-                    drawing,
-                    window: paper.bounds(),
-                    hairline_mm: sheet::HAIRLINE_MM,
-                })
+                .map(|(kind, drawing)| products::Page::printed(&names[i], kind, drawing, paper))
                 .collect()
         })
         .collect();

@@ -1118,12 +1118,7 @@ fn sheet_pages(
             sheets
                 .pages(&scene.mechanism, st, force, &table, (k * per + 1, total))
                 .into_iter()
-                .map(|(kind, drawing)| products::Page {
-                    stem: format!("{}-{kind}", names[k].to_lowercase()),
-                    drawing,
-                    window: paper.bounds(),
-                    hairline_mm: sheet::HAIRLINE_MM,
-                })
+                .map(|(kind, drawing)| products::Page::printed(&names[k], kind, drawing, paper))
                 .collect()
         })
         .collect();

@@ -70,6 +70,24 @@ pub struct Page {
     pub hairline_mm: f64,
 }
 
+impl Page {
+    /// A printed page of position `position` (`POS_090`) on `paper`: `kind` (`mechanism`,
+    /// `polygons`, `forces`) after the position's name in its stem (`pos_090-forces`).
+    pub(crate) fn printed(
+        position: &str,
+        kind: &str,
+        drawing: Drawing,
+        paper: crate::figure::shared::sheet::Paper,
+    ) -> Page {
+        Page {
+            stem: format!("{}-{kind}", position.to_lowercase()),
+            drawing,
+            window: paper.bounds(),
+            hairline_mm: crate::figure::shared::sheet::HAIRLINE_MM,
+        }
+    }
+}
+
 /// A CSV table: `<scene name><suffix>.csv`.
 #[derive(Debug, Clone)]
 pub struct Table {

@@ -146,22 +146,28 @@ fn title_rows(cells: usize) -> usize {
     1 + cells.div_ceil(2)
 }
 
+/// The border, the right column's left edge and the title block of a page on `paper` with
+/// `title_cells` cells besides the title block's name row: (sizes, border, right, title).
+pub(crate) fn page_frame(paper: Paper, title_cells: usize) -> (Sizes, Bounds, f64, Bounds) {
+    let size = paper.size_mm();
+    let sizes = paper.sizes();
+    let border = Bounds { min: Point::new(20.0, 10.0), max: Point::new(size.x - 10.0, size.y - 10.0) };
+    let column = match paper {
+        Paper::A4 => 100.0,
+        Paper::A3 => 130.0,
+    };
+    let row = 2.4 * sizes.text;
+    let title_h = 1.4 * row + (title_rows(title_cells) - 1) as f64 * row;
+    let right = border.max.x - column;
+    let title = Bounds { min: Point::new(right, border.min.y), max: Point::new(border.max.x, border.min.y + title_h) };
+    (sizes, border, right, title)
+}
+
 impl SheetLayout {
     /// The layout of a sheet on `paper` with `panels` panels (1 or 2 in a row, more in two
     /// columns) and a title block of `title_cells` cells besides its name row.
     pub fn new(paper: Paper, panels: usize, title_cells: usize) -> SheetLayout {
-        let size = paper.size_mm();
-        let sizes = paper.sizes();
-        let border = Bounds { min: Point::new(20.0, 10.0), max: Point::new(size.x - 10.0, size.y - 10.0) };
-        let column = match paper {
-            Paper::A4 => 100.0,
-            Paper::A3 => 130.0,
-        };
-        let row = 2.4 * sizes.text;
-        let title_h = 1.4 * row + (title_rows(title_cells) - 1) as f64 * row;
-        let right = border.max.x - column;
-        let title =
-            Bounds { min: Point::new(right, border.min.y), max: Point::new(border.max.x, border.min.y + title_h) };
+        let (sizes, border, right, title) = page_frame(paper, title_cells);
         let table = Bounds { min: Point::new(right, title.max.y), max: border.max };
         let n = panels.max(1);
         let cols = if n <= 2 { n } else { 2 };

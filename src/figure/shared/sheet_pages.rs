@@ -32,23 +32,6 @@ pub const LETTER_ROOM: f64 = 1.5;
 /// The largest share of the page's height the table under a long mechanism takes.
 pub const TABLE_BAND_MAX: f64 = 0.45;
 
-/// The border, the right column's left edge and the title block of a page on `paper` with
-/// `title_cells` cells besides the title block's name row.
-fn frame(paper: Paper, title_cells: usize) -> (Sizes, Bounds, f64, Bounds) {
-    let size = paper.size_mm();
-    let sizes = paper.sizes();
-    let border = Bounds { min: Point::new(20.0, 10.0), max: Point::new(size.x - 10.0, size.y - 10.0) };
-    let column = match paper {
-        Paper::A4 => 100.0,
-        Paper::A3 => 130.0,
-    };
-    let row = 2.4 * sizes.text;
-    let title_h = 1.4 * row + title_cells.div_ceil(2) as f64 * row;
-    let right = border.max.x - column;
-    let title = Bounds { min: Point::new(right, border.min.y), max: Point::new(border.max.x, border.min.y + title_h) };
-    (sizes, border, right, title)
-}
-
 /// Where the mechanism goes on its page: the layout (panel 0 the mechanism's), the length
 /// scale, and the paper point of the model's origin.
 #[derive(Debug, Clone, PartialEq)]
@@ -68,7 +51,7 @@ impl MechanismPage {
     /// scale — beside the table (the table in the right column over the title block) or
     /// above it (the table in a band under it, left of the title block).
     pub fn new(paper: Paper, lo: Vector, hi: Vector, room: Vector, table_rows: usize, title_cells: usize) -> Self {
-        let (sizes, border, right, title) = frame(paper, title_cells);
+        let (sizes, border, right, title) = sheet::page_frame(paper, title_cells);
         let extent = (hi - lo).sup(&Vector::new(1e-300, 1e-300));
         let beside = (
             Bounds { min: border.min, max: Point::new(right, border.max.y) },
@@ -117,7 +100,7 @@ pub fn mechanism_bar(d: &mut Drawing, layout: &SheetLayout, k_l: f64, unit: &str
 /// The layout of the polygons page: `count` panels (1 or 2) side by side over the title
 /// block, no table.
 pub fn polygons_layout(paper: Paper, count: usize, title_cells: usize) -> SheetLayout {
-    let (sizes, border, _, title) = frame(paper, title_cells);
+    let (sizes, border, _, title) = sheet::page_frame(paper, title_cells);
     let n = count.max(1);
     let w = border.width() / n as f64;
     let panels = (0..n)
@@ -210,7 +193,7 @@ impl ForcesPage {
     /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
     /// page still holds them, at the next finer one (larger figures where there is room).
     pub fn new(paper: Paper, figures: &[ForcePolygon], captions: &[String], title_cells: usize) -> ForcesPage {
-        let (sizes, border, right, title) = frame(paper, title_cells);
+        let (sizes, border, right, title) = sheet::page_frame(paper, title_cells);
         let extents: Vec<Extent> = figures
             .iter()
             .map(|f| Extent::of(f.physical_points()).unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() }))
