@@ -52,7 +52,7 @@ fn printed(d: &Drawing, title: &str, symbol: &str) -> f64 {
     let text = d
         .entities
         .iter()
-        .find_map(|e| match &e.shape {
+        .find_map(|e| match e.shape.scale_text_in(None).as_ref().unwrap_or(&e.shape) {
             Shape::Text { value, .. } if value.starts_with(title) => Some(value.clone()),
             _ => None,
         })

@@ -7,6 +7,11 @@
 //! one point constructed per body, the others the vertices of an image similar to the
 //! body (a_X − a_R = (−ω² + ε·J)·RX for every point of it).
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::figure::linkage::polygon::polygons;

@@ -10,6 +10,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use super::fourbar_teaching as teaching;
+use super::positions::DriveAxis;
 use super::products::{self, Extras, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -35,9 +36,13 @@ use crate::solve::fourbar::{
 const GAP_STEPS: f64 = 1.5;
 
 pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
-    let (paper, picture_only) = (opts.sheets, opts.picture_only);
+    let (paper, chosen, picture_only) = (opts.sheets, opts.positions.as_ref(), opts.picture_only);
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
+    // The positions drawn (`--positions`: crank angles φ1 in degrees).
+    let angles: Vec<f64> = motion.positions.iter().map(|p| deg(p.phi1)).collect();
+    let axis = DriveAxis { name: "crank angle φ1", unit: "°", step: spec.sweep.step_deg.abs() };
+    let drawn = super::drawn_positions(chosen, &angles, axis)?;
     let units = match scene.units {
         Units::Si => ModelUnits::SI,
         Units::Mm => ModelUnits::MM,
@@ -116,7 +121,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
             })
             .collect();
         let pages = match paper {
-            Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names),
+            Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names, &drawn),
             None => Vec::new(),
         };
         Extras {
@@ -151,12 +156,18 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
             })
         },
     };
-    let frame_scales = (0..positions.len()).map(|k| layout.frame.scales_at(k)).collect();
+    // The scales each drawn frame is drawn at (in the animation's order).
+    let frame_scales = if chosen.is_some() { drawn.clone() } else { (0..positions.len()).collect() }
+        .into_iter()
+        .map(|k| layout.frame.scales_at(k))
+        .collect();
     let pose = move |k: usize| layout.moving(k, &geom, &positions[k], forces.get(k).filter(|_| show.forces));
+    let animation = Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive);
+    let animation = if chosen.is_some() { animation.keep(drawn) } else { animation };
     Ok(extras.with_motion(
         name.clone(),
         super::mm_per_unit(scene.units),
-        Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive),
+        animation,
         PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
         warnings,
         frame_scales,
@@ -834,8 +845,9 @@ fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUn
     sheet::Table { header, rows }
 }
 
-/// The printed pages, a set per position (in parallel): `sheets/<name>/<position>-<page>.svg`
-/// (`mechanism`, `polygons`, `forces`) and the PDF with every page in order.
+/// The printed pages, a set per drawn position (`drawn`: indices into the motion's positions,
+/// in parallel): `sheets/<name>/<position>-<page>.svg` (`mechanism`, `polygons`, `forces`)
+/// and the PDF with every page in order, numbered among themselves.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -846,6 +858,7 @@ fn sheet_pages(
     show: Show,
     units: ModelUnits,
     names: &[String],
+    drawn: &[usize],
 ) -> Vec<products::Page> {
     let geom = scene.spec.geometry;
     let rows =
@@ -856,15 +869,15 @@ fn sheet_pages(
         FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units, rows)
             .with_loads(external, loads);
     let per = sheets.per_position();
-    let total = motion.positions.len() * per;
-    let sets: Vec<Vec<products::Page>> = motion
-        .positions
+    let total = drawn.len() * per;
+    let sets: Vec<Vec<products::Page>> = drawn
         .par_iter()
         .enumerate()
-        .map(|(i, p)| {
+        .map(|(j, &i)| {
+            let p = &motion.positions[i];
             let f = forces_at(motion, i, show.forces);
             let table = sheet_table(p, f, qs, units);
-            let set = sheets.pages(&geom, p, f, &table, (i * per + 1, total));
+            let set = sheets.pages(&geom, p, f, &table, (j * per + 1, total));
             set.pages
                 .into_iter()
                 .map(|(kind, drawing)| products::Page::printed(&names[i], kind, drawing, paper))

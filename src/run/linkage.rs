@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
+use super::positions::DriveAxis;
 use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -128,7 +129,7 @@ fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error
 }
 
 pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
-    let (drag, paper, picture_only) = (&opts.drag, opts.sheets, opts.picture_only);
+    let (drag, paper, positions, picture_only) = (&opts.drag, opts.sheets, opts.positions.as_ref(), opts.picture_only);
     let serr = solve_err(file);
     let mut solver = match Solver::new(scene.mechanism.clone()) {
         Ok(s) => s,
@@ -204,6 +205,13 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
     let window = frames.frame.window;
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
+    // The positions drawn (`--positions`: times t in seconds).
+    let times: Vec<f64> = states.iter().map(|s| s.t).collect();
+    let step = match scene.times.as_slice() {
+        [a, b, ..] => (b - a).abs(),
+        _ => 1.0,
+    };
+    let drawn = super::drawn_positions(positions, &times, DriveAxis { name: "time t", unit: " s", step })?;
 
     let extras = if picture_only {
         Extras::default()
@@ -302,8 +310,9 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
             mech.joints.len(),
             mech.drivers.len(),
             states.len(),
-            scene.times[0],
-            scene.times[scene.times.len() - 1],
+            // At most 6 decimals: a span of π/10 s reads 0..0.314159 s.
+            crate::solve::chain::graph::fmt_value(scene.times[0]),
+            crate::solve::chain::graph::fmt_value(scene.times[scene.times.len() - 1]),
             max_residual,
         );
         let mut report = report;
@@ -329,7 +338,7 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
         let pages = match paper {
             Some(paper) => {
                 let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
-                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names)
+                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names, &drawn)
             }
             None => Vec::new(),
         };
@@ -397,15 +406,21 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
             })
         },
     };
-    let frame_scales = (0..states.len()).map(|k| frames.frame.scales_at(k)).collect();
+    // The scales each drawn frame is drawn at (in the animation's order).
+    let frame_scales = if positions.is_some() { drawn.clone() } else { (0..states.len()).collect() }
+        .into_iter()
+        .map(|k| frames.frame.scales_at(k))
+        .collect();
     let pose = move |k: usize| {
         let force = dynamics.as_ref().zip(forces.get(k));
         frames.moving(k, &figure, &mech, &states[k], force)
     };
+    let animation = Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive);
+    let animation = if positions.is_some() { animation.keep(drawn) } else { animation };
     Ok(extras.with_motion(
         scene.name.clone(),
         super::mm_per_unit(scene.units),
-        Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
+        animation,
         PositionsSource { field: "time.steps", advice: "use fewer steps" },
         warnings,
         frame_scales,
@@ -1088,8 +1103,8 @@ fn sheet_table(
     sheet::Table { header, rows }
 }
 
-/// The printed pages, one per sample (in parallel): `sheets/<name>/<position>.svg` and the
-/// PDF.
+/// The printed pages, one per drawn sample (`drawn`: indices into the samples; in parallel):
+/// `sheets/<name>/<position>.svg` and the PDF, numbered among themselves.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -1100,6 +1115,7 @@ fn sheet_pages(
     plots: &[Plot],
     show: Show,
     names: &[String],
+    drawn: &[usize],
 ) -> Vec<products::Page> {
     // The table's rows: the most any sample has (a load acts only on part of the motion).
     let rows = (0..states.len())
@@ -1108,15 +1124,16 @@ fn sheet_pages(
         .unwrap_or(0);
     let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows);
     let per = sheets.per_position();
-    let total = states.len() * per;
-    let sets: Vec<Vec<products::Page>> = states
+    let total = drawn.len() * per;
+    let sets: Vec<Vec<products::Page>> = drawn
         .par_iter()
         .enumerate()
-        .map(|(k, st)| {
+        .map(|(j, &k)| {
+            let st = &states[k];
             let force = forces.map(|(d, f)| (d, &f[k]));
             let table = sheet_table(scene, plots, k, force.map(|(d, f)| (d, st, f)));
             sheets
-                .pages(&scene.mechanism, st, force, &table, (k * per + 1, total))
+                .pages(&scene.mechanism, st, force, &table, (j * per + 1, total))
                 .into_iter()
                 .map(|(kind, drawing)| products::Page::printed(&names[k], kind, drawing, paper))
                 .collect()

@@ -3,6 +3,11 @@
 //! Golden files live in `golden/`; `UPDATE_GOLDEN=1 cargo test` re-blesses them (look at
 //! every re-blessed file before committing it: golden/README.md). A mismatch writes the
 //! actual output (and for images a diff) under `target/golden-mismatch/`.
+
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -203,6 +208,8 @@ pub fn drawn_shapes(d: &mechdraw::draw::Drawing) -> Vec<(String, mechdraw::draw:
             dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
                 out.extend(parts::explode_dimension(dim, &d.dim_style).into_iter().map(|s| (layer.clone(), s)))
             }
+            // A scale caption as the paper states it.
+            caption @ Shape::ScaleText { .. } => out.extend(caption.scale_text_in(None).map(|t| (layer, t))),
             other => out.push((layer, other.clone())),
         }
     }

@@ -657,7 +657,10 @@ pub fn strokes(shape: &Shape) -> Vec<Segment> {
             }
             None => vec![(*from, *to)],
         },
-        Shape::Text { .. } | Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => Vec::new(),
+        Shape::Text { .. }
+        | Shape::ScaleText { .. }
+        | Shape::AngularDimension { .. }
+        | Shape::LinearDimension { .. } => Vec::new(),
     }
 }
 

@@ -30,7 +30,7 @@
 //! panel's title).
 
 use crate::draw::parts::widest_text_width;
-use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
+use crate::draw::{Bounds, DimStyle, Drawing, HAlign, ScaleCaption, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
 use crate::figure::shared::forces::{self, ForcePolygon, Magnitude};
@@ -38,9 +38,66 @@ use crate::figure::shared::labels;
 use crate::figure::shared::polygon::{self, PointPolygon};
 use crate::figure::shared::sheet;
 use crate::figure::shared::vocab::{
-    ModelUnits, Scale, Sizes, bar_value, content_drawing, drafting_scale, layer_of, layers, length_scale_text,
-    nice_scale, scale_bar, scale_bar_room, scale_text,
+    ModelUnits, Scale, Sizes, bar_value, caption_width, content_drawing, drafting_scale, layer_of, layers,
+    length_caption, nice_scale, scale_bar, scale_bar_room, scale_text,
 };
+
+/// A panel's title: none, plain words, or words stating a scale (each medium writes its
+/// value for the millimetres it draws: [`ScaleCaption`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Title {
+    /// No title (drawn with each position: a polygon's scale per frame).
+    None,
+    /// Words without a scale (`Force polygons`).
+    Words(String),
+    /// Words with a scale (`Velocity polygon   k_v = 0.1 (m/s)/mm`).
+    Scale(ScaleCaption),
+}
+
+impl Title {
+    /// The title as a medium drawing a model unit `mm_per_unit` millimetres long writes it.
+    pub fn text(&self, mm_per_unit: f64) -> String {
+        match self {
+            Title::None => String::new(),
+            Title::Words(w) => w.clone(),
+            Title::Scale(c) => c.text(mm_per_unit),
+        }
+    }
+
+    /// The title on its figure's paper.
+    pub fn on_paper(&self) -> String {
+        match self {
+            Title::Scale(c) => c.on_paper(),
+            other => other.text(1.0),
+        }
+    }
+
+    /// The width it takes in the widest reader, in whichever medium writes it wider.
+    fn width(&self, units: ModelUnits, height: f64) -> f64 {
+        match self {
+            Title::None => 0.0,
+            Title::Words(w) => widest_text_width(w, height),
+            Title::Scale(c) => caption_width(c, units, height),
+        }
+    }
+
+    /// Draws it left-aligned on its baseline at `at` on `layer`.
+    fn draw(&self, d: &mut Drawing, layer: usize, at: Point, height: f64) {
+        match self {
+            Title::None => {}
+            Title::Words(w) => text(d, layer, at, height, w),
+            Title::Scale(c) => d.scale_text(layer, at, height, c.clone()),
+        }
+    }
+}
+
+/// A caption stating a scale: `before` then `k_v = 0.1 (m/s)/mm` (`per_mm` per paper mm of a
+/// figure printed at `paper_mm_per_unit`), each medium writing the value for its own
+/// millimetres.
+pub fn scale_caption(before: &str, symbol: &str, per_mm: f64, unit: &str, paper_mm_per_unit: f64) -> ScaleCaption {
+    let unit = if unit.contains('/') { format!("({unit})") } else { unit.to_string() };
+    ScaleCaption::new(format!("{before}{symbol} = "), per_mm, format!(" {unit}/mm"), paper_mm_per_unit)
+}
 
 /// Gap between panels on paper, millimetres.
 pub const PANEL_GAP_MM: f64 = 10.0;
@@ -224,9 +281,10 @@ impl Slot {
         (scale, pole)
     }
 
-    /// The title with the scale `per_mm`: `Velocity polygon   k_v = 0.1 (m/s)/mm`.
-    fn title_with(&self, per_mm: f64) -> String {
-        format!("{}   {}", self.title, scale_line(self.symbol, per_mm, &self.unit))
+    /// The title with the scale `per_mm`: `Velocity polygon   k_v = 0.1 (m/s)/mm`, on a
+    /// figure printed at `paper_mm_per_unit`.
+    fn title_with(&self, per_mm: f64, paper_mm_per_unit: f64) -> ScaleCaption {
+        scale_caption(&format!("{}   ", self.title), self.symbol, per_mm, &self.unit, paper_mm_per_unit)
     }
 }
 
@@ -274,7 +332,7 @@ pub struct PanelFrame {
     /// The panels: (title drawn in every frame's base, lower-left, upper-right), the
     /// mechanism's first, then velocity, acceleration, forces as drawn. A polygon's title
     /// with a scale per frame is drawn with each position ([`Slot::title`]).
-    pub panels: Vec<(String, Point, Point)>,
+    pub panels: Vec<(Title, Point, Point)>,
     /// The scale bars drawn in every frame's base: left end, length (model units), label.
     pub bars: Vec<(Point, f64, String)>,
     /// The fixed window of every frame.
@@ -293,7 +351,7 @@ enum Which {
 struct Pending {
     which: Which,
     content: Vector,
-    title: String,
+    title: Title,
 }
 
 impl PanelFrame {
@@ -336,10 +394,7 @@ impl PanelFrame {
                 ScaleChoice::PerFrame => (Vector::new(target, target) + Vector::new(2.0 * room, 2.0 * room), None),
             };
             // The widest title it takes: with the finest scale of the run (most digits).
-            let widest = k.map_or_else(
-                || format!("{title}   {symbol} = 0.0025 ({unit})/mm"),
-                |k| format!("{title}   {}", scale_line(symbol, k, &unit)),
-            );
+            let widest = Title::Scale(scale_caption(&format!("{title}   "), symbol, k.unwrap_or(0.0025), &unit, paper));
             pending.push((Pending { which, content, title: widest }, symbol, unit, title, all, k, points.clone()));
         }
         let mut force_cells = None;
@@ -356,8 +411,8 @@ impl PanelFrame {
                 }
             }
             let title = match spec.scales {
-                ScaleChoice::Fixed => format!("Force polygons   {}", scale_line("k_f", cells.common, "N")),
-                ScaleChoice::PerFrame => "Force polygons".to_string(),
+                ScaleChoice::Fixed => Title::Scale(scale_caption("Force polygons   ", "k_f", cells.common, "N", paper)),
+                ScaleChoice::PerFrame => Title::Words("Force polygons".to_string()),
             };
             pending.push((
                 Pending { which: Which::Forces, content: cells.size + Vector::new(1.2 * sizes.text, bar_room), title },
@@ -374,21 +429,24 @@ impl PanelFrame {
         // Grid: up to three panels in a row, four as 2 × 2.
         let title_room = 2.6 * sizes.text;
         let gap = PANEL_GAP_MM * k_l;
-        let mech_title = match (&force_cells, spec.scales) {
-            (Some(c), ScaleChoice::PerFrame) => format!(
-                "Mechanism   {}, forces {}",
-                length_scale_text(k_l, units),
-                scale_line("k_f", c.mechanism_scale.per_mm, "N")
-            ),
-            _ => format!("Mechanism   {}", length_scale_text(k_l, units)),
-        };
+        let mech_title = Title::Scale(match (&force_cells, spec.scales) {
+            (Some(c), ScaleChoice::PerFrame) => length_caption("Mechanism   ", k_l, units).then(scale_caption(
+                ", forces ",
+                "k_f",
+                c.mechanism_scale.per_mm,
+                "N",
+                paper,
+            )),
+            _ => length_caption("Mechanism   ", k_l, units),
+        });
         // Each panel at least as wide as its title (the mechanism's with the position's
-        // text right of it), as the widest reader draws them.
-        let wide_enough = |b: Vector, title: &str, extra: &str| {
-            let w = widest_text_width(title, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
+        // text right of it; the title as the SVG or the DXF states it), as the widest reader
+        // draws them.
+        let wide_enough = |b: Vector, title: &Title, extra: &str| {
+            let w = title.width(units, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
             Vector::new(b.x.max(w), b.y)
         };
-        let mut boxes: Vec<(String, Vector)> =
+        let mut boxes: Vec<(Title, Vector)> =
             vec![(mech_title.clone(), wide_enough(mech_max - mech_min, &mech_title, &spec.position_text))];
         for (p, ..) in &pending {
             boxes.push((p.title.clone(), wide_enough(p.content + Vector::new(0.0, bar_room), &p.title, "")));
@@ -460,7 +518,11 @@ impl PanelFrame {
                         pole,
                         sides,
                     };
-                    let panel_title = if slot.pole.is_some() { slot.title_with(slot.scales[0]) } else { String::new() };
+                    let panel_title = if slot.pole.is_some() {
+                        Title::Scale(slot.title_with(slot.scales[0], paper))
+                    } else {
+                        Title::None
+                    };
                     if slot.pole.is_some() {
                         let value = bar_value(slot.scales[0]);
                         let drawn = Scale::on_paper(slot.scales[0], paper).draw(Vector::new(value, 0.0)).x;
@@ -572,8 +634,13 @@ impl PanelFrame {
         let mut out: Vec<labels::TextBox> = self
             .panels
             .iter()
-            .filter(|(t, ..)| !t.is_empty())
-            .map(|(title, ll, ur)| text_box(self.title_at(*ll, *ur), title, self.sizes.text))
+            .filter(|(t, ..)| *t != Title::None)
+            .map(|(title, ll, ur)| {
+                let at = self.title_at(*ll, *ur);
+                let e = crate::draw::font::measure(&title.on_paper(), self.sizes.text);
+                let w = title.width(self.units, self.sizes.text).max(e.width);
+                labels::TextBox { min: at - Vector::new(0.0, e.descent), max: at + Vector::new(w, e.ascent) }
+            })
             .collect();
         let mut scratch = Drawing::new(DimStyle { text_height: self.sizes.text, arrow_size: self.sizes.head });
         for (at, length, label) in &self.bars {
@@ -603,9 +670,7 @@ impl PanelFrame {
         for (title, ll, ur) in &self.panels {
             let points = vec![*ll, Point::new(ur.x, ll.y), *ur, Point::new(ll.x, ur.y)];
             d.add(frames, Shape::Polyline { points, closed: true, width: 0.0 });
-            if !title.is_empty() {
-                text(d, dims, self.title_at(*ll, *ur), self.sizes.text, title);
-            }
+            title.draw(d, dims, self.title_at(*ll, *ur), self.sizes.text);
         }
         for (at, length, label) in &self.bars {
             scale_bar(d, dims, *at, *length, label, self.sizes);
@@ -703,9 +768,13 @@ impl PanelFrame {
     /// returns their boxes.
     fn draw_slot_scale(&self, d: &mut Drawing, slot: &Slot, per_mm: f64) -> Vec<labels::TextBox> {
         let dims = layer_of(d, layers::DIMENSIONS);
-        let title = slot.title_with(per_mm);
-        text(d, dims, slot.title_at.0, slot.title_at.1, &title);
-        let mut out = vec![text_box(slot.title_at.0, &title, slot.title_at.1)];
+        let title = Title::Scale(slot.title_with(per_mm, 1.0 / self.k_l));
+        title.draw(d, dims, slot.title_at.0, slot.title_at.1);
+        let (at, h) = slot.title_at;
+        let e = crate::draw::font::measure(&title.on_paper(), h);
+        let w = title.width(self.units, h).max(e.width);
+        let mut out =
+            vec![labels::TextBox { min: at - Vector::new(0.0, e.descent), max: at + Vector::new(w, e.ascent) }];
         if let Some(at) = slot.bar_at {
             let value = bar_value(per_mm);
             let drawn = Scale::on_paper(per_mm, 1.0 / self.k_l).draw(Vector::new(value, 0.0)).x;
@@ -821,24 +890,28 @@ impl ForceLayout {
             let (content, widest) = match spec.scales {
                 ScaleChoice::Fixed => {
                     let e = all.map_or(Vector::zeros(), |e| e.sides());
-                    (Scale::on_paper(common, paper).draw(e) + Vector::new(0.0, 1.0 * room), caption.clone())
+                    let widest = widest_text_width(caption, caption_h);
+                    (Scale::on_paper(common, paper).draw(e) + Vector::new(0.0, 1.0 * room), widest)
                 }
                 ScaleChoice::PerFrame => {
                     let area = Vector::new(cell_side, cell_side) / k_l;
                     let sides: Vec<Option<Vector>> = per_position.iter().map(|e| e.map(|e| e.sides())).collect();
                     let k = sheet::frame_scales(&sides, area);
+                    // Its caption with the widest of its scales, as the SVG or the DXF writes it.
                     let widest = k
                         .iter()
-                        .map(|k| format!("{caption}   {}", scale_line("k_f", *k, "N")))
-                        .max_by(|a, b| widest_text_width(a, caption_h).total_cmp(&widest_text_width(b, caption_h)))
-                        .unwrap_or_else(|| caption.clone());
+                        .map(|k| {
+                            let c = scale_caption(&format!("{caption}   "), "k_f", *k, "N", paper);
+                            caption_width(&c, spec.units, caption_h)
+                        })
+                        .fold(widest_text_width(caption, caption_h), f64::max);
                     scales.push(k);
                     all_sides.push(sides);
                     (Vector::new(cell_side + 2.0 * room, cell_side + 2.0 * room + bar_room), widest)
                 }
             };
-            let w = content.x.max(widest_text_width(&widest, caption_h));
-            items.push((widest, Vector::new(w, content.y)));
+            let w = content.x.max(widest);
+            items.push((caption.clone(), Vector::new(w, content.y)));
         }
         let table = forces::table_size(&fs.rows, fs.row_count, sizes);
         let table_w = table.x.max(widest_text_width(TABLE_CAPTION, caption_h));

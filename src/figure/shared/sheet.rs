@@ -467,6 +467,10 @@ pub fn table_sets(b: Bounds, rows: usize, ncols: usize, s: Sizes) -> usize {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
 
