@@ -400,11 +400,11 @@ mod tests {
     #[test]
     fn a_force_figure_is_drawn_one_to_two_minimum_lengths_long() {
         for i in 0..2000 {
-            let size = 10f64.powf(-2.0 + i as f64 * 0.004);
+            let size = libm::pow(10.0, -2.0 + i as f64 * 0.004);
             let k = force_figure_scale(size);
             let drawn = size / k;
             assert!((FORCE_FIGURE_MIN_MM - 1e-9..2.0 * FORCE_FIGURE_MIN_MM + 1e-9).contains(&drawn), "{size}: {drawn}");
-            let m = k / 10f64.powf(k.log10().floor());
+            let m = k / libm::pow(10.0, libm::log10(k).floor());
             assert!([1.0, 2.0, 2.5, 5.0].iter().any(|n| (m - n).abs() < 1e-9), "{k}");
         }
     }
