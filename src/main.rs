@@ -231,6 +231,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 sets: set.clone(),
                 picture_only: false,
                 no_analysis,
+                held_scales: Vec::new(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

@@ -86,12 +86,14 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
     let dimensions = d.layer("DIMENSIONS", Aci::BLUE, LineType::Continuous);
     let text = d.layer("TEXT", Aci::BLACK, LineType::Continuous);
-    // Every line drawn, for the dimension texts and the letters to keep off.
+    // Every line drawn, for the dimension texts and the letters to keep off (the
+    // construction circles only for the letters: they are broken under a dimension's text).
     let mut lines: Vec<(Point, Point)> = Vec::new();
+    let mut circles: Vec<(Point, Point)> = Vec::new();
 
     for (o, r) in t.o.iter().zip(t.r) {
         d.add(construction, Shape::Circle { center: *o, radius: r });
-        arc_segments(&mut lines, *o, r, 0.0, std::f64::consts::TAU);
+        arc_segments(&mut circles, *o, r, 0.0, std::f64::consts::TAU);
     }
 
     if let Some(a) = f.approximate {
@@ -137,10 +139,12 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         d.add(dimensions, dim);
     }
 
+    // The construction circles broken where a dimension's text lies over them.
+    labels::break_around(&mut d, construction, &dimension_texts, 0.3 * s.text);
     // Letters: each preferably in the widest free direction around its point, placed by the
     // letter placer clear of the joint, every line (circles, both triangles, links,
     // dimensions), the ground symbols and the dimension texts.
-    for (u, v) in &lines {
+    for (u, v) in lines.iter().chain(&circles) {
         letters.segment(*u, *v);
     }
     for o in t.o {

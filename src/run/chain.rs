@@ -234,6 +234,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         report,
         warnings,
         derived: Vec::new(),
+        frame_scales: Vec::new(),
     })
 }
 

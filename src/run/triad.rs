@@ -410,5 +410,6 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         report: report(scene, &results),
         warnings: results.warnings,
         derived: Vec::new(),
+        frame_scales: Vec::new(),
     })
 }

@@ -69,16 +69,20 @@ pub fn keep_letters_off_dimension(letters: &mut labels::Polygon, dim: &Shape, st
 
 /// The box of a dimension's text.
 pub fn dimension_text_box(dim: &Shape, style: &DimStyle) -> Option<TextBox> {
-    explode_dimension(dim, style).into_iter().find_map(|part| match part {
-        Shape::Text { at, height, value, .. } => Some(TextBox::centred(at, &value, height)),
-        _ => None,
+    explode_dimension(dim, style).into_iter().find_map(|part| {
+        // The text as drawn (its descenders: φ), turned with it.
+        let c = crate::draw::text_corners(&part)?;
+        let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+        let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+        Some(TextBox { min, max })
     })
 }
 
 /// Radii tried for an angular dimension, as multiples of its preferred radius, in order:
 /// the first whose text overlaps no earlier dimension's text and crosses no line is drawn,
 /// else the first that overlaps the fewest texts, then crosses the fewest lines.
-pub const DIMENSION_RADII: [f64; 12] = [1.0, 0.85, 1.15, 0.7, 1.3, 0.55, 1.45, 1.6, 1.75, 1.9, 2.05, 2.2];
+pub const DIMENSION_RADII: [f64; 20] =
+    [1.0, 0.85, 1.15, 0.7, 1.3, 0.55, 1.45, 0.45, 1.6, 1.75, 1.9, 2.05, 2.2, 2.4, 2.6, 2.8, 3.0, 3.3, 3.6, 4.0];
 
 /// The dimension `dim_at(radius)` at the first of [`DIMENSION_RADII`] × `preferred` whose
 /// text overlaps none of `texts` and crosses none of `lines` (else the least crowded).

@@ -2,7 +2,7 @@
 //! labels placed clear of each other ([`labels`]), constructions' letters, dimensions and
 //! captions ([`construction`]), panels with scale bars ([`panels`]),
 //! vector polygons ([`polygon`]) and forces ([`forces`]), printed sheets ([`sheet`],
-//! [`sheet_polygons`]), diagrams ([`plot`]) and animations ([`animation`]).
+//! [`sheet_pages`]), diagrams ([`plot`]) and animations ([`animation`]).
 
 pub mod animation;
 pub mod construction;
@@ -12,5 +12,5 @@ pub mod panels;
 pub mod plot;
 pub mod polygon;
 pub mod sheet;
-pub mod sheet_polygons;
+pub mod sheet_pages;
 pub mod vocab;

@@ -183,6 +183,7 @@ pub(super) fn products(scene: &SynthesisScene, file: &str, opts: &RunOptions) ->
         report,
         warnings,
         derived,
+        frame_scales: Vec::new(),
     })
 }
 
