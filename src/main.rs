@@ -76,6 +76,10 @@ enum Command {
         /// `exploded` (plain lines, arcs, arrowheads and text that every reader shows).
         #[arg(long, value_name = "HOW", default_value = "entities")]
         dxf_dimensions: Dimensions,
+        /// Synthesis scenes: write the construction, the check table and the design
+        /// (DIR/<name>-design.toml) but not the design's whole run.
+        #[arg(long)]
+        no_analysis: bool,
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
@@ -210,6 +214,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             drag,
             dxf_version,
             dxf_dimensions,
+            no_analysis,
             quiet,
             verbose,
         } => {
@@ -225,6 +230,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 positions,
                 sets: set.clone(),
                 picture_only: false,
+                no_analysis,
                 held_scales: Vec::new(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;

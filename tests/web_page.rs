@@ -4,7 +4,8 @@
 //! `l_bc` in its field and a refused value in another, reshapes the four-bar by dragging C
 //! in edit mode, undoes and redoes, shares a link and opens it in a fresh tab, builds the
 //! Chebyshev four-bar from an empty page by clicks, drags the crank with a finger on a
-//! phone-sized screen, opens bad files and links, downloads the files — and this test
+//! phone-sized screen, opens bad files and links, downloads the files, drags a synthesis's
+//! required position, changes its ψ and opens its design — and this test
 //! compares what the pages show with the command line and with closed forms. Screenshots are
 //! kept in target/web/screens/ for people to look at.
 //!
@@ -582,4 +583,78 @@ fn the_download_menu_shows_each_files_size() {
     let sizes = observed()["download_sizes"]["fourbar-chebyshev"].as_object().unwrap();
     assert!(sizes["fourbar-chebyshev.dxf"].as_str().unwrap().ends_with(" MB"), "{sizes:?}");
     assert!(sizes.values().all(|s| s.as_str().unwrap().chars().next().unwrap().is_ascii_digit()));
+}
+
+#[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
+fn a_synthesis_page_drags_a_required_position_and_the_construction_follows() {
+    let d = &observed()["synthesis_drag"];
+    assert_eq!(d["error"], "", "{d}");
+    // No mode to pick: the page opens in Move and a synthesis's points drag there.
+    assert_eq!(d["mode"], "move");
+    let grips: Vec<&str> = d["grips"].as_array().unwrap().iter().map(|g| g.as_str().unwrap()).collect();
+    assert_eq!(grips, ["P1", "P1 line", "P2", "P2 line", "P3", "P3 line", "A1", "B1"]);
+    let hint = d["hint"].as_str().unwrap();
+    assert!(
+        hint.starts_with("A synthesis: drag P1, P2, P3, A1, B1 (and each position line's far end: its angle)")
+            && hint.contains("Open the design"),
+        "{hint}"
+    );
+    assert_eq!(d["design_shown"], true);
+    // P2 moved by the drag's offset on the page's grid (5 steps right, 2 up), written into
+    // its position, the fields and the construction's P2 with it.
+    assert_eq!(d["grid"], d["grid_after"], "the drag kept the picture's scale");
+    let target: Vec<f64> = d["target"].as_array().unwrap().iter().map(num).collect();
+    let step = num(&d["grid"]["step"]);
+    assert!((target[0] - (50.0 + 5.0 * step)).abs() < 1e-9 && (target[1] - (15.0 + 2.0 * step)).abs() < 1e-9);
+    // The pointer snapped to the grid.
+    let target: Vec<f64> = target.iter().map(|t| (t / step).round() * step).collect();
+    let fields: Vec<f64> = d["fields"].as_array().unwrap().iter().map(num).collect();
+    let p2: Vec<f64> = d["p2"].as_array().unwrap().iter().map(num).collect();
+    for i in 0..2 {
+        assert!(
+            (fields[i] - target[i]).abs() < 1e-9 && (p2[i] - target[i]).abs() < 1e-9,
+            "{fields:?} {p2:?} {target:?}"
+        );
+    }
+    let before = template_text("synthesis-motion");
+    let after = d["text"].as_str().unwrap();
+    let line = after.lines().find(|l| l.contains("angle_deg = -25.0")).unwrap();
+    assert_eq!(after, before.replace("    { at = [50.0, 15.0], angle_deg = -25.0 },", line), "one value changed");
+    // The picture is the command line's construction for the same text.
+    let set = format!("positions[1].at=[{}, {}]", fields[0], fields[1]);
+    let (files, _, _) = cli(&template("synthesis-motion"), &[&set]);
+    assert_eq!(d["picture"].as_str().unwrap(), String::from_utf8(files["synthesis-motion.svg"].clone()).unwrap());
+}
+
+#[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
+fn a_synthesis_page_follows_psi_and_opens_the_design_undo_comes_back() {
+    let p = &observed()["synthesis_psi"];
+    assert_eq!(p["refused"], "", "{p}");
+    assert_eq!(p["error"], "", "{p}");
+    let (files, _, _) = cli(&template("synthesis-crank-rocker"), &["psi_deg=45"]);
+    let svg = String::from_utf8(files["synthesis-crank-rocker.svg"].clone()).unwrap();
+    assert_eq!(p["picture"].as_str().unwrap(), svg, "the construction for ψ = 45° is the command line's");
+    assert!(svg.contains("ψ = 45°"));
+    let design = String::from_utf8(files["synthesis-crank-rocker-design.toml"].clone()).unwrap();
+    assert_eq!(p["design"].as_str().unwrap(), design, "the design is the command line's, byte for byte");
+    // Open the design: the page's scene is the design, animated; the button goes.
+    let o = &observed()["synthesis_open"];
+    assert_eq!(o["error"], "", "{o}");
+    assert_eq!(o["text"], p["design"]);
+    assert_eq!(o["editor"], p["design"]);
+    assert!(num(&o["positions"]) > 1.0, "the design's motion");
+    assert_eq!(o["design_shown"], false);
+    assert!(o["frame0"].as_str().unwrap().contains("<svg"));
+    // Undo: the synthesis as it was.
+    let back = &observed()["synthesis_back"];
+    assert_eq!(back["text"], p["text"]);
+    assert_eq!(back["design_shown"], true);
 }

@@ -389,6 +389,46 @@ with Browser() as b:
     page.screenshot(os.path.join(SHOTS, "slider-crank-open.png"))
     note_errors("slider-crank", page)
 
+    # ---- A synthesis: drag the required position P2 (no mode to pick), change ψ in its field,
+    # open the design, come back with Undo. ----
+    page = open_page(b, "synthesis-motion")
+    grips = page.eval("JSON.parse(live.edit_points(0))")
+    _, px, py = next(p for p in grips if p[0] == "P2")
+    grid = page.eval("grid()")
+    step = grid["step"]
+    target = (round(px + 5 * step, 9), round(py + 2 * step, 9))
+    drag(page, "P2", [(px + 2 * step, py + step), target], edit=True)
+    settle(page)
+    out["synthesis_drag"] = {
+        "grips": [p[0] for p in grips], "grid": grid, "grid_after": page.eval("grid()"), "target": target,
+        "hint": text(page, "hint"), "design_shown": page.eval("!document.getElementById('design').hidden"),
+        "mode": page.eval("document.body.dataset.mode"), "text": page.eval("document.getElementById('scene').value"),
+        "p2": next(p[1:] for p in page.eval("JSON.parse(live.edit_points(0))") if p[0] == "P2"),
+        "fields": [page.eval(f"+document.querySelector('input[data-path=\"positions[1].at[{i}]\"]').value") for i in (0, 1)],
+        "picture": page.eval("live.frame(0)"), "error": text(page, "error")}
+    page.screenshot(os.path.join(SHOTS, "synthesis-motion-drag.png"))
+    note_errors("synthesis-motion", page)
+
+    page = open_page(b, "synthesis-crank-rocker")
+    refused = set_field(page, "psi_deg", "45")
+    settle(page)
+    synthesis_text = page.eval("live.scene_text()")
+    out["synthesis_psi"] = {"refused": refused, "error": text(page, "error"), "picture": page.eval("live.frame(0)"),
+                            "design": page.eval("live.design()"), "text": synthesis_text,
+                            "stage": page.eval("document.getElementById('stage').innerHTML.length")}
+    page.screenshot(os.path.join(SHOTS, "synthesis-crank-rocker-psi45.png"))
+    page.eval("document.getElementById('design').click()")
+    settle(page)
+    out["synthesis_open"] = {"text": page.eval("live.scene_text()"), "editor": page.eval("document.getElementById('scene').value"),
+                             "positions": page.eval("live.positions()"), "error": text(page, "error"),
+                             "design_shown": page.eval("!document.getElementById('design').hidden"),
+                             "frame0": page.eval("live.frame(0)")}
+    page.screenshot(os.path.join(SHOTS, "synthesis-crank-rocker-design.png"))
+    page.eval("document.getElementById('undo').click()")
+    settle(page)
+    out["synthesis_back"] = {"text": page.eval("live.scene_text()"), "design_shown": page.eval("!document.getElementById('design').hidden")}
+    note_errors("synthesis-crank-rocker", page)
+
     # ---- The gallery: every page from file:// and from a static web server. ----
     gallery = os.path.join(DIR, "gallery")
     out["gallery"] = {"file": {}, "http": {}}

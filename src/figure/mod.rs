@@ -4,10 +4,11 @@
 //! The layout is the architecture: [`shared`] is the drawing vocabulary every kind uses
 //! (line styles, labels placed clear of each other, panels, vector polygons, forces,
 //! printed sheets, diagrams, animations); each kind's figures live in their own module
-//! ([`fourbar`], [`linkage`], [`triad`], [`chain`]) and speak that vocabulary.
+//! ([`fourbar`], [`linkage`], [`triad`], [`chain`], [`synthesis`]) and speak that vocabulary.
 
 pub mod chain;
 pub mod fourbar;
 pub mod linkage;
 pub mod shared;
+pub mod synthesis;
 pub mod triad;

@@ -20,11 +20,15 @@
 //! k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres looks the same
 //! as one in millimetres.
 
-use crate::draw::parts::{explode_dimension, widest_text_width};
-use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
-use crate::geom::{Point, Vector, angle_of, normalize_angle, polar};
+use crate::draw::parts::widest_text_width;
+use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, LineType, Shape};
+use crate::geom::{Point, Vector, angle_of};
 use crate::solve::triad::{Configuration, Orientation, Triad};
 
+use crate::figure::shared::construction::{
+    arc_segments, caption, dimension_text_box, free_direction, keep_letters_off_dimension, length_scale_block,
+    place_dimension,
+};
 use crate::figure::shared::labels::{self, TextBox};
 use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
 
@@ -45,15 +49,6 @@ fn circles_extent(t: &Triad) -> f64 {
     (hi(0) - lo(0)).max(hi(1) - lo(1)).max(f64::MIN_POSITIVE)
 }
 
-/// The scale lines a figure prints, and its scale bar under them: `k_l = 2 mm/mm`, then
-/// `0 ├──┤ 50 mm`, from `top_left` (the k_l line's baseline) down.
-fn length_scale_block(d: &mut Drawing, layer: usize, top_left: Point, k_l: f64, units: ModelUnits, s: Sizes) {
-    d.scale_text(layer, top_left, s.small_text(), vocab::length_caption("", k_l, units));
-    let value = vocab::bar_value(k_l);
-    let at = top_left + Vector::new(2.0 * s.small_text(), -2.0 * s.small_text());
-    vocab::scale_bar(d, layer, at, value, &format!("{} {}", vocab::scale_text(value), units.length), s);
-}
-
 /// What Fig. 3 draws.
 #[derive(Debug, Clone, Copy)]
 pub struct TriadFigure<'a> {
@@ -72,81 +67,6 @@ pub struct TriadFigure<'a> {
 
 /// Height of the small texts (caption, panel values), in letter heights.
 const SMALL_TEXT: f64 = 0.8;
-
-/// Chords a circle is cut into for the letter placer (3.75° each).
-const CIRCLE_CHORDS: usize = 96;
-
-/// Direction (radians) in the middle of the widest gap between the `occupied` directions.
-fn free_direction(occupied: &[f64]) -> f64 {
-    let mut a: Vec<f64> = occupied.iter().map(|&x| normalize_angle(x)).collect();
-    if a.is_empty() {
-        return std::f64::consts::FRAC_PI_4;
-    }
-    a.sort_by(f64::total_cmp);
-    let mut best = (0.0, 0.0);
-    for i in 0..a.len() {
-        let next = if i + 1 < a.len() { a[i + 1] } else { a[0] + std::f64::consts::TAU };
-        let gap = next - a[i];
-        if gap > best.0 {
-            best = (gap, a[i] + 0.5 * gap);
-        }
-    }
-    best.1
-}
-
-/// The arc of radius `r` about `c` from `start` sweeping `sweep` (radians, ≥ 0) as chords,
-/// for texts to keep off.
-fn arc_segments(lines: &mut Vec<(Point, Point)>, c: Point, r: f64, start: f64, sweep: f64) {
-    let n = ((sweep / std::f64::consts::TAU * CIRCLE_CHORDS as f64).ceil() as usize).max(1);
-    let mut prev = polar(c, r, start);
-    for k in 1..=n {
-        let p = polar(c, r, start + sweep * k as f64 / n as f64);
-        lines.push((prev, p));
-        prev = p;
-    }
-}
-
-/// Everything a dimension draws (lines, arc, arrowheads, text) as segments and boxes that
-/// letters keep off.
-fn keep_letters_off_dimension(letters: &mut labels::Polygon, dim: &Shape, style: &DimStyle) {
-    for part in explode_dimension(dim, style) {
-        match part {
-            Shape::Line { from, to } => letters.segment(from, to),
-            Shape::Arc { center, radius, start, end } => {
-                let mut arc = Vec::new();
-                arc_segments(&mut arc, center, radius, start, normalize_angle(end - start));
-                arc.into_iter().for_each(|(a, b)| letters.segment(a, b));
-            }
-            Shape::Filled { points } => {
-                let (mut min, mut max) = (points[0], points[0]);
-                for p in &points {
-                    min = Point::new(min.x.min(p.x), min.y.min(p.y));
-                    max = Point::new(max.x.max(p.x), max.y.max(p.y));
-                }
-                letters.keep_off(TextBox { min, max });
-            }
-            Shape::Text { at, height, value, .. } => letters.keep_off(TextBox::centred(at, &value, height)),
-            _ => {}
-        }
-    }
-}
-
-/// The box of a dimension's text.
-fn dimension_text_box(dim: &Shape, style: &DimStyle) -> Option<TextBox> {
-    explode_dimension(dim, style).into_iter().find_map(|part| {
-        // The text as drawn (its descenders: φ), turned with it.
-        let c = crate::draw::text_corners(&part)?;
-        let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
-        let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
-        Some(TextBox { min, max })
-    })
-}
-
-/// Radii tried for an angular dimension, as multiples of its preferred radius, in order:
-/// the first whose text overlaps no earlier dimension's text and crosses no line is drawn,
-/// else the first that overlaps the fewest texts, then crosses the fewest lines.
-const DIMENSION_RADII: [f64; 20] =
-    [1.0, 0.85, 1.15, 0.7, 1.3, 0.55, 1.45, 0.45, 1.6, 1.75, 1.9, 2.05, 2.2, 2.4, 2.6, 2.8, 3.0, 3.3, 3.6, 4.0];
 
 /// The text of the angular dimension of phi_i (`i` from 1), radians in.
 pub fn phi_text(i: usize, phi: f64) -> String {
@@ -213,26 +133,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             radius,
             text: phi_text(i + 1, f.exact.phi[i]),
         };
-        // Lines crossed and texts overlapped by the dimension's text: the first radius with
-        // the fewest wins.
-        let crowding = |dim: &Shape| {
-            dimension_text_box(dim, &d.dim_style).map_or((0, 0), |b| {
-                let texts = dimension_texts.iter().filter(|o| o.overlaps(&b)).count();
-                (texts, lines.iter().filter(|(u, v)| b.crosses(*u, *v)).count())
-            })
-        };
-        let mut best: Option<((usize, usize), Shape)> = None;
-        for k in DIMENSION_RADII {
-            let dim = dim_at(k * preferred);
-            let score = crowding(&dim);
-            if best.as_ref().is_none_or(|(b, _)| score < *b) {
-                best = Some((score, dim));
-            }
-            if score == (0, 0) {
-                break;
-            }
-        }
-        let dim = best.map_or_else(|| dim_at(preferred), |(_, dim)| dim);
+        let dim = place_dimension(dim_at, preferred, &d.dim_style, &dimension_texts, &lines);
         dimension_texts.extend(dimension_text_box(&dim, &d.dim_style));
         keep_letters_off_dimension(&mut letters, &dim, &d.dim_style);
         d.add(dimensions, dim);
@@ -280,25 +181,6 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         length_scale_block(&mut d, text, below, k_l, f.units, s);
     }
     d
-}
-
-/// Left-aligned lines from `top_left` (the first line's baseline) downwards.
-fn caption(d: &mut Drawing, layer: usize, top_left: Point, lines: &[String], height: f64) {
-    let mut y = top_left.y;
-    for line in lines {
-        d.add(
-            layer,
-            Shape::Text {
-                at: Point::new(top_left.x, y),
-                height,
-                value: line.clone(),
-                halign: HAlign::Left,
-                valign: VAlign::Baseline,
-                rotation: 0.0,
-            },
-        );
-        y -= 1.8 * height;
-    }
 }
 
 /// Panels per row of the assembly-mode sheet.
@@ -436,14 +318,6 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn free_direction_is_the_middle_of_the_widest_gap() {
-        let d = free_direction(&[0.0, std::f64::consts::FRAC_PI_2]);
-        assert!((d - 1.25 * std::f64::consts::PI).abs() < 1e-12);
-        let d = free_direction(&[0.1]);
-        assert!((normalize_angle(d) - (0.1 + std::f64::consts::PI)).abs() < 1e-12);
-    }
 
     #[test]
     fn texts_of_a_mode() {

@@ -103,8 +103,9 @@ pub fn to_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8
 
 /// Writes every file of `p` into `sink`; `tick` is called once per frame made (for a
 /// progress bar). Returns the names of the files in their canonical order: the picture
-/// (DXF, SVG, PNG), the sheets (each DXF, SVG, PNG), the tables, the JSON, the diagrams,
-/// the printed pages' PDF and SVGs, the frames.
+/// (DXF, SVG, PNG), the sheets (each DXF, SVG, PNG), the tables, the text files, the JSON,
+/// the diagrams, the printed pages' PDF and SVGs, the frames; then each derived run's, in
+/// the same order.
 ///
 /// The files are made and handed to the sink as independent jobs (a motion's DXF, its frames
 /// in batches, the sheets with the tables and the JSON, the diagrams, the printed pages), so
@@ -117,23 +118,29 @@ pub fn write(
     sink: &dyn Sink,
 ) -> Result<Vec<RelPath>, Error> {
     let name = &p.name;
-    let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
-    match &p.picture {
+    let wopts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
+    let mut order = match &p.picture {
         Picture::Still(d) => {
             let mut files: Vec<Owned> = Vec::new();
-            still_files(&mut files, name, d, opts)?;
+            still_files(&mut files, name, d, wopts)?;
             let (extras, diagrams) =
-                rayon::join(|| extra_files(p, opts), || diagram_files(&p.diagrams, name, opts.png));
+                rayon::join(|| extra_files(p, wopts), || diagram_files(&p.diagrams, name, wopts.png));
             files.extend(extras?);
             files.extend(diagrams?);
-            files.extend(page_files(name, &p.pages, opts.png)?);
-            put_owned(sink, files)
+            files.extend(page_files(name, &p.pages, wopts.png)?);
+            put_owned(sink, files)?
         }
-        Picture::Motion(a) => motion(a, p, opts, tick, sink),
+        Picture::Motion(a) => motion(a, p, wopts, tick, sink)?,
+    };
+    // The scenes this one made, each written as its own run (its own scale to millimetres).
+    for d in &p.derived {
+        order.extend(write(d, opts, tick, sink)?);
     }
+    Ok(order)
 }
 
-/// The sheets (each DXF, SVG, PNG), the tables and the JSON summary, in this order.
+/// The sheets (each DXF, SVG, PNG), the tables, the text files and the JSON summary, in
+/// this order.
 fn extra_files(p: &Products, opts: &WriteOptions) -> Result<Vec<Owned>, Error> {
     let name = &p.name;
     let mut files = Vec::new();
@@ -142,6 +149,9 @@ fn extra_files(p: &Products, opts: &WriteOptions) -> Result<Vec<Owned>, Error> {
         let csv = path(&[], &format!("{name}{}", t.suffix), "csv")?;
         check_csv(&t.csv, csv.as_str())?;
         files.push((csv, t.csv.to_bytes()));
+    }
+    for t in &p.texts {
+        files.push((RelPath::join(&[&format!("{name}{}", t.suffix)])?, t.text.clone().into_bytes()));
     }
     let json_path = path(&[], name, "json")?;
     let json = serde_json::to_string_pretty(&p.summary)

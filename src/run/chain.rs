@@ -229,9 +229,11 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         pages: Vec::new(),
         diagrams,
         tables,
+        texts: Vec::new(),
         summary,
         report,
         warnings,
+        derived: Vec::new(),
         frame_scales: Vec::new(),
     })
 }

@@ -551,9 +551,11 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         pages: Vec::new(),
         diagrams: Vec::new(),
         tables: Vec::new(),
+        texts: Vec::new(),
         summary,
         report,
         warnings: Vec::new(),
+        derived: Vec::new(),
         frame_scales: Vec::new(),
     })
 }

@@ -18,6 +18,7 @@ pub mod page;
 pub mod paths;
 pub mod positions;
 pub mod products;
+pub mod synthesis;
 mod triad;
 
 pub use products::Products;
@@ -57,6 +58,9 @@ pub struct RunOptions {
     /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
     /// make everything anyway. The picture and the warnings are the same either way.
     pub picture_only: bool,
+    /// `--no-analysis`: a synthesis writes its construction, its check table and the design
+    /// (`<name>-design.toml`) but not the design's whole run.
+    pub no_analysis: bool,
     /// The scales an earlier run of the same motion drew each frame's polygons at
     /// ([`Products::frame_scales`]): each polygon keeps its scale at a position while it
     /// fills half to all of its panel there (the live page, so that a polygon visibly grows
@@ -69,7 +73,7 @@ pub struct RunOptions {
 /// the kinds whose runs sweep many positions (four-bar, linkage); a triad's or a chain's run
 /// is made whole.
 pub fn picture_alone(scene: &Scene) -> bool {
-    matches!(scene, Scene::Fourbar(_) | Scene::Linkage(_))
+    matches!(scene, Scene::Fourbar(_) | Scene::Linkage(_) | Scene::Synthesis(_))
 }
 
 /// Millimetres per model unit of a scene in `units` (its drawings are in model units; the
@@ -103,11 +107,11 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             message: format!("only a linkage scene can be dragged; {file} is a {} scene", loaded.scene.kind()),
         });
     }
-    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_) | Scene::Linkage(_)) {
+    if opts.sheets.is_some() && !matches!(loaded.scene, Scene::Fourbar(_) | Scene::Linkage(_) | Scene::Synthesis(_)) {
         return Err(Error::Option {
             option: "--sheets".into(),
             message: format!(
-                "per-position sheets are drawn for four-bar and linkage scenes; {file} is a {} scene",
+                "per-position sheets are drawn for four-bar and linkage scenes (and a synthesis's design); {file} is a {} scene",
                 loaded.scene.kind()
             ),
         });
@@ -131,6 +135,7 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
         Scene::Fourbar(s) => fourbar::products(s, &file, opts),
         Scene::Linkage(s) => linkage::products(s, &file, opts),
         Scene::Chain(s) => chain::products(s, &file),
+        Scene::Synthesis(s) => synthesis::products(s, &file, opts),
     }
 }
 
@@ -233,7 +238,8 @@ pub fn check_positions(scene: &Scene, file: &str) -> Result<(), Error> {
     let (count, field, advice) = match scene {
         Scene::Fourbar(s) => (s.spec.sweep.count(), "phi1_deg.step", "use a larger step"),
         Scene::Linkage(s) => (s.times.len(), "time.steps", "use fewer steps"),
-        Scene::Triad(_) | Scene::Chain(_) => return Ok(()),
+        // A synthesis draws its construction; its design's positions are ours (checked when it runs).
+        Scene::Triad(_) | Scene::Chain(_) | Scene::Synthesis(_) => return Ok(()),
     };
     check_drawn(file, field, count, advice)
 }

@@ -117,6 +117,11 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("shaper-forces.toml", include_str!("../../templates/shaper-forces.toml")),
     ("shaper.toml", include_str!("../../templates/shaper.toml")),
     ("slider-crank.toml", include_str!("../../templates/slider-crank.toml")),
+    ("synthesis-crank-rocker.toml", include_str!("../../templates/synthesis-crank-rocker.toml")),
+    ("synthesis-function.toml", include_str!("../../templates/synthesis-function.toml")),
+    ("synthesis-motion.toml", include_str!("../../templates/synthesis-motion.toml")),
+    ("synthesis-shaper.toml", include_str!("../../templates/synthesis-shaper.toml")),
+    ("synthesis-slider-crank.toml", include_str!("../../templates/synthesis-slider-crank.toml")),
     ("triad-driven.toml", include_str!("../../templates/triad-driven.toml")),
     ("triad-popa.toml", include_str!("../../templates/triad-popa.toml")),
 ];

@@ -97,6 +97,16 @@ pub struct Table {
     pub csv: Csv,
 }
 
+/// A text file beside the picture: `<scene name><suffix>` (a synthesis's designed scene,
+/// `-design.toml`).
+#[derive(Debug, Clone)]
+pub struct TextFile {
+    /// Appended to the scene name: `"-design.toml"`.
+    pub suffix: String,
+    /// The file's text.
+    pub text: String,
+}
+
 /// Where the number of drawn positions comes from, to name it when a run would draw more
 /// than [`super::MAX_DRAWN_POSITIONS`].
 #[derive(Debug, Clone, Copy)]
@@ -127,12 +137,17 @@ pub struct Products {
     pub diagrams: Vec<Diagram>,
     /// CSV tables, in order.
     pub tables: Vec<Table>,
+    /// Text files, in order (after the tables).
+    pub texts: Vec<TextFile>,
     /// The JSON summary (`<name>.json`, and `--json` on stdout).
     pub summary: serde_json::Value,
     /// A short human-readable report for the terminal.
     pub report: String,
     /// Warnings (skipped positions, dead points, ...), one line each.
     pub warnings: Vec<String>,
+    /// The runs of scenes this one made (a synthesis's design, analysed: its files under
+    /// its own name, after this scene's).
+    pub derived: Vec<Products>,
     /// The scales each frame of a motion draws its polygons and force figures at, one per
     /// position (empty for a still picture or a kind without polygons): what
     /// [`RunOptions::held_scales`](super::RunOptions) takes from an earlier run.
@@ -178,9 +193,11 @@ impl Extras {
             pages: self.pages,
             diagrams: self.diagrams,
             tables: self.tables,
+            texts: Vec::new(),
             summary: self.summary,
             report: self.report,
             warnings,
+            derived: Vec::new(),
             frame_scales,
         }
     }

@@ -405,9 +405,11 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         pages: Vec::new(),
         diagrams: Vec::new(),
         tables: Vec::new(),
+        texts: Vec::new(),
         summary: summary(scene, &results)?,
         report: report(scene, &results),
         warnings: results.warnings,
+        derived: Vec::new(),
         frame_scales: Vec::new(),
     })
 }

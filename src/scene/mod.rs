@@ -11,6 +11,7 @@ pub mod chain;
 pub mod fourbar;
 pub mod linkage;
 mod overrides;
+pub mod synthesis;
 pub mod triad;
 
 use std::path::PathBuf;
@@ -20,7 +21,7 @@ use serde::de::DeserializeOwned;
 pub use overrides::Override;
 
 /// The scene kinds, as written in the `kind` field.
-pub const KINDS: &[&str] = &["triad", "fourbar", "linkage", "chain"];
+pub const KINDS: &[&str] = &["triad", "fourbar", "linkage", "chain", "synthesis"];
 
 /// A loaded, validated scene.
 #[derive(Debug, Clone)]
@@ -33,6 +34,8 @@ pub enum Scene {
     Linkage(linkage::LinkageScene),
     /// `kind = "chain"`: a dimensional chain (seed 001).
     Chain(chain::ChainScene),
+    /// `kind = "synthesis"`: a requirement; the run designs the mechanism that meets it.
+    Synthesis(synthesis::SynthesisScene),
 }
 
 impl Scene {
@@ -43,6 +46,7 @@ impl Scene {
             Scene::Fourbar(_) => "fourbar",
             Scene::Linkage(_) => "linkage",
             Scene::Chain(_) => "chain",
+            Scene::Synthesis(_) => "synthesis",
         }
     }
 
@@ -53,6 +57,7 @@ impl Scene {
             Scene::Fourbar(s) => &s.name,
             Scene::Linkage(s) => &s.name,
             Scene::Chain(s) => &s.name,
+            Scene::Synthesis(s) => &s.name,
         }
     }
 }
@@ -143,7 +148,7 @@ pub enum SceneError {
         message: String,
     },
     /// No `kind`, or one that is not a scene kind. Example: `kind = "tirad"`.
-    #[error("{file}: field `kind`: {message}; valid kinds: triad, fourbar, linkage, chain")]
+    #[error("{file}: field `kind`: {message}; valid kinds: triad, fourbar, linkage, chain, synthesis")]
     Kind {
         /// The file.
         file: String,
@@ -324,6 +329,7 @@ pub fn parse(text: &str, file: &str, overrides: &[Override]) -> Result<Scene, Sc
         "fourbar" => fourbar::check(read(table, file)?).map(Scene::Fourbar),
         "linkage" => linkage::check(read(table, file)?).map(Scene::Linkage),
         "chain" => chain::check(read(table, file)?).map(Scene::Chain),
+        "synthesis" => return synthesis::check(table, file).map(Scene::Synthesis),
         other => {
             return Err(SceneError::Kind {
                 file: file.to_string(),

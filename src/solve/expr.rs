@@ -411,18 +411,25 @@ pub struct Expr {
 }
 
 impl Expr {
-    /// Parses `source`; the error says where it went wrong.
+    /// Parses `source`, an expression of `t`; the error says where it went wrong.
     pub fn parse(source: &str) -> Result<Expr, ParseError> {
+        Expr::parse_in(source, "t")
+    }
+
+    /// Parses `source`, an expression of the variable `var` (a name that is not a constant
+    /// or a function: `x` for a function to generate); [`Expr::eval`] takes the variable's
+    /// value.
+    pub fn parse_in(source: &str, var: &str) -> Result<Expr, ParseError> {
         let chars = source.chars().count();
         if chars > MAX_CHARS {
             return Err(make_error(
                 source,
                 MAX_CHARS + 1,
-                format!("the expression is longer than {MAX_CHARS} characters ({chars}): write a shorter law"),
+                format!("the expression is longer than {MAX_CHARS} characters ({chars}): write a shorter expression"),
             ));
         }
         let tokens = lex(source)?;
-        let mut p = Parser { tokens: &tokens, pos: 0, source, nesting: 0 };
+        let mut p = Parser { tokens: &tokens, pos: 0, source, var, nesting: 0 };
         let (root, _) = p.expr()?;
         if let Some(tok) = p.peek() {
             return Err(p.error_at(tok.col, format!("unexpected {} after a complete expression", tok.kind)));
@@ -606,6 +613,8 @@ struct Parser<'a> {
     tokens: &'a [Token],
     pos: usize,
     source: &'a str,
+    /// The variable's name (`t` for a law).
+    var: &'a str,
     /// Levels of recursion entered (parentheses, calls, signs, exponents).
     nesting: usize,
 }
@@ -705,9 +714,10 @@ impl Parser<'_> {
 
     fn primary(&mut self) -> Result<Sub, ParseError> {
         let Some(tok) = self.peek().cloned() else {
-            return Err(
-                self.error_at(self.end_col(), "the expression ends here; expected a number, t, a name or `(`".into())
-            );
+            return Err(self.error_at(
+                self.end_col(),
+                format!("the expression ends here; expected a number, {}, a name or `(`", self.var),
+            ));
         };
         self.pos += 1;
         match tok.kind {
@@ -733,20 +743,26 @@ impl Parser<'_> {
                         }
                         _ => Err(self.error_at(
                             tok.col + name.chars().count(),
-                            format!("function `{}` needs its argument in parentheses, e.g. {}(t)", f.name(), f.name()),
+                            format!(
+                                "function `{}` needs its argument in parentheses, e.g. {}({})",
+                                f.name(),
+                                f.name(),
+                                self.var
+                            ),
                         )),
                     }
                 } else {
                     match name.as_str() {
-                        "t" => Ok((Node::T, 1)),
+                        v if v == self.var => Ok((Node::T, 1)),
                         "pi" => Ok((Node::Const(std::f64::consts::PI), 1)),
                         "e" => Ok((Node::Const(std::f64::consts::E), 1)),
                         "deg" => Ok((Node::Const(std::f64::consts::PI / 180.0), 1)),
                         _ => Err(self.error_at(
                             tok.col,
                             format!(
-                                "unknown name `{}`: the variable is t, constants are pi, e, deg, functions are {}",
+                                "unknown name `{}`: the variable is {}, constants are pi, e, deg, functions are {}",
                                 crate::text::excerpt(&name),
+                                self.var,
                                 FUNCS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
                             ),
                         )),
@@ -754,9 +770,11 @@ impl Parser<'_> {
                 }
             }
             Kind::Op(c) => {
-                Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, t, a name or `(`")))
+                Err(self.error_at(tok.col, format!("unexpected `{c}`; expected a number, {}, a name or `(`", self.var)))
             }
-            Kind::RParen => Err(self.error_at(tok.col, "unexpected `)`; expected a number, t, a name or `(`".into())),
+            Kind::RParen => {
+                Err(self.error_at(tok.col, format!("unexpected `)`; expected a number, {}, a name or `(`", self.var)))
+            }
         }
     }
 
@@ -782,6 +800,17 @@ impl Parser<'_> {
 )]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_function_of_x_reads_x_and_names_it_in_its_errors() {
+        let f = Expr::parse_in("log10(x) + x^2", "x").unwrap();
+        assert_eq!(f.eval(10.0).value, 101.0);
+        assert!((f.eval(2.0).d1 - (1.0 / (2.0 * std::f64::consts::LN_10) + 4.0)).abs() < 1e-15);
+        let e = Expr::parse_in("sin(t)", "x").unwrap_err();
+        assert!(e.message.starts_with("unknown name `t`: the variable is x"), "{}", e.message);
+        let e = Expr::parse_in("x +", "x").unwrap_err();
+        assert!(e.message.contains("expected a number, x, a name"), "{}", e.message);
+    }
 
     fn v(s: &str) -> f64 {
         Expr::parse(s).unwrap().eval(0.0).value

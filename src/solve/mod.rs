@@ -5,6 +5,7 @@ pub mod expr;
 pub mod fourbar;
 pub mod linkage;
 pub mod stroke;
+pub mod synthesis;
 pub mod triad;
 
 /// A solver failure, by mechanism kind.
@@ -22,4 +23,7 @@ pub enum SolveError {
     /// Dimensional chains.
     #[error(transparent)]
     Chain(#[from] chain::ChainError),
+    /// Kinematic synthesis: a requirement that cannot be met.
+    #[error(transparent)]
+    Synthesis(#[from] synthesis::SynthesisError),
 }

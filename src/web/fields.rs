@@ -4,7 +4,8 @@
 //! makes sense for what it is (a length stays positive, an angle turns ±180°).
 //!
 //! The names follow each kind's schema (docs/fourbar-solver.md, docs/linkage.md,
-//! docs/triad.md, docs/chain.md); a number the rules do not know keeps its path as its name.
+//! docs/triad.md, docs/chain.md, docs/synthesis.md); a number the rules do not know keeps its
+//! path as its name.
 
 /// A number of the scene that the page offers as a field and a slider.
 #[derive(Debug, Clone, PartialEq)]
@@ -103,6 +104,7 @@ pub fn parameters(table: &toml::Table) -> Vec<Parameter> {
                 "linkage" => linkage(&path, table),
                 "triad" => triad(&path),
                 "chain" => chain(&path),
+                "synthesis" => synthesis(&path),
                 _ => None,
             }
             .unwrap_or_else(|| Meaning {
@@ -186,6 +188,48 @@ fn xy(path: &str) -> &'static str {
 /// The leading index of `prefix[i]...` in `path`.
 fn index_after(path: &str, prefix: &str) -> Option<usize> {
     path.strip_prefix(prefix)?.strip_prefix('[')?.split(']').next()?.parse().ok()
+}
+
+/// A synthesis scene's requirement and free choices (docs/synthesis.md): what the page's
+/// sliders change (ψ, K, H, the positions) to watch the construction follow.
+fn synthesis(path: &str) -> Option<Meaning> {
+    let need = "requirement";
+    let free = "free choices";
+    match path {
+        "psi_deg" => meaning("rocker swing ψ", need, Role::Angle),
+        "time_ratio" => meaning("time ratio K", need, Role::Plain),
+        "stroke" => meaning("stroke H", need, Role::Length),
+        "rocker" => meaning("rocker CB", need, Role::Length),
+        "crank" => meaning("crank O1A", need, Role::Length),
+        "ground" => meaning("ground O1C (O1O3)", free, Role::Length),
+        "extreme_to_ground_deg" => meaning("ground line to an extreme", free, Role::Angle),
+        "offset" => meaning("offset e", free, Role::Length),
+        "link" => meaning("link BE", free, Role::Length),
+        "ram_height" => meaning("ram guide's height", free, Role::Coordinate),
+        "omega1" => meaning("ω1 of the design", "motion", Role::AngularVelocity),
+        "a1[0]" | "a1[1]" => meaning(format!("A1 {}", xy(path)), free, Role::Coordinate),
+        "b1[0]" | "b1[1]" => meaning(format!("B1 {}", xy(path)), free, Role::Coordinate),
+        "bisector_distance[0]" => meaning("O1 along A's bisector", free, Role::Coordinate),
+        "bisector_distance[1]" => meaning("C along B's bisector", free, Role::Coordinate),
+        "x_range[0]" => meaning("x from", need, Role::Plain),
+        "x_range[1]" => meaning("x to", need, Role::Plain),
+        "input_deg[0]" => meaning("φ at x from", need, Role::Angle),
+        "input_deg[1]" => meaning("φ at x to", need, Role::Angle),
+        "output_deg[0]" => meaning("ψ at x from", need, Role::Angle),
+        "output_deg[1]" => meaning("ψ at x to", need, Role::Angle),
+        _ => {
+            if let Some(i) = index_after(path, "precision_x") {
+                return meaning(format!("precision point x{}", i + 1), free, Role::Plain);
+            }
+            let i = index_after(path, "positions")?;
+            let rest = path.split_once(']').map_or("", |(_, r)| r);
+            match rest {
+                ".at[0]" | ".at[1]" => meaning(format!("P{} {}", i + 1, xy(rest)), need, Role::Coordinate),
+                ".angle_deg" => meaning(format!("P{} line's angle", i + 1), need, Role::Angle),
+                _ => None,
+            }
+        }
+    }
 }
 
 fn fourbar(path: &str, table: &toml::Table) -> Option<Meaning> {

@@ -203,6 +203,12 @@ impl Live {
         self.0.warnings().join("\n")
     }
 
+    /// A synthesis's designed scene (`<name>-design.toml`), to open in the page; `""` for the
+    /// other kinds.
+    pub fn design(&self) -> String {
+        self.0.design_text().unwrap_or_default()
+    }
+
     /// The files of the scene as it stands (without frames), for downloads.
     pub fn files(&self) -> Result<Files, String> {
         let p = self.0.products().map_err(msg)?;

@@ -21,6 +21,7 @@ pub mod js;
 pub mod reshape;
 mod session;
 pub mod share;
+pub mod synthesis;
 
 use std::path::PathBuf;
 

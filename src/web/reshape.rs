@@ -63,7 +63,8 @@ fn at(state: &DriveState, name: &str) -> Result<Point, String> {
     state.points.iter().find(|(n, _)| n == name).map(|(_, p)| *p).ok_or_else(|| format!("no point `{name}`"))
 }
 
-fn pair(p: Point, decimals: usize) -> String {
+/// `[x, y]` on the grid (`decimals` decimals).
+pub(super) fn pair(p: Point, decimals: usize) -> String {
     format!("[{}, {}]", number(p.x, decimals), number(p.y, decimals))
 }
 

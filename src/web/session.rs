@@ -158,6 +158,15 @@ impl Session {
         })))
     }
 
+    /// The scene a synthesis designed, as its file `<name>-design.toml` reads (what "open the
+    /// design" switches the page to: a `fourbar` or `linkage` scene, opened with
+    /// [`Session::new`]); `None` for the other kinds. Made with every change, picture-only
+    /// answers included.
+    pub fn design_text(&self) -> Option<String> {
+        let p = self.made.shown();
+        p.texts.iter().find(|t| t.suffix == "-design.toml").map(|t| t.text.clone())
+    }
+
     /// The warnings of the scene as it stands (gaps, dead points, γ_min, ...), one line each.
     pub fn warnings(&self) -> &[String] {
         &self.made.shown().warnings
@@ -321,14 +330,35 @@ impl Session {
 
     /// The points edit mode drags at position `k` (or where the last drag left the
     /// mechanism): the state's named points and a linkage's ground points, model units.
+    /// For a synthesis, the construction's points that carry a requirement or a free choice
+    /// ([`super::synthesis`]), whatever `k`.
     pub fn edit_points(&self, k: usize) -> Option<Vec<(String, Point)>> {
+        if let Some(s) = self.synthesis() {
+            return Some(super::synthesis::grips(&s));
+        }
         Some(super::reshape::grips(&table(&self.text, &self.file).ok()?, &self.shown_state(k)?))
+    }
+
+    /// The scene as a synthesis, when it is one.
+    fn synthesis(&self) -> Option<crate::scene::synthesis::SynthesisScene> {
+        match loaded(&self.text, &self.file).ok()?.scene {
+            scene::Scene::Synthesis(s) => Some(s),
+            _ => None,
+        }
     }
 
     /// Edit mode: `point` dragged to `target` (model units) at position `k` changes the
     /// dimensions it carries ([`super::reshape`]), written with `decimals` decimals, and the
     /// scene is solved again; on an error (the new shape cannot be assembled) nothing changes.
+    ///
+    /// A synthesis's point changes the requirement or the free choice it carries
+    /// ([`super::synthesis`]).
     pub fn reshape(&mut self, point: &str, target: Point, k: usize, decimals: usize) -> Result<(), PageError> {
+        if let Some(s) = self.synthesis() {
+            let text = super::synthesis::reshape(&self.text, &self.file, &s, point, target, decimals)
+                .map_err(PageError::Reshape)?;
+            return Ok(self.replace(&text)?);
+        }
         let state =
             self.shown_state(k).ok_or_else(|| PageError::Reshape("only a motion's points can be dragged".into()))?;
         let changes = super::reshape::changes(&table(&self.text, &self.file)?, &state, point, target, decimals)
