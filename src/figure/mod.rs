@@ -9,5 +9,6 @@
 pub mod chain;
 pub mod fourbar;
 pub mod linkage;
+pub mod report;
 pub mod shared;
 pub mod triad;
