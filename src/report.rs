@@ -139,6 +139,15 @@ impl Csv {
         }
     }
 
+    /// Puts a column `name` of already formatted fields first, one per row (rows beyond
+    /// `fields` get an empty field).
+    pub fn prepend_column(&mut self, name: impl Into<String>, fields: &[String]) {
+        self.header.insert(0, name.into());
+        for (i, r) in self.rows.iter_mut().enumerate() {
+            r.insert(0, fields.get(i).cloned().unwrap_or_default());
+        }
+    }
+
     /// The table as CSV text (RFC 4180 quoting, `\n` line ends).
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());

@@ -13,6 +13,7 @@ pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
 pub mod products;
+pub mod report;
 mod triad;
 
 pub use products::Products;
@@ -155,6 +156,27 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     }
     let written = out.commit()?;
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })
+}
+
+/// `mechdraw report`: builds the report of `loaded` ([`report::report`]: every check of the
+/// options and every solve first, so that bad input writes nothing), then stages its files
+/// ([`bytes::report_files`]) in `out_dir` and moves them in, all or nothing. Returns the
+/// report (its warnings, parts and summary) and the files written.
+#[cfg(feature = "cli")]
+pub fn report_run(
+    loaded: &Loaded,
+    opts: &report::ReportOptions,
+    out_dir: &std::path::Path,
+    png: bool,
+) -> Result<(report::Report, Vec<PathBuf>), Error> {
+    let r = report::report(loaded, opts)?;
+    let files = bytes::report_files(&r, png)?;
+    let mut out = output::Output::new(out_dir)?;
+    for (rel, b) in &files {
+        out.write(rel, b)?;
+    }
+    let written = out.commit()?;
+    Ok((r, written))
 }
 
 /// A terminal progress bar over `n` frames, when asked for and there are frames.

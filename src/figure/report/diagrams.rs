@@ -90,6 +90,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, diagrams: &[MarkedDiagram]) 
         d.append(&m.drawing.mapped(scale, offset));
         let mut letters = labels::Polygon::of_names();
         sketch::avoid(&d, start, &mut letters);
+        sketch::keep_inside(&mut letters, area);
         let ring = 0.5 * s.joint.max(1.0);
         for (p, label) in &m.marks {
             let pt = at.point(*p);

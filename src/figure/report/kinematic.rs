@@ -8,7 +8,7 @@
 use crate::draw::{Bounds, Drawing};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, OnPaper, Sketch};
-use crate::figure::shared::vocab::{bar_value, layer_of, layers, scale_bar, scale_text};
+use crate::figure::shared::vocab::{bar_value, layer_of, layers, scale_bar};
 use crate::geom::{Point, Vector};
 
 /// What the kinematic diagram page shows.
@@ -43,11 +43,11 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &KinematicPage) -> (Drawi
     let probe = page::panel_area(left, true, s);
     let at: OnPaper = sketch::fit(lo, hi, probe, sketch::room(s) + Vector::new(0.0, 2.0 * s.text));
     let mut title = title.clone();
-    let k_text = format!("k_l = {} {}/mm", scale_text(at.k_l), p.unit);
+    let k_text = format!("k_l = {} {}/mm", page::plain(at.k_l), p.unit);
     title.cells = vec![k_text.clone(), p.position.clone()];
     let mut d = frame.page(&title);
     let area = page::panel(&mut d, left, &format!("Kinematic diagram at {}   {k_text}", p.position), s);
-    sketch::draw(&mut d, p.sketch, p.q, p.motion, at, s, Marks { numbers: true, driver: true, loads: true });
+    sketch::draw(&mut d, p.sketch, p.q, p.motion, at, s, Marks { numbers: true, driver: true, loads: true }, area);
     let dims = layer_of(&d, layers::DIMENSIONS);
     let value = bar_value(at.k_l);
     scale_bar(
@@ -55,7 +55,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &KinematicPage) -> (Drawi
         dims,
         Point::new(area.min.x + 2.0 * s.text, area.min.y + 0.5 * s.text),
         value / at.k_l,
-        &format!("{} {}", scale_text(value), p.unit),
+        &format!("{} {}", page::plain(value), p.unit),
         s,
     );
     let list_area = page::panel(&mut d, right, "Links, joints and loads", s);

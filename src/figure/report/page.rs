@@ -117,11 +117,15 @@ impl ReportFrame {
             s,
         );
         // Two rows of two cells: the file and the page; the page's own cells.
-        let mut cells = vec![
-            format!("scene: {}", title.file),
-            format!("page {} of {} · {}", title.page.0, title.page.1, self.paper.name()),
-        ];
+        let file = std::path::Path::new(&title.file)
+            .file_name()
+            .map_or(title.file.clone(), |f| f.to_string_lossy().into_owned());
+        let mut cells = vec![format!("scene {file}"), format!("page {} of {}", title.page.0, title.page.1)];
         cells.extend(title.cells.iter().take(2).cloned());
+        if cells.len() == 2 {
+            cells.push(format!("{} landscape", self.paper.name()));
+            cells.push("print at 100 %".into());
+        }
         for r in 0..2 {
             let top = name_bottom - (r + 1) as f64 * row;
             if r == 0 {
@@ -212,16 +216,57 @@ pub fn panel_area(outline: Bounds, titled: bool, s: Sizes) -> Bounds {
     Bounds { min: outline.min + Vector::new(m, m), max: outline.max - Vector::new(m, top) }
 }
 
-/// Lines of text from the top of `area` down, `height` high, each fitted to the width (the
-/// lines that do not fit in the height are left out): returns the height they took, mm.
+/// Lines of text from the top of `area` down, `height` high, each wrapped at its spaces to
+/// the width (a word longer than the width is fitted on its own line); lines that do not fit
+/// in the height are left out. Returns the height they took, mm.
 pub fn lines(d: &mut Drawing, l: usize, area: Bounds, lines: &[String], height: f64, s: Sizes) -> f64 {
     let step = LINE_SPACING * height;
-    let fit = ((area.height() / step).floor() as usize).min(lines.len());
-    for (k, line) in lines.iter().take(fit).enumerate() {
+    let wrapped: Vec<String> = lines.iter().flat_map(|line| wrap(line, height, area.width())).collect();
+    let fit = ((area.height() / step).floor() as usize).min(wrapped.len());
+    for (k, line) in wrapped.iter().take(fit).enumerate() {
         let y = area.max.y - (k as f64 + 0.5) * step;
         text_in(d, l, Point::new(area.min.x, y), height, area.width(), line, HAlign::Left, s);
     }
     fit as f64 * step
+}
+
+/// `line` broken at its spaces into lines at most `width` mm wide at letter height
+/// `height`; a continuation is indented by two spaces, as the first line's own indent.
+pub fn wrap(line: &str, height: f64, width: f64) -> Vec<String> {
+    if parts::text_width(line, height) <= width {
+        return vec![line.to_string()];
+    }
+    let indent: String = line.chars().take_while(|c| *c == ' ').collect();
+    let more = format!("{indent}  ");
+    let mut out: Vec<String> = Vec::new();
+    let mut cur = indent.clone();
+    for word in line.split(' ').filter(|w| !w.is_empty()) {
+        let bare = cur.trim().is_empty();
+        let candidate = if bare { format!("{cur}{word}") } else { format!("{cur} {word}") };
+        if bare || parts::text_width(&candidate, height) <= width {
+            cur = candidate;
+        } else {
+            out.push(cur);
+            cur = format!("{more}{word}");
+        }
+    }
+    out.push(cur);
+    out
+}
+
+/// A number as plain decimals (no exponent, as a drawing writes it): up to ten significant
+/// digits, trailing zeros dropped (`0.0005`, `2.5`, `1500`).
+pub fn plain(v: f64) -> String {
+    if !v.is_finite() {
+        return "–".into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let decimals = (9.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 20.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    if s == "-0" { "0".into() } else { s }
 }
 
 /// Distance between lines of text, in letter heights.
@@ -265,6 +310,17 @@ mod tests {
             assert_eq!(f.content.min.y, f.title.max.y);
             assert!(f.content.height() > 0.7 * f.border.height(), "{paper:?}");
         }
+    }
+
+    #[test]
+    fn lines_wrap_at_spaces_and_numbers_are_plain() {
+        let w = wrap("  one two three four five six", 2.5, 25.0);
+        assert!(w.len() > 1 && w[0].starts_with("  one") && w[1].starts_with("    "), "{w:?}");
+        assert!(w.iter().all(|l| parts::text_width(l, 2.5) <= 25.0 + 1e-9), "{w:?}");
+        assert_eq!(plain(0.0005), "0.0005");
+        assert_eq!(plain(2.5), "2.5");
+        assert_eq!(plain(1500.0), "1500");
+        assert_eq!(plain(-0.25), "-0.25");
     }
 
     #[test]

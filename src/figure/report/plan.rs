@@ -9,7 +9,7 @@ use crate::figure::linkage as fig;
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, Sketch};
 use crate::figure::shared::labels;
-use crate::figure::shared::vocab::{Sizes, bar_value, layer_of, layers, scale_bar, scale_text};
+use crate::figure::shared::vocab::{Sizes, bar_value, layer_of, layers, scale_bar};
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Anchor, Attach, place};
 
@@ -101,7 +101,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &PlanPage) -> (Drawing, f
     let (lo, hi) = p.sketch.extent(p.motion).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
     let probe = page::panel_area(left, true, s);
     let at = sketch::fit(lo, hi, probe, sketch::room(s) + Vector::new(2.0 * s.text, 3.0 * s.text));
-    let k_text = format!("k_l = {} {}/mm", scale_text(at.k_l), p.unit);
+    let k_text = format!("k_l = {} {}/mm", page::plain(at.k_l), p.unit);
     let mut title = title.clone();
     title.cells = vec![k_text.clone(), format!("{} positions", p.plan.len())];
     let mut d = frame.page(&title);
@@ -120,16 +120,22 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &PlanPage) -> (Drawing, f
         thin(&mut d, mech, &paper_fig, &fig::on_paper(q, at.origin, at.k_l), Aci::RED, LineType::Dashed, s);
     }
     if let Some((_, q0)) = p.plan.first() {
-        sketch::draw(&mut d, p.sketch, q0, p.motion, at, s, Marks::default());
+        sketch::draw(&mut d, p.sketch, q0, p.motion, at, s, Marks::default(), area);
     }
     let dims = layer_of(&d, layers::DIMENSIONS);
-    for dim in &p.dimensions {
-        dimension(&mut d, dims, dim, at, &paper_fig, s);
-    }
-    // The positions' numbers and the extremes' names at the numbered point, outwards.
+    // The dimensions' texts, the positions' numbers and the extremes' names placed together,
+    // clear of every line drawn.
     let mut letters = labels::Polygon::of_names();
+    let mut dim_letters = labels::Polygon::of_names();
+    for dim in &p.dimensions {
+        dimension(&mut d, dims, dim, at, &mut dim_letters, s);
+    }
+    sketch::avoid(&d, start, &mut dim_letters);
+    sketch::keep_inside(&mut dim_letters, area);
+    dim_letters.draw(&mut d, dims);
     sketch::avoid(&d, start, &mut letters);
-    if let Some(a) = p.numbered {
+    sketch::keep_inside(&mut letters, area);
+    if let Some(a) = p.numbered.map(|a| at.anchor(a)) {
         let centre = |q: &[f64]| place(&fig::on_paper(q, at.origin, at.k_l), a.body, a.local);
         let mid = p.plan.iter().map(|(_, q)| centre(q).coords).fold(Vector::zeros(), |m, v| m + v)
             / p.plan.len().max(1) as f64;
@@ -149,7 +155,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &PlanPage) -> (Drawing, f
         dims,
         Point::new(area.min.x + 2.0 * s.text, area.min.y + 0.5 * s.text),
         value / at.k_l,
-        &format!("{} {}", scale_text(value), p.unit),
+        &format!("{} {}", page::plain(value), p.unit),
         s,
     );
     let notes = page::panel(&mut d, right, "Positions, strokes, time ratio", s);
@@ -158,30 +164,50 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &PlanPage) -> (Drawing, f
     (d, at.k_l)
 }
 
-/// A dimension of the plan, on paper.
+/// A dimension of the plan, on paper: its lines and arrowheads drawn, its text given to
+/// `letters` (placed with the plan's numbers, clear of every line).
 fn dimension(
     d: &mut Drawing,
     layer: usize,
     dim: &PlanDimension,
     at: sketch::OnPaper,
-    _f: &fig::LinkageFigure,
+    letters: &mut labels::Polygon,
     s: Sizes,
 ) {
+    let head = |d: &mut Drawing, tip: Point, dir: Vector| {
+        let u = crate::figure::shared::vocab::unit_or(dir, Vector::new(1.0, 0.0));
+        let base = tip - u * s.head;
+        let n = crate::geom::perp(u) * (s.head * crate::draw::parts::ARROW_HALF_WIDTH);
+        d.add(layer, Shape::Filled { points: vec![tip, base + n, base - n] });
+    };
     match dim {
         PlanDimension::Stroke { from, to, text } => {
             let (a, b) = (at.point(*from), at.point(*to));
             let u = crate::figure::shared::vocab::unit_or(b - a, Vector::new(1.0, 0.0));
-            // The dimension line a few letters off the stroke, on the side away from the
-            // mechanism's middle (up for a horizontal stroke).
-            let n = crate::geom::perp(u);
-            let line_at = a + n * (4.0 * s.text);
-            let angle = u.y.atan2(u.x);
-            d.add(layer, Shape::LinearDimension { p1: a, p2: b, line_at, angle, text: text.clone() });
+            // The dimension line three letters off the stroke, on its left, with extension lines.
+            let n = crate::geom::perp(u) * (3.0 * s.text);
+            let (a2, b2) = (a + n, b + n);
+            for (p, q) in [(a, a2), (b, b2)] {
+                d.add(layer, Shape::Line { from: p + n * 0.15, to: q + n * 0.2 });
+            }
+            d.add(layer, Shape::Line { from: a2, to: b2 });
+            head(d, a2, a2 - b2);
+            head(d, b2, b2 - a2);
+            letters.segment(a2, b2);
+            letters.letter(Point::from((a2.coords + b2.coords) / 2.0), text, s.text, n, None);
         }
         PlanDimension::Angle { vertex, first, second, text } => {
             let (v, f1, f2) = (at.point(*vertex), at.point(*first), at.point(*second));
-            let r = 0.6 * (f1 - v).norm().max((f2 - v).norm()).max(4.0 * s.text);
-            d.add(layer, Shape::AngularDimension { vertex: v, first: f1, second: f2, radius: r, text: text.clone() });
+            let r = 0.7 * (f1 - v).norm().min((f2 - v).norm()).max(4.0 * s.text);
+            let (a1, a2) = ((f1 - v).y.atan2((f1 - v).x), (f2 - v).y.atan2((f2 - v).x));
+            let sweep = crate::draw::parts::arc_sweep(a1, a2);
+            d.add(layer, Shape::Arc { center: v, radius: r, start: a1, end: a1 + sweep });
+            let tangent = |a: f64| Vector::new(-a.sin(), a.cos());
+            head(d, v + Vector::new(a1.cos(), a1.sin()) * r, -tangent(a1));
+            head(d, v + Vector::new((a1 + sweep).cos(), (a1 + sweep).sin()) * r, tangent(a1 + sweep));
+            let mid = a1 + 0.5 * sweep;
+            let on = v + Vector::new(mid.cos(), mid.sin()) * r;
+            letters.letter(on, text, s.text, on - v, None);
         }
     }
 }

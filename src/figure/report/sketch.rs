@@ -65,6 +65,15 @@ impl OnPaper {
     pub fn point(&self, p: Point) -> Point {
         self.origin + p.coords / self.k_l
     }
+
+    /// An anchor of the model as the figure on paper holds it ([`LinkageFigure::on_paper`]):
+    /// a body's point scaled, a ground point placed.
+    pub fn anchor(&self, a: Anchor) -> Anchor {
+        match a.body {
+            Attach::Ground => Anchor { body: a.body, local: self.point(Point::from(a.local)).coords },
+            Attach::Body(_) => Anchor { body: a.body, local: a.local / self.k_l },
+        }
+    }
 }
 
 impl Sketch {
@@ -120,8 +129,18 @@ pub struct Marks {
 }
 
 /// Draws the mechanism of `sketch` at `q` (model coordinates) on the page `d` (paper mm)
-/// at `at`, the ground guides as long as `motion` needs them, with `marks`.
-pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], at: OnPaper, s: Sizes, marks: Marks) {
+/// at `at`, the ground guides as long as `motion` needs them, with `marks` (their letters
+/// inside `area`).
+pub fn draw(
+    d: &mut Drawing,
+    sketch: &Sketch,
+    q: &[f64],
+    motion: &[&[f64]],
+    at: OnPaper,
+    s: Sizes,
+    marks: Marks,
+    area: Bounds,
+) {
     let paper_fig = sketch.figure.on_paper(at.origin, at.k_l);
     let pq = fig::on_paper(q, at.origin, at.k_l);
     let paper_motion: Vec<Vec<f64>> = motion.iter().map(|m| fig::on_paper(m, at.origin, at.k_l)).collect();
@@ -138,10 +157,12 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], at: 
     }
     let mut letters = labels::Polygon::of_names();
     avoid(d, start, &mut letters);
+    keep_inside(&mut letters, area);
     let frc = layer_of(d, layers::FORCES);
     if marks.loads {
         for load in &sketch.loads {
-            let p = place(&pq, load.at.body, load.at.local);
+            let a = at.anchor(load.at);
+            let p = place(&pq, a.body, a.local);
             let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
             // Not to scale: a fixed length on paper, its tip at the point.
             let from = p - u * (6.0 * s.text);
@@ -151,7 +172,8 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], at: 
         }
     }
     if let (true, Some(dm)) = (marks.driver, &sketch.driver) {
-        let pivot = place(&pq, dm.pivot.body, dm.pivot.local);
+        let pa = at.anchor(dm.pivot);
+        let pivot = place(&pq, pa.body, pa.local);
         let pin = body_far_point(&paper_fig, &pq, dm.body, pivot);
         let crank_dir = (pin - pivot).y.atan2((pin - pivot).x);
         let r = 4.0 * s.joint;
@@ -198,6 +220,20 @@ fn body_far_point(fig: &LinkageFigure, pq: &[f64], b: usize, from: Point) -> Poi
         .into_iter()
         .flat_map(|body| body.points.iter().map(|(_, v)| place(pq, Attach::Body(b), *v)))
         .fold(from + Vector::new(1.0, 0.0), |best, p| if (p - from).norm() > (best - from).norm() { p } else { best })
+}
+
+/// Keeps `letters` inside `area`: four wide boxes around it that they must not overlap.
+pub fn keep_inside(letters: &mut labels::Polygon, area: Bounds) {
+    let big = 1e4 * (area.width() + area.height()).max(1.0);
+    let (lo, hi) = (area.min, area.max);
+    for b in [
+        TextBox { min: Point::new(lo.x - big, lo.y - big), max: Point::new(lo.x, hi.y + big) },
+        TextBox { min: Point::new(hi.x, lo.y - big), max: Point::new(hi.x + big, hi.y + big) },
+        TextBox { min: Point::new(lo.x - big, lo.y - big), max: Point::new(hi.x + big, lo.y) },
+        TextBox { min: Point::new(lo.x - big, hi.y), max: Point::new(hi.x + big, hi.y + big) },
+    ] {
+        letters.keep_off(b);
+    }
 }
 
 /// Adds what is drawn in `d` from entity `start` on to `letters` as what its letters keep

@@ -9,7 +9,6 @@ use crate::draw::{Bounds, Drawing};
 use crate::figure::linkage::{BodyOutline, JointSymbol};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, Sketch};
-use crate::figure::shared::vocab::scale_text;
 use crate::geom::Vector;
 use crate::solve::linkage::structure::{GroupStructure, Structure, roman};
 use crate::solve::linkage::{Attach, JointKind, Mechanism};
@@ -162,7 +161,13 @@ pub fn group_sketch(sketch: &Sketch, mech: &Mechanism, g: &GroupStructure) -> Sk
     Sketch { figure, names: sketch.names.clone(), driver: None, loads: Vec::new() }
 }
 
-/// The structural analysis page.
+/// Share of the left column's height the mechanism's panel takes (the mobility's working
+/// below it).
+const MECHANISM_SHARE: f64 = 0.5;
+
+/// The structural analysis page: the mechanism numbered (left, above the mobility's
+/// working), the groups apart (right), all at one k_l when the groups' panels hold them at
+/// the mechanism's, else every group at the one scale that fits them all.
 pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawing {
     let s = frame.sizes;
     let c = frame.content;
@@ -170,41 +175,45 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         [a, b] => [*a, *b],
         _ => [c, c],
     };
-    let [mech_panel, text_panel] = match page::rows(left, 2, 0.0).as_slice() {
-        [a, b] => [*a, *b],
-        _ => [left, left],
-    };
+    let split = left.max.y - MECHANISM_SHARE * left.height();
+    let mech_panel = Bounds { min: crate::geom::Point::new(left.min.x, split), ..left };
+    let text_panel = Bounds { max: crate::geom::Point::new(left.max.x, split), ..left };
     let mut d = frame.page(title);
     // The mechanism, numbered.
     let probe = page::panel_area(mech_panel, true, s);
     let (lo, hi) = p.sketch.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
     let at = sketch::fit(lo, hi, probe, sketch::room(s));
-    page::panel(
+    let area = page::panel(
         &mut d,
         mech_panel,
-        &format!("The mechanism, links numbered   k_l = {} {}/mm", scale_text(at.k_l), p.unit),
+        &format!("The mechanism, links numbered   k_l = {} {}/mm", page::plain(at.k_l), p.unit),
         s,
     );
-    sketch::draw(&mut d, p.sketch, p.q, p.motion, at, s, Marks { numbers: true, ..Marks::default() });
+    sketch::draw(&mut d, p.sketch, p.q, p.motion, at, s, Marks { numbers: true, ..Marks::default() }, area);
     // The mobility.
-    let area = page::panel(&mut d, text_panel, "Mobility", s);
+    let area = page::panel(&mut d, text_panel, "Mobility and groups", s);
     let l = page::sheet_layer(&mut d);
     let mut text = mobility_lines(p);
     text.extend(group_lines(p));
     page::lines(&mut d, l, area, &text, 0.8 * s.text, s);
-    // The groups apart.
+    // The groups apart, at one scale.
     let n = p.structure.groups.len().max(1);
     let cols = if n <= 2 { 1 } else { 2 };
     let rows_n = n.div_ceil(cols);
     let cells: Vec<Bounds> =
         page::rows(right, rows_n, 0.0).into_iter().flat_map(|r| page::columns(r, cols, 0.0)).collect();
-    for (g, cell) in p.structure.groups.iter().zip(cells) {
-        let gs = group_sketch(p.sketch, p.mechanism, g);
+    let sketches: Vec<Sketch> = p.structure.groups.iter().map(|g| group_sketch(p.sketch, p.mechanism, g)).collect();
+    let k_l = sketches.iter().zip(&cells).fold(at.k_l, |k, (gs, cell)| {
+        let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
+        k.max(sketch::fit(lo, hi, page::panel_area(*cell, true, s), sketch::room(s)).k_l)
+    });
+    for ((g, gs), cell) in p.structure.groups.iter().zip(&sketches).zip(cells) {
         let probe = page::panel_area(cell, true, s);
         let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        let at = sketch::fit(lo, hi, probe, sketch::room(s));
-        page::panel(&mut d, cell, &format!("{}   k_l = {} {}/mm", group_caption(g), scale_text(at.k_l), p.unit), s);
-        sketch::draw(&mut d, &gs, p.q, p.motion, at, s, Marks { numbers: true, ..Marks::default() });
+        let at = sketch::OnPaper { k_l, origin: crate::figure::shared::sheet::centre(lo, hi, k_l, probe) };
+        let area =
+            page::panel(&mut d, cell, &format!("{}   k_l = {} {}/mm", group_caption(g), page::plain(k_l), p.unit), s);
+        sketch::draw(&mut d, gs, p.q, p.motion, at, s, Marks { numbers: true, ..Marks::default() }, area);
     }
     d
 }

@@ -6,6 +6,7 @@
 use crate::draw::{Bounds, Drawing, HAlign, Shape};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::table::{self, PaperTable};
+
 use crate::geom::Point;
 
 /// What the title page says.
@@ -67,11 +68,8 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, t: &TitlePage) -> Drawing {
         _ => [right, right],
     };
     let area = page::panel(&mut d, contents, "Contents", s);
-    let mut toc = PaperTable::new(&["part", "page"], &[table::Align::Left, table::Align::Right]);
-    for (part, first) in &t.contents {
-        toc.row(vec![part.clone(), first.to_string()]);
-    }
-    table::draw(&mut d, area, &toc, s);
+    let toc: Vec<String> = t.contents.iter().map(|(part, first)| format!("{first:>3}   {part}")).collect();
+    page::lines(&mut d, l, area, &toc, 0.9 * s.text, s);
     let area = page::panel(&mut d, fields, "", s);
     let rows = page::rows(area, FIELDS.len(), 0.0);
     for (name, row) in FIELDS.iter().zip(rows) {

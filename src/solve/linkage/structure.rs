@@ -117,13 +117,16 @@ impl Structure {
         self.groups.iter().map(|g| g.class).max().unwrap_or(1)
     }
 
-    /// The formula of the structure as a course writes it: `I(1) → II(2,3) → II(4,5)`,
-    /// the links of each group numbered as `number` gives them.
+    /// The formula of the structure as a course writes it: `I(0,1) → II(2,3) → II(4,5)`
+    /// (the driver with the frame 0), the links of each group numbered as `number` gives them.
     pub fn formula(&self, number: impl Fn(usize) -> usize) -> String {
         self.groups
             .iter()
             .map(|g| {
-                let links: Vec<String> = g.group.bodies.iter().map(|&b| number(b).to_string()).collect();
+                let mut links: Vec<String> = g.group.bodies.iter().map(|&b| number(b).to_string()).collect();
+                if g.is_driver() {
+                    links.insert(0, "0".into());
+                }
                 format!("{}({})", roman(g.class), links.join(","))
             })
             .collect::<Vec<_>>()
@@ -369,7 +372,7 @@ mod tests {
         assert_eq!((s.groups[1].class, s.groups[1].order, s.groups[1].mobility), (2, 2, 0));
         assert_eq!(s.groups[1].inner.len(), 1);
         assert_eq!(s.class(), 2);
-        assert_eq!(s.formula(|b| b + 1), "I(1) → II(2,3)");
+        assert_eq!(s.formula(|b| b + 1), "I(0,1) → II(2,3)");
     }
 
     #[test]

@@ -1,0 +1,10 @@
+//! A triad scene's report (to come).
+
+use super::{Frame, Gathered};
+use crate::Error;
+use crate::scene::triad::TriadScene;
+
+/// The parts of a triad's report.
+pub(super) fn gather<'a>(_scene: &'a TriadScene, _file: &str, _frame: Frame) -> Result<Gathered<'a>, Error> {
+    Ok(Gathered { parts: Vec::new(), table: None, summary: serde_json::Value::Null, warnings: Vec::new() })
+}
