@@ -95,7 +95,7 @@ enum Command {
         /// e.g. `0,90,180`. Default: four evenly spaced and the dead positions, twelve on the
         /// plan.
         #[arg(long, value_name = "LIST", value_parser = parse_positions)]
-        positions: Option<Vec<f64>>,
+        positions: Option<PositionList>,
         /// Also a PNG of every page (report/<name>/NN-<part>.png).
         #[arg(long)]
         png: bool,
@@ -135,8 +135,12 @@ enum Command {
     },
 }
 
+/// The values of `--positions LIST`.
+#[derive(Debug, Clone)]
+struct PositionList(Vec<f64>);
+
 /// `--positions LIST`: numbers separated by commas, none missing.
-fn parse_positions(s: &str) -> Result<Vec<f64>, String> {
+fn parse_positions(s: &str) -> Result<PositionList, String> {
     let usage = "give positions such as 0,90,180";
     if s.trim().is_empty() {
         return Err(format!("the list is empty: {usage}"));
@@ -152,7 +156,8 @@ fn parse_positions(s: &str) -> Result<Vec<f64>, String> {
                 _ => Err(format!("`{t}` is not a finite number: {usage}")),
             }
         })
-        .collect()
+        .collect::<Result<Vec<f64>, String>>()
+        .map(PositionList)
 }
 
 fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
@@ -216,7 +221,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Report { scene, out, set, paper, positions, png, quiet } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
-            let opts = mechdraw::run::report::ReportOptions { paper, positions };
+            let opts = mechdraw::run::report::ReportOptions { paper, positions: positions.map(|p| p.0) };
             let (report, written) = mechdraw::run::report_run(&loaded, &opts, &out, png)?;
             if !quiet {
                 for w in &report.warnings {

@@ -50,7 +50,7 @@ fn joint_links(kind: &JointKind) -> (usize, usize) {
 pub fn group_caption(g: &GroupStructure) -> String {
     let links: Vec<String> = g.group.bodies.iter().map(|&b| (b + 1).to_string()).collect();
     if g.is_driver() {
-        return format!("I(0,{}) driver with the frame", links.join(","));
+        return format!("I(0,{}) driver and frame", links.join(","));
     }
     let what = match g.group.kind {
         crate::solve::linkage::GroupKind::Dyad(k) => format!("dyad {}", k.name()),
@@ -165,11 +165,13 @@ pub fn group_sketch(sketch: &Sketch, mech: &Mechanism, g: &GroupStructure) -> Sk
 /// below it).
 const MECHANISM_SHARE: f64 = 0.5;
 
-/// The structural analysis page: the mechanism numbered (left, above the mobility's
+/// The structural analysis page (its title block's cells: the mechanism's and the groups'
+/// k_l): the mechanism numbered (left, above the mobility's
 /// working), the groups apart (right), all at one k_l when the groups' panels hold them at
 /// the mechanism's, else every group at the one scale that fits them all.
 pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawing {
     let s = frame.sizes;
+    let mut title = title.clone();
     let c = frame.content;
     let [left, right] = match page::columns(c, 2, 0.0).as_slice() {
         [a, b] => [*a, *b],
@@ -178,11 +180,25 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
     let split = left.max.y - MECHANISM_SHARE * left.height();
     let mech_panel = Bounds { min: crate::geom::Point::new(left.min.x, split), ..left };
     let text_panel = Bounds { max: crate::geom::Point::new(left.max.x, split), ..left };
-    let mut d = frame.page(title);
-    // The mechanism, numbered.
+    // The mechanism's scale, and the groups' (the coarser of it and what their panels need).
     let probe = page::panel_area(mech_panel, true, s);
     let (lo, hi) = p.sketch.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
     let at = sketch::fit(lo, hi, probe, sketch::room(s));
+    let n = p.structure.groups.len().max(1);
+    let cols = if n <= 2 { 1 } else { 2 };
+    let rows_n = n.div_ceil(cols);
+    let cells: Vec<Bounds> =
+        page::rows(right, rows_n, 0.0).into_iter().flat_map(|r| page::columns(r, cols, 0.0)).collect();
+    let sketches: Vec<Sketch> = p.structure.groups.iter().map(|g| group_sketch(p.sketch, p.mechanism, g)).collect();
+    let k_l = sketches.iter().zip(&cells).fold(at.k_l, |k, (gs, cell)| {
+        let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
+        k.max(sketch::fit(lo, hi, page::panel_area(*cell, true, s), sketch::room(s)).k_l)
+    });
+    title.cells = vec![
+        format!("k_l = {} {}/mm", page::plain(at.k_l), p.unit),
+        format!("groups: k_l = {} {}/mm", page::plain(k_l), p.unit),
+    ];
+    let mut d = frame.page(&title);
     let area = page::panel(
         &mut d,
         mech_panel,
@@ -197,16 +213,6 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
     text.extend(group_lines(p));
     page::lines(&mut d, l, area, &text, 0.8 * s.text, s);
     // The groups apart, at one scale.
-    let n = p.structure.groups.len().max(1);
-    let cols = if n <= 2 { 1 } else { 2 };
-    let rows_n = n.div_ceil(cols);
-    let cells: Vec<Bounds> =
-        page::rows(right, rows_n, 0.0).into_iter().flat_map(|r| page::columns(r, cols, 0.0)).collect();
-    let sketches: Vec<Sketch> = p.structure.groups.iter().map(|g| group_sketch(p.sketch, p.mechanism, g)).collect();
-    let k_l = sketches.iter().zip(&cells).fold(at.k_l, |k, (gs, cell)| {
-        let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        k.max(sketch::fit(lo, hi, page::panel_area(*cell, true, s), sketch::room(s)).k_l)
-    });
     for ((g, gs), cell) in p.structure.groups.iter().zip(&sketches).zip(cells) {
         let probe = page::panel_area(cell, true, s);
         let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));

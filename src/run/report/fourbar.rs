@@ -389,7 +389,7 @@ pub(super) fn motion_report<'a>(
         "mobility": structure.mobility.formula,
         "mobility_at_placement": structure.mobility.actual,
         "groups": structure.groups.iter().map(|s| serde_json::json!({"kind": s.group.kind_name(), "class": s.class, "order": s.order})).collect::<Vec<_>>(),
-        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "phi1_deg": c.drive})).collect::<Vec<_>>(),
+        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "phi1_deg": c.drive})).collect::<Vec<_>>(),
     });
     let unit = scene.units.length();
     let lists = vec![

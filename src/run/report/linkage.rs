@@ -349,7 +349,7 @@ pub(super) fn motion_report<'a>(
         plan_idx
             .iter()
             .enumerate()
-            .map(|(i, &k)| format!("{} t = {}", i + base, motion::trimmed(times[k])))
+            .map(|(i, &k)| format!("{} (t = {} s)", i + base, sheet::number(times[k])))
             .collect::<Vec<_>>()
             .join(", ")
     ));
@@ -407,7 +407,7 @@ pub(super) fn motion_report<'a>(
             "class": g.class,
             "order": g.order,
         })).collect::<Vec<_>>(),
-        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "t": c.drive})).collect::<Vec<_>>(),
+        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "t": c.drive})).collect::<Vec<_>>(),
     });
     let r = MotionReport {
         frame,

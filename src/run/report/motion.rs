@@ -97,7 +97,8 @@ pub struct Chosen {
     pub mark: String,
     /// Where it is (`φ1 = 30°`, `t = 0.25 s`).
     pub label: String,
-    /// What it is besides (`dead position: the rocker's extreme, …`), or empty.
+    /// What it is besides (`dead position: the rocker's extreme, …`; on a sample that is a
+    /// dead position, `dead position I: …`), or empty.
     pub note: String,
     /// Its pages' stem (`pos-030`, `dead-1`).
     pub stem: String,
@@ -175,6 +176,11 @@ pub fn choose(
             }
             for (i, d) in dead.iter().enumerate() {
                 let roman = crate::solve::linkage::structure::roman(i as u32 + 1);
+                // A dead position on a chosen sample is that sample's page.
+                if let Some(c) = out.iter_mut().find(|c| (c.drive - d.drive).abs() <= MATCH * axis.step) {
+                    c.note = format!("dead position {roman}: {}", d.what);
+                    continue;
+                }
                 out.push(Chosen {
                     at: At::Exact(i),
                     drive: d.drive,

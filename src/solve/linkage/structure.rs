@@ -76,7 +76,8 @@ pub struct GroupStructure {
     pub outer: Vec<usize>,
     /// Its joints between its own links.
     pub inner: Vec<usize>,
-    /// Its own degrees of freedom, 3·links − 2·joints − drivers (0 for an Assur group).
+    /// Its own degrees of freedom, W = 3·links − 2·joints: 0 for an Assur group, 1 for the
+    /// driver (its one degree of freedom, the one its driver takes).
     pub mobility: i64,
 }
 
@@ -156,7 +157,7 @@ fn group_structure(mech: &Mechanism, group: Group) -> GroupStructure {
         let (x, y) = joint_ends(&mech.joints[j].kind);
         if inside(x) && inside(y) { inner.push(j) } else { outer.push(j) }
     }
-    let mobility = 3 * group.bodies.len() as i64 - 2 * group.joints.len() as i64 - group.drivers.len() as i64;
+    let mobility = 3 * group.bodies.len() as i64 - 2 * group.joints.len() as i64;
     let class = if matches!(group.kind, GroupKind::Driven(_)) {
         1
     } else {
