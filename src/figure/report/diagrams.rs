@@ -42,34 +42,6 @@ impl Placed {
     }
 }
 
-/// The box a drawing's strokes and texts cover (texts by their measured boxes).
-fn extent(d: &Drawing) -> Option<Bounds> {
-    let mut b: Option<Bounds> = None;
-    let mut add = |lo: Point, hi: Point| {
-        b = Some(match b {
-            None => Bounds { min: lo, max: hi },
-            Some(x) => Bounds {
-                min: Point::new(x.min.x.min(lo.x), x.min.y.min(lo.y)),
-                max: Point::new(x.max.x.max(hi.x), x.max.y.max(hi.y)),
-            },
-        })
-    };
-    for e in &d.entities {
-        match &e.shape {
-            Shape::Text { .. } => {
-                let t = sketch::text_box(&e.shape);
-                add(t.min, t.max);
-            }
-            _ => {
-                if let Some(x) = d.bounds_of(std::iter::once(e)) {
-                    add(x.min, x.max);
-                }
-            }
-        }
-    }
-    b
-}
-
 /// The page of `diagrams` (at most [`PER_PAGE`]); returns it with where each went.
 pub fn page(frame: &ReportFrame, title: &PageTitle, diagrams: &[MarkedDiagram]) -> (Drawing, Vec<Placed>) {
     let s = frame.sizes;
@@ -80,7 +52,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, diagrams: &[MarkedDiagram]) 
     let mut placed = Vec::new();
     for (m, cell) in diagrams.iter().take(PER_PAGE).zip(cells) {
         let area = page::panel(&mut d, cell, "", s);
-        let Some(b) = extent(&m.drawing) else { continue };
+        let Some(b) = crate::figure::report::compose::extent(&m.drawing) else { continue };
         let scale = (area.width() / b.width().max(1e-9)).min(area.height() / b.height().max(1e-9));
         let size = Vector::new(b.width(), b.height()) * scale;
         let corner = area.min + (Vector::new(area.width(), area.height()) - size) / 2.0;

@@ -14,6 +14,7 @@
 //! the mechanism is drawn from a [`sketch::Sketch`] (the linkage figure with link numbers,
 //! the driver and the loads). This module knows no scene: the run builds each page's data.
 
+pub mod compose;
 pub mod diagrams;
 pub mod kinematic;
 pub mod page;

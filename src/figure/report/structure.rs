@@ -48,7 +48,9 @@ fn joint_links(kind: &JointKind) -> (usize, usize) {
 
 /// A group's name as a course writes it: `I(0,1) driver` , `II(2,3) dyad RRR`.
 pub fn group_caption(g: &GroupStructure) -> String {
-    let links: Vec<String> = g.group.bodies.iter().map(|&b| (b + 1).to_string()).collect();
+    let mut numbers: Vec<usize> = g.group.bodies.iter().map(|&b| b + 1).collect();
+    numbers.sort_unstable();
+    let links: Vec<String> = numbers.iter().map(usize::to_string).collect();
     if g.is_driver() {
         return format!("I(0,{}) driver and frame", links.join(","));
     }
@@ -104,7 +106,11 @@ pub fn mobility_lines(p: &StructurePage) -> Vec<String> {
         None => {}
     }
     let effective = m.actual.unwrap_or(m.formula);
-    out.push(if effective == st.drivers as i64 {
+    out.push(if effective == 0 && st.drivers == 0 {
+        "M = 0: with its outer pairs on the frame it is a structure, an Assur group on its own; a driver moving \
+         one of its outer pairs makes it part of a mechanism."
+            .to_string()
+    } else if effective == st.drivers as i64 {
         format!("{} driver(s): M = {effective} = the number of drivers, the motion is determined.", st.drivers)
     } else {
         format!("{} driver(s) for M = {effective}: the motion is not determined by the drivers.", st.drivers)

@@ -124,7 +124,9 @@ impl Structure {
         self.groups
             .iter()
             .map(|g| {
-                let mut links: Vec<String> = g.group.bodies.iter().map(|&b| number(b).to_string()).collect();
+                let mut numbers: Vec<usize> = g.group.bodies.iter().map(|&b| number(b)).collect();
+                numbers.sort_unstable();
+                let mut links: Vec<String> = numbers.iter().map(usize::to_string).collect();
                 if g.is_driver() {
                     links.insert(0, "0".into());
                 }
