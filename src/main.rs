@@ -139,25 +139,9 @@ enum Command {
 #[derive(Debug, Clone)]
 struct PositionList(Vec<f64>);
 
-/// `--positions LIST`: numbers separated by commas, none missing.
+/// `--positions LIST` (the report's parser).
 fn parse_positions(s: &str) -> Result<PositionList, String> {
-    let usage = "give positions such as 0,90,180";
-    if s.trim().is_empty() {
-        return Err(format!("the list is empty: {usage}"));
-    }
-    s.split(',')
-        .map(|item| {
-            let t = item.trim();
-            if t.is_empty() {
-                return Err(format!("`{s}` has an empty item: {usage}"));
-            }
-            match t.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(format!("`{t}` is not a finite number: {usage}")),
-            }
-        })
-        .collect::<Result<Vec<f64>, String>>()
-        .map(PositionList)
+    mechdraw::run::report::parse_positions(s).map(PositionList)
 }
 
 fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {

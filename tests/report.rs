@@ -419,3 +419,46 @@ fn bad_input_is_refused_by_name_and_nothing_is_written() {
         assert_eq!(files, 0, "{args:?}: nothing written");
     }
 }
+
+#[test]
+fn the_live_pages_report_is_the_command_lines() {
+    let dir = common::root().join("target/test-report/web");
+    let _ = std::fs::remove_dir_all(&dir);
+    let ok = common::mechdraw()
+        .args([
+            "report",
+            "templates/slider-crank.toml",
+            "--paper",
+            "a3",
+            "--positions",
+            "0,0.046875",
+            "--quiet",
+            "--out",
+        ])
+        .arg(&dir)
+        .current_dir(common::root())
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let text = std::fs::read_to_string(template("slider-crank")).unwrap();
+    let session = mechdraw::web::Session::new(&text, "templates/slider-crank.toml").unwrap();
+    let files = session.report("a3", "0,0.046875").unwrap().files;
+    let mut on_disk = Vec::new();
+    common::read_tree(&dir, Path::new(""), &mut on_disk);
+    on_disk.sort();
+    let mut ours = files.clone();
+    ours.sort();
+    assert_eq!(
+        ours.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>(),
+        on_disk.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>()
+    );
+    for ((n, a), (_, b)) in ours.iter().zip(&on_disk) {
+        assert!(a == b, "{n} differs");
+    }
+    // The page's errors are the command line's.
+    let e = session.report("letter", "").unwrap_err().to_string();
+    assert!(e.contains("--paper") && e.contains("a4"), "{e}");
+    let e = session.report("a4", "5").unwrap_err().to_string();
+    assert!(e.contains("--positions") && e.contains("outside the motion"), "{e}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

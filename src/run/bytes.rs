@@ -226,17 +226,18 @@ fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<(Str
 /// asked for, its PNG `sheets/<name>/<stem>.png`; nothing without pages. The SVGs (and PNGs)
 /// are built in parallel with the PDF.
 fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
-    paper_files(&format!("{name}-sheets.pdf"), &format!("sheets/{name}"), pages, png)
+    paper_files(Some(&format!("{name}-sheets.pdf")), &format!("sheets/{name}"), pages, png)
 }
 
-/// Pages of paper: `pdf_name` with every page, then each page's SVG `<dir>/<stem>.svg` (true
-/// size, viewBox in paper mm) and, when asked for, its PNG; nothing without pages.
-fn paper_files(pdf_name: &str, dir: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
+/// Pages of paper: `pdf_name` (when given) with every page, then each page's SVG
+/// `<dir>/<stem>.svg` (true size, viewBox in paper mm) and, when asked for, its PNG; nothing
+/// without pages.
+fn paper_files(pdf_name: Option<&str>, dir: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
     if pages.is_empty() {
         return Ok(Vec::new());
     }
     let (doc, svgs) = rayon::join(
-        || pdf_bytes(pages, pdf_name),
+        || pdf_name.map(|n| pdf_bytes(pages, n).map(|b| (n.to_string(), b))).transpose(),
         || {
             pages
                 .par_iter()
@@ -249,7 +250,7 @@ fn paper_files(pdf_name: &str, dir: &str, pages: &[Page], png: bool) -> Result<V
                 .collect::<Result<Vec<_>, Error>>()
         },
     );
-    let mut files = vec![(pdf_name.to_string(), doc?)];
+    let mut files: Vec<(String, Vec<u8>)> = doc?.into_iter().collect();
     files.extend(svgs?.into_iter().flatten());
     Ok(files)
 }
@@ -267,13 +268,16 @@ pub fn page_svg(p: &Page) -> String {
     svg::to_string(&p.drawing, &opts)
 }
 
-/// A report's files (`mechdraw report`), in order: `<name>-report.pdf` (every page), each
-/// page's SVG `report/<name>/<NN>-<part>.svg` (and its PNG with `png`), the chosen
-/// positions' table `<name>-report.csv` (motion kinds) and `<name>-report.json` (the parts
-/// and their pages, the structure, the positions).
+/// A report's files (`mechdraw report`), in order: `<name>-report.pdf` (every page; in a
+/// build with the PDF writer, feature `pdf`: the command line's, not the live page's
+/// module), each page's SVG `report/<name>/<NN>-<part>.svg` (and its PNG with `png`), the
+/// chosen positions' table `<name>-report.csv` (motion kinds) and `<name>-report.json` (the
+/// parts and their pages, the structure, the positions).
 pub fn report_files(r: &super::report::Report, png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
     let name = &r.name;
-    let mut files = paper_files(&format!("{name}-report.pdf"), &format!("report/{name}"), &r.pages, png)?;
+    let pdf = format!("{name}-report.pdf");
+    let pdf = cfg!(feature = "pdf").then_some(pdf.as_str());
+    let mut files = paper_files(pdf, &format!("report/{name}"), &r.pages, png)?;
     if let Some(t) = &r.table {
         files.push((format!("{name}-report.csv"), t.to_bytes()));
     }

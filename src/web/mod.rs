@@ -90,3 +90,31 @@ pub fn scene_files(text: &str, file: &str, opts: WebOptions) -> Result<SceneFile
     let files = bytes::to_files(&p, &wopts)?;
     Ok(SceneFiles { files, summary: p.summary, report: p.report, warnings: p.warnings })
 }
+
+/// The report of the scene in `text` (`mechdraw report`: [`crate::run::report`]) as named
+/// byte buffers, as `mechdraw report SCENE --paper PAPER [--positions LIST]` writes them:
+/// the pages as SVG, the chosen positions' table and the JSON; the PDF too in a build with
+/// the PDF writer (feature `pdf`; the live page's module leaves it out, so the page offers
+/// the pages to print). `paper` is `a4` or `a3`; `positions` as `--positions` takes it
+/// (`""`: the report's choice). Errors are the command line's words.
+pub fn report_files(text: &str, file: &str, paper: &str, positions: &str) -> Result<SceneFiles, Error> {
+    let opts = report_options(paper, positions)?;
+    let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])?, text: text.to_string() };
+    let r = run::report::report(&loaded, &opts)?;
+    let files = bytes::report_files(&r, false)?;
+    let report = r.parts.iter().map(|(t, p)| format!("p. {p:>2}  {t}")).collect::<Vec<_>>().join("\n");
+    Ok(SceneFiles { files, summary: r.summary, report, warnings: r.warnings })
+}
+
+/// `--paper` and `--positions` as the command line reads them.
+pub fn report_options(paper: &str, positions: &str) -> Result<run::report::ReportOptions, Error> {
+    let paper = paper.parse().map_err(|message| Error::Option { option: "--paper".into(), message })?;
+    let positions = if positions.trim().is_empty() {
+        None
+    } else {
+        let values = run::report::parse_positions(positions)
+            .map_err(|message| Error::Option { option: "--positions".into(), message })?;
+        Some(values)
+    };
+    Ok(run::report::ReportOptions { paper, positions })
+}

@@ -48,6 +48,27 @@ impl Default for ReportOptions {
     }
 }
 
+/// `--positions LIST`: numbers separated by commas, none missing ("" and "0,,1" are
+/// refused, saying what is valid). Which are positions of the run is the report's check.
+pub fn parse_positions(s: &str) -> Result<Vec<f64>, String> {
+    let usage = "give positions such as 0,90,180";
+    if s.trim().is_empty() {
+        return Err(format!("the list is empty: {usage}"));
+    }
+    s.split(',')
+        .map(|item| {
+            let t = item.trim();
+            if t.is_empty() {
+                return Err(format!("`{s}` has an empty item: {usage}"));
+            }
+            match t.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(v),
+                _ => Err(format!("`{t}` is not a finite number: {usage}")),
+            }
+        })
+        .collect()
+}
+
 /// The report of one scene.
 #[derive(Debug)]
 pub struct Report {
