@@ -313,7 +313,8 @@ fn to_curve(d: &Drawing, frame: (Point, Point), p: Point) -> f64 {
 fn the_diagrams_mark_the_chosen_positions_on_their_curves() {
     // The abscissa of the diagrams: φ1 in degrees (the four-bar's drive; the linkages'
     // angular drivers: the shaper's 2πt, the slider-crank's 320 rpm).
-    let cases: [(&str, fn(f64) -> f64); 3] =
+    type Abscissa = fn(f64) -> f64;
+    let cases: [(&str, Abscissa); 3] =
         [("fourbar-chebyshev", |phi| phi), ("shaper-forces", |t| 360.0 * t), ("slider-crank", |t| 1920.0 * t)];
     for (name, abscissa) in cases {
         let r = report_of(name, None);

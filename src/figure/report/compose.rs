@@ -182,7 +182,14 @@ pub fn positions_page(
         let (lo, hi) = sk.extent(&[q.as_slice()]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
         let at = OnPaper { k_l, origin: sheet::centre(lo, hi, k_l, probe) };
         let area = page::panel(&mut d, cell, caption, s);
-        sketch::draw(&mut d, sk, q, &[q.as_slice()], at, s, Marks { numbers: true, ..Marks::default() }, area);
+        sketch::draw(
+            &mut d,
+            sk,
+            q,
+            &[q.as_slice()],
+            sketch::Frame { at, sizes: s, area },
+            Marks { numbers: true, ..Marks::default() },
+        );
     }
     d
 }

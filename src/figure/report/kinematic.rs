@@ -47,7 +47,14 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &KinematicPage) -> (Drawi
     title.cells = vec![k_text.clone(), p.position.clone()];
     let mut d = frame.page(&title);
     let area = page::panel(&mut d, left, &format!("Kinematic diagram at {}   {k_text}", p.position), s);
-    sketch::draw(&mut d, p.sketch, p.q, p.motion, at, s, Marks { numbers: true, driver: true, loads: true }, area);
+    sketch::draw(
+        &mut d,
+        p.sketch,
+        p.q,
+        p.motion,
+        sketch::Frame { at, sizes: s, area },
+        Marks { numbers: true, driver: true, loads: true },
+    );
     let dims = layer_of(&d, layers::DIMENSIONS);
     let value = bar_value(at.k_l);
     scale_bar(

@@ -120,7 +120,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &PlanPage) -> (Drawing, f
         thin(&mut d, mech, &paper_fig, &fig::on_paper(q, at.origin, at.k_l), Aci::RED, LineType::Dashed, s);
     }
     if let Some((_, q0)) = p.plan.first() {
-        sketch::draw(&mut d, p.sketch, q0, p.motion, at, s, Marks::default(), area);
+        sketch::draw(&mut d, p.sketch, q0, p.motion, sketch::Frame { at, sizes: s, area }, Marks::default());
     }
     let dims = layer_of(&d, layers::DIMENSIONS);
     // The dimensions' texts, the positions' numbers and the extremes' names placed together,

@@ -128,19 +128,22 @@ pub struct Marks {
     pub loads: bool,
 }
 
+/// Where a mechanism is drawn: its placement on paper, the sizes of its symbols, the area
+/// its letters stay in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// The placement.
+    pub at: OnPaper,
+    /// Sizes of letters and symbols, paper mm.
+    pub sizes: Sizes,
+    /// The area its letters stay inside (its panel's).
+    pub area: Bounds,
+}
+
 /// Draws the mechanism of `sketch` at `q` (model coordinates) on the page `d` (paper mm)
-/// at `at`, the ground guides as long as `motion` needs them, with `marks` (their letters
-/// inside `area`).
-pub fn draw(
-    d: &mut Drawing,
-    sketch: &Sketch,
-    q: &[f64],
-    motion: &[&[f64]],
-    at: OnPaper,
-    s: Sizes,
-    marks: Marks,
-    area: Bounds,
-) {
+/// in `frame`, the ground guides as long as `motion` needs them, with `marks`.
+pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], frame: Frame, marks: Marks) {
+    let Frame { at, sizes: s, area } = frame;
     let paper_fig = sketch.figure.on_paper(at.origin, at.k_l);
     let pq = fig::on_paper(q, at.origin, at.k_l);
     let paper_motion: Vec<Vec<f64>> = motion.iter().map(|m| fig::on_paper(m, at.origin, at.k_l)).collect();

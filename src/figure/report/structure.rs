@@ -211,7 +211,14 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         &format!("The mechanism, links numbered   k_l = {} {}/mm", page::plain(at.k_l), p.unit),
         s,
     );
-    sketch::draw(&mut d, p.sketch, p.q, p.motion, at, s, Marks { numbers: true, ..Marks::default() }, area);
+    sketch::draw(
+        &mut d,
+        p.sketch,
+        p.q,
+        p.motion,
+        sketch::Frame { at, sizes: s, area },
+        Marks { numbers: true, ..Marks::default() },
+    );
     // The mobility.
     let area = page::panel(&mut d, text_panel, "Mobility and groups", s);
     let l = page::sheet_layer(&mut d);
@@ -225,7 +232,14 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         let at = sketch::OnPaper { k_l, origin: crate::figure::shared::sheet::centre(lo, hi, k_l, probe) };
         let area =
             page::panel(&mut d, cell, &format!("{}   k_l = {} {}/mm", group_caption(g), page::plain(k_l), p.unit), s);
-        sketch::draw(&mut d, gs, p.q, p.motion, at, s, Marks { numbers: true, ..Marks::default() }, area);
+        sketch::draw(
+            &mut d,
+            gs,
+            p.q,
+            p.motion,
+            sketch::Frame { at, sizes: s, area },
+            Marks { numbers: true, ..Marks::default() },
+        );
     }
     d
 }
