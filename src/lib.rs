@@ -26,6 +26,7 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;
+pub mod text;
 pub mod web;
 
 pub use error::Error;

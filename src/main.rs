@@ -160,6 +160,10 @@ fn print_stdout(text: &str) -> anyhow::Result<()> {
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // SIGINT, SIGTERM, SIGHUP: a run's staging directory removed, exit 130, 143, 129.
+    if let Err(e) = mechdraw::run::output::remove_staging_on_signals() {
+        eprintln!("warning: {e}");
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {

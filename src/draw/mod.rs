@@ -310,6 +310,61 @@ pub struct Drawing {
     pub paper_mm_per_unit: Option<f64>,
 }
 
+impl Shape {
+    /// Every number of the shape (coordinates, sizes, angles), in a fixed order.
+    pub fn numbers(&self) -> Vec<f64> {
+        let xy = |p: &Point| [p.x, p.y];
+        match self {
+            Shape::Circle { center, radius } => vec![center.x, center.y, *radius],
+            Shape::Arc { center, radius, start, end } => vec![center.x, center.y, *radius, *start, *end],
+            Shape::Line { from, to } => [xy(from), xy(to)].concat(),
+            Shape::Polyline { points, width, .. } => {
+                points.iter().flat_map(xy).chain(std::iter::once(*width)).collect()
+            }
+            Shape::Filled { points } => points.iter().flat_map(xy).collect(),
+            Shape::Arrow { from, to, head } => [&xy(from)[..], &xy(to), &[*head]].concat(),
+            Shape::Text { at, height, rotation, .. } => vec![at.x, at.y, *height, *rotation],
+            Shape::AngularDimension { vertex, first, second, radius, .. } => {
+                [&xy(vertex)[..], &xy(first), &xy(second), &[*radius]].concat()
+            }
+            Shape::LinearDimension { p1, p2, line_at, angle, .. } => {
+                [&xy(p1)[..], &xy(p2), &xy(line_at), &[*angle]].concat()
+            }
+        }
+    }
+
+    /// The text the shape writes, if any.
+    pub fn text(&self) -> Option<&str> {
+        match self {
+            Shape::Text { value, .. } => Some(value),
+            Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => Some(text),
+            _ => None,
+        }
+    }
+}
+
+impl Drawing {
+    /// The first entity with a number that is not finite, or whose text writes one (`NaN`,
+    /// `inf`: [`crate::text::non_finite_word`]), described for a message (its index, layer
+    /// and what is wrong); `None` when every number is finite. The scale and the dimension
+    /// style are numbers of the drawing too.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let style = [self.dim_style.text_height, self.dim_style.arrow_size, self.paper_mm_per_unit.unwrap_or(1.0)];
+        if style.iter().any(|v| !v.is_finite()) {
+            return Some("its scale or dimension style".into());
+        }
+        self.entities.iter().enumerate().find_map(|(i, e)| {
+            let layer = self.layers.get(e.layer).map_or("?", |l| l.name.as_str());
+            if let Some(v) = e.shape.numbers().into_iter().find(|v| !v.is_finite()) {
+                return Some(format!("entity {i} on layer {layer} has the coordinate or size {v}"));
+            }
+            let text = e.shape.text()?;
+            crate::text::non_finite_word(text)
+                .map(|w| format!("the text \"{}\" on layer {layer} writes {w}", crate::text::excerpt(text)))
+        })
+    }
+}
+
 /// Axis-aligned bounding box in model units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {

@@ -558,24 +558,40 @@ pub(super) fn table(motion: &Motion, qs: &[Quantity], forces: bool) -> Csv {
     csv
 }
 
-/// One position's JSON record: the quantities marked `json`, pairs as `[x, y]`.
-fn position_record(p: &Position, f: Option<&Forces>, qs: &[Quantity]) -> BTreeMap<String, Value> {
+/// One position's JSON record: the quantities marked `json`, pairs as `[x, y]`. A number
+/// that is not finite fails (JSON would write it as `null`), naming `positions[i].<key>` of
+/// `<name>.json`.
+fn position_record(
+    p: &Position,
+    f: Option<&Forces>,
+    qs: &[Quantity],
+    at: (&str, usize),
+) -> Result<BTreeMap<String, Value>, Error> {
     let mut r = BTreeMap::new();
+    let checked = |key: String, values: &[f64]| {
+        if values.iter().all(|v| v.is_finite()) {
+            Ok(key)
+        } else {
+            Err(Error::NonFinite { what: format!("{}.json", at.0), at: format!("positions[{}].{key}", at.1) })
+        }
+    };
     for q in qs.iter().filter(|q| q.json) {
         match q.get {
             Get::Scalar(g) => {
-                r.insert(q.name.to_string(), json!(g(p, f)));
+                let v = g(p, f);
+                r.insert(checked(q.name.to_string(), &[v])?, json!(v));
             }
             Get::Pair(g) => {
                 let v = g(p, f);
-                r.insert(q.name.to_string(), report::vector(v));
+                r.insert(checked(q.name.to_string(), &[v.x, v.y])?, report::vector(v));
                 if q.magnitude {
-                    r.insert(format!("{}_mag", q.name), json!(v.norm()));
+                    let m = v.norm();
+                    r.insert(checked(format!("{}_mag", q.name), &[m])?, json!(m));
                 }
             }
         }
     }
-    r
+    Ok(r)
 }
 
 /// A drawing scale in the summary: the value per millimetre of printed paper and its unit.
@@ -632,8 +648,11 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         .positions
         .par_iter()
         .enumerate()
-        .map(|(i, p)| Value::Object(position_record(p, forces_at(motion, i, forces), qs).into_iter().collect()))
-        .collect();
+        .map(|(i, p)| {
+            let record = position_record(p, forces_at(motion, i, forces), qs, (&scene.name, i))?;
+            Ok(Value::Object(record.into_iter().collect()))
+        })
+        .collect::<Result<_, Error>>()?;
     let outputs = [
         ("position", true),
         ("velocity", o.velocity),

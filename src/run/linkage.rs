@@ -97,15 +97,32 @@ fn near_singular_warning(n: &NearSingular) -> String {
 
 /// Parses `BODY.POINT=x,y`.
 fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error> {
-    let bad = |message: String| Error::Option { option: format!("--drag {spec}"), message };
+    let bad = |message: String| Error::Option { option: format!("--drag {}", crate::text::excerpt(spec)), message };
     let Some((point, xy)) = spec.split_once('=') else {
         return Err(bad("expected BODY.POINT=x,y, e.g. crank.A=10,20".into()));
     };
     let anchor = scene.anchor(point.trim()).map_err(bad)?;
+    if anchor.body == Attach::Ground {
+        let movable: Vec<String> = scene
+            .mechanism
+            .bodies
+            .iter()
+            .flat_map(|b| b.points.iter().map(move |(p, _)| format!("{}.{p}", b.name)))
+            .collect();
+        return Err(bad(format!(
+            "`{}` is a point of the ground, which does not move: drag a point of a moving body ({})",
+            point.trim(),
+            crate::text::excerpt(&movable.join(", "))
+        )));
+    }
     let parts: Vec<&str> = xy.split(',').collect();
     let nums: Vec<f64> = parts.iter().filter_map(|s| s.trim().parse::<f64>().ok()).collect();
-    if parts.len() != 2 || nums.len() != 2 || !nums.iter().all(|v| v.is_finite()) {
-        return Err(bad(format!("`{xy}` is not a target x,y of two finite numbers, e.g. 10,20")));
+    let limit = crate::scene::MAX_LENGTH;
+    if parts.len() != 2 || nums.len() != 2 || !nums.iter().all(|v| v.is_finite() && v.abs() <= limit) {
+        return Err(bad(format!(
+            "`{}` is not a target x,y of two numbers within ±{limit:e} (the scene's unit), e.g. 10,20",
+            crate::text::excerpt(xy)
+        )));
     }
     Ok((anchor, Point::new(nums[0], nums[1])))
 }

@@ -5,6 +5,7 @@
 
 pub mod bytes;
 mod chain;
+pub mod finite;
 mod fourbar;
 mod fourbar_teaching;
 mod linkage;
@@ -12,6 +13,7 @@ mod linkage;
 pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
+pub mod paths;
 pub mod products;
 pub mod report;
 mod triad;
@@ -111,6 +113,10 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
 /// terminal: feature `cli`; the core's products go to bytes with [`bytes::to_files`]).
 #[cfg(feature = "cli")]
 pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
+    if opts.out_dir.is_some() && opts.drag.is_empty() {
+        // Before solving: a mistyped step is refused at once, not after a million positions.
+        check_positions(&loaded.scene, &loaded.path.display().to_string())?;
+    }
     let p = products(loaded, opts)?;
     let Some(dir) = &opts.out_dir else {
         return Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written: Vec::new() });
@@ -132,7 +138,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: opts.dxf };
     // The live page `<name>.html` (every kind), unless --no-frames: written while the
     // products become files.
-    let page_rel = format!("{}.html", p.name);
+    let page_rel = paths::RelPath::join(&[&format!("{}.html", p.name)])?;
     let (order, page) = rayon::join(
         || bytes::write(&p, &wopts, &tick, &out),
         || -> Result<bool, Error> {
@@ -200,6 +206,18 @@ pub const PNG_WIDTH_PX: u32 = 1600;
 /// square of the count). 3600 is a 0.1° crank step over a turn. The library can still
 /// solve a finer scene without an output directory ([`RunOptions::out_dir`] = `None`).
 pub const MAX_DRAWN_POSITIONS: usize = 3600;
+
+/// Refuses, before solving, a scene whose motion has more than [`MAX_DRAWN_POSITIONS`]
+/// positions to draw (the message names the field that sets their number); a still scene
+/// draws one.
+pub fn check_positions(scene: &Scene, file: &str) -> Result<(), Error> {
+    let (count, field, advice) = match scene {
+        Scene::Fourbar(s) => (s.spec.sweep.count(), "phi1_deg.step", "use a larger step"),
+        Scene::Linkage(s) => (s.times.len(), "time.steps", "use fewer steps"),
+        Scene::Triad(_) | Scene::Chain(_) => return Ok(()),
+    };
+    check_drawn(file, field, count, advice)
+}
 
 /// Refuses to draw more than [`MAX_DRAWN_POSITIONS`] positions, naming the field that sets
 /// their number (so that a mistyped step does not fill the disk).

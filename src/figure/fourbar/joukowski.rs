@@ -173,7 +173,11 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             names.letter(from + v * 0.6, &f.name, small, perp(v), color);
         }
         names.draw(&mut d, frc);
-        let title = format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg));
+        let title = if lever.crank_speed != panel.omega1 {
+            format!("Joukowski's lever   φ1 = {}°, ω1 = 0", angle_text(panel.phi1_deg))
+        } else {
+            format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg))
+        };
         d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         // The table: load, its image point, |F| [N], M_p [N·(unit)/s].
         let largest = arrows.iter().map(|(f, _)| f.moment.abs()).fold(0.0, f64::max);
@@ -194,12 +198,19 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             line(&mut d, text, Point::new(m_x, y), small, sig4(m), HAlign::Right);
         }
         let me1 = lever.me1.map_or("—".to_string(), sig4);
+        // A standing crank: the polygon of virtual velocities, the crank at 1 rad/s.
+        let standing = lever.crank_speed != panel.omega1;
+        let (polygon, divisor) = if standing {
+            ("polygon at ω1 = 1 rad/s (virtual), 90° cw", "(1 rad/s)")
+        } else {
+            ("velocity polygon turned 90° clockwise", "ω1")
+        };
         let lines = [
-            "velocity polygon turned 90° clockwise".to_string(),
+            polygon.to_string(),
             format!("k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
             "Σ M_p(F_i) = Σ F_i·v_i (without F_b)".to_string(),
             format!("  = {} N·{speed}", sig4(lever.moment)),
-            format!("Me1 = −Σ M_p(F_i) / ω1 = {me1} {}", units.moment),
+            format!("Me1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
             format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),
         ];
         let y0 = top - (rows as f64 + 0.5) * row;

@@ -155,6 +155,8 @@ pub fn report(loaded: &Loaded, opts: &ReportOptions) -> Result<Report, Error> {
             ),
         });
     }
+    // Before solving: a mistyped step is refused at once, as `mechdraw run` refuses it.
+    super::check_positions(&loaded.scene, &file)?;
     let name = loaded.scene.name();
     match &loaded.scene {
         Scene::Fourbar(s) => {

@@ -1039,7 +1039,7 @@ pub(super) fn whole_law(d: &super::Driver, t: f64) -> Result<(f64, f64, f64), Li
 fn not_finite(d: &super::Driver, t: f64, j: crate::solve::expr::Jet) -> LinkageError {
     LinkageError::DriverNotFinite {
         driver: d.name.clone(),
-        law: d.law.source().to_string(),
+        law: crate::text::excerpt(d.law.source()),
         t,
         value: j.value,
         d1: j.d1,
