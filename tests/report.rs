@@ -409,6 +409,14 @@ fn bad_input_is_refused_by_name_and_nothing_is_written() {
         ),
         (vec!["templates/shaper-forces.toml", "--positions", ""], vec!["--positions", "empty"]),
         (vec!["templates/shaper-forces.toml", "--positions", "0,,1"], vec!["--positions", "empty item"]),
+        (
+            vec!["templates/shaper-forces.toml", "--positions", "0,abc"],
+            vec!["--positions", "`abc` is not a finite number"],
+        ),
+        (vec!["templates/fourbar-chebyshev.toml", "--positions", "nan"], vec!["--positions", "not a finite number"]),
+        (vec!["templates/fourbar-chebyshev.toml", "--positions", " , "], vec!["--positions", "empty item"]),
+        (vec!["templates/chain-humienny-2.toml", "--positions", "1"], vec!["--positions", "dimensional chain"]),
+        (vec!["templates/fourbar-chebyshev.toml", "--paper", "A5"], vec!["--paper", "A5", "a4", "a3"]),
         (vec!["templates/shaper-forces.toml", "--paper", "letter"], vec!["--paper", "letter", "a4", "a3"]),
         (vec!["templates/triad-popa.toml", "--positions", "0"], vec!["--positions", "triad"]),
     ] {
@@ -462,4 +470,129 @@ fn the_live_pages_report_is_the_command_lines() {
     let e = session.report("a4", "5").unwrap_err().to_string();
     assert!(e.contains("--positions") && e.contains("outside the motion"), "{e}");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// Headless Chromium (Debian's `chromium`), the browser the page tests use.
+fn chromium() -> &'static str {
+    ["chromium", "chromium-browser"]
+        .into_iter()
+        .find(|c| std::process::Command::new(c).arg("--version").output().is_ok_and(|o| o.status.success()))
+        .expect("chromium not found: this test prints the page's report as a browser does (apt-get install chromium)")
+}
+
+/// Page `page`'s words (poppler's `pdftotext`), sorted.
+fn pdf_words(pdf: &Path, page: usize) -> Vec<String> {
+    let p = page.to_string();
+    let out = std::process::Command::new("pdftotext").args(["-f", &p, "-l", &p]).arg(pdf).arg("-").output().unwrap();
+    let mut w: Vec<String> = String::from_utf8_lossy(&out.stdout).split_whitespace().map(String::from).collect();
+    w.sort();
+    w
+}
+
+/// The size of the PDF's first page, pt (pdfinfo).
+fn pdf_page_size(pdf: &Path) -> (f64, f64) {
+    let out = std::process::Command::new("pdfinfo").arg(pdf).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let line = text.lines().find_map(|l| l.strip_prefix("Page size:")).unwrap().to_string();
+    let v: Vec<f64> = line.split_whitespace().filter_map(|t| t.parse().ok()).collect();
+    (v[0], v[1])
+}
+
+#[test]
+fn the_live_pages_report_prints_as_the_command_lines_pdf() {
+    // The page's download: every page in one HTML document to print (the module has no PDF
+    // writer), then the PDF where the build has one, the table and the JSON.
+    let text = std::fs::read_to_string(template("fourbar-chebyshev")).unwrap();
+    let session = mechdraw::web::Session::new(&text, "templates/fourbar-chebyshev.toml").unwrap();
+    let offered = session.report_download("a3", "0,90").unwrap().files;
+    let names: Vec<&str> = offered.iter().map(|(n, _)| n.as_str()).collect();
+    assert_eq!(
+        names,
+        [
+            "fourbar-chebyshev-report.html",
+            "fourbar-chebyshev-report.pdf",
+            "fourbar-chebyshev-report.csv",
+            "fourbar-chebyshev-report.json"
+        ]
+    );
+    // The document holds every page's SVG of the report, in order.
+    let html = std::str::from_utf8(&offered[0].1).unwrap();
+    let whole = session.report("a3", "0,90").unwrap().files;
+    let svgs: Vec<&[u8]> = whole.iter().filter(|(n, _)| n.ends_with(".svg")).map(|(_, b)| b.as_slice()).collect();
+    let mut at = 0;
+    for s in &svgs {
+        let s = std::str::from_utf8(s).unwrap().trim();
+        at += html[at..].find(s).expect("every page's SVG in the document, in order") + s.len();
+    }
+    // Printed by a browser (Chromium's print to PDF, as Print → Save as PDF does): a sheet per
+    // page on the report's paper, each sheet with the words of the command line's PDF page.
+    let dir = tempfile::tempdir().unwrap();
+    let doc = dir.path().join("report.html");
+    std::fs::write(&doc, html).unwrap();
+    let ours = dir.path().join("ours.pdf");
+    std::fs::write(&ours, &offered[1].1).unwrap();
+    let printed = dir.path().join("printed.pdf");
+    let profile = tempfile::tempdir().unwrap();
+    let out = std::process::Command::new(chromium())
+        .args(["--headless", "--no-sandbox", "--disable-gpu", "--no-first-run", "--no-pdf-header-footer"])
+        .arg(format!("--user-data-dir={}", profile.path().display()))
+        .arg(format!("--print-to-pdf={}", printed.display()))
+        .arg(format!("file://{}", doc.display()))
+        .output()
+        .unwrap();
+    assert!(printed.is_file(), "chromium printed nothing:\n{}", String::from_utf8_lossy(&out.stderr));
+    let n = pdf_pages(&ours);
+    assert_eq!(n, svgs.len());
+    assert_eq!(pdf_pages(&printed), n, "a printed sheet per page");
+    let ((w, h), (w0, h0)) = (pdf_page_size(&printed), pdf_page_size(&ours));
+    // A3 landscape, 420 × 297 mm = 1190.55 × 841.89 pt; Chromium rounds the sheet to its
+    // pixels (1/96 in = 0.75 pt), the drawing is not scaled.
+    assert!(
+        (w - w0).abs() < 0.75 && (h - h0).abs() < 0.75 && (w0 - 1190.55).abs() < 0.1,
+        "{w} × {h} pt, ours {w0} × {h0}"
+    );
+    for page in 1..=n {
+        assert_eq!(pdf_words(&printed, page), pdf_words(&ours, page), "page {page}'s words");
+        // Printed at 100 %: the words that are once on the page start where the PDF's do
+        // (the median x to 0.5 pt: a sheet scaled by 1 % would move them by pt; a centred or
+        // right-aligned text moves by the difference of the browser's and our width of it;
+        // y within the two fonts' different ascents, which set a box's top).
+        let (a, b) = (word_boxes(&printed, page), word_boxes(&ours, page));
+        let mut dx = Vec::new();
+        for (word, at) in &a {
+            let (Some(there), 1, 1) = (
+                b.iter().find(|(v, _)| v == word),
+                a.iter().filter(|(v, _)| v == word).count(),
+                b.iter().filter(|(v, _)| v == word).count(),
+            ) else {
+                continue;
+            };
+            dx.push((at.0 - there.1.0).abs());
+            assert!((at.1 - there.1.1).abs() < 5.0, "page {page} {word}: {at:?} printed, {:?} ours", there.1);
+        }
+        dx.sort_by(f64::total_cmp);
+        let compared = dx.len();
+        assert!(compared > 10, "page {page}: {compared} words compared");
+        assert!(dx[compared / 2] < 0.5, "page {page}: the words' x moved by {} pt (median)", dx[compared / 2]);
+    }
+}
+
+/// Page `page`'s words with where each starts (poppler's `pdftotext -bbox`: x from the left,
+/// y of the top from the top, pt).
+fn word_boxes(pdf: &Path, page: usize) -> Vec<(String, (f64, f64))> {
+    let p = page.to_string();
+    let out =
+        std::process::Command::new("pdftotext").args(["-bbox", "-f", &p, "-l", &p]).arg(pdf).arg("-").output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout).into_owned();
+    let attr = |l: &str, k: &str| -> f64 {
+        let i = l.find(&format!("{k}=\"")).unwrap() + k.len() + 2;
+        l[i..].split('"').next().unwrap().parse().unwrap()
+    };
+    text.lines()
+        .filter(|l| l.trim_start().starts_with("<word "))
+        .map(|l| {
+            let word = l.split('>').nth(1).unwrap_or("").split('<').next().unwrap_or("").to_string();
+            (word, (attr(l, "xMin"), attr(l, "yMin")))
+        })
+        .collect()
 }

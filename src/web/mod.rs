@@ -18,6 +18,7 @@ pub mod edit;
 pub mod fields;
 #[cfg(target_arch = "wasm32")]
 pub mod js;
+pub mod print;
 pub mod reshape;
 mod session;
 pub mod share;
@@ -106,6 +107,22 @@ pub fn report_files(text: &str, file: &str, paper: &str, positions: &str) -> Res
     let files = bytes::report_files(&r, false)?;
     let report = r.parts.iter().map(|(t, p)| format!("p. {p:>2}  {t}")).collect::<Vec<_>>().join("\n");
     Ok(SceneFiles { files, summary: r.summary, report, warnings: r.warnings })
+}
+
+/// The live page's "report" download of the scene in `text` ([`report_files`]'s report):
+/// `<name>-report.html`, every page in one document to print ([`print::print_document`]:
+/// the page's module has no PDF writer; the browser's Print → Save as PDF makes the PDF),
+/// then the PDF where the build has its writer, the chosen positions' table and the JSON,
+/// as the command line writes them. The pages' SVGs are in the document, not offered apart.
+pub fn report_download(text: &str, file: &str, paper: &str, positions: &str) -> Result<SceneFiles, Error> {
+    let mut r = report_files(text, file, paper, positions)?;
+    let paper = report_options(paper, positions)?.paper;
+    let name = r.summary.get("name").and_then(serde_json::Value::as_str).unwrap_or("scene").to_string();
+    let (pages, rest): (Vec<_>, Vec<_>) = r.files.into_iter().partition(|(n, _)| n.starts_with("report/"));
+    let svgs: Vec<&str> = pages.iter().filter_map(|(_, b)| std::str::from_utf8(b).ok()).collect();
+    let html = print::print_document(&format!("{name} — report"), paper, &svgs);
+    r.files = std::iter::once((format!("{name}-report.html"), html.into_bytes())).chain(rest).collect();
+    Ok(r)
 }
 
 /// `--paper` and `--positions` as the command line reads them.

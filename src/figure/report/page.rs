@@ -257,13 +257,20 @@ pub fn wrap(line: &str, height: f64, width: f64) -> Vec<String> {
 /// A number as plain decimals (no exponent, as a drawing writes it): up to ten significant
 /// digits, trailing zeros dropped (`0.0005`, `2.5`, `1500`).
 pub fn plain(v: f64) -> String {
+    significant(v, 10)
+}
+
+/// A number as plain decimals rounded to `digits` significant digits (at least 1), trailing
+/// zeros dropped, no exponent (`360.555` for 360.5551275 at 6; a whole number keeps all its
+/// digits: `12000`).
+pub fn significant(v: f64, digits: u32) -> String {
     if !v.is_finite() {
         return "–".into();
     }
     if v == 0.0 {
         return "0".into();
     }
-    let decimals = (9.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 20.0) as usize;
+    let decimals = (f64::from(digits.max(1)) - 1.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 20.0) as usize;
     let s = format!("{v:.decimals$}");
     let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
     if s == "-0" { "0".into() } else { s }

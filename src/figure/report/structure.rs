@@ -230,8 +230,14 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         let probe = page::panel_area(cell, true, s);
         let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
         let at = sketch::OnPaper { k_l, origin: crate::figure::shared::sheet::centre(lo, hi, k_l, probe) };
-        let area =
-            page::panel(&mut d, cell, &format!("{}   k_l = {} {}/mm", group_caption(g), page::plain(k_l), p.unit), s);
+        // Two columns of groups leave no room for the scale in each caption: it is the
+        // title block's ("groups: k_l = …"), the same for every group.
+        let caption = if cols == 1 {
+            format!("{}   k_l = {} {}/mm", group_caption(g), page::plain(k_l), p.unit)
+        } else {
+            group_caption(g)
+        };
+        let area = page::panel(&mut d, cell, &caption, s);
         sketch::draw(
             &mut d,
             gs,

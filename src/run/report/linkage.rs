@@ -20,7 +20,7 @@ use crate::report::Csv;
 use crate::run::linkage as run;
 use crate::scene::linkage::{LinkageScene, MeasureTarget, Quantity};
 use crate::solve::linkage::{
-    Anchor, AssurSolver, Attach, Dynamics, Forces, JointKind, LoadAction, Solver, State, Structure, place,
+    Anchor, AssurSolver, Attach, DriverTarget, Dynamics, Forces, JointKind, LoadAction, Solver, State, Structure, place,
 };
 
 /// Newton iterations allowed to refine a body angle's extreme on ω = 0.
@@ -152,12 +152,16 @@ fn sketch(scene: &LinkageScene) -> Sketch {
     Sketch { figure, names: mech.bodies.iter().map(|b| b.name.clone()).collect(), driver, loads }
 }
 
+/// Significant digits of the title page's data.
+const DATA_DIGITS: u32 = 6;
+
 /// The title page's data: the ground points, each link's lengths, the masses, the driver,
 /// the loads, gravity and the time range.
 fn data(scene: &LinkageScene) -> PaperTable {
     let u = scene.units.length();
     let mut t = PaperTable::new(&["quantity", "value", "unit"], &[Align::Left, Align::Right, Align::Left]);
-    let num = crate::report::number;
+    // Six significant digits: what a student copies from the data sheet.
+    let num = |v: f64| crate::figure::report::page::significant(v, DATA_DIGITS);
     for (name, p) in &scene.ground_points {
         t.row(vec![format!("ground point {name}"), format!("({}, {})", num(p.x), num(p.y)), u.into()]);
     }
@@ -179,11 +183,11 @@ fn data(scene: &LinkageScene) -> PaperTable {
     for d in &mech.drivers {
         let j = d.law.eval(scene.times[0]);
         t.row(vec![format!("driver {}: law", d.name), d.law.source().to_string(), String::new()]);
-        t.row(vec![
-            format!("driver {}: rate at t = {}", d.name, num(scene.times[0])),
-            num(j.d1),
-            "rad/s or unit/s".into(),
-        ]);
+        let rate_unit = match d.target {
+            DriverTarget::JointDistance(_) => format!("{u}/s"),
+            DriverTarget::BodyAngle(_) | DriverTarget::JointAngle(_) => "rad/s".into(),
+        };
+        t.row(vec![format!("driver {}: rate at t = {}", d.name, num(scene.times[0])), num(j.d1), rate_unit]);
     }
     if let Some(dy) = &scene.dynamics {
         t.row(vec!["g".into(), format!("({}, {})", num(dy.gravity.x), num(dy.gravity.y)), "m/s²".into()]);
@@ -206,6 +210,36 @@ fn data(scene: &LinkageScene) -> PaperTable {
     let (a, b) = (scene.times[0], scene.times[scene.times.len() - 1]);
     t.row(vec!["time".into(), format!("{} … {} in {} steps", num(a), num(b), scene.times.len() - 1), "s".into()]);
     t
+}
+
+/// Four significant digits, as the plan's notes write times, strokes and ratios.
+fn sig(v: f64) -> String {
+    crate::figure::report::page::significant(v, 4)
+}
+
+/// ` (φ1 = 335.4°)`: the angular driver's angle at `t`, or nothing.
+fn angle_note(scene: &LinkageScene, t: f64) -> String {
+    scene.mechanism.angular_driver().map_or(String::new(), |(d, body)| {
+        format!(" (φ{} = {}°)", run::body_symbol(scene, body), sig(deg(d.law.eval(t).value).rem_euclid(360.0)))
+    })
+}
+
+/// The plan's note of a guided point's stroke: H, K and the strokes' times.
+fn stroke_note(scene: &LinkageScene, g: &run::Guided) -> String {
+    let st = &g.stroke;
+    let mut s = format!("stroke of {}: H = {} {}", g.measure.symbol, sig(st.h), scene.units.length());
+    match &st.cycle {
+        Ok(c) => s.push_str(&format!(
+            ", K = {}: working stroke {} s from t = {} s{}, return {} s",
+            sig(c.k),
+            sig(c.working_time),
+            sig(st.start.t),
+            angle_note(scene, st.start.t),
+            sig(c.return_time)
+        )),
+        Err(why) => s.push_str(&format!("; K not reported: {}", why.text())),
+    }
+    s
 }
 
 /// Whether the motion's last sample repeats its first (the driver turns whole turns).
@@ -332,16 +366,17 @@ pub(super) fn motion_report<'a>(
         dimensions.push(PlanDimension::Stroke {
             from: st.start.at,
             to: st.end.at,
-            text: format!("H = {} {unit}", sheet::number(st.h)),
+            text: format!("H = {} {unit}", sig(st.h)),
         });
-        notes.push(run::stroke_line(scene, g));
+        notes.push(stroke_note(scene, g));
     }
     for (i, d) in dead.iter().enumerate() {
         notes.push(format!(
-            "{}: {} at t = {} s",
+            "{}: {} at t = {} s{}",
             crate::solve::linkage::structure::roman(i as u32 + 1),
             d.what,
-            motion::trimmed(d.drive)
+            sig(d.drive),
+            angle_note(scene, d.drive)
         ));
     }
     notes.push(format!(
@@ -349,7 +384,7 @@ pub(super) fn motion_report<'a>(
         plan_idx
             .iter()
             .enumerate()
-            .map(|(i, &k)| format!("{} (t = {} s)", i + base, sheet::number(times[k])))
+            .map(|(i, &k)| format!("{} (t = {} s)", i + base, sig(times[k])))
             .collect::<Vec<_>>()
             .join(", ")
     ));
