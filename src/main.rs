@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 use mechdraw::draw::dxf::{Dimensions, DxfOptions, DxfVersion};
 use mechdraw::figure::shared::sheet::Paper;
 use mechdraw::run::RunOptions;
+use mechdraw::run::positions::Positions;
 use mechdraw::scene::{self, Override};
 
 /// mimalloc keeps freed pages for the next allocation: a run builds and drops tens of MB of
@@ -56,6 +57,13 @@ enum Command {
         /// DIR/sheets/<name>/<position>.svg and one PDF, DIR/<name>-sheets.pdf, to print at 100 %.
         #[arg(long, value_name = "PAPER")]
         sheets: Option<Paper>,
+        /// Four-bar and linkage scenes: draw only these positions (the DXF's position layers, the
+        /// frames, the sheets): crank angles φ1 in degrees for a four-bar, times t in seconds for
+        /// a linkage, as the frames label them, e.g. `0,90,180`; or `every=STEP`, the first
+        /// position and every STEP after it (`every=30`). Each must be a position of the run
+        /// (STEP a multiple of its step). The CSV, JSON and diagrams keep every position.
+        #[arg(long, value_name = "LIST")]
+        positions: Option<Positions>,
         /// Linkage scenes: move BODY.POINT as close as the constraints allow to (x, y) and
         /// write that configuration, e.g. `--drag crank.A=10,20`.
         #[arg(long, value_name = "BODY.POINT=X,Y")]
@@ -177,7 +185,20 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Run { scene, out, set, json, png, no_frames, sheets, drag, dxf_version, dxf_dimensions, quiet } => {
+        Command::Run {
+            scene,
+            out,
+            set,
+            json,
+            png,
+            no_frames,
+            sheets,
+            positions,
+            drag,
+            dxf_version,
+            dxf_dimensions,
+            quiet,
+        } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
             let opts = RunOptions {
                 out_dir: Some(out),
@@ -187,6 +208,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 drag,
                 dxf: DxfOptions { version: dxf_version, dimensions: dxf_dimensions, ..DxfOptions::default() },
                 sheets,
+                positions,
                 sets: set.clone(),
                 picture_only: false,
             };

@@ -72,8 +72,9 @@ fn printed_scale(d: &Drawing, title: &str, key: &str) -> f64 {
     let text = d
         .entities
         .iter()
-        .find_map(|e| match &e.shape {
-            Shape::Text { value, .. } if value.starts_with(title) => Some(value.clone()),
+        // A text, or a scale caption as the paper states it.
+        .find_map(|e| match e.shape.scale_text_in(None).unwrap_or_else(|| e.shape.clone()) {
+            Shape::Text { value, .. } if value.starts_with(title) => Some(value),
             _ => None,
         })
         .unwrap_or_else(|| panic!("no title {title}"));

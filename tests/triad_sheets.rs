@@ -43,7 +43,8 @@ fn texts(d: &Drawing) -> Vec<(Point, String)> {
 /// `Mode 3 · clockwise` → 3.
 fn mode_number(text: &str) -> Option<usize> {
     let rest = text.strip_prefix("Mode ")?;
-    rest.split(' ').next()?.parse().ok()
+    // `Mode 1 · counter-clockwise` (the DXF writes the separator `·` as a comma).
+    rest.split([' ', ',']).next()?.parse().ok()
 }
 
 /// `φ1 = 75.77°, φ2 = …, φ3 = …` → the three angles, degrees.

@@ -269,6 +269,12 @@ fn entity(
                 surface.pop();
             }
         }
+        caption @ Shape::ScaleText { .. } => {
+            // On the page's paper (a page in paper millimetres says 1).
+            if let Some(shape) = caption.scale_text_in(drawing.paper_mm_per_unit) {
+                entity(surface, drawing, &Entity { shape, ..e.clone() }, f, font, metrics);
+            }
+        }
         dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
             for part in explode_dimension(dim, &drawing.dim_style) {
                 let sub = Entity { layer: e.layer, color: e.color, linetype: Some(LineType::Continuous), shape: part };

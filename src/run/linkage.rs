@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
+use super::positions::{DriveAxis, Positions};
 use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -132,6 +133,7 @@ pub(super) fn products(
     file: &str,
     drag: &[String],
     paper: Option<Paper>,
+    positions: Option<&Positions>,
     picture_only: bool,
 ) -> Result<Products, Error> {
     let serr = solve_err(file);
@@ -206,6 +208,13 @@ pub(super) fn products(
     let window = frames.frame.window;
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
+    // The positions drawn (`--positions`: times t in seconds).
+    let times: Vec<f64> = states.iter().map(|s| s.t).collect();
+    let step = match scene.times.as_slice() {
+        [a, b, ..] => (b - a).abs(),
+        _ => 1.0,
+    };
+    let drawn = super::drawn_positions(positions, &times, DriveAxis { name: "time t", unit: " s", step })?;
 
     let extras = if picture_only {
         Extras::default()
@@ -331,7 +340,7 @@ pub(super) fn products(
         let pages = match paper {
             Some(paper) => {
                 let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
-                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names)
+                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names, &drawn)
             }
             None => Vec::new(),
         };
@@ -403,10 +412,12 @@ pub(super) fn products(
         let force = dynamics.as_ref().zip(forces.get(k));
         frames.moving(&figure, &mech, &states[k], force)
     };
+    let animation = Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive);
+    let animation = if positions.is_some() { animation.keep(drawn) } else { animation };
     Ok(extras.with_motion(
         scene.name.clone(),
         super::mm_per_unit(scene.units),
-        Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
+        animation,
         PositionsSource { field: "time.steps", advice: "use fewer steps" },
         warnings,
     ))
@@ -1071,8 +1082,8 @@ pub(super) fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScen
     sheet::Table { header, rows }
 }
 
-/// The printed pages, one per sample (in parallel): `sheets/<name>/<position>.svg` and the
-/// PDF.
+/// The printed pages, one per drawn sample (`drawn`: indices into the samples; in parallel):
+/// `sheets/<name>/<position>.svg` and the PDF, numbered among themselves.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -1083,16 +1094,18 @@ fn sheet_pages(
     plots: &[Plot],
     show: Show,
     names: &[String],
+    drawn: &[usize],
 ) -> Vec<products::Page> {
     let sheets = LinkageSheets::new(paper, &scene.name, figure, states, show, forces.is_some());
-    let n = states.len();
-    states
+    let n = drawn.len();
+    drawn
         .par_iter()
         .enumerate()
-        .map(|(k, st)| {
+        .map(|(j, &k)| {
+            let st = &states[k];
             let force = forces.map(|(d, f)| (d, &f[k]));
             let table = sheet_table(plots, k, force.map(|(_, f)| (scene, f)));
-            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (k + 1, n));
+            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (j + 1, n));
             products::Page {
                 stem: names[k].to_lowercase(),
                 drawing,

@@ -14,6 +14,7 @@ pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
 pub mod paths;
+pub mod positions;
 pub mod products;
 pub mod report;
 mod triad;
@@ -47,6 +48,9 @@ pub struct RunOptions {
     /// The `--set KEY=VALUE` changes the scene was loaded with: the live page applies them
     /// to the scene file's text when it opens.
     pub sets: Vec<String>,
+    /// `--positions LIST`: draw only these positions of a motion (four-bar and linkage
+    /// scenes; [`positions::Positions`]); `None` draws every position.
+    pub positions: Option<positions::Positions>,
     /// Only the picture and the warnings: no sheets, printed pages, diagrams, tables, JSON
     /// summary or report (`Null` and empty). The live page's answer to a change, which makes
     /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
@@ -101,11 +105,41 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             ),
         });
     }
+    if let Some(p) = &opts.positions {
+        let drawn_one = match &loaded.scene {
+            Scene::Fourbar(_) => None,
+            Scene::Linkage(_) if !opts.drag.is_empty() => Some("--drag draws one configuration".to_string()),
+            Scene::Linkage(_) => None,
+            other => Some(format!("{file} is a {} scene with one drawing", other.kind())),
+        };
+        if let Some(why) = drawn_one {
+            return Err(Error::Option {
+                option: format!("--positions {p}"),
+                message: format!("positions are chosen from the motion of a four-bar or linkage scene; {why}"),
+            });
+        }
+    }
+    let positions = opts.positions.as_ref();
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
-        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, opts.picture_only),
-        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, opts.picture_only),
+        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, positions, opts.picture_only),
+        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, positions, opts.picture_only),
         Scene::Chain(s) => chain::products(s, &file),
+    }
+}
+
+/// The positions of a motion a run draws: those `--positions` asks for (in its order), or
+/// every one; `values` are the drive's values at the run's positions.
+pub(crate) fn drawn_positions(
+    positions: Option<&positions::Positions>,
+    values: &[f64],
+    axis: positions::DriveAxis,
+) -> Result<Vec<usize>, Error> {
+    match positions {
+        None => Ok((0..values.len()).collect()),
+        Some(p) => {
+            p.select(values, axis).map_err(|message| Error::Option { option: format!("--positions {p}"), message })
+        }
     }
 }
 

@@ -200,7 +200,9 @@ pub fn text_boxes(d: &mechdraw::draw::Drawing) -> Vec<TextBox> {
         .collect();
     d.entities
         .iter()
-        .filter_map(|e| match &e.shape {
+        // A scale caption as the paper states it.
+        .map(|e| (e, e.shape.scale_text_in(None)))
+        .filter_map(|(e, caption)| match caption.as_ref().unwrap_or(&e.shape) {
             Shape::Text { at, height, value, halign, valign, rotation } => {
                 let (h, w) = (*height, label_width(value, *height));
                 let x0 = match halign {

@@ -10,15 +10,14 @@
 //! (they differ by two orders of magnitude): they show direction and point of application;
 //! a table under the panel gives each load's magnitude and moment about p.
 
-use crate::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, ScaleCaption, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
 
 use crate::figure::fourbar::angle_text;
 use crate::figure::shared::labels::{self};
 use crate::figure::shared::vocab::{
-    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, scale_text, unit_or,
-    vector,
+    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, unit_or, vector,
 };
 
 /// One panel of the sheet: a lever and what to print under it.
@@ -205,9 +204,11 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         } else {
             ("velocity polygon turned 90° clockwise", "ω1")
         };
+        // The velocity scale as the medium states it (on paper, or in the DXF's millimetres).
+        let k_v_line = ScaleCaption::new("k_v = ", k_v.per_mm, format!(" ({speed})/mm"), 1.0 / k_l);
         let lines = [
             polygon.to_string(),
-            format!("k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
+            String::new(),
             "Σ M_p(F_i) = Σ F_i·v_i (without F_b)".to_string(),
             format!("  = {} N·{speed}", sig4(lever.moment)),
             format!("Me1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
@@ -215,7 +216,23 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         ];
         let y0 = top - (rows as f64 + 0.5) * row;
         for (i, l) in lines.into_iter().enumerate() {
-            line(&mut d, text, Point::new(left, y0 - i as f64 * row), small, l, HAlign::Left);
+            let at = Point::new(left, y0 - i as f64 * row);
+            if i == 1 {
+                let caption = k_v_line.clone();
+                d.add(
+                    text,
+                    Shape::ScaleText {
+                        at,
+                        height: small,
+                        caption,
+                        halign: HAlign::Left,
+                        valign: VAlign::Top,
+                        rotation: 0.0,
+                    },
+                );
+            } else {
+                line(&mut d, text, at, small, l, HAlign::Left);
+            }
         }
     }
     d
