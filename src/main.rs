@@ -97,13 +97,13 @@ enum Command {
         /// The paper, landscape: `a4` (297 × 210 mm) or `a3` (420 × 297 mm).
         #[arg(long, value_name = "PAPER", default_value = "a4")]
         paper: Paper,
-        /// Four-bar and linkage scenes: the positions to analyse (and draw on the plan), as
-        /// values of the drive the frames label them by — crank angles φ1 in degrees for a
-        /// four-bar, times t in seconds for a linkage — each a position of the run, once,
-        /// e.g. `0,90,180`. Default: four evenly spaced and the dead positions, twelve on the
-        /// plan.
-        #[arg(long, value_name = "LIST", value_parser = parse_positions)]
-        positions: Option<PositionList>,
+        /// Four-bar and linkage scenes: the positions to analyse (a set of pages each, and the
+        /// plan's positions), as `run --positions` takes them: values of the drive the frames
+        /// label them by — crank angles φ1 in degrees for a four-bar, times t in seconds for a
+        /// linkage — each a position of the run, once, e.g. `0,90,180`; or `every=STEP`.
+        /// Default: four evenly spaced and the dead positions, twelve on the plan.
+        #[arg(long, value_name = "LIST")]
+        positions: Option<Positions>,
         /// Also a PNG of every page (report/<name>/NN-<part>.png).
         #[arg(long)]
         png: bool,
@@ -141,15 +141,6 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
-}
-
-/// The values of `--positions LIST`.
-#[derive(Debug, Clone)]
-struct PositionList(Vec<f64>);
-
-/// `--positions LIST` (the report's parser).
-fn parse_positions(s: &str) -> Result<PositionList, String> {
-    mechdraw::run::report::parse_positions(s).map(PositionList)
 }
 
 fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
@@ -231,7 +222,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         Command::Report { scene, out, set, paper, positions, png, quiet } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
-            let opts = mechdraw::run::report::ReportOptions { paper, positions: positions.map(|p| p.0) };
+            let opts = mechdraw::run::report::ReportOptions { paper, positions };
             let (report, written) = mechdraw::run::report_run(&loaded, &opts, &out, png)?;
             if !quiet {
                 for w in &report.warnings {

@@ -11,6 +11,7 @@ use std::path::Path;
 use mechdraw::draw::{Drawing, Shape};
 use mechdraw::figure::shared::sheet::Paper;
 use mechdraw::geom::Point;
+use mechdraw::run::positions::Positions;
 use mechdraw::run::report::{Report, ReportOptions, report};
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::linkage::{AssurSolver, Structure};
@@ -21,7 +22,7 @@ fn template(name: &str) -> std::path::PathBuf {
 
 fn report_of(name: &str, positions: Option<Vec<f64>>) -> Report {
     let loaded = scene::load(&template(name), &[]).unwrap();
-    report(&loaded, &ReportOptions { paper: Paper::A4, positions }).unwrap()
+    report(&loaded, &ReportOptions { paper: Paper::A4, positions: positions.map(Positions::List) }).unwrap()
 }
 
 #[test]
@@ -124,6 +125,14 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(dir.join("shaper-forces-report.json")).unwrap()).unwrap();
     assert_eq!(json["pages"].as_u64(), Some(expected as u64));
+    // `every=Δ` as `run --positions` reads it: the four-bar every 90° is four positions.
+    let r = {
+        let loaded = scene::load(&template("fourbar-chebyshev"), &[]).unwrap();
+        report(&loaded, &ReportOptions { paper: Paper::A4, positions: Some("every=90".parse().unwrap()) }).unwrap()
+    };
+    let drives: Vec<f64> =
+        r.summary["kind"]["positions"].as_array().unwrap().iter().map(|p| p["phi1_deg"].as_f64().unwrap()).collect();
+    assert_eq!(drives, [0.0, 90.0, 180.0, 270.0], "{}", r.summary["kind"]["positions"]);
     let _ = std::fs::remove_dir_all(dir.parent().unwrap());
 }
 
@@ -398,7 +407,12 @@ fn bad_input_is_refused_by_name_and_nothing_is_written() {
             vec!["templates/fourbar-chebyshev.toml", "--positions", "400"],
             vec!["--positions", "400°", "outside the motion", "from 0° to 359°"],
         ),
-        (vec!["templates/fourbar-chebyshev.toml", "--positions", "30,60,30"], vec!["--positions", "30°", "twice"]),
+        (vec!["templates/fourbar-chebyshev.toml", "--positions", "30,60,30"], vec!["--positions", "30", "twice"]),
+        (
+            vec!["templates/fourbar-chebyshev.toml", "--positions", "30,30.0000000001"],
+            vec!["--positions", "30°", "twice"],
+        ),
+        (vec!["templates/fourbar-chebyshev.toml", "--positions", "every=7.5"], vec!["--positions", "multiple", "step"]),
         (
             vec!["templates/fourbar-chebyshev.toml", "--positions", "45.5"],
             vec!["--positions", "not a position of the run", "nearest"],
@@ -409,13 +423,10 @@ fn bad_input_is_refused_by_name_and_nothing_is_written() {
         ),
         (vec!["templates/shaper-forces.toml", "--positions", ""], vec!["--positions", "empty"]),
         (vec!["templates/shaper-forces.toml", "--positions", "0,,1"], vec!["--positions", "empty item"]),
-        (
-            vec!["templates/shaper-forces.toml", "--positions", "0,abc"],
-            vec!["--positions", "`abc` is not a finite number"],
-        ),
+        (vec!["templates/shaper-forces.toml", "--positions", "0,abc"], vec!["--positions", "`abc` is not a number"]),
         (vec!["templates/fourbar-chebyshev.toml", "--positions", "nan"], vec!["--positions", "not a finite number"]),
         (vec!["templates/fourbar-chebyshev.toml", "--positions", " , "], vec!["--positions", "empty item"]),
-        (vec!["templates/chain-humienny-2.toml", "--positions", "1"], vec!["--positions", "dimensional chain"]),
+        (vec!["templates/chain-humienny-2.toml", "--positions", "1"], vec!["--positions", "chain scene", "leave out --positions"]),
         (vec!["templates/fourbar-chebyshev.toml", "--paper", "A5"], vec!["--paper", "A5", "a4", "a3"]),
         (vec!["templates/shaper-forces.toml", "--paper", "letter"], vec!["--paper", "letter", "a4", "a3"]),
         (vec!["templates/triad-popa.toml", "--positions", "0"], vec!["--positions", "triad"]),

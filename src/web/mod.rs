@@ -131,7 +131,8 @@ pub fn report_options(paper: &str, positions: &str) -> Result<run::report::Repor
     let positions = if positions.trim().is_empty() {
         None
     } else {
-        let values = run::report::parse_positions(positions)
+        let values = positions
+            .parse::<run::positions::Positions>()
             .map_err(|message| Error::Option { option: "--positions".into(), message })?;
         Some(values)
     };

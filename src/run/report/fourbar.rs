@@ -249,7 +249,7 @@ pub(super) fn motion_report<'a>(
         }
     }
     let axis = DriveAxis { name: "crank angle φ1", unit: "°", step };
-    let mut chosen = motion::choose(&values, axis, cyc, opts.positions.as_deref(), &dead)?;
+    let mut chosen = motion::choose(&values, axis, cyc, opts.positions.as_ref(), &dead)?;
     let plan_idx: Vec<usize> = match &opts.positions {
         Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
         None => motion::evenly(values.len(), motion::PLAN_POSITIONS, cyc),

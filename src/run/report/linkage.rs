@@ -321,7 +321,7 @@ pub(super) fn motion_report<'a>(
     let step = (scene.times[1] - scene.times[0]).abs();
     let axis = DriveAxis { name: "time t", unit: " s", step };
     let cyc = cycle(scene);
-    let mut chosen = motion::choose(&times, axis, cyc, opts.positions.as_deref(), &dead)?;
+    let mut chosen = motion::choose(&times, axis, cyc, opts.positions.as_ref(), &dead)?;
     // The plan: the positions asked for, or twelve evenly spaced (numbered from 0).
     let plan_idx: Vec<usize> = match &opts.positions {
         Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),

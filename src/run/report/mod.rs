@@ -23,6 +23,7 @@ mod triad;
 
 use rayon::prelude::*;
 
+use super::positions::Positions;
 use super::products::Page;
 use crate::Error;
 use crate::draw::Drawing;
@@ -36,37 +37,17 @@ use crate::scene::{Loaded, Scene};
 pub struct ReportOptions {
     /// The paper, landscape.
     pub paper: Paper,
-    /// The positions to analyse, as values of the motion's drive (crank angles in degrees
-    /// for a four-bar, times in seconds for a linkage); `None`: the report's choice (four
-    /// evenly spaced and the dead positions), and twelve on the plan.
-    pub positions: Option<Vec<f64>>,
+    /// The positions to analyse (`--positions`, as `mechdraw run` reads it: values of the
+    /// motion's drive — crank angles in degrees for a four-bar, times in seconds for a
+    /// linkage — or `every=Δ`); `None`: the report's choice (four evenly spaced and the dead
+    /// positions), and twelve on the plan.
+    pub positions: Option<Positions>,
 }
 
 impl Default for ReportOptions {
     fn default() -> Self {
         ReportOptions { paper: Paper::A4, positions: None }
     }
-}
-
-/// `--positions LIST`: numbers separated by commas, none missing ("" and "0,,1" are
-/// refused, saying what is valid). Which are positions of the run is the report's check.
-pub fn parse_positions(s: &str) -> Result<Vec<f64>, String> {
-    let usage = "give positions such as 0,90,180";
-    if s.trim().is_empty() {
-        return Err(format!("the list is empty: {usage}"));
-    }
-    s.split(',')
-        .map(|item| {
-            let t = item.trim();
-            if t.is_empty() {
-                return Err(format!("`{s}` has an empty item: {usage}"));
-            }
-            match t.parse::<f64>() {
-                Ok(v) if v.is_finite() => Ok(v),
-                _ => Err(format!("`{t}` is not a finite number: {usage}")),
-            }
-        })
-        .collect()
 }
 
 /// The report of one scene.

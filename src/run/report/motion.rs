@@ -15,31 +15,22 @@ use crate::figure::report::structure::{self as structure_page, StructurePage};
 use crate::figure::report::table::PaperTable;
 use crate::figure::report::title::{self, TitlePage};
 use crate::geom::Point;
+use crate::run::positions::Positions;
 use crate::solve::linkage::{Anchor, Mechanism, Structure};
 
 /// Positions on the plan when none are asked for.
 pub const PLAN_POSITIONS: usize = 12;
 /// Evenly spaced positions analysed when none are asked for (besides the dead positions).
 pub const CHOSEN_POSITIONS: usize = 4;
-/// A value asked for is the sample's when within this fraction of a step of it.
-pub const MATCH: f64 = 1e-6;
+/// A value asked for is the sample's when within this fraction of a step of it
+/// (`--positions`' own tolerance).
+pub use crate::run::positions::MATCH;
 
-/// The drive of a motion as `--positions` reads it.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DriveAxis {
-    /// Its name and symbol (`crank angle φ1`, `time t`).
-    pub name: &'static str,
-    /// Its unit after a number (`°`, ` s`).
-    pub unit: &'static str,
-    /// The step between samples (> 0).
-    pub step: f64,
-}
+pub use crate::run::positions::DriveAxis;
 
-impl DriveAxis {
-    /// A value as the messages and labels write it (`30°`, `0.25 s`).
-    pub fn text(&self, v: f64) -> String {
-        format!("{}{}", trimmed(v), self.unit)
-    }
+/// A value of the drive as the messages and labels write it (`30°`, `0.25 s`).
+pub fn text(axis: DriveAxis, v: f64) -> String {
+    format!("{}{}", trimmed(v), axis.unit)
 }
 
 /// A number in at most 6 decimals, trailing zeros dropped.
@@ -115,15 +106,15 @@ pub struct Dead {
     pub q: Vec<f64>,
 }
 
-/// The positions to analyse: those asked for (each a sample of the run, within
-/// [`MATCH`] of a step, in the order given) or [`CHOSEN_POSITIONS`] evenly spaced; then
-/// the dead positions (unless positions were asked for). Errors name `--positions`, what is
-/// wrong and what the run has.
+/// The positions to analyse: those asked for (`--positions`, read as `mechdraw run` reads
+/// it: a list, each a sample of the run within [`MATCH`] of a step, in the order given, or
+/// `every=Δ`) or [`CHOSEN_POSITIONS`] evenly spaced; then the dead positions (unless
+/// positions were asked for). Errors name `--positions`, what is wrong and what the run has.
 pub fn choose(
     values: &[f64],
     axis: DriveAxis,
     cycle: Cycle,
-    asked: Option<&[f64]>,
+    asked: Option<&Positions>,
     dead: &[Dead],
 ) -> Result<Vec<Chosen>, Error> {
     let bad = |message: String| Error::Option { option: "--positions".into(), message };
@@ -133,41 +124,42 @@ pub fn choose(
     let range = format!(
         "the run's {} goes from {} to {} in steps of {}",
         axis.name,
-        axis.text(first),
-        axis.text(last),
-        axis.text(axis.step)
+        text(axis, first),
+        text(axis, last),
+        text(axis, axis.step)
     );
     let sample = |k: usize, n: usize| Chosen {
         at: At::Sample(k),
         drive: values[k],
         mark: n.to_string(),
-        label: format!("{} = {}", symbol(axis), axis.text(values[k])),
+        label: format!("{} = {}", symbol(axis), text(axis, values[k])),
         note: String::new(),
         stem: format!("pos-{}", trimmed(values[k]).replace(['.', '-'], "_")),
     };
     let mut out = Vec::new();
     match asked {
-        Some([]) => return Err(bad(format!("the list is empty: give positions such as {}", example(values, axis)))),
-        Some(list) => {
-            let (lo, hi) = (first.min(last), first.max(last));
+        Some(Positions::List(list)) if list.is_empty() => {
+            return Err(bad(format!("the list is empty: give positions such as {}", example(values, axis))));
+        }
+        Some(p) => {
             let tol = MATCH * axis.step;
-            for (i, &v) in list.iter().enumerate() {
-                if list[..i].iter().any(|&w| (w - v).abs() <= tol) {
-                    return Err(bad(format!("{} is listed twice: give each position once", axis.text(v))));
+            if let Positions::List(list) = p {
+                let (lo, hi) = (first.min(last), first.max(last));
+                for &v in list {
+                    if !(v >= lo - tol && v <= hi + tol) {
+                        return Err(bad(format!("{} = {} is outside the motion: {range}", axis.name, text(axis, v))));
+                    }
                 }
-                if !(v >= lo - tol && v <= hi + tol) {
-                    return Err(bad(format!("{} = {} is outside the motion: {range}", axis.name, axis.text(v))));
-                }
-                let k = nearest(values, v);
-                if (values[k] - v).abs() > tol {
-                    return Err(bad(format!(
-                        "{} = {} is not a position of the run (the nearest is {}): {range}",
-                        axis.name,
-                        axis.text(v),
-                        axis.text(values[k])
-                    )));
+            }
+            let picked = p.select(values, axis).map_err(bad)?;
+            for (i, &k) in picked.iter().enumerate() {
+                if picked[..i].contains(&k) {
+                    return Err(bad(format!("{} is listed twice: give each position once", text(axis, values[k]))));
                 }
                 out.push(sample(k, i + 1));
+            }
+            if out.is_empty() {
+                return Err(bad(format!("no position of the run is asked for: {range}")));
             }
         }
         None => {
@@ -185,7 +177,7 @@ pub fn choose(
                     at: At::Exact(i),
                     drive: d.drive,
                     mark: roman.clone(),
-                    label: format!("{} = {}", symbol(axis), axis.text((d.drive * 1e4).round() / 1e4)),
+                    label: format!("{} = {}", symbol(axis), text(axis, (d.drive * 1e4).round() / 1e4)),
                     note: format!("dead position: {}", d.what),
                     stem: format!("dead-{}", i + 1),
                 });
@@ -204,17 +196,6 @@ fn symbol(axis: DriveAxis) -> &'static str {
 fn example(values: &[f64], axis: DriveAxis) -> String {
     evenly(values.len(), 3, Cycle::Whole).iter().map(|&k| trimmed(values[k])).collect::<Vec<_>>().join(",")
         + &format!(" ({})", axis.name)
-}
-
-/// Index of the value of `values` nearest `v` (`values` not empty).
-fn nearest(values: &[f64], v: f64) -> usize {
-    let mut best = 0;
-    for (k, x) in values.iter().enumerate() {
-        if (x - v).abs() < (values[best] - v).abs() {
-            best = k;
-        }
-    }
-    best
 }
 
 /// What a motion report is made of, gathered by its kind.
@@ -396,10 +377,12 @@ mod tests {
     #[test]
     fn positions_asked_for_are_samples_inside_the_motion_once_each() {
         let values: Vec<f64> = (0..360).map(f64::from).collect();
-        let c = choose(&values, DEG, Cycle::Whole, Some(&[90.0, 0.0]), &[]).unwrap();
+        let c = choose(&values, DEG, Cycle::Whole, Some(&Positions::List(vec![90.0, 0.0])), &[]).unwrap();
         assert_eq!(c.iter().map(|c| c.at).collect::<Vec<_>>(), vec![At::Sample(90), At::Sample(0)]);
         assert_eq!(c[0].label, "φ1 = 90°");
-        let msg = |asked: &[f64]| choose(&values, DEG, Cycle::Whole, Some(asked), &[]).unwrap_err().to_string();
+        let msg = |asked: &[f64]| {
+            choose(&values, DEG, Cycle::Whole, Some(&Positions::List(asked.to_vec())), &[]).unwrap_err().to_string()
+        };
         let e = msg(&[400.0]);
         assert!(
             e.contains("--positions")
@@ -408,7 +391,7 @@ mod tests {
                 && e.contains("from 0° to 359°"),
             "{e}"
         );
-        assert!(msg(&[30.0, 30.0]).contains("listed twice"));
+        assert!(msg(&[30.0, 30.0000000001]).contains("listed twice"));
         assert!(msg(&[]).contains("empty"));
         let e = msg(&[45.5]);
         assert!(e.contains("nearest is 45°") || e.contains("nearest is 46°"), "{e}");
