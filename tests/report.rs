@@ -426,7 +426,10 @@ fn bad_input_is_refused_by_name_and_nothing_is_written() {
         (vec!["templates/shaper-forces.toml", "--positions", "0,abc"], vec!["--positions", "`abc` is not a number"]),
         (vec!["templates/fourbar-chebyshev.toml", "--positions", "nan"], vec!["--positions", "not a finite number"]),
         (vec!["templates/fourbar-chebyshev.toml", "--positions", " , "], vec!["--positions", "empty item"]),
-        (vec!["templates/chain-humienny-2.toml", "--positions", "1"], vec!["--positions", "chain scene", "leave out --positions"]),
+        (
+            vec!["templates/chain-humienny-2.toml", "--positions", "1"],
+            vec!["--positions", "chain scene", "leave out --positions"],
+        ),
         (vec!["templates/fourbar-chebyshev.toml", "--paper", "A5"], vec!["--paper", "A5", "a4", "a3"]),
         (vec!["templates/shaper-forces.toml", "--paper", "letter"], vec!["--paper", "letter", "a4", "a3"]),
         (vec!["templates/triad-popa.toml", "--positions", "0"], vec!["--positions", "triad"]),
@@ -606,4 +609,37 @@ fn word_boxes(pdf: &Path, page: usize) -> Vec<(String, (f64, f64))> {
             (word, (attr(l, "xMin"), attr(l, "yMin")))
         })
         .collect()
+}
+
+/// `s` holds a number in e-notation (`1.3e-10`, `2.777e0`, `5E+3`).
+fn e_notation(s: &str) -> bool {
+    let b = s.as_bytes();
+    (1..b.len()).any(|i| {
+        (b[i] == b'e' || b[i] == b'E') && b[i - 1].is_ascii_digit() && {
+            let rest = &b[i + 1..];
+            let rest = rest.strip_prefix(b"-").or_else(|| rest.strip_prefix(b"+")).unwrap_or(rest);
+            rest.first().is_some_and(u8::is_ascii_digit)
+        }
+    })
+}
+
+#[test]
+fn no_report_page_writes_a_number_in_e_notation_or_not_a_number() {
+    assert!(e_notation("|R| = 1.32e-10 mm") && e_notation("2.777e0") && !e_notation("the 3 ends") && !e_notation("e2"));
+    let mut found = Vec::new();
+    for t in common::template_paths() {
+        let loaded = scene::load(&t, &[]).unwrap();
+        let r = report(&loaded, &ReportOptions::default()).unwrap();
+        for p in &r.pages {
+            for b in common::text_boxes(&p.drawing) {
+                let v = &b.value;
+                // A law or a load as the scene writes it (`-2.5e6*(1 - t/0.09375)`) is quoted.
+                let quoted = v.contains('*');
+                if (e_notation(v) && !quoted) || v.contains("NaN") || v.contains("inf") {
+                    found.push(format!("{} {}: {v}", r.name, p.stem));
+                }
+            }
+        }
+    }
+    assert!(found.is_empty(), "{found:#?}");
 }

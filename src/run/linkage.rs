@@ -1052,6 +1052,10 @@ struct DragSummary<'a> {
     bodies: Vec<BodyRecord<'a>>,
 }
 
+/// A printed value below this fraction of the largest of its kind is rounding noise and
+/// prints as 0.
+const NOISE_REL: f64 = 1e-9;
+
 /// One sample's values for its sheet: each measured quantity (its diagram's symbol and
 /// unit) and, with forces, every reaction's magnitude and the drivers' forces, 4
 /// significant digits ([`sheet::number`]).
@@ -1068,15 +1072,20 @@ pub(super) fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScen
             // at a dead centre) and prints as 0.
             let largest = p.values.iter().filter(|v| v.is_finite()).fold(0.0, |m: f64, v| m.max(v.abs()));
             let v = p.values[k];
-            let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v) };
+            let text = if v.abs() < NOISE_REL * largest { "0".to_string() } else { sheet::number(v) };
             vec![name, text, unit]
         })
         .collect();
     if let Some((scene, f)) = forces {
         let lu = scene.units.length();
         let per_nm = 1.0 / metres_per_unit(scene.units);
-        for m in linkage_forces::magnitudes(&scene.mechanism, f, &format!("N·{lu}"), per_nm) {
-            rows.push(vec![m.name, sheet::number(m.value), m.unit]);
+        let magnitudes = linkage_forces::magnitudes(&scene.mechanism, f, &format!("N·{lu}"), per_nm);
+        for m in &magnitudes {
+            // Below 1e-9 of the largest of its unit at this position (forces in N, couples in
+            // N·mm) is rounding noise: 0.
+            let largest = magnitudes.iter().filter(|o| o.unit == m.unit).fold(0.0, |a: f64, o| a.max(o.value.abs()));
+            let text = if m.value.abs() < NOISE_REL * largest { "0".to_string() } else { sheet::number(m.value) };
+            rows.push(vec![m.name.clone(), text, m.unit.clone()]);
         }
     }
     sheet::Table { header, rows }

@@ -260,21 +260,7 @@ pub fn plain(v: f64) -> String {
     significant(v, 10)
 }
 
-/// A number as plain decimals rounded to `digits` significant digits (at least 1), trailing
-/// zeros dropped, no exponent (`360.555` for 360.5551275 at 6; a whole number keeps all its
-/// digits: `12000`).
-pub fn significant(v: f64, digits: u32) -> String {
-    if !v.is_finite() {
-        return "–".into();
-    }
-    if v == 0.0 {
-        return "0".into();
-    }
-    let decimals = (f64::from(digits.max(1)) - 1.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 20.0) as usize;
-    let s = format!("{v:.decimals$}");
-    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
-    if s == "-0" { "0".into() } else { s }
-}
+pub use crate::figure::shared::sheet::{scientific, significant};
 
 /// Distance between lines of text, in letter heights.
 pub const LINE_SPACING: f64 = 1.8;
@@ -306,6 +292,18 @@ pub fn rows(area: Bounds, n: usize, gap: f64) -> Vec<Bounds> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn numbers_on_paper_have_no_e_notation() {
+        assert_eq!(significant(360.5551275463989, 6), "360.555");
+        assert_eq!(significant(6.283185307179586, 6), "6.28319");
+        assert_eq!(significant(12000.0, 3), "12000");
+        assert_eq!(scientific(1.3210e-10, 3), "1.32·10⁻¹⁰");
+        assert_eq!(scientific(2.777, 4), "2.777");
+        assert_eq!(scientific(-2.5e7, 3), "-2.5·10⁷");
+        assert_eq!(scientific(9.9996e-5, 3), "1·10⁻⁴");
+        assert_eq!(scientific(0.0, 3), "0");
+    }
 
     #[test]
     fn the_frame_keeps_the_title_block_and_the_content_inside_the_border() {

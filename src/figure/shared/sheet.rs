@@ -210,8 +210,49 @@ pub struct Table {
     pub rows: Vec<Vec<String>>,
 }
 
+/// A number as plain decimals rounded to `digits` significant digits (at least 1), trailing
+/// zeros dropped, no exponent (`360.555` for 360.5551275 at 6; a whole number keeps all its
+/// digits: `12000`).
+pub fn significant(v: f64, digits: u32) -> String {
+    if !v.is_finite() {
+        return "–".into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let decimals = (f64::from(digits.max(1)) - 1.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 20.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    if s == "-0" { "0".into() } else { s }
+}
+
+/// A number for a drawing with `digits` significant digits and no e-notation: plain
+/// decimals from 10⁻³ to 10⁶ ([`significant`]), else a power of ten written as the page
+/// writes it (`1.32·10⁻¹⁰`, `2.5·10⁷`).
+pub fn scientific(v: f64, digits: u32) -> String {
+    if !v.is_finite() || v == 0.0 || (1e-3..1e6).contains(&v.abs()) {
+        return significant(v, digits);
+    }
+    let mut exp = libm::floor(libm::log10(v.abs()));
+    let mut mantissa = significant(v / libm::pow(10.0, exp), digits);
+    // 9.999 rounded to 10: one more power of ten.
+    if mantissa.trim_start_matches('-').starts_with("10") {
+        exp += 1.0;
+        mantissa = significant(v / libm::pow(10.0, exp), digits);
+    }
+    const SUPERSCRIPT: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let e = exp as i64;
+    let mut power: String =
+        e.unsigned_abs().to_string().chars().map(|c| SUPERSCRIPT[(c as u8 - b'0') as usize]).collect();
+    if e < 0 {
+        power.insert(0, '⁻');
+    }
+    format!("{mantissa}·10{power}")
+}
+
 /// A number for a table: 4 significant digits (what a graphical construction is read to),
-/// without exponent between 1e-4 and 1e6, trailing zeros kept so that columns align.
+/// plain decimals between 1e-4 and 1e6 with trailing zeros kept so that columns align,
+/// outside them a power of ten as paper writes it (`1.833·10⁶`, never e-notation).
 pub fn number(v: f64) -> String {
     if !v.is_finite() {
         return "–".to_string();
@@ -221,7 +262,8 @@ pub fn number(v: f64) -> String {
     }
     let mag = libm::log10(v.abs()).floor();
     if !(-4.0..6.0).contains(&mag) {
-        return format!("{v:.3e}");
+        // No e-notation on paper: `1.833·10⁶`.
+        return scientific(v, 4);
     }
     let decimals = (3.0 - mag).max(0.0) as usize;
     let s = format!("{v:.decimals$}");
@@ -416,7 +458,8 @@ mod tests {
         assert_eq!(number(1490.04), "1490");
         assert_eq!(number(20.0), "20.00");
         assert_eq!(number(0.0), "0");
-        assert_eq!(number(-1e-7), "-1.000e-7");
+        assert_eq!(number(-1e-7), "-1·10⁻⁷");
+        assert_eq!(number(-1.8333e6), "-1.833·10⁶");
         assert_eq!(number(f64::NAN), "–");
     }
 

@@ -410,6 +410,15 @@ pub(super) fn motion_report<'a>(
     let strokes_owned: Arc<Vec<(String, Vector, crate::solve::stroke::Stroke)>> =
         Arc::new(strokes.iter().map(|g| (g.measure.label.clone(), g.guide, g.stroke.clone())).collect());
     let draw_solved = solved.clone();
+    // Each table row's series over the run, to read a position's value against.
+    let series: Arc<Vec<Vec<f64>>> = Arc::new(
+        scene
+            .measures
+            .iter()
+            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+            .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, &strokes).values)
+            .collect(),
+    );
     let draw_position =
         Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
             let state = draw_solved.state(c.at);
@@ -421,13 +430,20 @@ pub(super) fn motion_report<'a>(
                     Some(run::Guided { measure, guide: *guide, stroke: stroke.clone() })
                 })
                 .collect();
+            // The table's values: the position's, after the run's (so that a value is read
+            // against its series' largest, as `run --sheets` reads it).
             let plots: Vec<run::Plot> = scene
                 .measures
                 .iter()
                 .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
-                .map(|(m, q)| run::plot_of(scene, m, q, std::slice::from_ref(state), &strokes))
+                .zip(series.iter())
+                .map(|((m, q), whole)| {
+                    let mut p = run::plot_of(scene, m, q, std::slice::from_ref(state), &strokes);
+                    p.values.splice(0..0, whole.iter().copied());
+                    p
+                })
                 .collect();
-            let table = run::sheet_table(&plots, 0, force.map(|f| (scene, f)));
+            let table = run::sheet_table(&plots, draw_solved.states.len(), force.map(|f| (scene, f)));
             let force = scene.dynamics.as_ref().zip(force);
             let (drawing, _) = sheets.page(&scene.mechanism, state, force, &table, (first, total));
             Ok(vec![drawing])

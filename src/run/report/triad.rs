@@ -117,13 +117,16 @@ pub(super) fn gather<'a>(scene: &'a TriadScene, file: &str, frame: Frame) -> Res
                 iterations.row(vec![
                     if k == 0 { "start".into() } else { k.to_string() },
                     format!("{:.6}", deg(*phi)),
-                    format!("{r:.3e}"),
+                    crate::figure::report::page::scientific(*r, 4),
                 ]);
             }
             let [a, b, c] = p.configuration.phi_deg();
             result_lines.push(format!("φ1 = {a:.4}°, φ2 = {b:.4}°, φ3 = {c:.4}° in {} secant updates", p.iterations));
-            result_lines
-                .push(format!("({} constructions I–IV; |R3 − A3O3| = {:.2e} {unit} < ε)", p.evaluations, p.residual));
+            result_lines.push(format!(
+                "({} constructions I–IV; |R3 − A3O3| = {} {unit} < ε)",
+                p.evaluations,
+                crate::figure::report::page::scientific(p.residual, 3)
+            ));
             result_lines.push("The seed: from φ1 = 90° it converges to φ1 = 75.77°.".into());
         }
         Err(e) => result_lines.push(format!("The pattern method failed: {e}")),
