@@ -296,7 +296,7 @@ mod tests {
     #[test]
     fn numbers_on_paper_have_no_e_notation() {
         assert_eq!(significant(360.5551275463989, 6), "360.555");
-        assert_eq!(significant(6.283185307179586, 6), "6.28319");
+        assert_eq!(significant(std::f64::consts::TAU, 6), "6.28319");
         assert_eq!(significant(12000.0, 3), "12000");
         assert_eq!(scientific(1.3210e-10, 3), "1.32·10⁻¹⁰");
         assert_eq!(scientific(2.777, 4), "2.777");

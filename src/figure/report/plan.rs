@@ -199,14 +199,14 @@ fn dimension(
         PlanDimension::Angle { vertex, first, second, text } => {
             let (v, f1, f2) = (at.point(*vertex), at.point(*first), at.point(*second));
             let r = 0.7 * (f1 - v).norm().min((f2 - v).norm()).max(4.0 * s.text);
-            let (a1, a2) = ((f1 - v).y.atan2((f1 - v).x), (f2 - v).y.atan2((f2 - v).x));
+            let (a1, a2) = (libm::atan2((f1 - v).y, (f1 - v).x), libm::atan2((f2 - v).y, (f2 - v).x));
             let sweep = crate::draw::parts::arc_sweep(a1, a2);
             d.add(layer, Shape::Arc { center: v, radius: r, start: a1, end: a1 + sweep });
-            let tangent = |a: f64| Vector::new(-a.sin(), a.cos());
-            head(d, v + Vector::new(a1.cos(), a1.sin()) * r, -tangent(a1));
-            head(d, v + Vector::new((a1 + sweep).cos(), (a1 + sweep).sin()) * r, tangent(a1 + sweep));
+            let tangent = |a: f64| Vector::new(-libm::sin(a), libm::cos(a));
+            head(d, v + Vector::new(libm::cos(a1), libm::sin(a1)) * r, -tangent(a1));
+            head(d, v + Vector::new(libm::cos(a1 + sweep), libm::sin(a1 + sweep)) * r, tangent(a1 + sweep));
             let mid = a1 + 0.5 * sweep;
-            let on = v + Vector::new(mid.cos(), mid.sin()) * r;
+            let on = v + Vector::new(libm::cos(mid), libm::sin(mid)) * r;
             letters.letter(on, text, s.text, on - v, None);
         }
     }

@@ -178,7 +178,7 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
         let pa = at.anchor(dm.pivot);
         let pivot = place(&pq, pa.body, pa.local);
         let pin = body_far_point(&paper_fig, &pq, dm.body, pivot);
-        let crank_dir = (pin - pivot).y.atan2((pin - pivot).x);
+        let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
         let r = 4.0 * s.joint;
         let from = crank_dir + 0.35 * dm.sense;
         let sweep = 1.6 * dm.sense;
@@ -286,7 +286,7 @@ fn chords(letters: &mut labels::Polygon, c: Point, r: f64, start: f64, sweep: f6
     let n = ((sweep.abs() / (std::f64::consts::TAU / 16.0)).ceil() as usize).max(1);
     let at = |k: usize| {
         let a = start + sweep * k as f64 / n as f64;
-        c + Vector::new(a.cos(), a.sin()) * r
+        c + Vector::new(libm::cos(a), libm::sin(a)) * r
     };
     for k in 0..n {
         letters.segment(at(k), at(k + 1));

@@ -283,7 +283,7 @@ pub(super) fn motion_report<'a>(
         let k = work / ret;
         let swing = deg((pa.phi3() - pb.phi3()).abs());
         let swing = if swing > 180.0 { 360.0 - swing } else { swing };
-        let (first, second) = if sense * (pb.phi3() - pa.phi3()).sin() > 0.0 { (pa.b, pb.b) } else { (pb.b, pa.b) };
+        let (first, second) = if sense * libm::sin(pb.phi3() - pa.phi3()) > 0.0 { (pa.b, pb.b) } else { (pb.b, pa.b) };
         dimensions.push(PlanDimension::Angle {
             vertex: g.c,
             first,

@@ -22,7 +22,7 @@ use crate::solve::triad::{Configuration, Triad};
 /// with the coordinates of `c`.
 fn mechanism(t: &Triad, c: &Configuration) -> (Mechanism, Vec<f64>) {
     let v = Vector::new;
-    let turn = (c.a[1] - c.a[0]).y.atan2((c.a[1] - c.a[0]).x);
+    let turn = libm::atan2((c.a[1] - c.a[0]).y, (c.a[1] - c.a[0]).x);
     let a3 = rotate(c.a[2] - c.a[0], -turn);
     let link = |i: usize| Body {
         name: format!("link{}", i + 1),
