@@ -4,12 +4,11 @@
 //! part's dimensions as drawn; the dimensional functions of the dependent dimensions with
 //! their stack-up (worst case, RSS, modified RSS, Monte Carlo); the stack-up's histograms.
 
-use super::{Frame, Gathered, Numbers, Part};
+use super::{Frame, Gathered, Part};
 use crate::Error;
 use crate::figure::report::compose::{self, Block};
 use crate::figure::report::diagrams::{self, MarkedDiagram, PER_PAGE};
 use crate::figure::report::table::{Align, PaperTable};
-use crate::figure::report::title::{self, TitlePage};
 use crate::run::chain as run;
 use crate::scene::chain::{ChainScene, value_label};
 use crate::solve::chain::Form;
@@ -123,21 +122,12 @@ pub(super) fn gather<'a>(scene: &'a ChainScene, file: &str, frame: Frame) -> Res
     };
     let owned = std::sync::Arc::new((frame, matrix, check_lines, picture, stack, function_lines, histograms));
     let mut parts: Vec<Part<'a>> = Vec::new();
-    let o = owned.clone();
-    parts.push(Part {
-        title: "Title page".into(),
-        stem: "title".into(),
-        pages: 1,
-        draw: Box::new(move |n: Numbers<'_>| {
-            let t = TitlePage {
-                heading: "Dimensional chains in digital form".into(),
-                subject: format!("chain {} ({} dimensions; seed 001)", scene.name, scene.chain.dimensions.len()),
-                data: data(scene),
-                contents: n.contents.to_vec(),
-            };
-            Ok(vec![title::page(&o.0.frame, &o.0.title("1  Title page", n.first, n.total), &t)])
-        }),
-    });
+    parts.push(super::title_part(
+        owned.0.clone(),
+        "Dimensional chains in digital form".into(),
+        format!("chain {} ({} dimensions; seed 001)", scene.name, scene.chain.dimensions.len()),
+        data(scene),
+    ));
     let o = owned.clone();
     parts.push(Part {
         title: "Matrix N and the check".into(),

@@ -28,6 +28,8 @@ use super::products::Page;
 use crate::Error;
 use crate::draw::Drawing;
 use crate::figure::report::page::{PageTitle, ReportFrame};
+use crate::figure::report::table::PaperTable;
+use crate::figure::report::title::{self, TitlePage};
 use crate::figure::shared::sheet::Paper;
 use crate::report::Csv;
 use crate::scene::{Loaded, Scene};
@@ -89,6 +91,25 @@ pub struct Part<'a> {
     /// Draws its pages (exactly `pages` of them) given their numbers.
     #[allow(clippy::type_complexity)]
     pub draw: Box<dyn Fn(Numbers<'_>) -> Result<Vec<Drawing>, Error> + Sync + 'a>,
+}
+
+/// The title page's part (every kind's first): `heading`, `subject` and the `data` table,
+/// with the report's contents.
+pub fn title_part<'a>(frame: Frame, heading: String, subject: String, data: PaperTable) -> Part<'a> {
+    Part {
+        title: "Title page".into(),
+        stem: "title".into(),
+        pages: 1,
+        draw: Box::new(move |n: Numbers<'_>| {
+            let t = TitlePage {
+                heading: heading.clone(),
+                subject: subject.clone(),
+                data: data.clone(),
+                contents: n.contents.to_vec(),
+            };
+            Ok(vec![title::page(&frame.frame, &frame.title("1  Title page", n.first, n.total), &t)])
+        }),
+    }
 }
 
 /// The frame and the title block's fixed texts, shared by every page.

@@ -4,7 +4,7 @@
 //! the diagrams — and the choice of positions (`--positions`, or four evenly spaced and
 //! the dead positions; twelve on the plan).
 
-use super::{Frame, Numbers, Part};
+use super::{Frame, Part};
 use crate::Error;
 use crate::draw::Drawing;
 use crate::figure::report::diagrams::{self, MarkedDiagram, PER_PAGE};
@@ -13,7 +13,6 @@ use crate::figure::report::plan::{self, PlanDimension, PlanPage};
 use crate::figure::report::sketch::Sketch;
 use crate::figure::report::structure::{self as structure_page, StructurePage};
 use crate::figure::report::table::PaperTable;
-use crate::figure::report::title::{self, TitlePage};
 use crate::geom::Point;
 use crate::run::positions::Positions;
 use crate::solve::linkage::{Anchor, Mechanism, Structure};
@@ -241,20 +240,7 @@ pub struct MotionReport<'a> {
 pub fn parts<'a>(r: &'a MotionReport<'a>) -> Vec<Part<'a>> {
     let f = &r.frame;
     let mut parts: Vec<Part<'a>> = Vec::new();
-    parts.push(Part {
-        title: "Title page".into(),
-        stem: "title".into(),
-        pages: 1,
-        draw: Box::new(move |n: Numbers<'_>| {
-            let t = TitlePage {
-                heading: r.title.0.clone(),
-                subject: r.title.1.clone(),
-                data: r.title.2.clone(),
-                contents: n.contents.to_vec(),
-            };
-            Ok(vec![title::page(&f.frame, &f.title("1  Title page", n.first, n.total), &t)])
-        }),
-    });
+    parts.push(super::title_part(f.clone(), r.title.0.clone(), r.title.1.clone(), r.title.2.clone()));
     let q0: &[f64] = r.plan.first().map_or(&[][..], |(_, q)| q.as_slice());
     let refs: Vec<&[f64]> = r.motion.iter().map(Vec::as_slice).collect();
     let refs = std::sync::Arc::new(refs);

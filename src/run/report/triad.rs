@@ -3,14 +3,13 @@
 //! of order 3); the pattern method as the seed draws it (the start position dashed, the
 //! solution solid, the angles dimensioned) with its iterations; every assembly mode.
 
-use super::{Frame, Gathered, Numbers, Part};
+use super::{Frame, Gathered, Part};
 use crate::Error;
 use crate::figure::linkage::LinkageFigure;
 use crate::figure::report::compose::{self, Block};
 use crate::figure::report::sketch::Sketch;
 use crate::figure::report::structure::{self as structure_page, StructurePage};
 use crate::figure::report::table::{Align, PaperTable};
-use crate::figure::report::title::{self, TitlePage};
 use crate::geom::{Vector, deg, rotate};
 use crate::run::triad as run;
 use crate::scene::triad::TriadScene;
@@ -147,21 +146,12 @@ pub(super) fn gather<'a>(scene: &'a TriadScene, file: &str, frame: Frame) -> Res
         .collect();
     let owned = std::sync::Arc::new((frame, mech, q, structure, fig, iterations, result_lines, modes));
     let mut parts: Vec<Part<'a>> = Vec::new();
-    let o = owned.clone();
-    parts.push(Part {
-        title: "Title page".into(),
-        stem: "title".into(),
-        pages: 1,
-        draw: Box::new(move |n: Numbers<'_>| {
-            let t = TitlePage {
-                heading: "The 6R triad by the pattern method".into(),
-                subject: format!("triad {} (seed 000)", scene.name),
-                data: data(scene),
-                contents: n.contents.to_vec(),
-            };
-            Ok(vec![title::page(&o.0.frame, &o.0.title("1  Title page", n.first, n.total), &t)])
-        }),
-    });
+    parts.push(super::title_part(
+        owned.0.clone(),
+        "The 6R triad by the pattern method".into(),
+        format!("triad {} (seed 000)", scene.name),
+        data(scene),
+    ));
     let o = owned.clone();
     parts.push(Part {
         title: "Structural analysis".into(),
