@@ -643,3 +643,64 @@ fn no_report_page_writes_a_number_in_e_notation_or_not_a_number() {
     }
     assert!(found.is_empty(), "{found:#?}");
 }
+
+/// A parallelogram four-bar with a third crank between its coupler and the ground: the
+/// classical redundant (passive) link.
+const PARALLELOGRAM: &str = r#"
+kind = "linkage"
+name = "parallelogram"
+units = "SI"
+time = { from = 0.0, to = 0.1, steps = 10 }
+[ground]
+points = { O1 = [0.0, 0.0], C = [0.08, 0.0], D = [0.04, 0.0] }
+[[body]]
+name = "crank"
+points = { O1 = [0.0, 0.0], A = [0.0, 0.04] }
+[[body]]
+name = "coupler"
+points = { A = [0.0, 0.0], B = [0.08, 0.0], E = [0.04, 0.0] }
+at = [0.0, 0.04]
+[[body]]
+name = "rocker"
+points = { C = [0.0, 0.0], B = [0.0, 0.04] }
+at = [0.08, 0.0]
+[[body]]
+name = "extra"
+points = { D = [0.0, 0.0], E = [0.0, 0.04] }
+at = [0.04, 0.0]
+[[joint]]
+revolute = ["ground.O1", "crank.O1"]
+[[joint]]
+revolute = ["crank.A", "coupler.A"]
+[[joint]]
+revolute = ["coupler.B", "rocker.B"]
+[[joint]]
+revolute = ["ground.C", "rocker.C"]
+[[joint]]
+revolute = ["ground.D", "extra.D"]
+[[joint]]
+revolute = ["coupler.E", "extra.E"]
+[[driver]]
+body = "crank"
+law = "10*t"
+"#;
+
+#[test]
+fn a_redundant_link_is_refused_with_the_formulas_value_and_why_the_joints_leave_more() {
+    // M = 3·4 − 2·6 = 0 by the formula; at the placement the joints' rank is 11, so they
+    // leave 1 degree of freedom: the third crank repeats an equation. The solver needs
+    // independent joints, so the report is refused, saying both and why.
+    let dir = common::root().join("target/test-report/redundant");
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("parallelogram.toml");
+    std::fs::write(&scene, PARALLELOGRAM).unwrap();
+    let out = dir.join("out");
+    let o = common::mechdraw().arg("report").arg(&scene).arg("--out").arg(&out).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    for s in ["0 degree(s) of freedom", "3 × 4 bodies − 2 × 6 joints", "leave 1", "12 − 11", "redundant"] {
+        assert!(err.contains(s), "`{s}` not in: {err}");
+    }
+    assert!(!out.exists(), "nothing written");
+    let _ = std::fs::remove_dir_all(&dir);
+}
