@@ -126,9 +126,12 @@ with Browser() as b:
         "status": text(page, "status"),
         "viewport": page.eval("document.querySelector('meta[name=viewport]').content"),
         "first_picture_ms": page.eval("window.mechdrawFirstPicture"),
-        # Tab stops before Play and before the picture.
+        # Tab stops before Play and before the picture (what Tab reaches: not the items of a
+        # closed menu, only its summary).
         "tab_order": page.eval("""[...document.querySelectorAll('button, input, select, textarea, summary, [tabindex]')]
-            .filter((e) => e.tabIndex >= 0 && !e.disabled && e.offsetParent !== null).map((e) => e.id || e.textContent.trim().slice(0, 12))"""),
+            .filter((e) => e.tabIndex >= 0 && !e.disabled && e.offsetParent !== null)
+            .filter((e) => e.tagName === 'SUMMARY' || !e.closest('details:not([open])'))
+            .map((e) => e.id || e.textContent.trim().slice(0, 12))"""),
         "markers": page.eval("document.querySelectorAll('#diagrams .marker').length"),
         "diagrams": page.eval("document.querySelectorAll('#diagrams figure').length"),
     }
