@@ -18,6 +18,8 @@
 
 #[cfg(feature = "cli")]
 pub mod bench;
+#[cfg(feature = "cli")]
+pub mod diff;
 pub mod draw;
 mod error;
 pub mod figure;

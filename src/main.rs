@@ -79,6 +79,9 @@ enum Command {
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
+        /// List every file written (`wrote DIR/…` one a line) instead of a count per folder.
+        #[arg(short, long)]
+        verbose: bool,
     },
     /// Write the graph-analytical report a student hands in: DIR/<name>-report.pdf (title page,
     /// structural analysis, kinematic diagram, plan of positions, the chosen positions'
@@ -130,6 +133,28 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
+    /// Compare two runs' output directories, as a CI job checks a course's golden files:
+    /// CSV and JSON cell by cell, SVG and PNG pixel by pixel (a red/white diff PNG for each
+    /// changed picture), DXF entity by entity, PDF pages and text. Prints a summary; exits 0
+    /// when NEW is OLD within the tolerances, 1 when it is not, 2 on bad input. See docs/ci.md.
+    Diff {
+        /// The reference run's directory (the golden files).
+        old: PathBuf,
+        /// The run to check.
+        new: PathBuf,
+        /// Relative tolerance of numbers: a CSV cell, JSON value or DXF coordinate differs when
+        /// it moved by more than X times its column's scale (the largest magnitude in that
+        /// column, key path or drawing).
+        #[arg(long, value_name = "X", default_value_t = mechdraw::diff::DEFAULT_TOL_REL, value_parser = tolerance)]
+        tol_rel: f64,
+        /// Channel tolerance of pictures: a pixel differs when its red, green, blue or alpha
+        /// (0–255) moved by more than N.
+        #[arg(long, value_name = "N", default_value_t = mechdraw::diff::DEFAULT_TOL_PX)]
+        tol_px: u8,
+        /// Where the diff PNGs of changed pictures go (DIFF_DIR/<path>.diff.png).
+        #[arg(long, value_name = "DIFF_DIR", default_value = "diff-out")]
+        out: PathBuf,
+    },
     /// Time every solving method against its accuracy and write a chart, CSV and table.
     Bench {
         /// Output directory for the chart, CSV and Markdown table (the timed runs write into a
@@ -157,11 +182,39 @@ fn print_stdout(text: &str) -> anyhow::Result<()> {
     }
 }
 
+/// `--tol-rel`: a finite number ≥ 0.
+fn tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("`{s}` is not a tolerance: give a number ≥ 0, e.g. 1e-6")),
+    }
+}
+
+/// `mechdraw diff`: the summary on stdout; exit 0 within the tolerances, 1 not, 2 on bad input.
+fn diff(old: &std::path::Path, new: &std::path::Path, opts: &mechdraw::diff::DiffOptions) -> ExitCode {
+    match mechdraw::diff::compare(old, new, opts) {
+        Ok(report) => {
+            if let Err(e) = print_stdout(report.summary().trim_end()) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(1) }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     // SIGINT, SIGTERM, SIGHUP: a run's staging directory removed, exit 130, 143, 129.
     if let Err(e) = mechdraw::run::output::remove_staging_on_signals() {
         eprintln!("warning: {e}");
+    }
+    if let Command::Diff { old, new, tol_rel, tol_px, out } = &cli.command {
+        return diff(old, new, &mechdraw::diff::DiffOptions { tol_rel: *tol_rel, tol_px: *tol_px, out: out.clone() });
     }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
@@ -189,10 +242,11 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             dxf_version,
             dxf_dimensions,
             quiet,
+            verbose,
         } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
             let opts = RunOptions {
-                out_dir: Some(out),
+                out_dir: Some(out.clone()),
                 png,
                 no_frames,
                 progress: !quiet && std::io::stderr().is_terminal(),
@@ -214,9 +268,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 if !outcome.report.is_empty() {
                     eprintln!("{}", outcome.report.trim_end());
                 }
-                for f in &outcome.written {
-                    eprintln!("wrote {}", f.display());
-                }
+                eprint!("{}", mechdraw::run::listing::summary(&out, &outcome.written, verbose));
             }
             Ok(())
         }
@@ -270,6 +322,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             ))?;
             Ok(())
         }
+        // Answered in main: its exit code says whether the runs differ.
+        Command::Diff { .. } => Ok(()),
         Command::Bench { out, quick } => {
             let report = mechdraw::bench::run(&mechdraw::bench::BenchOptions { out_dir: out, quick })?;
             print!("{}", mechdraw::bench::markdown(&report));

@@ -11,6 +11,11 @@
 //! and thickened before OCR. Needs `librecad`, `pdfinfo`/`pdftoppm` (poppler-utils),
 //! `tesseract` and ImageMagick's `convert`; `.ci/test` installs them.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::collections::HashMap;
@@ -188,6 +193,10 @@ fn angular_texts_read(dxf: &Path, pdf: &Path, wanted: &[&str]) -> Vec<(String, S
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_draws_the_triads_angular_dimensions_on_a_real_page() {
     require_tools();
     for version in ["R12", "R2000", "R2007"] {
@@ -240,6 +249,10 @@ fn reads_number(ocr: &str, wanted: &str) -> bool {
 /// chain placed it). As DIMENSION entities LibreCAD redraws them with two arrowheads and
 /// centres each text on its line, where the short ones overlap their neighbours.
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_draws_the_chains_tolerances_on_a_real_page() {
     require_tools();
     let dir = out_dir("chain");
@@ -301,6 +314,10 @@ fn page_grey(pdf: &Path, dpi: u32) -> (usize, usize, Vec<u8>) {
 /// page. Checked on the page itself: nothing is drawn within 3 mm of its edges (the
 /// triad's first caption line ran off the right edge when the limits held the bounds alone).
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_pages_hold_every_text() {
     require_tools();
     const DPI: u32 = 50;
@@ -521,6 +538,10 @@ fn layer_boxes(p: &[(i32, String)], layer: &str) -> Vec<(f64, f64, f64, f64)> {
 /// LibreCAD's own font file, every text's ink inside its cell; the font model is held to the
 /// page (a heading measured on the page within 1 mm of the model).
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_keeps_each_modes_text_in_its_cell() {
     require_tools();
     const DPI: u32 = 50;
@@ -604,6 +625,10 @@ fn librecad_keeps_each_modes_text_in_its_cell() {
 /// "Mechanism   k_l = 2 mm/mm" over its "t = 0.0000 s", when the panels were as wide as
 /// the DejaVu widths of the SVG). Checked at every position, with LibreCAD's own font file.
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs LibreCAD, poppler-utils, tesseract and ImageMagick: bash .ci/test, or cargo test --features system-tools"
+)]
 fn librecad_keeps_panel_titles_apart() {
     require_tools();
     let font = StrokeFont::read(AZOMIX_LFF);

@@ -125,10 +125,11 @@ fn arrows(dxf: &Value, layer: &str, colors: &[i64]) -> Vec<(f64, f64)> {
 
 /// Some arrow of `layer` in `colors`, times `k`, is the vector `want` (relative [`REL_TOL`]).
 fn assert_measured(dxf: &Value, layer: &str, colors: &[i64], k: f64, want: (f64, f64), what: &str) {
-    let size = want.0.hypot(want.1);
+    let size = libm::hypot(want.0, want.1);
     assert!(size > 0.0, "{what}: a zero vector measures nothing");
     let found = arrows(dxf, layer, colors);
-    let best = found.iter().map(|(x, y)| (k * x - want.0).hypot(k * y - want.1) / size).fold(f64::INFINITY, f64::min);
+    let best =
+        found.iter().map(|(x, y)| libm::hypot(k * x - want.0, k * y - want.1) / size).fold(f64::INFINITY, f64::min);
     assert!(
         best <= REL_TOL,
         "{what}: no arrow on {layer} measures {want:?} at the printed k = {k} (nearest off by {best:e} relative; {} arrows)",
@@ -138,14 +139,17 @@ fn assert_measured(dxf: &Value, layer: &str, colors: &[i64], k: f64, want: (f64,
 
 /// Some circle of `layer` has its centre (DXF mm) × `k_l` at the point `want`.
 fn assert_joint(dxf: &Value, layer: &str, k_l: f64, want: (f64, f64), what: &str) {
-    let size = want.0.hypot(want.1).max(1e-12);
+    let size = libm::hypot(want.0, want.1).max(1e-12);
     let best = dxf["circles"]
         .as_array()
         .unwrap()
         .iter()
         .filter(|c| c["layer"] == layer)
         .map(|c| {
-            (k_l * c["center"][0].as_f64().unwrap() - want.0).hypot(k_l * c["center"][1].as_f64().unwrap() - want.1)
+            libm::hypot(
+                k_l * c["center"][0].as_f64().unwrap() - want.0,
+                k_l * c["center"][1].as_f64().unwrap() - want.1,
+            )
         })
         .fold(f64::INFINITY, f64::min);
     assert!(best / size <= REL_TOL, "{what}: no joint on {layer} at {want:?} × 1/k_l (nearest off by {best})");

@@ -2,6 +2,11 @@
 //! back of counts, layers, line type pattern, dimension measurements, widths and text),
 //! plus the golden DXF and the golden PNG (SVG writer) of one sample drawing.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::f64::consts::PI;

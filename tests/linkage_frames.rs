@@ -168,6 +168,10 @@ fn slider_crank_forces_frame_golden_png() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs poppler-utils (pdftotext): bash .ci/test, or cargo test --features system-tools"
+)]
 fn linkage_sheets_have_a_page_per_sample_at_measured_scales() {
     let over: Vec<mechdraw::scene::Override> = ["time.steps=12".parse().unwrap()].to_vec();
     let l = scene::load(&common::root().join("templates/slider-crank.toml"), &over).unwrap();

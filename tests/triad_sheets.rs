@@ -5,6 +5,11 @@
 //! panel, satisfies the triad's six equations and whose printed φ1, φ2, φ3 are the
 //! measured directions and the solver's (the JSON summary), the drawn mode marked once.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::draw::parts::explode_dimension;

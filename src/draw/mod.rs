@@ -82,7 +82,7 @@ fn aci_wheel(n: u8) -> (u8, u8, u8) {
     let hue = ((n as u32 - 10) / 10) as f64 * 15.0;
     let row = (n as u32 - 10) % 10;
     let value = [1.0, 1.0, 0.8, 0.8, 0.6, 0.6, 0.5, 0.5, 0.3, 0.3][row as usize];
-    let sat = if row % 2 == 0 { 1.0 } else { 0.5 };
+    let sat = if row.is_multiple_of(2) { 1.0 } else { 0.5 };
     let c = value * sat;
     let x = c * (1.0 - ((hue / 60.0) % 2.0 - 1.0).abs());
     let m = value - c;

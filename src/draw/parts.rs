@@ -521,6 +521,10 @@ fn explode_linear_into(shape: &Shape, style: &DimStyle, out: &mut Vec<Shape>) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::draw::LinearMarks;

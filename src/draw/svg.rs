@@ -562,6 +562,10 @@ fn arc_path(d: &mut Vec<u8>, f: &Frame, center: Point, radius: f64, start: f64, 
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::draw::{DimStyle, LinearMarks};

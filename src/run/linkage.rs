@@ -313,8 +313,9 @@ pub(super) fn products(
             mech.joints.len(),
             mech.drivers.len(),
             states.len(),
-            scene.times[0],
-            scene.times[scene.times.len() - 1],
+            // At most 6 decimals: a span of π/10 s reads 0..0.314159 s.
+            crate::solve::chain::graph::fmt_value(scene.times[0]),
+            crate::solve::chain::graph::fmt_value(scene.times[scene.times.len() - 1]),
             max_residual,
         );
         let mut report = report;

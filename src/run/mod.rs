@@ -10,6 +10,8 @@ mod fourbar;
 mod fourbar_teaching;
 mod linkage;
 #[cfg(feature = "cli")]
+pub mod listing;
+#[cfg(feature = "cli")]
 pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;

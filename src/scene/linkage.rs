@@ -1213,6 +1213,10 @@ fn check_quantities(field: &str, raw: &[String], table: &[(&str, Quantity)]) -> 
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use crate::scene::{Scene, parse};
     use crate::solve::linkage::Solver;

@@ -100,7 +100,7 @@ impl Jet {
             if e == 0.0 {
                 1.0
             } else if e.fract() == 0.0 && e.abs() < 1e9 {
-                v.powi(e as i32)
+                crate::geom::powi(v, e as i32)
             } else {
                 libm::pow(v, e)
             }
@@ -376,10 +376,10 @@ impl Shape {
                 if let Some(term) = Term::of(b) {
                     return Shape::Shift { k: a.eval(0.0), term, k_first: true, sub };
                 }
-            } else if !b.depends_on_t() {
-                if let Some(term) = Term::of(a) {
-                    return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
-                }
+            } else if !b.depends_on_t()
+                && let Some(term) = Term::of(a)
+            {
+                return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
             }
         }
         Shape::Tree
@@ -776,6 +776,10 @@ impl Parser<'_> {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
 

@@ -3,6 +3,11 @@
 //! Golden files live in `golden/`; `UPDATE_GOLDEN=1 cargo test` re-blesses them (look at
 //! every re-blessed file before committing it: golden/README.md). A mismatch writes the
 //! actual output (and for images a diff) under `target/golden-mismatch/`.
+
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};

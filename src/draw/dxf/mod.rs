@@ -1215,12 +1215,11 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
             }
         }
         if version != DxfVersion::R12 {
-            if is_header {
-                if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED") {
-                    if let Some(pair) = record.get_mut(at + 1) {
-                        pair.value = format!("{handle_seed:X}").into();
-                    }
-                }
+            if is_header
+                && let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED")
+                && let Some(pair) = record.get_mut(at + 1)
+            {
+                pair.value = format!("{handle_seed:X}").into();
             }
             match kind.as_ref() {
                 "TABLE" => {
@@ -1319,6 +1318,10 @@ fn push_pair(out: &mut String, code: &str, value: &str) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::draw::{DimStyle, Entity, LinearMarks};

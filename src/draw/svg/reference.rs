@@ -56,10 +56,10 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
     // consecutive entities on one layer: `<g class="layer-NAME">` (a layer may have several).
     let mut run: Option<(usize, Group)> = None;
     for e in &drawing.entities {
-        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer) {
-            if let Some((_, g)) = run.take() {
-                doc = doc.add(g);
-            }
+        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer)
+            && let Some((_, g)) = run.take()
+        {
+            doc = doc.add(g);
         }
         let (_, g) = run.get_or_insert_with(|| {
             let g = Group::new()
