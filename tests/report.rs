@@ -258,7 +258,7 @@ fn the_linkages_printed_scales_measure_their_vectors_to_the_table() {
             // Every joint's reaction.
             for j in &s.mechanism.joints {
                 let (fx, fy) = (row[col(&format!("{}.Fx", j.name))], row[col(&format!("{}.Fy", j.name))]);
-                let value = fx.hypot(fy);
+                let value = libm::hypot(fx, fy);
                 assert!(
                     value < 1e-9 || measured(pages, "FORCES", "f", value),
                     "{name} position {mark}: R_{} = {value}",
