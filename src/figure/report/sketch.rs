@@ -180,8 +180,13 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
         let pin = body_far_point(&paper_fig, &pq, dm.body, pivot);
         let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
         let r = 4.0 * s.joint;
-        let from = crank_dir + 0.35 * dm.sense;
         let sweep = 1.6 * dm.sense;
+        // Beside the crank, turned on round the pivot until it crosses no name and no line
+        // already drawn (the pivot's own name, its ground symbol).
+        let from = (0..6)
+            .map(|k| crank_dir + (0.35 + 0.25 * std::f64::consts::PI * k as f64) * dm.sense)
+            .find(|&from| arc_is_clear(d, start, pivot, r, from, sweep, s.joint))
+            .unwrap_or(crank_dir + 0.35 * dm.sense);
         let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
         letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
         letters.letter(mid, &dm.symbol, s.text, mid - pivot, None);
@@ -279,6 +284,36 @@ fn avoid_shape(shape: &Shape, letters: &mut labels::Polygon) {
         Shape::Text { .. } => letters.keep_off(text_box(shape)),
         _ => {}
     }
+}
+
+/// Whether the arc about `c` of radius `r` from `from` sweeping `sweep` keeps `gap` (paper
+/// mm) off every text and line drawn since entity `start` other than those through `c`
+/// itself (the crank, the pivot's circle).
+fn arc_is_clear(d: &Drawing, start: usize, c: Point, r: f64, from: f64, sweep: f64, gap: f64) -> bool {
+    let n = 24;
+    let pts: Vec<Point> = (0..=n)
+        .map(|k| {
+            let a = from + sweep * k as f64 / n as f64;
+            c + Vector::new(libm::cos(a), libm::sin(a)) * r
+        })
+        .collect();
+    let near_segment = |a: Point, b: Point| {
+        // A line ending at the pivot (the crank, the pivot's symbol's sides) is the pivot's.
+        if (a - c).norm() < 0.5 * r || (b - c).norm() < 0.5 * r {
+            return false;
+        }
+        pts.iter().any(|p| vocab::distance_to_segment(*p, a, b) < gap)
+    };
+    d.entities[start..].iter().all(|e| match &e.shape {
+        Shape::Text { .. } => {
+            let b = text_box(&e.shape);
+            !pts.iter()
+                .any(|p| p.x > b.min.x - gap && p.x < b.max.x + gap && p.y > b.min.y - gap && p.y < b.max.y + gap)
+        }
+        Shape::Line { from, to } => !near_segment(*from, *to),
+        Shape::Polyline { points, .. } => !points.windows(2).any(|w| near_segment(w[0], w[1])),
+        _ => true,
+    })
 }
 
 /// The arc as 16 chords a turn.
