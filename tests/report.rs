@@ -84,6 +84,10 @@ fn pdf_pages(pdf: &Path) -> usize {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs poppler-utils (pdfinfo): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
     let dir = common::root().join("target/test-report/count");
     let _ = std::fs::remove_dir_all(&dir);
@@ -513,6 +517,10 @@ fn pdf_page_size(pdf: &Path) -> (f64, f64) {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and poppler-utils (pdfinfo, pdftotext): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_live_pages_report_prints_as_the_command_lines_pdf() {
     // The page's download: every page in one HTML document to print (the module has no PDF
     // writer), then the PDF where the build has one, the table and the JSON.

@@ -585,6 +585,10 @@ fn the_download_menu_shows_each_files_size() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_report_download_is_the_command_lines_report_with_its_pages_to_print() {
     let r = &observed()["report"];
     assert_eq!(r["error"], "", "{r}");
