@@ -256,6 +256,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 positions,
                 sets: set.clone(),
                 picture_only: false,
+                held_scales: Vec::new(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             if json {

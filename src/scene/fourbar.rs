@@ -60,6 +60,9 @@ pub struct RawFourbarScene {
     /// Masses, gravity and external forces.
     #[serde(default)]
     pub dynamics: Option<RawDynamics>,
+    /// How the frames are drawn.
+    #[serde(default)]
+    pub frames: Option<super::RawFrames>,
 }
 
 /// `phi1_deg = { from, to, step }`.
@@ -176,6 +179,8 @@ pub struct FourbarScene {
     /// `outputs` names "centres": draw the instantaneous centres with Kennedy's lines (a
     /// sheet `<name>-centres`).
     pub centres: bool,
+    /// How the frames' polygon scales are chosen.
+    pub frame_scales: super::FrameScales,
 }
 
 const OUTPUT_NAMES: &str = "\"position\", \"velocity\", \"acceleration\", \"forces\", \"centres\"";
@@ -240,11 +245,13 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
     }
     let dynamics = raw.dynamics.as_ref().map(|d| check_dynamics(d, raw.units)).transpose()?;
     let centres = raw.outputs.as_ref().is_some_and(|l| l.iter().any(|s| s == "centres"));
+    let frame_scales = super::check_frames(raw.frames.as_ref())?;
     Ok(FourbarScene {
         name,
         units: raw.units,
         spec: MotionSpec { geometry, omega1, epsilon1, sweep, outputs, dynamics },
         centres,
+        frame_scales,
     })
 }
 

@@ -223,6 +223,7 @@ pub(super) fn motion_report<'a>(
         velocity: spec.outputs.velocity,
         acceleration: spec.outputs.acceleration,
         forces: spec.outputs.forces && !motion.forces.is_empty(),
+        scales: crate::run::scale_choice(scene.frame_scales),
     };
     let mech = mechanism(&g, spec.omega1);
     let sk = sketch(scene, &mech);
@@ -371,8 +372,24 @@ pub(super) fn motion_report<'a>(
     let mut curve = run::runs(&motion.positions, step, |p| p.m);
     run::close_full_turn(&mut curve, &motion.positions, step);
     let all_q: Vec<Vec<f64>> = motion.positions.iter().map(|p| coordinates(&g, p)).collect();
-    let sheets =
-        FourbarSheets::new(frame.frame.paper, &scene.name, spec.omega1, &g, &motion.positions, &curve, show, units);
+    let rows = motion.positions.first().map_or(0, |p| {
+        run::sheet_table(p, if show.forces { motion.forces.first() } else { None }, &qs, units).rows.len()
+    });
+    let (external, loads) =
+        spec.dynamics.as_ref().map_or((&[][..], &[][..]), |d| (d.forces.as_slice(), d.loads.as_slice()));
+    let sheets = FourbarSheets::new(
+        frame.frame.paper,
+        &scene.name,
+        spec.omega1,
+        &g,
+        &motion.positions,
+        &curve,
+        show,
+        units,
+        rows,
+    )
+    .with_loads(external, loads);
+    let per_position = sheets.per_position();
     let shared = Arc::new((motion, extra, qs));
     let draw_position =
         Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
@@ -382,7 +399,7 @@ pub(super) fn motion_report<'a>(
                 At::Exact(i) => (&extra[i].0, extra[i].1.as_ref().filter(|_| show.forces)),
             };
             let table = run::sheet_table(p, f, qs, units);
-            Ok(vec![sheets.page(&g, p, f, &table, (first, total)).0])
+            Ok(sheets.pages(&g, p, f, &table, (first, total)).pages.into_iter().map(|(_, d)| d).collect())
         });
     let summary = serde_json::json!({
         "kind": "fourbar",
@@ -425,7 +442,7 @@ pub(super) fn motion_report<'a>(
         kinematic: (format!("φ1 = {}°", motion::trimmed(values[plan_idx.first().copied().unwrap_or(0)])), lists),
         unit,
         chosen,
-        position_pages: 1,
+        position_pages: per_position,
         draw_position,
         diagrams: marked,
     };

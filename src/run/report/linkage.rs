@@ -404,21 +404,40 @@ pub(super) fn motion_report<'a>(
         acceleration: p.acceleration && out.acceleration,
         forces: p.forces && out.forces,
         points: p.points.clone(),
+        per_body: p.per_body,
+        scales: crate::run::scale_choice(scene.frame_scales),
     };
-    let sheets = LinkageSheets::new(paper, &scene.name, &figure, &solved.states, show.clone(), solved.forces.is_some());
+    // The run's plots (each table row's series, to read a position's value against) and the
+    // table's most rows over the run, as `run --sheets` lays its sheets out.
+    let all_plots: Vec<run::Plot> = scene
+        .measures
+        .iter()
+        .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+        .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, &strokes))
+        .collect();
+    let rows = (0..solved.states.len())
+        .map(|k| {
+            let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
+            run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))).rows.len()
+        })
+        .max()
+        .unwrap_or(0);
+    let sheets = LinkageSheets::new(
+        paper,
+        &scene.name,
+        &scene.mechanism,
+        &figure,
+        &solved.states,
+        show.clone(),
+        solved.forces.is_some(),
+        rows,
+    );
+    let per_position = sheets.per_position();
     let solved = Arc::new(solved);
     let strokes_owned: Arc<Vec<(String, Vector, crate::solve::stroke::Stroke)>> =
         Arc::new(strokes.iter().map(|g| (g.measure.label.clone(), g.guide, g.stroke.clone())).collect());
     let draw_solved = solved.clone();
-    // Each table row's series over the run, to read a position's value against.
-    let series: Arc<Vec<Vec<f64>>> = Arc::new(
-        scene
-            .measures
-            .iter()
-            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
-            .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, &strokes).values)
-            .collect(),
-    );
+    let series: Arc<Vec<Vec<f64>>> = Arc::new(all_plots.into_iter().map(|p| p.values).collect());
     let draw_position =
         Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
             let state = draw_solved.state(c.at);
@@ -443,10 +462,10 @@ pub(super) fn motion_report<'a>(
                     p
                 })
                 .collect();
-            let table = run::sheet_table(&plots, draw_solved.states.len(), force.map(|f| (scene, f)));
             let force = scene.dynamics.as_ref().zip(force);
-            let (drawing, _) = sheets.page(&scene.mechanism, state, force, &table, (first, total));
-            Ok(vec![drawing])
+            let table = run::sheet_table(scene, &plots, draw_solved.states.len(), force.map(|(d, f)| (d, state, f)));
+            let pages = sheets.pages(&scene.mechanism, state, force, &table, (first, total));
+            Ok(pages.into_iter().map(|(_, drawing)| drawing).collect())
         });
     let summary = serde_json::json!({
         "kind": "linkage",
@@ -479,7 +498,7 @@ pub(super) fn motion_report<'a>(
         kinematic: (kin_label, lists),
         unit,
         chosen,
-        position_pages: 1,
+        position_pages: per_position,
         draw_position,
         diagrams,
     };
