@@ -98,11 +98,22 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
         .output()
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    // Parts: title, structure, kinematic diagram, plan; a page per position asked for (one
-    // printed sheet each); the run's diagrams four to a page.
+    // Parts: title, structure, kinematic diagram, plan; for each position asked for the
+    // printed sheets `run --sheets` draws of one position; the run's diagrams four to a page.
     let loaded = scene::load(&template("shaper-forces"), &[]).unwrap();
     let diagrams = mechdraw::run::products(&loaded, &Default::default()).unwrap().diagrams.len();
-    let expected = 4 + 3 + diagrams.div_ceil(4);
+    let one = common::root().join("target/test-report/count-one");
+    let _ = std::fs::remove_dir_all(&one);
+    let ok = common::mechdraw()
+        .args(["run", "templates/shaper-forces.toml", "--no-frames", "--quiet", "--sheets", "a4", "--positions", "0.25"])
+        .arg("--out")
+        .arg(&one)
+        .current_dir(common::root())
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    let per_position = pdf_pages(&one.join("shaper-forces-sheets.pdf"));
+    let expected = 4 + 3 * per_position + diagrams.div_ceil(4);
     assert_eq!(pdf_pages(&dir.join("shaper-forces-report.pdf")), expected);
     let svgs = std::fs::read_dir(dir.join("report/shaper-forces")).unwrap().count();
     assert_eq!(svgs, expected, "an SVG per page");
