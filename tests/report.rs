@@ -105,7 +105,16 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
     let one = common::root().join("target/test-report/count-one");
     let _ = std::fs::remove_dir_all(&one);
     let ok = common::mechdraw()
-        .args(["run", "templates/shaper-forces.toml", "--no-frames", "--quiet", "--sheets", "a4", "--positions", "0.25"])
+        .args([
+            "run",
+            "templates/shaper-forces.toml",
+            "--no-frames",
+            "--quiet",
+            "--sheets",
+            "a4",
+            "--positions",
+            "0.25",
+        ])
         .arg("--out")
         .arg(&one)
         .current_dir(common::root())
