@@ -277,7 +277,14 @@ fn avoid_shape(shape: &Shape, letters: &mut labels::Polygon) {
                 letters.segment(*a, points[(k + 1) % points.len()]);
             }
         }
-        Shape::Circle { center, radius } => chords(letters, *center, *radius, 0.0, std::f64::consts::TAU),
+        Shape::Circle { center, radius } => {
+            chords(letters, *center, *radius, 0.0, std::f64::consts::TAU);
+            // A circled link number's circle is its label's square: no letter in it.
+            letters.keep_off(TextBox {
+                min: center - Vector::new(*radius, *radius),
+                max: center + Vector::new(*radius, *radius),
+            });
+        }
         Shape::Arc { center, radius, start, end } => {
             chords(letters, *center, *radius, *start, parts::arc_sweep(*start, *end))
         }
