@@ -87,6 +87,37 @@ enum Command {
         #[arg(short, long)]
         verbose: bool,
     },
+    /// Write the graph-analytical report a student hands in: DIR/<name>-report.pdf (title page,
+    /// structural analysis, kinematic diagram, plan of positions, the chosen positions'
+    /// polygons and forces, the diagrams; a triad's or a chain's own parts), the same pages as
+    /// DIR/report/<name>/NN-<part>.svg, the chosen positions' values DIR/<name>-report.csv and
+    /// DIR/<name>-report.json (docs/report.md).
+    Report {
+        /// The scene file (TOML; see templates/).
+        scene: PathBuf,
+        /// Output directory.
+        #[arg(short, long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Override a scene field (repeatable), as for `run`.
+        #[arg(long = "set", value_name = "KEY=VALUE")]
+        set: Vec<String>,
+        /// The paper, landscape: `a4` (297 × 210 mm) or `a3` (420 × 297 mm).
+        #[arg(long, value_name = "PAPER", default_value = "a4")]
+        paper: Paper,
+        /// Four-bar and linkage scenes: the positions to analyse (a set of pages each, and the
+        /// plan's positions), as `run --positions` takes them: values of the drive the frames
+        /// label them by — crank angles φ1 in degrees for a four-bar, times t in seconds for a
+        /// linkage — each a position of the run, once, e.g. `0,90,180`; or `every=STEP`.
+        /// Default: four evenly spaced and the dead positions, twelve on the plan.
+        #[arg(long, value_name = "LIST")]
+        positions: Option<Positions>,
+        /// Also a PNG of every page (report/<name>/NN-<part>.png).
+        #[arg(long)]
+        png: bool,
+        /// No report on stderr.
+        #[arg(short, long)]
+        quiet: bool,
+    },
     /// Write the live pages of scenes, the module they share and an index.html linking them:
     /// a gallery to publish as static files or open from disk (each page solves and draws
     /// its scene in the browser, no server; docs/web.md).
@@ -245,6 +276,27 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     eprintln!("{}", outcome.report.trim_end());
                 }
                 eprint!("{}", mechdraw::run::listing::summary(&out, &outcome.written, verbose));
+            }
+            Ok(())
+        }
+        Command::Report { scene, out, set, paper, positions, png, quiet } => {
+            let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            let opts = mechdraw::run::report::ReportOptions { paper, positions };
+            let (report, written) = mechdraw::run::report_run(&loaded, &opts, &out, png)?;
+            if !quiet {
+                for w in &report.warnings {
+                    eprintln!("warning: {w}");
+                }
+                eprintln!("report of {}: {} pages", report.name, report.pages.len());
+                for (part, first) in &report.parts {
+                    eprintln!("  p. {first:>2}  {part}");
+                }
+                for f in &written {
+                    if !f.starts_with(out.join("report")) {
+                        eprintln!("wrote {}", f.display());
+                    }
+                }
+                eprintln!("wrote {} (the pages as SVG)", out.join("report").join(&report.name).display());
             }
             Ok(())
         }

@@ -139,6 +139,15 @@ impl Csv {
         }
     }
 
+    /// Puts a column `name` of already formatted fields first, one per row (rows beyond
+    /// `fields` get an empty field).
+    pub fn prepend_column(&mut self, name: impl Into<String>, fields: &[String]) {
+        self.header.insert(0, name.into());
+        for (i, r) in self.rows.iter_mut().enumerate() {
+            r.insert(0, fields.get(i).cloned().unwrap_or_default());
+        }
+    }
+
     /// Appends a column `name` with one value per row: a number, or an empty field where
     /// the value is `None` (a quantity the row does not have); rows beyond `values` get an
     /// empty field too.

@@ -92,3 +92,27 @@ fn every_text_of_every_drawing_of_every_template_can_be_read() {
         show(&outside)
     );
 }
+
+/// Every page of every template's report (`mechdraw report`, issue 33): no two texts overlap.
+#[test]
+fn no_two_texts_overlap_on_any_report_page() {
+    use mechdraw::run::report::{ReportOptions, report};
+    let mut found = Vec::new();
+    let mut checked = 0;
+    for t in &common::template_paths() {
+        let stem = t.file_stem().unwrap().to_string_lossy().to_string();
+        let loaded = scene::load(t, &[]).unwrap();
+        for paper in [Paper::A4, Paper::A3] {
+            let r = report(&loaded, &ReportOptions { paper, positions: None }).unwrap();
+            for p in &r.pages {
+                checked += 1;
+                for (a, b) in common::overlapping_texts(&p.drawing) {
+                    found.push(format!("{stem} {} ({}): {a:?} over {b:?}", p.stem, paper.name()));
+                }
+            }
+        }
+    }
+    assert!(checked > 50, "{checked} pages");
+    let shown: Vec<&String> = found.iter().take(40).collect();
+    assert!(found.is_empty(), "{} overlaps on report pages, e.g. {shown:#?}", found.len());
+}

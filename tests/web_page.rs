@@ -658,3 +658,61 @@ fn a_synthesis_page_follows_psi_and_opens_the_design_undo_comes_back() {
     assert_eq!(back["text"], p["text"]);
     assert_eq!(back["design_shown"], true);
 }
+
+#[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
+fn the_report_download_is_the_command_lines_report_with_its_pages_to_print() {
+    let r = &observed()["report"];
+    assert_eq!(r["error"], "", "{r}");
+    // What the page offers: the pages to print first (the module has no PDF writer), the
+    // table and the JSON.
+    let order: Vec<&str> = r["order"].as_array().unwrap().iter().map(|v| v.as_str().unwrap()).collect();
+    assert_eq!(
+        order,
+        ["fourbar-chebyshev-report.html", "fourbar-chebyshev-report.csv", "fourbar-chebyshev-report.json"]
+    );
+    let saved = |f: &str| std::fs::read(pages().join("downloads/report").join(f)).unwrap();
+    // The table and the JSON are the command line's bytes.
+    let tmp = tempfile::tempdir().unwrap();
+    let ok = common::mechdraw()
+        .args([
+            "report",
+            "templates/fourbar-chebyshev.toml",
+            "--paper",
+            "a3",
+            "--positions",
+            "0,90",
+            "--quiet",
+            "--out",
+        ])
+        .arg(tmp.path())
+        .current_dir(common::root())
+        .status()
+        .unwrap();
+    assert!(ok.success());
+    for f in ["fourbar-chebyshev-report.csv", "fourbar-chebyshev-report.json"] {
+        assert!(saved(f) == std::fs::read(tmp.path().join(f)).unwrap(), "{f} differs from the command line's");
+    }
+    // The document to print holds the command line's pages, every SVG byte for byte, in order
+    // (tests/report.rs prints it in Chromium against the command line's PDF).
+    let html = String::from_utf8(saved("fourbar-chebyshev-report.html")).unwrap();
+    let mut svgs: Vec<_> =
+        std::fs::read_dir(tmp.path().join("report/fourbar-chebyshev")).unwrap().map(|e| e.unwrap().path()).collect();
+    svgs.sort();
+    assert_eq!(svgs.len(), html.matches("<div class=\"sheet\">").count());
+    let mut at = 0;
+    for s in &svgs {
+        let svg = std::fs::read_to_string(s).unwrap();
+        let svg = svg.trim();
+        at += html[at..].find(svg).unwrap_or_else(|| panic!("{} not in the document, or not in order", s.display()))
+            + svg.len();
+    }
+    // A position outside the motion: the command line's words under the report's button, no file.
+    let bad = &r["bad"];
+    let e = bad["error"].as_str().unwrap();
+    assert!(e.contains("--positions") && e.contains("outside the motion"), "{e}");
+    assert_eq!(bad["files"], 0);
+}

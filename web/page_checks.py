@@ -126,9 +126,12 @@ with Browser() as b:
         "status": text(page, "status"),
         "viewport": page.eval("document.querySelector('meta[name=viewport]').content"),
         "first_picture_ms": page.eval("window.mechdrawFirstPicture"),
-        # Tab stops before Play and before the picture.
+        # Tab stops before Play and before the picture (what Tab reaches: not the items of a
+        # closed menu, only its summary).
         "tab_order": page.eval("""[...document.querySelectorAll('button, input, select, textarea, summary, [tabindex]')]
-            .filter((e) => e.tabIndex >= 0 && !e.disabled && e.offsetParent !== null).map((e) => e.id || e.textContent.trim().slice(0, 12))"""),
+            .filter((e) => e.tabIndex >= 0 && !e.disabled && e.offsetParent !== null)
+            .filter((e) => e.tagName === 'SUMMARY' || !e.closest('details:not([open])'))
+            .map((e) => e.id || e.textContent.trim().slice(0, 12))"""),
         "markers": page.eval("document.querySelectorAll('#diagrams .marker').length"),
         "diagrams": page.eval("document.querySelectorAll('#diagrams figure').length"),
     }
@@ -379,6 +382,36 @@ with Browser() as b:
         out["downloads"][name] = sorted(files)
         out["download_sizes"][name] = {k: v[1] for k, v in files.items()}
         note_errors(name, page)
+
+    # ---- The report download: A3, two chosen positions; a position outside the motion. ----
+    page = open_page(b, "fourbar-chebyshev")
+    page.eval("document.getElementById('download').click()")
+    page.eval("document.getElementById('report-paper').value = 'a3'")
+    page.eval("document.getElementById('report-positions').value = '0,90'")
+    page.eval("document.getElementById('report-make').click()")
+    report = page.eval("""(async function () {
+      const out = {};
+      for (const a of document.querySelectorAll('#report-files a')) {
+        const bytes = new Uint8Array(await (await fetch(a.href)).arrayBuffer());
+        let s = '';
+        for (let i = 0; i < bytes.length; i += 0x8000) s += String.fromCharCode.apply(null, bytes.subarray(i, i + 0x8000));
+        out[a.dataset.file] = btoa(s);
+      }
+      return out;
+    })()""")
+    out["report"] = {"files": sorted(report), "error": text(page, "report-error"),
+                     "order": page.eval("[...document.querySelectorAll('#report-files a')].map((a) => a.download)")}
+    for file, b64 in report.items():
+        path_ = os.path.join(DIR, "downloads", "report", file)
+        os.makedirs(os.path.dirname(path_), exist_ok=True)
+        with open(path_, "wb") as f:
+            f.write(base64.b64decode(b64))
+    page.screenshot(os.path.join(SHOTS, "report-download.png"))
+    page.eval("document.getElementById('report-positions').value = '400'")
+    page.eval("document.getElementById('report-make').click()")
+    out["report"]["bad"] = {"error": text(page, "report-error"),
+                            "files": page.eval("document.querySelectorAll('#report-files a').length")}
+    note_errors("report", page)
 
     # ---- The shaper: drag the rocker's end B; every joint must hold. ----
     page = open_page(b, "shaper")

@@ -584,6 +584,58 @@ impl Drawing {
         }
     }
 
+    /// The drawing moved and resized: every point p to `offset + scale·p`, every length
+    /// (radii, widths, text heights, arrowheads) times `scale` (> 0); dimensions exploded
+    /// first into the lines, arrowheads and texts their own style draws, so that they keep
+    /// their look in a drawing of another style. A figure placed on a page of a report.
+    pub fn mapped(&self, scale: f64, offset: Vector) -> Drawing {
+        let p = |q: &Point| Point::from(offset + q.coords * scale);
+        let map = |s: &Shape| -> Shape {
+            match s {
+                Shape::Circle { center, radius } => Shape::Circle { center: p(center), radius: radius * scale },
+                Shape::Arc { center, radius, start, end } => {
+                    Shape::Arc { center: p(center), radius: radius * scale, start: *start, end: *end }
+                }
+                Shape::Line { from, to } => Shape::Line { from: p(from), to: p(to) },
+                Shape::Polyline { points, closed, width } => {
+                    Shape::Polyline { points: points.iter().map(p).collect(), closed: *closed, width: width * scale }
+                }
+                Shape::Filled { points } => Shape::Filled { points: points.iter().map(p).collect() },
+                Shape::Arrow { from, to, head } => Shape::Arrow { from: p(from), to: p(to), head: head * scale },
+                Shape::Text { at, height, value, halign, valign, rotation } => Shape::Text {
+                    at: p(at),
+                    height: height * scale,
+                    value: value.clone(),
+                    halign: *halign,
+                    valign: *valign,
+                    rotation: *rotation,
+                },
+                // Exploded before mapping (see below).
+                other => other.clone(),
+            }
+        };
+        let mut out = Drawing {
+            layers: self.layers.clone(),
+            entities: Vec::with_capacity(self.entities.len()),
+            dim_style: DimStyle {
+                text_height: self.dim_style.text_height * scale,
+                arrow_size: self.dim_style.arrow_size * scale,
+            },
+            paper_mm_per_unit: self.paper_mm_per_unit.map(|k| k / scale),
+        };
+        for e in &self.entities {
+            match &e.shape {
+                dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                    for part in parts::explode_dimension(dim, &self.dim_style) {
+                        out.entities.push(Entity { shape: map(&part), ..e.clone() });
+                    }
+                }
+                s => out.entities.push(Entity { shape: map(s), ..e.clone() }),
+            }
+        }
+        out
+    }
+
     /// Adds an entity as given.
     pub fn push(&mut self, entity: Entity) {
         self.entities.push(entity);

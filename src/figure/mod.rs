@@ -9,6 +9,7 @@
 pub mod chain;
 pub mod fourbar;
 pub mod linkage;
+pub mod report;
 pub mod shared;
 pub mod synthesis;
 pub mod triad;

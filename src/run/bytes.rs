@@ -16,6 +16,9 @@
 //! | `frames/<name>/<position>.svg` (and `.png`) | a motion's frames (unless `--no-frames`) |
 //! | `<name>-sheets.pdf`, `sheets/<name>/<position>.svg` (and `.png`) | the printed pages, one per position (`--sheets`) |
 //!
+//! A report (`mechdraw report`, [`report_files`]) is `<name>-report.pdf`,
+//! `report/<name>/<NN>-<part>.svg` (and `.png`), `<name>-report.csv` and `<name>-report.json`.
+//!
 //! The files are built as independent jobs on every core and handed to the sink as each is
 //! made: a motion's DXF, its frames in batches, the sheets with the tables and the JSON, the
 //! diagrams and the printed pages; so writing (the kernel's copy) overlaps building.
@@ -245,37 +248,72 @@ fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<Owne
 /// asked for, its PNG `sheets/<name>/<stem>.png`; nothing without pages. The SVGs (and PNGs)
 /// are built in parallel with the PDF.
 fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<Owned>, Error> {
+    let pdf_name = path(&[], &format!("{name}-sheets"), "pdf")?;
+    paper_files(Some(&pdf_name), &["sheets", name], pages, png)
+}
+
+/// Pages of paper: `pdf_name` (when given) with every page, then each page's SVG
+/// `<dir>/<stem>.svg` (true size, viewBox in paper mm) and, when asked for, its PNG; nothing
+/// without pages. Every page is checked for numbers that are not finite first.
+fn paper_files(pdf_name: Option<&RelPath>, dir: &[&str], pages: &[Page], png: bool) -> Result<Vec<Owned>, Error> {
     if pages.is_empty() {
         return Ok(Vec::new());
     }
-    let pdf_name = path(&[], &format!("{name}-sheets"), "pdf")?;
+    let doc_name = pdf_name.map_or_else(|| RelPath::join(dir).map(String::from), |n| Ok(n.to_string()))?;
     for p in pages {
-        check_drawing(&p.drawing, &format!("{pdf_name}, page {}", p.stem))?;
+        check_drawing(&p.drawing, &format!("{doc_name}, page {}", p.stem))?;
     }
     let (doc, svgs) = rayon::join(
-        || pdf_bytes(pages, pdf_name.as_str()),
+        || pdf_name.map(|n| pdf_bytes(pages, n.as_str()).map(|b| (n.clone(), b))).transpose(),
         || {
             pages
                 .par_iter()
                 .map(|p| {
-                    let extent = p.window.width().max(p.window.height()).max(f64::MIN_POSITIVE);
-                    let opts = SvgOptions {
-                        margin: 0.0,
-                        hairline: p.hairline_mm / extent,
-                        window: Some(p.window),
-                        paper_mm_per_unit: Some(1.0),
-                        ..SvgOptions::default()
-                    };
                     let mut v = Vec::with_capacity(2);
-                    picture_files(&mut v, &["sheets", name], &p.stem, svg::to_string(&p.drawing, &opts), png)?;
+                    picture_files(&mut v, dir, &p.stem, page_svg(p), png)?;
                     Ok(v)
                 })
                 .collect::<Result<Vec<_>, Error>>()
         },
     );
-    let mut files = vec![(pdf_name, doc?)];
+    let mut files: Vec<Owned> = doc?.into_iter().collect();
     files.extend(svgs?.into_iter().flatten());
     Ok(files)
+}
+
+/// A printed page's SVG: sized in paper mm (`width="297mm"`), its viewBox the paper.
+pub fn page_svg(p: &Page) -> String {
+    let extent = p.window.width().max(p.window.height()).max(f64::MIN_POSITIVE);
+    let opts = SvgOptions {
+        margin: 0.0,
+        hairline: p.hairline_mm / extent,
+        window: Some(p.window),
+        paper_mm_per_unit: Some(1.0),
+        ..SvgOptions::default()
+    };
+    svg::to_string(&p.drawing, &opts)
+}
+
+/// A report's files (`mechdraw report`), in order: `<name>-report.pdf` (every page; in a
+/// build with the PDF writer, feature `pdf`: the command line's, not the live page's
+/// module), each page's SVG `report/<name>/<NN>-<part>.svg` (and its PNG with `png`), the
+/// chosen positions' table `<name>-report.csv` (motion kinds) and `<name>-report.json` (the
+/// parts and their pages, the structure, the positions).
+pub fn report_files(r: &super::report::Report, png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
+    let name = &r.name;
+    let pdf = path(&[], &format!("{name}-report"), "pdf")?;
+    let pdf = cfg!(feature = "pdf").then_some(&pdf);
+    let mut files = paper_files(pdf, &["report", name], &r.pages, png)?;
+    if let Some(t) = &r.table {
+        let csv = path(&[], &format!("{name}-report"), "csv")?;
+        check_csv(t, csv.as_str())?;
+        files.push((csv, t.to_bytes()));
+    }
+    let json_path = path(&[], &format!("{name}-report"), "json")?;
+    let json = serde_json::to_string_pretty(&r.summary)
+        .map_err(|e| Error::Export { what: json_path.to_string(), message: e.to_string() })?;
+    files.push((json_path, (json + "\n").into_bytes()));
+    Ok(files.into_iter().map(|(n, b)| (n.into(), b)).collect())
 }
 
 #[cfg(feature = "png")]

@@ -176,7 +176,7 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
 
 /// The position at crank angle `phi1_deg` with B on `side`, with its kinematics and forces
 /// as the scene asks for them (as `solve_motion` computes each position of the sweep).
-fn solve_at(spec: &MotionSpec, side: Side, phi1_deg: f64) -> Result<(Position, Option<Forces>), String> {
+pub(super) fn solve_at(spec: &MotionSpec, side: Side, phi1_deg: f64) -> Result<(Position, Option<Forces>), String> {
     let geom = &spec.geometry;
     let at = |e: FourbarError| format!("at φ1 = {}°: {e}", angle_text(phi1_deg));
     let mut pos = position(geom, geom::rad(phi1_deg), side).map_err(at)?;
@@ -228,7 +228,7 @@ fn position_names(positions: &[Position], from_deg: f64, step_deg: f64) -> Vec<S
 }
 
 /// Runs of consecutive positions (no skipped angle between them), mapped by `f`.
-fn runs<T>(positions: &[Position], step_deg: f64, f: impl Fn(&Position) -> T) -> Vec<Vec<T>> {
+pub(super) fn runs<T>(positions: &[Position], step_deg: f64, f: impl Fn(&Position) -> T) -> Vec<Vec<T>> {
     let mut out: Vec<Vec<T>> = Vec::new();
     let mut prev: Option<f64> = None;
     for p in positions {
@@ -246,7 +246,7 @@ fn runs<T>(positions: &[Position], step_deg: f64, f: impl Fn(&Position) -> T) ->
 
 /// When the solved positions cover a whole turn without a gap (the last angle one step
 /// short of the first plus 360°), the coupler curve closes: its last run joins its first.
-fn close_full_turn(curve: &mut [Vec<Point>], positions: &[Position], step_deg: f64) {
+pub(super) fn close_full_turn(curve: &mut [Vec<Point>], positions: &[Position], step_deg: f64) {
     let (Some(first), Some(last)) = (positions.first(), positions.last()) else { return };
     let wrap = deg(first.phi1) + 360.0 - deg(last.phi1);
     if (wrap - step_deg).abs() > 1e-6 * step_deg.max(1.0) || wrap > GAP_STEPS * step_deg {
@@ -309,7 +309,7 @@ enum Get {
 /// and with `magnitude` `name_mag`), its key in the JSON position records (a pair as
 /// `[x, y]`), and its diagram (`diagrams/<scene>/<name>.svg`; a pair plotted as its
 /// magnitude).
-struct Quantity {
+pub(super) struct Quantity {
     name: &'static str,
     group: Group,
     unit: Unit,
@@ -509,7 +509,7 @@ fn quantities() -> Vec<Quantity> {
 
 /// The quantities a run reports: positions always; velocities and accelerations when asked
 /// for or when forces are (they need both); forces when computed.
-fn reported(o: &crate::solve::fourbar::Outputs, forces: bool) -> Vec<Quantity> {
+pub(super) fn reported(o: &crate::solve::fourbar::Outputs, forces: bool) -> Vec<Quantity> {
     let velocity = o.velocity || o.forces;
     let acceleration = o.acceleration || o.forces;
     quantities()
@@ -529,7 +529,7 @@ fn forces_at(motion: &Motion, i: usize, forces: bool) -> Option<&Forces> {
 }
 
 /// The CSV: one row per position, the columns of [`Quantity`].
-fn table(motion: &Motion, qs: &[Quantity], forces: bool) -> Csv {
+pub(super) fn table(motion: &Motion, qs: &[Quantity], forces: bool) -> Csv {
     let mut header = Vec::new();
     for q in qs {
         match q.get {
@@ -742,7 +742,7 @@ fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String
 
 /// The diagrams of the reported quantities that have one, against φ1 (curves broken over
 /// skipped angles).
-fn diagrams(
+pub(super) fn diagrams(
     motion: &Motion,
     step_deg: f64,
     qs: &[Quantity],
@@ -805,7 +805,7 @@ fn symbol(name: &str) -> String {
 /// the value column; 4 significant digits ([`sheet::number`]). A value below 1e-9 of the
 /// largest of its unit on the page is rounding noise (x_A = 2.4e-18 m at φ1 = 90°) and
 /// prints as 0.
-fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUnits) -> sheet::Table {
+pub(super) fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUnits) -> sheet::Table {
     let header = ["", "x", "y", "value", "unit"].map(String::from).to_vec();
     let raw: Vec<(&Quantity, [Option<f64>; 3])> = qs
         .iter()

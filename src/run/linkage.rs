@@ -583,7 +583,7 @@ pub fn figure_of(scene: &LinkageScene) -> fig::LinkageFigure {
 /// force of the joint's first body on its second, see [`crate::solve::linkage::Forces`]),
 /// `<joint>.M` for a prismatic joint (N·m), `drive.<driver>` for every driver (N·m or N),
 /// and `power_residual`.
-fn force_columns(scene: &LinkageScene, forces: &[Forces]) -> Vec<Column> {
+pub(super) fn force_columns(scene: &LinkageScene, forces: &[Forces]) -> Vec<Column> {
     let mech = &scene.mechanism;
     let mut out = Vec::new();
     // + 0.0 turns −0 into 0.
@@ -628,7 +628,12 @@ fn reaction_records(scene: &LinkageScene, f: &Forces) -> BTreeMap<String, Reacti
 /// Diagrams of the forces against the measures' abscissa (`x_label`, `x`), with their
 /// stems: every reaction's magnitude (`<joint>.R`), every prismatic joint's couple
 /// (`<joint>.M`) and every driver's force (`drive.<driver>`).
-fn force_diagrams(scene: &LinkageScene, forces: &[Forces], x_label: &str, x: &[f64]) -> Vec<(String, Diagram)> {
+pub(super) fn force_diagrams(
+    scene: &LinkageScene,
+    forces: &[Forces],
+    x_label: &str,
+    x: &[f64],
+) -> Vec<(String, Diagram)> {
     let mech = &scene.mechanism;
     let mut out = Vec::new();
     let plot = |stem: String, title: String, y_label: String, values: Vec<f64>| {
@@ -702,15 +707,17 @@ fn forces_line(scene: &LinkageScene, forces: &[Forces], power_residual_max: f64)
 }
 
 /// A measured point on a body that slides on a ground guide, with its stroke.
-struct Guided<'a> {
-    measure: &'a Measure,
+pub(super) struct Guided<'a> {
+    /// The measure of the point.
+    pub measure: &'a Measure,
     /// The guide's direction (q1 → q2, global, unit).
-    guide: crate::geom::Vector,
-    stroke: Stroke,
+    pub guide: crate::geom::Vector,
+    /// Its stroke.
+    pub stroke: Stroke,
 }
 
 /// The stroke of every measured point whose body slides on a ground guide.
-fn guided_strokes<'a>(
+pub(super) fn guided_strokes<'a>(
     scene: &'a LinkageScene,
     solver: &mut Solver,
     states: &[State],
@@ -728,7 +735,7 @@ fn guided_strokes<'a>(
 
 /// Metres per length unit of the scene (velocities and accelerations are drawn in m/s and
 /// m/s², as textbooks print them, whatever the length unit).
-fn metres_per_unit(units: Units) -> f64 {
+pub(super) fn metres_per_unit(units: Units) -> f64 {
     match units {
         Units::Mm => 1e-3,
         Units::Si => 1.0,
@@ -737,7 +744,7 @@ fn metres_per_unit(units: Units) -> f64 {
 
 /// The diagrams' abscissa: the single angular driver's angle φ (degrees, the law's value
 /// over the motion) or t.
-fn abscissa(scene: &LinkageScene, states: &[State]) -> (String, Vec<f64>) {
+pub(super) fn abscissa(scene: &LinkageScene, states: &[State]) -> (String, Vec<f64>) {
     match (scene.diagram_axis, scene.mechanism.angular_driver()) {
         (DiagramAxis::DriverAngle, Some((driver, body))) => {
             let sub = body_symbol(scene, body);
@@ -749,7 +756,7 @@ fn abscissa(scene: &LinkageScene, states: &[State]) -> (String, Vec<f64>) {
 
 /// A body's subscript: the `symbol` of a measure of that body, else its number in the
 /// scene (1, 2, …).
-fn body_symbol(scene: &LinkageScene, body: Attach) -> String {
+pub(super) fn body_symbol(scene: &LinkageScene, body: Attach) -> String {
     let measured = scene.measures.iter().find(|m| m.target == MeasureTarget::Body(body));
     match (measured, body) {
         (Some(m), _) => m.symbol.clone(),
@@ -759,17 +766,20 @@ fn body_symbol(scene: &LinkageScene, body: Attach) -> String {
 }
 
 /// One diagram's title, axis label and values.
-struct Plot {
-    title: String,
-    y_label: String,
-    values: Vec<f64>,
+pub(super) struct Plot {
+    /// Its title.
+    pub title: String,
+    /// Its ordinate's label with the unit.
+    pub y_label: String,
+    /// Its values.
+    pub values: Vec<f64>,
 }
 
 /// How one measured quantity is drawn: textbook symbol and title, velocities and
 /// accelerations in m/s and m/s². A guided point's quantity along its guide's main axis
 /// (x for a guide nearer the x axis) is drawn as s, v, a along the guide, s from the
 /// extreme where the working stroke starts (docs/linkage.md).
-fn plot_of(scene: &LinkageScene, m: &Measure, q: Quantity, states: &[State], strokes: &[Guided]) -> Plot {
+pub(super) fn plot_of(scene: &LinkageScene, m: &Measure, q: Quantity, states: &[State], strokes: &[Guided]) -> Plot {
     let lu = scene.units.length();
     let k = metres_per_unit(scene.units);
     let sym = &m.symbol;
@@ -835,7 +845,7 @@ fn plot_of(scene: &LinkageScene, m: &Measure, q: Quantity, states: &[State], str
 }
 
 /// The report's line for one guided point.
-fn stroke_line(scene: &LinkageScene, g: &Guided) -> String {
+pub(super) fn stroke_line(scene: &LinkageScene, g: &Guided) -> String {
     let st = &g.stroke;
     let lu = scene.units.length();
     let sym = &g.measure.symbol;
@@ -855,7 +865,7 @@ fn stroke_line(scene: &LinkageScene, g: &Guided) -> String {
 }
 
 /// ", φ1 = 335.3757°" for an extreme when the driver is angular.
-fn driver_text(scene: &LinkageScene, e: &Extreme) -> String {
+pub(super) fn driver_text(scene: &LinkageScene, e: &Extreme) -> String {
     match (scene.mechanism.angular_driver(), e.driver) {
         (Some((_, body)), Some(v)) => format!(", φ{} = {:.4}°", body_symbol(scene, body), deg(v)),
         _ => String::new(),
@@ -1054,7 +1064,7 @@ struct DragSummary<'a> {
 /// One sample's values for its sheet: each measured quantity (its diagram's symbol and
 /// unit) and, with forces, every applied force, every reaction's magnitude and the
 /// drivers' forces, 4 significant digits ([`sheet::number`]); rounding noise as 0.
-fn sheet_table(
+pub(super) fn sheet_table(
     scene: &LinkageScene,
     plots: &[Plot],
     k: usize,

@@ -18,6 +18,7 @@ pub mod page;
 pub mod paths;
 pub mod positions;
 pub mod products;
+pub mod report;
 pub mod synthesis;
 mod triad;
 
@@ -209,6 +210,27 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written })
 }
 
+/// `mechdraw report`: builds the report of `loaded` ([`report::report`]: every check of the
+/// options and every solve first, so that bad input writes nothing), then stages its files
+/// ([`bytes::report_files`]) in `out_dir` and moves them in, all or nothing. Returns the
+/// report (its warnings, parts and summary) and the files written.
+#[cfg(feature = "cli")]
+pub fn report_run(
+    loaded: &Loaded,
+    opts: &report::ReportOptions,
+    out_dir: &std::path::Path,
+    png: bool,
+) -> Result<(report::Report, Vec<PathBuf>), Error> {
+    let r = report::report(loaded, opts)?;
+    let files = bytes::report_files(&r, png)?;
+    let mut out = output::Output::new(out_dir)?;
+    for (rel, b) in &files {
+        out.write(rel, b)?;
+    }
+    let written = out.commit()?;
+    Ok((r, written))
+}
+
 /// A terminal progress bar over `n` frames, when asked for and there are frames.
 #[cfg(feature = "cli")]
 fn progress_bar(on: bool, n: usize) -> Option<indicatif::ProgressBar> {
@@ -265,7 +287,7 @@ pub(crate) fn solve_err(file: &str) -> impl FnOnce(crate::solve::SolveError) -> 
 }
 
 /// The figures' scale choice for the scene's `[frames] scales`.
-fn scale_choice(s: crate::scene::FrameScales) -> crate::figure::shared::panels::ScaleChoice {
+pub(crate) fn scale_choice(s: crate::scene::FrameScales) -> crate::figure::shared::panels::ScaleChoice {
     use crate::figure::shared::panels::ScaleChoice;
     match s {
         crate::scene::FrameScales::PerFrame => ScaleChoice::PerFrame,

@@ -514,7 +514,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         let field = format!("driver[{k}].law");
         check_law_range(&field, &d.law, &times, (None, true), MAX_LAW, "a driver's value")?;
     }
-    check_degrees_of_freedom(&bodies, &joints, &drivers)?;
+    check_degrees_of_freedom(&bodies, &joints, &drivers, length_scale)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
@@ -1120,24 +1120,45 @@ fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result
 }
 
 /// Degrees of freedom (3 per body, −2 per joint) against the number of drivers, before any
-/// solving; the message says what to add or remove.
-fn check_degrees_of_freedom(bodies: &[Body], joints: &[Joint], drivers: &[Driver]) -> Result<(), FieldError> {
+/// solving; the message says what to add or remove. When the count is off but the joints at
+/// the scene's placement leave as many degrees of freedom as there are drivers (3n − rank of
+/// the joint equations: a redundant, passive link such as a parallelogram's third crank),
+/// the message says so: the solver needs independent joints.
+fn check_degrees_of_freedom(
+    bodies: &[Body],
+    joints: &[Joint],
+    drivers: &[Driver],
+    length_scale: f64,
+) -> Result<(), FieldError> {
     let dof = 3 * bodies.len() as i64 - 2 * joints.len() as i64;
     if dof != drivers.len() as i64 {
+        let m = Mechanism { bodies: bodies.to_vec(), joints: joints.to_vec(), drivers: Vec::new(), length_scale };
+        let q: Vec<f64> = bodies.iter().flat_map(|b| [b.at.x, b.at.y, b.angle]).collect();
+        let at_placement = 3 * bodies.len() as i64 - crate::solve::linkage::structure::joint_rank(&m, &q) as i64;
+        let advice = if at_placement == drivers.len() as i64 && dof < at_placement {
+            format!(
+                "the count does not see that at the scene's placement the joints leave {at_placement} (3n − rank of \
+                 the joint equations = {} − {}): {} joint equation(s) repeat others, a redundant (passive) link such \
+                 as a parallelogram's third crank; the solver needs independent joints: remove the redundant link and \
+                 its joints",
+                3 * bodies.len(),
+                3 * bodies.len() as i64 - at_placement,
+                at_placement - dof
+            )
+        } else if dof <= 0 {
+            "the joints leave no motion; remove a joint or add a body".to_string()
+        } else if (drivers.len() as i64) < dof {
+            format!("add {} driver(s)", dof - drivers.len() as i64)
+        } else {
+            format!("remove {} driver(s)", drivers.len() as i64 - dof)
+        };
         return Err(FieldError::new(
             "driver",
             format!(
-                "the mechanism has {dof} degree(s) of freedom (3 × {} bodies − 2 × {} joints) but {} driver(s) are given: {}",
+                "the mechanism has {dof} degree(s) of freedom (3 × {} bodies − 2 × {} joints) but {} driver(s) are given: {advice}",
                 bodies.len(),
                 joints.len(),
                 drivers.len(),
-                if dof <= 0 {
-                    "the joints leave no motion; remove a joint or add a body".to_string()
-                } else if (drivers.len() as i64) < dof {
-                    format!("add {} driver(s)", dof - drivers.len() as i64)
-                } else {
-                    format!("remove {} driver(s)", drivers.len() as i64 - dof)
-                }
             ),
         ));
     }

@@ -209,6 +209,14 @@ impl Live {
         self.0.design_text().unwrap_or_default()
     }
 
+    /// The report of the scene as it stands (`paper` `a4` or `a3`, `positions` as
+    /// `--positions` takes it, `""` for the report's choice), as the page offers it: its
+    /// pages in one HTML document to print to PDF, its table and JSON (the PDF is the command
+    /// line's: this module has no PDF writer).
+    pub fn report(&self, paper: &str, positions: &str) -> Result<Files, String> {
+        self.0.report_download(paper, positions).map(Files).map_err(msg)
+    }
+
     /// The files of the scene as it stands (without frames), for downloads.
     pub fn files(&self) -> Result<Files, String> {
         let p = self.0.products().map_err(msg)?;

@@ -18,6 +18,7 @@ pub mod edit;
 pub mod fields;
 #[cfg(target_arch = "wasm32")]
 pub mod js;
+pub mod print;
 pub mod reshape;
 mod session;
 pub mod share;
@@ -92,4 +93,49 @@ pub fn scene_files(text: &str, file: &str, opts: WebOptions) -> Result<SceneFile
     let wopts = WriteOptions { png: ropts.png, no_frames: ropts.no_frames, dxf: ropts.dxf };
     let files = bytes::to_files(&p, &wopts)?;
     Ok(SceneFiles { files, summary: p.summary, report: p.report, warnings: p.warnings })
+}
+
+/// The report of the scene in `text` (`mechdraw report`: [`crate::run::report`]) as named
+/// byte buffers, as `mechdraw report SCENE --paper PAPER [--positions LIST]` writes them:
+/// the pages as SVG, the chosen positions' table and the JSON; the PDF too in a build with
+/// the PDF writer (feature `pdf`; the live page's module leaves it out, so the page offers
+/// the pages to print). `paper` is `a4` or `a3`; `positions` as `--positions` takes it
+/// (`""`: the report's choice). Errors are the command line's words.
+pub fn report_files(text: &str, file: &str, paper: &str, positions: &str) -> Result<SceneFiles, Error> {
+    let opts = report_options(paper, positions)?;
+    let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])?, text: text.to_string() };
+    let r = run::report::report(&loaded, &opts)?;
+    let files = bytes::report_files(&r, false)?;
+    let report = r.parts.iter().map(|(t, p)| format!("p. {p:>2}  {t}")).collect::<Vec<_>>().join("\n");
+    Ok(SceneFiles { files, summary: r.summary, report, warnings: r.warnings })
+}
+
+/// The live page's "report" download of the scene in `text` ([`report_files`]'s report):
+/// `<name>-report.html`, every page in one document to print ([`print::print_document`]:
+/// the page's module has no PDF writer; the browser's Print → Save as PDF makes the PDF),
+/// then the PDF where the build has its writer, the chosen positions' table and the JSON,
+/// as the command line writes them. The pages' SVGs are in the document, not offered apart.
+pub fn report_download(text: &str, file: &str, paper: &str, positions: &str) -> Result<SceneFiles, Error> {
+    let mut r = report_files(text, file, paper, positions)?;
+    let paper = report_options(paper, positions)?.paper;
+    let name = r.summary.get("name").and_then(serde_json::Value::as_str).unwrap_or("scene").to_string();
+    let (pages, rest): (Vec<_>, Vec<_>) = r.files.into_iter().partition(|(n, _)| n.starts_with("report/"));
+    let svgs: Vec<&str> = pages.iter().filter_map(|(_, b)| std::str::from_utf8(b).ok()).collect();
+    let html = print::print_document(&format!("{name} — report"), paper, &svgs);
+    r.files = std::iter::once((format!("{name}-report.html"), html.into_bytes())).chain(rest).collect();
+    Ok(r)
+}
+
+/// `--paper` and `--positions` as the command line reads them.
+pub fn report_options(paper: &str, positions: &str) -> Result<run::report::ReportOptions, Error> {
+    let paper = paper.parse().map_err(|message| Error::Option { option: "--paper".into(), message })?;
+    let positions = if positions.trim().is_empty() {
+        None
+    } else {
+        let values = positions
+            .parse::<run::positions::Positions>()
+            .map_err(|message| Error::Option { option: "--positions".into(), message })?;
+        Some(values)
+    };
+    Ok(run::report::ReportOptions { paper, positions })
 }

@@ -407,6 +407,18 @@ impl Session {
             .collect())
     }
 
+    /// The report of the scene as it stands, as [`super::report_files`] makes it: the
+    /// "report" download of the current scene.
+    pub fn report(&self, paper: &str, positions: &str) -> Result<super::SceneFiles, Error> {
+        super::report_files(&self.text, &self.file, paper, positions)
+    }
+
+    /// The page's "report" download of the scene as it stands ([`super::report_download`]):
+    /// the pages in one document to print, the table and the JSON.
+    pub fn report_download(&self, paper: &str, positions: &str) -> Result<super::SceneFiles, Error> {
+        super::report_download(&self.text, &self.file, paper, positions)
+    }
+
     /// The files `mechdraw run` writes for the scene as it stands (without the frames and
     /// the viewer: `--no-frames`), for downloads.
     pub fn files(&self) -> Result<Vec<(String, Vec<u8>)>, Error> {

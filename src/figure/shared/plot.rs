@@ -438,6 +438,15 @@ pub fn track(d: &Diagram, marks: &Marks) -> Vec<Option<Point>> {
         .unwrap_or_default()
 }
 
+/// Where [`diagram_marked`] draws the data point (`x`, `y`) of diagram `d` (with `marks`), on
+/// the plot's paper (mm, y up): the map of [`track`] for any point, not only a sample's (a
+/// report marks a position solved between the samples).
+pub fn place(d: &Diagram, marks: &Marks, x: f64, y: f64) -> Point {
+    let levels: Vec<&Level> = marks.levels.iter().filter(|v| v.y.is_finite()).collect();
+    let (xt, yt) = diagram_ticks(d, &levels);
+    data_to_paper(&xt, &yt)(x, y)
+}
+
 /// The map from data to the plot's paper coordinates for axes `xt` × `yt`.
 fn data_to_paper(xt: &Ticks, yt: &Ticks) -> impl Fn(f64, f64) -> Point + use<> {
     let (xlo, xspan) = (xt.lo, (xt.hi - xt.lo).max(f64::MIN_POSITIVE));

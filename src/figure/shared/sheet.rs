@@ -216,6 +216,46 @@ pub struct Table {
     pub rows: Vec<Vec<String>>,
 }
 
+/// A number as plain decimals rounded to `digits` significant digits (at least 1), trailing
+/// zeros dropped, no exponent (`360.555` for 360.5551275 at 6; a whole number keeps all its
+/// digits: `12000`).
+pub fn significant(v: f64, digits: u32) -> String {
+    if !v.is_finite() {
+        return "–".into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let decimals = (f64::from(digits.max(1)) - 1.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 20.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.').to_string() } else { s };
+    if s == "-0" { "0".into() } else { s }
+}
+
+/// A number for a drawing with `digits` significant digits and no e-notation: plain
+/// decimals from 10⁻³ to 10⁶ ([`significant`]), else a power of ten written as the page
+/// writes it (`1.32·10⁻¹⁰`, `2.5·10⁷`).
+pub fn scientific(v: f64, digits: u32) -> String {
+    if !v.is_finite() || v == 0.0 || (1e-3..1e6).contains(&v.abs()) {
+        return significant(v, digits);
+    }
+    let mut exp = libm::floor(libm::log10(v.abs()));
+    let mut mantissa = significant(v / libm::pow(10.0, exp), digits);
+    // 9.999 rounded to 10: one more power of ten.
+    if mantissa.trim_start_matches('-').starts_with("10") {
+        exp += 1.0;
+        mantissa = significant(v / libm::pow(10.0, exp), digits);
+    }
+    const SUPERSCRIPT: [char; 10] = ['⁰', '¹', '²', '³', '⁴', '⁵', '⁶', '⁷', '⁸', '⁹'];
+    let e = exp as i64;
+    let mut power: String =
+        e.unsigned_abs().to_string().chars().map(|c| SUPERSCRIPT[(c as u8 - b'0') as usize]).collect();
+    if e < 0 {
+        power.insert(0, '⁻');
+    }
+    format!("{mantissa}·10{power}")
+}
+
 /// A number for a drawing: 4 significant digits (what a graphical construction is read to;
 /// a value of 1000 or more to the unit: 1833229), in decimals, never with an exponent,
 /// trailing zeros kept so that columns align.

@@ -23,6 +23,7 @@ mod kinematics;
 mod kinetostatics;
 mod lanes;
 mod lu;
+pub mod structure;
 
 pub use assur::{AssurSolver, DrivenKind, DyadKind, Group, GroupKind, Motion, Route, decompose};
 pub use kinematics::{NearSingular, Sliding, Solver, State};
@@ -30,6 +31,7 @@ pub use kinetostatics::{
     Applied, AppliedKind, Dynamics, Forces, Load, LoadAction, LoadValue, MassProperties, Reaction, TIME_WINDOW_EPS_REL,
     TimeWindow, applied_forces,
 };
+pub use structure::{GroupStructure, Mobility, Structure};
 
 use crate::geom::{Point, Vector, rotate};
 use crate::solve::expr::Expr;

@@ -1,0 +1,361 @@
+//! The mechanism as the report's drawings show it: the linkage figure (bodies, joints,
+//! traced points) with what a kinematic diagram adds — the links' numbers (1 … n in the
+//! solver's order, the frame 0), the driver's angular velocity with its sense, the loads —
+//! and its placement on paper at a nice length scale.
+//!
+//! A four-bar scene comes here as a linkage of three bodies (crank, coupler, rocker), so
+//! that every kind's report draws its mechanism with one vocabulary.
+
+use crate::draw::{Bounds, Drawing, HAlign, Shape, VAlign, parts};
+use crate::figure::linkage::{self as fig, LinkageFigure};
+use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::sheet;
+use crate::figure::shared::vocab::{self, Sizes, layer_of, layers};
+use crate::geom::{Point, Vector, perp};
+use crate::solve::linkage::{Anchor, Attach, place};
+
+/// The driver as the diagram marks it: an arc arrow about its pivot.
+#[derive(Debug, Clone, PartialEq)]
+pub struct DriverMark {
+    /// The driven body.
+    pub body: usize,
+    /// Its pivot (a point of the body at the joint that carries it).
+    pub pivot: Anchor,
+    /// +1 counter-clockwise, −1 clockwise.
+    pub sense: f64,
+    /// Its symbol with its value (`ω1 = 20 rad/s`).
+    pub symbol: String,
+}
+
+/// A load as the diagram marks it: an arrow (not to scale) at its point, along it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LoadMark {
+    /// Where it acts.
+    pub at: Anchor,
+    /// Its direction (global; any length).
+    pub direction: Vector,
+    /// Its name (`F`, `cut`).
+    pub name: String,
+}
+
+/// The mechanism for the report's drawings.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Sketch {
+    /// Bodies, joints, traced points (model units).
+    pub figure: LinkageFigure,
+    /// The bodies' names, in the solver's order (link k + 1 is body k).
+    pub names: Vec<String>,
+    /// The driver, when it turns a body.
+    pub driver: Option<DriverMark>,
+    /// The loads.
+    pub loads: Vec<LoadMark>,
+}
+
+/// A mechanism placed on paper: model point p at `origin + p / k_l` (paper mm).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OnPaper {
+    /// Model length units per paper millimetre (a nice value).
+    pub k_l: f64,
+    /// The paper point of the model's origin.
+    pub origin: Point,
+}
+
+impl OnPaper {
+    /// A model point on paper.
+    pub fn point(&self, p: Point) -> Point {
+        self.origin + p.coords / self.k_l
+    }
+
+    /// An anchor of the model as the figure on paper holds it ([`LinkageFigure::on_paper`]):
+    /// a body's point scaled, a ground point placed.
+    pub fn anchor(&self, a: Anchor) -> Anchor {
+        match a.body {
+            Attach::Ground => Anchor { body: a.body, local: self.point(Point::from(a.local)).coords },
+            Attach::Body(_) => Anchor { body: a.body, local: a.local / self.k_l },
+        }
+    }
+}
+
+impl Sketch {
+    /// The smallest box holding every body point over `motion` (model units).
+    pub fn extent(&self, motion: &[&[f64]]) -> Option<(Vector, Vector)> {
+        let mut b: Option<(Vector, Vector)> = None;
+        for q in motion {
+            for (i, body) in self.figure.bodies.iter().enumerate() {
+                for (_, v) in &body.points {
+                    let p = place(q, Attach::Body(i), *v).coords;
+                    if p.x.is_finite() && p.y.is_finite() {
+                        b = Some(b.map_or((p, p), |(lo, hi)| (lo.inf(&p), hi.sup(&p))));
+                    }
+                }
+            }
+        }
+        for j in &self.figure.joints {
+            if let fig::JointSymbol::Pin { at, .. } = j
+                && at.body == Attach::Ground
+            {
+                b = b.map(|(lo, hi)| (lo.inf(&at.local), hi.sup(&at.local)));
+            }
+        }
+        b
+    }
+}
+
+/// The placement that draws `lo`…`hi` (model units) centred in `area` at the finest nice
+/// scale leaving `room` paper mm on each side (for symbols and letters).
+pub fn fit(lo: Vector, hi: Vector, area: Bounds, room: Vector) -> OnPaper {
+    let inner = Vector::new(
+        (area.width() - 2.0 * room.x).max(0.3 * area.width()),
+        (area.height() - 2.0 * room.y).max(0.3 * area.height()),
+    );
+    let k_l = sheet::finest(hi - lo, inner).per_mm;
+    OnPaper { k_l, origin: sheet::centre(lo, hi, k_l, area) }
+}
+
+/// The room a mechanism drawing keeps around its links for symbols and letters, paper mm.
+pub fn room(s: Sizes) -> Vector {
+    Vector::new(2.5 * s.text + s.slider_length, 2.5 * s.text + s.ground)
+}
+
+/// What a mechanism drawing marks besides the links, joints and point names.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct Marks {
+    /// The links' numbers in circles (the frame's 0 at a ground pivot).
+    pub numbers: bool,
+    /// The driver's ω with its sense.
+    pub driver: bool,
+    /// The loads' arrows.
+    pub loads: bool,
+}
+
+/// Where a mechanism is drawn: its placement on paper, the sizes of its symbols, the area
+/// its letters stay in.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Frame {
+    /// The placement.
+    pub at: OnPaper,
+    /// Sizes of letters and symbols, paper mm.
+    pub sizes: Sizes,
+    /// The area its letters stay inside (its panel's).
+    pub area: Bounds,
+}
+
+/// Draws the mechanism of `sketch` at `q` (model coordinates) on the page `d` (paper mm)
+/// in `frame`, the ground guides as long as `motion` needs them, with `marks`.
+pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], frame: Frame, marks: Marks) {
+    let Frame { at, sizes: s, area } = frame;
+    let paper_fig = sketch.figure.on_paper(at.origin, at.k_l);
+    let pq = fig::on_paper(q, at.origin, at.k_l);
+    let paper_motion: Vec<Vec<f64>> = motion.iter().map(|m| fig::on_paper(m, at.origin, at.k_l)).collect();
+    let mut refs: Vec<&[f64]> = paper_motion.iter().map(Vec::as_slice).collect();
+    if refs.is_empty() {
+        refs.push(&pq);
+    }
+    let spans = fig::guide_spans(&paper_fig, &refs, &s);
+    let start = d.entities.len();
+    let mech = layer_of(d, layers::MECHANISM);
+    fig::mechanism(d, mech, &paper_fig, &pq, &spans, &s);
+    if marks == Marks::default() {
+        return;
+    }
+    let mut letters = labels::Polygon::of_names();
+    avoid(d, start, &mut letters);
+    keep_inside(&mut letters, area);
+    let frc = layer_of(d, layers::FORCES);
+    if marks.loads {
+        for load in &sketch.loads {
+            let a = at.anchor(load.at);
+            let p = place(&pq, a.body, a.local);
+            let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
+            // Not to scale: a fixed length on paper, its tip at the point.
+            let from = p - u * (6.0 * s.text);
+            d.add(frc, Shape::Arrow { from, to: p, head: s.head });
+            letters.segment(from, p);
+            letters.letter(from, &load.name, s.text, -u, None);
+        }
+    }
+    if let (true, Some(dm)) = (marks.driver, &sketch.driver) {
+        let pa = at.anchor(dm.pivot);
+        let pivot = place(&pq, pa.body, pa.local);
+        let pin = body_far_point(&paper_fig, &pq, dm.body, pivot);
+        let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
+        let r = 4.0 * s.joint;
+        let sweep = 1.6 * dm.sense;
+        // Beside the crank, turned on round the pivot until it crosses no name and no line
+        // already drawn (the pivot's own name, its ground symbol).
+        let from = (0..6)
+            .map(|k| crank_dir + (0.35 + 0.25 * std::f64::consts::PI * k as f64) * dm.sense)
+            .find(|&from| arc_is_clear(d, start, pivot, r, from, sweep, s.joint))
+            .unwrap_or(crank_dir + 0.35 * dm.sense);
+        let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
+        letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
+        letters.letter(mid, &dm.symbol, s.text, mid - pivot, None);
+    }
+    if marks.numbers {
+        let mut numbered_ground = false;
+        for (i, b) in paper_fig.bodies.iter().enumerate() {
+            let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(&pq, Attach::Body(i), *v)).collect();
+            let (at, dir) = match pts.as_slice() {
+                [] => continue,
+                [p] => (*p, Vector::new(-1.0, 1.0)),
+                [a, b, ..] if pts.len() == 2 => (Point::from((a.coords + b.coords) / 2.0), perp(b - a)),
+                _ => {
+                    let c = pts.iter().fold(Vector::zeros(), |acc, p| acc + p.coords) / pts.len() as f64;
+                    (Point::from(c), Vector::new(0.0, 1.0))
+                }
+            };
+            letters.circled(at, &(i + 1).to_string(), s.text, dir, 0.5 * s.link);
+        }
+        for j in &paper_fig.joints {
+            if let fig::JointSymbol::Pin { at: a, grounded: true, .. } = j
+                && !numbered_ground
+            {
+                let p = place(&pq, a.body, a.local);
+                let foot = p - Vector::new(0.0, s.joint + s.ground);
+                letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
+                numbered_ground = true;
+            }
+        }
+    }
+    letters.draw(d, mech);
+}
+
+/// The point of body `b` (on paper at `pq`) farthest from `from`: a crank's pin seen from
+/// its pivot.
+fn body_far_point(fig: &LinkageFigure, pq: &[f64], b: usize, from: Point) -> Point {
+    fig.bodies
+        .get(b)
+        .into_iter()
+        .flat_map(|body| body.points.iter().map(|(_, v)| place(pq, Attach::Body(b), *v)))
+        .fold(from + Vector::new(1.0, 0.0), |best, p| if (p - from).norm() > (best - from).norm() { p } else { best })
+}
+
+/// Keeps `letters` inside `area`: four wide boxes around it that they must not overlap.
+pub fn keep_inside(letters: &mut labels::Polygon, area: Bounds) {
+    let big = 1e4 * (area.width() + area.height()).max(1.0);
+    let (lo, hi) = (area.min, area.max);
+    for b in [
+        TextBox { min: Point::new(lo.x - big, lo.y - big), max: Point::new(lo.x, hi.y + big) },
+        TextBox { min: Point::new(hi.x, lo.y - big), max: Point::new(hi.x + big, hi.y + big) },
+        TextBox { min: Point::new(lo.x - big, lo.y - big), max: Point::new(hi.x + big, lo.y) },
+        TextBox { min: Point::new(lo.x - big, hi.y), max: Point::new(hi.x + big, hi.y + big) },
+    ] {
+        letters.keep_off(b);
+    }
+}
+
+/// Adds what is drawn in `d` from entity `start` on to `letters` as what its letters keep
+/// off: every stroke as segments (circles and arcs as chords), every text's box, the
+/// dimensions as drawn.
+pub fn avoid(d: &Drawing, start: usize, letters: &mut labels::Polygon) {
+    for e in &d.entities[start.min(d.entities.len())..] {
+        match &e.shape {
+            dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                for part in parts::explode_dimension(dim, &d.dim_style) {
+                    avoid_shape(&part, letters);
+                }
+            }
+            other => avoid_shape(other, letters),
+        }
+    }
+}
+
+/// [`avoid`] for one shape.
+fn avoid_shape(shape: &Shape, letters: &mut labels::Polygon) {
+    match shape {
+        Shape::Line { from, to } | Shape::Arrow { from, to, .. } => letters.segment(*from, *to),
+        Shape::Polyline { points, closed, .. } => {
+            for w in points.windows(2) {
+                letters.segment(w[0], w[1]);
+            }
+            if *closed && let (Some(a), Some(b)) = (points.last(), points.first()) {
+                letters.segment(*a, *b);
+            }
+        }
+        Shape::Filled { points } => {
+            for (k, a) in points.iter().enumerate() {
+                letters.segment(*a, points[(k + 1) % points.len()]);
+            }
+        }
+        Shape::Circle { center, radius } => {
+            chords(letters, *center, *radius, 0.0, std::f64::consts::TAU);
+            // A circled link number's circle is its label's square: no letter in it.
+            letters.keep_off(TextBox {
+                min: center - Vector::new(*radius, *radius),
+                max: center + Vector::new(*radius, *radius),
+            });
+        }
+        Shape::Arc { center, radius, start, end } => {
+            chords(letters, *center, *radius, *start, parts::arc_sweep(*start, *end))
+        }
+        Shape::Text { .. } => letters.keep_off(text_box(shape)),
+        _ => {}
+    }
+}
+
+/// Whether the arc about `c` of radius `r` from `from` sweeping `sweep` keeps `gap` (paper
+/// mm) off every text and line drawn since entity `start` other than those through `c`
+/// itself (the crank, the pivot's circle).
+fn arc_is_clear(d: &Drawing, start: usize, c: Point, r: f64, from: f64, sweep: f64, gap: f64) -> bool {
+    let n = 24;
+    let pts: Vec<Point> = (0..=n)
+        .map(|k| {
+            let a = from + sweep * k as f64 / n as f64;
+            c + Vector::new(libm::cos(a), libm::sin(a)) * r
+        })
+        .collect();
+    let near_segment = |a: Point, b: Point| {
+        // A line ending at the pivot (the crank, the pivot's symbol's sides) is the pivot's.
+        if (a - c).norm() < 0.5 * r || (b - c).norm() < 0.5 * r {
+            return false;
+        }
+        pts.iter().any(|p| vocab::distance_to_segment(*p, a, b) < gap)
+    };
+    d.entities[start..].iter().all(|e| match &e.shape {
+        Shape::Text { .. } => {
+            let b = text_box(&e.shape);
+            !pts.iter()
+                .any(|p| p.x > b.min.x - gap && p.x < b.max.x + gap && p.y > b.min.y - gap && p.y < b.max.y + gap)
+        }
+        Shape::Line { from, to } => !near_segment(*from, *to),
+        Shape::Polyline { points, .. } => !points.windows(2).any(|w| near_segment(w[0], w[1])),
+        _ => true,
+    })
+}
+
+/// The arc as 16 chords a turn.
+fn chords(letters: &mut labels::Polygon, c: Point, r: f64, start: f64, sweep: f64) {
+    let n = ((sweep.abs() / (std::f64::consts::TAU / 16.0)).ceil() as usize).max(1);
+    let at = |k: usize| {
+        let a = start + sweep * k as f64 / n as f64;
+        c + Vector::new(libm::cos(a), libm::sin(a)) * r
+    };
+    for k in 0..n {
+        letters.segment(at(k), at(k + 1));
+    }
+}
+
+/// The box a text shape covers (its width measured with the bundled font; from a third of
+/// its height under the baseline to its cap height), unrotated texts; a rotated text's box
+/// is its extent around the insertion point.
+pub fn text_box(shape: &Shape) -> TextBox {
+    let Shape::Text { at, height, value, halign, valign, rotation } = shape else {
+        return TextBox { min: Point::origin(), max: Point::origin() };
+    };
+    let w = parts::text_width(value, *height);
+    if *rotation != 0.0 {
+        let r = w + *height;
+        return TextBox { min: at - Vector::new(r, r), max: at + Vector::new(r, r) };
+    }
+    let x0 = match halign {
+        HAlign::Left => at.x,
+        HAlign::Center => at.x - 0.5 * w,
+        HAlign::Right => at.x - w,
+    };
+    let base = match valign {
+        VAlign::Baseline => at.y,
+        VAlign::Middle => at.y - 0.5 * height,
+        VAlign::Top => at.y - height,
+    };
+    TextBox { min: Point::new(x0, base - 0.3 * height), max: Point::new(x0 + w, base + 1.05 * height) }
+}

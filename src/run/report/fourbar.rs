@@ -1,0 +1,450 @@
+//! A four-bar scene's report: the four-bar solved as `mechdraw run` solves it (seed 003's
+//! dyad, its kineto-statics), drawn in the report as a linkage of three bodies (crank 1,
+//! coupler 2 with its point M, rocker 3) so that its structure is the Assur decomposition's
+//! (the crank with the frame, the RRR dyad 2–3); its dead positions are the rocker's
+//! extremes, in closed form (crank and coupler in line: |O1B| = l_AB ± l1), with the
+//! working angle, the rocker's swing ψ and K = (180° + θ)/(180° − θ).
+
+use std::sync::Arc;
+
+use super::Frame;
+use super::motion::{self, At, Chosen, Cycle, Dead, DriveAxis, MotionReport};
+use crate::Error;
+use crate::figure::fourbar::sheet::FourbarSheets;
+use crate::figure::fourbar::{ModelUnits, Show};
+use crate::figure::linkage::LinkageFigure;
+use crate::figure::report::diagrams::MarkedDiagram;
+use crate::figure::report::plan::PlanDimension;
+use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
+use crate::figure::report::table::{Align, PaperTable};
+use crate::figure::shared::plot::{self, Marks};
+use crate::figure::shared::sheet;
+use crate::geom::{self, Point, Vector, deg};
+use crate::report::Csv;
+use crate::run::fourbar as run;
+use crate::scene::Units;
+use crate::scene::fourbar::FourbarScene;
+use crate::solve::expr::Expr;
+use crate::solve::fourbar::{Forces, Geometry, Motion, Position, position, solve_motion};
+use crate::solve::linkage::{Anchor, Attach, Body, Driver, DriverTarget, Joint, JointKind, Mechanism, Structure};
+
+/// The coupler point M in the coupler's frame (A at the origin, B on +x).
+fn m_local(g: &Geometry) -> Vector {
+    let dir = std::f64::consts::PI + g.alpha;
+    Vector::new(g.l_ab + g.l_bm * libm::cos(dir), g.l_bm * libm::sin(dir))
+}
+
+/// The four-bar as a linkage: crank O1A, coupler A–B–M, rocker CB; joints O1, A, B, C; the
+/// crank turned by its angle.
+pub fn mechanism(g: &Geometry, omega1: f64) -> Mechanism {
+    let v = Vector::new;
+    let body = |name: &str, points: Vec<(&str, Vector)>, at: Point| Body {
+        name: name.into(),
+        points: points.into_iter().map(|(n, p)| (n.to_string(), p)).collect(),
+        at,
+        angle: 0.0,
+    };
+    let anchor = |body: Attach, local: Vector| Anchor { body, local };
+    let pin = |name: &str, a: Anchor, b: Anchor| Joint { name: name.into(), kind: JointKind::Revolute { a, b } };
+    let (crank, coupler, rocker) = (Attach::Body(0), Attach::Body(1), Attach::Body(2));
+    let law = Expr::parse(&format!("{omega1}*t")).or_else(|_| Expr::parse("t"));
+    let drivers =
+        law.map(|law| vec![Driver { name: "O1".into(), target: DriverTarget::BodyAngle(0), law }]).unwrap_or_default();
+    Mechanism {
+        bodies: vec![
+            body("crank", vec![("O1", v(0.0, 0.0)), ("A", v(g.l1, 0.0))], g.o1),
+            body("coupler", vec![("A", v(0.0, 0.0)), ("B", v(g.l_ab, 0.0)), ("M", m_local(g))], g.o1),
+            body("rocker", vec![("C", v(0.0, 0.0)), ("B", v(g.l_bc, 0.0))], g.c),
+        ],
+        joints: vec![
+            pin("O1", anchor(Attach::Ground, g.o1.coords), anchor(crank, v(0.0, 0.0))),
+            pin("A", anchor(crank, v(g.l1, 0.0)), anchor(coupler, v(0.0, 0.0))),
+            pin("B", anchor(coupler, v(g.l_ab, 0.0)), anchor(rocker, v(g.l_bc, 0.0))),
+            pin("C", anchor(Attach::Ground, g.c.coords), anchor(rocker, v(0.0, 0.0))),
+        ],
+        drivers,
+        length_scale: g.l1.max(g.l_ab).max(g.l_bc).max(g.ground()),
+    }
+}
+
+/// A position's coordinates as the linkage's (x, y, φ of crank, coupler, rocker).
+pub fn coordinates(g: &Geometry, p: &Position) -> Vec<f64> {
+    vec![g.o1.x, g.o1.y, p.phi1, p.a.x, p.a.y, p.phi2(), g.c.x, g.c.y, p.phi3()]
+}
+
+/// The four-bar's mechanism as the report draws it: names O1, A, B, M, C, the path of M,
+/// ω1 with its sense, the coupler's loads.
+fn sketch(scene: &FourbarScene, mech: &Mechanism) -> Sketch {
+    let g = &scene.spec.geometry;
+    let m = m_local(g);
+    let name_of = |a: Anchor| -> Option<&'static str> {
+        match a.body {
+            Attach::Ground if a.local == g.o1.coords => Some("O1"),
+            Attach::Ground => Some("C"),
+            Attach::Body(0) if a.local == Vector::zeros() => Some("O1"),
+            Attach::Body(0) => Some("A"),
+            Attach::Body(1) if a.local == Vector::zeros() => Some("A"),
+            Attach::Body(1) if a.local == m => Some("M"),
+            Attach::Body(1) => Some("B"),
+            Attach::Body(_) if a.local == Vector::zeros() => Some("C"),
+            Attach::Body(_) => Some("B"),
+        }
+    };
+    let units = match scene.units {
+        Units::Si => ModelUnits::SI,
+        Units::Mm => ModelUnits::MM,
+    };
+    let figure = LinkageFigure::new(mech, name_of, vec![Anchor { body: Attach::Body(1), local: m }]).with_units(units);
+    let driver = Some(DriverMark {
+        body: 0,
+        pivot: Anchor { body: Attach::Body(0), local: Vector::zeros() },
+        sense: if scene.spec.omega1 < 0.0 { -1.0 } else { 1.0 },
+        symbol: "ω1".into(),
+    });
+    let local = |p: crate::solve::fourbar::ForcePoint| match p {
+        crate::solve::fourbar::ForcePoint::A => Vector::zeros(),
+        crate::solve::fourbar::ForcePoint::B => Vector::new(g.l_ab, 0.0),
+        crate::solve::fourbar::ForcePoint::M => m,
+    };
+    let loads = scene
+        .spec
+        .dynamics
+        .iter()
+        .flat_map(|d| d.forces.iter())
+        .map(|f| LoadMark {
+            at: Anchor { body: Attach::Body(1), local: local(f.at) },
+            direction: f.value,
+            name: "F".into(),
+        })
+        .collect();
+    Sketch { figure, names: mech.bodies.iter().map(|b| b.name.clone()).collect(), driver, loads }
+}
+
+/// The rocker's extremes: (crank angle, B) with crank and coupler stretched (|O1B| = l1 +
+/// l_AB) and folded (|O1B| = l_AB − l1) on the scene's branch, when the four-bar reaches
+/// them.
+fn rocker_extremes(g: &Geometry) -> Vec<(f64, &'static str)> {
+    let d = g.c - g.o1;
+    let (dn, theta) = (d.norm(), geom::angle_of(d));
+    let size = g.l1.max(g.l_ab).max(g.l_bc).max(dn);
+    let mut out = Vec::new();
+    for (sign, r, what) in
+        [(1.0, g.l1 + g.l_ab, "crank and coupler stretched"), (-1.0, g.l_ab - g.l1, "crank and coupler folded")]
+    {
+        if r <= 0.0 {
+            continue;
+        }
+        let cos = (dn * dn + r * r - g.l_bc * g.l_bc) / (2.0 * dn * r);
+        if cos.abs() > 1.0 {
+            continue;
+        }
+        let beta = libm::acos(cos);
+        for b_dir in [theta + beta, theta - beta] {
+            let u = Vector::new(libm::cos(b_dir), libm::sin(b_dir));
+            let phi1 = geom::angle_of(u * sign);
+            let Ok(p) = position(g, phi1, g.branch) else { continue };
+            if (p.b - (g.o1 + u * r)).norm() <= 1e-9 * size {
+                out.push((phi1, what));
+                break;
+            }
+        }
+    }
+    out
+}
+
+/// An angle in degrees taken into [from, from + 360).
+fn into_sweep(phi_deg: f64, from: f64) -> f64 {
+    from + (phi_deg - from).rem_euclid(360.0)
+}
+
+/// The title page's data.
+fn data(scene: &FourbarScene) -> PaperTable {
+    let s = &scene.spec;
+    let g = &s.geometry;
+    let u = scene.units.length();
+    let num = crate::report::number;
+    let mut t = PaperTable::new(&["quantity", "value", "unit"], &[Align::Left, Align::Right, Align::Left]);
+    let pt = |p: Point| format!("({}, {})", num(p.x), num(p.y));
+    for (q, v, unit) in [
+        ("crank pivot O1", pt(g.o1), u),
+        ("rocker pivot C", pt(g.c), u),
+        ("crank O1A = l1", num(g.l1), u),
+        ("coupler AB", num(g.l_ab), u),
+        ("coupler BM", num(g.l_bm), u),
+        ("angle ABM α", num(deg(g.alpha)), "°"),
+        ("rocker BC", num(g.l_bc), u),
+        ("ground O1C", num(g.ground()), u),
+        ("ω1 (counter-clockwise +)", num(s.omega1), "rad/s"),
+        ("ε1", num(s.epsilon1), "rad/s²"),
+    ] {
+        t.row(vec![q.to_string(), v, unit.to_string()]);
+    }
+    t.row(vec![
+        "crank angles φ1".into(),
+        format!("{} … {} step {}", num(s.sweep.from_deg), num(s.sweep.to_deg), num(s.sweep.step_deg)),
+        "°".into(),
+    ]);
+    if let Some(d) = &s.dynamics {
+        t.row(vec!["g".into(), format!("({}, {})", num(d.gravity.x), num(d.gravity.y)), "m/s²".into()]);
+        for (q, m) in [("m1 crank", d.m1), ("m21 bar AB", d.m21), ("m22 bar BM", d.m22), ("m3 rocker", d.m3)] {
+            t.row(vec![q.into(), num(m), "kg".into()]);
+        }
+        for f in &d.forces {
+            let range =
+                f.range.map_or(String::new(), |r| format!(" for φ1 ∈ [{}°, {}°]", num(r.from_deg), num(r.to_deg)));
+            t.row(vec![format!("F at {:?}{range}", f.at), pt(Point::from(f.value)), "N".into()]);
+        }
+    }
+    t
+}
+
+/// The report of a four-bar scene.
+pub(super) fn motion_report<'a>(
+    scene: &'a FourbarScene,
+    file: &str,
+    opts: &super::ReportOptions,
+    frame: Frame,
+) -> Result<(MotionReport<'a>, Csv, serde_json::Value, Vec<String>), Error> {
+    let spec = &scene.spec;
+    let g = spec.geometry;
+    let motion = solve_motion(spec).map_err(|e| Error::Solve { file: file.to_string(), source: e.into() })?;
+    let mut warnings = motion.warnings();
+    if motion.positions.is_empty() {
+        return Err(Error::Option {
+            option: "report".into(),
+            message: format!("{file}: no crank angle of the sweep can be assembled: there is nothing to report"),
+        });
+    }
+    let units = match scene.units {
+        Units::Si => ModelUnits::SI,
+        Units::Mm => ModelUnits::MM,
+    };
+    let show = Show {
+        velocity: spec.outputs.velocity,
+        acceleration: spec.outputs.acceleration,
+        forces: spec.outputs.forces && !motion.forces.is_empty(),
+        scales: crate::run::scale_choice(scene.frame_scales),
+    };
+    let mech = mechanism(&g, spec.omega1);
+    let sk = sketch(scene, &mech);
+    let step = spec.sweep.step_deg;
+    let from = spec.sweep.from_deg;
+    let values: Vec<f64> = motion.positions.iter().map(|p| deg(p.phi1)).collect();
+    let whole = motion.gaps.is_empty() && (values.len() as f64 * step - 360.0).abs() < 1e-6 * step;
+    let cyc = if whole { Cycle::Whole } else { Cycle::Open };
+    // The rocker's extremes, solved exactly.
+    let extremes = rocker_extremes(&g);
+    let mut extra: Vec<(Position, Option<Forces>)> = Vec::new();
+    let mut dead = Vec::new();
+    for (phi1, what) in &extremes {
+        let d = into_sweep(deg(*phi1), from);
+        if d > spec.sweep.to_deg + 1e-9 && !whole {
+            continue;
+        }
+        match run::solve_at(spec, g.branch, d) {
+            Ok((p, f)) => {
+                dead.push(Dead { drive: d, what: format!("rocker's extreme, {what}"), q: coordinates(&g, &p) });
+                extra.push((p, f));
+            }
+            Err(e) => warnings.push(format!("the rocker's extreme ({what}) is left out of the report: {e}")),
+        }
+    }
+    let axis = DriveAxis { name: "crank angle φ1", unit: "°", step };
+    let mut chosen = motion::choose(&values, axis, cyc, opts.positions.as_ref(), &dead)?;
+    let plan_idx: Vec<usize> = match &opts.positions {
+        Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
+        None => motion::evenly(values.len(), motion::PLAN_POSITIONS, cyc),
+    };
+    let base = if opts.positions.is_some() { 1 } else { 0 };
+    for c in &mut chosen {
+        if let At::Sample(k) = c.at
+            && let Some(i) = plan_idx.iter().position(|&p| p == k)
+        {
+            c.mark = (i + base).to_string();
+        }
+    }
+    let at = |a: At| -> (&Position, Option<&Forces>) {
+        match a {
+            At::Sample(k) => (&motion.positions[k], if show.forces { motion.forces.get(k) } else { None }),
+            At::Exact(i) => (&extra[i].0, extra[i].1.as_ref().filter(|_| show.forces)),
+        }
+    };
+    // The plan's dimensions and notes: the working angle, the swing, K.
+    let mut dimensions = Vec::new();
+    let mut notes = Vec::new();
+    if let [(pa, _), (pb, _)] = extra.as_slice() {
+        let sense = if spec.omega1 < 0.0 { -1.0 } else { 1.0 };
+        let fwd = (sense * (pb.phi1 - pa.phi1)).rem_euclid(std::f64::consts::TAU);
+        let (work, ret) = if fwd >= std::f64::consts::PI {
+            (fwd, std::f64::consts::TAU - fwd)
+        } else {
+            (std::f64::consts::TAU - fwd, fwd)
+        };
+        let theta = deg(work) - 180.0;
+        let k = work / ret;
+        let swing = deg((pa.phi3() - pb.phi3()).abs());
+        let swing = if swing > 180.0 { 360.0 - swing } else { swing };
+        let (first, second) = if sense * libm::sin(pb.phi3() - pa.phi3()) > 0.0 { (pa.b, pb.b) } else { (pb.b, pa.b) };
+        dimensions.push(PlanDimension::Angle {
+            vertex: g.c,
+            first,
+            second,
+            text: format!("ψ = {}°", sheet::number(swing)),
+        });
+        let (first, second) = if (sense > 0.0) == (fwd >= std::f64::consts::PI) { (pa.a, pb.a) } else { (pb.a, pa.a) };
+        dimensions.push(PlanDimension::Angle {
+            vertex: g.o1,
+            first,
+            second,
+            text: format!("{}°", sheet::number(deg(work))),
+        });
+        notes.push(format!("rocker swing ψ = {}°", sheet::number(swing)));
+        notes.push(format!(
+            "crank angles of the extremes: I φ1 = {}°, II φ1 = {}°",
+            sheet::number(dead[0].drive),
+            sheet::number(dead[1].drive)
+        ));
+        notes.push(format!(
+            "working stroke {}°, return {}° of crank angle",
+            sheet::number(deg(work)),
+            sheet::number(deg(ret))
+        ));
+        notes.push(format!("θ = {}°: K = (180° + θ)/(180° − θ) = {}", sheet::number(theta), sheet::number(k)));
+    }
+    notes.push(format!(
+        "positions of the plan: {}",
+        plan_idx
+            .iter()
+            .enumerate()
+            .map(|(i, &k)| format!("{} φ1 = {}°", i + base, motion::trimmed(values[k])))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    let plan: Vec<(String, Vec<f64>)> = plan_idx
+        .iter()
+        .enumerate()
+        .map(|(i, &k)| ((i + base).to_string(), coordinates(&g, &motion.positions[k])))
+        .collect();
+    let dead_drawn: Vec<(String, Vec<f64>)> = dead
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (crate::solve::linkage::structure::roman(i as u32 + 1), d.q.clone()))
+        .collect();
+    let structure = Structure::of(&mech, Some(&coordinates(&g, &motion.positions[0])));
+    let qs = run::reported(&spec.outputs, show.forces);
+    // The diagrams and the chosen positions on them.
+    let diagrams = run::diagrams(&motion, step, &qs, show.forces, units);
+    let gamma_marks =
+        crate::run::fourbar_teaching::gamma_marks(crate::solve::fourbar::transmission::gamma_min(&motion.positions));
+    let marked: Vec<MarkedDiagram> = diagrams
+        .iter()
+        .map(|(stem, d)| {
+            let marks = if stem == "gamma_deg" { gamma_marks.clone() } else { Marks::default() };
+            let points = motion::marks(&chosen, |c| {
+                let (p, f) = at(c.at);
+                let one = Motion {
+                    positions: vec![*p],
+                    forces: f.into_iter().copied().collect(),
+                    gaps: Vec::new(),
+                    dead_points: Vec::new(),
+                    grashof: motion.grashof,
+                };
+                let ds = run::diagrams(&one, step, &qs, show.forces, units);
+                let s = ds.iter().find(|(s, _)| s == stem)?.1.series.first()?.clone();
+                let (x, y) = (*s.x.first()?, *s.y.first()?);
+                (x.is_finite() && y.is_finite()).then(|| plot::place(d, &marks, x, y))
+            });
+            let drawing = if marks == Marks::default() { plot::diagram(d) } else { plot::diagram_marked(d, &marks) };
+            MarkedDiagram { drawing, marks: points }
+        })
+        .collect();
+    // The chosen positions' table: the run's CSV columns.
+    let picked = Motion {
+        positions: chosen.iter().map(|c| *at(c.at).0).collect(),
+        forces: if show.forces { chosen.iter().filter_map(|c| at(c.at).1.copied()).collect() } else { Vec::new() },
+        gaps: Vec::new(),
+        dead_points: Vec::new(),
+        grashof: motion.grashof,
+    };
+    let mut table = run::table(&picked, &qs, show.forces);
+    table.prepend_column("position", &chosen.iter().map(|c| c.mark.clone()).collect::<Vec<_>>());
+    // The printed sheet of each chosen position.
+    let mut curve = run::runs(&motion.positions, step, |p| p.m);
+    run::close_full_turn(&mut curve, &motion.positions, step);
+    let all_q: Vec<Vec<f64>> = motion.positions.iter().map(|p| coordinates(&g, p)).collect();
+    let rows = motion.positions.first().map_or(0, |p| {
+        run::sheet_table(p, if show.forces { motion.forces.first() } else { None }, &qs, units).rows.len()
+    });
+    let (external, loads) =
+        spec.dynamics.as_ref().map_or((&[][..], &[][..]), |d| (d.forces.as_slice(), d.loads.as_slice()));
+    let sheets = FourbarSheets::new(
+        frame.frame.paper,
+        &scene.name,
+        spec.omega1,
+        &g,
+        &motion.positions,
+        &curve,
+        show,
+        units,
+        rows,
+    )
+    .with_loads(external, loads);
+    let per_position = sheets.per_position();
+    let shared = Arc::new((motion, extra, qs));
+    let draw_position =
+        Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
+            let (motion, extra, qs) = &*shared;
+            let (p, f) = match c.at {
+                At::Sample(k) => (&motion.positions[k], if show.forces { motion.forces.get(k) } else { None }),
+                At::Exact(i) => (&extra[i].0, extra[i].1.as_ref().filter(|_| show.forces)),
+            };
+            let table = run::sheet_table(p, f, qs, units);
+            Ok(sheets.pages(&g, p, f, &table, (first, total)).pages.into_iter().map(|(_, d)| d).collect())
+        });
+    let summary = serde_json::json!({
+        "kind": "fourbar",
+        "mobility": structure.mobility.formula,
+        "mobility_at_placement": structure.mobility.actual,
+        "groups": structure.groups.iter().map(|s| serde_json::json!({"kind": s.group.kind_name(), "class": s.class, "order": s.order})).collect::<Vec<_>>(),
+        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "phi1_deg": c.drive})).collect::<Vec<_>>(),
+    });
+    let unit = scene.units.length();
+    let lists = vec![
+        "0 the frame (O1, C)".to_string(),
+        "1 crank O1A".into(),
+        "2 coupler ABM (one rigid link)".into(),
+        "3 rocker CB".into(),
+        "O1: revolute 0–1, A: revolute 1–2".into(),
+        "B: revolute 2–3, C: revolute 3–0".into(),
+        format!(
+            "ω1 = {} rad/s, {}",
+            sheet::number(spec.omega1.abs()),
+            if spec.omega1 < 0.0 { "clockwise" } else { "counter-clockwise" }
+        ),
+        "F: the load on the coupler (arrow not to scale)".into(),
+    ];
+    let r = MotionReport {
+        frame,
+        title: (
+            "Graph-analytical analysis of a four-bar linkage".into(),
+            format!("four-bar {} ({:?}, seed 003)", scene.name, g.grashof()),
+            data(scene),
+        ),
+        sketch: sk,
+        mechanism: mech,
+        structure,
+        motion: all_q,
+        plan,
+        dead: dead_drawn,
+        numbered: Some(Anchor { body: Attach::Body(0), local: Vector::new(g.l1, 0.0) }),
+        dimensions,
+        notes,
+        kinematic: (format!("φ1 = {}°", motion::trimmed(values[plan_idx.first().copied().unwrap_or(0)])), lists),
+        unit,
+        chosen,
+        position_pages: per_position,
+        draw_position,
+        diagrams: marked,
+    };
+    Ok((r, table, summary, warnings))
+}

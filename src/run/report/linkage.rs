@@ -1,0 +1,611 @@
+//! A linkage scene's report: solved by its Assur groups as `mechdraw run` solves it; the
+//! dead positions are the guided points' extremes (refined by the stroke's Newton
+//! iterations) or, without one, the extremes of the first body angle measured (refined on
+//! ω = 0); each chosen position gets the printed sheet's page at its own scales.
+
+use std::sync::Arc;
+
+use super::Frame;
+use super::motion::{self, At, Chosen, Cycle, Dead, DriveAxis, MotionReport};
+use crate::Error;
+use crate::figure::linkage::sheet::LinkageSheets;
+use crate::figure::report::diagrams::MarkedDiagram;
+use crate::figure::report::plan::PlanDimension;
+use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
+use crate::figure::report::table::{Align, PaperTable};
+use crate::figure::shared::plot::{self, Diagram, Marks, Series};
+use crate::figure::shared::sheet;
+use crate::geom::{Vector, deg};
+use crate::report::Csv;
+use crate::run::linkage as run;
+use crate::scene::linkage::{LinkageScene, MeasureTarget, Quantity};
+use crate::solve::linkage::{
+    Anchor, AssurSolver, Attach, DriverTarget, Dynamics, Forces, JointKind, LoadAction, Solver, State, Structure, place,
+};
+
+/// Newton iterations allowed to refine a body angle's extreme on ω = 0.
+const REFINE_ITERATIONS: usize = 20;
+/// Relative change of t at which that refinement stops.
+const REFINE_TOL_REL: f64 = 1e-14;
+
+/// What the report solved: the samples, and the positions it added (the dead ones).
+struct Solved {
+    states: Vec<State>,
+    forces: Option<Vec<Forces>>,
+    extra: Vec<State>,
+    extra_forces: Vec<Forces>,
+}
+
+impl Solved {
+    fn state(&self, at: At) -> &State {
+        match at {
+            At::Sample(k) => &self.states[k],
+            At::Exact(i) => &self.extra[i],
+        }
+    }
+    fn force(&self, at: At) -> Option<&Forces> {
+        match at {
+            At::Sample(k) => self.forces.as_ref().and_then(|f| f.get(k)),
+            At::Exact(i) => self.extra_forces.get(i),
+        }
+    }
+}
+
+/// Solves at `t` continuing from sample `k`, with the forces when `dynamics` is given.
+fn solve_at(
+    assur: &mut AssurSolver,
+    from: &State,
+    t: f64,
+    dynamics: Option<&Dynamics>,
+) -> Result<(State, Option<Forces>), crate::solve::linkage::LinkageError> {
+    assur.resume(from);
+    match dynamics {
+        Some(d) => {
+            let (mut s, mut f) = assur.run_kinetostatics(&[t], d)?;
+            Ok((s.remove(0), f.pop()))
+        }
+        None => Ok((assur.run(&[t])?.remove(0), None)),
+    }
+}
+
+/// The sample nearest `t`.
+fn nearest_sample(states: &[State], t: f64) -> usize {
+    let mut best = 0;
+    for (k, s) in states.iter().enumerate() {
+        if (s.t - t).abs() < (states[best].t - t).abs() {
+            best = k;
+        }
+    }
+    best
+}
+
+/// The extremes of body `b`'s angle over the samples, refined on ω = 0 (Newton on t with
+/// ε the derivative): (t, what) for the smallest and the largest.
+fn body_extremes(assur: &mut AssurSolver, states: &[State], b: usize, name: &str) -> Vec<(f64, String)> {
+    let angle = |s: &State| s.q[3 * b + 2];
+    let (mut kmin, mut kmax) = (0, 0);
+    for (k, s) in states.iter().enumerate() {
+        if angle(s) < angle(&states[kmin]) {
+            kmin = k;
+        }
+        if angle(s) > angle(&states[kmax]) {
+            kmax = k;
+        }
+    }
+    let mut out = Vec::new();
+    for (k, what) in [(kmin, format!("smallest angle of the {name}")), (kmax, format!("largest angle of the {name}"))] {
+        // An extreme at an end of an open motion is not a dead position.
+        if k == 0 || k + 1 == states.len() {
+            continue;
+        }
+        let mut t = states[k].t;
+        for _ in 0..REFINE_ITERATIONS {
+            let Ok(s) = assur.run(&[t]).map(|mut v| v.remove(0)) else { break };
+            let (_, w, e) = s.angular(Attach::Body(b));
+            if e == 0.0 || !e.is_finite() {
+                break;
+            }
+            let next = t - w / e;
+            if !next.is_finite() || (next - states[k].t).abs() > 2.0 * (states[1].t - states[0].t).abs() {
+                break;
+            }
+            let done = (next - t).abs() <= REFINE_TOL_REL * t.abs().max(1.0);
+            t = next;
+            if done {
+                break;
+            }
+            assur.resume(&states[k]);
+        }
+        out.push((t, what));
+    }
+    out
+}
+
+/// The linkage's mechanism as the report draws it.
+fn sketch(scene: &LinkageScene) -> Sketch {
+    let figure = run::figure_of(scene);
+    let mech = &scene.mechanism;
+    let t0 = scene.times[0];
+    let driver = mech.angular_driver().and_then(|(d, body)| {
+        let Attach::Body(b) = body else { return None };
+        let pivot = mech.joints.iter().find_map(|j| match j.kind {
+            JointKind::Revolute { a, b: bb } if a.body == body && bb.body == Attach::Ground => Some(a),
+            JointKind::Revolute { a, b: bb } if bb.body == body && a.body == Attach::Ground => Some(bb),
+            _ => None,
+        })?;
+        let rate = d.law.eval(t0).d1;
+        let sub = run::body_symbol(scene, body);
+        Some(DriverMark { body: b, pivot, sense: if rate < 0.0 { -1.0 } else { 1.0 }, symbol: format!("ω{sub}") })
+    });
+    let loads = scene
+        .dynamics
+        .iter()
+        .flat_map(|d| d.loads.iter())
+        .filter_map(|l| match &l.action {
+            LoadAction::Force { at, force } => {
+                let t = l.window.map_or(t0, |w| 0.5 * (w.from + w.to));
+                Some(LoadMark { at: *at, direction: Vector::new(force[0].at(t), force[1].at(t)), name: l.name.clone() })
+            }
+            LoadAction::Torque { .. } => None,
+        })
+        .collect();
+    Sketch { figure, names: mech.bodies.iter().map(|b| b.name.clone()).collect(), driver, loads }
+}
+
+/// Significant digits of the title page's data.
+const DATA_DIGITS: u32 = 6;
+
+/// The title page's data: the ground points, each link's lengths, the masses, the driver,
+/// the loads, gravity and the time range.
+fn data(scene: &LinkageScene) -> PaperTable {
+    let u = scene.units.length();
+    let mut t = PaperTable::new(&["quantity", "value", "unit"], &[Align::Left, Align::Right, Align::Left]);
+    // Six significant digits: what a student copies from the data sheet.
+    let num = |v: f64| crate::figure::report::page::significant(v, DATA_DIGITS);
+    for (name, p) in &scene.ground_points {
+        t.row(vec![format!("ground point {name}"), format!("({}, {})", num(p.x), num(p.y)), u.into()]);
+    }
+    let mech = &scene.mechanism;
+    for (i, b) in mech.bodies.iter().enumerate() {
+        let pts = &b.points;
+        let sides = if pts.len() >= 3 { pts.len() } else { pts.len().saturating_sub(1) };
+        for k in 0..sides {
+            let (a, c) = (&pts[k], &pts[(k + 1) % pts.len()]);
+            t.row(vec![format!("link {} {}: {}{}", i + 1, b.name, a.0, c.0), num((c.1 - a.1).norm()), u.into()]);
+        }
+        if let Some(m) =
+            scene.dynamics.as_ref().and_then(|d| d.bodies.get(i)).filter(|m| m.mass > 0.0 || m.inertia > 0.0)
+        {
+            t.row(vec![format!("m{} ({})", i + 1, b.name), num(m.mass), "kg".into()]);
+            t.row(vec![format!("J{} about its centroid", i + 1), num(m.inertia), "kg·m²".into()]);
+        }
+    }
+    for d in &mech.drivers {
+        let j = d.law.eval(scene.times[0]);
+        t.row(vec![format!("driver {}: law", d.name), d.law.source().to_string(), String::new()]);
+        let rate_unit = match d.target {
+            DriverTarget::JointDistance(_) => format!("{u}/s"),
+            DriverTarget::BodyAngle(_) | DriverTarget::JointAngle(_) => "rad/s".into(),
+        };
+        t.row(vec![format!("driver {}: rate at t = {}", d.name, num(scene.times[0])), num(j.d1), rate_unit]);
+    }
+    if let Some(dy) = &scene.dynamics {
+        t.row(vec!["g".into(), format!("({}, {})", num(dy.gravity.x), num(dy.gravity.y)), "m/s²".into()]);
+        for l in &dy.loads {
+            let when = l.window.map_or(String::new(), |w| format!(", t ∈ [{}, {}] s", num(w.from), num(w.to)));
+            match &l.action {
+                LoadAction::Force { at, force } => t.row(vec![
+                    format!("load {} at {}{when}", l.name, scene.point_name(*at).unwrap_or("?")),
+                    format!("({}, {})", force[0].text(), force[1].text()),
+                    "N".into(),
+                ]),
+                LoadAction::Torque { body, torque } => t.row(vec![
+                    format!("torque {} on {}{when}", l.name, mech.bodies[*body].name),
+                    torque.text(),
+                    "N·m".into(),
+                ]),
+            }
+        }
+    }
+    let (a, b) = (scene.times[0], scene.times[scene.times.len() - 1]);
+    t.row(vec!["time".into(), format!("{} … {} in {} steps", num(a), num(b), scene.times.len() - 1), "s".into()]);
+    t
+}
+
+/// Four significant digits, as the plan's notes write times, strokes and ratios.
+fn sig(v: f64) -> String {
+    crate::figure::report::page::significant(v, 4)
+}
+
+/// ` (φ1 = 335.4°)`: the angular driver's angle at `t`, or nothing.
+fn angle_note(scene: &LinkageScene, t: f64) -> String {
+    scene.mechanism.angular_driver().map_or(String::new(), |(d, body)| {
+        format!(" (φ{} = {}°)", run::body_symbol(scene, body), sig(deg(d.law.eval(t).value).rem_euclid(360.0)))
+    })
+}
+
+/// The plan's note of a guided point's stroke: H, K and the strokes' times.
+fn stroke_note(scene: &LinkageScene, g: &run::Guided) -> String {
+    let st = &g.stroke;
+    let mut s = format!("stroke of {}: H = {} {}", g.measure.symbol, sig(st.h), scene.units.length());
+    match &st.cycle {
+        Ok(c) => s.push_str(&format!(
+            ", K = {}: working stroke {} s from t = {} s{}, return {} s",
+            sig(c.k),
+            sig(c.working_time),
+            sig(st.start.t),
+            angle_note(scene, st.start.t),
+            sig(c.return_time)
+        )),
+        Err(why) => s.push_str(&format!("; K not reported: {}", why.text())),
+    }
+    s
+}
+
+/// Whether the motion's last sample repeats its first (the driver turns whole turns).
+fn cycle(scene: &LinkageScene) -> Cycle {
+    let Some((d, _)) = scene.mechanism.angular_driver() else { return Cycle::Open };
+    let (a, b) = (scene.times[0], scene.times[scene.times.len() - 1]);
+    let turns = (d.law.eval(b).value - d.law.eval(a).value) / std::f64::consts::TAU;
+    if turns.abs() >= 1.0 - 1e-9 && (turns - turns.round()).abs() < 1e-9 { Cycle::Closes } else { Cycle::Open }
+}
+
+/// A chosen position's label with the driver's angle (`t = 0.25 s (φ1 = 90°)`).
+fn with_angle(scene: &LinkageScene, c: &mut Chosen) {
+    if let Some((d, body)) = scene.mechanism.angular_driver() {
+        let phi = deg(d.law.eval(c.drive).value);
+        c.label.push_str(&format!(
+            " (φ{} = {}°)",
+            run::body_symbol(scene, body),
+            motion::trimmed((phi * 1e4).round() / 1e4)
+        ));
+    }
+}
+
+/// The report of a linkage scene.
+pub(super) fn motion_report<'a>(
+    scene: &'a LinkageScene,
+    file: &str,
+    opts: &super::ReportOptions,
+    frame: Frame,
+) -> Result<(MotionReport<'a>, Csv, serde_json::Value, Vec<String>), Error> {
+    let serr = |e: crate::solve::linkage::LinkageError| Error::Solve { file: file.to_string(), source: e.into() };
+    let mech = &scene.mechanism;
+    let mut assur = AssurSolver::new(mech.clone()).map_err(serr)?;
+    let dynamics = scene.dynamics.as_ref().filter(|_| scene.outputs.forces);
+    let (states, forces) = match dynamics {
+        Some(d) => {
+            let (s, f) = assur.run_kinetostatics(&scene.times, d).map_err(serr)?;
+            (s, Some(f))
+        }
+        None => (assur.run(&scene.times).map_err(serr)?, None),
+    };
+    let mut general = Solver::new(mech.clone()).map_err(serr)?;
+    let strokes = run::guided_strokes(scene, &mut general, &states).map_err(serr)?;
+    let mut warnings = Vec::new();
+    // The dead positions: the guided points' extremes, else a measured body angle's.
+    let mut extremes: Vec<(f64, String)> = Vec::new();
+    for g in &strokes {
+        let sym = &g.measure.symbol;
+        let (first, second) = match &g.stroke.cycle {
+            Ok(_) => ("start of the working stroke", "end of the working stroke"),
+            Err(_) => ("one extreme", "the other extreme"),
+        };
+        extremes.push((g.stroke.start.t, format!("{first} of {sym}")));
+        extremes.push((g.stroke.end.t, format!("{second} of {sym}")));
+    }
+    if extremes.is_empty()
+        && let Some(b) = scene.measures.iter().find_map(|m| match m.target {
+            MeasureTarget::Body(Attach::Body(b)) if m.quantities.contains(&Quantity::Angle) => Some(b),
+            _ => None,
+        })
+    {
+        let k0 = 0;
+        assur.resume(&states[k0]);
+        extremes = body_extremes(&mut assur, &states, b, &mech.bodies[b].name);
+    }
+    let mut solved = Solved { states, forces, extra: Vec::new(), extra_forces: Vec::new() };
+    let mut dead = Vec::new();
+    for (t, what) in extremes {
+        let k = nearest_sample(&solved.states, t);
+        match solve_at(&mut assur, &solved.states[k], t, dynamics) {
+            Ok((s, f)) => {
+                dead.push(Dead { drive: t, what, q: s.q.clone() });
+                solved.extra.push(s);
+                solved.extra_forces.extend(f);
+            }
+            Err(e) => warnings.push(format!("the {what} at t = {t} s is left out of the report: {e}")),
+        }
+    }
+    let times: Vec<f64> = solved.states.iter().map(|s| s.t).collect();
+    let step = (scene.times[1] - scene.times[0]).abs();
+    let axis = DriveAxis { name: "time t", unit: " s", step };
+    let cyc = cycle(scene);
+    let mut chosen = motion::choose(&times, axis, cyc, opts.positions.as_ref(), &dead)?;
+    // The plan: the positions asked for, or twelve evenly spaced (numbered from 0).
+    let plan_idx: Vec<usize> = match &opts.positions {
+        Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
+        None => motion::evenly(times.len(), motion::PLAN_POSITIONS, cyc),
+    };
+    let base = if opts.positions.is_some() { 1 } else { 0 };
+    for c in &mut chosen {
+        if let At::Sample(k) = c.at
+            && let Some(i) = plan_idx.iter().position(|&p| p == k)
+        {
+            c.mark = (i + base).to_string();
+        }
+        with_angle(scene, c);
+    }
+    let plan: Vec<(String, Vec<f64>)> =
+        plan_idx.iter().enumerate().map(|(i, &k)| ((i + base).to_string(), solved.states[k].q.clone())).collect();
+    let dead_drawn: Vec<(String, Vec<f64>)> = dead
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (crate::solve::linkage::structure::roman(i as u32 + 1), d.q.clone()))
+        .collect();
+    let sk = sketch(scene);
+    let numbered = sk.driver.as_ref().and_then(|dm| {
+        let pivot = place(&solved.states[0].q, dm.pivot.body, dm.pivot.local);
+        sk.figure
+            .bodies
+            .get(dm.body)?
+            .points
+            .iter()
+            .max_by(|a, b| {
+                let da = (place(&solved.states[0].q, Attach::Body(dm.body), a.1) - pivot).norm();
+                let db = (place(&solved.states[0].q, Attach::Body(dm.body), b.1) - pivot).norm();
+                da.total_cmp(&db)
+            })
+            .map(|(_, v)| Anchor { body: Attach::Body(dm.body), local: *v })
+    });
+    let unit = scene.units.length();
+    let mut dimensions = Vec::new();
+    let mut notes = Vec::new();
+    for g in &strokes {
+        let st = &g.stroke;
+        dimensions.push(PlanDimension::Stroke {
+            from: st.start.at,
+            to: st.end.at,
+            text: format!("H = {} {unit}", sig(st.h)),
+        });
+        notes.push(stroke_note(scene, g));
+    }
+    for (i, d) in dead.iter().enumerate() {
+        notes.push(format!(
+            "{}: {} at t = {} s{}",
+            crate::solve::linkage::structure::roman(i as u32 + 1),
+            d.what,
+            sig(d.drive),
+            angle_note(scene, d.drive)
+        ));
+    }
+    notes.push(format!(
+        "positions of the plan: {}",
+        plan_idx
+            .iter()
+            .enumerate()
+            .map(|(i, &k)| format!("{} (t = {} s)", i + base, sig(times[k])))
+            .collect::<Vec<_>>()
+            .join(", ")
+    ));
+    let structure = Structure::of(mech, Some(&solved.states[0].q));
+    let lists = kinematic_lists(scene);
+    let kin_label = format!("t = {} s", motion::trimmed(times[plan_idx.first().copied().unwrap_or(0)]));
+    // The diagrams of the run, with the chosen positions' points.
+    let diagrams = marked_diagrams(scene, &solved, &strokes, &chosen);
+    let table = chosen_table(scene, &solved, &chosen);
+    // The printed sheet of each chosen position.
+    let paper = frame.frame.paper;
+    let figure = run::figure_of(scene);
+    let p = &scene.polygons;
+    let out = scene.outputs;
+    let show = crate::figure::linkage::frame::Show {
+        velocity: p.velocity && out.velocity,
+        acceleration: p.acceleration && out.acceleration,
+        forces: p.forces && out.forces,
+        points: p.points.clone(),
+        per_body: p.per_body,
+        scales: crate::run::scale_choice(scene.frame_scales),
+    };
+    // The run's plots (each table row's series, to read a position's value against) and the
+    // table's most rows over the run, as `run --sheets` lays its sheets out.
+    let all_plots: Vec<run::Plot> = scene
+        .measures
+        .iter()
+        .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+        .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, &strokes))
+        .collect();
+    let rows = (0..solved.states.len())
+        .map(|k| {
+            let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
+            run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))).rows.len()
+        })
+        .max()
+        .unwrap_or(0);
+    let sheets = LinkageSheets::new(
+        paper,
+        &scene.name,
+        &scene.mechanism,
+        &figure,
+        &solved.states,
+        show.clone(),
+        solved.forces.is_some(),
+        rows,
+    );
+    let per_position = sheets.per_position();
+    let solved = Arc::new(solved);
+    let strokes_owned: Arc<Vec<(String, Vector, crate::solve::stroke::Stroke)>> =
+        Arc::new(strokes.iter().map(|g| (g.measure.label.clone(), g.guide, g.stroke.clone())).collect());
+    let draw_solved = solved.clone();
+    let series: Arc<Vec<Vec<f64>>> = Arc::new(all_plots.into_iter().map(|p| p.values).collect());
+    let draw_position =
+        Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
+            let state = draw_solved.state(c.at);
+            let force = draw_solved.force(c.at);
+            let strokes: Vec<run::Guided> = strokes_owned
+                .iter()
+                .filter_map(|(label, guide, stroke)| {
+                    let measure = scene.measures.iter().find(|m| &m.label == label)?;
+                    Some(run::Guided { measure, guide: *guide, stroke: stroke.clone() })
+                })
+                .collect();
+            // The table's values: the position's, after the run's (so that a value is read
+            // against its series' largest, as `run --sheets` reads it).
+            let plots: Vec<run::Plot> = scene
+                .measures
+                .iter()
+                .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+                .zip(series.iter())
+                .map(|((m, q), whole)| {
+                    let mut p = run::plot_of(scene, m, q, std::slice::from_ref(state), &strokes);
+                    p.values.splice(0..0, whole.iter().copied());
+                    p
+                })
+                .collect();
+            let force = scene.dynamics.as_ref().zip(force);
+            let table = run::sheet_table(scene, &plots, draw_solved.states.len(), force.map(|(d, f)| (d, state, f)));
+            let pages = sheets.pages(&scene.mechanism, state, force, &table, (first, total));
+            Ok(pages.into_iter().map(|(_, drawing)| drawing).collect())
+        });
+    let summary = serde_json::json!({
+        "kind": "linkage",
+        "mobility": structure.mobility.formula,
+        "mobility_at_placement": structure.mobility.actual,
+        "groups": structure.groups.iter().map(|g| serde_json::json!({
+            "kind": g.group.kind_name(),
+            "bodies": g.group.bodies.iter().map(|&b| mech.bodies[b].name.clone()).collect::<Vec<_>>(),
+            "class": g.class,
+            "order": g.order,
+        })).collect::<Vec<_>>(),
+        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "t": c.drive})).collect::<Vec<_>>(),
+    });
+    let r = MotionReport {
+        frame,
+        title: (
+            "Graph-analytical analysis of a planar linkage".into(),
+            format!("linkage {} ({} bodies, {} joints)", scene.name, mech.bodies.len(), mech.joints.len()),
+            data(scene),
+        ),
+        sketch: sk,
+        mechanism: mech.clone(),
+        structure,
+        motion: solved.states.iter().map(|s| s.q.clone()).collect(),
+        plan,
+        dead: dead_drawn,
+        numbered,
+        dimensions,
+        notes,
+        kinematic: (kin_label, lists),
+        unit,
+        chosen,
+        position_pages: per_position,
+        draw_position,
+        diagrams,
+    };
+    Ok((r, table, summary, warnings))
+}
+
+/// The kinematic diagram's lists: links, joints, drivers, loads.
+fn kinematic_lists(scene: &LinkageScene) -> Vec<String> {
+    let mech = &scene.mechanism;
+    let mut out = vec!["0 the frame".to_string()];
+    for (i, b) in mech.bodies.iter().enumerate() {
+        let pts: Vec<&str> = b.points.iter().map(|(n, _)| n.as_str()).collect();
+        out.push(format!("{} {} ({})", i + 1, b.name, pts.join(", ")));
+    }
+    let number = |a: Attach| match a {
+        Attach::Ground => 0,
+        Attach::Body(b) => b + 1,
+    };
+    for j in &mech.joints {
+        out.push(match j.kind {
+            JointKind::Revolute { a, b } => format!("{}: revolute {}–{}", j.name, number(a.body), number(b.body)),
+            JointKind::Prismatic { point, q1, .. } => {
+                format!("{}: prismatic, {} on a guide of {}", j.name, number(point.body), number(q1.body))
+            }
+        });
+    }
+    for d in &mech.drivers {
+        out.push(format!("driver {}: {}", d.name, d.law.source()));
+    }
+    for l in scene.dynamics.iter().flat_map(|d| d.loads.iter()) {
+        let when = l
+            .window
+            .map_or(String::new(), |w| format!(" for t ∈ [{}, {}] s", sheet::number(w.from), sheet::number(w.to)));
+        out.push(format!("load {}{when} (arrow not to scale)", l.name));
+    }
+    out
+}
+
+/// The run's diagrams (each measured quantity, each reaction, each driver), with the
+/// chosen positions placed on them.
+fn marked_diagrams(
+    scene: &LinkageScene,
+    solved: &Solved,
+    strokes: &[run::Guided],
+    chosen: &[Chosen],
+) -> Vec<MarkedDiagram> {
+    let series = |states: &[State], forces: Option<&[Forces]>| -> Vec<Diagram> {
+        let (x_label, x) = run::abscissa(scene, states);
+        let mut out: Vec<Diagram> = scene
+            .measures
+            .iter()
+            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+            .map(|(m, q)| {
+                let p = run::plot_of(scene, m, q, states, strokes);
+                Diagram {
+                    title: p.title,
+                    x_label: x_label.clone(),
+                    y_label: p.y_label,
+                    series: vec![Series { label: String::new(), x: x.clone(), y: p.values }],
+                }
+            })
+            .collect();
+        if let Some(f) = forces {
+            out.extend(run::force_diagrams(scene, f, &x_label, &x).into_iter().map(|(_, d)| d));
+        }
+        out
+    };
+    let all = series(&solved.states, solved.forces.as_deref());
+    let picked: Vec<State> = chosen.iter().map(|c| solved.state(c.at).clone()).collect();
+    let picked_forces: Option<Vec<Forces>> =
+        solved.forces.as_ref().map(|_| chosen.iter().filter_map(|c| solved.force(c.at).cloned()).collect());
+    let at_chosen = series(&picked, picked_forces.as_deref());
+    all.iter()
+        .zip(&at_chosen)
+        .map(|(d, c)| {
+            let marks = Marks::default();
+            let points = motion::marks(chosen, |ch| {
+                let i = chosen.iter().position(|x| x == ch)?;
+                let s = c.series.first()?;
+                let (x, y) = (*s.x.get(i)?, *s.y.get(i)?);
+                (x.is_finite() && y.is_finite()).then(|| plot::place(d, &marks, x, y))
+            });
+            MarkedDiagram { drawing: plot::diagram(d), marks: points }
+        })
+        .collect()
+}
+
+/// The chosen positions' values: the run's CSV columns, a row per position.
+fn chosen_table(scene: &LinkageScene, solved: &Solved, chosen: &[Chosen]) -> Csv {
+    let picked: Vec<State> = chosen.iter().map(|c| solved.state(c.at).clone()).collect();
+    let cols = run::columns(scene, &picked);
+    let force_cols = solved
+        .forces
+        .as_ref()
+        .map(|_| {
+            let f: Vec<Forces> = chosen.iter().filter_map(|c| solved.force(c.at).cloned()).collect();
+            run::force_columns(scene, &f)
+        })
+        .unwrap_or_default();
+    let header =
+        ["position", "t"].into_iter().map(String::from).chain(cols.iter().chain(&force_cols).map(|c| c.name.clone()));
+    let mut csv = Csv::new(header);
+    for (i, c) in chosen.iter().enumerate() {
+        let row = std::iter::once(c.mark.clone())
+            .chain(std::iter::once(crate::report::number(picked[i].t)))
+            .chain(cols.iter().chain(&force_cols).map(|col| crate::report::number(col.values[i])));
+        csv.row_text(row);
+    }
+    csv
+}
