@@ -5,6 +5,7 @@ pub mod expr;
 pub mod fourbar;
 pub mod linkage;
 pub mod stroke;
+pub mod tolerance;
 pub mod triad;
 
 /// A solver failure, by mechanism kind.
