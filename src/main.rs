@@ -68,7 +68,32 @@ enum Command {
         /// `exploded` (plain lines, arcs, arrowheads and text that every reader shows).
         #[arg(long, value_name = "HOW", default_value = "entities")]
         dxf_dimensions: Dimensions,
+        /// Scenes with [tolerances]: run only the share K of N of the Monte Carlo and write its
+        /// partial statistics, DIR/<name>-shard-K-of-N.json, for `mechdraw merge` (any batch
+        /// engine can run the shards: docs/tolerances.md).
+        #[arg(long, value_name = "K/N")]
+        shard: Option<String>,
         /// No progress bar and no report on stderr.
+        #[arg(short, long)]
+        quiet: bool,
+    },
+    /// Merge the shards of a tolerance study (`run --shard K/N`) into exactly the statistics
+    /// of one run with the same seed, and write its tolerance files: <name>-tolerances.csv,
+    /// <name>-contributions.csv, <name>.json (its `tolerances`), the band drawing, the
+    /// diagrams and charts.
+    Merge {
+        /// The shard files, every K of one N once.
+        shards: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(short, long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON summary on stdout.
+        #[arg(long)]
+        json: bool,
+        /// Also write PNG copies of the drawings and diagrams.
+        #[arg(long)]
+        png: bool,
+        /// No report on stderr.
         #[arg(short, long)]
         quiet: bool,
     },
@@ -102,6 +127,35 @@ enum Command {
     },
 }
 
+/// Prints a run's JSON (when asked), warnings, report and written files.
+fn finish(outcome: mechdraw::run::Outcome, json: bool, quiet: bool) -> anyhow::Result<()> {
+    if json {
+        print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
+    }
+    if !quiet {
+        for w in &outcome.warnings {
+            eprintln!("warning: {w}");
+        }
+        if !outcome.report.is_empty() {
+            eprintln!("{}", outcome.report.trim_end());
+        }
+        for f in &outcome.written {
+            eprintln!("wrote {}", f.display());
+        }
+    }
+    Ok(())
+}
+
+/// `--shard K/N`.
+fn parse_shard(spec: &str) -> Result<(u64, u64), mechdraw::Error> {
+    let bad = || mechdraw::Error::Option {
+        option: "--shard".into(),
+        message: format!("`{spec}` is not K/N (e.g. 2/4: the second of four shards)"),
+    };
+    let (k, n) = spec.split_once('/').ok_or_else(bad)?;
+    Ok((k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?))
+}
+
 fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
     set.iter().map(|s| s.parse::<Override>().map_err(mechdraw::Error::from)).collect()
 }
@@ -131,8 +185,25 @@ fn main() -> ExitCode {
 
 fn run(cli: Cli) -> anyhow::Result<()> {
     match cli.command {
-        Command::Run { scene, out, set, json, png, no_frames, sheets, drag, dxf_version, dxf_dimensions, quiet } => {
+        Command::Run {
+            scene,
+            out,
+            set,
+            json,
+            png,
+            no_frames,
+            sheets,
+            drag,
+            dxf_version,
+            dxf_dimensions,
+            shard,
+            quiet,
+        } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            if let Some(spec) = shard {
+                let outcome = mechdraw::run::run_shard(&loaded, parse_shard(&spec)?, &set, &out)?;
+                return finish(outcome, json, quiet);
+            }
             let opts = RunOptions {
                 out_dir: Some(out),
                 png,
@@ -145,21 +216,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 picture_only: false,
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
-            if json {
-                print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
-            }
-            if !quiet {
-                for w in &outcome.warnings {
-                    eprintln!("warning: {w}");
-                }
-                if !outcome.report.is_empty() {
-                    eprintln!("{}", outcome.report.trim_end());
-                }
-                for f in &outcome.written {
-                    eprintln!("wrote {}", f.display());
-                }
-            }
-            Ok(())
+            finish(outcome, json, quiet)
+        }
+        Command::Merge { shards, out, json, png, quiet } => {
+            let opts = RunOptions { out_dir: Some(out), png, ..RunOptions::default() };
+            let outcome = mechdraw::run::merge(&shards, &opts)?;
+            finish(outcome, json, quiet)
         }
         Command::Web { scenes, out } => {
             let scenes: Vec<(String, String)> = if scenes.is_empty() {

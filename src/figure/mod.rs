@@ -10,4 +10,5 @@ pub mod chain;
 pub mod fourbar;
 pub mod linkage;
 pub mod shared;
+pub mod tolerances;
 pub mod triad;

@@ -13,9 +13,12 @@ pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
 pub mod products;
+mod tolerance;
 mod triad;
 
 pub use products::Products;
+#[cfg(feature = "cli")]
+pub use tolerance::{merge, run_shard};
 
 use std::path::PathBuf;
 

@@ -10,6 +10,7 @@
 pub mod chain;
 pub mod fourbar;
 pub mod linkage;
+pub mod tolerance;
 mod overrides;
 pub mod triad;
 

@@ -107,27 +107,31 @@ pub fn ranges(linear: &[Option<Vec<Linear>>], components: usize) -> Vec<(f64, f6
     out
 }
 
+/// Each position's dead-point note ([`Sensitive::dead_point`]; at a singular position,
+/// that the sensitivities are unbounded).
+pub fn dead_points<M: Sensitive>(model: &M, dims: &[Dimension], linear: &[Option<Vec<Linear>>]) -> Vec<Option<String>> {
+    (0..model.positions())
+        .map(|k| match linear[k] {
+            None => Some("dead point: the sensitivities are unbounded".to_string()),
+            Some(_) => model.dead_point(k, dims),
+        })
+        .collect()
+}
+
 /// Where the linear result is not to be trusted, per position (empty: trusted): a dead
-/// point near ([`Sensitive::dead_point`]), samples that cannot be assembled there, or a
+/// point near (`dead`, from [`dead_points`]), samples that cannot be assembled there, or a
 /// component whose Monte Carlo σ differs from the linear σ by more than `fraction` of it
 /// (or whose mean departs from the linear mean shift by more than `fraction` of σ).
-pub fn verdicts<M: Sensitive>(
-    model: &M,
-    dims: &[Dimension],
+pub fn verdicts(
+    dead: &[Option<String>],
     comps: &[Component],
     linear: &[Option<Vec<Linear>>],
-    mc: Option<&MonteCarlo>,
+    mc: &MonteCarlo,
     fraction: f64,
 ) -> Vec<Vec<String>> {
-    (0..model.positions())
+    (0..dead.len())
         .map(|k| {
-            let mut notes = Vec::new();
-            if linear[k].is_none() {
-                notes.push("dead point: the sensitivities are unbounded".to_string());
-            } else if let Some(why) = model.dead_point(k, dims) {
-                notes.push(why);
-            }
-            let Some(mc) = mc else { return notes };
+            let mut notes: Vec<String> = dead[k].iter().cloned().collect();
             if mc.failed_at[k] > 0 {
                 notes.push(format!("{} samples cannot be assembled here", mc.failed_at[k]));
             }
@@ -135,8 +139,8 @@ pub fn verdicts<M: Sensitive>(
             for (c, comp) in comps.iter().enumerate() {
                 let Some(s) = mc.tallies[k * comps.len() + c].summary() else { continue };
                 let l = &lin[c];
-                // σ at rounding level on both sides: nothing to compare.
-                if l.sigma <= 1e-9 * l.worst_case.max(f64::MIN_POSITIVE) || l.sigma == 0.0 {
+                // σ at rounding level: nothing to compare.
+                if l.sigma == 0.0 || l.sigma <= 1e-9 * l.worst_case {
                     continue;
                 }
                 let ratio = s.sigma / l.sigma;
