@@ -16,8 +16,8 @@ use crate::scene::tolerance::Settings;
 use crate::solve::tolerance::fourbar::{FourbarModel, FourbarOutput};
 use crate::solve::tolerance::monte_carlo::{self, chunk_count};
 use crate::solve::tolerance::{
-    self, Component, Dimension, Linear, Model, MonteCarlo, Projection, Summary, Tally, dead_points, linear_all,
-    ranges, verdicts,
+    self, Component, Dimension, Linear, Model, MonteCarlo, Projection, Summary, Tally, dead_points, linear_all, ranges,
+    verdicts,
 };
 
 /// The abscissa of a study: the scene's position column.
@@ -98,7 +98,14 @@ fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<WatchedPath>
                 comps.push(comp("y", true, Projection::Channel(ch + 1)));
                 paths.push(WatchedPath {
                     name: name.to_string(),
-                    points: (0..np).map(|k| Point::new(model.nominal()[k * model.channels() + ch], model.nominal()[k * model.channels() + ch + 1])).collect(),
+                    points: (0..np)
+                        .map(|k| {
+                            Point::new(
+                                model.nominal()[k * model.channels() + ch],
+                                model.nominal()[k * model.channels() + ch + 1],
+                            )
+                        })
+                        .collect(),
                     normals: normals.clone(),
                     normal: comps.len(),
                 });
@@ -152,10 +159,7 @@ pub(crate) fn fourbar(
     let chunks = chunks.unwrap_or(0..chunk_count(s.samples));
     let mc = monte_carlo::run(&model, &dims, &comps, &rs, s.bins, s.samples, s.seed, chunks);
     let nominal = nominal_values(&model, model.nominal(), &comps);
-    let sketch = positions
-        .first()
-        .map(|p| vec![(g.o1, p.a), (p.a, p.b), (p.b, p.m), (g.c, p.b)])
-        .unwrap_or_default();
+    let sketch = positions.first().map(|p| vec![(g.o1, p.a), (p.a, p.b), (p.b, p.m), (g.c, p.b)]).unwrap_or_default();
     Some(Study {
         name: scene.name.clone(),
         units: scene.units,
@@ -191,7 +195,9 @@ impl Study {
         extras.sheets.push(super::products::Sheet { suffix: "tolerance-band".into(), drawing: self.band_drawing() });
         for c in 0..self.comps.len() {
             let name = &self.comps[c].name;
-            extras.diagrams.push(super::products::Diagram { stem: format!("{name}-band"), drawing: self.band_diagram(c) });
+            extras
+                .diagrams
+                .push(super::products::Diagram { stem: format!("{name}-band"), drawing: self.band_diagram(c) });
         }
         for c in self.headline() {
             if let Some(drawing) = self.pareto(c) {
@@ -232,7 +238,11 @@ impl Study {
             Units::Si => crate::figure::shared::vocab::ModelUnits::SI,
             Units::Mm => crate::figure::shared::vocab::ModelUnits::MM,
         };
-        let title = format!("{}: tolerance bands of {}", self.name, self.paths.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", "));
+        let title = format!(
+            "{}: tolerance bands of {}",
+            self.name,
+            self.paths.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ")
+        );
         band_drawing(&paths, &self.sketch, units, self.settings.magnification, &title)
     }
 
@@ -513,7 +523,9 @@ impl Study {
         }
         let untrusted = notes.iter().filter(|n| !n.is_empty()).count();
         if untrusted > 0 {
-            out.push_str(&format!("  linear result not to be trusted at {untrusted} positions (see the note column)\n"));
+            out.push_str(&format!(
+                "  linear result not to be trusted at {untrusted} positions (see the note column)\n"
+            ));
         }
         out
     }
@@ -565,7 +577,12 @@ fn short(v: f64) -> String {
 }
 
 /// A shard's file: the scene it came from, which share of the chunks, and the counts.
-pub(crate) fn shard_json(study: &Study, scene: (&str, &str, &[String]), shard: (u64, u64), chunks: &Range<u64>) -> Value {
+pub(crate) fn shard_json(
+    study: &Study,
+    scene: (&str, &str, &[String]),
+    shard: (u64, u64),
+    chunks: &Range<u64>,
+) -> Value {
     let tallies: Vec<Value> = study
         .mc
         .tallies
@@ -704,7 +721,10 @@ pub(crate) fn merge_shards(study: &mut Study, shards: &[Shard]) -> Result<(), St
             return Err(format!("shard {}/{n} watches another set of positions or components", s.shard.0));
         }
         for (a, b) in s.mc.tallies.iter().zip(&study.mc.tallies) {
-            if a.lo.to_bits() != b.lo.to_bits() || a.width.to_bits() != b.width.to_bits() || a.counts.len() != b.counts.len() {
+            if a.lo.to_bits() != b.lo.to_bits()
+                || a.width.to_bits() != b.width.to_bits()
+                || a.counts.len() != b.counts.len()
+            {
                 return Err(format!(
                     "shard {}/{n} counted over other histogram ranges than this build computes: was it made by another version of mechdraw?",
                     s.shard.0
@@ -755,10 +775,8 @@ fn settings_of(scene: &crate::scene::Scene) -> Option<&Settings> {
 /// tolerances}`, its figures; the picture is its band drawing, which
 /// [`to_merged_files`] leaves out (it is also the `-tolerance-band` sheet).
 pub(crate) fn products(study: &Study, kind: &str) -> super::Products {
-    let mut extras = super::products::Extras {
-        summary: json!({ "kind": kind, "name": study.name }),
-        ..Default::default()
-    };
+    let mut extras =
+        super::products::Extras { summary: json!({ "kind": kind, "name": study.name }), ..Default::default() };
     let warnings = study.add_to(&mut extras);
     super::Products {
         name: study.name.clone(),
@@ -801,7 +819,8 @@ pub fn run_shard(
         .ok_or_else(|| option(format!("{file} has no [tolerances] table")))?;
     let name = loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
     let v = shard_json(&study, (&name, &loaded.text, sets), shard, &chunks);
-    let text = serde_json::to_string(&v).map_err(|e| crate::Error::Export { what: "shard".into(), message: e.to_string() })?;
+    let text =
+        serde_json::to_string(&v).map_err(|e| crate::Error::Export { what: "shard".into(), message: e.to_string() })?;
     let rel = format!("{}-shard-{k}-of-{n}.json", study.name);
     let mut out = super::output::Output::new(out_dir)?;
     out.write(&rel, text + "\n")?;
@@ -849,8 +868,8 @@ pub fn merge(paths: &[std::path::PathBuf], opts: &super::RunOptions) -> Result<s
     let overrides: Vec<crate::scene::Override> =
         first.sets.iter().map(|s| s.parse()).collect::<Result<_, crate::scene::SceneError>>()?;
     let scene = crate::scene::parse(&first.text, &first.file, &overrides)?;
-    let mut study =
-        study_of(&scene, &first.file, Some(0..0))?.ok_or_else(|| option("the shards' scene has no [tolerances]".into()))?;
+    let mut study = study_of(&scene, &first.file, Some(0..0))?
+        .ok_or_else(|| option("the shards' scene has no [tolerances]".into()))?;
     merge_shards(&mut study, &shards).map_err(option)?;
     let p = products(&study, scene.kind());
     let Some(dir) = &opts.out_dir else {

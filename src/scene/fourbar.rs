@@ -7,10 +7,10 @@ use serde::Deserialize;
 
 use super::tolerance::{self, Tolerances};
 use super::{FieldError, Units, finite, finite_point, positive};
-use crate::solve::tolerance::fourbar::{FourbarOutput, FourbarParam};
 use crate::geom::{Side, Vector};
 use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
 use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint, Link, LinkLoad, LinkMass};
+use crate::solve::tolerance::fourbar::{FourbarOutput, FourbarParam};
 
 /// Standard gravity in m/s², the default `dynamics.g` (in every scene: g is in m/s²
 /// whatever the length unit).
@@ -225,7 +225,9 @@ fn check_tolerances(t: &toml::Table, geometry: &Geometry, count: usize) -> Resul
             _ => {
                 return Err(FieldError::new(
                     format!("tolerances.outputs.angles[{i}]"),
-                    format!("\"{name}\" is not a link whose angle is watched; valid: \"coupler\" (φ2), \"rocker\" (φ3)"),
+                    format!(
+                        "\"{name}\" is not a link whose angle is watched; valid: \"coupler\" (φ2), \"rocker\" (φ3)"
+                    ),
                 ));
             }
         }

@@ -10,8 +10,8 @@
 pub mod chain;
 pub mod fourbar;
 pub mod linkage;
-pub mod tolerance;
 mod overrides;
+pub mod tolerance;
 pub mod triad;
 
 use std::path::PathBuf;

@@ -193,7 +193,9 @@ fn band(field: &str, v: &toml::Value, default: Distribution) -> Result<(f64, f64
         if a < b {
             return Err(err(
                 format!("{field}.upper"),
-                format!("upper = {a} is below lower = {b}: swapped? (upper is the larger deviation, e.g. upper = {b}, lower = {a})"),
+                format!(
+                    "upper = {a} is below lower = {b}: swapped? (upper is the larger deviation, e.g. upper = {b}, lower = {a})"
+                ),
             ));
         }
         (a, b)
@@ -278,12 +280,16 @@ fn settings(v: Option<&toml::Value>) -> Result<(Settings, Distribution), FieldEr
         Some(v) => {
             let x = positive_number("tolerances.settings.trust", v)?;
             if x >= 1.0 {
-                return Err(err("tolerances.settings.trust", format!("must be a fraction below 1 (e.g. 0.1), got {x}")));
+                return Err(err(
+                    "tolerances.settings.trust",
+                    format!("must be a fraction below 1 (e.g. 0.1), got {x}"),
+                ));
             }
             x
         }
     };
-    let magnification = t.get("magnification").map(|v| positive_number("tolerances.settings.magnification", v)).transpose()?;
+    let magnification =
+        t.get("magnification").map(|v| positive_number("tolerances.settings.magnification", v)).transpose()?;
     let dist = distribution(t, "tolerances.settings", None)?;
     Ok((Settings { samples, seed, bins, trust, magnification }, dist))
 }

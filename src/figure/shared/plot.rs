@@ -504,7 +504,8 @@ pub struct Bars {
 pub fn bars(b: &Bars) -> Drawing {
     let (mut dr, l) = new_plot();
     let n = b.bars.len().max(1);
-    let top = b.bars.iter().map(|x| x.1).chain(b.line.iter().flat_map(|l| l.1.iter().copied())).filter(|v| v.is_finite());
+    let top =
+        b.bars.iter().map(|x| x.1).chain(b.line.iter().flat_map(|l| l.1.iter().copied())).filter(|v| v.is_finite());
     let y1 = top.fold(b.y_max, f64::max);
     let yt = nice_ticks(0.0, y1, MAX_TICKS, false);
     // The x axis is the bar slots: no numbers, the categories instead.
@@ -534,7 +535,8 @@ pub fn bars(b: &Bars) -> Drawing {
         }
     }
     if let Some((legend, ys)) = &b.line {
-        let pts: Vec<Point> = ys.iter().enumerate().filter(|(_, y)| y.is_finite()).map(|(i, y)| map(i as f64 + 0.5, *y)).collect();
+        let pts: Vec<Point> =
+            ys.iter().enumerate().filter(|(_, y)| y.is_finite()).map(|(i, y)| map(i as f64 + 0.5, *y)).collect();
         for p in &pts {
             dr.add_colored(l.data, Aci::RED, Shape::Circle { center: *p, radius: 2.0 * CURVE_W });
         }

@@ -133,14 +133,17 @@ pub fn band_drawing(
     }
     // Title and legend above, scale bars below.
     let top = hi.y + 0.08 * extent;
-    d.add(text, Shape::Text {
-        at: Point::new(lo.x, top + 2.2 * s.text),
-        height: s.text,
-        value: title.to_string(),
-        halign: HAlign::Left,
-        valign: VAlign::Baseline,
-        rotation: 0.0,
-    });
+    d.add(
+        text,
+        Shape::Text {
+            at: Point::new(lo.x, top + 2.2 * s.text),
+            height: s.text,
+            value: title.to_string(),
+            halign: HAlign::Left,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        },
+    );
     let legend = format!(
         "deviations normal to the path × {}: RSS ±3σ dashed blue, Monte Carlo 0.135 % and 99.865 % red",
         scale_text(m)
@@ -149,7 +152,15 @@ pub fn band_drawing(
     let bar_y = lo.y - 0.08 * extent - s.text;
     let bar = vocab::bar_value(k_l);
     scale_bar(&mut d, text, Point::new(lo.x + s.text, bar_y), bar, &format!("{} {}", scale_text(bar), units.length), s);
-    d.add(text, label(Point::new(lo.x, bar_y - 2.0 * s.text), &vocab::length_scale_text(k_l, units), s.small_text(), HAlign::Left));
+    d.add(
+        text,
+        label(
+            Point::new(lo.x, bar_y - 2.0 * s.text),
+            &vocab::length_scale_text(k_l, units),
+            s.small_text(),
+            HAlign::Left,
+        ),
+    );
     // The deviation bar: a nice deviation drawn m times longer.
     let dev = nice_scale(vocab::BAR_MM * k_l / m);
     let x0 = lo.x + 0.55 * extent;

@@ -48,10 +48,13 @@ fn edges(label: &str, x: &[f64], lo: impl Iterator<Item = f64>, hi: impl Iterato
 pub fn band_diagram(b: &Bands) -> Drawing {
     let nan = f64::NAN;
     let band = |v: &[Option<f64>], sign: f64| -> Vec<f64> {
-        v.iter().zip(&b.shift).map(|(h, s)| match (h, s) {
-            (Some(h), Some(s)) => s + sign * h,
-            _ => nan,
-        }).collect()
+        v.iter()
+            .zip(&b.shift)
+            .map(|(h, s)| match (h, s) {
+                (Some(h), Some(s)) => s + sign * h,
+                _ => nan,
+            })
+            .collect()
     };
     let series = vec![
         edges("RSS ±3σ", &b.x, band(&b.rss, -1.0).into_iter(), band(&b.rss, 1.0).into_iter()),

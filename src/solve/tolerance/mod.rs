@@ -24,7 +24,7 @@ pub mod stats;
 
 pub use linear::{Linear, Share};
 pub use model::{Component, Dimension, Distribution, Projection};
-pub use monte_carlo::{MonteCarlo, Model};
+pub use monte_carlo::{Model, MonteCarlo};
 pub use stats::{Summary, Tally};
 
 /// The histogram's range about a component's linear mean shift, in worst-case half bands:
@@ -71,12 +71,7 @@ pub fn linear_all<M: Sensitive>(model: &M, dims: &[Dimension], comps: &[Componen
         .into_par_iter()
         .map(|k| {
             let s = model.sensitivities(k)?;
-            Some(
-                comps
-                    .iter()
-                    .map(|c| linear::stack(&component_sensitivities(c, k, &s, dims.len()), dims))
-                    .collect(),
-            )
+            Some(comps.iter().map(|c| linear::stack(&component_sensitivities(c, k, &s, dims.len()), dims)).collect())
         })
         .collect()
 }
