@@ -236,7 +236,7 @@ impl FourbarModel {
     }
 
     /// The nominal positions.
-    pub fn positions(&self) -> &[Position] {
+    pub fn nominal_positions(&self) -> &[Position] {
         &self.positions
     }
 
