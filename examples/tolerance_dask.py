@@ -43,15 +43,14 @@ def main() -> None:
     if len(sys.argv) < 4:
         sys.exit(__doc__)
     scene, n, out, extra = sys.argv[1], int(sys.argv[2]), sys.argv[3], sys.argv[4:]
-    with tempfile.TemporaryDirectory() as shards, LocalCluster(n_workers=2, threads_per_worker=1) as cluster:
-        with Client(cluster) as client:
+    with tempfile.TemporaryDirectory() as shards:
+        with LocalCluster(n_workers=2, threads_per_worker=1, processes=False) as cluster, Client(cluster) as client:
             futures = [client.submit(shard, scene, k, n, shards, extra, pure=False) for k in range(1, n + 1)]
             files = client.gather(futures)
         merged = subprocess.run([str(MECHDRAW), "merge", *files, "--out", out], capture_output=True, text=True)
         sys.stderr.write(merged.stderr)
         if merged.returncode != 0:
             sys.exit(merged.returncode)
-
 
 if __name__ == "__main__":
     main()
