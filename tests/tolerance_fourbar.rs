@@ -108,9 +108,9 @@ fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let mc = monte_carlo::run(&model, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
     assert_eq!(mc.failed_samples, 0);
     let se = 1.0 / (2.0 * n as f64).sqrt();
-    for k in 0..positions.len() {
+    for (k, lin) in linear.iter().enumerate() {
         for c in 0..comps.len() {
-            let l = &linear[k].as_ref().unwrap()[c];
+            let l = &lin.as_ref().unwrap()[c];
             let m = mc.tallies[k * comps.len() + c].summary().unwrap();
             if l.sigma < 1e-15 {
                 // A channel no toleranced field moves (A.y at φ1 = 0°): no sample moves it
@@ -141,9 +141,9 @@ fn the_worst_case_bounds_every_monte_carlo_sample_in_the_linear_regime() {
     let linear = linear_all(&model, &dims, &comps);
     let n = 20_000;
     let mc = monte_carlo::run(&model, &dims, &comps, &ranges(&linear, comps.len()), 100, n, 3, 0..chunk_count(n));
-    for k in 0..positions.len() {
+    for (k, lin) in linear.iter().enumerate() {
         for c in 0..comps.len() {
-            let l = &linear[k].as_ref().unwrap()[c];
+            let l = &lin.as_ref().unwrap()[c];
             let t = &mc.tallies[k * comps.len() + c];
             assert!(
                 t.min >= l.shift - l.worst_case && t.max <= l.shift + l.worst_case,
@@ -194,6 +194,7 @@ fn monte_carlo_samples_equal_a_brute_force_closed_form_and_so_do_their_statistic
     // closed form solved here, against the model's evaluation of the same sample.
     let np = positions.len();
     let mut sums = vec![0.0; np * 4];
+    #[allow(clippy::let_unit_value)] // the four-bar's model needs no buffers
     let mut work = model.work();
     let (mut out, mut failed) = (vec![0.0; np * 4], vec![false; np]);
     for j in 0..n {
@@ -235,9 +236,9 @@ fn monte_carlo_samples_equal_a_brute_force_closed_form_and_so_do_their_statistic
         seed,
         0..chunk_count(n),
     );
-    for i in 0..np * 4 {
-        let mean = mc.tallies[i].summary().unwrap().mean;
-        let want = sums[i] / n as f64;
+    for (i, (t, sum)) in mc.tallies.iter().zip(&sums).enumerate() {
+        let mean = t.summary().unwrap().mean;
+        let want = sum / n as f64;
         assert!((mean - want).abs() <= 1e-12 * 1e-4, "mean {i}: {mean} vs brute force {want}");
     }
 }

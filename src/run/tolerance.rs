@@ -357,14 +357,14 @@ impl Study {
         header.extend(["failed".to_string(), "linear_trusted".to_string(), "note".to_string()]);
         let mut csv = Csv::new(header);
         let num = |v: Option<f64>| v.filter(|v| v.is_finite()).map_or(String::new(), report::number);
-        for k in 0..self.positions() {
+        for (k, note) in notes.iter().enumerate().take(self.positions()) {
             let mut row = vec![report::number(self.axis.values[k])];
             for c in 0..self.comps.len() {
                 row.extend(self.stats(k, c).into_iter().map(num));
             }
             row.push(self.mc.failed_at[k].to_string());
-            row.push(notes[k].is_empty().to_string());
-            row.push(notes[k].join("; "));
+            row.push(note.is_empty().to_string());
+            row.push(note.join("; "));
             csv.row_text(row);
         }
         csv

@@ -179,8 +179,8 @@ pub struct FourbarScene {
     /// `outputs` names "centres": draw the instantaneous centres with Kennedy's lines (a
     /// sheet `<name>-centres`).
     pub centres: bool,
-    /// `[tolerances]`, checked.
-    pub tolerances: Option<FourbarTolerances>,
+    /// `[tolerances]`, checked (boxed: most scenes have none).
+    pub tolerances: Option<Box<FourbarTolerances>>,
 }
 
 /// A four-bar's checked `[tolerances]`: the study and the watched outputs.
@@ -299,7 +299,8 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
     }
     let dynamics = raw.dynamics.as_ref().map(|d| check_dynamics(d, raw.units)).transpose()?;
     let centres = raw.outputs.as_ref().is_some_and(|l| l.iter().any(|s| s == "centres"));
-    let tolerances = raw.tolerances.as_ref().map(|t| check_tolerances(t, &geometry, sweep.count())).transpose()?;
+    let tolerances =
+        raw.tolerances.as_ref().map(|t| check_tolerances(t, &geometry, sweep.count()).map(Box::new)).transpose()?;
     Ok(FourbarScene {
         name,
         units: raw.units,

@@ -78,12 +78,16 @@ pub struct Tolerances<P> {
     pub settings: Settings,
 }
 
+/// How a kind resolves a field path: the field's handle and nominal value, or the message
+/// for a path that names no toleranced field.
+pub type Resolve<'a, P> = &'a dyn Fn(&str) -> Result<(P, f64), String>;
+
 /// What a kind tells the check: how a path resolves (its handle and nominal value, or
 /// what would be valid) and how many positions the study watches.
 pub struct Kind<'a, P> {
     /// The handle and nominal value of the field at a path, or the message for a path that
     /// names no toleranced field (what is wrong, what would be valid).
-    pub resolve: &'a dyn Fn(&str) -> Result<(P, f64), String>,
+    pub resolve: Resolve<'a, P>,
     /// Positions of the motion (for the memory estimate).
     pub positions: usize,
     /// Components per watched point and per watched angle (for the memory estimate).
