@@ -16,8 +16,7 @@ use crate::scene::tolerance::Settings;
 use crate::solve::tolerance::fourbar::{FourbarModel, FourbarOutput};
 use crate::solve::tolerance::monte_carlo::{self, chunk_count};
 use crate::solve::tolerance::{
-    self, Component, Dimension, Linear, Model, MonteCarlo, Projection, Summary, Tally, dead_points, linear_all, ranges,
-    verdicts,
+    Component, Dimension, Linear, Model, MonteCarlo, Projection, Summary, dead_points, linear_all, ranges, verdicts,
 };
 
 /// The abscissa of a study: the scene's position column.
@@ -577,6 +576,7 @@ fn short(v: f64) -> String {
 }
 
 /// A shard's file: the scene it came from, which share of the chunks, and the counts.
+#[cfg(feature = "cli")]
 pub(crate) fn shard_json(
     study: &Study,
     scene: (&str, &str, &[String]),
@@ -616,10 +616,12 @@ pub(crate) fn shard_json(
 }
 
 /// The shard files' format tag.
+#[cfg(feature = "cli")]
 pub(crate) const SHARD_FORMAT: &str = "mechdraw tolerance shard 1";
 
 /// A shard file read back: its scene, share and counts.
 #[derive(Debug, Clone)]
+#[cfg(feature = "cli")]
 pub(crate) struct Shard {
     /// The scene file's name, text and `--set` overrides.
     pub file: String,
@@ -638,6 +640,7 @@ pub(crate) struct Shard {
 }
 
 /// Reads a shard file's JSON (`what` names it in messages).
+#[cfg(feature = "cli")]
 pub(crate) fn read_shard(v: &Value, what: &str) -> Result<Shard, String> {
     let bad = |field: &str| format!("{what}: not a mechdraw tolerance shard (field `{field}` missing or malformed)");
     if v.get("format").and_then(Value::as_str) != Some(SHARD_FORMAT) {
@@ -677,16 +680,18 @@ pub(crate) fn read_shard(v: &Value, what: &str) -> Result<Shard, String> {
     })
 }
 
-fn read_tally(t: &Value) -> Option<Tally> {
+#[cfg(feature = "cli")]
+fn read_tally(t: &Value) -> Option<crate::solve::tolerance::Tally> {
+    use crate::solve::tolerance::{Tally, exact::ExactSum};
     let bits = |k: &str| t.get(k).and_then(Value::as_u64).map(f64::from_bits);
-    let digits = |k: &str| -> Option<tolerance::exact::ExactSum> {
+    let digits = |k: &str| -> Option<ExactSum> {
         let list: Option<Vec<(u8, i64)>> = t
             .get(k)?
             .as_array()?
             .iter()
             .map(|p| Some((u8::try_from(p.get(0)?.as_u64()?).ok()?, p.get(1)?.as_i64()?)))
             .collect();
-        tolerance::exact::ExactSum::from_digits(&list?)
+        ExactSum::from_digits(&list?)
     };
     let counts: Option<Vec<u64>> = t.get("counts")?.as_array()?.iter().map(Value::as_u64).collect();
     let counts = counts?;
@@ -707,6 +712,7 @@ fn read_tally(t: &Value) -> Option<Tally> {
 
 /// Adds the shards' counts to `study` (whose own Monte Carlo ran no chunk), after checking
 /// that they are shards 1..N of this study, each once, with the histogram ranges it uses.
+#[cfg(feature = "cli")]
 pub(crate) fn merge_shards(study: &mut Study, shards: &[Shard]) -> Result<(), String> {
     let n = shards.first().map_or(0, |s| s.shard.1);
     let mut seen = vec![false; n as usize];
@@ -744,6 +750,7 @@ pub(crate) fn merge_shards(study: &mut Study, shards: &[Shard]) -> Result<(), St
 
 /// The study of `scene` (solved here) with `chunks` of its Monte Carlo; `None` when the
 /// scene has no `[tolerances]`.
+#[cfg(feature = "cli")]
 pub(crate) fn study_of(
     scene: &crate::scene::Scene,
     file: &str,
@@ -763,6 +770,7 @@ pub(crate) fn study_of(
 }
 
 /// The samples and seed a scene's study would use, when it has `[tolerances]`.
+#[cfg(feature = "cli")]
 fn settings_of(scene: &crate::scene::Scene) -> Option<&Settings> {
     use crate::scene::Scene;
     match scene {
@@ -774,6 +782,7 @@ fn settings_of(scene: &crate::scene::Scene) -> Option<&Settings> {
 /// The study's products without the mechanism: its tables, the summary `{kind, name,
 /// tolerances}`, its figures; the picture is its band drawing, which
 /// [`to_merged_files`] leaves out (it is also the `-tolerance-band` sheet).
+#[cfg(feature = "cli")]
 pub(crate) fn products(study: &Study, kind: &str) -> super::Products {
     let mut extras =
         super::products::Extras { summary: json!({ "kind": kind, "name": study.name }), ..Default::default() };
@@ -885,6 +894,7 @@ pub fn merge(paths: &[std::path::PathBuf], opts: &super::RunOptions) -> Result<s
 }
 
 /// The files of a study's [`products`]: all but the picture (`<name>.dxf`, `.svg`, `.png`).
+#[cfg(feature = "cli")]
 pub(crate) fn to_merged_files(
     p: &super::Products,
     opts: &super::RunOptions,
