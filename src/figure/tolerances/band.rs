@@ -12,10 +12,10 @@ use crate::geom::{Point, Vector};
 
 /// Paper length the drawing's longer side is scaled to, millimetres (A4 landscape's
 /// drawing area).
-const TARGET_MM: f64 = 220.0;
+pub const TARGET_MM: f64 = 220.0;
 /// The largest magnified deviation as a fraction of the drawing's extent, when the
 /// magnification is chosen.
-const BAND_SHARE: f64 = 0.06;
+pub const BAND_SHARE: f64 = 0.06;
 
 /// One watched point's path and bands (deviations along the path's normal, model units).
 #[derive(Debug, Clone, PartialEq)]
