@@ -368,7 +368,7 @@ mod tests {
         assert_eq!(field("a = { upper = -0.1, lower = 0.1 }\n"), "tolerances.\"a\".upper");
         assert_eq!(field("a = { plus = 0.1 }\n"), "tolerances.\"a\".minus");
         assert_eq!(field("a = 0.1\n[settings]\nsamples = 0\n"), "tolerances.settings.samples");
-        assert_eq!(field("a = 0.1\n[settings]\nbins = 10000\n"), "tolerances.settings.bins");
+        assert_eq!(field("a = 0.1\n[settings]\nbins = 10001\n"), "tolerances.settings.bins");
         assert_eq!(field("a = 0.1\n[settings]\nsamples = 99999999999\n"), "tolerances.settings.samples");
         assert_eq!(field("a = { tol = 0.1, distribution = \"uniform\", cp = 1 }\n"), "tolerances.\"a\".cp");
         assert_eq!(field("[settings]\nseed = 1\n"), "tolerances");
