@@ -9,8 +9,8 @@
 //! l1 = 0.00002                                   # ± t, in the field's unit
 //! l_ab = { plus = 0.00003, minus = 0.00001 }     # + a / − b
 //! l_bc = { upper = 0.00003, lower = -0.00001 }   # signed deviations, as a chain writes them
-//! "c[0]" = { tol = 0.00005, distribution = "uniform" }
-//! "c[1]" = { tol = 0.00005, distribution = "normal", cp = 1.33 }
+//! "o1[0]" = { tol = 0.00005, distribution = "uniform" }
+//! c = [0.0001, { tol = 0.00005, cp = 1.33 }]   # c[0] and c[1]: a point's coordinates
 //!
 //! [tolerances.outputs]
 //! points = ["M"]
@@ -304,17 +304,28 @@ pub fn check<P>(table: &toml::Table, kind: &Kind<'_, P>) -> Result<Tolerances<P>
     let outputs = outputs(table.get("outputs"))?;
     let mut dims = Vec::new();
     let mut params = Vec::new();
+    // `"c[0]" = t` names one coordinate; `c = [t0, t1]` both (each item a band).
+    let mut entries: Vec<(String, String, &toml::Value)> = Vec::new();
     for (path, v) in table {
         if path == "settings" || path == "outputs" {
             continue;
         }
-        let field = format!("tolerances.\"{path}\"");
-        let (param, nominal) = (kind.resolve)(path).map_err(|m| err(field.clone(), m))?;
-        if dims.iter().any(|d: &Dimension| d.name == *path) {
+        match v {
+            toml::Value::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    entries.push((format!("{path}[{i}]"), format!("tolerances.{path}[{i}]"), item));
+                }
+            }
+            v => entries.push((path.clone(), format!("tolerances.\"{path}\""), v)),
+        }
+    }
+    for (path, field, v) in entries {
+        let (param, nominal) = (kind.resolve)(&path).map_err(|m| err(field.clone(), m))?;
+        if dims.iter().any(|d: &Dimension| d.name == path) {
             return Err(err(field, "is toleranced twice"));
         }
         let (upper, lower, distribution) = band(&field, v, default)?;
-        dims.push(Dimension { name: path.clone(), nominal, upper, lower, distribution });
+        dims.push(Dimension { name: path, nominal, upper, lower, distribution });
         params.push(param);
     }
     if dims.is_empty() {
@@ -354,6 +365,12 @@ mod tests {
         assert_eq!((t.dims[1].upper, t.dims[1].lower), (0.2, -0.1));
         assert_eq!(t.dims[1].distribution, Distribution::Uniform);
         let t = kind_check("a = { upper = 0.2, lower = 0.1, cp = 1.5 }\n").unwrap();
+        // The array form names indexed fields.
+        let arr: toml::Table = "p = [0.1, { tol = 0.2 }]\n".parse().unwrap();
+        let resolve = |p: &str| if p == "p[0]" || p == "p[1]" { Ok(((), 1.0)) } else { Err("no".to_string()) };
+        let k = check(&arr, &Kind { resolve: &resolve, positions: 10, components: (4, 1) }).unwrap();
+        assert_eq!(k.dims.iter().map(|d| d.name.as_str()).collect::<Vec<_>>(), ["p[0]", "p[1]"]);
+        assert_eq!(k.dims[1].upper, 0.2);
         assert_eq!((t.dims[0].upper, t.dims[0].lower), (0.2, 0.1));
         assert_eq!(t.dims[0].distribution, Distribution::Normal { k: 4.5 });
         assert_eq!(t.settings.samples, DEFAULT_SAMPLES);
