@@ -97,12 +97,14 @@ enum Command {
         #[arg(short, long)]
         quiet: bool,
     },
-    /// Write the live pages of scenes and an index.html linking them: a gallery to publish
-    /// as static files (each page solves and draws its scene in the browser, no server).
+    /// Write the live pages of scenes, the module they share and an index.html linking them:
+    /// a gallery to publish as static files or open from disk (each page solves and draws
+    /// its scene in the browser, no server; docs/web.md).
     Web {
         /// Scene files (default: every bundled template).
         scenes: Vec<PathBuf>,
-        /// Output directory: DIR/<scene file stem>.html for each scene, DIR/index.html.
+        /// Output directory: DIR/<scene file stem>.html for each scene, DIR/mechdraw-module.js
+        /// (the WebAssembly module, once), DIR/index.html.
         #[arg(short, long, value_name = "DIR", default_value = "web-out")]
         out: PathBuf,
     },
@@ -238,7 +240,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                     .collect::<Result<_, mechdraw::Error>>()?
             };
             let written = mechdraw::run::page::gallery(&scenes, &out)?;
-            eprintln!("wrote {} pages and {}", written.len() - 1, out.join("index.html").display());
+            let pages = written.len().saturating_sub(2);
+            eprintln!("wrote {pages} pages, their module and {}", out.join("index.html").display());
             Ok(())
         }
         Command::Check { scene, set } => {

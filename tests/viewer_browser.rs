@@ -43,6 +43,9 @@ fn browse(url: &str, extra: &[&str]) -> String {
             "--disable-sync",
             "--disable-dev-shm-usage",
             "--run-all-compositor-stages-before-draw",
+            // The page opens its module asynchronously (it inflates it first): the DOM is
+            // dumped once the page's tasks have run.
+            "--virtual-time-budget=10000",
         ])
         .arg(format!("--user-data-dir={}", profile.path().display()))
         .args(extra)
@@ -111,7 +114,7 @@ fn viewer_moves_to_the_frame_asked_for_and_plays() {
     assert!(stage_svg(&moved).contains("φ1 = 90°") && file.contains("φ1 = 90°"));
 
     // Playing advances the frames with (virtual) time.
-    let played = browse(&format!("{url}#play"), &["--dump-dom", "--virtual-time-budget=1500"]);
+    let played = browse(&format!("{url}#play"), &["--dump-dom"]);
     let f: usize = attr_of(&played, "stage", "data-frame").unwrap().parse().unwrap();
     assert!(f > 0, "playing did not advance the frame");
 

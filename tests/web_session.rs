@@ -269,3 +269,31 @@ fn dragging_a_shaper_point_keeps_every_joint_together() {
         }
     }
 }
+
+#[test]
+fn a_field_change_keeps_the_students_toml_for_every_template() {
+    for path in common::template_paths() {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(&path).unwrap();
+        let mut session = Session::new(&text, &file).unwrap();
+        // The first positive decimal number (a length, a mass, a tolerance) scaled by 1.01,
+        // written as the field writes it.
+        let params = session.parameters().unwrap();
+        let p = params.iter().find(|p| !p.integer && p.value > 0.0).unwrap_or_else(|| panic!("{file}: {params:?}"));
+        let new = format!("{:?}", p.value * 1.01);
+        session.set(&p.path, &new).unwrap_or_else(|e| panic!("{file}: {}: {e}", p.path));
+        let after = session.scene_text();
+        // One line changed, and on it only the number.
+        let changed: Vec<(&str, &str)> = text.lines().zip(after.lines()).filter(|(a, b)| a != b).collect();
+        assert_eq!(text.lines().count(), after.lines().count(), "{file}");
+        assert_eq!(changed.len(), 1, "{file}: {changed:?}");
+        let (a, b) = changed[0];
+        assert!(b.contains(&new), "{file}: {b}");
+        if let Some(i) = a.find('#') {
+            assert!(b.ends_with(&a[i..]), "{file}: the comment after the value stays: {b}");
+        }
+        // And the field shows it.
+        let shown = session.parameters().unwrap().into_iter().find(|q| q.path == p.path).unwrap();
+        assert_eq!(shown.text(), new, "{file}");
+    }
+}

@@ -37,6 +37,28 @@ class Page:
         self.call("Input.dispatchMouseEvent", type=kind, x=x, y=y, button="left",
                   buttons=0 if kind == "mouseReleased" else buttons, clickCount=1)
 
+    def touch(self, kind, points):
+        """A touch event (touchStart, touchMove, touchEnd) with fingers at `points` [(x, y)]."""
+        self.call("Input.dispatchTouchEvent", type=kind, touchPoints=[{"x": x, "y": y} for x, y in points])
+
+    def key(self, key, code=None, modifiers=0, text=None):
+        """A key pressed and released (`ArrowRight`, `n`, `z` with modifiers 2 = Ctrl, 8 = Shift)."""
+        base = {"key": key, "code": code or key, "modifiers": modifiers}
+        vk = {"ArrowLeft": 37, "ArrowUp": 38, "ArrowRight": 39, "ArrowDown": 40, "Tab": 9, "Enter": 13, "Escape": 27}
+        if key in vk:
+            base["windowsVirtualKeyCode"] = vk[key]
+        elif len(key) == 1:
+            base["windowsVirtualKeyCode"] = ord(key.upper())
+        down = dict(base, type="keyDown")
+        if text is not None:
+            down["text"] = text
+        self.call("Input.dispatchKeyEvent", **down)
+        self.call("Input.dispatchKeyEvent", **dict(base, type="keyUp"))
+
+    def errors(self):
+        """Console errors and uncaught exceptions the page has reported so far."""
+        return list(self.b.errors.get(self.session, []))
+
     def screenshot(self, path):
         data = self.call("Page.captureScreenshot", format="png")["data"]
         with open(path, "wb") as f:
@@ -59,6 +81,8 @@ class Browser:
         os.close(w2)
         self.out, self.inp = os.fdopen(w1, "wb"), os.fdopen(r2, "rb")
         self.next_id, self.buf = 0, b""
+        # Console errors and exceptions per page session (events read while waiting for replies).
+        self.errors = {}
 
     def call(self, method, params=None, session=None):
         self.next_id += 1
@@ -75,17 +99,32 @@ class Browser:
                 self.buf += chunk
             raw, self.buf = self.buf.split(b"\0", 1)
             reply = json.loads(raw)
+            method_ = reply.get("method")
+            if method_ == "Runtime.exceptionThrown":
+                d = reply["params"]["exceptionDetails"]
+                text = d.get("exception", {}).get("description") or d.get("text")
+                self.errors.setdefault(reply.get("sessionId"), []).append(text)
+            elif method_ == "Runtime.consoleAPICalled" and reply["params"].get("type") == "error":
+                args = reply["params"].get("args", [])
+                self.errors.setdefault(reply.get("sessionId"), []).append(" ".join(str(a.get("value", a.get("description"))) for a in args))
+            elif method_ == "Log.entryAdded" and reply["params"]["entry"].get("level") == "error":
+                self.errors.setdefault(reply.get("sessionId"), []).append(reply["params"]["entry"].get("text"))
             if reply.get("id") == self.next_id:
                 if "error" in reply:
                     raise RuntimeError(f"{method}: {reply['error']}")
                 return reply["result"]
 
-    def open(self, url, wait_for="true", timeout=30):
+    def open(self, url, wait_for="true", timeout=30, setup=None):
+        """Opens `url` in a new tab and waits until `wait_for` holds; `setup(page)` runs before
+        the navigation (device emulation)."""
         target = self.call("Target.createTarget", {"url": "about:blank"})["targetId"]
         session = self.call("Target.attachToTarget", {"targetId": target, "flatten": True})["sessionId"]
         page = Page(self, session)
         page.call("Page.enable")
         page.call("Runtime.enable")
+        page.call("Log.enable")
+        if setup:
+            setup(page)
         page.call("Page.navigate", url=url)
         end = time.time() + timeout
         while time.time() < end:

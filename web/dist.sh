@@ -3,7 +3,7 @@
 #   bash web/dist.sh           builds the pages (web/build.sh) and copies the module to web/dist/
 #   bash web/dist.sh --check   builds them and fails when web/dist/ is not what the sources build
 # Run it after any change to the library's core and commit web/dist/ with the change.
-# web/dist/mechdraw_bg.wasm.b64 is the module's base64 (what the page carries), made here once
+# web/dist/mechdraw_bg.wasm.b64 is the module deflated, in base64 (what the page carries), made here once
 # so that no run of mechdraw encodes 7.5 MB again.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -4,13 +4,8 @@ import time
 
 # The page has solved and drawn its scene, and made the rest (sheets, diagrams, modes).
 READY = "typeof live === 'object' && live !== null && document.body.dataset.state === 'idle'"
-# Client (CSS pixel) position of a model point in the frame shown.
-TO_SCREEN = """(function (x, y) {
-  const m = document.querySelector('#stage svg').getScreenCTM();
-  const k = live.user_units_per_model();
-  const p = new DOMPoint(k * x, -k * y).matrixTransform(m);
-  return [p.x, p.y];
-})"""
+# Client (CSS pixel) position of a model point in the picture shown (the page's own map).
+TO_SCREEN = "toScreen"
 
 
 def settle(page, timeout=30):

@@ -1,12 +1,12 @@
 #!/usr/bin/env python3
-"""The live page's speed (issue 17's targets), measured in headless Chromium with the page's
+"""The live page's speed (issues 17 and 32's targets), measured in headless Chromium with the page's
 own performance.now(): run it on a quiet machine, it is a benchmark, not a test.
 
     python3 web/page_timing.py DIR [ROUNDS]     (DIR: where web/build.sh wrote the pages)
 
 For the four-bar and the shaper pages it reports, as medians (and the slowest tenth):
-- first picture: from the page's script starting to its first picture drawn (the page's
-  status line), with the page's size;
+- first picture: from the navigation's start to the first picture drawn (the page's
+  `window.mechdrawFirstPicture`, its status line), with the page's size;
 - drag: real pointer events on the crank pin (the shaper: its crank pin too), each
   re-solving the mechanism and redrawing its frame (polygons and forces) — the handler's
   time, then the same with the browser's style and layout forced, which a user also waits for;
@@ -45,6 +45,7 @@ def stats(xs):
 def measure(b, name, point, radius, field, factor):
     page = b.open("file://" + os.path.join(DIR, name + ".html"), READY)
     out = {"page_bytes": os.path.getsize(os.path.join(DIR, name + ".html")),
+           "first_picture_ms": round(page.eval("window.mechdrawFirstPicture"), 1),
            "status": page.eval("document.getElementById('status').textContent")}
     st = json.loads(page.eval("live.points(+document.getElementById('slider').value)"))
     _, x, y = next(p for p in st["points"] if p[0] == point)

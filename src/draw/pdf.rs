@@ -1,7 +1,7 @@
 //! Drawings to one multi-page PDF, through krilla: each page a window of a [`Drawing`]
 //! printed at its paper scale ([`Drawing::paper_mm_per_unit`], one paper millimetre per
 //! model unit when it has none), so that the page measures true at 100 % print. Text is
-//! real text in the bundled DejaVu Sans ([`super::raster::FONT`]), embedded as a subset with
+//! real text in the bundled DejaVu Sans ([`super::FONT`]), embedded as a subset with
 //! its Unicode map, so a reader can search and copy it (`pdftotext` reads `φ1 = 90°` back).
 //!
 //! It writes what the SVG writer writes, from the same neutral drawing: the same colours,
@@ -60,7 +60,7 @@ pub struct Page<'a> {
 
 /// The pages as one PDF document, in order.
 pub fn to_bytes(pages: &[Page<'_>]) -> Result<Vec<u8>, PdfError> {
-    let font_data: &'static [u8] = super::raster::FONT;
+    let font_data: &'static [u8] = super::FONT;
     let font = Font::new(font_data.into(), 0).ok_or(PdfError::Font)?;
     let metrics = Metrics::new(font_data)?;
     let mut document = Document::new();

@@ -6,8 +6,7 @@ use std::sync::{Arc, OnceLock};
 
 use resvg::{tiny_skia, usvg};
 
-/// DejaVu Sans, bundled (licence in assets/fonts/DejaVu-LICENSE.txt).
-pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
+pub use super::FONT;
 
 /// Errors of the rasteriser.
 #[derive(Debug, thiserror::Error)]

@@ -28,9 +28,9 @@ use rayon::prelude::*;
 
 use super::products::{Diagram, Page, Picture, Products, Sheet};
 use crate::Error;
+use crate::draw::Drawing;
 use crate::draw::dxf::{self, DxfOptions};
 use crate::draw::svg::{self, SvgOptions};
-use crate::draw::{Drawing, pdf, raster};
 use crate::figure::shared::animation::Animation;
 
 /// Width of the SVG frames and pictures, pixels (their viewBox is in model units).
@@ -228,13 +228,7 @@ fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<
     }
     let pdf_name = format!("{name}-sheets.pdf");
     let (doc, svgs) = rayon::join(
-        || {
-            let v: Vec<pdf::Page<'_>> = pages
-                .iter()
-                .map(|p| pdf::Page { drawing: &p.drawing, window: p.window, hairline_mm: p.hairline_mm })
-                .collect();
-            pdf::to_bytes(&v).map_err(|e| Error::Export { what: pdf_name.clone(), message: e.to_string() })
-        },
+        || pdf_bytes(pages, &pdf_name),
         || {
             pages
                 .par_iter()
@@ -260,10 +254,37 @@ fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<
     Ok(files)
 }
 
+#[cfg(feature = "png")]
 fn png_bytes(svg: &str, what: &str) -> Result<Vec<u8>, Error> {
-    raster::to_png(svg, super::PNG_WIDTH_PX)
+    crate::draw::raster::to_png(svg, super::PNG_WIDTH_PX)
         .map_err(|e| Error::Export { what: what.to_string(), message: e.to_string() })
 }
+
+/// Without the PNG writer (the live page's module), a PNG asked for is refused by name.
+#[cfg(not(feature = "png"))]
+fn png_bytes(_svg: &str, what: &str) -> Result<Vec<u8>, Error> {
+    Err(Error::Export { what: what.to_string(), message: NOT_IN_THIS_BUILD.replace("{}", "PNG").replace("{f}", "png") })
+}
+
+/// The PDF of the printed pages.
+#[cfg(feature = "pdf")]
+fn pdf_bytes(pages: &[Page], what: &str) -> Result<Vec<u8>, Error> {
+    let v: Vec<crate::draw::pdf::Page<'_>> = pages
+        .iter()
+        .map(|p| crate::draw::pdf::Page { drawing: &p.drawing, window: p.window, hairline_mm: p.hairline_mm })
+        .collect();
+    crate::draw::pdf::to_bytes(&v).map_err(|e| Error::Export { what: what.to_string(), message: e.to_string() })
+}
+
+/// Without the PDF writer (the live page's module), the printed pages' PDF is refused by name.
+#[cfg(not(feature = "pdf"))]
+fn pdf_bytes(_pages: &[Page], what: &str) -> Result<Vec<u8>, Error> {
+    Err(Error::Export { what: what.to_string(), message: NOT_IN_THIS_BUILD.replace("{}", "PDF").replace("{f}", "pdf") })
+}
+
+/// What a build without a writer says when its output is asked for.
+#[cfg(not(all(feature = "png", feature = "pdf")))]
+const NOT_IN_THIS_BUILD: &str = "this build has no {} writer (the live page leaves it to the command line: `mechdraw run` has it; a library build needs the Cargo feature `{f}`)";
 
 fn dxf_bytes(d: &Drawing, opts: &DxfOptions, name: &str) -> Result<Vec<u8>, Error> {
     dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })

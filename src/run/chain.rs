@@ -212,6 +212,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
                     &r.stack,
                     z.spec,
                 ),
+                track: Vec::new(),
             })
         })
         .collect();

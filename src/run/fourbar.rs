@@ -103,11 +103,17 @@ pub(super) fn products(
         let diagrams = diagrams(&motion, step, &qs, layout.show.forces, units)
             .into_par_iter()
             .map(|(stem, d)| match stem.as_str() {
-                "gamma_deg" => products::Diagram {
-                    stem: "gamma".into(),
-                    drawing: plot::diagram_marked(&d, &teaching::gamma_marks(gamma_min)),
-                },
-                _ => products::Diagram { stem, drawing: plot::diagram(&d) },
+                "gamma_deg" => {
+                    let marks = teaching::gamma_marks(gamma_min);
+                    products::Diagram {
+                        stem: "gamma".into(),
+                        drawing: plot::diagram_marked(&d, &marks),
+                        track: plot::track(&d, &marks),
+                    }
+                }
+                _ => {
+                    products::Diagram { stem, drawing: plot::diagram(&d), track: plot::track(&d, &Default::default()) }
+                }
             })
             .collect();
         let pages = match paper {

@@ -17,7 +17,7 @@ use crate::figure::linkage::forces as linkage_forces;
 use crate::figure::linkage::frame::{LinkageFrames, RunForces, Show};
 use crate::figure::linkage::sheet::LinkageSheets;
 use crate::figure::shared::animation::{Animation, Drive, DriveState};
-use crate::figure::shared::plot::{Diagram, Series, diagram};
+use crate::figure::shared::plot::{Diagram, Series, diagram, track};
 use crate::figure::shared::sheet::{self, Paper};
 use crate::geom::{Point, deg};
 use crate::report::Csv;
@@ -321,23 +321,23 @@ pub(super) fn products(
         let mut diagrams: Vec<products::Diagram> = plots
             .into_iter()
             .zip(&cols)
-            .map(|(p, c)| products::Diagram {
-                stem: c.name.clone(),
-                drawing: diagram(&Diagram {
+            .map(|(p, c)| {
+                let d = Diagram {
                     title: p.title,
                     x_label: x_label.clone(),
                     y_label: p.y_label,
                     series: vec![Series { label: c.name.clone(), x: x.clone(), y: p.values }],
-                }),
+                };
+                products::Diagram { stem: c.name.clone(), drawing: diagram(&d), track: track(&d, &Default::default()) }
             })
             .collect();
         // And one per reaction and driver force, against the same abscissa.
         if let Some(f) = &forces {
-            diagrams.extend(
-                force_diagrams(scene, f, &x_label, &x)
-                    .into_iter()
-                    .map(|(stem, d)| products::Diagram { stem, drawing: diagram(&d) }),
-            );
+            diagrams.extend(force_diagrams(scene, f, &x_label, &x).into_iter().map(|(stem, d)| products::Diagram {
+                stem,
+                drawing: diagram(&d),
+                track: track(&d, &Default::default()),
+            }));
         }
 
         // CSV.

@@ -144,7 +144,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
             let file =
                 loaded.path.file_name().map_or_else(|| "scene.toml".into(), |f| f.to_string_lossy().into_owned());
             let page = page::LivePage::new(&loaded.text, &file, &opts.sets);
-            bytes::Sink::put(&out, &[(page_rel.clone(), page.pieces())])?;
+            bytes::Sink::put(&out, &[(page_rel.clone(), page.pieces(page::Module::Inline))])?;
             Ok(true)
         },
     );

@@ -1,34 +1,55 @@
-//! The live page `mechdraw run` writes as `<name>.html` (issue 17, docs/web.md): one
-//! self-contained HTML file with the core compiled to WebAssembly inside it (base64), the
-//! scene's text and its `--set` changes; it opens from `file://` with no server and solves
-//! and draws the scene in the browser — scrub and play, drag a joint, change any number,
-//! edit the TOML, download the files — with the same code as the command line.
+//! The live page `mechdraw run` writes as `<name>.html` (docs/web.md): one self-contained
+//! HTML file with the core compiled to WebAssembly inside it (base64), the scene's text and
+//! its `--set` changes; it opens from `file://` with no server and solves and draws the
+//! scene in the browser — scrub and play, drag a joint or reshape the mechanism, build one
+//! by clicking, change any number, edit the TOML, undo, share, download the files — with
+//! the same code as the command line. And the gallery `mechdraw web` writes: the same page
+//! per scene, the module once in `mechdraw-module.js` beside them.
 //!
 //! The module is `web/dist/` (built by `bash web/dist.sh`, which `.ci/test` runs with
 //! `--check`: CI fails when the committed module is not the one the sources build); the page
-//! is `web/page.html`, the template `web/build.sh` fills for the gallery too. The module is
-//! included as its base64 text (`web/dist/mechdraw_bg.wasm.b64`, written by the same script):
-//! a run copies the 10 MB into the page instead of encoding 7.5 MB each time.
+//! is `web/page.html`, the template `web/pages.py` fills the same way for the tests. The
+//! module is included deflated, as base64 text (`web/dist/mechdraw_bg.wasm.b64`, written by
+//! the same script; the page inflates it with the browser's `DecompressionStream`): a run
+//! copies it into the page instead of encoding it each time.
 
 /// The page's template.
 const TEMPLATE: &str = include_str!("../../web/page.html");
 /// wasm-bindgen's glue for the module (`--target no-modules`).
 const GLUE: &str = include_str!("../../web/dist/mechdraw.js");
-/// The core, compiled for wasm32-unknown-unknown (profile `wasm`) and through wasm-bindgen,
-/// in standard base64 with padding and no line breaks (`web/dist/mechdraw_bg.wasm` encoded
-/// by `web/build.sh`; a test checks that the two agree).
+/// The core, compiled for wasm32-unknown-unknown (profile `wasm`, wasm-bindgen, wasm-opt),
+/// raw-deflated and in standard base64 with padding and no line breaks
+/// (`web/dist/mechdraw_bg.wasm` packed by `web/pages.py`; a test checks that the two agree).
 static MODULE_BASE64: &str = include_str!("../../web/dist/mechdraw_bg.wasm.b64");
 
+/// The gallery's script with the module, beside its pages.
+pub const MODULE_SCRIPT: &str = "mechdraw-module.js";
+
+/// Where the page's module comes from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Module {
+    /// Inside the page (a page on its own: `mechdraw run`).
+    Inline,
+    /// From [`MODULE_SCRIPT`] beside the page (the gallery).
+    Beside,
+}
+
 /// The live page of the scene `text` (the scene file's text, named `file` in messages) with
-/// `sets` (`KEY=VALUE`, as `--set` took them) applied when it opens.
+/// `sets` (`KEY=VALUE`, as `--set` took them) applied when it opens, the module inside.
 pub fn live_page(text: &str, file: &str, sets: &[String]) -> String {
-    LivePage::new(text, file, sets).strs().concat()
+    LivePage::new(text, file, sets).strs(Module::Inline).concat()
+}
+
+/// The gallery's module script: the glue, then the module's base64 as
+/// `window.MECHDRAW_WASM`, in pieces.
+pub fn module_script() -> [&'static str; 4] {
+    [GLUE, "\nwindow.MECHDRAW_WASM = \"", MODULE_BASE64, "\";\n"]
 }
 
 /// The live page of one scene, held as what is its own (the scene's text, its `--set`
 /// changes, its file name, each made safe for its place in the page); [`LivePage::pieces`]
 /// gives the page as pieces to write one after the other, the template's and the module's
-/// borrowed from the program (no 10 MB page is built in memory).
+/// borrowed from the program (no page is built in memory).
 #[derive(Debug, Clone)]
 pub struct LivePage {
     scene: String,
@@ -50,24 +71,35 @@ impl LivePage {
     }
 
     /// The page's bytes in pieces, in order: the template with each placeholder replaced
-    /// once.
-    pub fn pieces(&self) -> Vec<&[u8]> {
-        self.strs().into_iter().map(str::as_bytes).collect()
+    /// once, the module as `module` says.
+    pub fn pieces(&self, module: Module) -> Vec<&[u8]> {
+        self.strs(module).into_iter().map(str::as_bytes).collect()
     }
 
-    fn strs(&self) -> Vec<&str> {
-        let mut out = Vec::with_capacity(11);
+    fn strs(&self, module: Module) -> Vec<&str> {
+        let script: Vec<&str> = match module {
+            Module::Inline => {
+                vec![
+                    "<script>\n",
+                    GLUE,
+                    "\n</script>\n<script>window.MECHDRAW_WASM = \"",
+                    MODULE_BASE64,
+                    "\";</script>",
+                ]
+            }
+            Module::Beside => vec!["<script src=\"", MODULE_SCRIPT, "\"></script>"],
+        };
+        let mut out = Vec::with_capacity(16);
         let mut rest = TEMPLATE;
         for (key, value) in [
-            ("__SCENE_TOML__", self.scene.as_str()),
-            ("__SCENE_SETS__", self.sets.as_str()),
-            ("__WASM_BINDGEN_JS__", GLUE),
-            ("__WASM_BASE64__", MODULE_BASE64),
-            ("__SCENE_FILE__", self.file.as_str()),
+            ("__SCENE_TOML__", vec![self.scene.as_str()]),
+            ("__SCENE_SETS__", vec![self.sets.as_str()]),
+            ("<!--__MODULE__-->", script),
+            ("__SCENE_FILE__", vec![self.file.as_str()]),
         ] {
             if let Some(i) = rest.find(key) {
                 out.push(&rest[..i]);
-                out.push(value);
+                out.extend(value);
                 rest = &rest[i + key.len()..];
             }
         }
@@ -90,9 +122,10 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("triad-popa.toml", include_str!("../../templates/triad-popa.toml")),
 ];
 
-/// Writes the live page of every scene (`(file name, text)`) into `dir` and an `index.html`
-/// linking them — the gallery a course can publish as static files. Every scene is checked
-/// first: a bad one is reported (by its file name) and nothing is written.
+/// Writes the live page of every scene (`(file name, text)`) into `dir`, the module once in
+/// [`MODULE_SCRIPT`] beside them, and an `index.html` linking them — the gallery a course can
+/// publish as static files or open from `file://`. Every scene is checked first: a bad one
+/// is reported (by its file name) and nothing is written.
 pub fn gallery(scenes: &[(String, String)], dir: &std::path::Path) -> Result<Vec<std::path::PathBuf>, crate::Error> {
     let mut items = Vec::with_capacity(scenes.len());
     for (file, text) in scenes {
@@ -102,13 +135,17 @@ pub fn gallery(scenes: &[(String, String)], dir: &std::path::Path) -> Result<Vec
         items.push((stem, file.clone(), text.clone(), scene.name().to_string(), scene.kind()));
     }
     let mut out = super::output::Output::new(dir)?;
+    let script = module_script();
+    let pieces: Vec<&[u8]> = script.iter().map(|s| s.as_bytes()).collect();
+    out.write_pieces(MODULE_SCRIPT, &pieces)?;
     let mut index = String::from(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><title>mechdraw live</title></head>\n<body>\n\
-         <h1>mechdraw live</h1>\n<p>Each page solves and draws its scene in the browser, with no server: drag a joint, \
-         change any number, edit the TOML, download the files the command line writes.</p>\n<ul>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head><meta charset=\"utf-8\"><meta name=\"viewport\" content=\"width=device-width, \
+         initial-scale=1\"><link rel=\"icon\" href=\"data:,\"><title>mechdraw live</title></head>\n<body>\n<h1>mechdraw live</h1>\n<p>Each page solves and draws \
+         its scene in the browser, with no server: drag a joint, change any number, edit the TOML, download the files the \
+         command line writes.</p>\n<ul>\n",
     );
     for (stem, file, text, name, kind) in &items {
-        out.write_pieces(format!("{stem}.html"), &LivePage::new(text, file, &[]).pieces())?;
+        out.write_pieces(format!("{stem}.html"), &LivePage::new(text, file, &[]).pieces(Module::Beside))?;
         index.push_str(&format!(
             "<li><a href=\"{}.html\">{}</a> ({kind}, {})</li>\n",
             escape(stem),
@@ -134,30 +171,38 @@ mod tests {
     #[test]
     fn every_placeholder_is_filled_once_in_order() {
         let page = live_page("kind = \"triad\"\n# </script>\n", "t.toml", &["l12=55".into()]);
-        assert!(!page.contains("__SCENE_") && !page.contains("__WASM_"));
+        assert!(!page.contains("__SCENE_") && !page.contains("__MODULE__"));
         assert!(page.contains("# <\\/script>"), "a scene cannot end its script block");
         assert!(page.contains(r#"["l12=55"]"#));
         assert!(page.contains(r#"const FILE = "t.toml";"#));
-        let wasm =
-            std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("web/dist/mechdraw_bg.wasm")).unwrap();
-        assert!(page.contains(&base64::engine::general_purpose::STANDARD.encode(wasm)));
+        assert!(page.contains("window.MECHDRAW_WASM = \"") && page.contains(GLUE), "the module inside");
+        assert!(page.contains(MODULE_BASE64));
     }
 
     #[test]
     fn the_pieces_are_the_page() {
         let page = LivePage::new("name = \"x\"\n", "x.toml", &["a=1".into()]);
-        let joined: Vec<u8> = page.pieces().concat();
+        let joined: Vec<u8> = page.pieces(Module::Inline).concat();
         assert!(joined == live_page("name = \"x\"\n", "x.toml", &["a=1".into()]).into_bytes());
-        assert!(page.pieces().iter().any(|p| p.as_ptr() == MODULE_BASE64.as_ptr()), "the module is not copied");
+        assert!(
+            page.pieces(Module::Inline).iter().any(|p| p.as_ptr() == MODULE_BASE64.as_ptr()),
+            "the module is not copied"
+        );
+        // In the gallery the page loads the module from the script beside it.
+        let beside = String::from_utf8(page.pieces(Module::Beside).concat()).unwrap();
+        assert!(beside.contains("<script src=\"mechdraw-module.js\"></script>") && !beside.contains(MODULE_BASE64));
     }
 
     #[test]
     fn the_included_base64_is_the_module_in_web_dist() {
         let wasm =
             std::fs::read(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("web/dist/mechdraw_bg.wasm")).unwrap();
-        assert!(MODULE_BASE64 == base64::engine::general_purpose::STANDARD.encode(&wasm), "run bash web/dist.sh");
-        let back = base64::engine::general_purpose::STANDARD.decode(MODULE_BASE64).unwrap();
-        assert!(back == wasm, "web/dist/mechdraw_bg.wasm.b64 decodes to web/dist/mechdraw_bg.wasm");
+        let packed = base64::engine::general_purpose::STANDARD.decode(MODULE_BASE64).expect("base64");
+        let back = miniz_oxide::inflate::decompress_to_vec(&packed).expect("raw deflate");
+        assert!(
+            back == wasm,
+            "web/dist/mechdraw_bg.wasm.b64 inflates to web/dist/mechdraw_bg.wasm: run bash web/dist.sh"
+        );
     }
 
     #[test]

@@ -38,6 +38,10 @@ pub struct Diagram {
     pub stem: String,
     /// The diagram, drawn.
     pub drawing: Drawing,
+    /// Where its curve is at each position of the motion, on the diagram's paper (mm, y up;
+    /// [`crate::figure::shared::plot::track`]); empty when the diagram is not against the
+    /// positions (a histogram). The live page's marker.
+    pub track: Vec<Option<crate::geom::Point>>,
 }
 
 /// A sheet beside the picture, written like it: `<scene name>-<suffix>.dxf`, `.svg` (and

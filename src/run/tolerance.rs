@@ -194,14 +194,17 @@ impl Study {
         extras.sheets.push(super::products::Sheet { suffix: "tolerance-band".into(), drawing: self.band_drawing() });
         for c in 0..self.comps.len() {
             let name = &self.comps[c].name;
-            extras
-                .diagrams
-                .push(super::products::Diagram { stem: format!("{name}-band"), drawing: self.band_diagram(c) });
+            extras.diagrams.push(super::products::Diagram {
+                stem: format!("{name}-band"),
+                drawing: self.band_diagram(c),
+                // No marker on the live page: a band is two edges per curve.
+                track: Vec::new(),
+            });
         }
         for c in self.headline() {
             if let Some(drawing) = self.pareto(c) {
                 let stem = format!("{}-pareto", self.comps[c].name);
-                extras.diagrams.push(super::products::Diagram { stem, drawing });
+                extras.diagrams.push(super::products::Diagram { stem, drawing, track: Vec::new() });
             }
         }
         self.warnings(&notes)

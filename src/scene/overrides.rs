@@ -21,6 +21,8 @@ pub struct Override {
     spec: String,
     path: Vec<Step>,
     value: toml::Value,
+    /// The value as written (a bare word that is not TOML is a string).
+    value_text: String,
 }
 
 impl std::str::FromStr for Override {
@@ -42,7 +44,7 @@ impl std::str::FromStr for Override {
             }
             Err(e) => return Err(err(&format!("the value is not a TOML value: {}", e.message()))),
         };
-        Ok(Override { spec: spec.to_string(), path, value })
+        Ok(Override { spec: spec.to_string(), path, value, value_text: value_text.to_string() })
     }
 }
 
@@ -128,6 +130,104 @@ impl Override {
     }
 }
 
+impl Override {
+    /// The field path as written (`l12`, `r[2]`, `dynamics.force[0].value`).
+    pub fn key(&self) -> &str {
+        self.spec.split_once('=').map_or("", |(k, _)| k.trim())
+    }
+
+    /// Writes the value into the scene's text `doc` as the student would: the value at the
+    /// path is replaced and nothing else changes (its comments, the order and layout of the
+    /// file, the number's own spelling when the value is the same number). What
+    /// [`Override::apply`] creates (a missing table or key) is added. Refuses what `apply`
+    /// refuses, with the same messages.
+    pub fn apply_to_document(&self, doc: &mut toml_edit::DocumentMut) -> Result<(), SceneError> {
+        let err = |message: String| SceneError::Override { spec: self.spec.clone(), message };
+        let new = self.document_value();
+        let mut item: &mut toml_edit::Item = doc.as_item_mut();
+        for (i, step) in self.path.iter().enumerate() {
+            let last = i + 1 == self.path.len();
+            match step {
+                Step::Key(k) => {
+                    if item.get(k.as_str()).is_none_or(toml_edit::Item::is_none) {
+                        let fresh = if last {
+                            toml_edit::Item::Value(new.clone())
+                        } else if matches!(self.path[i + 1], Step::Index(_)) {
+                            toml_edit::value(toml_edit::Array::new())
+                        } else if item.is_table() {
+                            toml_edit::Item::Table(toml_edit::Table::new())
+                        } else {
+                            toml_edit::value(toml_edit::InlineTable::new())
+                        };
+                        match item {
+                            toml_edit::Item::Table(t) => {
+                                t.insert(k, fresh);
+                            }
+                            toml_edit::Item::Value(toml_edit::Value::InlineTable(t)) => {
+                                if let toml_edit::Item::Value(v) = fresh {
+                                    t.insert(k.as_str(), v);
+                                }
+                            }
+                            _ => return Err(err(format!("`{k}` is inside something that is not a table"))),
+                        }
+                        if last {
+                            return Ok(());
+                        }
+                    }
+                    item = item
+                        .get_mut(k.as_str())
+                        .ok_or_else(|| err(format!("`{k}` is inside something that is not a table")))?;
+                }
+                Step::Index(n) => {
+                    let len = match &*item {
+                        toml_edit::Item::ArrayOfTables(a) => a.len(),
+                        toml_edit::Item::Value(toml_edit::Value::Array(a)) => a.len(),
+                        _ => return Err(err("indexes something that is not an array".into())),
+                    };
+                    item = item
+                        .get_mut(*n)
+                        .ok_or_else(|| err(format!("index {n} is past the end (the array has {len} items)")))?;
+                }
+            }
+        }
+        replace_keeping_format(item, new);
+        Ok(())
+    }
+
+    /// The value as the document writes it: as typed, or a string for a bare word.
+    fn document_value(&self) -> toml_edit::Value {
+        let mut v = self
+            .value_text
+            .parse::<toml_edit::Value>()
+            .unwrap_or_else(|_| toml_edit::Value::from(self.value_text.as_str()));
+        v.decor_mut().clear();
+        v
+    }
+}
+
+/// Puts `new` where `item` is, with the old value's surroundings (the spaces and the comment
+/// after it); the same number (or string, or boolean) keeps its spelling.
+fn replace_keeping_format(item: &mut toml_edit::Item, new: toml_edit::Value) {
+    use toml_edit::Value as V;
+    match item {
+        toml_edit::Item::Value(old) => {
+            let same = match (&*old, &new) {
+                (V::Float(a), V::Float(b)) => a.value() == b.value(),
+                (V::Integer(a), V::Integer(b)) => a.value() == b.value(),
+                (V::String(a), V::String(b)) => a.value() == b.value(),
+                (V::Boolean(a), V::Boolean(b)) => a.value() == b.value(),
+                _ => false,
+            };
+            if !same {
+                let decor = old.decor().clone();
+                *old = new;
+                *old.decor_mut() = decor;
+            }
+        }
+        other => *other = toml_edit::Item::Value(new),
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -159,5 +259,52 @@ mod tests {
         assert!(matches!("r[x]=5".parse::<Override>(), Err(SceneError::Override { .. })));
         assert!(matches!(apply("r = [1.0]\n", "r[3]=5"), Err(SceneError::Override { .. })));
         assert!(matches!(apply("l12 = 1.0\n", "l12.x=5"), Err(SceneError::Override { .. })));
+    }
+
+    fn edit(text: &str, spec: &str) -> Result<String, SceneError> {
+        let mut d: toml_edit::DocumentMut = text.parse().unwrap();
+        spec.parse::<Override>()?.apply_to_document(&mut d)?;
+        Ok(d.to_string())
+    }
+
+    #[test]
+    fn a_document_edit_changes_one_value_and_keeps_the_rest() {
+        let text = "# head\nl12 = 50.0   # A1A2, mm\nr = [1.0, 2.0, 3.0] # radii\np = { a = [0.0, 1.0] }\n[pattern]\ntol = 1e-5\n";
+        assert_eq!(edit(text, "l12=55.5").unwrap(), text.replace("50.0   #", "55.5   #"));
+        assert_eq!(edit(text, "r[1]=2.5").unwrap(), text.replace("2.0, 3.0", "2.5, 3.0"));
+        assert_eq!(edit(text, "p.a[1]=-2").unwrap(), text.replace("1.0] }", "-2] }"));
+        assert_eq!(edit(text, "pattern.tol=1e-7").unwrap(), text.replace("1e-5", "1e-7"));
+        // The same number keeps its spelling.
+        assert_eq!(edit(text, "l12=50").unwrap(), text.replace("50.0", "50"), "an integer is another value");
+        assert_eq!(edit(text, "l12=5e1").unwrap(), text, "5e1 is 50.0");
+        // What is missing is added; the rest stays.
+        let added = edit(text, "mode=3").unwrap();
+        assert!(added.starts_with(text.split("[pattern]").next().unwrap()) && added.contains("mode = 3"), "{added}");
+        let t: toml::Table = added.parse().unwrap();
+        assert_eq!(t["mode"].as_integer(), Some(3));
+        let t: toml::Table = edit(text, "newton.tol=1e-9").unwrap().parse().unwrap();
+        assert_eq!(t["newton"]["tol"].as_float(), Some(1e-9));
+        // The same refusals as `apply`.
+        assert!(matches!(edit(text, "r[3]=5"), Err(SceneError::Override { .. })));
+        assert!(matches!(edit(text, "l12.x=5"), Err(SceneError::Override { .. })));
+        assert!(matches!(edit(text, "l12[0]=5"), Err(SceneError::Override { .. })));
+    }
+
+    #[test]
+    fn document_and_table_edits_agree() {
+        let text =
+            "l12 = 50.0\nr = [1.0, 2.0, 3.0]\n[pattern]\ntol = 1e-5\n[[force]]\nat = \"M\"\nvalue = [0.0, -50.0]\n";
+        for spec in [
+            "l12=55",
+            "r[2]=84.5",
+            "pattern.tol=1e-7",
+            "force[0].value[1]=-20",
+            "name=demo-2",
+            "o1=[15, 30]",
+            "a.b.c=1",
+        ] {
+            let table: toml::Table = edit(text, spec).unwrap().parse().unwrap();
+            assert_eq!(table, apply(text, spec).unwrap(), "{spec}");
+        }
     }
 }

@@ -326,10 +326,7 @@ pub fn take_live_page(files: &mut Vec<(String, Vec<u8>)>, name: &str) -> String 
     let file = format!("{name}.html");
     let i = files.iter().position(|(n, _)| *n == file).unwrap_or_else(|| panic!("no {file} written"));
     let page = String::from_utf8(files.remove(i).1).expect("the page is UTF-8");
-    assert!(
-        page.contains("wasm_bindgen.initSync") && page.contains("const WASM_BASE64 = \""),
-        "{file}: not the live page"
-    );
-    assert!(page.len() > 1_000_000, "{file}: the module is missing");
+    assert!(page.contains("mod.initSync") && page.contains("const FILE = "), "{file}: not the live page");
+    assert!(page.contains("window.MECHDRAW_WASM = \"") && page.len() > 300_000, "{file}: the module is missing");
     page
 }

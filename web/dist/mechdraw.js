@@ -144,6 +144,29 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
+         * Each diagram's marker at position `k` as JSON `[[x, y] or null, ...]`, SVG user units.
+         * @param {number} k
+         * @returns {string}
+         */
+        diagram_markers(k) {
+            let deferred2_0;
+            let deferred2_1;
+            try {
+                const ret = wasm.live_diagram_markers(this.__wbg_ptr, k);
+                var ptr1 = ret[0];
+                var len1 = ret[1];
+                if (ret[3]) {
+                    ptr1 = 0; len1 = 0;
+                    throw takeFromExternrefTable0(ret[2]);
+                }
+                deferred2_0 = ptr1;
+                deferred2_1 = len1;
+                return getStringFromWasm0(ptr1, len1);
+            } finally {
+                wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
+            }
+        }
+        /**
          * The scene's diagrams as JSON: `[[stem, svg], ...]` (made when first asked for
          * after a change).
          * @returns {string}
@@ -168,7 +191,8 @@ let wasm_bindgen = (function(exports) {
         }
         /**
          * Drags `point` towards the model point (`x`, `y`); returns the state reached as
-         * [`Live::points`] gives it, with `"drive"` (φ1 in degrees, or t in seconds).
+         * [`Live::points`] gives it, with `"drive"` (φ1 in degrees, or t in seconds) and
+         * `"position"` (the nearest position).
          * @param {string} point
          * @param {number} x
          * @param {number} y
@@ -221,6 +245,24 @@ let wasm_bindgen = (function(exports) {
             let deferred1_1;
             try {
                 const ret = wasm.live_dragged_moving(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
+         * The points edit mode drags at position `k`, as JSON `[[name, x, y], ...]` (`""`
+         * for a still picture).
+         * @param {number} k
+         * @returns {string}
+         */
+        edit_points(k) {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_edit_points(this.__wbg_ptr, k);
                 deferred1_0 = ret[0];
                 deferred1_1 = ret[1];
                 return getStringFromWasm0(ret[0], ret[1]);
@@ -339,8 +381,8 @@ let wasm_bindgen = (function(exports) {
             return this;
         }
         /**
-         * Every number of the scene as JSON:
-         * `[{"path": "l_bc", "value": 0.125, "integer": false}, ...]`.
+         * Every number of the scene as JSON: `[{"path", "value", "integer", "label", "unit",
+         * "group", "min", "max", "detail"}, ...]`.
          * @returns {string}
          */
         parameters() {
@@ -388,7 +430,7 @@ let wasm_bindgen = (function(exports) {
             return ret >>> 0;
         }
         /**
-         * A new scene text (the TOML editor), and solve again.
+         * A new scene text (the TOML editor, an undo, a build step), and solve again.
          * @param {string} toml
          */
         replace(toml) {
@@ -400,29 +442,44 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
-         * The scene's text with the changes written in.
-         * @returns {string}
+         * Edit mode: `point` dragged to (`x`, `y`) at position `k` changes the dimensions it
+         * carries (written with `decimals` decimals); the scene is solved again.
+         * @param {string} point
+         * @param {number} x
+         * @param {number} y
+         * @param {number} k
+         * @param {number} decimals
          */
-        scene_text() {
-            let deferred2_0;
-            let deferred2_1;
-            try {
-                const ret = wasm.live_scene_text(this.__wbg_ptr);
-                var ptr1 = ret[0];
-                var len1 = ret[1];
-                if (ret[3]) {
-                    ptr1 = 0; len1 = 0;
-                    throw takeFromExternrefTable0(ret[2]);
-                }
-                deferred2_0 = ptr1;
-                deferred2_1 = len1;
-                return getStringFromWasm0(ptr1, len1);
-            } finally {
-                wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
+        reshape(point, x, y, k, decimals) {
+            const val2 = +x;
+            const val3 = +y;
+            const val4 = +k;
+            const val5 = +decimals;
+            const ptr0 = passStringToWasm0(point, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            const len0 = WASM_VECTOR_LEN;
+            const ret = wasm.live_reshape(this.__wbg_ptr, ptr0, len0, val2, val3, val4, val5);
+            if (ret[1]) {
+                throw takeFromExternrefTable0(ret[0]);
             }
         }
         /**
-         * `--set path=value`, and solve again.
+         * The scene's text as it stands.
+         * @returns {string}
+         */
+        scene_text() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_scene_text(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
+         * `--set path=value` written into the text, and solve again.
          * @param {string} path
          * @param {string} value
          */
@@ -517,6 +574,77 @@ let wasm_bindgen = (function(exports) {
     exports.Live = Live;
 
     /**
+     * `toml` after a build step (JSON, [`build::Step`]: `{"tool": "link", "ends": ["ground.O1",
+     * [0.04, 0.0]]}`), coordinates written with `decimals` decimals.
+     * @param {string} toml
+     * @param {string} file
+     * @param {string} step
+     * @param {number} decimals
+     * @returns {string}
+     */
+    function build_step(toml, file, step, decimals) {
+        let deferred6_0;
+        let deferred6_1;
+        try {
+            const val4 = +decimals;
+            let ptr0, len0, ptr1, len1, ptr2, len2;
+            try {
+                ptr0 = passStringToWasm0(toml, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+                len0 = WASM_VECTOR_LEN;
+                ptr1 = passStringToWasm0(file, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+                len1 = WASM_VECTOR_LEN;
+                ptr2 = passStringToWasm0(step, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+                len2 = WASM_VECTOR_LEN;
+            } catch (e) {
+                if (ptr2) { wasm.__wbindgen_free(ptr2, len2 * 1, 1); }
+                if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 1, 1); }
+                if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 1, 1); }
+                throw e;
+            }
+            const ret = wasm.build_step(ptr0, len0, ptr1, len1, ptr2, len2, val4);
+            var ptr5 = ret[0];
+            var len5 = ret[1];
+            if (ret[3]) {
+                ptr5 = 0; len5 = 0;
+                throw takeFromExternrefTable0(ret[2]);
+            }
+            deferred6_0 = ptr5;
+            deferred6_1 = len5;
+            return getStringFromWasm0(ptr5, len5);
+        } finally {
+            wasm.__wbindgen_free(deferred6_0, deferred6_1, 1);
+        }
+    }
+    exports.build_step = build_step;
+
+    /**
+     * The scene's text in a share link's fragment value; throws what is wrong with the link.
+     * @param {string} link
+     * @returns {string}
+     */
+    function open_share_link(link) {
+        let deferred3_0;
+        let deferred3_1;
+        try {
+            const ptr0 = passStringToWasm0(link, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            const len0 = WASM_VECTOR_LEN;
+            const ret = wasm.open_share_link(ptr0, len0);
+            var ptr2 = ret[0];
+            var len2 = ret[1];
+            if (ret[3]) {
+                ptr2 = 0; len2 = 0;
+                throw takeFromExternrefTable0(ret[2]);
+            }
+            deferred3_0 = ptr2;
+            deferred3_1 = len2;
+            return getStringFromWasm0(ptr2, len2);
+        } finally {
+            wasm.__wbindgen_free(deferred3_0, deferred3_1, 1);
+        }
+    }
+    exports.open_share_link = open_share_link;
+
+    /**
      * Solves the scene in `toml` (named `file` in messages) and returns its files, with a
      * motion's frames and viewer when `frames`; throws the command line's error message.
      * @param {string} toml
@@ -544,6 +672,48 @@ let wasm_bindgen = (function(exports) {
         return Files.__wrap(ret[0]);
     }
     exports.run_scene = run_scene;
+
+    /**
+     * The share link's fragment value for `toml` (`v1.…`).
+     * @param {string} toml
+     * @returns {string}
+     */
+    function share_link(toml) {
+        let deferred2_0;
+        let deferred2_1;
+        try {
+            const ptr0 = passStringToWasm0(toml, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            const len0 = WASM_VECTOR_LEN;
+            const ret = wasm.share_link(ptr0, len0);
+            deferred2_0 = ret[0];
+            deferred2_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
+        }
+    }
+    exports.share_link = share_link;
+
+    /**
+     * The sketch of `toml` as JSON ([`build::Sketch`]); `""` when the text is not TOML.
+     * @param {string} toml
+     * @returns {string}
+     */
+    function sketch(toml) {
+        let deferred2_0;
+        let deferred2_1;
+        try {
+            const ptr0 = passStringToWasm0(toml, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            const len0 = WASM_VECTOR_LEN;
+            const ret = wasm.sketch(ptr0, len0);
+            deferred2_0 = ret[0];
+            deferred2_1 = ret[1];
+            return getStringFromWasm0(ret[0], ret[1]);
+        } finally {
+            wasm.__wbindgen_free(deferred2_0, deferred2_1, 1);
+        }
+    }
+    exports.sketch = sketch;
     function __wbg_get_imports() {
         const import0 = {
             __proto__: null,

@@ -229,9 +229,7 @@ fn axes(
         Ok(t) => (t, true),
         Err(_) => (&slots, false),
     };
-    let (xlo, xspan) = (xt.lo, (xt.hi - xt.lo).max(f64::MIN_POSITIVE));
-    let (ylo, yspan) = (yt.lo, (yt.hi - yt.lo).max(f64::MIN_POSITIVE));
-    let map = move |x: f64, y: f64| Point::new((x - xlo) / xspan * PLOT_WIDTH, (y - ylo) / yspan * PLOT_HEIGHT);
+    let map = data_to_paper(xt, yt);
     let (xd, yd) = (xt.decimals(), yt.decimals());
     for x in xt.values().into_iter().filter(|_| x_ticks) {
         let p = map(x, yt.lo);
@@ -350,16 +348,8 @@ pub fn diagram(d: &Diagram) -> Drawing {
 /// are left out.
 pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
     let (mut dr, l) = new_plot();
-    let finite_pairs = |s: &Series| -> Vec<(f64, f64)> {
-        s.x.iter().zip(&s.y).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect()
-    };
-    let all: Vec<(f64, f64)> = d.series.iter().flat_map(finite_pairs).collect();
-    let (x0, x1) = finite_range(all.iter().map(|p| p.0)).unwrap_or((0.0, 1.0));
-    let (y0, y1) = finite_range(all.iter().map(|p| p.1)).unwrap_or((0.0, 1.0));
     let levels: Vec<&Level> = marks.levels.iter().filter(|v| v.y.is_finite()).collect();
-    let (y0, y1) = levels.iter().fold((y0, y1), |(a, b), v| (a.min(v.y), b.max(v.y)));
-    let xt = inner_ticks(x0, x1, MAX_TICKS + 4, is_degrees(&d.x_label));
-    let yt = nice_ticks(y0, y1, MAX_TICKS, false);
+    let (xt, yt) = diagram_ticks(d, &levels);
     let map = axes(&mut dr, &l, &d.title, &d.x_label, &d.y_label, Ok(&xt), &yt);
     for (i, s) in d.series.iter().enumerate() {
         let color = SERIES_COLORS[i % SERIES_COLORS.len()];
@@ -404,6 +394,46 @@ pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
         }
     }
     dr
+}
+
+/// The axes' ticks of a diagram: the abscissa over the data, the ordinate over the data and
+/// the reference `levels`.
+fn diagram_ticks(d: &Diagram, levels: &[&Level]) -> (Ticks, Ticks) {
+    let finite_pairs = |s: &Series| -> Vec<(f64, f64)> {
+        s.x.iter().zip(&s.y).filter(|(x, y)| x.is_finite() && y.is_finite()).map(|(x, y)| (*x, *y)).collect()
+    };
+    let all: Vec<(f64, f64)> = d.series.iter().flat_map(finite_pairs).collect();
+    let (x0, x1) = finite_range(all.iter().map(|p| p.0)).unwrap_or((0.0, 1.0));
+    let (y0, y1) = finite_range(all.iter().map(|p| p.1)).unwrap_or((0.0, 1.0));
+    let (y0, y1) = levels.iter().fold((y0, y1), |(a, b), v| (a.min(v.y), b.max(v.y)));
+    (inner_ticks(x0, x1, MAX_TICKS + 4, is_degrees(&d.x_label)), nice_ticks(y0, y1, MAX_TICKS, false))
+}
+
+/// Where [`diagram_marked`] draws each sample of the diagram's first series, on the plot's
+/// paper (mm, y up): one entry per sample with a finite abscissa (the NaN that break a curve
+/// between runs are left out), `None` where the value is not finite. The live page moves a
+/// marker along it with the mechanism's position.
+pub fn track(d: &Diagram, marks: &Marks) -> Vec<Option<Point>> {
+    let levels: Vec<&Level> = marks.levels.iter().filter(|v| v.y.is_finite()).collect();
+    let (xt, yt) = diagram_ticks(d, &levels);
+    let map = data_to_paper(&xt, &yt);
+    d.series
+        .first()
+        .map(|s| {
+            s.x.iter()
+                .zip(&s.y)
+                .filter(|(x, _)| x.is_finite())
+                .map(|(x, y)| y.is_finite().then(|| map(*x, *y)))
+                .collect()
+        })
+        .unwrap_or_default()
+}
+
+/// The map from data to the plot's paper coordinates for axes `xt` × `yt`.
+fn data_to_paper(xt: &Ticks, yt: &Ticks) -> impl Fn(f64, f64) -> Point + use<> {
+    let (xlo, xspan) = (xt.lo, (xt.hi - xt.lo).max(f64::MIN_POSITIVE));
+    let (ylo, yspan) = (yt.lo, (yt.hi - yt.lo).max(f64::MIN_POSITIVE));
+    move |x: f64, y: f64| Point::new((x - xlo) / xspan * PLOT_WIDTH, (y - ylo) / yspan * PLOT_HEIGHT)
 }
 
 /// The reference lines and marked samples of [`diagram_marked`].
