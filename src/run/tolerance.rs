@@ -74,54 +74,71 @@ pub(crate) struct Study {
     pub sketch: Vec<(Point, Point)>,
 }
 
-/// The four-bar's components: a point's x, y, normal and along; an angle's value.
-fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<WatchedPath>) {
+/// A watched output as the components see it: its name, and for a point the unit
+/// tangents of its nominal path (one per position).
+struct Watched {
+    name: String,
+    tangents: Option<Vec<Vector>>,
+}
+
+/// The components of watched outputs (channels in their order, 2 for a point, 1 for an
+/// angle; `nominal` the model's channel values, position-major): a point's x, y, normal and
+/// along; an angle's value.
+fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Component>, Vec<WatchedPath>) {
     let mut comps = Vec::new();
     let mut paths = Vec::new();
     let mut ch = 0;
-    let np = Model::positions(model);
-    for o in model.outputs() {
-        let name = o.name();
-        match o {
-            FourbarOutput::Point(p) => {
-                let tangents = model.tangents(*p);
-                let normals: Vec<Vector> = tangents.iter().map(|t| perp(*t)).collect();
-                let comp = |part: &'static str, absolute, projection| Component {
-                    name: format!("{name}.{part}"),
-                    output: name.to_string(),
-                    part,
-                    absolute,
-                    projection,
-                };
-                comps.push(comp("x", true, Projection::Channel(ch)));
-                comps.push(comp("y", true, Projection::Channel(ch + 1)));
-                paths.push(WatchedPath {
-                    name: name.to_string(),
-                    points: (0..np)
-                        .map(|k| {
-                            Point::new(
-                                model.nominal()[k * model.channels() + ch],
-                                model.nominal()[k * model.channels() + ch + 1],
-                            )
-                        })
-                        .collect(),
-                    normals: normals.clone(),
-                    normal: comps.len(),
-                });
-                comps.push(comp("normal", false, Projection::Along { x: ch, y: ch + 1, dirs: normals }));
-                comps.push(comp("along", false, Projection::Along { x: ch, y: ch + 1, dirs: tangents }));
-            }
-            _ => comps.push(Component {
+    let np = nominal.len() / channels.max(1);
+    for w in watched {
+        let name = w.name.as_str();
+        let Some(tangents) = &w.tangents else {
+            comps.push(Component {
                 name: format!("{name}.value"),
                 output: name.to_string(),
                 part: "value",
                 absolute: true,
                 projection: Projection::Channel(ch),
-            }),
-        }
-        ch += o.channels();
+            });
+            ch += 1;
+            continue;
+        };
+        let normals: Vec<Vector> = tangents.iter().map(|t| perp(*t)).collect();
+        let comp = |part: &'static str, absolute, projection| Component {
+            name: format!("{name}.{part}"),
+            output: name.to_string(),
+            part,
+            absolute,
+            projection,
+        };
+        comps.push(comp("x", true, Projection::Channel(ch)));
+        comps.push(comp("y", true, Projection::Channel(ch + 1)));
+        paths.push(WatchedPath {
+            name: name.to_string(),
+            points: (0..np).map(|k| Point::new(nominal[k * channels + ch], nominal[k * channels + ch + 1])).collect(),
+            normals: normals.clone(),
+            normal: comps.len(),
+        });
+        comps.push(comp("normal", false, Projection::Along { x: ch, y: ch + 1, dirs: normals }));
+        comps.push(comp("along", false, Projection::Along { x: ch, y: ch + 1, dirs: tangents.clone() }));
+        ch += 2;
     }
     (comps, paths)
+}
+
+/// The four-bar's components: a point's x, y, normal and along; an angle's value.
+fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<WatchedPath>) {
+    let watched: Vec<Watched> = model
+        .outputs()
+        .iter()
+        .map(|o| Watched {
+            name: o.name().to_string(),
+            tangents: match o {
+                FourbarOutput::Point(p) => Some(model.tangents(*p)),
+                _ => None,
+            },
+        })
+        .collect();
+    components(&watched, model.nominal(), model.channels())
 }
 
 /// The nominal value of every component at every position (0 for deviation components).
@@ -180,6 +197,60 @@ pub(crate) fn fourbar(
     })
 }
 
+/// The study of a linkage scene over its motion: `chunks` of its Monte Carlo (all of them
+/// for a whole run, a shard's share, or none for a merge); `None` without `[tolerances]`.
+pub(crate) fn linkage(
+    scene: &crate::scene::linkage::LinkageScene,
+    chunks: Option<Range<u64>>,
+) -> Result<Option<Study>, crate::solve::tolerance::linkage::LinkageToleranceError> {
+    use crate::solve::tolerance::linkage::{LinkageModel, LinkageOutput};
+    let Some(tol) = scene.tolerances.as_ref() else { return Ok(None) };
+    let model =
+        LinkageModel::new(scene.mechanism.clone(), &scene.times, tol.study.params.clone(), tol.outputs.clone())?;
+    let watched: Vec<Watched> = model
+        .outputs()
+        .iter()
+        .enumerate()
+        .map(|(i, o)| Watched {
+            name: o.name().to_string(),
+            tangents: matches!(o, LinkageOutput::Point { .. }).then(|| model.tangents(i)),
+        })
+        .collect();
+    let (comps, paths) = components(&watched, model.nominal(), model.channels());
+    let dims = tol.study.dims.clone();
+    let linear = linear_all(&model, &dims, &comps);
+    let dead = dead_points(&model, &dims, &linear);
+    let rs = ranges(&linear, comps.len());
+    let s = &tol.study.settings;
+    let chunks = chunks.unwrap_or(0..chunk_count(s.samples));
+    let mc = monte_carlo::run(&model, &dims, &comps, &rs, s.bins, s.samples, s.seed, chunks);
+    let nominal = nominal_values(&model, model.nominal(), &comps);
+    // The mechanism at its first position: each body's outline.
+    let mut sketch = Vec::new();
+    if let Some(st) = model.states().first() {
+        for (i, b) in model.mechanism().bodies.iter().enumerate() {
+            let at = |v: Vector| Point::new(st.q[3 * i], st.q[3 * i + 1]) + crate::geom::rotate(v, st.q[3 * i + 2]);
+            for w in b.points.windows(2) {
+                sketch.push((at(w[0].1), at(w[1].1)));
+            }
+        }
+    }
+    Ok(Some(Study {
+        name: scene.name.clone(),
+        units: scene.units,
+        axis: Axis { column: "t", symbol: "t", unit: "s", values: scene.times.clone() },
+        dims,
+        comps,
+        nominal,
+        linear,
+        dead,
+        mc,
+        settings: s.clone(),
+        paths,
+        sketch,
+    }))
+}
+
 impl Study {
     /// Adds the study's tables, summary, report and figures to a run's extras; returns its
     /// warnings.
@@ -212,7 +283,8 @@ impl Study {
 
     /// The position's label on the figures (`φ1 = 123°`).
     fn at_label(&self, k: usize) -> String {
-        format!("{} = {}{}", self.axis.symbol, short(self.axis.values[k]), self.axis.unit)
+        let gap = if self.axis.unit == "°" { "" } else { " " };
+        format!("{} = {}{gap}{}", self.axis.symbol, short(self.axis.values[k]), self.axis.unit)
     }
 
     /// The band drawing of the watched points.
@@ -768,7 +840,16 @@ pub(crate) fn study_of(
             let motion = crate::solve::fourbar::solve_motion(&s.spec).map_err(|e| super::solve_err(file)(e.into()))?;
             Ok(fourbar(s, &motion.positions, chunks))
         }
+        Scene::Linkage(s) => linkage(s, chunks).map_err(|e| tolerance_err(file, e)),
         _ => Ok(None),
+    }
+}
+
+/// A linkage study's error as the run reports it (the file named).
+pub(crate) fn tolerance_err(file: &str, e: crate::solve::tolerance::linkage::LinkageToleranceError) -> crate::Error {
+    use crate::solve::tolerance::linkage::LinkageToleranceError;
+    match e {
+        LinkageToleranceError::Nominal(le) => super::solve_err(file)(le.into()),
     }
 }
 
@@ -778,6 +859,7 @@ fn settings_of(scene: &crate::scene::Scene) -> Option<&Settings> {
     use crate::scene::Scene;
     match scene {
         Scene::Fourbar(s) => s.tolerances.as_ref().map(|t| &t.study.settings),
+        Scene::Linkage(s) => s.tolerances.as_ref().map(|t| &t.study.settings),
         _ => None,
     }
 }

@@ -298,26 +298,53 @@ fn settings(v: Option<&toml::Value>) -> Result<(Settings, Distribution), FieldEr
     Ok((Settings { samples, seed, bins, trust, magnification }, dist))
 }
 
+/// Whether a value is a band (a number, or a table with a band's key: `{ tol = …}`,
+/// `{ plus = …, minus = … }`, …) rather than a step of a field's path.
+fn is_band(v: &toml::Value) -> bool {
+    const BAND: [&str; 8] = ["tol", "plus", "minus", "upper", "lower", "distribution", "cp", "k"];
+    match v {
+        // An empty table is a step with nothing under it (`body = [{}, { points.B = [t] }]`).
+        toml::Value::Table(t) => t.keys().any(|k| BAND.contains(&k.as_str())),
+        _ => true,
+    }
+}
+
+/// The (path, field, band) entries under `path` (`field` names it in messages).
+fn flatten<'a>(path: String, field: String, v: &'a toml::Value, out: &mut Vec<(String, String, &'a toml::Value)>) {
+    match v {
+        toml::Value::Array(items) => {
+            for (i, item) in items.iter().enumerate() {
+                flatten(format!("{path}[{i}]"), format!("{field}[{i}]"), item, out);
+            }
+        }
+        toml::Value::Table(t) if !is_band(v) => {
+            for (k, item) in t {
+                flatten(format!("{path}.{k}"), format!("{field}.{k}"), item, out);
+            }
+        }
+        v => out.push((path, field, v)),
+    }
+}
+
 /// Checks a `[tolerances]` table for a kind.
 pub fn check<P>(table: &toml::Table, kind: &Kind<'_, P>) -> Result<Tolerances<P>, FieldError> {
     let (settings, default) = settings(table.get("settings"))?;
     let outputs = outputs(table.get("outputs"))?;
     let mut dims = Vec::new();
     let mut params = Vec::new();
-    // `"c[0]" = t` names one coordinate; `c = [t0, t1]` both (each item a band).
+    // `"c[0]" = t` names one coordinate; `c = [t0, t1]` both (each item a band); a table
+    // that is not a band is a step of the path (`ground.points.O = [t0, t1]`), as is an
+    // array of such tables (`body = [{}, { points.B = [t0, t1] }]`).
     let mut entries: Vec<(String, String, &toml::Value)> = Vec::new();
     for (path, v) in table {
         if path == "settings" || path == "outputs" {
             continue;
         }
-        match v {
-            toml::Value::Array(items) => {
-                for (i, item) in items.iter().enumerate() {
-                    entries.push((format!("{path}[{i}]"), format!("tolerances.{path}[{i}]"), item));
-                }
-            }
-            v => entries.push((path.clone(), format!("tolerances.\"{path}\""), v)),
-        }
+        // A leaf at the top is named quoted (`tolerances."l_ab"`), a path through arrays or
+        // tables as the steps it takes (`tolerances.c[0]`, `tolerances.ground.points.O[1]`).
+        let leaf = is_band(v) && !matches!(v, toml::Value::Array(_));
+        let field = if leaf { format!("tolerances.\"{path}\"") } else { format!("tolerances.{path}") };
+        flatten(path.clone(), field, v, &mut entries);
     }
     for (path, field, v) in entries {
         let (param, nominal) = (kind.resolve)(&path).map_err(|m| err(field.clone(), m))?;

@@ -18,6 +18,7 @@
 pub mod exact;
 pub mod fourbar;
 pub mod linear;
+pub mod linkage;
 pub mod model;
 pub mod monte_carlo;
 pub mod stats;
