@@ -72,6 +72,9 @@ pub(crate) struct Study {
     pub paths: Vec<WatchedPath>,
     /// The mechanism at its first position, as segments (context on the band drawing).
     pub sketch: Vec<(Point, Point)>,
+    /// Each dimension's name on the charts (the field path, or a shorter name of the same
+    /// field: a linkage's `rocker.B[0]` for `body[2].points.B[0]`).
+    pub labels: Vec<String>,
 }
 
 /// A watched output as the components see it: its name, and for a point the unit
@@ -194,6 +197,7 @@ pub(crate) fn fourbar(
         settings: s.clone(),
         paths,
         sketch,
+        labels: Vec::new(),
     })
 }
 
@@ -248,7 +252,30 @@ pub(crate) fn linkage(
         settings: s.clone(),
         paths,
         sketch,
+        labels: tol.study.dims.iter().map(|d| chart_label(scene, &d.name)).collect(),
     }))
+}
+
+/// A linkage field's name on the charts: `ground.C[0]` for `ground.points.C[0]`,
+/// `rocker.B[1]` for `body[2].points.B[1]`, `slide.angle_deg` for
+/// `joint[2].prismatic.angle_deg` (the scene's own names, shorter than the paths).
+fn chart_label(scene: &crate::scene::linkage::LinkageScene, path: &str) -> String {
+    let indexed = |rest: &str| -> Option<(usize, String)> {
+        let (i, tail) = rest.split_once(']')?;
+        Some((i.parse().ok()?, tail.to_string()))
+    };
+    let short = if let Some(rest) = path.strip_prefix("ground.points.") {
+        Some(format!("ground.{rest}"))
+    } else if let Some((i, tail)) = path.strip_prefix("body[").and_then(indexed) {
+        let body = scene.mechanism.bodies.get(i).map(|b| b.name.as_str());
+        body.zip(tail.strip_prefix(".points.")).map(|(b, p)| format!("{b}.{p}"))
+    } else if let Some((j, tail)) = path.strip_prefix("joint[").and_then(indexed) {
+        let joint = scene.mechanism.joints.get(j).map(|x| x.name.as_str());
+        joint.zip(tail.strip_prefix(".prismatic.")).map(|(n, f)| format!("{n}.{f}"))
+    } else {
+        None
+    };
+    short.unwrap_or_else(|| path.to_string())
 }
 
 impl Study {
@@ -371,8 +398,9 @@ impl Study {
             .dims
             .iter()
             .zip(&l[c].shares)
-            .map(|(d, s)| Contribution {
-                dimension: d.name.clone(),
+            .enumerate()
+            .map(|(i, (d, s))| Contribution {
+                dimension: self.labels.get(i).cloned().unwrap_or_else(|| d.name.clone()),
                 pct_variance: s.pct_variance,
                 pct_worst_case: s.pct_worst_case,
             })

@@ -541,7 +541,16 @@ pub fn bars(b: &Bars) -> Drawing {
     // The x axis is the bar slots: no numbers, the categories instead.
     let map = axes(&mut dr, &l, &b.title, "", &b.y_label, Err(n as f64), &yt);
     let slot = PLOT_WIDTH / n as f64;
-    let fits = b.bars.iter().all(|x| text_width(&x.0, NUMBER_H) < 0.9 * slot);
+    let fit = |s: &str| text_width(s, NUMBER_H) < 0.9 * slot;
+    // A category that does not fit on one line breaks after its last '.' (a field path,
+    // `rocker.` over `B[0]`) when both parts fit; else every category is turned upright.
+    let lines = |s: &str| -> Vec<String> {
+        match s.rfind('.') {
+            Some(i) if !fit(s) && i + 1 < s.len() => vec![s[..=i].to_string(), s[i + 1..].to_string()],
+            _ => vec![s.to_string()],
+        }
+    };
+    let fits = b.bars.iter().all(|x| lines(&x.0).iter().all(|l| fit(l)) && fit(&x.2));
     let fill = dr.layer("PLOT_BARS", Aci(151), LineType::Continuous);
     for (i, (label, v, note)) in b.bars.iter().enumerate() {
         let (x0, x1) = (i as f64 + 0.2, i as f64 + 0.8);
@@ -556,9 +565,12 @@ pub fn bars(b: &Bars) -> Drawing {
         let below = Point::new(mid, -TICK - 1.0);
         // The category under its bar, its note under that (clear of the bars and the line).
         if fits {
-            text(&mut dr, l.text, below, NUMBER_H, label, (HAlign::Center, VAlign::Top), 0.0);
-            let under = Point::new(mid, below.y - 1.6 * NUMBER_H);
-            text(&mut dr, l.text, under, NUMBER_H, note, (HAlign::Center, VAlign::Top), 0.0);
+            let mut at = below;
+            for line in lines(label) {
+                text(&mut dr, l.text, at, NUMBER_H, &line, (HAlign::Center, VAlign::Top), 0.0);
+                at.y -= 1.6 * NUMBER_H;
+            }
+            text(&mut dr, l.text, at, NUMBER_H, note, (HAlign::Center, VAlign::Top), 0.0);
         } else {
             let both = if note.is_empty() { label.clone() } else { format!("{label} ({note})") };
             text(&mut dr, l.text, below, NUMBER_H, &both, (HAlign::Right, VAlign::Middle), std::f64::consts::FRAC_PI_2);
