@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use mechdraw::draw::dxf::{DxfOptions, to_bytes, to_bytes_via_crate};
-use mechdraw::draw::{Aci, DimStyle, Drawing, LineType, Shape};
+use mechdraw::draw::{Aci, DimStyle, Drawing, LineType, LinearMarks, Shape};
 use mechdraw::geom::{Point, polar};
 
 fn drawing(position_layers: usize) -> Drawing {
@@ -40,7 +40,17 @@ fn drawing(position_layers: usize) -> Drawing {
             },
         );
         let (p1, p2) = (v, polar(v, 30.0, 0.3));
-        d.add(dims, Shape::LinearDimension { p1, p2, line_at: polar(v, 8.0, 1.9), angle: 0.3, text: "30".into() });
+        d.add(
+            dims,
+            Shape::LinearDimension {
+                p1,
+                p2,
+                line_at: polar(v, 8.0, 1.9),
+                angle: 0.3,
+                text: "30".into(),
+                marks: LinearMarks::default(),
+            },
+        );
     }
     for i in 0..position_layers {
         let l = d.layer(&format!("POS_{i:03}"), Aci((i % 255 + 1) as u8), LineType::Continuous);

@@ -18,6 +18,8 @@
 
 #[cfg(feature = "cli")]
 pub mod bench;
+#[cfg(feature = "cli")]
+pub mod diff;
 pub mod draw;
 mod error;
 pub mod figure;
@@ -26,6 +28,7 @@ pub mod report;
 pub mod run;
 pub mod scene;
 pub mod solve;
+pub mod text;
 pub mod web;
 
 pub use error::Error;

@@ -8,6 +8,7 @@ use clap::{Parser, Subcommand};
 use mechdraw::draw::dxf::{Dimensions, DxfOptions, DxfVersion};
 use mechdraw::figure::shared::sheet::Paper;
 use mechdraw::run::RunOptions;
+use mechdraw::run::positions::Positions;
 use mechdraw::scene::{self, Override};
 
 /// mimalloc keeps freed pages for the next allocation: a run builds and drops tens of MB of
@@ -56,6 +57,13 @@ enum Command {
         /// DIR/sheets/<name>/<position>.svg and one PDF, DIR/<name>-sheets.pdf, to print at 100 %.
         #[arg(long, value_name = "PAPER")]
         sheets: Option<Paper>,
+        /// Four-bar and linkage scenes: draw only these positions (the DXF's position layers, the
+        /// frames, the sheets): crank angles φ1 in degrees for a four-bar, times t in seconds for
+        /// a linkage, as the frames label them, e.g. `0,90,180`; or `every=STEP`, the first
+        /// position and every STEP after it (`every=30`). Each must be a position of the run
+        /// (STEP a multiple of its step). The CSV, JSON and diagrams keep every position.
+        #[arg(long, value_name = "LIST")]
+        positions: Option<Positions>,
         /// Linkage scenes: move BODY.POINT as close as the constraints allow to (x, y) and
         /// write that configuration, e.g. `--drag crank.A=10,20`.
         #[arg(long, value_name = "BODY.POINT=X,Y")]
@@ -76,6 +84,9 @@ enum Command {
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
+        /// List every file written (`wrote DIR/…` one a line) instead of a count per folder.
+        #[arg(short, long)]
+        verbose: bool,
     },
     /// Merge the shards of a tolerance study (`run --shard K/N`) into exactly the statistics
     /// of one run with the same seed, and write its tolerance files: <name>-tolerances.csv,
@@ -96,6 +107,9 @@ enum Command {
         /// No report on stderr.
         #[arg(short, long)]
         quiet: bool,
+        /// List every file written (`wrote DIR/…` one a line) instead of a count per folder.
+        #[arg(short, long)]
+        verbose: bool,
     },
     /// Write the live pages of scenes, the module they share and an index.html linking them:
     /// a gallery to publish as static files or open from disk (each page solves and draws
@@ -116,6 +130,28 @@ enum Command {
         #[arg(long = "set", value_name = "KEY=VALUE")]
         set: Vec<String>,
     },
+    /// Compare two runs' output directories, as a CI job checks a course's golden files:
+    /// CSV and JSON cell by cell, SVG and PNG pixel by pixel (a red/white diff PNG for each
+    /// changed picture), DXF entity by entity, PDF pages and text. Prints a summary; exits 0
+    /// when NEW is OLD within the tolerances, 1 when it is not, 2 on bad input. See docs/ci.md.
+    Diff {
+        /// The reference run's directory (the golden files).
+        old: PathBuf,
+        /// The run to check.
+        new: PathBuf,
+        /// Relative tolerance of numbers: a CSV cell, JSON value or DXF coordinate differs when
+        /// it moved by more than X times its column's scale (the largest magnitude in that
+        /// column, key path or drawing).
+        #[arg(long, value_name = "X", default_value_t = mechdraw::diff::DEFAULT_TOL_REL, value_parser = tolerance)]
+        tol_rel: f64,
+        /// Channel tolerance of pictures: a pixel differs when its red, green, blue or alpha
+        /// (0–255) moved by more than N.
+        #[arg(long, value_name = "N", default_value_t = mechdraw::diff::DEFAULT_TOL_PX)]
+        tol_px: u8,
+        /// Where the diff PNGs of changed pictures go (DIFF_DIR/<path>.diff.png).
+        #[arg(long, value_name = "DIFF_DIR", default_value = "diff-out")]
+        out: PathBuf,
+    },
     /// Time every solving method against its accuracy and write a chart, CSV and table.
     Bench {
         /// Output directory for the chart, CSV and Markdown table (the timed runs write into a
@@ -130,7 +166,13 @@ enum Command {
 }
 
 /// Prints a run's JSON (when asked), warnings, report and written files.
-fn finish(outcome: mechdraw::run::Outcome, json: bool, quiet: bool) -> anyhow::Result<()> {
+fn finish(
+    outcome: mechdraw::run::Outcome,
+    out: &std::path::Path,
+    json: bool,
+    quiet: bool,
+    verbose: bool,
+) -> anyhow::Result<()> {
     if json {
         print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
     }
@@ -141,9 +183,7 @@ fn finish(outcome: mechdraw::run::Outcome, json: bool, quiet: bool) -> anyhow::R
         if !outcome.report.is_empty() {
             eprintln!("{}", outcome.report.trim_end());
         }
-        for f in &outcome.written {
-            eprintln!("wrote {}", f.display());
-        }
+        eprint!("{}", mechdraw::run::listing::summary(out, &outcome.written, verbose));
     }
     Ok(())
 }
@@ -172,8 +212,40 @@ fn print_stdout(text: &str) -> anyhow::Result<()> {
     }
 }
 
+/// `--tol-rel`: a finite number ≥ 0.
+fn tolerance(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(x) if x.is_finite() && x >= 0.0 => Ok(x),
+        _ => Err(format!("`{s}` is not a tolerance: give a number ≥ 0, e.g. 1e-6")),
+    }
+}
+
+/// `mechdraw diff`: the summary on stdout; exit 0 within the tolerances, 1 not, 2 on bad input.
+fn diff(old: &std::path::Path, new: &std::path::Path, opts: &mechdraw::diff::DiffOptions) -> ExitCode {
+    match mechdraw::diff::compare(old, new, opts) {
+        Ok(report) => {
+            if let Err(e) = print_stdout(report.summary().trim_end()) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            if report.passed() { ExitCode::SUCCESS } else { ExitCode::from(1) }
+        }
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
+    // SIGINT, SIGTERM, SIGHUP: a run's staging directory removed, exit 130, 143, 129.
+    if let Err(e) = mechdraw::run::output::remove_staging_on_signals() {
+        eprintln!("warning: {e}");
+    }
+    if let Command::Diff { old, new, tol_rel, tol_px, out } = &cli.command {
+        return diff(old, new, &mechdraw::diff::DiffOptions { tol_rel: *tol_rel, tol_px: *tol_px, out: out.clone() });
+    }
     match run(cli) {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
@@ -195,35 +267,38 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             png,
             no_frames,
             sheets,
+            positions,
             drag,
             dxf_version,
             dxf_dimensions,
             shard,
             quiet,
+            verbose,
         } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
             if let Some(spec) = shard {
                 let outcome = mechdraw::run::run_shard(&loaded, parse_shard(&spec)?, &set, &out)?;
-                return finish(outcome, json, quiet);
+                return finish(outcome, &out, json, quiet, verbose);
             }
             let opts = RunOptions {
-                out_dir: Some(out),
+                out_dir: Some(out.clone()),
                 png,
                 no_frames,
                 progress: !quiet && std::io::stderr().is_terminal(),
                 drag,
                 dxf: DxfOptions { version: dxf_version, dimensions: dxf_dimensions, ..DxfOptions::default() },
                 sheets,
+                positions,
                 sets: set.clone(),
                 picture_only: false,
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
-            finish(outcome, json, quiet)
+            finish(outcome, &out, json, quiet, verbose)
         }
-        Command::Merge { shards, out, json, png, quiet } => {
-            let opts = RunOptions { out_dir: Some(out), png, ..RunOptions::default() };
+        Command::Merge { shards, out, json, png, quiet, verbose } => {
+            let opts = RunOptions { out_dir: Some(out.clone()), png, ..RunOptions::default() };
             let outcome = mechdraw::run::merge(&shards, &opts)?;
-            finish(outcome, json, quiet)
+            finish(outcome, &out, json, quiet, verbose)
         }
         Command::Web { scenes, out } => {
             let scenes: Vec<(String, String)> = if scenes.is_empty() {
@@ -254,6 +329,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             ))?;
             Ok(())
         }
+        // Answered in main: its exit code says whether the runs differ.
+        Command::Diff { .. } => Ok(()),
         Command::Bench { out, quick } => {
             let report = mechdraw::bench::run(&mechdraw::bench::BenchOptions { out_dir: out, quick })?;
             print!("{}", mechdraw::bench::markdown(&report));

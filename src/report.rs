@@ -1,5 +1,5 @@
-//! JSON summary and CSV: the public data interfaces (documented in README). Shared
-//! helpers; each kind's pipeline builds its own records.
+//! JSON summary and CSV: the public data interfaces (documented in docs/scene-files.md and
+//! each kind's page). Shared helpers; each kind's pipeline builds its own records.
 
 use crate::geom::{Point, Vector};
 
@@ -139,6 +139,27 @@ impl Csv {
         }
     }
 
+    /// Appends a column `name` with one value per row: a number, or an empty field where
+    /// the value is `None` (a quantity the row does not have); rows beyond `values` get an
+    /// empty field too.
+    pub fn column_opt(&mut self, name: impl Into<String>, values: &[Option<f64>]) {
+        self.header.push(name.into());
+        for (i, r) in self.rows.iter_mut().enumerate() {
+            r.push(values.get(i).copied().flatten().map_or(String::new(), number));
+        }
+    }
+
+    /// The first field that writes a number that is not finite (`NaN`, `inf`:
+    /// [`crate::text::non_finite_word`]), described for a message (row, column, field).
+    pub fn first_non_finite(&self) -> Option<String> {
+        self.rows.iter().enumerate().find_map(|(i, r)| {
+            r.iter().enumerate().find(|(_, f)| crate::text::non_finite_word(f).is_some()).map(|(j, f)| {
+                let column = self.header.get(j).map_or("?", String::as_str);
+                format!("row {} column {column} is \"{}\"", i + 1, crate::text::excerpt(f))
+            })
+        })
+    }
+
     /// The table as CSV text (RFC 4180 quoting, `\n` line ends).
     pub fn to_bytes(&self) -> Vec<u8> {
         let mut w = csv::WriterBuilder::new().terminator(csv::Terminator::Any(b'\n')).from_writer(Vec::new());
@@ -152,6 +173,10 @@ impl Csv {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::number;
 

@@ -19,9 +19,27 @@ fn drawing(template: &str, sets: &[&str]) -> (Drawing, serde_json::Value) {
     let loaded = scene::load(&path, &overrides).unwrap();
     let p = mechdraw::run::products(&loaded, &Default::default()).unwrap();
     match p.picture {
-        Picture::Still(d) => (d, p.summary),
+        Picture::Still(d) => (exploded(d), p.summary),
         Picture::Motion(_) => panic!("a chain is one drawing"),
     }
+}
+
+/// The drawing with each dimension broken into what the writers draw of it (its lines,
+/// base circle, arrowheads and text, on its layer) and the scale caption as the paper
+/// states it, as the checks below read it.
+fn exploded(d: Drawing) -> Drawing {
+    let style = d.dim_style;
+    let entities = d
+        .entities
+        .iter()
+        .flat_map(|e| {
+            let shape = e.shape.scale_text_in(None).unwrap_or_else(|| e.shape.clone());
+            mechdraw::draw::parts::explode_dimension(&shape, &style)
+                .into_iter()
+                .map(|shape| mechdraw::draw::Entity { shape, ..e.clone() })
+        })
+        .collect();
+    Drawing { entities, ..d }
 }
 
 /// Matrix (2) with a redundant ninth dimension (17 from the end of 25), as chain_golden.rs.

@@ -56,11 +56,11 @@ fn chain_humienny_2_dxf_is_audit_clean_and_matches_its_golden_file() {
     let dxf = out.join("chain-humienny-2.dxf");
     common::assert_ezdxf_clean(&[&dxf]);
     let text = std::fs::read_to_string(&dxf).unwrap();
-    // The dimensions are written as they are drawn (docs/chain.md, "Why the chain's
-    // dimensions are exploded"): no DIMENSION entity, and on layer DIMENSIONS the seed's
-    // notation survives: eight base circles and eight arrowheads, one per dimension.
+    // The dimensions are DIMENSION entities (8 independent, 4 dependent), each block
+    // drawing it as the chain does (docs/chain.md): on layer DIMENSIONS the seed's notation,
+    // eight base circles and eight arrowheads, one per dimension.
     let text_lf = text.replace("\r\n", "\n");
-    assert_eq!(text_lf.matches("\n  0\nDIMENSION\n").count(), 0);
+    assert_eq!(text_lf.matches("\n  0\nDIMENSION\n").count(), 12);
     let count = |entity: &str| {
         text_lf
             .split("\n  0\n")

@@ -2,6 +2,11 @@
 //! back of counts, layers, line type pattern, dimension measurements, widths and text),
 //! plus the golden DXF and the golden PNG (SVG writer) of one sample drawing.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::f64::consts::PI;
@@ -9,7 +14,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use mechdraw::draw::dxf::{self, Dimensions, DxfOptions, DxfVersion};
-use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign, svg};
+use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, LinearMarks, Shape, VAlign, svg};
 use mechdraw::geom::{Point, Vector};
 use serde_json::Value;
 
@@ -135,7 +140,17 @@ fn sample_drawing() -> Drawing {
             text: "reflex".into(),
         },
     );
-    d.add(dims, Shape::LinearDimension { p1: a0, p2: b0, line_at: p(40.0, -12.0), angle: 0.0, text: "60".into() });
+    d.add(
+        dims,
+        Shape::LinearDimension {
+            p1: a0,
+            p2: b0,
+            line_at: p(40.0, -12.0),
+            angle: 0.0,
+            text: "60".into(),
+            marks: LinearMarks::default(),
+        },
+    );
     let ab = b - a;
     d.add_colored(
         dims,
@@ -146,9 +161,20 @@ fn sample_drawing() -> Drawing {
             line_at: a + Vector::new(-ab.y, ab.x).normalize() * 8.0,
             angle: ab.y.atan2(ab.x),
             text: format!("{:.2}", ab.norm()),
+            marks: LinearMarks::default(),
         },
     );
-    d.add(dims, Shape::LinearDimension { p1: b0, p2: b, line_at: p(90.0, 30.0), angle: PI / 2.0, text: "35".into() });
+    d.add(
+        dims,
+        Shape::LinearDimension {
+            p1: b0,
+            p2: b,
+            line_at: p(90.0, 30.0),
+            angle: PI / 2.0,
+            text: "35".into(),
+            marks: LinearMarks::default(),
+        },
+    );
     d.add(
         dims,
         Shape::LinearDimension {
@@ -157,6 +183,7 @@ fn sample_drawing() -> Drawing {
             line_at: p(30.0, 60.0),
             angle: 200f64.to_radians(),
             text: "~".into(),
+            marks: LinearMarks::default(),
         },
     );
     d
@@ -223,7 +250,8 @@ fn sample_drawing_audits_clean_and_reads_back() {
     assert_eq!(n("SOLID"), 2 + 2 + 3 + 2);
     assert_eq!(n("POLYLINE"), 2);
     assert_eq!(n("TEXT"), 1 + 9 + 1 + 2);
-    assert_eq!(n("DIMENSION"), 6);
+    // Six dimensions, the reflex angle as two halves.
+    assert_eq!(n("DIMENSION"), 7);
 
     // Layers with their colours and line types.
     // (ezdxf adds its own "Defpoints" layer to every document it loads.)
@@ -271,15 +299,28 @@ fn sample_drawing_audits_clean_and_reads_back() {
     }
 
     // Text: every value round-trips (Greek letters, °, ′, ≈); justified text is placed at
-    // its alignment point, including the one at the origin.
+    // its alignment point, including the one at the origin; the width factor keeps
+    // LibreCAD's wider font in the text's box, and a centred single character is written
+    // left-aligned where it is centred between LibreCAD's glyph and DejaVu's
+    // (`librecad::text_fit`, whose unit tests hold both to those rules).
     let texts = info["texts"].as_array().unwrap();
-    let expected: Vec<(&str, Point, u8, u8, f64)> = d
+    let expected: Vec<(&str, Point, u8, u8, f64, f64)> = d
         .entities
         .iter()
         .filter_map(|e| match &e.shape {
-            Shape::Text { at, value, halign, valign, rotation, .. } => Some((
-                value.as_str(),
-                *at,
+            Shape::Text { at, height, value, halign, valign, rotation } => {
+                Some((value, *at, *height, *halign, *valign, *rotation))
+            }
+            _ => None,
+        })
+        .map(|(value, at, height, halign, valign, rotation)| {
+            let fit = dxf::librecad::text_fit(at, height, value, halign, valign, rotation);
+            (value.as_str(), fit.at, fit.halign, fit.valign, rotation, fit.width)
+        })
+        .map(|(value, at, halign, valign, rotation, width)| {
+            (
+                value,
+                at,
                 match halign {
                     HAlign::Left => 0,
                     HAlign::Center => 1,
@@ -291,13 +332,15 @@ fn sample_drawing_audits_clean_and_reads_back() {
                     VAlign::Top => 3,
                 },
                 rotation.to_degrees(),
-            )),
-            _ => None,
+                width,
+            )
         })
         .collect();
     assert_eq!(texts.len(), expected.len());
-    for (t, (value, at, h, v, rot)) in texts.iter().zip(&expected) {
+    assert!(expected.iter().any(|e| e.5 < 1.0), "some text is narrowed for LibreCAD");
+    for (t, (value, at, h, v, rot, width)) in texts.iter().zip(&expected) {
         assert_eq!(t["text"].as_str().unwrap(), *value);
+        assert_eq!(t["width"].as_f64().unwrap(), *width, "{value}: width factor");
         assert_eq!(t["halign"].as_u64().unwrap(), *h as u64, "{value}");
         assert_eq!(t["valign"].as_u64().unwrap(), *v as u64, "{value}");
         let pl = t["placement"].as_array().unwrap();
@@ -327,29 +370,38 @@ fn sample_drawing_audits_clean_and_reads_back() {
 
     // Dimensions: measurements equal the true angle or distance computed here from the
     // coordinates; the drawing's text is the override; each has its own *D block with
-    // arrowheads and the same text.
+    // arrowheads and the same text. An angle of 180° or more is two 2-line halves (LibreCAD
+    // draws no larger angular dimension), the first with the text and one arrowhead, the
+    // second with no text (a space) and the other arrowhead.
     let dims = info["dimensions"].as_array().unwrap();
-    let truth: Vec<(u64, f64, String)> = d
+    // (dimension type, true value, text, arrowheads and texts in its block)
+    let truth: Vec<(u64, f64, String, u64, u64)> = d
         .entities
         .iter()
-        .filter_map(|e| match &e.shape {
+        .flat_map(|e| match &e.shape {
             Shape::AngularDimension { vertex, first, second, text, .. } => {
                 let a1 = (first - vertex).y.atan2((first - vertex).x).to_degrees();
                 let a2 = (second - vertex).y.atan2((second - vertex).x).to_degrees();
                 let sweep = (a2 - a1).rem_euclid(360.0);
-                // 2-line angular under 180° (the form LibreCAD draws), 3-point from 180° on.
-                Some((if sweep < 180.0 { 2 } else { 5 }, sweep, text.clone()))
+                if sweep < 180.0 {
+                    vec![(2, sweep, text.clone(), 2, 1)]
+                } else {
+                    // The part with the text 170° (its text well away from both rays), the
+                    // rest at least 10°; over 340°, halves.
+                    let first = (0.5 * sweep).max(170f64.min(sweep - 10.0));
+                    vec![(2, first, text.clone(), 1, 1), (2, sweep - first, " ".to_string(), 1, 0)]
+                }
             }
             Shape::LinearDimension { p1, p2, angle, text, .. } => {
                 let u = Vector::new(angle.cos(), angle.sin());
-                Some((0, (p2 - p1).dot(&u).abs(), text.clone()))
+                vec![(0, (p2 - p1).dot(&u).abs(), text.clone(), 2, 1)]
             }
-            _ => None,
+            _ => Vec::new(),
         })
         .collect();
     assert_eq!(dims.len(), truth.len());
     let mut names = std::collections::HashSet::new();
-    for (dim, (kind, value, text)) in dims.iter().zip(&truth) {
+    for (dim, (kind, value, text, heads, texts)) in dims.iter().zip(&truth) {
         assert_eq!(dim["dimtype"].as_u64().unwrap() & 0x0F, *kind);
         let m = dim["measurement"].as_f64().unwrap();
         assert!(close(m, *value, 1e-9), "measurement {m} vs true {value} ({text})");
@@ -357,12 +409,14 @@ fn sample_drawing_audits_clean_and_reads_back() {
         let block = dim["block"].as_str().unwrap();
         assert!(block.starts_with("*D") && names.insert(block.to_string()), "block {block}");
         let content = &dim["block_content"];
-        assert_eq!(content["SOLID"].as_u64(), Some(2), "{block}: two arrowheads");
-        assert_eq!(content["TEXT"].as_u64(), Some(1), "{block}: one text");
-        assert_eq!(dim["block_texts"][0].as_str().unwrap(), text);
+        assert_eq!(content["SOLID"].as_u64(), Some(*heads), "{block}: arrowheads");
+        assert_eq!(content["TEXT"].as_u64().unwrap_or(0), *texts, "{block}: texts");
+        if *texts > 0 {
+            assert_eq!(dim["block_texts"][0].as_str().unwrap(), text);
+        }
     }
-    // The reflex angle is over 180°.
-    assert!(truth.iter().any(|(k, v, _)| *k == 5 && *v > 180.0));
+    // The reflex angle is over 180°: two parts.
+    assert!(truth.iter().any(|(_, _, t, ..)| t == " "));
 
     // Header: dimension sizes and extents.
     assert_eq!(info["header"]["$DIMTXT"].as_f64(), Some(d.dim_style.text_height));
@@ -382,8 +436,10 @@ fn r2000_audits_clean_too() {
     common::assert_ezdxf_clean(&[&path]);
     let info = inspect(&path);
     assert_eq!(info["version"], "AC1015");
-    assert_eq!(info["counts"]["DIMENSION"].as_u64(), Some(6));
-    assert_eq!(info["dimensions"][1]["measurement"].as_f64().map(|m| m > 180.0), Some(true));
+    // Six dimensions, the reflex one (the second) as two halves.
+    assert_eq!(info["counts"]["DIMENSION"].as_u64(), Some(7));
+    let m = |k: usize| info["dimensions"][k]["measurement"].as_f64().unwrap();
+    assert!(m(1) < 180.0 && m(2) < 180.0 && m(1) + m(2) > 180.0);
 }
 
 /// Every version with every dimension encoding audits clean (0 errors, 0 fixes) and reads
@@ -406,6 +462,19 @@ fn every_version_and_dimension_encoding_audits_clean() {
         .iter()
         .filter(|e| matches!(e.shape, Shape::AngularDimension { .. } | Shape::LinearDimension { .. }))
         .count() as u64;
+    // An angle of 180° or more is written as two DIMENSIONs.
+    let reflex = d
+        .entities
+        .iter()
+        .filter(|e| match &e.shape {
+            Shape::AngularDimension { vertex, first, second, .. } => {
+                let (u, v) = (first - vertex, second - vertex);
+                (v.y.atan2(v.x) - u.y.atan2(u.x)).rem_euclid(2.0 * PI) >= PI
+            }
+            _ => false,
+        })
+        .count() as u64;
+    assert_eq!(reflex, 1, "the sample has one reflex angle");
     for (path, version, dimensions) in &paths {
         let info = inspect(path);
         let what = format!("{} {}", version.name(), dimensions.name());
@@ -419,9 +488,13 @@ fn every_version_and_dimension_encoding_audits_clean() {
         // Exploded: each dimension's block content (lines, an arc, 2 SOLIDs, a TEXT) in
         // model space instead of the DIMENSION.
         match dimensions {
-            Dimensions::Entities => assert_eq!((n("DIMENSION"), n("TEXT")), (dims, 13), "{what}"),
+            Dimensions::Entities => assert_eq!((n("DIMENSION"), n("TEXT")), (dims + reflex, 13), "{what}"),
             Dimensions::Exploded => {
-                assert_eq!((n("DIMENSION"), n("TEXT"), n("SOLID")), (0, 13 + dims, 9 + 2 * dims), "{what}")
+                assert_eq!((n("DIMENSION"), n("TEXT"), n("SOLID")), (0, 13 + dims, 9 + 2 * dims), "{what}");
+                // Every filled shape (5) and arrowhead (2 arrows, 2 a dimension) outlined
+                // by a closed POLYLINE of width 0 as well (FreeCAD drops SOLID), besides the
+                // two links.
+                assert_eq!(n("POLYLINE"), 2 + 5 + 2 + 2 * dims, "{what}");
             }
         }
         // Every text in the AZOMIX style, the one LibreCAD draws Greek letters in.
@@ -458,6 +531,7 @@ fn metres_are_written_as_millimetres() {
             line_at: p(0.0, -0.02),
             angle: 0.0,
             text: "80".into(),
+            marks: LinearMarks::default(),
         },
     );
     let opts = DxfOptions { mm_per_unit: 1000.0, ..DxfOptions::default() };

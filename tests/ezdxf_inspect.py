@@ -63,6 +63,7 @@ for e in msp:
             "placement": xy(e.get_placement()[1]),
             "rotation": e.dxf.get("rotation", 0.0),
             "height": e.dxf.height,
+            "width": e.dxf.get("width", 1.0),
             "style": e.dxf.get("style", "Standard"),
         })
     elif e.dxftype() == "DIMENSION":

@@ -5,6 +5,11 @@
 //! accelerations and at the middles the seed takes them from; the table of magnitudes
 //! prints the solver's values; the images of a ternary coupler are closed triangles.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::draw::{Drawing, HAlign, Shape};

@@ -3,6 +3,11 @@
 //! centre of the coupler, the acceleration polygon's closure, the law of cosines for the
 //! limit angles, rigid-motion invariance.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 use mechdraw::geom::{self, Point, Side, Vector, cross, perp};
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::fourbar::{

@@ -2,6 +2,11 @@
 //! diagrams, CSV, JSON), golden frames and DXF, and the data checked against closed forms
 //! and finite differences (independent of the solver's own formulas).
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::collections::HashMap;

@@ -4,6 +4,11 @@
 //! independent route: the law of cosines from the crank angle alone, the instantaneous
 //! centre constructed from the CSV's joint columns, and the reactions route's Me1.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::path::{Path, PathBuf};

@@ -2,6 +2,11 @@
 //! balance, the Newton–Euler linear system, each link's free-body equilibrium, a static
 //! configuration solved by hand, virtual work with finite-difference velocity ratios.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 use mechdraw::geom::{Point, Side, Vector, cross};
 use mechdraw::scene::{self, Scene};
 use mechdraw::solve::fourbar::{CrankRange, Dynamics, Forces, forces_newton_euler};

@@ -4,6 +4,11 @@
 //! decompose; its decomposition named; an unassemblable position reported by group, joint
 //! and time.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::{Point, Vector, rotate};
@@ -210,7 +215,7 @@ fn random_chain(rng: &mut Rng, kinds: &[&str]) -> Mechanism {
     let mut m = Build { bodies: vec![], joints: vec![], drivers: vec![] };
     let phi0 = rng.range(0.0, 6.0);
     let crank = m.body("crank", Point::origin(), phi0);
-    if kinds.len() % 2 == 0 {
+    if kinds.len().is_multiple_of(2) {
         m.revolute("O", Attach::Ground, Attach::Body(crank), Point::origin());
         m.drivers.push(Driver {
             name: "O".into(),

@@ -3,6 +3,11 @@
 //! derivatives of the law) are checked against central finite differences of its own
 //! positions and velocities at nearby times, solved separately.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::scene::{self, Scene};

@@ -3,6 +3,11 @@
 //! accelerations from the loop equations) written here: positions, velocities and
 //! accelerations agree to 1e-9 relative at every one of the 361 crank angles.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::{CircleIntersection, Point, Side, Vector, circle_circle, perp};

@@ -4,6 +4,11 @@
 //! zero masses, a mm scene against its SI twin, the virtual-power balance on every
 //! template with forces.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::{Point, Vector, cross, perp};

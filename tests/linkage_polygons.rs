@@ -5,6 +5,11 @@
 //! solver, and the shaper's Coriolis component is 2·ω3 × v_rel; the four-bar-as-linkage's
 //! velocity polygon has the points of the four-bar kind's closed form.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::figure::linkage::polygon::polygons;

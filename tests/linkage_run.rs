@@ -3,6 +3,11 @@
 //! diagram per column; CSV and JSON with the same columns), and `--drag` moves the crank
 //! pin to the nearest reachable point.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::path::Path;

@@ -4,6 +4,11 @@
 //! form; the relative motion at its prismatic joints (sliding velocity, relative and
 //! Coriolis accelerations).
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::Vector;

@@ -3,6 +3,11 @@
 //! against its closed form, a motion shorter than a turn, the diagrams' abscissa, names and
 //! units.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 use mechdraw::draw::{Drawing, Shape};
 use mechdraw::run::{self, Products, RunOptions};
 use mechdraw::scene::{self, Loaded, Override};

@@ -3,6 +3,11 @@
 //! turn at t = 1 s — the configuration must be the seed's: the six triad equations hold
 //! and phi1 = 75.77° (the seed's assembly mode, kept along the whole turn).
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::Point;

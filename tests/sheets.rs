@@ -6,6 +6,11 @@
 //! a length measured on a sheet times the scale printed in its panel is the value (k_v × mm
 //! = |v|); the files on disk are the in-memory bytes; a golden PNG of the page at φ1 = 90°.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::collections::BTreeMap;
@@ -39,6 +44,10 @@ fn angles(p: &Products) -> Vec<f64> {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs poppler-utils (pdfinfo, pdftotext): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_pdf_has_a_page_per_position_each_with_its_crank_angle() {
     let l = loaded("30");
     let tmp = tempfile::tempdir().unwrap();

@@ -2,6 +2,11 @@
 //! a non-Grashof linkage (a dead point for the crank: A, B, C collinear), and branch
 //! continuity through near-singular positions. Expected behaviour is written on each test.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 use mechdraw::geom::{Point, Side, deg, polar, rad};
 use mechdraw::solve::fourbar::{
     FourbarError, Geometry, Grashof, MotionSpec, Outputs, Reach, Sweep, kinematics, position, solve_motion,

@@ -3,6 +3,11 @@
 //! extreme itself is flagged near-singular, one near it is not), redundant constraints
 //! (a parallelogram with a redundant link), and a start far from the solution.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::geom::{CircleIntersection, Point, Side, Vector, circle_circle, polar};

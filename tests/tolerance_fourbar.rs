@@ -161,7 +161,7 @@ fn the_worst_case_bounds_every_monte_carlo_sample_in_the_linear_regime() {
 /// The four-bar written out here: A on the crank, B where the circles about A (l_ab) and
 /// C (l_bc) meet on `side` of A→C, M = B + (l_bm/l_ab)·R(α)·(A − B).
 fn brute_force(g: &Geometry, phi1: f64, side: Side) -> Option<[Point; 3]> {
-    let a = g.o1 + Vector::new(phi1.cos(), phi1.sin()) * g.l1;
+    let a = g.o1 + Vector::new(libm::cos(phi1), libm::sin(phi1)) * g.l1;
     let ac = g.c - a;
     let d = ac.norm();
     let x = (g.l_ab * g.l_ab - g.l_bc * g.l_bc + d * d) / (2.0 * d);
@@ -173,7 +173,7 @@ fn brute_force(g: &Geometry, phi1: f64, side: Side) -> Option<[Point; 3]> {
     let left = Vector::new(-u.y, u.x);
     let sign = if side == Side::Left { 1.0 } else { -1.0 };
     let b = a + u * x + left * (sign * h2.sqrt());
-    let (sa, ca) = g.alpha.sin_cos();
+    let (sa, ca) = libm::sincos(g.alpha);
     let v = (a - b) * (g.l_bm / g.l_ab);
     let m = b + Vector::new(ca * v.x - sa * v.y, sa * v.x + ca * v.y);
     Some([a, b, m])

@@ -1,6 +1,11 @@
 //! The triad through the binary: outputs, the JSON summary, `--set`, `check`, and bad
 //! input (exit code 2, a message naming the file and the field, nothing written).
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::path::Path;

@@ -5,6 +5,11 @@
 //! panel, satisfies the triad's six equations and whose printed φ1, φ2, φ3 are the
 //! measured directions and the solver's (the JSON summary), the drawn mode marked once.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use mechdraw::draw::parts::explode_dimension;
@@ -43,7 +48,8 @@ fn texts(d: &Drawing) -> Vec<(Point, String)> {
 /// `Mode 3 · clockwise` → 3.
 fn mode_number(text: &str) -> Option<usize> {
     let rest = text.strip_prefix("Mode ")?;
-    rest.split(' ').next()?.parse().ok()
+    // `Mode 1 · counter-clockwise` (the DXF writes the separator `·` as a comma).
+    rest.split([' ', ',']).next()?.parse().ok()
 }
 
 /// `φ1 = 75.77°, φ2 = …, φ3 = …` → the three angles, degrees.

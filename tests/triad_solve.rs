@@ -2,6 +2,11 @@
 //! the six constraint equations, a dense scan of phi1 written here from scratch, poses
 //! built backwards, a tangent and a singular (double-root) pose, and invariance.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 use mechdraw::geom::{Point, Vector, deg, rad, rotate};
 use mechdraw::solve::triad::{
     Configuration, NewtonOptions, Orientation, PatternOptions, Triad, TriadError, all_modes, newton, pattern,
@@ -99,21 +104,21 @@ fn scan(t: &Triad, ccw: bool, steps: usize) -> Vec<f64> {
         for i in 0..=steps {
             let x = i as f64 * h;
             let y = f(x);
-            if let Some((px, py)) = prev {
-                if py.is_some() != y.is_some() {
-                    // Interval end between px and x: bisect to its last existing point.
-                    let (mut inside, mut outside) = if py.is_some() { (px, x) } else { (x, px) };
-                    for _ in 0..80 {
-                        let mid = 0.5 * (inside + outside);
-                        if f(mid).is_some() { inside = mid } else { outside = mid }
-                    }
-                    if let Some(v) = f(inside) {
-                        if py.is_some() {
-                            samples.push((inside, v));
-                            push_run(&mut samples, &mut roots);
-                        } else {
-                            samples.push((inside, v));
-                        }
+            if let Some((px, py)) = prev
+                && py.is_some() != y.is_some()
+            {
+                // Interval end between px and x: bisect to its last existing point.
+                let (mut inside, mut outside) = if py.is_some() { (px, x) } else { (x, px) };
+                for _ in 0..80 {
+                    let mid = 0.5 * (inside + outside);
+                    if f(mid).is_some() { inside = mid } else { outside = mid }
+                }
+                if let Some(v) = f(inside) {
+                    if py.is_some() {
+                        samples.push((inside, v));
+                        push_run(&mut samples, &mut roots);
+                    } else {
+                        samples.push((inside, v));
                     }
                 }
             }

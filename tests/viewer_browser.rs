@@ -83,6 +83,10 @@ fn stage_svg(dom: &str) -> String {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and tesseract: bash .ci/test, or cargo test --features system-tools"
+)]
 fn viewer_moves_to_the_frame_asked_for_and_plays() {
     let dir = tempfile::tempdir().unwrap();
     let out = mechdraw()
@@ -131,6 +135,10 @@ fn viewer_moves_to_the_frame_asked_for_and_plays() {
 /// as wide as the frame (316 mm, about 1200 CSS px), read back by tesseract (`.ci/test`
 /// installs tesseract-ocr).
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and tesseract: bash .ci/test, or cargo test --features system-tools"
+)]
 fn chromium_renders_a_frames_text() {
     let dir = tempfile::tempdir().unwrap();
     let out = mechdraw()

@@ -22,8 +22,12 @@ fn web_files_are_the_command_lines_bytes_for_every_template() {
     for (path, set) in common::reduced_templates() {
         let file = path.display().to_string();
         for frames in [true, false] {
-            let web = web::scene_files(&common::text_with(&path, &set), &file, WebOptions { frames, png: false })
-                .unwrap_or_else(|e| panic!("{file}: {e}"));
+            let web = web::scene_files(
+                &common::text_with(&path, &set),
+                &file,
+                WebOptions { frames, ..WebOptions::default() },
+            )
+            .unwrap_or_else(|e| panic!("{file}: {e}"));
 
             // The library's own route: the scene read from disk, its products to bytes.
             let over: Vec<Override> = set.iter().map(|s| s.parse().unwrap()).collect();

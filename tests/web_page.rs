@@ -11,6 +11,11 @@
 //! Needs the pages: `bash web/build.sh` (`.ci/test` runs it: it needs the wasm32 target and
 //! wasm-bindgen-cli) and Debian's chromium.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::collections::BTreeMap;
@@ -75,6 +80,10 @@ fn point(state: &Value, name: &str) -> (f64, f64) {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
     let (_, json, _) = cli(&template("triad-popa"), &[]);
     let shown = observed()["triad"]["modes"].as_str().unwrap();
@@ -91,6 +100,10 @@ fn the_triad_page_lists_eight_modes_and_the_pattern_methods_angle() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_triad_mode_picked_on_the_page_is_the_one_the_picture_draws() {
     let pick = &observed()["triad_pick"];
     assert_eq!(pick["error"], "", "{pick}");
@@ -108,6 +121,10 @@ fn a_triad_mode_picked_on_the_page_is_the_one_the_picture_draws() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn dragging_the_crank_pin_turns_the_crank_to_the_pointer() {
     let d = &observed()["fourbar_drag"];
     let (px, py) = (num(&d["pointer"][0]), num(&d["pointer"][1]));
@@ -141,6 +158,10 @@ fn dragging_the_crank_pin_turns_the_crank_to_the_pointer() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_four_bars_page_shows_every_diagram_the_cli_draws() {
     let (files, _, _) = cli(&template("fourbar-chebyshev"), &[]);
     let mut cli: Vec<String> = files
@@ -156,6 +177,10 @@ fn the_four_bars_page_shows_every_diagram_the_cli_draws() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn dragging_a_shaper_point_keeps_every_joint() {
     let st = &observed()["shaper_drag"]["state"];
     assert!(num(&st["residual"]) <= 1e-9);
@@ -174,6 +199,10 @@ fn dragging_a_shaper_point_keeps_every_joint() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_non_grashof_length_shows_the_command_lines_gaps() {
     let (_, json, stderr) = cli(&template("fourbar-chebyshev"), &["l_bc=0.2"]);
     let page = &observed()["fourbar_lbc"];
@@ -187,6 +216,10 @@ fn a_non_grashof_length_shows_the_command_lines_gaps() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn an_invalid_toml_edit_shows_the_command_lines_message_and_keeps_the_picture() {
     let page = &observed()["fourbar_bad_toml"];
     assert_eq!(page["picture_kept"], true);
@@ -204,6 +237,10 @@ fn an_invalid_toml_edit_shows_the_command_lines_message_and_keeps_the_picture() 
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn downloads_are_the_command_lines_bytes() {
     let offered = observed()["downloads"].as_object().unwrap();
     assert_eq!(offered.len(), common::template_paths().len(), "a page per template");
@@ -242,6 +279,10 @@ fn csv_rows(text: &str) -> Vec<BTreeMap<String, f64>> {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_page_says_what_to_do_and_fills_the_screen() {
     let o = &observed()["fourbar_open"];
     assert!(o["hint"].as_str().unwrap().starts_with("Drag a joint"), "{o}");
@@ -269,6 +310,10 @@ fn the_page_says_what_to_do_and_fills_the_screen() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn fields_are_named_by_what_they_are_with_units() {
     let labels: Vec<String> =
         observed()["build"]["labels"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect();
@@ -279,6 +324,10 @@ fn fields_are_named_by_what_they_are_with_units() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_refused_field_says_why_at_the_field_and_goes_back_to_the_models_value() {
     let r = &observed()["refused_field"];
     let tmp = tempfile::tempdir().unwrap();
@@ -297,6 +346,10 @@ fn a_refused_field_says_why_at_the_field_and_goes_back_to_the_models_value() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn dragging_c_in_edit_mode_moves_c_in_the_toml_and_keeps_every_comment() {
     let e = &observed()["edit_c"];
     assert_eq!(e["error"], "", "{e}");
@@ -323,6 +376,10 @@ fn dragging_c_in_edit_mode_moves_c_in_the_toml_and_keeps_every_comment() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn undo_restores_the_toml_byte_for_byte_and_redo_reapplies_it() {
     let (e, u, r) = (&observed()["edit_c"], &observed()["undo"], &observed()["redo"]);
     assert_eq!(u["text"], e["before"]);
@@ -333,6 +390,10 @@ fn undo_restores_the_toml_byte_for_byte_and_redo_reapplies_it() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_share_link_opens_the_same_scene_and_picture_in_a_fresh_tab() {
     let s = &observed()["share"];
     assert_eq!(s["link_prefix"], "scene=v1.");
@@ -348,6 +409,10 @@ fn a_share_link_opens_the_same_scene_and_picture_in_a_fresh_tab() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_scene_is_kept_across_reloads_and_a_broken_saved_one_loses_nothing() {
     let r = &observed()["reload"];
     assert_eq!(r["text"], observed()["redo"]["text"], "the edit is back after a reload");
@@ -360,6 +425,10 @@ fn the_scene_is_kept_across_reloads_and_a_broken_saved_one_loses_nothing() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn opening_a_file_that_is_not_a_scene_keeps_the_scene_on_screen() {
     let o = &observed()["open_file"];
     let e = o["not_scene"]["error"].as_str().unwrap();
@@ -372,6 +441,10 @@ fn opening_a_file_that_is_not_a_scene_keeps_the_scene_on_screen() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_chebyshev_four_bar_built_by_clicks_gives_the_templates_numbers() {
     let sk = &observed()["build_sketch"];
     for s in sk["steps"].as_array().unwrap() {
@@ -433,6 +506,10 @@ fn the_chebyshev_four_bar_built_by_clicks_gives_the_templates_numbers() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn a_build_step_that_cannot_solve_says_why_and_keeps_the_picture_and_the_draft() {
     let b = &observed()["build_bad_step"];
     let err = b["error"].as_str().unwrap();
@@ -442,6 +519,10 @@ fn a_build_step_that_cannot_solve_says_why_and_keeps_the_picture_and_the_draft()
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn on_a_phone_the_picture_is_full_width_and_a_finger_turns_the_crank() {
     let p = &observed()["phone"];
     assert_eq!(num(&p["inner_width"]), 390.0, "the viewport meta tag makes the page phone-sized");
@@ -451,6 +532,10 @@ fn on_a_phone_the_picture_is_full_width_and_a_finger_turns_the_crank() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_keyboard_picks_a_joint_and_moves_it() {
     let k = &observed()["keyboard"];
     // N picks O1, then A; ↑ three times drags the crank pin up: the crank turns
@@ -462,12 +547,20 @@ fn the_keyboard_picks_a_joint_and_moves_it() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn no_page_reports_a_console_error() {
     let errors = observed()["console_errors"].as_object().unwrap();
     assert!(errors.is_empty(), "{errors:?}");
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_gallery_works_from_files_and_from_a_web_server() {
     let g = &observed()["gallery"];
     for how in ["file", "http"] {
@@ -481,6 +574,10 @@ fn the_gallery_works_from_files_and_from_a_web_server() {
 }
 
 #[test]
+#[cfg_attr(
+    not(feature = "system-tools"),
+    ignore = "needs Chromium and the live pages (bash web/build.sh): bash .ci/test, or cargo test --features system-tools"
+)]
 fn the_download_menu_shows_each_files_size() {
     let sizes = observed()["download_sizes"]["fourbar-chebyshev"].as_object().unwrap();
     assert!(sizes["fourbar-chebyshev.dxf"].as_str().unwrap().ends_with(" MB"), "{sizes:?}");

@@ -4,6 +4,11 @@
 //! files, the JSON after a change is the CLI's JSON for the same `--set`; a change the scene
 //! refuses gives the CLI's message and leaves the session as it was.
 
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
+
 mod common;
 
 use std::path::Path;

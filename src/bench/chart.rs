@@ -87,7 +87,7 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
         rotation: 0.0,
     };
     for k in x0..=x1 {
-        let x = px(10f64.powi(k));
+        let x = px(crate::geom::powi(10.0, k));
         d.add(grid, Shape::Line { from: Point::new(x, 0.0), to: Point::new(x, H) });
         d.add(axes, label(Point::new(x, -2.0), power_of_ten(k), HAlign::Center, VAlign::Top));
     }

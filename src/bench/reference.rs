@@ -47,7 +47,7 @@ pub mod shaper {
         let root = (LBE * LBE - dy * dy).sqrt();
         let xe = b[0] + root;
         let ve = bd[0] + dy * bd[1] / root;
-        let ae = bdd[0] + (dy * bdd[1] - bd[1] * bd[1]) / root - (dy * bd[1]).powi(2) / root.powi(3);
+        let ae = bdd[0] + (dy * bdd[1] - bd[1] * bd[1]) / root - (dy * bd[1]) * (dy * bd[1]) / (root * root * root);
         ([xe, ve, ae], [th, thd, thdd])
     }
 }

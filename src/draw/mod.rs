@@ -82,7 +82,7 @@ fn aci_wheel(n: u8) -> (u8, u8, u8) {
     let hue = ((n as u32 - 10) / 10) as f64 * 15.0;
     let row = (n as u32 - 10) % 10;
     let value = [1.0, 1.0, 0.8, 0.8, 0.6, 0.6, 0.5, 0.5, 0.3, 0.3][row as usize];
-    let sat = if row % 2 == 0 { 1.0 } else { 0.5 };
+    let sat = if row.is_multiple_of(2) { 1.0 } else { 0.5 };
     let c = value * sat;
     let x = c * (1.0 - ((hue / 60.0) % 2.0 - 1.0).abs());
     let m = value - c;
@@ -117,6 +117,11 @@ pub struct Layer {
     pub color: Aci,
     /// Line type of entities on the layer that have none of their own.
     pub linetype: LineType,
+    /// Whether the layer is shown when the file is opened. A DXF layer that is off keeps its
+    /// entities (the user switches it on in the layer manager; R12 writes a negative colour
+    /// in the LAYER table); the SVG and PDF writers draw every layer of the drawing they are
+    /// given. New layers are on.
+    pub on: bool,
 }
 
 /// Horizontal text alignment relative to the insertion point.
@@ -210,6 +215,25 @@ pub enum Shape {
         /// Rotation, radians counter-clockwise.
         rotation: f64,
     },
+    /// A caption that states a drawing scale (`Velocity polygon   k_v = 0.1 (m/s)/mm`), its
+    /// value written by each writer for the millimetres it draws a model unit in
+    /// ([`ScaleCaption::text`]): on paper in the SVG and PDF, in the DXF's own millimetres
+    /// in the DXF. So a length measured where the user measures, times the printed k, is
+    /// the value (design.md §4). Placed and aligned as a [`Shape::Text`].
+    ScaleText {
+        /// Insertion point, interpreted with `halign` and `valign`.
+        at: Point,
+        /// Cap height in model units.
+        height: f64,
+        /// What the caption says.
+        caption: ScaleCaption,
+        /// Horizontal alignment.
+        halign: HAlign,
+        /// Vertical alignment.
+        valign: VAlign,
+        /// Rotation, radians counter-clockwise.
+        rotation: f64,
+    },
     /// An angular dimension (AutoCAD `DIMANGULAR`, 3-point form): the angle swept
     /// counter-clockwise from the ray `vertex→first` to the ray `vertex→second`, drawn as an
     /// arc of radius `radius` about `vertex` with arrowheads and `text` at its middle.
@@ -238,7 +262,69 @@ pub enum Shape {
         angle: f64,
         /// The text shown (e.g. `25 ±0.1`).
         text: String,
+        /// The marks at its ends and where its text sits along the line (the default: an
+        /// arrowhead at each end, the text placed by [`parts::linear_layout`]).
+        marks: LinearMarks,
     },
+}
+
+/// A scale stated in words: `before`, the scale's value in the medium it is written to,
+/// `after` (`Velocity polygon   k_v = ` 0.1 ` (m/s)/mm`). The value is a quantity per
+/// millimetre of the medium: [`ScaleCaption::per_unit`] (the quantity per model unit the
+/// figure draws) over the medium's millimetres per model unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ScaleCaption {
+    /// The text before the value (`Mechanism   k_l = `).
+    pub before: String,
+    /// The quantity one model unit of the drawing stands for, in the caption's unit: 1 for a
+    /// length scale (a model unit is a model unit), `k_v` × the paper millimetres per model
+    /// unit for a velocity polygon drawn at `k_v` per paper millimetre.
+    pub per_unit: f64,
+    /// The text after the value, with the unit per millimetre (` (m/s)/mm`).
+    pub after: String,
+    /// Paper millimetres per model unit of the figure the caption is on: the medium of
+    /// [`ScaleCaption::on_paper`], for a writer that has no scale of its own.
+    pub paper_mm_per_unit: f64,
+}
+
+impl ScaleCaption {
+    /// A caption for a scale of `per_mm` per paper millimetre on a figure printed at
+    /// `paper_mm_per_unit` paper millimetres per model unit.
+    pub fn new(before: impl Into<String>, per_mm: f64, after: impl Into<String>, paper_mm_per_unit: f64) -> Self {
+        ScaleCaption {
+            before: before.into(),
+            per_unit: per_mm * paper_mm_per_unit,
+            after: after.into(),
+            paper_mm_per_unit,
+        }
+    }
+
+    /// The caption for a medium that draws a model unit `mm_per_unit` millimetres long:
+    /// the value [`ScaleCaption::per_unit`] / `mm_per_unit`, written in plain decimals
+    /// (no exponent) to 10 significant digits.
+    pub fn text(&self, mm_per_unit: f64) -> String {
+        format!("{}{}{}", self.before, plain_decimal(self.per_unit / mm_per_unit), self.after)
+    }
+
+    /// The caption on the figure's paper.
+    pub fn on_paper(&self) -> String {
+        self.text(self.paper_mm_per_unit)
+    }
+}
+
+/// `v` in plain decimals with 10 significant digits, trailing zeros trimmed (`0.04`, `2500`,
+/// `0.000125`); a non-finite value as `?`.
+pub fn plain_decimal(v: f64) -> String {
+    if !v.is_finite() {
+        return "?".into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let decimals = (9.0 - libm::floor(libm::log10(v.abs()))).clamp(0.0, 300.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') { s.trim_end_matches('0').trim_end_matches('.') } else { s.as_str() };
+    s.to_string()
 }
 
 /// How a linear dimension marks its two ends.
@@ -310,6 +396,73 @@ pub struct Drawing {
     pub paper_mm_per_unit: Option<f64>,
 }
 
+impl Shape {
+    /// A [`Shape::ScaleText`] as the [`Shape::Text`] a medium drawing a model unit
+    /// `mm_per_unit` millimetres long writes (its paper's when `None`); `None` for any other
+    /// shape.
+    pub fn scale_text_in(&self, mm_per_unit: Option<f64>) -> Option<Shape> {
+        let Shape::ScaleText { at, height, caption, halign, valign, rotation } = self else { return None };
+        let value = caption.text(mm_per_unit.unwrap_or(caption.paper_mm_per_unit));
+        Some(Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation })
+    }
+
+    /// Every number of the shape (coordinates, sizes, angles), in a fixed order.
+    pub fn numbers(&self) -> Vec<f64> {
+        let xy = |p: &Point| [p.x, p.y];
+        match self {
+            Shape::Circle { center, radius } => vec![center.x, center.y, *radius],
+            Shape::Arc { center, radius, start, end } => vec![center.x, center.y, *radius, *start, *end],
+            Shape::Line { from, to } => [xy(from), xy(to)].concat(),
+            Shape::Polyline { points, width, .. } => {
+                points.iter().flat_map(xy).chain(std::iter::once(*width)).collect()
+            }
+            Shape::Filled { points } => points.iter().flat_map(xy).collect(),
+            Shape::Arrow { from, to, head } => [&xy(from)[..], &xy(to), &[*head]].concat(),
+            Shape::Text { at, height, rotation, .. } => vec![at.x, at.y, *height, *rotation],
+            Shape::ScaleText { at, height, rotation, caption, .. } => {
+                vec![at.x, at.y, *height, *rotation, caption.per_unit, caption.paper_mm_per_unit]
+            }
+            Shape::AngularDimension { vertex, first, second, radius, .. } => {
+                [&xy(vertex)[..], &xy(first), &xy(second), &[*radius]].concat()
+            }
+            Shape::LinearDimension { p1, p2, line_at, angle, .. } => {
+                [&xy(p1)[..], &xy(p2), &xy(line_at), &[*angle]].concat()
+            }
+        }
+    }
+
+    /// The text the shape writes, if any.
+    pub fn text(&self) -> Option<&str> {
+        match self {
+            Shape::Text { value, .. } => Some(value),
+            Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => Some(text),
+            _ => None,
+        }
+    }
+}
+
+impl Drawing {
+    /// The first entity with a number that is not finite, or whose text writes one (`NaN`,
+    /// `inf`: [`crate::text::non_finite_word`]), described for a message (its index, layer
+    /// and what is wrong); `None` when every number is finite. The scale and the dimension
+    /// style are numbers of the drawing too.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let style = [self.dim_style.text_height, self.dim_style.arrow_size, self.paper_mm_per_unit.unwrap_or(1.0)];
+        if style.iter().any(|v| !v.is_finite()) {
+            return Some("its scale or dimension style".into());
+        }
+        self.entities.iter().enumerate().find_map(|(i, e)| {
+            let layer = self.layers.get(e.layer).map_or("?", |l| l.name.as_str());
+            if let Some(v) = e.shape.numbers().into_iter().find(|v| !v.is_finite()) {
+                return Some(format!("entity {i} on layer {layer} has the coordinate or size {v}"));
+            }
+            let text = e.shape.text()?;
+            crate::text::non_finite_word(text)
+                .map(|w| format!("the text \"{}\" on layer {layer} writes {w}", crate::text::excerpt(text)))
+        })
+    }
+}
+
 /// Axis-aligned bounding box in model units.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Bounds {
@@ -341,7 +494,7 @@ impl Drawing {
     /// An empty drawing with layer `"0"` and the given dimension style.
     pub fn new(dim_style: DimStyle) -> Drawing {
         Drawing {
-            layers: vec![Layer { name: "0".into(), color: Aci::BLACK, linetype: LineType::Continuous }],
+            layers: vec![Layer { name: "0".into(), color: Aci::BLACK, linetype: LineType::Continuous, on: true }],
             entities: Vec::new(),
             dim_style,
             paper_mm_per_unit: None,
@@ -354,8 +507,16 @@ impl Drawing {
         if let Some(i) = self.layers.iter().position(|l| l.name == name) {
             return i;
         }
-        self.layers.push(Layer { name: name.to_string(), color, linetype });
+        self.layers.push(Layer { name: name.to_string(), color, linetype, on: true });
         self.layers.len() - 1
+    }
+
+    /// Switches the layer `name` on or off ([`Layer::on`]); nothing happens when the drawing
+    /// has no such layer.
+    pub fn set_layer_on(&mut self, name: &str, on: bool) {
+        if let Some(l) = self.layers.iter_mut().find(|l| l.name == name) {
+            l.on = on;
+        }
     }
 
     /// Adds `shape` on `layer` in the layer's colour and line type.
@@ -405,6 +566,14 @@ impl Drawing {
     /// Adds an entity as given.
     pub fn push(&mut self, entity: Entity) {
         self.entities.push(entity);
+    }
+
+    /// A left/baseline [`Shape::ScaleText`] without rotation.
+    pub fn scale_text(&mut self, layer: usize, at: Point, height: f64, caption: ScaleCaption) {
+        self.add(
+            layer,
+            Shape::ScaleText { at, height, caption, halign: HAlign::Left, valign: VAlign::Baseline, rotation: 0.0 },
+        );
     }
 
     /// Convenience: a left/baseline text without rotation.
@@ -477,6 +646,12 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
             add(*to);
         }
         Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
+        Shape::ScaleText { at, height, caption, halign, valign, rotation } => {
+            let value = caption.on_paper();
+            let text =
+                Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation };
+            shape_extent_points(&text, style, add);
+        }
         Shape::Text { at, height, value, halign, .. } => {
             // The writers' width estimate (DejaVu Sans advances).
             let w = parts::text_width(value, *height);
@@ -499,6 +674,40 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A caption states its scale per millimetre of the medium: the four-bar's velocity
+    /// polygon at k_v = 0.1 (m/s)/mm on paper at k_l = 0.0025 m/mm (400 paper mm per metre)
+    /// is 0.04 (m/s)/mm in a DXF that draws a metre as 1000 mm.
+    #[test]
+    fn a_scale_caption_states_the_scale_of_its_medium() {
+        let c = ScaleCaption::new("k_v = ", 0.1, " (m/s)/mm", 1.0 / 0.0025);
+        assert_eq!(c.on_paper(), "k_v = 0.1 (m/s)/mm");
+        assert_eq!(c.text(1000.0), "k_v = 0.04 (m/s)/mm");
+        let shape = Shape::ScaleText {
+            at: Point::new(1.0, 2.0),
+            height: 3.0,
+            caption: c,
+            halign: HAlign::Right,
+            valign: VAlign::Top,
+            rotation: 0.5,
+        };
+        let text = |mm| match shape.scale_text_in(mm) {
+            Some(Shape::Text { value, at, halign: HAlign::Right, valign: VAlign::Top, .. })
+                if at == Point::new(1.0, 2.0) =>
+            {
+                value
+            }
+            other => panic!("{other:?}"),
+        };
+        assert_eq!((text(None), text(Some(1000.0))), ("k_v = 0.1 (m/s)/mm".into(), "k_v = 0.04 (m/s)/mm".into()));
+        for (v, s) in [(0.001, "0.001"), (2500.0, "2500"), (1.25e-4, "0.000125"), (1e5, "100000"), (0.1 + 0.2, "0.3")] {
+            assert_eq!(plain_decimal(v), s);
+        }
+        assert_eq!(
+            (plain_decimal(0.0), plain_decimal(f64::NAN), plain_decimal(-0.5)),
+            ("0".into(), "?".into(), "-0.5".into())
+        );
+    }
 
     #[test]
     fn arc_bounds_cover_only_the_drawn_part() {

@@ -1,7 +1,7 @@
 //! Composite shapes (arrows, dimensions) broken into simple ones. Both writers use these,
 //! so the DXF dimension blocks and the SVG show the same geometry.
 
-use super::{DimEnds, DimStyle, HAlign, LinearMarks, Shape, VAlign};
+use super::{DimEnds, DimStyle, HAlign, Shape, VAlign};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
 
 /// Half-width of an arrowhead relative to its length.
@@ -77,34 +77,11 @@ pub fn chars_width(chars: impl Iterator<Item = char>, height: f64) -> f64 {
 }
 
 /// Advance of a character in LibreCAD's stroke font for the DXF's text style (AZOMIX, see
-/// `draw::dxf::TEXT_STYLE`), in ninths of the text height (LibreCAD draws a glyph 9 font units
-/// per text height): the glyph's right edge from its origin plus the font's letter spacing
-/// of 1 unit, read from LibreCAD 2.2's `azomix.lff`; a space is its word spacing, 6.75. A
-/// character the font lacks (`·`, `–`: LibreCAD draws a stand-in glyph) and any other
-/// character not listed count as its widest letters, 10.06 (`_` and `√` are wider still).
+/// `draw::dxf::TEXT_STYLE`), in ninths of the text height: [`super::dxf::librecad::advance`]
+/// (the glyph's right edge plus the letter spacing; the word spacing for a space; a
+/// character the font lacks as wide as the stand-in LibreCAD draws).
 fn azomix_advance(c: char) -> f64 {
-    match c {
-        ' ' => 6.75,
-        '|' | '′' => 3.19,
-        '`' => 3.81,
-        '^' => 4.44,
-        '*' | '²' => 5.38,
-        '!' | '\'' | ',' | '.' | ':' | ';' | 'I' | 'i' => 6.31,
-        '(' | ')' | '[' | ']' => 6.62,
-        '1' | 'j' | 'l' | '{' | '}' => 7.25,
-        '"' | 'J' | 'c' => 7.56,
-        '$' | '+' | '-' | '/' | '<' | '=' | '>' | '?' | '\\' | '~' | '±' | '≡' | '×' | 'ε' => 8.19,
-        '0' | '2' | '3' | '5' | '6' | '7' | '8' | '9' => 8.19,
-        'C' | 'E' | 'F' | 'L' => 8.19,
-        'a' | 'b' | 'd' | 'e' | 'f' | 'g' | 'h' | 'k' | 'n' | 'o' | 'p' | 'q' | 'r' | 's' | 't' => 8.19,
-        'u' | 'v' | 'x' | 'y' | 'z' => 8.19,
-        'B' | 'P' | '°' => 8.5,
-        '4' | 'D' | 'G' | 'H' | 'K' | 'N' | 'O' | 'R' | 'S' | 'T' | 'U' | 'Z' | 'Σ' | '−' => 8.81,
-        '#' | '&' | 'A' | 'M' | 'Q' | 'V' | 'X' | 'Y' | 'm' | 'w' | 'φ' | 'π' => 9.12,
-        'ω' | '→' => 9.75,
-        '_' | '√' => 11.62,
-        _ => 10.06,
-    }
+    super::dxf::librecad::advance(c)
 }
 
 /// Width (model units) that `text` drawn `height` high takes in the widest of the readers we
@@ -314,7 +291,7 @@ pub fn linear_layout(p1: Point, p2: Point, line_at: Point, angle: f64, text: &st
 }
 
 /// [`linear_layout`] with the text's middle at `text_along` (see
-/// [`LinearMarks::text_along`]) when given; `text_inside` then says whether the placed box
+/// [`super::LinearMarks::text_along`]) when given; `text_inside` then says whether the placed box
 /// lies between the extension lines.
 pub fn linear_layout_placed(
     p1: Point,
@@ -367,56 +344,111 @@ pub fn linear_layout_placed(
 /// is returned unchanged.
 pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
     let mut out = Vec::new();
-    let asz = style.arrow_size;
-    let th = style.text_height;
     match shape {
         Shape::AngularDimension { vertex, first, second, radius, text } => {
-            let a1 = angle_of(first - vertex);
-            let a2 = angle_of(second - vertex);
-            let sweep = normalize_angle(a2 - a1);
-            // Extension lines from the ray points out to the arc when the arc lies beyond them.
-            for (p, a) in [(first, a1), (second, a2)] {
-                let d = (p - vertex).norm();
-                if d < *radius {
-                    out.push(Shape::Line { from: polar(*vertex, d, a), to: polar(*vertex, radius + 0.5 * asz, a) });
-                }
-            }
-            out.push(Shape::Arc { center: *vertex, radius: *radius, start: a1, end: a1 + sweep });
-            // Arrowheads tangent to the arc, pointing at its ends.
-            let step = (asz / radius).min(0.4 * sweep.max(1e-9));
-            let p_start = polar(*vertex, *radius, a1);
-            let p_end = polar(*vertex, *radius, a1 + sweep);
-            arrow_shapes(polar(*vertex, *radius, a1 + step), p_start, asz, &mut out);
-            arrow_shapes(polar(*vertex, *radius, a1 + sweep - step), p_end, asz, &mut out);
-            out.push(Shape::Text {
-                at: angular_text_mid(*vertex, *first, *second, *radius, text, style),
-                height: th,
-                value: text.clone(),
-                halign: HAlign::Center,
-                valign: VAlign::Middle,
-                rotation: 0.0,
+            let parts = angular_parts(*vertex, *first, *second, *radius, text, style);
+            out.extend(parts.extensions.into_iter().flatten());
+            out.push(Shape::Arc {
+                center: *vertex,
+                radius: *radius,
+                start: parts.start,
+                end: parts.start + parts.sweep,
             });
+            out.extend(parts.heads.into_iter().flatten());
+            out.push(parts.text);
         }
-        Shape::LinearDimension { .. } => explode_linear_into(shape, LinearMarks::default(), style, &mut out),
+        Shape::LinearDimension { .. } => explode_linear_into(shape, style, &mut out),
         other => out.push(other.clone()),
     }
     out
 }
 
-/// A linear dimension broken into lines, arrowheads (and the base circle) and its text as
-/// `marks` asks ([`LinearMarks`]); any other shape is returned unchanged. With the default
-/// marks this is [`explode_dimension`].
-pub fn explode_linear(shape: &Shape, marks: LinearMarks, style: &DimStyle) -> Vec<Shape> {
-    let mut out = Vec::new();
-    explode_linear_into(shape, marks, style, &mut out);
-    out
+/// An angular dimension's parts, as [`explode_dimension`] draws them.
+struct AngularParts {
+    /// Extension lines from the first and second ray points out past the arc, when the arc
+    /// lies beyond them.
+    extensions: [Option<Shape>; 2],
+    /// Direction of the first ray, radians.
+    start: f64,
+    /// Counter-clockwise sweep from the first ray to the second, in [0, 2π).
+    sweep: f64,
+    /// The arrowheads at the arc's start and end (none where the arc has no length).
+    heads: [Option<Shape>; 2],
+    /// The text, placed by [`angular_text_mid`].
+    text: Shape,
 }
 
-fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out: &mut Vec<Shape>) {
+fn angular_parts(
+    vertex: Point,
+    first: Point,
+    second: Point,
+    radius: f64,
+    text: &str,
+    style: &DimStyle,
+) -> AngularParts {
+    let asz = style.arrow_size;
+    let a1 = angle_of(first - vertex);
+    let a2 = angle_of(second - vertex);
+    let sweep = normalize_angle(a2 - a1);
+    // Extension lines from the ray points out to the arc when the arc lies beyond them.
+    let extension = |p: Point, a: f64| {
+        let d = (p - vertex).norm();
+        (d < radius).then(|| Shape::Line { from: polar(vertex, d, a), to: polar(vertex, radius + 0.5 * asz, a) })
+    };
+    // Arrowheads tangent to the arc, pointing at its ends.
+    let step = (asz / radius).min(0.4 * sweep.max(1e-9));
+    let head = |from: f64, to: f64| {
+        arrow(polar(vertex, radius, from), polar(vertex, radius, to), asz)
+            .map(|(_, tri)| Shape::Filled { points: tri.to_vec() })
+    };
+    AngularParts {
+        extensions: [extension(first, a1), extension(second, a2)],
+        start: a1,
+        sweep,
+        heads: [head(a1 + step, a1), head(a1 + sweep - step, a1 + sweep)],
+        text: Shape::Text {
+            at: angular_text_mid(vertex, first, second, radius, text, style),
+            height: style.text_height,
+            value: text.to_string(),
+            halign: HAlign::Center,
+            valign: VAlign::Middle,
+            rotation: 0.0,
+        },
+    }
+}
+
+/// An angular dimension split into two parts, the first sweeping `first` radians from the
+/// first ray (a DXF writer writes an angle of 180° or more so, each part a 2-line angular
+/// DIMENSION under 180°, the only angular kind LibreCAD draws): the first part's shapes
+/// (the first extension line, the arc from the first ray to the split, the arrowhead at its
+/// start and the whole dimension's text) and the second's (the second extension line, the
+/// arc on to the second ray, the arrowhead at its end), so that the two together draw
+/// exactly what [`explode_dimension`] draws; and the point where the arc is split. `None`
+/// for a shape that is not an angular dimension.
+pub fn explode_angular_split(shape: &Shape, first: f64, style: &DimStyle) -> Option<([Vec<Shape>; 2], Point)> {
+    let Shape::AngularDimension { vertex, first: ray, second, radius, text } = shape else { return None };
+    let parts = angular_parts(*vertex, *ray, *second, *radius, text, style);
+    let mid = parts.start + first;
+    let arc = |start: f64, end: f64| Shape::Arc { center: *vertex, radius: *radius, start, end };
+    let [e1, e2] = parts.extensions;
+    let [h1, h2] = parts.heads;
+    let mut one: Vec<Shape> = e1.into_iter().collect();
+    one.push(arc(parts.start, mid));
+    one.extend(h1);
+    one.push(parts.text);
+    let mut two: Vec<Shape> = e2.into_iter().collect();
+    two.push(arc(mid, parts.start + parts.sweep));
+    two.extend(h2);
+    Some(([one, two], polar(*vertex, *radius, mid)))
+}
+
+/// A linear dimension broken into lines, arrowheads (and the base circle) and its text as
+/// its marks ask ([`super::LinearMarks`]).
+fn explode_linear_into(shape: &Shape, style: &DimStyle, out: &mut Vec<Shape>) {
     let asz = style.arrow_size;
     let th = style.text_height;
     match shape {
-        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+        Shape::LinearDimension { p1, p2, line_at, angle, text, marks } => {
             let lay = linear_layout_placed(*p1, *p2, *line_at, *angle, text, marks.text_along, style);
             let (f1, f2) = (lay.f1, lay.f2);
             for (p, f) in [(p1, f1), (p2, f2)] {
@@ -489,8 +521,13 @@ fn explode_linear_into(shape: &Shape, marks: LinearMarks, style: &DimStyle, out:
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
+    use crate::draw::LinearMarks;
 
     #[test]
     fn arrow_head_points_at_the_tip_and_is_shortened_on_short_vectors() {
@@ -608,7 +645,14 @@ mod tests {
             let p1 = Point::new(5.0, 7.0);
             let p2 = p1 + u * 40.0;
             let line_at = p1 + perp(u) * 6.0;
-            let dim = Shape::LinearDimension { p1, p2, line_at, angle, text: "40 ±0.1".into() };
+            let dim = Shape::LinearDimension {
+                p1,
+                p2,
+                line_at,
+                angle,
+                text: "40 ±0.1".into(),
+                marks: LinearMarks::default(),
+            };
             let (at, rotation) = exploded_text(&dim, &style);
             let lay = linear_layout(p1, p2, line_at, angle, "40 ±0.1", &style);
             assert!(lay.text_inside && lay.arrows_inside);
@@ -640,7 +684,8 @@ mod tests {
                 let p2 = p1 + u * len;
                 let line_at = p1 - perp(u) * 4.0;
                 let text = "Z1 = 17 ±0.3";
-                let dim = Shape::LinearDimension { p1, p2, line_at, angle, text: text.into() };
+                let dim =
+                    Shape::LinearDimension { p1, p2, line_at, angle, text: text.into(), marks: LinearMarks::default() };
                 let lay = linear_layout(p1, p2, line_at, angle, text, &style);
                 assert!(!lay.text_inside);
                 assert_eq!(lay.arrows_inside, arrows_inside, "len {len}");
@@ -674,6 +719,12 @@ mod tests {
         }
     }
 
+    /// `dim` (a linear dimension) with `marks`, exploded.
+    fn with_marks(dim: &Shape, marks: LinearMarks, style: &DimStyle) -> Vec<Shape> {
+        let Shape::LinearDimension { p1, p2, line_at, angle, text, .. } = dim.clone() else { panic!("not linear") };
+        explode_dimension(&Shape::LinearDimension { p1, p2, line_at, angle, text, marks }, style)
+    }
+
     #[test]
     fn a_dimension_from_its_base_has_a_circle_at_the_base_and_one_arrowhead_at_the_end() {
         let style = DimStyle { text_height: 2.0, arrow_size: 1.8 };
@@ -685,9 +736,10 @@ mod tests {
                 line_at: Point::new(0.0, 7.0),
                 angle: 0.0,
                 text: "40".into(),
+                marks: LinearMarks::default(),
             };
             let marks = LinearMarks { ends: DimEnds::FromBase, text_along: None };
-            let parts = explode_linear(&dim, marks, &style);
+            let parts = with_marks(&dim, marks, &style);
             let circles: Vec<(Point, f64)> = parts
                 .iter()
                 .filter_map(|s| match s {
@@ -722,11 +774,12 @@ mod tests {
             line_at: Point::new(0.0, 5.0),
             angle: 0.0,
             text: "10 ±0.1".into(),
+            marks: LinearMarks::default(),
         };
         let w = text_width("10 ±0.1", 2.0);
         for along in [5.0, 30.0, -12.0] {
             let marks = LinearMarks { ends: DimEnds::FromBase, text_along: Some(along) };
-            let parts = explode_linear(&dim, marks, &style);
+            let parts = with_marks(&dim, marks, &style);
             let (at, _) = parts
                 .iter()
                 .find_map(|s| match s {

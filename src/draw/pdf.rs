@@ -204,6 +204,17 @@ fn arc(f: &Frame, center: Point, radius: f64, start: f64, sweep: f64) -> Option<
     pb.finish()
 }
 
+/// The page transform that turns by `angle` (radians in the page's axes, y down: a positive
+/// angle turns clockwise as seen) about `(x, y)`, as krilla's `Transform::from_rotate_at`
+/// does in degrees, but computed with `libm` in f64: the same bits on every target (krilla's
+/// takes the platform's `f32` sine and cosine).
+fn rotation_about(angle: f64, x: f32, y: f32) -> Transform {
+    let (s, c) = libm::sincos(angle);
+    let (px, py) = (f64::from(x), f64::from(y));
+    let (tx, ty) = (px - c * px + s * py, py - s * px - c * py);
+    Transform::from_row(c as f32, s as f32, -s as f32, c as f32, tx as f32, ty as f32)
+}
+
 fn entity(
     surface: &mut krilla::surface::Surface<'_>,
     drawing: &Drawing,
@@ -262,11 +273,17 @@ fn entity(
             // Rotated about the insertion point, counter-clockwise on the page (y is down).
             let turn = *rotation != 0.0;
             if turn {
-                surface.push_transform(&Transform::from_rotate_at(-rotation.to_degrees() as f32, x, y));
+                surface.push_transform(&rotation_about(-*rotation, x, y));
             }
             surface.draw_glyphs(KPoint::from_xy(x + dx, y + dy), &glyphs, font.clone(), value, size, false);
             if turn {
                 surface.pop();
+            }
+        }
+        caption @ Shape::ScaleText { .. } => {
+            // On the page's paper (a page in paper millimetres says 1).
+            if let Some(shape) = caption.scale_text_in(drawing.paper_mm_per_unit) {
+                entity(surface, drawing, &Entity { shape, ..e.clone() }, f, font, metrics);
             }
         }
         dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
@@ -290,6 +307,26 @@ mod tests {
         d.text(0, Point::new(20.0, 100.0), 5.0, "φ1 = 90°");
         d.paper_mm_per_unit = Some(1.0);
         d
+    }
+
+    /// Our rotation is krilla's (to f32 rounding), turned the same way about the same point.
+    #[test]
+    fn a_rotation_about_a_point_is_krillas() {
+        for (deg, x, y) in [(30.0f32, 10.0f32, 20.0f32), (-90.0, 0.0, 0.0), (137.5, -42.0, 118.25), (0.0, 5.0, 5.0)] {
+            let ours = rotation_about(f64::from(deg).to_radians(), x, y);
+            let theirs = Transform::from_rotate_at(deg, x, y);
+            let pairs = [
+                (ours.sx(), theirs.sx()),
+                (ours.ky(), theirs.ky()),
+                (ours.kx(), theirs.kx()),
+                (ours.sy(), theirs.sy()),
+                (ours.tx(), theirs.tx()),
+                (ours.ty(), theirs.ty()),
+            ];
+            for (a, b) in pairs {
+                assert!((a - b).abs() <= 1e-5 * (1.0 + x.abs() + y.abs()), "{deg}° at ({x}, {y}): {a} vs {b}");
+            }
+        }
     }
 
     #[test]

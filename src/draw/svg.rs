@@ -51,6 +51,9 @@ impl Default for SvgOptions {
 struct Frame {
     /// SVG user units per model unit: paper mm per model unit, or 1 without a paper scale.
     k: f64,
+    /// The paper scale (paper mm per model unit), if the SVG is on paper: the medium of
+    /// [`Shape::ScaleText`].
+    paper: Option<f64>,
     /// Stroke width of a hairline, model units.
     hairline: f64,
     /// Dash and gap of dashed lines, model units (the DXF writer's DASHED pattern).
@@ -257,7 +260,7 @@ pub fn write_into(s: &mut Vec<u8>, drawing: &Drawing, opts: &SvgOptions) {
     let extent = bounds.width().max(bounds.height()).max(f64::MIN_POSITIVE);
     let margin = opts.margin * extent;
     let paper = opts.paper_mm_per_unit.or(drawing.paper_mm_per_unit).filter(|k| k.is_finite() && *k > 0.0);
-    let frame = Frame { k: paper.unwrap_or(1.0), hairline: opts.hairline * extent, dash: dash_pattern(extent) };
+    let frame = Frame { k: paper.unwrap_or(1.0), paper, hairline: opts.hairline * extent, dash: dash_pattern(extent) };
     let (x0, y0) = frame.pt(Point::new(bounds.min.x - margin, bounds.max.y + margin));
     let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
     let w = frame.len(w.max(extent * 1e-3));
@@ -464,6 +467,11 @@ fn entity(o: &mut Out<'_>, drawing: &Drawing, e: &Entity, f: &Frame, empty: &mut
             child(o, "text");
             text(o, f, *at, *height, value, *halign, *valign, *rotation, color);
         }
+        caption @ Shape::ScaleText { .. } => {
+            if let Some(shape) = caption.scale_text_in(f.paper) {
+                entity(o, drawing, &Entity { shape, ..e.clone() }, f, empty);
+            }
+        }
         dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
             for part in explode_dimension(dim, &drawing.dim_style) {
                 let sub = Entity { layer: e.layer, color: e.color, linetype: Some(LineType::Continuous), shape: part };
@@ -554,9 +562,13 @@ fn arc_path(d: &mut Vec<u8>, f: &Frame, center: Point, radius: f64, start: f64, 
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
-    use crate::draw::DimStyle;
+    use crate::draw::{DimStyle, LinearMarks};
 
     #[test]
     fn y_is_flipped_once_and_viewbox_fits_content() {
@@ -710,6 +722,7 @@ mod tests {
                 line_at: p(0.0, -4.0),
                 angle: 0.0,
                 text: "10 ±0.1".into(),
+                marks: LinearMarks::default(),
             },
         );
         d.add(c, Shape::Arrow { from: p(3.0, 3.0), to: p(3.0, 3.0), head: 1.0 });

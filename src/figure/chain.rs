@@ -8,7 +8,7 @@
 //! the dependent dimensions are below the axis on layer `DEPENDENT`, in red, with their
 //! worst-case tolerance.
 
-use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, Shape, VAlign, parts};
+use crate::draw::{Aci, DimEnds, DimStyle, Drawing, HAlign, LineType, LinearMarks, ScaleCaption, Shape, VAlign, parts};
 use crate::figure::shared::plot::{self, Histogram};
 use crate::figure::shared::vocab::{self, Sizes};
 use crate::geom::Point;
@@ -173,6 +173,7 @@ impl DimItem {
             line_at: Point::new(0.5 * (self.x1 + self.x2), y),
             angle: 0.0,
             text: self.text.clone(),
+            marks: self.marks,
         }
     }
 }
@@ -216,8 +217,9 @@ fn x_extent(parts: &[Shape]) -> (f64, f64) {
 /// [b_l, b_p] have no base and keep an arrowhead at each end. Every text keeps clear of
 /// every feature's coordinate ([`text_centre`]), so no extension or feature line crosses
 /// it; rows are packed on the dimensions' whole drawn extent (line, stubs, circle, text).
-/// The dimensions are written exploded (lines, circle, arrowhead, text on their layer):
-/// `Shape::LinearDimension` cannot carry the marks yet, see docs/chain.md.
+/// Each is a [`Shape::LinearDimension`] carrying its marks and its text's place: the DXF
+/// writes it as a DIMENSION whose block holds the notation (or, exploded, as its lines,
+/// circle, arrowhead and text), the SVG draws the same parts (docs/chain.md, docs/dxf.md).
 pub fn chain(
     dimensions: &[Dimension],
     analysis: &Analysis,
@@ -274,7 +276,7 @@ pub fn chain(
         let intervals: Vec<(f64, f64)> = items
             .iter()
             .map(|it| {
-                let (a, b) = x_extent(&parts::explode_linear(&it.shape(1.0), it.marks, &style));
+                let (a, b) = x_extent(&parts::explode_dimension(&it.shape(1.0), &style));
                 (a - ROW_CLEARANCE * th, b + ROW_CLEARANCE * th)
             })
             .collect();
@@ -330,19 +332,16 @@ pub fn chain(
 
     for (it, row) in above.iter().zip(rows) {
         let y = gap * (row as f64 + 1.0) - 0.4 * gap;
-        for part in parts::explode_linear(&it.shape(y), it.marks, &style) {
-            dr.add(it.layer, part);
-        }
+        dr.add(it.layer, it.shape(y));
     }
     for (it, row) in below.iter().zip(dep_rows) {
         let y = -gap * (row as f64 + 1.0) + 0.2 * gap;
-        for part in parts::explode_linear(&it.shape(y), it.marks, &style) {
-            dr.add(it.layer, part);
-        }
+        dr.add(it.layer, it.shape(y));
     }
     // The length scale and its bar under the feature names, at the axis's start.
     let at = Point::new(xmin - margin, lowest - 1.5 * th);
-    dr.text(axis, at, sizes.small_text(), format!("k_l = {} {units}/mm", vocab::scale_text(k_l)));
+    let caption = ScaleCaption::new("k_l = ", k_l, format!(" {units}/mm"), 1.0 / k_l);
+    dr.scale_text(axis, at, sizes.small_text(), caption);
     let value = vocab::bar_value(k_l);
     let bar_at = at + Point::new(2.0 * sizes.small_text(), -2.0 * sizes.small_text()).coords;
     vocab::scale_bar(&mut dr, axis, bar_at, value, &format!("{} {units}", vocab::scale_text(value)), sizes);

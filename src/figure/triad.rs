@@ -48,7 +48,7 @@ fn circles_extent(t: &Triad) -> f64 {
 /// The scale lines a figure prints, and its scale bar under them: `k_l = 2 mm/mm`, then
 /// `0 ├──┤ 50 mm`, from `top_left` (the k_l line's baseline) down.
 fn length_scale_block(d: &mut Drawing, layer: usize, top_left: Point, k_l: f64, units: ModelUnits, s: Sizes) {
-    d.text(layer, top_left, s.small_text(), vocab::length_scale_text(k_l, units));
+    d.scale_text(layer, top_left, s.small_text(), vocab::length_caption("", k_l, units));
     let value = vocab::bar_value(k_l);
     let at = top_left + Vector::new(2.0 * s.small_text(), -2.0 * s.small_text());
     vocab::scale_bar(d, layer, at, value, &format!("{} {}", vocab::scale_text(value), units.length), s);

@@ -26,6 +26,8 @@ use std::sync::Mutex;
 
 use rayon::prelude::*;
 
+use super::finite::{check_csv, check_drawing};
+use super::paths::RelPath;
 use super::products::{Diagram, Page, Picture, Products, Sheet};
 use crate::Error;
 use crate::draw::Drawing;
@@ -48,11 +50,22 @@ pub struct WriteOptions {
     pub dxf: DxfOptions,
 }
 
-/// One file: its path relative to the output directory (`/`-separated) and its bytes in
-/// pieces, the one after the other (a frame: the part every frame shares, then its own; a
+/// One file: its path relative to the output directory (checked: [`RelPath`]) and its bytes
+/// in pieces, the one after the other (a frame: the part every frame shares, then its own; a
 /// motion's DXF: its head, then what each job wrote; one piece for a file made whole), so
 /// that no file is copied together.
-pub type File<'a> = (String, Vec<&'a [u8]>);
+pub type File<'a> = (RelPath, Vec<&'a [u8]>);
+
+/// A file made whole: its path and its bytes.
+type Owned = (RelPath, Vec<u8>);
+
+/// The path `dir/…/stem.ext`, every part checked ([`RelPath::join`]).
+fn path(dir: &[&str], stem: &str, ext: &str) -> Result<RelPath, Error> {
+    let last = format!("{stem}.{ext}");
+    let mut parts = dir.to_vec();
+    parts.push(&last);
+    RelPath::join(&parts)
+}
 
 /// Where files go as they are made. `put` may be called from any thread, in any order;
 /// [`write`](fn@write) returns the files' canonical order.
@@ -68,7 +81,7 @@ pub struct Memory(Mutex<Vec<(String, Vec<u8>)>>);
 impl Sink for Memory {
     fn put(&self, files: &[File<'_>]) -> Result<(), Error> {
         let mut v = self.0.lock().map_err(|_| poisoned())?;
-        v.extend(files.iter().map(|(n, pieces)| (n.clone(), pieces.concat())));
+        v.extend(files.iter().map(|(n, pieces)| (n.to_string(), pieces.concat())));
         Ok(())
     }
 }
@@ -102,12 +115,12 @@ pub fn write(
     opts: &WriteOptions,
     tick: &(dyn Fn() + Sync),
     sink: &dyn Sink,
-) -> Result<Vec<String>, Error> {
+) -> Result<Vec<RelPath>, Error> {
     let name = &p.name;
     let opts = &WriteOptions { dxf: DxfOptions { mm_per_unit: p.mm_per_unit, ..opts.dxf }, ..opts.clone() };
     match &p.picture {
         Picture::Still(d) => {
-            let mut files: Vec<(String, Vec<u8>)> = Vec::new();
+            let mut files: Vec<Owned> = Vec::new();
             still_files(&mut files, name, d, opts)?;
             let (extras, diagrams) =
                 rayon::join(|| extra_files(p, opts), || diagram_files(&p.diagrams, name, opts.png));
@@ -121,34 +134,39 @@ pub fn write(
 }
 
 /// The sheets (each DXF, SVG, PNG), the tables and the JSON summary, in this order.
-fn extra_files(p: &Products, opts: &WriteOptions) -> Result<Vec<(String, Vec<u8>)>, Error> {
+fn extra_files(p: &Products, opts: &WriteOptions) -> Result<Vec<Owned>, Error> {
     let name = &p.name;
     let mut files = Vec::new();
     sheet_files(&mut files, name, &p.sheets, opts)?;
     for t in &p.tables {
-        files.push((format!("{name}{}.csv", t.suffix), t.csv.to_bytes()));
+        let csv = path(&[], &format!("{name}{}", t.suffix), "csv")?;
+        check_csv(&t.csv, csv.as_str())?;
+        files.push((csv, t.csv.to_bytes()));
     }
+    let json_path = path(&[], name, "json")?;
     let json = serde_json::to_string_pretty(&p.summary)
-        .map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })?;
-    files.push((format!("{name}.json"), (json + "\n").into_bytes()));
+        .map_err(|e| Error::Export { what: json_path.to_string(), message: e.to_string() })?;
+    files.push((json_path, (json + "\n").into_bytes()));
     Ok(files)
 }
 
 /// Hands `files` to `sink` and returns their names, in order.
-fn put_owned(sink: &dyn Sink, files: Vec<(String, Vec<u8>)>) -> Result<Vec<String>, Error> {
+fn put_owned(sink: &dyn Sink, files: Vec<Owned>) -> Result<Vec<RelPath>, Error> {
     sink.put(&view(&files))?;
     Ok(files.into_iter().map(|(n, _)| n).collect())
 }
 
 /// Borrowed views of owned files, for [`Sink::put`].
-fn view(v: &[(String, Vec<u8>)]) -> Vec<File<'_>> {
+fn view(v: &[Owned]) -> Vec<File<'_>> {
     v.iter().map(|(n, b)| (n.clone(), vec![b.as_slice()])).collect()
 }
 
 /// A still drawing as `<stem>.dxf`, `<stem>.svg` and (when asked for) `<stem>.png`.
-fn still_files(files: &mut Vec<(String, Vec<u8>)>, stem: &str, d: &Drawing, opts: &WriteOptions) -> Result<(), Error> {
-    files.push((format!("{stem}.dxf"), dxf_bytes(d, &opts.dxf, stem)?));
-    picture_files(files, stem, picture_svg(d), opts.png)
+fn still_files(files: &mut Vec<Owned>, stem: &str, d: &Drawing, opts: &WriteOptions) -> Result<(), Error> {
+    let dxf = path(&[], stem, "dxf")?;
+    check_drawing(d, dxf.as_str())?;
+    files.push((dxf.clone(), dxf_bytes(d, &opts.dxf, &dxf)?));
+    picture_files(files, &[], stem, picture_svg(d), opts.png)
 }
 
 /// A still drawing's SVG (`<stem>.svg`).
@@ -169,13 +187,8 @@ pub fn frame_options(a: &Animation, poses: &[Drawing]) -> SvgOptions {
 }
 
 /// Each sheet as a still drawing named `<name>-<suffix>`, built in parallel.
-fn sheet_files(
-    files: &mut Vec<(String, Vec<u8>)>,
-    name: &str,
-    sheets: &[Sheet],
-    opts: &WriteOptions,
-) -> Result<(), Error> {
-    let per: Vec<Vec<(String, Vec<u8>)>> = sheets
+fn sheet_files(files: &mut Vec<Owned>, name: &str, sheets: &[Sheet], opts: &WriteOptions) -> Result<(), Error> {
+    let per: Vec<Vec<Owned>> = sheets
         .par_iter()
         .map(|s| {
             let mut v = Vec::with_capacity(3);
@@ -187,31 +200,30 @@ fn sheet_files(
     Ok(())
 }
 
-/// The picture's SVG, and its PNG when asked for.
-fn picture_files(files: &mut Vec<(String, Vec<u8>)>, name: &str, svg: String, png: bool) -> Result<(), Error> {
-    let png = if png { Some(png_bytes(&svg, &format!("{name}.png"))?) } else { None };
-    files.push((format!("{name}.svg"), svg.into_bytes()));
-    if let Some(png) = png {
-        files.push((format!("{name}.png"), png));
-    }
+/// The picture's SVG `dir/…/stem.svg`, and its PNG when asked for.
+fn picture_files(files: &mut Vec<Owned>, dir: &[&str], stem: &str, svg: String, png: bool) -> Result<(), Error> {
+    let svg_path = path(dir, stem, "svg")?;
+    let png = if png {
+        let png_path = path(dir, stem, "png")?;
+        let bytes = png_bytes(&svg, &png_path)?;
+        Some((png_path, bytes))
+    } else {
+        None
+    };
+    files.push((svg_path, svg.into_bytes()));
+    files.extend(png);
     Ok(())
 }
 
 /// Each diagram's SVG (and PNG), built in parallel.
-fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
-    let per: Vec<Vec<(String, Vec<u8>)>> = diagrams
+fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<Owned>, Error> {
+    let per: Vec<Vec<Owned>> = diagrams
         .par_iter()
         .map(|d| {
-            let stem = format!("diagrams/{name}/{}", d.stem);
+            check_drawing(&d.drawing, path(&["diagrams", name], &d.stem, "svg")?.as_str())?;
             let s = svg::to_string(&d.drawing, &SvgOptions::default());
             let mut v = Vec::with_capacity(2);
-            if png {
-                let png = png_bytes(&s, &format!("{stem}.png"))?;
-                v.push((format!("{stem}.svg"), s.into_bytes()));
-                v.push((format!("{stem}.png"), png));
-            } else {
-                v.push((format!("{stem}.svg"), s.into_bytes()));
-            }
+            picture_files(&mut v, &["diagrams", name], &d.stem, s, png)?;
             Ok(v)
         })
         .collect::<Result<_, Error>>()?;
@@ -222,13 +234,16 @@ fn diagram_files(diagrams: &[Diagram], name: &str, png: bool) -> Result<Vec<(Str
 /// `sheets/<name>/<stem>.svg` (true size: `width="297mm"`, viewBox in paper mm) and, when
 /// asked for, its PNG `sheets/<name>/<stem>.png`; nothing without pages. The SVGs (and PNGs)
 /// are built in parallel with the PDF.
-fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<u8>)>, Error> {
+fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<Owned>, Error> {
     if pages.is_empty() {
         return Ok(Vec::new());
     }
-    let pdf_name = format!("{name}-sheets.pdf");
+    let pdf_name = path(&[], &format!("{name}-sheets"), "pdf")?;
+    for p in pages {
+        check_drawing(&p.drawing, &format!("{pdf_name}, page {}", p.stem))?;
+    }
     let (doc, svgs) = rayon::join(
-        || pdf_bytes(pages, &pdf_name),
+        || pdf_bytes(pages, pdf_name.as_str()),
         || {
             pages
                 .par_iter()
@@ -241,9 +256,8 @@ fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<
                         paper_mm_per_unit: Some(1.0),
                         ..SvgOptions::default()
                     };
-                    let stem = format!("sheets/{name}/{}", p.stem);
                     let mut v = Vec::with_capacity(2);
-                    picture_files(&mut v, &stem, svg::to_string(&p.drawing, &opts), png)?;
+                    picture_files(&mut v, &["sheets", name], &p.stem, svg::to_string(&p.drawing, &opts), png)?;
                     Ok(v)
                 })
                 .collect::<Result<Vec<_>, Error>>()
@@ -255,14 +269,14 @@ fn page_files(name: &str, pages: &[Page], png: bool) -> Result<Vec<(String, Vec<
 }
 
 #[cfg(feature = "png")]
-fn png_bytes(svg: &str, what: &str) -> Result<Vec<u8>, Error> {
+fn png_bytes(svg: &str, what: &RelPath) -> Result<Vec<u8>, Error> {
     crate::draw::raster::to_png(svg, super::PNG_WIDTH_PX)
         .map_err(|e| Error::Export { what: what.to_string(), message: e.to_string() })
 }
 
 /// Without the PNG writer (the live page's module), a PNG asked for is refused by name.
 #[cfg(not(feature = "png"))]
-fn png_bytes(_svg: &str, what: &str) -> Result<Vec<u8>, Error> {
+fn png_bytes(_svg: &str, what: &RelPath) -> Result<Vec<u8>, Error> {
     Err(Error::Export { what: what.to_string(), message: NOT_IN_THIS_BUILD.replace("{}", "PNG").replace("{f}", "png") })
 }
 
@@ -286,8 +300,8 @@ fn pdf_bytes(_pages: &[Page], what: &str) -> Result<Vec<u8>, Error> {
 #[cfg(not(all(feature = "png", feature = "pdf")))]
 const NOT_IN_THIS_BUILD: &str = "this build has no {} writer (the live page leaves it to the command line: `mechdraw run` has it; a library build needs the Cargo feature `{f}`)";
 
-fn dxf_bytes(d: &Drawing, opts: &DxfOptions, name: &str) -> Result<Vec<u8>, Error> {
-    dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: format!("{name}.dxf"), message: e.to_string() })
+fn dxf_bytes(d: &Drawing, opts: &DxfOptions, what: &RelPath) -> Result<Vec<u8>, Error> {
+    dxf::to_bytes(d, opts).map_err(|e| Error::Export { what: what.to_string(), message: e.to_string() })
 }
 
 /// One SVG frame of a motion: `head` (the part every frame shares, written once; empty for a
@@ -327,18 +341,23 @@ fn motion(
     opts: &WriteOptions,
     tick: &(dyn Fn() + Sync),
     sink: &dyn Sink,
-) -> Result<Vec<String>, Error> {
+) -> Result<Vec<RelPath>, Error> {
     let name = &p.name;
     let poses = a.poses();
+    let dxf_name = path(&[], name, "dxf")?;
+    check_drawing(&a.base, dxf_name.as_str())?;
+    poses.par_iter().enumerate().try_for_each(|(k, pose)| {
+        let position = a.names.get(k).map_or_else(|| k.to_string(), |n| n.to_lowercase());
+        check_drawing(pose, &format!("{dxf_name} and frames/{name}/{position}.svg"))
+    })?;
     let svg_opts = frame_options(a, &poses);
-    let dxf_name = format!("{name}.dxf");
     // The DXF's pieces first, on every core (its jobs are the largest part of the run; the
     // sheets, the tables and the JSON meanwhile), then the file written on one core while
     // the frames, the diagrams and the printed pages are made on the other.
     let (pieces, extras) = rayon::join(
         || {
             dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
-                .map_err(|e| Error::Export { what: dxf_name.clone(), message: e.to_string() })
+                .map_err(|e| Error::Export { what: dxf_name.to_string(), message: e.to_string() })
         },
         || extra_files(p, opts).and_then(|f| put_owned(sink, f)),
     );
@@ -364,7 +383,7 @@ fn motion(
     dxf?;
     let (picture, frame_names) = frames?;
     let mut files = Vec::with_capacity(2);
-    picture_files(&mut files, name, picture, opts.png)?;
+    picture_files(&mut files, &[], name, picture, opts.png)?;
     let mut order = vec![dxf_name];
     order.extend(put_owned(sink, files)?);
     order.extend(extras?);
@@ -389,7 +408,7 @@ fn frame_files(
     tick: &(dyn Fn() + Sync),
     sink: &dyn Sink,
     name: &str,
-) -> Result<(String, Vec<String>), Error> {
+) -> Result<(String, Vec<RelPath>), Error> {
     if opts.no_frames || poses.is_empty() {
         let picture = match poses.first() {
             Some(first) => svg::to_string(&a.frame_of(first), svg_opts),
@@ -397,9 +416,18 @@ fn frame_files(
         };
         return Ok((picture, Vec::new()));
     }
+    // Each frame's SVG path, and its PNG's with --png.
+    let stems: Vec<(RelPath, Option<RelPath>)> = a
+        .names
+        .iter()
+        .take(poses.len())
+        .map(|n| {
+            let stem = n.to_lowercase();
+            let png = if opts.png { Some(path(&["frames", name], &stem, "png")?) } else { None };
+            Ok((path(&["frames", name], &stem, "svg")?, png))
+        })
+        .collect::<Result<_, Error>>()?;
     let base_svg = svg::to_string(&a.base, svg_opts);
-    let stems: Vec<String> =
-        a.names.iter().take(poses.len()).map(|n| format!("frames/{name}/{}", n.to_lowercase())).collect();
     let firsts: Vec<Option<String>> = poses
         .par_chunks(FRAMES_PER_BATCH)
         .zip(stems.par_chunks(FRAMES_PER_BATCH))
@@ -413,20 +441,16 @@ fn frame_files(
                     f
                 })
                 .collect();
-            let pngs: Vec<Vec<u8>> = if opts.png {
-                stems
-                    .iter()
-                    .zip(&frames)
-                    .map(|(stem, f)| png_bytes(&f.whole(), &format!("{stem}.png")))
-                    .collect::<Result<_, Error>>()?
-            } else {
-                Vec::new()
-            };
-            let mut files: Vec<File<'_>> = Vec::with_capacity(frames.len() * if opts.png { 2 } else { 1 });
-            for (i, (stem, f)) in stems.iter().zip(&frames).enumerate() {
-                files.push((format!("{stem}.svg"), f.pieces()));
-                if let Some(png) = pngs.get(i) {
-                    files.push((format!("{stem}.png"), vec![png.as_slice()]));
+            let pngs: Vec<(&RelPath, Vec<u8>)> = stems
+                .iter()
+                .zip(&frames)
+                .filter_map(|((_, png), f)| png.as_ref().map(|png| Ok((png, png_bytes(&f.whole(), png)?))))
+                .collect::<Result<_, Error>>()?;
+            let mut files: Vec<File<'_>> = Vec::with_capacity(frames.len() + pngs.len());
+            for (i, ((svg, _), f)) in stems.iter().zip(&frames).enumerate() {
+                files.push((svg.clone(), f.pieces()));
+                if let Some((png, bytes)) = pngs.get(i) {
+                    files.push(((*png).clone(), vec![bytes.as_slice()]));
                 }
             }
             sink.put(&files)?;
@@ -434,13 +458,7 @@ fn frame_files(
         })
         .collect::<Result<_, Error>>()?;
     let picture = firsts.into_iter().flatten().next().unwrap_or_else(|| svg::to_string(&a.base, svg_opts));
-    let mut names = Vec::with_capacity(stems.len() * if opts.png { 2 } else { 1 });
-    for stem in &stems {
-        names.push(format!("{stem}.svg"));
-        if opts.png {
-            names.push(format!("{stem}.png"));
-        }
-    }
+    let names = stems.into_iter().flat_map(|(svg, png)| std::iter::once(svg).chain(png)).collect();
     Ok((picture, names))
 }
 

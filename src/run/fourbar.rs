@@ -10,6 +10,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use super::fourbar_teaching as teaching;
+use super::positions::{DriveAxis, Positions};
 use super::products::{self, Extras, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -38,10 +39,15 @@ pub(super) fn products(
     scene: &FourbarScene,
     file: &str,
     paper: Option<Paper>,
+    chosen: Option<&Positions>,
     picture_only: bool,
 ) -> Result<Products, Error> {
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
+    // The positions drawn (`--positions`: crank angles φ1 in degrees).
+    let angles: Vec<f64> = motion.positions.iter().map(|p| deg(p.phi1)).collect();
+    let axis = DriveAxis { name: "crank angle φ1", unit: "°", step: spec.sweep.step_deg.abs() };
+    let drawn = super::drawn_positions(chosen, &angles, axis)?;
     let units = match scene.units {
         Units::Si => ModelUnits::SI,
         Units::Mm => ModelUnits::MM,
@@ -117,7 +123,7 @@ pub(super) fn products(
             })
             .collect();
         let pages = match paper {
-            Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names),
+            Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names, &drawn),
             None => Vec::new(),
         };
         let mut extras = Extras {
@@ -157,10 +163,12 @@ pub(super) fn products(
         },
     };
     let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
+    let animation = Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive);
+    let animation = if chosen.is_some() { animation.keep(drawn) } else { animation };
     Ok(extras.with_motion(
         name.clone(),
         super::mm_per_unit(scene.units),
-        Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive),
+        animation,
         PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
         warnings,
     ))
@@ -562,24 +570,40 @@ fn table(motion: &Motion, qs: &[Quantity], forces: bool) -> Csv {
     csv
 }
 
-/// One position's JSON record: the quantities marked `json`, pairs as `[x, y]`.
-fn position_record(p: &Position, f: Option<&Forces>, qs: &[Quantity]) -> BTreeMap<String, Value> {
+/// One position's JSON record: the quantities marked `json`, pairs as `[x, y]`. A number
+/// that is not finite fails (JSON would write it as `null`), naming `positions[i].<key>` of
+/// `<name>.json`.
+fn position_record(
+    p: &Position,
+    f: Option<&Forces>,
+    qs: &[Quantity],
+    at: (&str, usize),
+) -> Result<BTreeMap<String, Value>, Error> {
     let mut r = BTreeMap::new();
+    let checked = |key: String, values: &[f64]| {
+        if values.iter().all(|v| v.is_finite()) {
+            Ok(key)
+        } else {
+            Err(Error::NonFinite { what: format!("{}.json", at.0), at: format!("positions[{}].{key}", at.1) })
+        }
+    };
     for q in qs.iter().filter(|q| q.json) {
         match q.get {
             Get::Scalar(g) => {
-                r.insert(q.name.to_string(), json!(g(p, f)));
+                let v = g(p, f);
+                r.insert(checked(q.name.to_string(), &[v])?, json!(v));
             }
             Get::Pair(g) => {
                 let v = g(p, f);
-                r.insert(q.name.to_string(), report::vector(v));
+                r.insert(checked(q.name.to_string(), &[v.x, v.y])?, report::vector(v));
                 if q.magnitude {
-                    r.insert(format!("{}_mag", q.name), json!(v.norm()));
+                    let m = v.norm();
+                    r.insert(checked(format!("{}_mag", q.name), &[m])?, json!(m));
                 }
             }
         }
     }
-    r
+    Ok(r)
 }
 
 /// A drawing scale in the summary: the value per millimetre of printed paper and its unit.
@@ -636,8 +660,11 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         .positions
         .par_iter()
         .enumerate()
-        .map(|(i, p)| Value::Object(position_record(p, forces_at(motion, i, forces), qs).into_iter().collect()))
-        .collect();
+        .map(|(i, p)| {
+            let record = position_record(p, forces_at(motion, i, forces), qs, (&scene.name, i))?;
+            Ok(Value::Object(record.into_iter().collect()))
+        })
+        .collect::<Result<_, Error>>()?;
     let outputs = [
         ("position", true),
         ("velocity", o.velocity),
@@ -805,8 +832,8 @@ fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUn
     sheet::Table { header, rows }
 }
 
-/// The printed pages, one per position (in parallel): `sheets/<name>/<position>.svg` and
-/// the PDF.
+/// The printed pages, one per drawn position (`drawn`: indices into the motion's positions,
+/// in parallel): `sheets/<name>/<position>.svg` and the PDF, numbered among themselves.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -817,19 +844,20 @@ fn sheet_pages(
     show: Show,
     units: ModelUnits,
     names: &[String],
+    drawn: &[usize],
 ) -> Vec<products::Page> {
     let geom = scene.spec.geometry;
     let sheets =
         FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units);
-    let n = motion.positions.len();
-    motion
-        .positions
+    let n = drawn.len();
+    drawn
         .par_iter()
         .enumerate()
-        .map(|(i, p)| {
+        .map(|(j, &i)| {
+            let p = &motion.positions[i];
             let f = forces_at(motion, i, show.forces);
             let table = sheet_table(p, f, qs, units);
-            let (drawing, _) = sheets.page(&geom, p, f, &table, (i + 1, n));
+            let (drawing, _) = sheets.page(&geom, p, f, &table, (j + 1, n));
             products::Page {
                 stem: names[i].to_lowercase(),
                 drawing,

@@ -61,21 +61,23 @@ pub fn levers(spec: &MotionSpec, positions: &[Position]) -> Vec<Option<Lever>> {
     positions.iter().map(|p| p.kin.map(|k| lever(&spec.geometry, p, &k, dynamics, spec.omega1))).collect()
 }
 
-/// Me1_J of each lever (NaN where there is none: a standing crank).
-fn me1_values(levers: &[Option<Lever>]) -> Vec<f64> {
-    levers.iter().map(|l| l.as_ref().and_then(|l| l.me1).unwrap_or(f64::NAN)).collect()
+/// Me1_J of each lever: `None` where a position has no lever (no kinematics: a singular
+/// position). A standing crank has one (virtual velocities: `solve::fourbar::joukowski`).
+fn me1_values(levers: &[Option<Lever>]) -> Vec<Option<f64>> {
+    levers.iter().map(|l| l.as_ref().and_then(|l| l.me1).filter(|v| v.is_finite())).collect()
 }
 
-/// Adds `me1_joukowski` to the CSV (after `Me1`, the last column) and to each JSON position
-/// record, and `gamma_min_deg`, `gamma_min_phi1_deg` to the summary.
+/// Adds `me1_joukowski` to the CSV (after `Me1`, the last column; an empty field where a
+/// position has no lever) and to each JSON position record (`null` there), and
+/// `gamma_min_deg`, `gamma_min_phi1_deg` to the summary.
 pub fn add_to_tables(csv: &mut Csv, summary: &mut Value, levers: &[Option<Lever>], gamma: Option<GammaMin>) {
     if !levers.is_empty() {
         let values = me1_values(levers);
-        csv.column("me1_joukowski", &values);
+        csv.column_opt("me1_joukowski", &values);
         if let Some(records) = summary.get_mut("positions").and_then(Value::as_array_mut) {
             for (r, v) in records.iter_mut().zip(&values) {
                 if let Some(o) = r.as_object_mut() {
-                    o.insert("me1_joukowski".into(), json!(v));
+                    o.insert("me1_joukowski".into(), v.map_or(Value::Null, |v| json!(v)));
                 }
             }
         }

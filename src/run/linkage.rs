@@ -8,6 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
+use super::positions::{DriveAxis, Positions};
 use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -97,15 +98,32 @@ fn near_singular_warning(n: &NearSingular) -> String {
 
 /// Parses `BODY.POINT=x,y`.
 fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error> {
-    let bad = |message: String| Error::Option { option: format!("--drag {spec}"), message };
+    let bad = |message: String| Error::Option { option: format!("--drag {}", crate::text::excerpt(spec)), message };
     let Some((point, xy)) = spec.split_once('=') else {
         return Err(bad("expected BODY.POINT=x,y, e.g. crank.A=10,20".into()));
     };
     let anchor = scene.anchor(point.trim()).map_err(bad)?;
+    if anchor.body == Attach::Ground {
+        let movable: Vec<String> = scene
+            .mechanism
+            .bodies
+            .iter()
+            .flat_map(|b| b.points.iter().map(move |(p, _)| format!("{}.{p}", b.name)))
+            .collect();
+        return Err(bad(format!(
+            "`{}` is a point of the ground, which does not move: drag a point of a moving body ({})",
+            point.trim(),
+            crate::text::excerpt(&movable.join(", "))
+        )));
+    }
     let parts: Vec<&str> = xy.split(',').collect();
     let nums: Vec<f64> = parts.iter().filter_map(|s| s.trim().parse::<f64>().ok()).collect();
-    if parts.len() != 2 || nums.len() != 2 || !nums.iter().all(|v| v.is_finite()) {
-        return Err(bad(format!("`{xy}` is not a target x,y of two finite numbers, e.g. 10,20")));
+    let limit = crate::scene::MAX_LENGTH;
+    if parts.len() != 2 || nums.len() != 2 || !nums.iter().all(|v| v.is_finite() && v.abs() <= limit) {
+        return Err(bad(format!(
+            "`{}` is not a target x,y of two numbers within ±{limit:e} (the scene's unit), e.g. 10,20",
+            crate::text::excerpt(xy)
+        )));
     }
     Ok((anchor, Point::new(nums[0], nums[1])))
 }
@@ -115,6 +133,7 @@ pub(super) fn products(
     file: &str,
     drag: &[String],
     paper: Option<Paper>,
+    positions: Option<&Positions>,
     picture_only: bool,
 ) -> Result<Products, Error> {
     let serr = solve_err(file);
@@ -189,6 +208,13 @@ pub(super) fn products(
     let window = frames.frame.window;
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
     let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
+    // The positions drawn (`--positions`: times t in seconds).
+    let times: Vec<f64> = states.iter().map(|s| s.t).collect();
+    let step = match scene.times.as_slice() {
+        [a, b, ..] => (b - a).abs(),
+        _ => 1.0,
+    };
+    let drawn = super::drawn_positions(positions, &times, DriveAxis { name: "time t", unit: " s", step })?;
 
     let extras = if picture_only {
         Extras::default()
@@ -287,8 +313,9 @@ pub(super) fn products(
             mech.joints.len(),
             mech.drivers.len(),
             states.len(),
-            scene.times[0],
-            scene.times[scene.times.len() - 1],
+            // At most 6 decimals: a span of π/10 s reads 0..0.314159 s.
+            crate::solve::chain::graph::fmt_value(scene.times[0]),
+            crate::solve::chain::graph::fmt_value(scene.times[scene.times.len() - 1]),
             max_residual,
         );
         let mut report = report;
@@ -314,7 +341,7 @@ pub(super) fn products(
         let pages = match paper {
             Some(paper) => {
                 let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
-                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names)
+                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names, &drawn)
             }
             None => Vec::new(),
         };
@@ -392,10 +419,12 @@ pub(super) fn products(
         let force = dynamics.as_ref().zip(forces.get(k));
         frames.moving(&figure, &mech, &states[k], force)
     };
+    let animation = Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive);
+    let animation = if positions.is_some() { animation.keep(drawn) } else { animation };
     Ok(extras.with_motion(
         scene.name.clone(),
         super::mm_per_unit(scene.units),
-        Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive),
+        animation,
         PositionsSource { field: "time.steps", advice: "use fewer steps" },
         warnings,
     ))
@@ -1050,8 +1079,8 @@ fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScene, &Forces)
     sheet::Table { header, rows }
 }
 
-/// The printed pages, one per sample (in parallel): `sheets/<name>/<position>.svg` and the
-/// PDF.
+/// The printed pages, one per drawn sample (`drawn`: indices into the samples; in parallel):
+/// `sheets/<name>/<position>.svg` and the PDF, numbered among themselves.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -1062,16 +1091,18 @@ fn sheet_pages(
     plots: &[Plot],
     show: Show,
     names: &[String],
+    drawn: &[usize],
 ) -> Vec<products::Page> {
     let sheets = LinkageSheets::new(paper, &scene.name, figure, states, show, forces.is_some());
-    let n = states.len();
-    states
+    let n = drawn.len();
+    drawn
         .par_iter()
         .enumerate()
-        .map(|(k, st)| {
+        .map(|(j, &k)| {
+            let st = &states[k];
             let force = forces.map(|(d, f)| (d, &f[k]));
             let table = sheet_table(plots, k, force.map(|(_, f)| (scene, f)));
-            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (k + 1, n));
+            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (j + 1, n));
             products::Page {
                 stem: names[k].to_lowercase(),
                 drawing,

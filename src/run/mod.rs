@@ -5,13 +5,18 @@
 
 pub mod bytes;
 mod chain;
+pub mod finite;
 mod fourbar;
 mod fourbar_teaching;
 mod linkage;
 #[cfg(feature = "cli")]
+pub mod listing;
+#[cfg(feature = "cli")]
 pub mod output;
 #[cfg(feature = "cli")]
 pub mod page;
+pub mod paths;
+pub mod positions;
 pub mod products;
 mod tolerance;
 mod triad;
@@ -47,6 +52,9 @@ pub struct RunOptions {
     /// The `--set KEY=VALUE` changes the scene was loaded with: the live page applies them
     /// to the scene file's text when it opens.
     pub sets: Vec<String>,
+    /// `--positions LIST`: draw only these positions of a motion (four-bar and linkage
+    /// scenes; [`positions::Positions`]); `None` draws every position.
+    pub positions: Option<positions::Positions>,
     /// Only the picture and the warnings: no sheets, printed pages, diagrams, tables, JSON
     /// summary or report (`Null` and empty). The live page's answer to a change, which makes
     /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
@@ -101,11 +109,41 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             ),
         });
     }
+    if let Some(p) = &opts.positions {
+        let drawn_one = match &loaded.scene {
+            Scene::Fourbar(_) => None,
+            Scene::Linkage(_) if !opts.drag.is_empty() => Some("--drag draws one configuration".to_string()),
+            Scene::Linkage(_) => None,
+            other => Some(format!("{file} is a {} scene with one drawing", other.kind())),
+        };
+        if let Some(why) = drawn_one {
+            return Err(Error::Option {
+                option: format!("--positions {p}"),
+                message: format!("positions are chosen from the motion of a four-bar or linkage scene; {why}"),
+            });
+        }
+    }
+    let positions = opts.positions.as_ref();
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
-        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, opts.picture_only),
-        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, opts.picture_only),
+        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, positions, opts.picture_only),
+        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, positions, opts.picture_only),
         Scene::Chain(s) => chain::products(s, &file),
+    }
+}
+
+/// The positions of a motion a run draws: those `--positions` asks for (in its order), or
+/// every one; `values` are the drive's values at the run's positions.
+pub(crate) fn drawn_positions(
+    positions: Option<&positions::Positions>,
+    values: &[f64],
+    axis: positions::DriveAxis,
+) -> Result<Vec<usize>, Error> {
+    match positions {
+        None => Ok((0..values.len()).collect()),
+        Some(p) => {
+            p.select(values, axis).map_err(|message| Error::Option { option: format!("--positions {p}"), message })
+        }
     }
 }
 
@@ -113,6 +151,10 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
 /// terminal: feature `cli`; the core's products go to bytes with [`bytes::to_files`]).
 #[cfg(feature = "cli")]
 pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
+    if opts.out_dir.is_some() && opts.drag.is_empty() {
+        // Before solving: a mistyped step is refused at once, not after a million positions.
+        check_positions(&loaded.scene, &loaded.path.display().to_string())?;
+    }
     let p = products(loaded, opts)?;
     let Some(dir) = &opts.out_dir else {
         return Ok(Outcome { summary: p.summary, report: p.report, warnings: p.warnings, written: Vec::new() });
@@ -134,7 +176,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     let wopts = bytes::WriteOptions { png: opts.png, no_frames: opts.no_frames, dxf: opts.dxf };
     // The live page `<name>.html` (every kind), unless --no-frames: written while the
     // products become files.
-    let page_rel = format!("{}.html", p.name);
+    let page_rel = paths::RelPath::join(&[&format!("{}.html", p.name)])?;
     let (order, page) = rayon::join(
         || bytes::write(&p, &wopts, &tick, &out),
         || -> Result<bool, Error> {
@@ -181,6 +223,18 @@ pub const PNG_WIDTH_PX: u32 = 1600;
 /// square of the count). 3600 is a 0.1° crank step over a turn. The library can still
 /// solve a finer scene without an output directory ([`RunOptions::out_dir`] = `None`).
 pub const MAX_DRAWN_POSITIONS: usize = 3600;
+
+/// Refuses, before solving, a scene whose motion has more than [`MAX_DRAWN_POSITIONS`]
+/// positions to draw (the message names the field that sets their number); a still scene
+/// draws one.
+pub fn check_positions(scene: &Scene, file: &str) -> Result<(), Error> {
+    let (count, field, advice) = match scene {
+        Scene::Fourbar(s) => (s.spec.sweep.count(), "phi1_deg.step", "use a larger step"),
+        Scene::Linkage(s) => (s.times.len(), "time.steps", "use fewer steps"),
+        Scene::Triad(_) | Scene::Chain(_) => return Ok(()),
+    };
+    check_drawn(file, field, count, advice)
+}
 
 /// Refuses to draw more than [`MAX_DRAWN_POSITIONS`] positions, naming the field that sets
 /// their number (so that a mistyped step does not fill the disk).

@@ -145,7 +145,8 @@ pub fn gallery(scenes: &[(String, String)], dir: &std::path::Path) -> Result<Vec
          command line writes.</p>\n<ul>\n",
     );
     for (stem, file, text, name, kind) in &items {
-        out.write_pieces(format!("{stem}.html"), &LivePage::new(text, file, &[]).pieces(Module::Beside))?;
+        let page = super::paths::RelPath::join(&[&format!("{stem}.html")])?;
+        out.write_pieces(page.as_str(), &LivePage::new(text, file, &[]).pieces(Module::Beside))?;
         index.push_str(&format!(
             "<li><a href=\"{}.html\">{}</a> ({kind}, {})</li>\n",
             escape(stem),

@@ -163,6 +163,9 @@ impl Extras {
 
 /// A typed summary as the JSON value the products carry (keys in the order serde_json
 /// keeps them: sorted).
+/// A number in it that is not finite fails ([`super::finite::check_summary`]: JSON would
+/// write it as `null`).
 pub fn summary_value(summary: &impl Serialize, name: &str) -> Result<serde_json::Value, Error> {
+    super::finite::check_summary(summary, &format!("{name}.json"))?;
     serde_json::to_value(summary).map_err(|e| Error::Export { what: format!("{name}.json"), message: e.to_string() })
 }

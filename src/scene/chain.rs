@@ -235,11 +235,7 @@ fn check_stackup(raw: &RawStackup) -> Result<Stackup, FieldError> {
 }
 
 fn check_tol(field: &str, t: f64) -> Result<f64, FieldError> {
-    if t.is_finite() && t >= 0.0 {
-        Ok(t)
-    } else {
-        Err(FieldError::new(field, format!("must be a tolerance ≥ 0 (the ± value), got {t}")))
-    }
+    super::non_negative_within(field, t, super::MAX_LENGTH, "a tolerance (the ± value, in the scene's unit)")
 }
 
 /// The matrix form: feature 0 = zero point, feature i+1 = end point of W[i].
@@ -261,7 +257,7 @@ fn check_matrix(raw: &RawChainScene) -> Result<(Vec<String>, Vec<Dimension>), Fi
     }
     for (i, v) in w.iter().enumerate() {
         let f = format!("W[{i}]");
-        super::finite(&f, *v)?;
+        super::length(&f, *v)?;
         if v.abs() < VALUE_MATCH_TOL {
             return Err(FieldError::new(
                 f,
@@ -291,7 +287,7 @@ fn check_matrix(raw: &RawChainScene) -> Result<(Vec<String>, Vec<Dimension>), Fi
     let mut dims = Vec::with_capacity(w.len());
     for (i, (&base, &value)) in b.iter().zip(w).enumerate() {
         let field = format!("B[{i}]");
-        super::finite(&field, base)?;
+        super::length(&field, base)?;
         let from = resolve_value(w, base).map_err(|m| FieldError::new(field.clone(), m))?;
         if from == i + 1 {
             return Err(FieldError::new(
@@ -353,7 +349,7 @@ fn matrix_ref(dims: &[Dimension], i: usize, j: usize, r: &RawRef) -> Result<usiz
     match r {
         RawRef::Value(v) => {
             let w: Vec<f64> = dims.iter().map(|d| d.nominal).collect();
-            super::finite(&field, *v)?;
+            super::length(&field, *v)?;
             resolve_value(&w, *v).map_err(|m| FieldError::new(field, m))
         }
         RawRef::Name(n) => Err(FieldError::new(
@@ -394,16 +390,21 @@ fn check_dependents(
         let left = resolve(i, 0, &ends[0])?;
         let right = resolve(i, 1, &ends[1])?;
         let name = name.unwrap_or_else(|| format!("Z{}", i + 1));
-        if name.is_empty() || names.contains(&name) {
-            return Err(FieldError::new(format!("dependent[{i}].name"), format!("\"{name}\" is empty or used twice")));
+        // It names the dimension's histogram, diagrams/<scene>/<name>-histogram.svg.
+        let name = super::check_file_name(&format!("dependent[{i}].name"), &name)?;
+        if names.contains(&name) {
+            return Err(FieldError::new(format!("dependent[{i}].name"), format!("\"{name}\" is used twice")));
         }
         names.push(name.clone());
         if let Some([lsl, usl]) = spec
-            && !(lsl.is_finite() && usl.is_finite() && lsl < usl)
+            && !(lsl.is_finite() && usl.is_finite() && lsl < usl && lsl.abs().max(usl.abs()) <= super::MAX_LENGTH)
         {
             return Err(FieldError::new(
                 format!("dependent[{i}].spec"),
-                format!("must be [LSL, USL] with LSL < USL, finite, got [{lsl}, {usl}]"),
+                format!(
+                    "must be [LSL, USL] with LSL < USL, each from -{max:e} to {max:e}, got [{lsl:?}, {usl:?}]",
+                    max = super::MAX_LENGTH
+                ),
             ));
         }
         let label = |r: &RawRef| match r {
@@ -445,7 +446,7 @@ fn check_named(raw: &RawChainScene) -> Result<(Vec<String>, Vec<Dimension>), Fie
         if from == to {
             return Err(FieldError::new(at("to"), format!("is the same feature as from (\"{}\")", d.to)));
         }
-        let nominal = super::finite(&at("nominal"), d.nominal)?;
+        let nominal = super::length(&at("nominal"), d.nominal)?;
         if nominal.abs() < VALUE_MATCH_TOL {
             return Err(FieldError::new(at("nominal"), "is 0: two features at the same place are one feature"));
         }
@@ -455,8 +456,8 @@ fn check_named(raw: &RawChainScene) -> Result<(Vec<String>, Vec<Dimension>), Fie
                 (t, -t)
             }
             (None, Some(u), Some(l)) => {
-                let u = super::finite(&at("upper"), u)?;
-                let l = super::finite(&at("lower"), l)?;
+                let u = super::length(&at("upper"), u)?;
+                let l = super::length(&at("lower"), l)?;
                 if l > u {
                     return Err(FieldError::new(at("lower"), format!("{l} is above upper = {u}")));
                 }

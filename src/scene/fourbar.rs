@@ -6,7 +6,10 @@
 use serde::Deserialize;
 
 use super::tolerance::{self, Tolerances};
-use super::{FieldError, Units, finite, finite_point, positive};
+use super::{
+    FieldError, MAX_ANGULAR_ACCELERATION, MAX_ANGULAR_SPEED, MAX_FORCE_N, MAX_GRAVITY, MAX_INERTIA_KG_M2, MAX_MASS_KG,
+    MAX_TORQUE_N_M, Units, angle_deg, finite_point, non_negative_within, pair_within, positive, within,
+};
 use crate::geom::{Side, Vector};
 use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
 use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint, Link, LinkLoad, LinkMass};
@@ -248,7 +251,7 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
     if o1 == c {
         return Err(FieldError::new("c", "must differ from o1 (the ground link O1C has zero length)"));
     }
-    let alpha_deg = finite("alpha_deg", raw.alpha_deg)?;
+    let alpha_deg = angle_deg("alpha_deg", raw.alpha_deg)?;
     let geometry = Geometry {
         o1,
         c,
@@ -259,8 +262,9 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
         l_bc: positive("l_bc", raw.l_bc)?,
         branch: raw.branch.unwrap_or(Side::Left),
     };
-    let omega1 = finite("omega1", raw.omega1)?;
-    let epsilon1 = finite("epsilon1", raw.epsilon1.unwrap_or(0.0))?;
+    let omega1 = within("omega1", raw.omega1, MAX_ANGULAR_SPEED, "an angular speed in rad/s")?;
+    let epsilon1 =
+        within("epsilon1", raw.epsilon1.unwrap_or(0.0), MAX_ANGULAR_ACCELERATION, "an angular acceleration in rad/s²")?;
     let sweep = check_sweep(&raw.phi1_deg)?;
 
     let outputs = match &raw.outputs {
@@ -311,9 +315,9 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
 }
 
 fn check_sweep(s: &RawSweep) -> Result<Sweep, FieldError> {
-    let from_deg = finite("phi1_deg.from", s.from)?;
-    let to_deg = finite("phi1_deg.to", s.to)?;
-    let step_deg = finite("phi1_deg.step", s.step)?;
+    let from_deg = angle_deg("phi1_deg.from", s.from)?;
+    let to_deg = angle_deg("phi1_deg.to", s.to)?;
+    let step_deg = angle_deg("phi1_deg.step", s.step)?;
     if step_deg <= 0.0 {
         return Err(FieldError::new("phi1_deg.step", format!("must be a positive angle in degrees, got {step_deg}")));
     }
@@ -334,11 +338,34 @@ fn check_sweep(s: &RawSweep) -> Result<Sweep, FieldError> {
     Ok(sweep)
 }
 
+/// `phi1_deg = [from, to]` of a load: where it acts, degrees.
+fn crank_range(field: String, r: Option<[f64; 2]>) -> Result<Option<CrankRange>, FieldError> {
+    match r {
+        None => Ok(None),
+        Some([from, to]) => {
+            if !(from.is_finite()
+                && to.is_finite()
+                && from.abs() <= super::MAX_ANGLE_DEG
+                && to.abs() <= super::MAX_ANGLE_DEG)
+            {
+                return Err(FieldError::new(
+                    field,
+                    format!(
+                        "must be [from, to] in degrees, each within ±{:e}, got [{from:?}, {to:?}]",
+                        super::MAX_ANGLE_DEG
+                    ),
+                ));
+            }
+            Ok(Some(CrankRange { from_deg: from, to_deg: to }))
+        }
+    }
+}
+
 fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError> {
     let gravity = match &d.g {
         None => Vector::new(0.0, -STANDARD_GRAVITY),
         Some(RawGravity::Down(g)) => {
-            let g = finite("dynamics.g", *g)?;
+            let g = within("dynamics.g", *g, MAX_GRAVITY, "an acceleration in m/s²")?;
             if g < 0.0 {
                 return Err(FieldError::new(
                     "dynamics.g",
@@ -349,10 +376,7 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
             }
             Vector::new(0.0, -g)
         }
-        Some(RawGravity::Vector(v)) => {
-            let v = finite_point("dynamics.g", *v)?;
-            Vector::new(v.x, v.y)
-        }
+        Some(RawGravity::Vector(v)) => pair_within("dynamics.g", *v, MAX_GRAVITY, "an acceleration in m/s²")?,
     };
     let g = gravity.norm();
     if units == Units::Mm && g > MAX_G_MM_SCENE {
@@ -366,22 +390,7 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
             ),
         ));
     }
-    let mass = |field: &str, v: f64| {
-        if v.is_finite() && v >= 0.0 {
-            Ok(v)
-        } else {
-            Err(FieldError::new(field, format!("must be a mass ≥ 0 in kg, got {v}")))
-        }
-    };
-    let range = |field: String, r: Option<[f64; 2]>| match r {
-        None => Ok(None),
-        Some([from, to]) => {
-            if !from.is_finite() || !to.is_finite() {
-                return Err(FieldError::new(field, format!("must be [from, to] in degrees, got [{from}, {to}]")));
-            }
-            Ok(Some(CrankRange { from_deg: from, to_deg: to }))
-        }
-    };
+    let mass = |field: &str, v: f64| non_negative_within(field, v, MAX_MASS_KG, "a mass in kg");
     let mut links = [LinkMass::default(); 4];
     for (link, name, raw) in [
         (Link::Crank, "crank", &d.crank),
@@ -396,13 +405,8 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
             lm.centroid = Vector::new(c.x, c.y);
         }
         if let Some(j) = raw.inertia {
-            if !(j.is_finite() && j >= 0.0) {
-                return Err(FieldError::new(
-                    format!("dynamics.{name}.inertia"),
-                    format!("must be a moment of inertia ≥ 0 in kg·m², got {j}"),
-                ));
-            }
-            lm.inertia = Some(j);
+            let field = format!("dynamics.{name}.inertia");
+            lm.inertia = Some(non_negative_within(&field, j, MAX_INERTIA_KG_M2, "a moment of inertia in kg·m²")?);
         }
     }
     let mut loads = Vec::with_capacity(d.load.len());
@@ -426,14 +430,20 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
             ));
         }
         let at = finite_point(&format!("dynamics.load[{i}].at"), l.at.unwrap_or([0.0, 0.0]))?;
-        let force = finite_point(&format!("dynamics.load[{i}].force"), l.force.unwrap_or([0.0, 0.0]))?;
-        let torque = finite(&format!("dynamics.load[{i}].torque"), l.torque.unwrap_or(0.0))?;
+        let force = pair_within(
+            &format!("dynamics.load[{i}].force"),
+            l.force.unwrap_or([0.0, 0.0]),
+            MAX_FORCE_N,
+            "a force in N",
+        )?;
+        let torque =
+            within(&format!("dynamics.load[{i}].torque"), l.torque.unwrap_or(0.0), MAX_TORQUE_N_M, "a torque in N·m")?;
         loads.push(LinkLoad {
             link,
             at: Vector::new(at.x, at.y),
             force: Vector::new(force.x, force.y),
             torque,
-            range: range(format!("dynamics.load[{i}].phi1_deg"), l.phi1_deg)?,
+            range: crank_range(format!("dynamics.load[{i}].phi1_deg"), l.phi1_deg)?,
         });
     }
     let mut forces = Vec::with_capacity(d.force.len());
@@ -449,18 +459,9 @@ fn check_dynamics(d: &RawDynamics, units: Units) -> Result<Dynamics, FieldError>
                 ));
             }
         };
-        let v = finite_point(&format!("dynamics.force[{i}].value"), f.value)?;
-        let range = match f.phi1_deg {
-            None => None,
-            Some([from, to]) => {
-                let field = format!("dynamics.force[{i}].phi1_deg");
-                if !from.is_finite() || !to.is_finite() {
-                    return Err(FieldError::new(field, format!("must be [from, to] in degrees, got [{from}, {to}]")));
-                }
-                Some(CrankRange { from_deg: from, to_deg: to })
-            }
-        };
-        forces.push(ExternalForce { at, value: Vector::new(v.x, v.y), range });
+        let value = pair_within(&format!("dynamics.force[{i}].value"), f.value, MAX_FORCE_N, "a force in N")?;
+        let range = crank_range(format!("dynamics.force[{i}].phi1_deg"), f.phi1_deg)?;
+        forces.push(ExternalForce { at, value, range });
     }
     Ok(Dynamics {
         length_unit_m: match units {

@@ -59,7 +59,10 @@ use serde::Deserialize;
 use serde::de::{MapAccess, Visitor};
 
 use super::tolerance::{self, Tolerances};
-use super::{FieldError, Units, finite, finite_point};
+use super::{
+    FieldError, MAX_FORCE_N, MAX_GRAVITY, MAX_INERTIA_KG_M2, MAX_MASS_KG, MAX_TIME_S, MAX_TORQUE_N_M, Units, angle_deg,
+    finite_point, non_negative_within, pair_within, within,
+};
 use crate::geom::{Point, Vector, rad, rotate};
 use crate::solve::expr::Expr;
 use crate::solve::linkage::{
@@ -642,11 +645,18 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let length_scale = length_scale(&ground_points, &bodies)?;
     let joints = check_joints(&raw.joint, &ground_points, &bodies, length_scale)?;
     let drivers = check_drivers(&raw.driver, &bodies, &joints)?;
+    for (k, d) in drivers.iter().enumerate() {
+        let field = format!("driver[{k}].law");
+        check_law_range(&field, &d.law, &times, (None, true), MAX_LAW, "a driver's value")?;
+    }
     check_degrees_of_freedom(&bodies, &joints, &drivers)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
     let dynamics = check_dynamics(&raw, raw.units, &ground_points, &mechanism)?;
+    if let Some(d) = &dynamics {
+        check_load_ranges(&d.loads, &times)?;
+    }
     let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
     let outputs = check_outputs(raw.outputs.as_deref(), dynamics.is_some(), &raw.measure, &measures)?;
     let tolerances = raw
@@ -667,6 +677,65 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         outputs,
         tolerances,
     })
+}
+
+/// Largest magnitude of a driver law's value (rad or the scene's unit), rate (per s) and
+/// acceleration (per s²) at the scene's times: beyond it the kinematics overflow (an
+/// acceleration ω²·l at 1e15 rad/s and 1e15 units is 1e45, its inertia force 1e75 N).
+pub const MAX_LAW: f64 = 1e15;
+
+/// Refuses an expression whose value (and with `rates`, its rate or acceleration) is finite
+/// but beyond ±`max` at one of `times` (within the window when given), naming the field,
+/// the time and the value. A value that is not finite is the solver's to report (with the
+/// time).
+fn check_law_range(
+    field: &str,
+    law: &Expr,
+    times: &[f64],
+    (window, with_rates): (Option<&TimeWindow>, bool),
+    max: f64,
+    what: &str,
+) -> Result<(), FieldError> {
+    for &t in times.iter().filter(|t| window.is_none_or(|w| w.contains(**t))) {
+        let j = law.eval(t);
+        let parts: &[(f64, &str)] = if with_rates {
+            &[(j.value, ""), (j.d1, " (its rate, per s)"), (j.d2, " (its acceleration, per s²)")]
+        } else {
+            &[(j.value, "")]
+        };
+        if let Some((v, which)) = parts.iter().find(|(v, _)| v.is_finite() && v.abs() > max) {
+            return Err(FieldError::new(
+                field,
+                format!(
+                    "`{}` gives {v:e}{which} at t = {t} s: {what} must stay within ±{max:e} over the motion",
+                    crate::text::excerpt(law.source())
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// The loads' expressions within their ranges ([`super::MAX_FORCE_N`], [`super::MAX_TORQUE_N_M`])
+/// at the scene's times in their windows.
+fn check_load_ranges(loads: &[Load], times: &[f64]) -> Result<(), FieldError> {
+    for (k, load) in loads.iter().enumerate() {
+        let w = (load.window.as_ref(), false);
+        match &load.action {
+            LoadAction::Force { force, .. } => {
+                for (i, v) in force.iter().enumerate() {
+                    if let LoadValue::Law(e) = v {
+                        check_law_range(&format!("load[{k}].force[{i}]"), e, times, w, MAX_FORCE_N, "a force in N")?;
+                    }
+                }
+            }
+            LoadAction::Torque { torque: LoadValue::Law(e), .. } => {
+                check_law_range(&format!("load[{k}].torque"), e, times, w, MAX_TORQUE_N_M, "a torque in N·m")?;
+            }
+            LoadAction::Torque { .. } => {}
+        }
+    }
+    Ok(())
 }
 
 /// `outputs`: known names, `"forces"` only with masses or loads, and every measured
@@ -781,7 +850,7 @@ fn check_dynamics(
         bodies.push(check_mass_properties(&format!("body[{i}]"), rb, b, length_unit_m)?);
     }
     let gravity = match raw.dynamics.as_ref().and_then(|d| d.g) {
-        Some(g) => finite_point("dynamics.g", g)?.coords,
+        Some(g) => pair_within("dynamics.g", g, MAX_GRAVITY, "an acceleration in m/s²")?,
         None => Vector::zeros(),
     };
     let mut loads: Vec<Load> = Vec::new();
@@ -807,15 +876,8 @@ fn check_mass_properties(
     body: &Body,
     length_unit_m: f64,
 ) -> Result<MassProperties, FieldError> {
-    let non_negative = |f: String, v: f64, unit: &str| {
-        if v.is_finite() && v >= 0.0 {
-            Ok(v)
-        } else {
-            Err(FieldError::new(f, format!("must be a finite number ≥ 0 {unit}, got {v}")))
-        }
-    };
     let mass = match raw.mass {
-        Some(m) => non_negative(format!("{field}.mass"), m, "(kg)")?,
+        Some(m) => non_negative_within(&format!("{field}.mass"), m, MAX_MASS_KG, "a mass in kg")?,
         None => 0.0,
     };
     let centroid = match raw.centroid {
@@ -823,7 +885,12 @@ fn check_mass_properties(
         None => body.points.iter().map(|(_, p)| *p).sum::<Vector>() / body.points.len() as f64,
     };
     let inertia = match (raw.inertia, body.points.as_slice()) {
-        (Some(j), _) => non_negative(format!("{field}.inertia"), j, "(kg·m² about the centroid)")?,
+        (Some(j), _) => non_negative_within(
+            &format!("{field}.inertia"),
+            j,
+            MAX_INERTIA_KG_M2,
+            "a moment of inertia in kg·m² about the centroid",
+        )?,
         (None, [_]) => 0.0,
         (None, [(_, p1), (_, p2)]) => {
             let l = (p2 - p1).norm() * length_unit_m;
@@ -859,8 +926,8 @@ fn check_load(
     if !valid_ident(&name) {
         return Err(FieldError::new(format!("{field}.name"), "load names use letters, digits, '_' and '-'"));
     }
-    let value = |f: String, v: &RawLoadValue| match v {
-        RawLoadValue::Number(x) => finite(&f, *x).map(LoadValue::Number),
+    let value = |f: String, v: &RawLoadValue, max: f64, what: &str| match v {
+        RawLoadValue::Number(x) => within(&f, *x, max, what).map(LoadValue::Number),
         RawLoadValue::Expr(text) => Expr::parse(text)
             .map(LoadValue::Law)
             .map_err(|e| FieldError::new(f, format!("cannot parse the expression: {e}"))),
@@ -873,8 +940,8 @@ fn check_load(
             if anchor.body == Attach::Ground {
                 return Err(on_ground(format!("{field}.at")));
             }
-            let fx = value(format!("{field}.force[0]"), &force[0])?;
-            let fy = value(format!("{field}.force[1]"), &force[1])?;
+            let fx = value(format!("{field}.force[0]"), &force[0], MAX_FORCE_N, "a force in N")?;
+            let fy = value(format!("{field}.force[1]"), &force[1], MAX_FORCE_N, "a force in N")?;
             LoadAction::Force { at: anchor, force: [fx, fy] }
         }
         (None, None, Some(b), Some(torque)) => {
@@ -890,7 +957,8 @@ fn check_load(
                     ),
                 ));
             };
-            LoadAction::Torque { body: i, torque: value(format!("{field}.torque"), torque)? }
+            let torque = value(format!("{field}.torque"), torque, MAX_TORQUE_N_M, "a torque in N·m")?;
+            LoadAction::Torque { body: i, torque }
         }
         _ => {
             return Err(FieldError::new(
@@ -904,8 +972,8 @@ fn check_load(
         None => None,
         Some([from, to]) => {
             let f = format!("{field}.t");
-            let from = finite(&f, from)?;
-            let to = finite(&f, to)?;
+            let from = within(&f, from, MAX_TIME_S, "a time in s")?;
+            let to = within(&f, to, MAX_TIME_S, "a time in s")?;
             if from > to {
                 return Err(FieldError::new(
                     f,
@@ -934,7 +1002,7 @@ fn check_diagram_axis(raw: &RawDiagrams, mechanism: &Mechanism, times: &[f64]) -
                 Some((d, _)) => format!(
                     "\"angle\" needs the driver's angle to turn one way over the motion, but `{}` = {} turns back or stands still: use \"t\"",
                     d.name,
-                    d.law.source()
+                    crate::text::excerpt(d.law.source())
                 ),
                 None => "\"angle\" needs a single driver that turns a body or a revolute joint; this mechanism has none: use \"t\"".to_string(),
             },
@@ -945,8 +1013,8 @@ fn check_diagram_axis(raw: &RawDiagrams, mechanism: &Mechanism, times: &[f64]) -
 
 /// `time = { from, to, steps }`: the sample times, s (steps + 1 of them).
 fn check_time(raw: &RawTime) -> Result<Vec<f64>, FieldError> {
-    let from = finite("time.from", raw.from)?;
-    let to = finite("time.to", raw.to)?;
+    let from = within("time.from", raw.from, MAX_TIME_S, "a time in s")?;
+    let to = within("time.to", raw.to, MAX_TIME_S, "a time in s")?;
     if to <= from {
         return Err(FieldError::new("time.to", format!("must be later than time.from ({from}), got {to}")));
     }
@@ -1000,7 +1068,7 @@ fn check_bodies(raw: &[RawBody]) -> Result<Vec<Body>, FieldError> {
             points.push((pname.clone(), finite_point(&pf, *p)?.coords));
         }
         let at = finite_point(&format!("{field}.at"), b.at.unwrap_or([0.0, 0.0]))?;
-        let angle = rad(finite(&format!("{field}.angle_deg"), b.angle_deg)?);
+        let angle = rad(angle_deg(&format!("{field}.angle_deg"), b.angle_deg)?);
         bodies.push(Body { name: b.name.clone(), points, at, angle });
     }
     Ok(bodies)
@@ -1043,6 +1111,8 @@ fn check_joints(
     for (k, j) in raw.iter().enumerate() {
         let field = format!("joint[{k}]");
         let name = j.name.clone().unwrap_or_else(|| format!("J{}", k + 1));
+        // It names the joint's force diagrams, diagrams/<scene>/<joint>.R.svg.
+        let name = super::check_file_name(&format!("{field}.name"), &name)?;
         if joints.iter().any(|x| x.name == name) {
             return Err(FieldError::new(format!("{field}.name"), format!("a joint named `{name}` already exists")));
         }
@@ -1116,7 +1186,7 @@ fn check_prismatic(
         Attach::Body(i) => bodies[i].angle,
     };
     let angle = match p.angle_deg {
-        Some(d) => rad(finite(&format!("{field}.prismatic.angle_deg"), d)?),
+        Some(d) => rad(angle_deg(&format!("{field}.prismatic.angle_deg"), d)?),
         None => phi(point.body) - phi(q1.body),
     };
     Ok(JointKind::Prismatic { point, q1, q2, angle })
@@ -1161,7 +1231,8 @@ fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result
             },
             _ => return Err(FieldError::new(field, "give exactly one of `body = \"...\"` or `joint = \"...\"`")),
         };
-        let name = d.name.clone().unwrap_or(default_name);
+        // It names the driver's force diagram, diagrams/<scene>/drive.<driver>.svg.
+        let name = super::check_file_name(&format!("{field}.name"), &d.name.clone().unwrap_or(default_name))?;
         if drivers.iter().any(|x: &Driver| x.name == name) {
             return Err(FieldError::new(
                 format!("{field}.name"),
@@ -1271,6 +1342,10 @@ fn check_quantities(field: &str, raw: &[String], table: &[(&str, Quantity)]) -> 
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use crate::scene::{Scene, parse};
     use crate::solve::linkage::Solver;

@@ -119,7 +119,7 @@ pub enum SceneError {
     },
     /// A field is missing, unknown, of the wrong type, or has an invalid value.
     /// Example: `l12 = -5.0` ("must be a positive length").
-    #[error("{file}: field `{field}`: {message}")]
+    #[error("{file}: field `{}`: {message}", crate::text::excerpt(.field))]
     Field {
         /// The file.
         file: String,
@@ -129,7 +129,7 @@ pub enum SceneError {
         message: String,
     },
     /// A `--set KEY=VALUE` override is malformed. Example: `--set l12`.
-    #[error("--set {spec}: {message}")]
+    #[error("--set {}: {message}", crate::text::excerpt(.spec))]
     Override {
         /// The override as given.
         spec: String,
@@ -158,12 +158,70 @@ impl FieldError {
     }
 }
 
-/// Checks that a scene field is a finite, strictly positive length.
-pub fn positive(field: &str, v: f64) -> Result<f64, FieldError> {
-    if v.is_finite() && v > 0.0 {
+/// Largest magnitude of a coordinate, a length or a tolerance, in the scene's unit (mm or
+/// m). Beyond it a number is finite but meaningless (a thousand times the distance to the
+/// Sun in metres), and products of such numbers overflow.
+pub const MAX_LENGTH: f64 = 1e15;
+/// Largest mass, kg.
+pub const MAX_MASS_KG: f64 = 1e30;
+/// Largest moment of inertia, kg·m² ([`MAX_MASS_KG`] at [`MAX_LENGTH`] metres).
+pub const MAX_INERTIA_KG_M2: f64 = 1e60;
+/// Largest force, N.
+pub const MAX_FORCE_N: f64 = 1e30;
+/// Largest torque, N·m.
+pub const MAX_TORQUE_N_M: f64 = 1e45;
+/// Largest angular speed, rad/s (about ten million revolutions a minute).
+pub const MAX_ANGULAR_SPEED: f64 = 1e6;
+/// Largest angular acceleration, rad/s².
+pub const MAX_ANGULAR_ACCELERATION: f64 = 1e12;
+/// Largest gravitational acceleration, m/s².
+pub const MAX_GRAVITY: f64 = 1e12;
+/// Largest magnitude of an angle written in degrees (a few thousand turns).
+pub const MAX_ANGLE_DEG: f64 = 1e6;
+/// Largest magnitude of a time, s.
+pub const MAX_TIME_S: f64 = 1e9;
+
+// With every input within these ranges the largest products stay far inside f64: an inertia
+// force m·ω²·l ≤ 1e30·1e12·1e15 = 1e57 N, its moment 1e72 N·m, its square 1e144.
+
+/// Checks that a scene field is a finite number of magnitude at most `max`; `what` says
+/// what it is (`"an angular speed in rad/s"`).
+pub fn within(field: &str, v: f64, max: f64, what: &str) -> Result<f64, FieldError> {
+    if v.is_finite() && v.abs() <= max {
         Ok(v)
     } else {
-        Err(FieldError::new(field, format!("must be a positive length, got {v}")))
+        Err(FieldError::new(field, format!("must be {what} from -{max:e} to {max:e}, got {v:?}")))
+    }
+}
+
+/// Checks that a scene field is a number from 0 to `max` (a mass, an inertia, a tolerance).
+pub fn non_negative_within(field: &str, v: f64, max: f64, what: &str) -> Result<f64, FieldError> {
+    if v.is_finite() && (0.0..=max).contains(&v) {
+        Ok(v)
+    } else {
+        Err(FieldError::new(field, format!("must be {what} ≥ 0 and at most {max:e}, got {v:?}")))
+    }
+}
+
+/// Checks that a pair field (a force, a gravity vector) has both components within ±`max`.
+pub fn pair_within(field: &str, p: [f64; 2], max: f64, what: &str) -> Result<crate::geom::Vector, FieldError> {
+    if p.iter().all(|v| v.is_finite() && v.abs() <= max) {
+        Ok(crate::geom::Vector::new(p[0], p[1]))
+    } else {
+        Err(FieldError::new(field, format!("must be {what} [x, y], each from -{max:e} to {max:e}, got {p:?}")))
+    }
+}
+
+/// Checks that a scene field is a finite, strictly positive length of at most
+/// [`MAX_LENGTH`].
+pub fn positive(field: &str, v: f64) -> Result<f64, FieldError> {
+    if v.is_finite() && v > 0.0 && v <= MAX_LENGTH {
+        Ok(v)
+    } else {
+        Err(FieldError::new(
+            field,
+            format!("must be a positive length of at most {MAX_LENGTH:e} (the scene's unit), got {v:?}"),
+        ))
     }
 }
 
@@ -172,12 +230,27 @@ pub fn finite(field: &str, v: f64) -> Result<f64, FieldError> {
     if v.is_finite() { Ok(v) } else { Err(FieldError::new(field, format!("must be a finite number, got {v}"))) }
 }
 
-/// Checks that a point field has finite coordinates.
+/// Checks that a scene field is a coordinate or a signed length: within ±[`MAX_LENGTH`].
+pub fn length(field: &str, v: f64) -> Result<f64, FieldError> {
+    within(field, v, MAX_LENGTH, "a length in the scene's unit")
+}
+
+/// Checks that a scene field is an angle in degrees: within ±[`MAX_ANGLE_DEG`].
+pub fn angle_deg(field: &str, v: f64) -> Result<f64, FieldError> {
+    within(field, v, MAX_ANGLE_DEG, "an angle in degrees")
+}
+
+/// Checks that a point field has finite coordinates within ±[`MAX_LENGTH`].
 pub fn finite_point(field: &str, p: [f64; 2]) -> Result<crate::geom::Point, FieldError> {
-    if p.iter().all(|v| v.is_finite()) {
+    if p.iter().all(|v| v.is_finite() && v.abs() <= MAX_LENGTH) {
         Ok(crate::geom::Point::new(p[0], p[1]))
     } else {
-        Err(FieldError::new(field, format!("must be a point [x, y] of finite numbers, got {p:?}")))
+        Err(FieldError::new(
+            field,
+            format!(
+                "must be a point [x, y] of finite numbers, each from -{MAX_LENGTH:e} to {MAX_LENGTH:e} (the scene's unit), got {p:?}"
+            ),
+        ))
     }
 }
 
@@ -195,7 +268,8 @@ pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Loaded, Sc
 pub fn parse(text: &str, file: &str, overrides: &[Override]) -> Result<Scene, SceneError> {
     let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| SceneError::Syntax {
         file: file.to_string(),
-        message: e.to_string().trim_end().to_string(),
+        // The parser quotes the offending line: a megabyte-long one is cut.
+        message: e.to_string().trim_end().lines().map(crate::text::excerpt).collect::<Vec<_>>().join("\n"),
     })?;
     for o in overrides {
         o.apply(&mut table)?;
@@ -232,7 +306,7 @@ fn read<T: DeserializeOwned>(table: toml::Table, file: &str) -> Result<T, SceneE
     serde_path_to_error::deserialize(table).map_err(|e| {
         let path = e.path().to_string();
         let inner = e.into_inner();
-        let message = inner.message().trim_end().to_string();
+        let message = plain_message(inner.message().trim_end());
         // serde names the parent for unknown and missing fields: say which field exactly.
         let field = if path == "." { String::new() } else { path };
         let (field, message) = match unknown_or_missing(&message) {
@@ -250,6 +324,27 @@ fn read<T: DeserializeOwned>(table: toml::Table, file: &str) -> Result<T, SceneE
     })
 }
 
+/// serde's message in the words of the scene file: `expected usize` (or u32, u64) becomes
+/// "a whole number (0, 1, 2, …)", `expected f64` "a number"; a long value it quotes is cut
+/// to [`crate::text::QUOTE_CHARS`] characters.
+fn plain_message(message: &str) -> String {
+    let (head, expected) = match message.rsplit_once(", expected ") {
+        Some((head, expected)) => (head, Some(expected)),
+        None => (message, None),
+    };
+    let head =
+        if head.chars().count() > 2 * crate::text::QUOTE_CHARS { crate::text::excerpt(head) } else { head.into() };
+    let Some(expected) = expected else { return head };
+    let plain = match expected {
+        "usize" | "u64" | "u32" | "u16" | "u8" => "a whole number (0, 1, 2, …)",
+        "isize" | "i64" | "i32" | "i16" | "i8" => "a whole number",
+        "f64" | "f32" => "a number (e.g. 2.5; nan and inf are not numbers here)",
+        "a boolean" => "true or false",
+        other => other,
+    };
+    format!("{head}, expected {plain}")
+}
+
 /// The field name in serde's "unknown field `x`" / "missing field `x`" messages.
 fn unknown_or_missing(message: &str) -> Option<&str> {
     for prefix in ["unknown field `", "missing field `"] {
@@ -260,18 +355,37 @@ fn unknown_or_missing(message: &str) -> Option<&str> {
     None
 }
 
-/// Checks a scene `name`: it becomes a file stem, so it must be a plain file name.
-pub fn check_name(name: &str) -> Result<String, FieldError> {
-    let ok = !name.is_empty()
-        && name.len() <= 100
+/// Most characters of a name that becomes part of a file name.
+pub const MAX_NAME_CHARS: usize = 100;
+
+/// Whether `name` can be part of an output file name: 1 to [`MAX_NAME_CHARS`] ASCII
+/// letters, digits, `-`, `_` and `.`, not starting with `.` (so never `.`, `..`, a hidden
+/// file, a separator or a drive).
+pub fn is_file_name(name: &str) -> bool {
+    !name.is_empty()
+        && name.len() <= MAX_NAME_CHARS
         && name.chars().all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
-        && !name.starts_with('.');
-    if ok {
-        Ok(name.to_string())
-    } else {
-        Err(FieldError::new(
-            "name",
-            format!("\"{name}\" cannot be a file name: use letters, digits, '-', '_' and '.', not starting with '.'"),
-        ))
+        && !name.starts_with('.')
+}
+
+/// Checks a name that becomes part of output file names (the scene's `name`, a chain's
+/// dependent dimension, a joint or a driver of a linkage): see [`is_file_name`]. The
+/// message quotes at most [`crate::text::QUOTE_CHARS`] characters of it.
+pub fn check_file_name(field: &str, name: &str) -> Result<String, FieldError> {
+    if is_file_name(name) {
+        return Ok(name.to_string());
     }
+    Err(FieldError::new(
+        field,
+        format!(
+            "\"{}\" cannot be part of a file name: use 1 to {MAX_NAME_CHARS} letters, digits, '-', '_' and '.', not starting with '.'",
+            crate::text::excerpt(name)
+        ),
+    ))
+}
+
+/// Checks a scene `name`: it becomes a file stem, so it must be a plain file name
+/// ([`check_file_name`]).
+pub fn check_name(name: &str) -> Result<String, FieldError> {
+    check_file_name("name", name)
 }

@@ -56,7 +56,10 @@ fn parse_path(key: &str) -> Result<Vec<Step>, String> {
             None => (part, ""),
         };
         if name.is_empty() || !name.chars().all(|c| c.is_alphanumeric() || c == '_' || c == '-') {
-            return Err(format!("`{key}` is not a field path (use names like l12, pattern.tol, r[2])"));
+            return Err(format!(
+                "`{}` is not a field path (use names like l12, pattern.tol, r[2])",
+                crate::text::excerpt(key)
+            ));
         }
         steps.push(Step::Key(name.to_string()));
         while !rest.is_empty() {

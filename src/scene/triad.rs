@@ -27,7 +27,7 @@
 
 use serde::Deserialize;
 
-use super::{FieldError, Units, finite, finite_point, positive};
+use super::{FieldError, MAX_LENGTH, Units, angle_deg, finite_point, positive};
 use crate::geom::{Point, Side};
 
 /// Which triangle orientations the all-modes search covers.
@@ -160,7 +160,7 @@ pub struct RawTriadScene {
     /// The assembly mode the picture draws, numbered from 1 as the report lists them
     /// (default: the one the pattern method reaches).
     #[serde(default)]
-    pub mode: Option<usize>,
+    pub mode: Option<i64>,
 }
 
 /// Checked pattern-method settings (angles in radians).
@@ -247,18 +247,22 @@ pub fn check(raw: RawTriadScene) -> Result<TriadScene, FieldError> {
         }
     }
     let p = &raw.pattern;
-    let phi1_start = finite("pattern.phi1_start_deg", p.phi1_start_deg)?.to_radians();
-    let step = finite("pattern.step_deg", p.step_deg)?;
+    let phi1_start = angle_deg("pattern.phi1_start_deg", p.phi1_start_deg)?.to_radians();
+    let step = angle_deg("pattern.step_deg", p.step_deg)?;
     if step == 0.0 {
         return Err(FieldError::new(
             "pattern.step_deg",
             "must be a non-zero angle step in degrees (the seed uses 0.01)",
         ));
     }
-    if !(p.tol.is_finite() && p.tol > 0.0) {
+    if !(p.tol.is_finite() && p.tol > 0.0 && p.tol <= MAX_LENGTH) {
         return Err(FieldError::new(
             "pattern.tol",
-            format!("must be a positive tolerance in {} (the seed uses 1e-5), got {}", raw.units.length(), p.tol),
+            format!(
+                "must be a positive tolerance in {} of at most {MAX_LENGTH:e} (the seed uses 1e-5), got {:?}",
+                raw.units.length(),
+                p.tol
+            ),
         ));
     }
     let pattern = PatternSettings {
@@ -272,7 +276,7 @@ pub fn check(raw: RawTriadScene) -> Result<TriadScene, FieldError> {
     let start = match raw.newton.start_deg {
         Some(s) => {
             for (i, v) in s.iter().enumerate() {
-                finite(&format!("newton.start_deg[{i}]"), *v)?;
+                angle_deg(&format!("newton.start_deg[{i}]"), *v)?;
             }
             Some(s.map(f64::to_radians))
         }
@@ -280,25 +284,19 @@ pub fn check(raw: RawTriadScene) -> Result<TriadScene, FieldError> {
     };
     let newton =
         NewtonSettings { start, max_iterations: iterations("newton.max_iterations", raw.newton.max_iterations)? };
-    if raw.mode == Some(0) {
-        return Err(FieldError::new(
-            "mode",
-            "must be 1 or more: the assembly modes are numbered from 1 as the report lists them",
-        ));
-    }
-    Ok(TriadScene {
-        name,
-        units: raw.units,
-        o,
-        r,
-        l12,
-        l23,
-        l13,
-        orientation: raw.orientation,
-        pattern,
-        newton,
-        mode: raw.mode,
-    })
+    let mode = match raw.mode {
+        None => None,
+        Some(m) if m >= 1 => Some(usize::try_from(m).unwrap_or(usize::MAX)),
+        Some(m) => {
+            return Err(FieldError::new(
+                "mode",
+                format!(
+                    "must be 1 or more, a whole number ≥ 1 (the assembly modes are numbered from 1 as the report lists them), got {m}"
+                ),
+            ));
+        }
+    };
+    Ok(TriadScene { name, units: raw.units, o, r, l12, l23, l13, orientation: raw.orientation, pattern, newton, mode })
 }
 
 #[cfg(test)]

@@ -16,6 +16,11 @@
 //! `360*deg*t` is one turn a second). Functions: `sin cos tan asin acos atan sinh cosh
 //! tanh exp ln log (natural) log10 sqrt abs`.
 //!
+//! Limits: at most [`MAX_CHARS`] characters and [`MAX_DEPTH`] levels of nesting (each
+//! parenthesis, function call, sign, exponent and operator of a chain such as `t+t+t` is a
+//! level), so that no expression can exhaust the stack of the parser, the evaluator or the
+//! tree's drop; a longer or deeper one is refused with a named error.
+//!
 //! Derivatives are exact: the tree is evaluated on second-order jets (value, d/dt,
 //! d²/dt²), the forward-mode analogue of symbolic differentiation, so a driver's velocity
 //! and acceleration carry no finite-difference error.
@@ -95,7 +100,7 @@ impl Jet {
             if e == 0.0 {
                 1.0
             } else if e.fract() == 0.0 && e.abs() < 1e9 {
-                v.powi(e as i32)
+                crate::geom::powi(v, e as i32)
             } else {
                 libm::pow(v, e)
             }
@@ -371,10 +376,10 @@ impl Shape {
                 if let Some(term) = Term::of(b) {
                     return Shape::Shift { k: a.eval(0.0), term, k_first: true, sub };
                 }
-            } else if !b.depends_on_t() {
-                if let Some(term) = Term::of(a) {
-                    return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
-                }
+            } else if !b.depends_on_t()
+                && let Some(term) = Term::of(a)
+            {
+                return Shape::Shift { k: b.eval(0.0), term, k_first: false, sub };
             }
         }
         Shape::Tree
@@ -408,9 +413,17 @@ pub struct Expr {
 impl Expr {
     /// Parses `source`; the error says where it went wrong.
     pub fn parse(source: &str) -> Result<Expr, ParseError> {
+        let chars = source.chars().count();
+        if chars > MAX_CHARS {
+            return Err(make_error(
+                source,
+                MAX_CHARS + 1,
+                format!("the expression is longer than {MAX_CHARS} characters ({chars}): write a shorter law"),
+            ));
+        }
         let tokens = lex(source)?;
-        let mut p = Parser { tokens: &tokens, pos: 0, source };
-        let root = p.expr()?;
+        let mut p = Parser { tokens: &tokens, pos: 0, source, nesting: 0 };
+        let (root, _) = p.expr()?;
         if let Some(tok) = p.peek() {
             return Err(p.error_at(tok.col, format!("unexpected {} after a complete expression", tok.kind)));
         }
@@ -470,6 +483,15 @@ impl fmt::Display for Expr {
     }
 }
 
+/// Most characters of an expression (a driver law or a load's value).
+pub const MAX_CHARS: usize = 10_000;
+
+/// Most levels of nesting of an expression: parentheses, function calls, signs, exponents,
+/// and the operators of a chain (`t+t+t` nests two levels: `(t+t)+t`). Bounds the depth of
+/// every recursion over the tree (parsing, evaluating, dropping) far below any thread's
+/// stack, the browser's included.
+pub const MAX_DEPTH: usize = 200;
+
 /// Why an expression does not parse, and where.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error("{message} at column {column}\n  {text}\n  {caret}")]
@@ -478,9 +500,10 @@ pub struct ParseError {
     pub column: usize,
     /// What is wrong and what would be valid.
     pub message: String,
-    /// The expression text.
+    /// The expression text around the column: at most [`crate::text::QUOTE_CHARS`]
+    /// characters, `…` where it was cut.
     pub text: String,
-    /// A line with a `^` under the column.
+    /// A line with a `^` under the column (in `text`).
     pub caret: String,
 }
 
@@ -497,7 +520,7 @@ impl fmt::Display for Kind {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             Kind::Num(v) => write!(f, "number {v}"),
-            Kind::Ident(s) => write!(f, "name `{s}`"),
+            Kind::Ident(s) => write!(f, "name `{}`", crate::text::excerpt(s)),
             Kind::Op(c) => write!(f, "`{c}`"),
             Kind::LParen => f.write_str("`(`"),
             Kind::RParen => f.write_str("`)`"),
@@ -513,7 +536,8 @@ struct Token {
 }
 
 fn make_error(source: &str, column: usize, message: String) -> ParseError {
-    ParseError { column, message, text: source.to_string(), caret: format!("{}^", " ".repeat(column - 1)) }
+    let (text, at) = crate::text::window(source, column);
+    ParseError { column, message, text, caret: format!("{}^", " ".repeat(at.saturating_sub(1))) }
 }
 
 fn lex(source: &str) -> Result<Vec<Token>, ParseError> {
@@ -544,9 +568,13 @@ fn lex(source: &str) -> Result<Vec<Token>, ParseError> {
                 }
             }
             let text: String = chars[start..i].iter().collect();
-            let v: f64 = text
-                .parse()
-                .map_err(|_| make_error(source, col, format!("`{text}` is not a number (write e.g. 2, 0.5, 1e-3)")))?;
+            let v: f64 = text.parse().map_err(|_| {
+                make_error(
+                    source,
+                    col,
+                    format!("`{}` is not a number (write e.g. 2, 0.5, 1e-3)", crate::text::excerpt(&text)),
+                )
+            })?;
             out.push(Token { kind: Kind::Num(v), col });
         } else if c.is_alphabetic() || c == '_' {
             let start = i;
@@ -578,7 +606,12 @@ struct Parser<'a> {
     tokens: &'a [Token],
     pos: usize,
     source: &'a str,
+    /// Levels of recursion entered (parentheses, calls, signs, exponents).
+    nesting: usize,
 }
+
+/// A parsed subtree and its depth (nodes on its longest path from the root).
+type Sub = (Node, usize);
 
 impl Parser<'_> {
     fn peek(&self) -> Option<&Token> {
@@ -593,56 +626,84 @@ impl Parser<'_> {
         make_error(self.source, col, message)
     }
 
-    fn eat_op(&mut self, ops: &str) -> Option<char> {
+    fn too_deep(&self, col: usize) -> ParseError {
+        self.error_at(
+            col,
+            format!(
+                "the expression is nested deeper than {MAX_DEPTH} levels (parentheses, functions, signs, \
+                 exponents, and each operator of a long chain such as t+t+…+t count): write a flatter law"
+            ),
+        )
+    }
+
+    /// Enters one level of recursion at column `col`, refusing to go past [`MAX_DEPTH`].
+    fn enter(&mut self, col: usize) -> Result<(), ParseError> {
+        self.nesting += 1;
+        if self.nesting > MAX_DEPTH { Err(self.too_deep(col)) } else { Ok(()) }
+    }
+
+    fn leave(&mut self) {
+        self.nesting -= 1;
+    }
+
+    /// A node over its children's depths, refused past [`MAX_DEPTH`] (at column `col`).
+    fn node(&self, node: Node, depth: usize, col: usize) -> Result<Sub, ParseError> {
+        if depth > MAX_DEPTH { Err(self.too_deep(col)) } else { Ok((node, depth)) }
+    }
+
+    /// The operator among `ops` at the current token, with its column.
+    fn eat_op(&mut self, ops: &str) -> Option<(char, usize)> {
         match self.peek() {
-            Some(Token { kind: Kind::Op(c), .. }) if ops.contains(*c) => {
-                let c = *c;
+            Some(Token { kind: Kind::Op(c), col }) if ops.contains(*c) => {
+                let found = (*c, *col);
                 self.pos += 1;
-                Some(c)
+                Some(found)
             }
             _ => None,
         }
     }
 
-    fn expr(&mut self) -> Result<Node, ParseError> {
-        let mut left = self.term()?;
-        while let Some(c) = self.eat_op("+-") {
-            let right = self.term()?;
+    fn expr(&mut self) -> Result<Sub, ParseError> {
+        let (mut left, mut depth) = self.term()?;
+        while let Some((c, col)) = self.eat_op("+-") {
+            let (right, d) = self.term()?;
             let op = if c == '+' { BinOp::Add } else { BinOp::Sub };
-            left = Node::Bin(op, Box::new(left), Box::new(right));
+            (left, depth) = self.node(Node::Bin(op, Box::new(left), Box::new(right)), 1 + depth.max(d), col)?;
         }
-        Ok(left)
+        Ok((left, depth))
     }
 
-    fn term(&mut self) -> Result<Node, ParseError> {
-        let mut left = self.unary()?;
-        while let Some(c) = self.eat_op("*/") {
-            let right = self.unary()?;
+    fn term(&mut self) -> Result<Sub, ParseError> {
+        let (mut left, mut depth) = self.unary()?;
+        while let Some((c, col)) = self.eat_op("*/") {
+            let (right, d) = self.unary()?;
             let op = if c == '*' { BinOp::Mul } else { BinOp::Div };
-            left = Node::Bin(op, Box::new(left), Box::new(right));
+            (left, depth) = self.node(Node::Bin(op, Box::new(left), Box::new(right)), 1 + depth.max(d), col)?;
         }
-        Ok(left)
+        Ok((left, depth))
     }
 
-    fn unary(&mut self) -> Result<Node, ParseError> {
-        match self.eat_op("+-") {
-            Some('-') => Ok(Node::Neg(Box::new(self.unary()?))),
-            Some(_) => self.unary(),
-            None => self.power(),
-        }
+    fn unary(&mut self) -> Result<Sub, ParseError> {
+        let Some((c, col)) = self.eat_op("+-") else { return self.power() };
+        self.enter(col)?;
+        let (inner, d) = self.unary()?;
+        self.leave();
+        if c == '-' { self.node(Node::Neg(Box::new(inner)), d + 1, col) } else { Ok((inner, d)) }
     }
 
-    fn power(&mut self) -> Result<Node, ParseError> {
-        let base = self.primary()?;
-        if self.eat_op("^").is_some() {
+    fn power(&mut self) -> Result<Sub, ParseError> {
+        let (base, d) = self.primary()?;
+        if let Some((_, col)) = self.eat_op("^") {
             // Right-associative: the exponent is itself a unary (which contains a power).
-            let exponent = self.unary()?;
-            return Ok(Node::Bin(BinOp::Pow, Box::new(base), Box::new(exponent)));
+            self.enter(col)?;
+            let (exponent, e) = self.unary()?;
+            self.leave();
+            return self.node(Node::Bin(BinOp::Pow, Box::new(base), Box::new(exponent)), 1 + d.max(e), col);
         }
-        Ok(base)
+        Ok((base, d))
     }
 
-    fn primary(&mut self) -> Result<Node, ParseError> {
+    fn primary(&mut self) -> Result<Sub, ParseError> {
         let Some(tok) = self.peek().cloned() else {
             return Err(
                 self.error_at(self.end_col(), "the expression ends here; expected a number, t, a name or `(`".into())
@@ -650,9 +711,11 @@ impl Parser<'_> {
         };
         self.pos += 1;
         match tok.kind {
-            Kind::Num(v) => Ok(Node::Const(v)),
+            Kind::Num(v) => Ok((Node::Const(v), 1)),
             Kind::LParen => {
+                self.enter(tok.col)?;
                 let inner = self.expr()?;
+                self.leave();
                 self.close_paren(tok.col)?;
                 Ok(inner)
             }
@@ -662,9 +725,11 @@ impl Parser<'_> {
                         Some(Token { kind: Kind::LParen, col }) => {
                             let open = *col;
                             self.pos += 1;
-                            let arg = self.expr()?;
+                            self.enter(open)?;
+                            let (arg, d) = self.expr()?;
+                            self.leave();
                             self.close_paren(open)?;
-                            Ok(Node::Call(*f, Box::new(arg)))
+                            self.node(Node::Call(*f, Box::new(arg)), d + 1, tok.col)
                         }
                         _ => Err(self.error_at(
                             tok.col + name.chars().count(),
@@ -673,14 +738,15 @@ impl Parser<'_> {
                     }
                 } else {
                     match name.as_str() {
-                        "t" => Ok(Node::T),
-                        "pi" => Ok(Node::Const(std::f64::consts::PI)),
-                        "e" => Ok(Node::Const(std::f64::consts::E)),
-                        "deg" => Ok(Node::Const(std::f64::consts::PI / 180.0)),
+                        "t" => Ok((Node::T, 1)),
+                        "pi" => Ok((Node::Const(std::f64::consts::PI), 1)),
+                        "e" => Ok((Node::Const(std::f64::consts::E), 1)),
+                        "deg" => Ok((Node::Const(std::f64::consts::PI / 180.0), 1)),
                         _ => Err(self.error_at(
                             tok.col,
                             format!(
-                                "unknown name `{name}`: the variable is t, constants are pi, e, deg, functions are {}",
+                                "unknown name `{}`: the variable is t, constants are pi, e, deg, functions are {}",
+                                crate::text::excerpt(&name),
                                 FUNCS.iter().map(|(n, _)| *n).collect::<Vec<_>>().join(" ")
                             ),
                         )),
@@ -710,6 +776,10 @@ impl Parser<'_> {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
 
@@ -901,6 +971,41 @@ mod tests {
         assert_eq!(e.column, 1);
         let e = Expr::parse("3 * )").unwrap_err();
         assert_eq!(e.column, 5);
+    }
+
+    /// Issue 28 item 2: these crashed the process (stack overflow, SIGABRT) before the limits.
+    #[test]
+    fn deep_or_long_expressions_are_refused_by_name_and_quoted_short() {
+        let nested = |n: usize| format!("{}t{}", "(".repeat(n), ")".repeat(n));
+        let deep = [
+            nested(4_999),
+            "(".repeat(9_999),
+            format!("{}t", "-".repeat(9_000)),
+            format!("{}t", "+-".repeat(4_000)),
+            format!("t{}", "^t".repeat(4_000)),
+            format!("t{}", "+t".repeat(4_000)),
+            format!("{}t{}", "sin(".repeat(1_900), ")".repeat(1_900)),
+        ];
+        for text in &deep {
+            let e = Expr::parse(text).unwrap_err();
+            assert!(e.message.contains(&format!("nested deeper than {MAX_DEPTH} levels")), "{}", e.message);
+            assert!(e.text.chars().count() <= crate::text::QUOTE_CHARS, "{}", e.text);
+        }
+        for text in [format!("{}t", "-".repeat(100_000)), format!("t{}", "+t".repeat(50_000)), "x".repeat(1 << 20)] {
+            let e = Expr::parse(&text).unwrap_err();
+            assert!(e.message.contains(&format!("longer than {MAX_CHARS} characters")), "{}", e.message);
+            assert!(e.to_string().chars().count() < 400, "{e}");
+        }
+        // A megabyte-long unknown name within the limit's length is quoted short too.
+        let e = Expr::parse(&"y".repeat(MAX_CHARS)).unwrap_err();
+        assert!(e.to_string().chars().count() < 400 && e.message.contains("unknown name"), "{e}");
+        // Just inside the limits: parsed, and evaluated as written.
+        assert_eq!(Expr::parse(&nested(MAX_DEPTH - 1)).unwrap().eval(2.0).value, 2.0);
+        let sum = format!("t{}", "+t".repeat(MAX_DEPTH - 1));
+        assert_eq!(Expr::parse(&sum).unwrap().eval(0.5).value, 0.5 * MAX_DEPTH as f64);
+        assert!(Expr::parse(&format!("t{}", "+t".repeat(MAX_DEPTH))).is_err());
+        let signs = format!("{}t", "-".repeat(MAX_DEPTH - 1));
+        assert_eq!(Expr::parse(&signs).unwrap().eval(1.0).value, -1.0);
     }
 
     #[test]

@@ -82,6 +82,8 @@ pub struct SceneFiles {
 pub fn scene_files(text: &str, file: &str, opts: WebOptions) -> Result<SceneFiles, Error> {
     let loaded = Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])?, text: text.to_string() };
     let ropts = RunOptions { png: opts.png, no_frames: !opts.frames, ..RunOptions::default() };
+    // Before solving, as the command line: a mistyped step is refused at once.
+    run::check_positions(&loaded.scene, file)?;
     let p = run::products(&loaded, &ropts)?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;

@@ -294,6 +294,10 @@ fn rotate(v: Vector, a: f64) -> Vector {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::web::Session;

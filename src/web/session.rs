@@ -428,6 +428,8 @@ fn loaded(text: &str, file: &str) -> Result<Loaded, Error> {
 fn solve(text: &str, file: &str) -> Result<Solved, Error> {
     let loaded = loaded(text, file)?;
     let alone = run::picture_alone(&loaded.scene);
+    // Before solving, as the command line: a mistyped step is refused at once.
+    run::check_positions(&loaded.scene, file)?;
     let p = run::products(&loaded, &RunOptions { no_frames: true, picture_only: alone, ..RunOptions::default() })?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;

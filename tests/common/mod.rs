@@ -3,6 +3,11 @@
 //! Golden files live in `golden/`; `UPDATE_GOLDEN=1 cargo test` re-blesses them (look at
 //! every re-blessed file before committing it: golden/README.md). A mismatch writes the
 //! actual output (and for images a diff) under `target/golden-mismatch/`.
+
+#![allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the library calls"
+)]
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -200,7 +205,9 @@ pub fn text_boxes(d: &mechdraw::draw::Drawing) -> Vec<TextBox> {
         .collect();
     d.entities
         .iter()
-        .filter_map(|e| match &e.shape {
+        // A scale caption as the paper states it.
+        .map(|e| (e, e.shape.scale_text_in(None)))
+        .filter_map(|(e, caption)| match caption.as_ref().unwrap_or(&e.shape) {
             Shape::Text { at, height, value, halign, valign, rotation } => {
                 let (h, w) = (*height, label_width(value, *height));
                 let x0 = match halign {

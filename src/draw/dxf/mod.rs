@@ -25,7 +25,9 @@
 //!   `$TEXTSTYLE` and `$DIMTXSTY` = [`TEXT_STYLE`]. R12 has no `$INSUNITS`/`$MEASUREMENT`
 //!   (R2000+ states mm and metric).
 //! - TABLES: LTYPE `CONTINUOUS` and `DASHED` (pattern from [`parts::dash_pattern`], scaled to
-//!   the drawing); LAYER with each layer's ACI colour and line type; STYLE `STANDARD` and
+//!   the drawing); LAYER with each layer's ACI colour and line type (a layer that is not
+//!   [`super::Layer::on`] is off and frozen: a negative colour and flag 1, since AutoCAD and
+//!   ezdxf hide a layer that is off, LibreCAD one that is frozen); STYLE `STANDARD` and
 //!   [`TEXT_STYLE`]; DIMSTYLE `STANDARD` with the drawing's dimension sizes; APPID `ACAD`;
 //!   VPORT `*ACTIVE` centred on the drawing. Every record has its handle (group 5; 105 in
 //!   DIMSTYLE, where 5 is `$DIMBLK`): FreeCAD reads no LAYER without one.
@@ -57,7 +59,8 @@
 //! VERTEX and SEQEND on the POLYLINE's layer (the crate writes them on layer 0), the
 //! alignment point 11/21 of justified text at (0, 0) (the crate omits a zero point, and
 //! ezdxf's renderer then fails), `$PINSBASE` and `$DIMTXSTY` in R12, for R12 the removal of
-//! subclass markers (group 100, R13+ only), and DIMSTYLE handles in group 105.
+//! subclass markers (group 100, R13+ only), DIMSTYLE handles in group 105, and the frozen
+//! flag (70 = 1) of a layer that is off.
 //!
 //! [`DxfVersion::R2000`] (AC1015) and [`DxfVersion::R2007`] (AC1021) are there for programs
 //! that want a newer file (R2007: UTF-8 text, which GDAL, dxf-parser, dxfgrabber and FreeCAD
@@ -81,6 +84,7 @@ use dxf::enums::{AcadVersion, DimensionType, HorizontalTextJustification, Vertic
 use dxf::tables::{Layer as DxfLayer, LineType as DxfLineType};
 use dxf::{Block, Color, Point as DxfPoint};
 
+pub mod librecad;
 mod r12;
 mod scale;
 
@@ -114,6 +118,8 @@ pub const TEXT_STYLE: &str = "AZOMIX";
 /// The font file of [`TEXT_STYLE`]: a TrueType font with Greek letters that Windows CAD
 /// programs have (ezdxf and others substitute a font of their own when it is missing).
 pub const TEXT_FONT_FILE: &str = "arial.ttf";
+/// `$DWGCODEPAGE` of an R2007 file, whose text is UTF-8: Windows' name for UTF-8.
+pub const R2007_CODE_PAGE: &str = "ANSI_65001";
 /// Transparency "opaque" (group 440, R2004+): the flag 0x02000000 with alpha 255.
 const OPAQUE: i32 = 0x0200_00FF;
 /// Values smaller than this in magnitude are written as 0, so that rounding noise such as
@@ -310,14 +316,16 @@ pub fn to_bytes_via_crate(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8
     crate_bytes(&drawing, opts)
 }
 
-/// The validated drawing in millimetres (borrowed when it already is).
+/// The validated drawing in millimetres, its scale captions stating the DXF's scales and
+/// its texts written with characters the text style has ([`librecad::for_azomix`]);
+/// borrowed when it already is all that.
 fn prepare<'a>(drawing: &'a Drawing, opts: &DxfOptions) -> Result<Cow<'a, Drawing>, DxfError> {
     let k = opts.mm_per_unit;
     if !(k.is_finite() && k > 0.0) {
         return Err(DxfError::BadScale { mm_per_unit: k });
     }
     validate(drawing)?;
-    if k == 1.0 {
+    if k == 1.0 && !drawing.entities.iter().any(|e| scale::changes(&e.shape)) {
         return Ok(Cow::Borrowed(drawing));
     }
     let scaled = scale::scaled(drawing, k);
@@ -352,6 +360,7 @@ fn kind(shape: &Shape) -> &'static str {
         Shape::Filled { .. } => "filled polygon",
         Shape::Arrow { .. } => "arrow",
         Shape::Text { .. } => "text",
+        Shape::ScaleText { .. } => "scale caption",
         Shape::AngularDimension { .. } => "angular dimension",
         Shape::LinearDimension { .. } => "linear dimension",
     }
@@ -395,7 +404,9 @@ fn validate(drawing: &Drawing) -> Result<(), DxfError> {
             Shape::Polyline { points, width, .. } => pts_ok(points) && width.is_finite(),
             Shape::Filled { points } => pts_ok(points),
             Shape::Arrow { from, to, head } => pts_ok(&[*from, *to]) && head.is_finite(),
-            Shape::Text { at, height, rotation, .. } => pts_ok(&[*at]) && height.is_finite() && rotation.is_finite(),
+            Shape::Text { at, height, rotation, .. } | Shape::ScaleText { at, height, rotation, .. } => {
+                pts_ok(&[*at]) && height.is_finite() && rotation.is_finite()
+            }
             Shape::AngularDimension { vertex, first, second, radius, .. } => {
                 pts_ok(&[*vertex, *first, *second]) && radius.is_finite()
             }
@@ -414,7 +425,9 @@ fn validate(drawing: &Drawing) -> Result<(), DxfError> {
                 return Err(bad("a filled polygon needs at least three vertices"));
             }
             Shape::Arrow { head, .. } if *head < 0.0 => return Err(bad("the head length must not be negative")),
-            Shape::Text { height, .. } if *height <= 0.0 => return Err(bad("the text height must be positive")),
+            Shape::Text { height, .. } | Shape::ScaleText { height, .. } if *height <= 0.0 => {
+                return Err(bad("the text height must be positive"));
+            }
             Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
                 if !(style.text_height.is_finite() && style.text_height > 0.0) {
                     return Err(bad("the drawing's dimension text height must be positive"));
@@ -505,25 +518,32 @@ fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions) {
                 if opts.dimensions == Dimensions::Exploded {
                     let part_common = Common { linetype: CONTINUOUS, ..common };
                     for part in explode_dimension(&e.shape, &style) {
-                        for specific in simple_entities(doc, &part) {
-                            doc.add_entity(part_common.entity(specific));
-                        }
+                        add_simple(doc, &part, true, &part_common);
                     }
                     continue;
                 }
-                dim_count += 1;
-                let block_name = format!("*D{dim_count}");
-                add_dimension_block(doc, &block_name, &e.shape, drawing, &common);
-                if let Some(dim) = dimension_entity(&e.shape, &block_name, &style) {
-                    doc.add_entity(common.entity(dim));
+                for piece in dimension_pieces(&e.shape, &style) {
+                    dim_count += 1;
+                    let block_name = format!("*D{dim_count}");
+                    add_dimension_block(doc, &block_name, &piece.geometry, &common);
+                    doc.add_entity(common.entity(dimension_entity(&piece, &block_name)));
                 }
             }
-            shape => {
-                for specific in simple_entities(doc, shape) {
-                    doc.add_entity(common.entity(specific));
-                }
-            }
+            shape => add_simple(doc, shape, opts.dimensions == Dimensions::Exploded, &common),
         }
+    }
+}
+
+/// Adds the DXF entities of a shape other than a dimension to model space (crate path),
+/// each built and added in turn, so that handles run as the hand-written R12 path gives
+/// them (a POLYLINE's vertices, the POLYLINE, then the next entity); `outlined` as
+/// [`prims`].
+fn add_simple(doc: &mut dxf::Drawing, shape: &Shape, outlined: bool, common: &Common) {
+    let mut all = Vec::new();
+    prims(shape, outlined, |p| all.push(p));
+    for p in all {
+        let specific = crate_entity(doc, p);
+        doc.add_entity(common.entity(specific));
     }
 }
 
@@ -547,6 +567,13 @@ fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bo
         DxfVersion::R2007 => AcadVersion::R2007,
     };
     h.handles_enabled = true;
+    // R2007 text is UTF-8: the code page says so (ANSI_65001, Windows' UTF-8), so that GDAL
+    // reads it as UTF-8 (it recodes from the stated code page: from ANSI_1252 it garbled φ1
+    // into "Ï 1"); LibreCAD, FreeCAD, ezdxf and dxf-parser read it either way (reader
+    // matrix, issue 29). R2000 text is ASCII (escapes) and R12 has no such variable.
+    if opts.version == DxfVersion::R2007 {
+        h.drawing_code_page = R2007_CODE_PAGE.to_string();
+    }
     // The file is in millimetres (stated from R2000 on; R12 has no such variables).
     h.default_drawing_units = dxf::enums::Units::Millimeters;
     h.drawing_units = dxf::enums::DrawingUnits::Metric;
@@ -666,12 +693,15 @@ fn setup_tables(doc: &mut dxf::Drawing, drawing: &Drawing, bounds: &Bounds, exte
             for l in doc.layers_mut().filter(|l| l.name == "0") {
                 l.color = layer_color(layer.color);
                 l.line_type_name = linetype_name(layer.linetype).to_string();
+                l.is_layer_on = layer.on;
             }
         } else {
             doc.add_layer(DxfLayer {
                 name: layer.name.clone(),
                 color: layer_color(layer.color),
                 line_type_name: linetype_name(layer.linetype).to_string(),
+                // Off: the crate writes the colour negative; fix_up freezes it too.
+                is_layer_on: layer.on,
                 ..Default::default()
             });
         }
@@ -734,18 +764,33 @@ enum Prim<'a> {
     Polyline { points: &'a [Point], closed: bool, width: f64 },
     /// SOLID, corners in the order written (1-2-3-4).
     Solid([Point; 4]),
+    /// A triangle's outline: a closed POLYLINE of width 0 (an arrowhead's, for readers that
+    /// drop SOLID).
+    Outline([Point; 3]),
     /// TEXT, rotation in degrees (snapped): `at` the alignment point (11/21, written for
     /// justified text), `insert` the left end of the baseline (10/20) computed from the
-    /// estimated text width ([`text_insertion`]).
-    Text { at: Point, insert: Point, height: f64, value: &'a str, halign: HAlign, valign: VAlign, rotation_deg: f64 },
+    /// estimated text width ([`text_insertion`]), `width` the width factor (41, written
+    /// when not 1). Alignment, point and width factor as [`librecad::text_fit`] makes them.
+    Text {
+        at: Point,
+        insert: Point,
+        height: f64,
+        value: &'a str,
+        halign: HAlign,
+        valign: VAlign,
+        rotation_deg: f64,
+        width: f64,
+    },
 }
 
 /// Calls `f` with the DXF entities of a shape other than a dimension, in order. A filled
 /// polygon is a triangle as 1-2-3-3, a quad a-b-c-d in SOLID's 1-2-4-3 order (a, b, d, c),
 /// larger polygons a fan of triangles (exact for convex outlines); an arrow a LINE and the
 /// SOLID head; a zero-sweep arc nothing (as in the SVG; DXF would read equal angles as a
-/// full turn).
-fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
+/// full turn). With `outlined` (the exploded mode, for readers that drop SOLID: FreeCAD)
+/// a filled polygon and an arrowhead are followed by their outline, a closed POLYLINE of
+/// width 0.
+fn prims<'a>(shape: &'a Shape, outlined: bool, mut f: impl FnMut(Prim<'a>)) {
     let solids = |points: &[Point], f: &mut dyn FnMut(Prim<'a>)| match points {
         [a, b, c] => f(Prim::Solid([*a, *b, *c, *c])),
         [a, b, c, d] => f(Prim::Solid([*a, *b, *d, *c])),
@@ -767,23 +812,36 @@ fn prims<'a>(shape: &'a Shape, mut f: impl FnMut(Prim<'a>)) {
         }
         Shape::Line { from, to } => f(Prim::Line { from: *from, to: *to }),
         Shape::Polyline { points, closed, width } => f(Prim::Polyline { points, closed: *closed, width: *width }),
-        Shape::Filled { points } => solids(points, &mut f),
+        Shape::Filled { points } => {
+            solids(points, &mut f);
+            if outlined {
+                f(Prim::Polyline { points, closed: true, width: 0.0 });
+            }
+        }
         Shape::Arrow { from, to, head } => {
             if let Some((base, tri)) = arrow(*from, *to, *head) {
                 f(Prim::Line { from: *from, to: base });
                 solids(&tri, &mut f);
+                if outlined {
+                    f(Prim::Outline(tri));
+                }
             }
         }
-        Shape::Text { at, height, value, halign, valign, rotation } => f(Prim::Text {
-            at: *at,
-            insert: text_insertion(*at, *height, value, *halign, *valign, *rotation),
-            height: *height,
-            value,
-            halign: *halign,
-            valign: *valign,
-            rotation_deg: deg(normalize_angle(*rotation)),
-        }),
-        Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
+        Shape::Text { at, height, value, halign, valign, rotation } => {
+            let fit = librecad::text_fit(*at, *height, value, *halign, *valign, *rotation);
+            f(Prim::Text {
+                at: fit.at,
+                insert: text_insertion(fit.at, *height, value, fit.halign, fit.valign, *rotation),
+                height: *height,
+                value,
+                halign: fit.halign,
+                valign: fit.valign,
+                rotation_deg: deg(normalize_angle(*rotation)),
+                width: fit.width,
+            })
+        }
+        // Written as TEXT by `prepare`; dimensions by the writers.
+        Shape::ScaleText { .. } | Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {}
     }
 }
 
@@ -817,23 +875,16 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
             EntityType::Arc(Arc::new(pt(center), radius, start_deg, end_deg))
         }
         Prim::Line { from, to } => EntityType::Line(Line::new(pt(from), pt(to))),
-        Prim::Polyline { points, closed, width } => {
-            let mut poly =
-                Polyline { default_starting_width: width, default_ending_width: width, ..Default::default() };
-            poly.set_is_closed(closed);
-            for p in points {
-                let v = Vertex { starting_width: width, ending_width: width, ..Vertex::new(pt(*p)) };
-                poly.add_vertex(doc, v);
-            }
-            EntityType::Polyline(poly)
-        }
+        Prim::Polyline { points, closed, width } => crate_polyline(doc, points, closed, width),
+        Prim::Outline(tri) => crate_polyline(doc, &tri, true, 0.0),
         Prim::Solid([a, b, c, d]) => EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d))),
-        Prim::Text { at, insert, height, value, halign, valign, rotation_deg } => {
+        Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
             let mut t = Text {
                 location: pt(insert),
                 text_height: height,
                 value: value.to_string(),
                 rotation: rotation_deg,
+                relative_x_scale_factor: width,
                 text_style_name: TEXT_STYLE.to_string(),
                 horizontal_text_justification: match halign {
                     HAlign::Left => HorizontalTextJustification::Left,
@@ -857,22 +908,33 @@ fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
     }
 }
 
-/// DXF entities for a shape other than a dimension (crate path).
-fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape) -> Vec<EntityType> {
+/// A POLYLINE with its vertices (their handles taken from `doc`, as the crate numbers them).
+fn crate_polyline(doc: &mut dxf::Drawing, points: &[Point], closed: bool, width: f64) -> EntityType {
+    let mut poly = Polyline { default_starting_width: width, default_ending_width: width, ..Default::default() };
+    poly.set_is_closed(closed);
+    for p in points {
+        let v = Vertex { starting_width: width, ending_width: width, ..Vertex::new(pt(*p)) };
+        poly.add_vertex(doc, v);
+    }
+    EntityType::Polyline(poly)
+}
+
+/// DXF entities for a shape other than a dimension (crate path); `outlined` as [`prims`].
+fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape, outlined: bool) -> Vec<EntityType> {
     let mut all = Vec::new();
-    prims(shape, |p| all.push(p));
+    prims(shape, outlined, |p| all.push(p));
     all.into_iter().map(|p| crate_entity(doc, p)).collect()
 }
 
-/// The anonymous block `name` with the dimension's exploded geometry, on the dimension's
-/// layer in its colour (explicit rather than BYBLOCK: ezdxf's renderer draws BYBLOCK
-/// dimension geometry black) and line type CONTINUOUS (dimensions are never dashed, as in
-/// the SVG).
-fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, shape: &Shape, drawing: &Drawing, dim: &Common) {
+/// The anonymous block `name` with a dimension's exploded geometry (`geometry`, a
+/// [`DimPiece`]'s), on the dimension's layer in its colour (explicit rather than BYBLOCK:
+/// ezdxf's renderer draws BYBLOCK dimension geometry black) and line type CONTINUOUS
+/// (dimensions are never dashed, as in the SVG).
+fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, geometry: &[Shape], dim: &Common) {
     let common = Common { layer: dim.layer.clone(), color: dim.color.clone(), linetype: CONTINUOUS };
     let mut entities = Vec::new();
-    for part in explode_dimension(shape, &drawing.dim_style) {
-        for specific in simple_entities(doc, &part) {
+    for part in geometry {
+        for specific in simple_entities(doc, part, false) {
             entities.push(common.entity(specific));
         }
     }
@@ -888,7 +950,7 @@ enum DimPrim {
     /// 2-line (type 2, `two_line`; what AutoCAD's DIMANGULAR makes when two lines are
     /// picked, and the only angular dimension LibreCAD 2.2 draws): the first line 13→14
     /// (vertex → first ray point), the second 15→10 (vertex → second ray point), 16 on the
-    /// arc. 3-point (type 5, for angles of 180° and more, which two lines cannot hold): 13/14
+    /// arc. 3-point (type 5, for an angle within [`TWO_LINE_MARGIN`] of 0° or 360°): 13/14
     /// the ray points, 15 the vertex, 10 and 16 on the arc.
     Angular { two_line: bool, def1: Point, text_at: Point, defs: [Point; 4] },
     /// Rotated linear (type 0): 10 on the dimension line, 13/14 the feature points, 50 the
@@ -896,55 +958,105 @@ enum DimPrim {
     Rotated { on_line: Point, text_mid: Point, p1: Point, p2: Point, angle_deg: f64 },
 }
 
-/// The DIMENSION geometry of a dimension shape (`None` for other shapes).
-fn dimension_prim(shape: &Shape, style: &super::DimStyle) -> Option<DimPrim> {
+/// The text override of the second half of an angle of 180° or more: a space, which AutoCAD,
+/// ezdxf and LibreCAD draw as no text (the first half carries the angle's text).
+pub const NO_TEXT: &str = " ";
+
+/// One DIMENSION entity of a dimension shape: its definition points, its text (the
+/// override) and the geometry its anonymous block holds.
+#[derive(Debug, Clone)]
+struct DimPiece<'a> {
+    prim: DimPrim,
+    text: &'a str,
+    geometry: Vec<Shape>,
+}
+
+/// The sweep of the part of an angle of 180° or more that carries its text, radians: 170°
+/// (the text at its middle, well away from both rays, where LibreCAD writes it along the
+/// arc) while the rest keeps at least 10°, and half the angle once that would leave the
+/// rest 170° or more (over 340°).
+fn text_part(sweep: f64) -> f64 {
+    let (most, least) = (170f64.to_radians(), 10f64.to_radians());
+    (0.5 * sweep).max(most.min(sweep - least))
+}
+
+/// The DIMENSION entities of a dimension shape (none for other shapes). An angle between
+/// [`TWO_LINE_MARGIN`] and 180° minus it is one 2-line angular dimension; one from 180° (less
+/// the margin) up to a full turn (less twice it) is two, split where [`text_part`] says
+/// ([`parts::explode_angular_split`]: LibreCAD draws no angular dimension of 180° or more,
+/// and two lines cannot hold one), the first with the text, the second with [`NO_TEXT`], so
+/// that readers which draw the blocks show one dimension and LibreCAD, which redraws each,
+/// shows the whole arc with its text (and two arrowheads where the parts meet); nearer 0°
+/// or 360° one 3-point dimension. A linear dimension is one rotated dimension.
+fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPiece<'a>> {
+    use std::f64::consts::PI;
     match shape {
         Shape::AngularDimension { vertex, first, second, radius, text } => {
             let a1 = angle_of(first - vertex);
             let sweep = normalize_angle(angle_of(second - vertex) - a1);
-            let on_arc = polar(*vertex, *radius, a1 + 0.5 * sweep);
+            let on_arc = |a: f64| polar(*vertex, *radius, a);
             // Where the exploded block draws the text.
             let text_at = parts::angular_text_mid(*vertex, *first, *second, *radius, text, style);
-            let two_line = sweep > TWO_LINE_MARGIN && sweep < std::f64::consts::PI - TWO_LINE_MARGIN;
-            Some(if two_line {
-                DimPrim::Angular { two_line, def1: *second, text_at, defs: [*vertex, *first, *vertex, on_arc] }
-            } else {
-                DimPrim::Angular { two_line, def1: on_arc, text_at, defs: [*first, *second, *vertex, on_arc] }
-            })
+            let whole = || explode_dimension(shape, style);
+            if sweep > TWO_LINE_MARGIN && sweep < PI - TWO_LINE_MARGIN {
+                let defs = [*vertex, *first, *vertex, on_arc(a1 + 0.5 * sweep)];
+                let prim = DimPrim::Angular { two_line: true, def1: *second, text_at, defs };
+                return vec![DimPiece { prim, text, geometry: whole() }];
+            }
+            if (PI - TWO_LINE_MARGIN..2.0 * (PI - TWO_LINE_MARGIN)).contains(&sweep) {
+                let first_sweep = text_part(sweep);
+                if let Some(([one, two], mid)) = parts::explode_angular_split(shape, first_sweep, style) {
+                    let rest = sweep - first_sweep;
+                    let (q1, q3) = (on_arc(a1 + 0.5 * first_sweep), on_arc(a1 + first_sweep + 0.5 * rest));
+                    let first_half =
+                        DimPrim::Angular { two_line: true, def1: mid, text_at, defs: [*vertex, *first, *vertex, q1] };
+                    let second_half = DimPrim::Angular {
+                        two_line: true,
+                        def1: *second,
+                        text_at: q3,
+                        defs: [*vertex, mid, *vertex, q3],
+                    };
+                    return vec![
+                        DimPiece { prim: first_half, text, geometry: one },
+                        DimPiece { prim: second_half, text: NO_TEXT, geometry: two },
+                    ];
+                }
+            }
+            let on_mid = on_arc(a1 + 0.5 * sweep);
+            let prim =
+                DimPrim::Angular { two_line: false, def1: on_mid, text_at, defs: [*first, *second, *vertex, on_mid] };
+            vec![DimPiece { prim, text, geometry: whole() }]
         }
-        Shape::LinearDimension { p1, p2, line_at, angle, text } => {
+        Shape::LinearDimension { p1, p2, line_at, angle, text, marks } => {
             // The text's middle where the exploded block draws it (inside or beside an
-            // extension line).
-            let lay = parts::linear_layout(*p1, *p2, *line_at, *angle, text, style);
-            Some(DimPrim::Rotated {
+            // extension line, or where the figure placed it).
+            let lay = parts::linear_layout_placed(*p1, *p2, *line_at, *angle, text, marks.text_along, style);
+            let prim = DimPrim::Rotated {
                 on_line: lay.f2,
                 text_mid: lay.text_mid,
                 p1: *p1,
                 p2: *p2,
                 angle_deg: deg(normalize_angle(*angle)),
-            })
+            };
+            vec![DimPiece { prim, text, geometry: explode_dimension(shape, style) }]
         }
-        _ => None,
+        _ => Vec::new(),
     }
 }
 
-/// The DIMENSION entity for a dimension shape, pointing at `block_name` (crate path).
-fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) -> Option<EntityType> {
-    let text = match shape {
-        Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. } => text.as_str(),
-        _ => return None,
-    };
+/// The DIMENSION entity of a piece, pointing at `block_name` (crate path).
+fn dimension_entity(piece: &DimPiece, block_name: &str) -> EntityType {
     let base = |def1: Point, text_mid: Point, kind: DimensionType| DimensionBase {
         block_name: block_name.to_string(),
         definition_point_1: pt(def1),
         text_mid_point: pt(text_mid),
         dimension_type: kind,
-        text: text.to_string(),
+        text: piece.text.to_string(),
         is_block_reference_referenced_by_this_block_only: true,
         is_at_user_defined_location: true,
         ..Default::default()
     };
-    Some(match dimension_prim(shape, style)? {
+    match piece.prim {
         DimPrim::Angular { two_line, def1, text_at, defs: [p13, p14, p15, p16] } => {
             // The crate has no 2-line angular type; the 3-point one has the same groups (its
             // R2000 subclass marker is renamed in fix_up).
@@ -964,7 +1076,7 @@ fn dimension_entity(shape: &Shape, block_name: &str, style: &super::DimStyle) ->
             rotation_angle: angle_deg,
             ..Default::default()
         }),
-    })
+    }
 }
 
 /// One group-code/value pair of the crate's output: its code as written (with the padding),
@@ -1085,6 +1197,16 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
                 }
             }
         }
+        // A layer that is off (negative colour) is frozen too (flag 1): LibreCAD, QCAD and
+        // others read a layer's visibility from the flag alone and show an off layer.
+        if kind == "LAYER"
+            && section == "TABLES"
+            && record.iter().any(|p| p.code == 62 && p.value.trim().starts_with('-'))
+        {
+            for pair in record.iter_mut().filter(|p| p.code == 70) {
+                pair.value = Cow::Borrowed("     1");
+            }
+        }
         // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
         if kind == "DIMSTYLE" && section == "TABLES" {
             for pair in record.iter_mut().filter(|p| p.code == 5) {
@@ -1093,12 +1215,11 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
             }
         }
         if version != DxfVersion::R12 {
-            if is_header {
-                if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED") {
-                    if let Some(pair) = record.get_mut(at + 1) {
-                        pair.value = format!("{handle_seed:X}").into();
-                    }
-                }
+            if is_header
+                && let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED")
+                && let Some(pair) = record.get_mut(at + 1)
+            {
+                pair.value = format!("{handle_seed:X}").into();
             }
             match kind.as_ref() {
                 "TABLE" => {
@@ -1197,9 +1318,13 @@ fn push_pair(out: &mut String, code: &str, value: &str) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
-    use crate::draw::{DimStyle, Entity};
+    use crate::draw::{DimStyle, Entity, LinearMarks};
 
     /// The file as (group code, value) pairs.
     fn pairs(bytes: &[u8]) -> Vec<(i32, String)> {
@@ -1286,6 +1411,7 @@ mod tests {
                 line_at: Point::new(0.0, -5.0),
                 angle: 0.0,
                 text: "10".into(),
+                marks: LinearMarks::default(),
             },
         );
         let p = write(&d);
@@ -1330,27 +1456,47 @@ mod tests {
         assert_eq!(header_value("$DIMASZ"), 3.0);
     }
 
+    /// LibreCAD draws no angular dimension of 180° or more (issue 29): such an angle is two
+    /// 2-line dimensions split at its bisector, the first with the text, the second with
+    /// none, whose sweeps add up to the angle; together their blocks hold what the whole
+    /// dimension draws.
     #[test]
-    fn angles_of_180_degrees_and_more_are_3_point_dimensions() {
-        let mut d = drawing();
+    fn angles_of_180_degrees_and_more_are_two_2_line_halves() {
         let o = Point::new(0.0, 0.0);
-        for (second, text) in [(Point::new(-1.0, 0.0), "180"), (Point::new(0.0, -1.0), "270")] {
-            d.add(
-                0,
-                Shape::AngularDimension {
-                    vertex: o,
-                    first: Point::new(1.0, 0.0),
-                    second,
-                    radius: 5.0,
-                    text: text.into(),
-                },
-            );
-        }
-        let p = write(&d);
-        for dim in records(&p, "DIMENSION") {
-            assert_eq!(get(&dim, 70)[0].trim(), format!("{}", 5 | 32 | 128), "{:?}", get(&dim, 1));
-            // 13/14 the ray points, 15 the vertex.
-            assert_eq!((f(&dim, 13), f(&dim, 23), f(&dim, 15)), (vec![1.0], vec![0.0], vec![0.0]));
+        for (deg_sweep, text) in [(180.0, "180"), (270.0, "270"), (300.0, "φ1 = 300°")] {
+            let mut d = drawing();
+            let second = polar(o, 1.0, f64::to_radians(deg_sweep));
+            let dim = Shape::AngularDimension {
+                vertex: o,
+                first: Point::new(1.0, 0.0),
+                second,
+                radius: 5.0,
+                text: text.into(),
+            };
+            d.add(0, dim.clone());
+            let p = write(&d);
+            let dims = records(&p, "DIMENSION");
+            assert_eq!(dims.len(), 2, "{text}");
+            let escaped = text.replace('φ', "\\U+03C6").replace('°', "\\U+00B0");
+            assert_eq!((get(&dims[0], 1), get(&dims[1], 1)), (vec![escaped.as_str()], vec![NO_TEXT]));
+            // Each a 2-line angular dimension: 13→14 and 15→10 its lines from the vertex.
+            let dir = |r: &[(i32, String)], c: i32| f(r, c + 10)[0].atan2(f(r, c)[0]).to_degrees();
+            let mut total = 0.0;
+            for dim in &dims {
+                assert_eq!(get(dim, 70)[0].trim(), format!("{}", 2 | 32 | 128));
+                assert_eq!(
+                    (f(dim, 13), f(dim, 23), f(dim, 15), f(dim, 25)),
+                    (vec![0.0], vec![0.0], vec![0.0], vec![0.0])
+                );
+                let sweep = (dir(dim, 10) - dir(dim, 14)).rem_euclid(360.0);
+                assert!(sweep < 180.0, "{text}: a half of {sweep}°");
+                total += sweep;
+            }
+            assert!((total - deg_sweep).abs() < 1e-9, "{text}: halves add up to {total}°");
+            // The two blocks hold the whole dimension's parts: two arcs that make its arc, two
+            // arrowheads, one text.
+            let kinds = |k: &str| records(&p, k).len();
+            assert_eq!((kinds("ARC"), kinds("SOLID"), kinds("TEXT")), (2, 2, 1), "{text}");
         }
     }
 
@@ -1618,6 +1764,7 @@ mod tests {
                         line_at: p(0.0, -5.0),
                         angle,
                         text: format!("{a}"),
+                        marks: LinearMarks::default(),
                     },
                 );
             }

@@ -17,8 +17,8 @@
 use std::io::Write;
 
 use super::{
-    CONTINUOUS, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, build_head, dimension_prim,
-    entity_linetype, fix_up, prims, snap,
+    CONTINUOUS, DimPiece, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, build_head,
+    dimension_pieces, entity_linetype, fix_up, prims, snap,
 };
 use crate::draw::parts::explode_dimension;
 use crate::draw::{Drawing, Entity, HAlign, Shape, VAlign};
@@ -147,6 +147,7 @@ fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64
     // A polyline takes its vertices, the POLYLINE and its SEQEND; every other entity one.
     let of = |p: Prim| match p {
         Prim::Polyline { points, .. } => points.len() as u64 + 2,
+        Prim::Outline(tri) => tri.len() as u64 + 2,
         _ => 1,
     };
     let mut handles = 0u64;
@@ -154,16 +155,22 @@ fn count(drawing: &Drawing, entities: &[Entity], dimensions: Dimensions) -> (u64
     for e in entities {
         match &e.shape {
             shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
-                for part in explode_dimension(shape, &drawing.dim_style) {
-                    prims(&part, |p| handles += of(p));
+                if dimensions == Dimensions::Exploded {
+                    for part in explode_dimension(shape, &drawing.dim_style) {
+                        prims(&part, true, |p| handles += of(p));
+                    }
+                    continue;
                 }
-                if dimensions != Dimensions::Exploded {
+                for piece in dimension_pieces(shape, &drawing.dim_style) {
                     dims += 1;
-                    // The BLOCK and its BLOCK_RECORD, and the DIMENSION when there is one.
-                    handles += 2 + u64::from(dimension_prim(shape, &drawing.dim_style).is_some());
+                    // The block's entities, the BLOCK and its BLOCK_RECORD, the DIMENSION.
+                    for part in &piece.geometry {
+                        prims(part, false, |p| handles += of(p));
+                    }
+                    handles += 3;
                 }
             }
-            shape => prims(shape, |p| handles += of(p)),
+            shape => prims(shape, dimensions == Dimensions::Exploded, |p| handles += of(p)),
         }
     }
     (handles, dims)
@@ -230,28 +237,30 @@ impl<'a> Body<'a> {
                     let next = &mut self.next;
                     let out = &mut self.entities;
                     for part in explode_dimension(shape, &drawing.dim_style) {
-                        prims(&part, |p| prim(out, next, p, part_style));
+                        prims(&part, true, |p| prim(out, next, p, part_style));
                     }
                 }
-                shape @ (Shape::AngularDimension { text, .. } | Shape::LinearDimension { text, .. }) => {
-                    self.dim_count += 1;
-                    name.clear();
-                    name.push_str("*D");
-                    name.push_str(&self.dim_count.to_string());
-                    self.dimension(shape, text, &name, style);
+                shape @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                    for piece in dimension_pieces(shape, &drawing.dim_style) {
+                        self.dim_count += 1;
+                        name.clear();
+                        name.push_str("*D");
+                        name.push_str(&self.dim_count.to_string());
+                        self.dimension(&piece, &name, style);
+                    }
                 }
                 shape => {
                     let next = &mut self.next;
                     let out = &mut self.entities;
-                    prims(shape, |p| prim(out, next, p, style));
+                    prims(shape, self.dimensions == Dimensions::Exploded, |p| prim(out, next, p, style));
                 }
             }
         }
     }
 
-    /// The dimension's anonymous block (its exploded geometry on the dimension's layer in its
-    /// colour, line type CONTINUOUS) and the DIMENSION entity.
-    fn dimension(&mut self, shape: &Shape, text: &str, name: &str, style: Style) {
+    /// A dimension piece's anonymous block (its exploded geometry on the dimension's layer in
+    /// its colour, line type CONTINUOUS) and its DIMENSION entity.
+    fn dimension(&mut self, piece: &DimPiece, name: &str, style: Style) {
         let block_handle = self.next;
         // The BLOCK, then its BLOCK_RECORD (not written to R12).
         self.next += 2;
@@ -262,19 +271,18 @@ impl<'a> Body<'a> {
         string(b, b"  3", name);
         b.extend_from_slice(b"  1\r\n\r\n");
         let part_style = Style { linetype: Some(CONTINUOUS), ..style };
-        for part in explode_dimension(shape, &self.drawing.dim_style) {
-            prims(&part, |p| prim(b, &mut self.next, p, part_style));
+        for part in &piece.geometry {
+            prims(part, false, |p| prim(b, &mut self.next, p, part_style));
         }
         b.extend_from_slice(b"  0\r\nENDBLK\r\n");
         handle(b, block_handle);
         b.extend_from_slice(b"  8\r\n0\r\n");
 
-        let Some(dim) = dimension_prim(shape, &self.drawing.dim_style) else { return };
         let o = &mut self.entities;
         common(o, b"DIMENSION", self.next, style);
         self.next += 1;
         string(o, b"  2", name);
-        let (def1, text_mid, flags) = match dim {
+        let (def1, text_mid, flags) = match piece.prim {
             DimPrim::Angular { two_line, def1, text_at, .. } => {
                 (def1, text_at, if two_line { 2 } else { 5 } | 32 | 128)
             }
@@ -283,9 +291,9 @@ impl<'a> Body<'a> {
         point(o, b" 10", b" 20", b" 30", def1);
         point(o, b" 11", b" 21", b" 31", text_mid);
         short(o, b" 70", flags);
-        string(o, b"  1", text);
+        string(o, b"  1", piece.text);
         o.extend_from_slice(b"  3\r\nSTANDARD\r\n");
-        match dim {
+        match piece.prim {
             DimPrim::Angular { defs: [p13, p14, p15, p16], .. } => {
                 point(o, b" 13", b" 23", b" 33", p13);
                 point(o, b" 14", b" 24", b" 34", p14);
@@ -328,42 +336,18 @@ fn prim(o: &mut Vec<u8>, next: &mut u64, p: Prim, style: Style) {
             point(o, b" 12", b" 22", b" 32", c);
             point(o, b" 13", b" 23", b" 33", d);
         }
-        Prim::Polyline { points, closed, width } => {
-            // The crate numbers the vertices as they are added, before the POLYLINE.
-            let first_vertex = *next;
-            *next += points.len() as u64;
-            common(o, b"POLYLINE", take(next), style);
-            o.extend_from_slice(b" 66\r\n     1\r\n 10\r\n0.0\r\n 20\r\n0.0\r\n 30\r\n0.0\r\n");
-            if closed {
-                short(o, b" 70", 1);
-            }
-            if width != 0.0 {
-                float(o, b" 40", width);
-                float(o, b" 41", width);
-            }
-            for (k, p) in points.iter().enumerate() {
-                // Vertices and SEQEND: the polyline's layer, no colour or line type of their own.
-                o.extend_from_slice(b"  0\r\nVERTEX\r\n");
-                handle(o, first_vertex + k as u64);
-                layer(o, style.layer);
-                point(o, b" 10", b" 20", b" 30", *p);
-                if width != 0.0 {
-                    float(o, b" 40", width);
-                    float(o, b" 41", width);
-                }
-                o.extend_from_slice(b" 70\r\n     0\r\n 50\r\n0.0\r\n");
-            }
-            o.extend_from_slice(b"  0\r\nSEQEND\r\n");
-            handle(o, take(next));
-            layer(o, style.layer);
-        }
-        Prim::Text { at, insert, height, value, halign, valign, rotation_deg } => {
+        Prim::Polyline { points, closed, width } => polyline(o, next, points, closed, width, style),
+        Prim::Outline(tri) => polyline(o, next, &tri, true, 0.0, style),
+        Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
             common(o, b"TEXT", take(next), style);
             point(o, b" 10", b" 20", b" 30", insert);
             float(o, b" 40", height);
             string(o, b"  1", value);
             if rotation_deg != 0.0 {
                 float(o, b" 50", rotation_deg);
+            }
+            if width != 1.0 {
+                float(o, b" 41", width);
             }
             string(o, b"  7", TEXT_STYLE);
             match halign {
@@ -381,6 +365,37 @@ fn prim(o: &mut Vec<u8>, next: &mut u64, p: Prim, style: Style) {
             }
         }
     }
+}
+
+/// A POLYLINE with its VERTEXes and SEQEND, taking handles from `next`: the crate numbers
+/// the vertices as they are added, before the POLYLINE.
+fn polyline(o: &mut Vec<u8>, next: &mut u64, points: &[Point], closed: bool, width: f64, style: Style) {
+    let first_vertex = *next;
+    *next += points.len() as u64;
+    common(o, b"POLYLINE", take(next), style);
+    o.extend_from_slice(b" 66\r\n     1\r\n 10\r\n0.0\r\n 20\r\n0.0\r\n 30\r\n0.0\r\n");
+    if closed {
+        short(o, b" 70", 1);
+    }
+    if width != 0.0 {
+        float(o, b" 40", width);
+        float(o, b" 41", width);
+    }
+    for (k, p) in points.iter().enumerate() {
+        // Vertices and SEQEND: the polyline's layer, no colour or line type of their own.
+        o.extend_from_slice(b"  0\r\nVERTEX\r\n");
+        handle(o, first_vertex + k as u64);
+        layer(o, style.layer);
+        point(o, b" 10", b" 20", b" 30", *p);
+        if width != 0.0 {
+            float(o, b" 40", width);
+            float(o, b" 41", width);
+        }
+        o.extend_from_slice(b" 70\r\n     0\r\n 50\r\n0.0\r\n");
+    }
+    o.extend_from_slice(b"  0\r\nSEQEND\r\n");
+    handle(o, take(next));
+    layer(o, style.layer);
 }
 
 /// The current handle, advancing `next`.

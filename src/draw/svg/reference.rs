@@ -25,7 +25,7 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
     let extent = bounds.width().max(bounds.height()).max(f64::MIN_POSITIVE);
     let margin = opts.margin * extent;
     let paper = opts.paper_mm_per_unit.or(drawing.paper_mm_per_unit).filter(|k| k.is_finite() && *k > 0.0);
-    let frame = Frame { k: paper.unwrap_or(1.0), hairline: opts.hairline * extent, dash: dash_pattern(extent) };
+    let frame = Frame { k: paper.unwrap_or(1.0), paper, hairline: opts.hairline * extent, dash: dash_pattern(extent) };
     let (x0, y0) = frame.pt(Point::new(bounds.min.x - margin, bounds.max.y + margin));
     let (w, h) = (bounds.width() + 2.0 * margin, bounds.height() + 2.0 * margin);
     let w = frame.len(w.max(extent * 1e-3));
@@ -56,10 +56,10 @@ pub fn to_string(drawing: &Drawing, opts: &SvgOptions) -> String {
     // consecutive entities on one layer: `<g class="layer-NAME">` (a layer may have several).
     let mut run: Option<(usize, Group)> = None;
     for e in &drawing.entities {
-        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer) {
-            if let Some((_, g)) = run.take() {
-                doc = doc.add(g);
-            }
+        if run.as_ref().is_some_and(|(layer, _)| *layer != e.layer)
+            && let Some((_, g)) = run.take()
+        {
+            doc = doc.add(g);
         }
         let (_, g) = run.get_or_insert_with(|| {
             let g = Group::new()
@@ -159,6 +159,11 @@ fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::No
         }
         Shape::Text { at, height, value, halign, valign, rotation } => {
             nodes.push(Box::new(text_node(f, *at, *height, value, *halign, *valign, *rotation, &color)));
+        }
+        caption @ Shape::ScaleText { .. } => {
+            if let Some(shape) = caption.scale_text_in(f.paper) {
+                nodes.extend(entity_nodes(drawing, &Entity { shape, ..e.clone() }, f));
+            }
         }
         dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
             for part in explode_dimension(dim, &drawing.dim_style) {

@@ -15,7 +15,7 @@ use crate::solve::fourbar::{Geometry, Position};
 
 use crate::figure::fourbar::{angle_text, mechanism};
 use crate::figure::shared::labels::{self, TextBox};
-use crate::figure::shared::vocab::{ModelUnits, Sizes, content_drawing, ground, layer_of, layers, length_scale_text};
+use crate::figure::shared::vocab::{ModelUnits, Sizes, content_drawing, ground, layer_of, layers, length_caption};
 
 /// Layer of the centres' circles and names.
 pub const CENTRES: layers::Layer = ("CENTRES", Aci::RED, LineType::Continuous);
@@ -168,19 +168,9 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
         }
     }
     // The sheet's heading above the first row, with its length scale.
-    let heading = format!("Instantaneous centres and Kennedy's lines   {}", length_scale_text(k_l, units));
+    let heading = length_caption("Instantaneous centres and Kennedy's lines   ", k_l, units);
     let at = Point::new(window.min.x, window.max.y + title_room + 1.0 * s.text);
-    d.add(
-        text,
-        Shape::Text {
-            at,
-            height: s.text,
-            value: heading,
-            halign: HAlign::Left,
-            valign: VAlign::Baseline,
-            rotation: 0.0,
-        },
-    );
+    d.scale_text(text, at, s.text, heading);
     d
 }
 

@@ -10,15 +10,14 @@
 //! (they differ by two orders of magnitude): they show direction and point of application;
 //! a table under the panel gives each load's magnitude and moment about p.
 
-use crate::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, ScaleCaption, Shape, VAlign};
 use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
 
 use crate::figure::fourbar::angle_text;
 use crate::figure::shared::labels::{self};
 use crate::figure::shared::vocab::{
-    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, scale_text, unit_or,
-    vector,
+    ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, unit_or, vector,
 };
 
 /// One panel of the sheet: a lever and what to print under it.
@@ -173,7 +172,11 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             names.letter(from + v * 0.6, &f.name, small, perp(v), color);
         }
         names.draw(&mut d, frc);
-        let title = format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg));
+        let title = if lever.crank_speed != panel.omega1 {
+            format!("Joukowski's lever   φ1 = {}°, ω1 = 0", angle_text(panel.phi1_deg))
+        } else {
+            format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg))
+        };
         d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         // The table: load, its image point, |F| [N], M_p [N·(unit)/s].
         let largest = arrows.iter().map(|(f, _)| f.moment.abs()).fold(0.0, f64::max);
@@ -194,17 +197,42 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             line(&mut d, text, Point::new(m_x, y), small, sig4(m), HAlign::Right);
         }
         let me1 = lever.me1.map_or("—".to_string(), sig4);
+        // A standing crank: the polygon of virtual velocities, the crank at 1 rad/s.
+        let standing = lever.crank_speed != panel.omega1;
+        let (polygon, divisor) = if standing {
+            ("polygon at ω1 = 1 rad/s (virtual), 90° cw", "(1 rad/s)")
+        } else {
+            ("velocity polygon turned 90° clockwise", "ω1")
+        };
+        // The velocity scale as the medium states it (on paper, or in the DXF's millimetres).
+        let k_v_line = ScaleCaption::new("k_v = ", k_v.per_mm, format!(" ({speed})/mm"), 1.0 / k_l);
         let lines = [
-            "velocity polygon turned 90° clockwise".to_string(),
-            format!("k_v = {} ({speed})/mm", scale_text(k_v.per_mm)),
+            polygon.to_string(),
+            String::new(),
             "Σ M_p(F_i) = Σ F_i·v_i (without F_b)".to_string(),
             format!("  = {} N·{speed}", sig4(lever.moment)),
-            format!("Me1 = −Σ M_p(F_i) / ω1 = {me1} {}", units.moment),
+            format!("Me1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
             format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),
         ];
         let y0 = top - (rows as f64 + 0.5) * row;
         for (i, l) in lines.into_iter().enumerate() {
-            line(&mut d, text, Point::new(left, y0 - i as f64 * row), small, l, HAlign::Left);
+            let at = Point::new(left, y0 - i as f64 * row);
+            if i == 1 {
+                let caption = k_v_line.clone();
+                d.add(
+                    text,
+                    Shape::ScaleText {
+                        at,
+                        height: small,
+                        caption,
+                        halign: HAlign::Left,
+                        valign: VAlign::Top,
+                        rotation: 0.0,
+                    },
+                );
+            } else {
+                line(&mut d, text, at, small, l, HAlign::Left);
+            }
         }
     }
     d

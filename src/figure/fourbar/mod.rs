@@ -666,8 +666,10 @@ pub(crate) mod tests {
             })
             .unwrap();
         assert!((pa.norm() - 0.8 / sv.per_mm * lay.frame.k_l).abs() < 1e-12, "{} {}", pa.norm(), sv.per_mm);
-        // k_l is nice, prints in the mechanism's title, and the drawing is on its paper.
-        assert_eq!(lay.frame.panels[0].0, format!("Mechanism   k_l = {} m/mm", scale_text(lay.frame.k_l)));
+        // k_l is nice, prints in the mechanism's title (on paper; 1:1, in m/mm, in the DXF's
+        // millimetres), and the drawing is on its paper.
+        assert_eq!(lay.frame.panels[0].0.on_paper(), format!("Mechanism   k_l = {} m/mm", scale_text(lay.frame.k_l)));
+        assert_eq!(lay.frame.panels[0].0.text(1000.0), "Mechanism   k_l = 0.001 m/mm");
         assert_eq!(d.paper_mm_per_unit, Some(1.0 / lay.frame.k_l));
         // Letters are 3.5 mm on paper.
         assert!((lay.frame.sizes.text / lay.frame.k_l - 3.5).abs() < 1e-12);
@@ -717,7 +719,7 @@ pub(crate) mod tests {
     /// The letters of each polygon in a drawn position: (polygon, centre, text, height),
     /// polygon 0 velocity, 1 acceleration, 2 force (the force panel's texts only).
     fn polygon_letters(lay: &Layout, d: &Drawing) -> Vec<(usize, Point, String, f64)> {
-        let force_panel = lay.frame.panels.iter().find(|p| p.0.starts_with("Force")).cloned();
+        let force_panel = lay.frame.panels.iter().find(|p| p.0.before.starts_with("Force")).cloned();
         let (vel, acc, frc) =
             (layer_of(d, layers::VELOCITY), layer_of(d, layers::ACCELERATION), layer_of(d, layers::FORCES));
         d.entities
@@ -786,7 +788,7 @@ pub(crate) mod tests {
         let (g, motion, lay) = template_motion();
         let (sv, pv) = lay.frame.velocity.unwrap();
         let (sa, pa) = lay.frame.acceleration.unwrap();
-        let force_panel = lay.frame.panels.iter().find(|p| p.0.starts_with("Force")).cloned().unwrap();
+        let force_panel = lay.frame.panels.iter().find(|p| p.0.before.starts_with("Force")).cloned().unwrap();
         let mut checked = 0;
         for (i, pos) in motion.positions.iter().enumerate() {
             let k = pos.kin.unwrap();

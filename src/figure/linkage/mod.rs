@@ -380,7 +380,7 @@ pub fn frame_base(fig: &LinkageFigure, motion: &[&[f64]], style: &Style) -> Draw
         let k_l = style.k_l();
         let h = style.small_text();
         let at = Point::new(lo.x, lo.y - 3.0 * style.ground - 2.0 * style.text);
-        d.text(scale, at, h, vocab::length_scale_text(k_l, fig.units));
+        d.scale_text(scale, at, h, vocab::length_caption("", k_l, fig.units));
         let value = vocab::bar_value(k_l);
         let label = format!("{} {}", vocab::scale_text(value), fig.units.length);
         vocab::scale_bar(&mut d, scale, at + Vector::new(2.0 * h, -2.0 * h), value, &label, *style);

@@ -97,6 +97,29 @@ impl Animation {
         self
     }
 
+    /// The animation of the positions `keep` (indices into this one's, in the order to
+    /// draw them; each less than [`Animation::len`]): their names, labels and drawings,
+    /// and the drive at their values (a drag from the `j`-th continues position
+    /// `keep[j]`'s assembly mode). The base and the window stay the whole motion's.
+    ///
+    /// # Panics
+    /// When an index is out of range (a bug in the caller: `run::positions` selects from
+    /// the run's positions).
+    pub fn keep(self, keep: Vec<usize>) -> Animation {
+        let Animation { title, base, fixed_window, names, labels, pose, drive } = self;
+        let keep = std::sync::Arc::new(keep);
+        let names = keep.iter().map(|&k| names[k].clone()).collect();
+        let labels = keep.iter().map(|&k| labels[k].clone()).collect();
+        let drive = drive.map(|d| {
+            let Drive { values, solve, draw } = d;
+            let values = keep.iter().map(|&k| values[k]).collect();
+            let (ks, kd) = (keep.clone(), keep.clone());
+            Drive { values, solve: Box::new(move |j, s| solve(ks[j], s)), draw: Box::new(move |j, s| draw(kd[j], s)) }
+        });
+        let pose: PoseFn = Box::new(move |j| pose(keep[j]));
+        Animation { title, base, fixed_window, names, labels, pose, drive }
+    }
+
     /// Number of positions.
     pub fn len(&self) -> usize {
         self.names.len()
@@ -147,11 +170,17 @@ impl Animation {
 
     /// The whole motion in one drawing (for the DXF): the base on its content layers and
     /// each position on its own layer ([`Animation::names`]), every entity keeping its
-    /// colour and line type. `poses[k]` is position `k`'s moving part.
+    /// colour and line type. `poses[k]` is position `k`'s moving part. The first position's
+    /// layer is on and every other position's off ([`crate::draw::Layer::on`]), so that the
+    /// file opens as one drawing of the mechanism (the base and position 0) and the user
+    /// switches positions on and off in the layer manager.
     pub fn all_positions(&self, poses: &[Drawing]) -> Drawing {
         let mut d = self.base.clone();
-        for (name, pose) in self.names.iter().zip(poses) {
+        for (k, (name, pose)) in self.names.iter().zip(poses).enumerate() {
             d.append_on_layer(pose, name);
+            if k > 0 {
+                d.set_layer_on(name, false);
+            }
         }
         d
     }

@@ -389,6 +389,10 @@ pub fn draw_on_mechanism(d: &mut Drawing, arrows: &[ForceArrow], s: Sizes) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::figure::shared::vocab::{ModelUnits, content_drawing};

@@ -20,15 +20,15 @@
 //! the top of its row under its caption.
 
 use crate::draw::parts::widest_text_width;
-use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
+use crate::draw::{Bounds, DimStyle, Drawing, HAlign, ScaleCaption, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
 use crate::figure::shared::forces::{self, ForcePolygon, Magnitude};
 use crate::figure::shared::labels;
 use crate::figure::shared::polygon::{self, PointPolygon};
 use crate::figure::shared::vocab::{
-    ModelUnits, Scale, Sizes, bar_value, content_drawing, layer_of, layers, length_scale, length_scale_text,
-    nice_scale, scale_bar, scale_bar_room, scale_text,
+    ModelUnits, Scale, Sizes, bar_value, caption_width, content_drawing, layer_of, layers, length_caption,
+    length_scale, nice_scale, scale_bar, scale_bar_room, scale_text,
 };
 
 /// Gap between panels on paper, millimetres.
@@ -172,9 +172,9 @@ pub struct PanelFrame {
     pub forces: Option<(Scale, Point)>,
     /// The force panel's figures, captions and table, when drawn.
     pub force_figures: Option<ForceFigures>,
-    /// The panels with their titles: (title, lower-left, upper-right), the mechanism's
-    /// first.
-    pub panels: Vec<(String, Point, Point)>,
+    /// The panels with their titles, each a scale caption (`Velocity polygon   k_v = …`):
+    /// (title, lower-left, upper-right), the mechanism's first.
+    pub panels: Vec<(ScaleCaption, Point, Point)>,
     /// The scale bar of each panel: left end, length (model units), label (value and
     /// unit), in the order of `panels`.
     pub bars: Vec<(Point, f64, String)>,
@@ -184,7 +184,7 @@ pub struct PanelFrame {
 
 /// What a polygon panel is before placing: title, scale, extent, which, unit of its bar.
 struct PolygonPanel {
-    title: String,
+    title: ScaleCaption,
     scale: Scale,
     extent: Extent,
     which: Which,
@@ -223,13 +223,14 @@ impl PanelFrame {
         if let Some(points) = &spec.velocity {
             let (scale, extent) = scale_for(Extent::of(points.iter().copied()));
             let unit = format!("{}/s", units.length);
-            let title = format!("Velocity polygon   k_v = {} ({unit})/mm", scale_text(scale.per_mm));
+            let title = ScaleCaption::new("Velocity polygon   k_v = ", scale.per_mm, format!(" ({unit})/mm"), paper);
             polys.push(PolygonPanel { title, scale, extent, which: Which::Velocity, unit });
         }
         if let Some(points) = &spec.acceleration {
             let (scale, extent) = scale_for(Extent::of(points.iter().copied()));
             let unit = format!("{}/s²", units.length);
-            let title = format!("Acceleration polygon   k_a = {} ({unit})/mm", scale_text(scale.per_mm));
+            let title =
+                ScaleCaption::new("Acceleration polygon   k_a = ", scale.per_mm, format!(" ({unit})/mm"), paper);
             polys.push(PolygonPanel { title, scale, extent, which: Which::Acceleration, unit });
         }
         let mut force_panel = None;
@@ -244,7 +245,7 @@ impl PanelFrame {
             let table = forces::table_size(&fs.rows, fs.row_count, sizes);
             let (extent, panel) = ForcePanel::arrange(scale, &fs.figures, table, fs.row_count, sizes);
             force_panel = Some(panel);
-            let title = format!("Force polygons   k_f = {} N/mm", scale_text(scale.per_mm));
+            let title = ScaleCaption::new("Force polygons   k_f = ", scale.per_mm, " N/mm", paper);
             polys.push(PolygonPanel { title, scale, extent, which: Which::Forces, unit: "N".into() });
             // The forces drawn on the mechanism, with their names, stay in its panel.
             let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
@@ -260,14 +261,15 @@ impl PanelFrame {
         // Grid: up to three panels in a row, four as 2 × 2.
         let title_room = 2.6 * sizes.text;
         let gap = PANEL_GAP_MM * k_l;
-        let mech_title = format!("Mechanism   {}", length_scale_text(k_l, units));
+        let mech_title = length_caption("Mechanism   ", k_l, units);
         // Each panel at least as wide as its title (the mechanism's with the position's
-        // text right of it) and its scale bar, as the widest reader draws them.
-        let wide_enough = |b: Vector, title: &str, extra: &str| {
-            let w = widest_text_width(title, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
+        // text right of it, the title as the SVG or the DXF states it) and its scale bar, as
+        // the widest reader draws them.
+        let wide_enough = |b: Vector, title: &ScaleCaption, extra: &str| {
+            let w = caption_width(title, units, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
             Vector::new(b.x.max(w), b.y)
         };
-        let mut boxes: Vec<(String, Vector)> =
+        let mut boxes: Vec<(ScaleCaption, Vector)> =
             vec![(mech_title.clone(), wide_enough(mech_max - mech_min, &mech_title, &spec.position_text))];
         for p in &polys {
             let room = Vector::new(2.0 * sizes.text, 2.0 * sizes.text + bar_room);
@@ -349,7 +351,7 @@ impl PanelFrame {
             .map(|(title, ll, ur)| {
                 let at = self.title_at(*ll, *ur);
                 let h = self.sizes.text;
-                labels::TextBox { min: at, max: at + Vector::new(widest_text_width(title, h), h) }
+                labels::TextBox { min: at, max: at + Vector::new(caption_width(title, self.units, h), h) }
             })
             .collect()
     }
@@ -371,17 +373,7 @@ impl PanelFrame {
         let dims = layer_of(d, layers::DIMENSIONS);
         for (title, ll, ur) in &self.panels {
             let at = self.title_at(*ll, *ur);
-            d.add(
-                dims,
-                Shape::Text {
-                    at,
-                    height: self.sizes.text,
-                    value: title.clone(),
-                    halign: HAlign::Left,
-                    valign: VAlign::Baseline,
-                    rotation: 0.0,
-                },
-            );
+            d.scale_text(dims, at, self.sizes.text, title.clone());
         }
         for (at, length, label) in &self.bars {
             scale_bar(d, dims, *at, *length, label, self.sizes);

@@ -115,7 +115,7 @@ fn snap(v: f64, step: f64) -> f64 {
 fn decimals_for(step: f64) -> usize {
     (0..10)
         .find(|&d| {
-            let s = 10f64.powi(d as i32) * step;
+            let s = crate::geom::powi(10.0, d as i32) * step;
             (s - s.round()).abs() < 1e-6 * s.max(1.0)
         })
         .unwrap_or(10)
@@ -597,6 +597,10 @@ pub fn bars(b: &Bars) -> Drawing {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
 

@@ -388,6 +388,10 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
 

@@ -9,7 +9,8 @@
 //! the mechanism's size) and draws each physical vector (m/s, m/s², N …) at a scale per
 //! printed millimetre ([`Scale::on_paper`]); every panel carries a [`scale_bar`].
 
-use crate::draw::{Aci, Drawing, Entity, Shape};
+use crate::draw::parts::widest_text_width;
+use crate::draw::{Aci, Drawing, Entity, ScaleCaption, Shape};
 use crate::figure::shared::labels::TextBox;
 use crate::geom::{Point, Vector, perp};
 
@@ -84,6 +85,22 @@ pub fn length_scale_text(k_l: f64, units: ModelUnits) -> String {
     format!("k_l = {} {}/mm", scale_text(k_l), units.length)
 }
 
+/// The caption of a figure's length scale, `before` then `k_l = 0.002 m/mm` (model units
+/// per millimetre: on the figure's paper, printed at 1/`k_l` paper millimetres per model
+/// unit, in the SVG and PDF; `k_l = 0.001 m/mm` or `1 mm/mm` in the DXF, which draws the
+/// mechanism 1:1).
+pub fn length_caption(before: &str, k_l: f64, units: ModelUnits) -> ScaleCaption {
+    ScaleCaption::new(format!("{before}k_l = "), k_l, format!(" {}/mm", units.length), 1.0 / k_l)
+}
+
+/// The width a scale caption takes in the widest reader ([`widest_text_width`]), as the
+/// SVG states it (on its paper) or the DXF (in millimetres of the model, `units`), whichever
+/// is wider.
+pub fn caption_width(caption: &ScaleCaption, units: ModelUnits, height: f64) -> f64 {
+    let paper = widest_text_width(&caption.on_paper(), height);
+    paper.max(widest_text_width(&caption.text(units.mm_per_unit), height))
+}
+
 /// Cap height of letters on paper, millimetres (ISO 3098's 3.5 mm).
 pub const PAPER_TEXT_MM: f64 = 3.5;
 /// Cap height of small text on paper (scale-bar numbers, tick numbers), millimetres: the
@@ -99,14 +116,10 @@ pub fn bar_value(per_mm: f64) -> f64 {
     nice_scale(per_mm * BAR_MM)
 }
 
-/// Formats a scale value compactly (`0.01`, `2.5`, `2e-05`).
+/// Formats a scale value in plain decimals, as a drawing writes numbers (no exponent:
+/// `0.01`, `2.5`, `100000`, `0.00002`; [`crate::draw::plain_decimal`]).
 pub fn scale_text(v: f64) -> String {
-    if v != 0.0 && (v.abs() < 1e-3 || v.abs() >= 1e5) {
-        let s = format!("{v:e}");
-        return s;
-    }
-    let s = format!("{v:.6}");
-    s.trim_end_matches('0').trim_end_matches('.').to_string()
+    crate::draw::plain_decimal(v)
 }
 
 /// Content layers of a mechanism figure with polygons: name, colour, line type.
@@ -521,7 +534,9 @@ mod tests {
         assert_eq!(nice_scale(f64::NAN), 1.0);
         assert_eq!(scale_text(0.01), "0.01");
         assert_eq!(scale_text(2.5), "2.5");
-        assert_eq!(scale_text(2e-5), "2e-5");
+        assert_eq!(scale_text(2e-5), "0.00002");
+        assert_eq!(scale_text(1e5), "100000");
+        assert_eq!(scale_text(0.1 + 0.2), "0.3");
     }
 
     #[test]

@@ -76,7 +76,8 @@ pub fn stack(f: &Function, dims: &[Dimension], mrss_factor: f64, dist: Distribut
         mean += t.coef * d.sign() * d.mid();
         wc += d.half();
         sq += d.half() * d.half();
-        var += dist.sigma(d.half()).powi(2);
+        let s = dist.sigma(d.half());
+        var += s * s;
     }
     let rss = sq.sqrt();
     let contributions = f
@@ -91,7 +92,7 @@ pub fn stack(f: &Function, dims: &[Dimension], mrss_factor: f64, dist: Distribut
                 half: h,
                 shift: t.coef * d.sign() * d.mid(),
                 pct_worst_case: if wc > 0.0 { 100.0 * h / wc } else { 0.0 },
-                pct_variance: if var > 0.0 { 100.0 * dist.sigma(h).powi(2) / var } else { 0.0 },
+                pct_variance: if var > 0.0 { 100.0 * dist.sigma(h) * dist.sigma(h) / var } else { 0.0 },
             }
         })
         .collect();

@@ -21,7 +21,16 @@
 //!
 //! with Me1 counter-clockwise positive (design.md §4), ω1 in rad/s and the arms in the
 //! velocity unit (m/s in an SI scene: M_p in W = N·m/s, Me1_J in N·m; mm/s in a mm scene:
-//! N·mm). Me1 is equivalently a balancing force F_b = Me1/l1² · perp(A − O1) at A (its
+//! N·mm).
+//!
+//! A standing crank (ω1 = 0, a static analysis, with ε1 or without) has no velocity
+//! polygon: every image is the pole and the quotient is 0/0. The lever is then drawn with
+//! virtual velocities, the polygon of the crank turning at 1 rad/s in the same position
+//! (every velocity is ω1 times its value there, so the images are the real ones scaled by
+//! 1/ω1 wherever ω1 ≠ 0), and the loads of the real state (ε1's inertia forces, the
+//! weights, the external loads); the principle of virtual work gives
+//! `Me1 = −Σ F_i·v_i*` (per rad/s of the virtual crank speed): the statics' Me1 without
+//! dividing by zero. Me1 is equivalently a balancing force F_b = Me1/l1² · perp(A − O1) at A (its
 //! moment about O1 is Me1); on the lever at a it closes the sum: Σ M_p + M_p(F_b) = 0.
 
 use super::Geometry;
@@ -61,9 +70,12 @@ pub struct Lever {
     pub forces: Vec<LeverForce>,
     /// Σ M_p(F_i), N·(length unit)/s.
     pub moment: f64,
-    /// Me1_J = −Σ M_p / ω1, N·(length unit), counter-clockwise positive; `None` when
-    /// ω1 = 0 (the lever has no length: the velocity polygon is a point).
+    /// Me1_J = −Σ M_p / ω, N·(length unit), counter-clockwise positive, ω the
+    /// [`Lever::crank_speed`]; `None` when ω1 is not finite.
     pub me1: Option<f64>,
+    /// The crank speed the polygon is drawn for, rad/s: ω1, or 1 for a standing crank
+    /// (ω1 = 0: virtual velocities, see the module's docs).
+    pub crank_speed: f64,
     /// The balancing force at A equivalent to Me1_J (perpendicular to O1A), N.
     pub balancing: Option<LeverForce>,
 }
@@ -72,6 +84,14 @@ pub struct Lever {
 /// [`loads`] (with `dynamics`), applied at the images of their points.
 pub fn lever(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynamics, omega1: f64) -> Lever {
     let l = loads(geom, pos, kin, dynamics);
+    // A standing crank: the virtual velocities of the crank turning at 1 rad/s (the loads
+    // stay the real state's). The position is assembled and not singular (`kin` exists),
+    // so its kinematics at any crank speed exist too.
+    let virtual_kin = (omega1 == 0.0).then(|| super::kinematics::kinematics(geom, pos, 1.0).ok()).flatten();
+    let (kin, crank_speed) = match &virtual_kin {
+        Some(k) => (k, 1.0),
+        None => (kin, omega1),
+    };
     let (v_a, v_b, v_m) = (kin.v_a, kin.v_b, kin.v_m);
     // Centroids: midpoints of O1A, AB, BM, CB (O1 and C at rest), plus ω × offset for a
     // centroid the scene puts off the middle (the offset term only then: bit-identical
@@ -165,14 +185,14 @@ pub fn lever(geom: &Geometry, pos: &Position, kin: &Kinematics, dynamics: &Dynam
     }
     // Summed in a fixed order: the same lever gives the same number.
     let moment: f64 = forces.iter().map(|f| f.moment).sum();
-    let me1 = (omega1 != 0.0 && omega1.is_finite()).then(|| -moment / omega1);
+    let me1 = (crank_speed != 0.0 && crank_speed.is_finite()).then(|| -moment / crank_speed);
     let balancing = me1.map(|me1| {
         let r1 = pos.a - geom.o1;
         let force = perp(r1) * (me1 / r1.norm_squared());
         let image = rotate(v_a);
         LeverForce { name: "Fb".into(), at: "a", image, force, moment: cross(image, force) }
     });
-    Lever { points, forces, moment, me1, balancing }
+    Lever { points, forces, moment, me1, crank_speed, balancing }
 }
 
 /// The image point named `name` of `lever` (relative to the pole), if it has one.
@@ -235,13 +255,32 @@ mod tests {
         assert!(worst <= 1e-9 * largest, "worst {worst} of {largest}");
     }
 
+    /// Issue 28 item 3: at ω1 = 0 the lever gave Me1 = −0/0 = NaN. With virtual velocities
+    /// it gives the statics' Me1 (the reactions route, which divides by nothing), with and
+    /// without a crank's angular acceleration, at every position.
     #[test]
-    fn a_standing_crank_has_no_lever() {
+    fn a_standing_crank_gives_the_statics_me1_by_virtual_velocities() {
+        use crate::solve::fourbar::kinematics_eps;
         let (g, d) = template();
-        let p = position(&g, 1.0, Side::Left).unwrap();
-        let kin = kinematics(&g, &p, 0.0).unwrap();
-        let lever = lever(&g, &p, &kin, &d, 0.0);
-        assert_eq!(lever.me1, None);
-        assert!(lever.balancing.is_none());
+        for eps1 in [0.0, 150.0] {
+            let mut largest = 0.0f64;
+            let mut worst = 0.0f64;
+            for k in 0..360 {
+                let p = position(&g, f64::from(k).to_radians(), Side::Left).unwrap();
+                let kin = kinematics_eps(&g, &p, 0.0, eps1).unwrap();
+                let me1 = forces(&g, &p, &kin, &d).unwrap().me1;
+                let lever = lever(&g, &p, &kin, &d, 0.0);
+                assert_eq!(lever.crank_speed, 1.0);
+                let j = lever.me1.unwrap();
+                assert!(j.is_finite(), "{k}°");
+                worst = worst.max((j - me1).abs());
+                largest = largest.max(me1.abs());
+                // The balancing force still closes the lever.
+                let b = lever.balancing.as_ref().unwrap();
+                assert!((lever.moment + b.moment).abs() <= 1e-12 * lever.moment.abs().max(1.0), "{k}°");
+            }
+            assert!(largest > 0.1, "the loads act: Me1 up to {largest} N·m");
+            assert!(worst <= 1e-9 * largest, "ε1 = {eps1}: worst {worst} of {largest}");
+        }
     }
 }

@@ -252,13 +252,14 @@ struct GapBuilder {
 
 impl GapBuilder {
     fn skip(&mut self, deg: f64, reason: GapReason, limits: &[LimitAngle]) {
-        if let Some(g) = &mut self.open {
-            if g.reason == reason && !matches!(reason, GapReason::Singular | GapReason::Coincident) {
-                g.last_skipped_deg = deg;
-                g.to_deg = deg;
-                g.skipped += 1;
-                return;
-            }
+        if let Some(g) = &mut self.open
+            && g.reason == reason
+            && !matches!(reason, GapReason::Singular | GapReason::Coincident)
+        {
+            g.last_skipped_deg = deg;
+            g.to_deg = deg;
+            g.skipped += 1;
+            return;
         }
         self.close(None, limits);
         let from_deg = match (reason, self.prev_ok_deg) {

@@ -49,6 +49,10 @@ pub fn gamma_min(positions: &[Position]) -> Option<GammaMin> {
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::geom::Side;

@@ -2228,6 +2228,10 @@ fn equilibrate(a: &mut [f64], k: usize, rows: &[usize], row_scale: &[f64], l: f6
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::super::{Body, Driver, GROUND_POSE, Joint};
     use super::*;

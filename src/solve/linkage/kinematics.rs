@@ -747,7 +747,7 @@ impl Solver {
         let colscale: Vec<f64> = (0..n).map(|c| if c % 3 == 2 { 1.0 } else { l }).collect();
         let mut jac = vec![0.0; n * n];
         let mut mu = 1e-3;
-        let cost = |s: &Solver| s.phi.iter().zip(&s.row_scale).map(|(p, sc)| (p / sc).powi(2)).sum::<f64>();
+        let cost = |s: &Solver| s.phi.iter().zip(&s.row_scale).map(|(p, sc)| (p / sc) * (p / sc)).sum::<f64>();
         self.residual();
         let mut f = cost(self);
         for _ in 0..MAX_ASSEMBLY_ITERATIONS {
@@ -884,7 +884,7 @@ impl Solver {
     /// (`cols` unchanged) when Φq is singular there. Leaves the solver at `q`.
     pub fn solve_jacobian_at(&mut self, q: &[f64], cols: &mut [f64]) -> bool {
         let n = self.n;
-        if q.len() != n || n == 0 || cols.len() % n != 0 {
+        if q.len() != n || n == 0 || !cols.len().is_multiple_of(n) {
             return false;
         }
         self.q.copy_from_slice(q);
@@ -1103,7 +1103,7 @@ pub(super) fn whole_law(d: &super::Driver, t: f64) -> Result<(f64, f64, f64), Li
 fn not_finite(d: &super::Driver, t: f64, j: crate::solve::expr::Jet) -> LinkageError {
     LinkageError::DriverNotFinite {
         driver: d.name.clone(),
-        law: d.law.source().to_string(),
+        law: crate::text::excerpt(d.law.source()),
         t,
         value: j.value,
         d1: j.d1,
@@ -1112,6 +1112,10 @@ fn not_finite(d: &super::Driver, t: f64, j: crate::solve::expr::Jet) -> LinkageE
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::super::{Body, Driver, Joint};
     use super::*;

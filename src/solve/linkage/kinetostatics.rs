@@ -71,7 +71,7 @@ impl LoadValue {
     pub fn text(&self) -> String {
         match self {
             LoadValue::Number(v) => v.to_string(),
-            LoadValue::Law(e) => e.source().to_string(),
+            LoadValue::Law(e) => crate::text::excerpt(e.source()),
         }
     }
 }

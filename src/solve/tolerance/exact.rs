@@ -153,7 +153,7 @@ mod tests {
             .map(|_| {
                 let e: i32 = rng.random_range(-40..20);
                 let m: f64 = rng.random::<f64>() - 0.5;
-                m * 2f64.powi(e)
+                m * crate::geom::powi(2.0, e)
             })
             .collect();
         let (mut a, mut b, mut h1, mut h2) = (ExactSum::new(), ExactSum::new(), ExactSum::new(), ExactSum::new());
@@ -167,7 +167,7 @@ mod tests {
         assert_eq!(a.digits(), h2.digits());
         // Against a sum in i128 fixed point (every value is a multiple of 2^-93 here and
         // the total stays far below 2^127 units).
-        let unit = 2f64.powi(-93);
+        let unit = crate::geom::powi(2.0, -93);
         let fixed: i128 = xs.iter().map(|&x| (x / unit) as i128).sum();
         let want = fixed as f64 * unit;
         assert_eq!(a.value(), want);
@@ -195,9 +195,9 @@ mod tests {
         // 1 + 2^-53 is a tie: it rounds to 1 (even); a tiny bit more rounds up.
         let mut s = ExactSum::new();
         s.add(1.0);
-        s.add(2f64.powi(-53));
+        s.add(crate::geom::powi(2.0, -53));
         assert_eq!(s.value(), 1.0);
-        s.add(2f64.powi(-200));
+        s.add(crate::geom::powi(2.0, -200));
         assert_eq!(s.value(), 1.0 + f64::EPSILON);
     }
 }

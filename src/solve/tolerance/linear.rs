@@ -46,7 +46,7 @@ pub fn stack(s: &[f64], dims: &[Dimension]) -> Linear {
     for (si, d) in s.iter().zip(dims) {
         shift += si * d.mid();
         wc += si.abs() * d.half();
-        var += (si * d.sigma()).powi(2);
+        var += (si * d.sigma()) * (si * d.sigma());
     }
     let shares = s
         .iter()
@@ -57,7 +57,7 @@ pub fn stack(s: &[f64], dims: &[Dimension]) -> Linear {
                 sensitivity: *si,
                 worst_case: w,
                 pct_worst_case: if wc > 0.0 { 100.0 * w / wc } else { 0.0 },
-                pct_variance: if var > 0.0 { 100.0 * (si * d.sigma()).powi(2) / var } else { 0.0 },
+                pct_variance: if var > 0.0 { 100.0 * (si * d.sigma()) * (si * d.sigma()) / var } else { 0.0 },
             }
         })
         .collect();

@@ -107,7 +107,8 @@ fn closure(triad: &Triad, m: C) -> (Trig, f64) {
     let y = c1.mul(&a2).sub(&c2.mul(&a1));
     let dd = a1.mul(&b2).sub(&a2.mul(&b1));
     let f = x.mul(&x).add(&y.mul(&y)).sub(&dd.mul(&dd));
-    let size = x.magnitude().powi(2) + y.magnitude().powi(2) + dd.magnitude().powi(2);
+    let (mx, my, md) = (x.magnitude(), y.magnitude(), dd.magnitude());
+    let size = mx * mx + my * my + md * md;
     (f, size)
 }
 

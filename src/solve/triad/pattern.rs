@@ -152,6 +152,10 @@ pub fn pattern(triad: &Triad, opts: &PatternOptions) -> Result<PatternSolution, 
 }
 
 #[cfg(test)]
+#[allow(
+    clippy::disallowed_methods,
+    reason = "expected values and test data from std's math: independent of the libm the code under test calls"
+)]
 mod tests {
     use super::*;
     use crate::solve::triad::tests::seed;
