@@ -159,6 +159,54 @@ fn nominal_values<M: Model>(model: &M, nominal_channels: &[f64], comps: &[Compon
     out
 }
 
+/// What every kind's study computes alike: the linear stack-up, the dead-point notes, the
+/// Monte Carlo (`chunks` of it; all of them for `None`) and the components' nominal values.
+struct Analysis {
+    dims: Vec<Dimension>,
+    linear: Vec<Option<Vec<Linear>>>,
+    dead: Vec<Option<String>>,
+    mc: MonteCarlo,
+    nominal: Vec<f64>,
+}
+
+impl Analysis {
+    /// A study of it (its name, axis, components and figures' parts still to be set).
+    fn into(self, settings: Settings) -> Study {
+        Study {
+            name: String::new(),
+            units: Units::Si,
+            axis: Axis { column: "", symbol: "", unit: "", values: Vec::new() },
+            dims: self.dims,
+            comps: Vec::new(),
+            nominal: self.nominal,
+            linear: self.linear,
+            dead: self.dead,
+            mc: self.mc,
+            settings,
+            paths: Vec::new(),
+            sketch: Vec::new(),
+            labels: Vec::new(),
+        }
+    }
+}
+
+/// The [`Analysis`] of `model` (nominal channel values `nominal`).
+fn analyse<M: crate::solve::tolerance::Sensitive>(
+    model: &M,
+    nominal: &[f64],
+    dims: &[Dimension],
+    comps: &[Component],
+    s: &Settings,
+    chunks: Option<Range<u64>>,
+) -> Analysis {
+    let linear = linear_all(model, dims, comps);
+    let dead = dead_points(model, dims, &linear);
+    let rs = ranges(&linear, comps.len());
+    let chunks = chunks.unwrap_or(0..chunk_count(s.samples));
+    let mc = monte_carlo::run(model, dims, comps, &rs, s.bins, s.samples, s.seed, chunks);
+    Analysis { dims: dims.to_vec(), linear, dead, mc, nominal: nominal_values(model, nominal, comps) }
+}
+
 /// The study of a four-bar scene: `chunks` of its Monte Carlo (all of them for a whole run,
 /// a shard's share, or none for a merge).
 pub(crate) fn fourbar(
@@ -170,34 +218,24 @@ pub(crate) fn fourbar(
     let g = scene.spec.geometry;
     let model = FourbarModel::new(g, positions, tol.study.params.clone(), tol.outputs.clone());
     let (comps, paths) = fourbar_components(&model);
-    let dims = tol.study.dims.clone();
-    let linear = linear_all(&model, &dims, &comps);
-    let dead = dead_points(&model, &dims, &linear);
-    let rs = ranges(&linear, comps.len());
-    let s = &tol.study.settings;
-    let chunks = chunks.unwrap_or(0..chunk_count(s.samples));
-    let mc = monte_carlo::run(&model, &dims, &comps, &rs, s.bins, s.samples, s.seed, chunks);
-    let nominal = nominal_values(&model, model.nominal(), &comps);
+    let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     let sketch = positions.first().map(|p| vec![(g.o1, p.a), (p.a, p.b), (p.b, p.m), (g.c, p.b)]).unwrap_or_default();
+    let axis = Axis {
+        column: "phi1_deg",
+        symbol: "φ1",
+        unit: "°",
+        values: positions.iter().map(|p| p.phi1.to_degrees()).collect(),
+    };
+    let settings = tol.study.settings.clone();
     Some(Study {
         name: scene.name.clone(),
         units: scene.units,
-        axis: Axis {
-            column: "phi1_deg",
-            symbol: "φ1",
-            unit: "°",
-            values: positions.iter().map(|p| p.phi1.to_degrees()).collect(),
-        },
-        dims,
+        axis,
         comps,
-        nominal,
-        linear,
-        dead,
-        mc,
-        settings: s.clone(),
         paths,
         sketch,
         labels: Vec::new(),
+        ..a.into(settings)
     })
 }
 
@@ -221,14 +259,7 @@ pub(crate) fn linkage(
         })
         .collect();
     let (comps, paths) = components(&watched, model.nominal(), model.channels());
-    let dims = tol.study.dims.clone();
-    let linear = linear_all(&model, &dims, &comps);
-    let dead = dead_points(&model, &dims, &linear);
-    let rs = ranges(&linear, comps.len());
-    let s = &tol.study.settings;
-    let chunks = chunks.unwrap_or(0..chunk_count(s.samples));
-    let mc = monte_carlo::run(&model, &dims, &comps, &rs, s.bins, s.samples, s.seed, chunks);
-    let nominal = nominal_values(&model, model.nominal(), &comps);
+    let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     // The mechanism at its first position: each body's outline.
     let mut sketch = Vec::new();
     if let Some(st) = model.states().first() {
@@ -239,20 +270,18 @@ pub(crate) fn linkage(
             }
         }
     }
+    let axis = Axis { column: "t", symbol: "t", unit: "s", values: scene.times.clone() };
+    let labels = tol.study.dims.iter().map(|d| chart_label(scene, &d.name)).collect();
+    let settings = tol.study.settings.clone();
     Ok(Some(Study {
         name: scene.name.clone(),
         units: scene.units,
-        axis: Axis { column: "t", symbol: "t", unit: "s", values: scene.times.clone() },
-        dims,
+        axis,
         comps,
-        nominal,
-        linear,
-        dead,
-        mc,
-        settings: s.clone(),
         paths,
         sketch,
-        labels: tol.study.dims.iter().map(|d| chart_label(scene, &d.name)).collect(),
+        labels,
+        ..a.into(settings)
     }))
 }
 
