@@ -287,8 +287,8 @@ fn cold(
     }) / n;
     let refit = worst(&q);
     vec![
-        Measurement::new(problem, "Assur groups, cold", "new", ns_new, fresh.0, fresh.1),
-        Measurement::new(problem, "Assur groups, cold", "refit", ns_refit, refit.0, refit.1),
+        Measurement::new(problem, "Assur groups (cold)", "new", ns_new, fresh.0, fresh.1),
+        Measurement::new(problem, "Assur groups (cold)", "refit", ns_refit, refit.0, refit.1),
     ]
 }
 
