@@ -26,7 +26,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     };
     let motion = solve_motion(&s.spec)?;
     let geom = &s.spec.geometry;
-    let show = Show { velocity: true, acceleration: true, forces: forces && !motion.forces.is_empty() };
+    let show =
+        Show { velocity: true, acceleration: true, forces: forces && !motion.forces.is_empty(), ..Show::default() };
     let force_of = |i: usize| motion.forces.get(i).filter(|_| show.forces);
     let external = s.spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
     let layout =
@@ -40,7 +41,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     for deg in degs {
         // The template turns the crank in 1° steps from 0°: position i is at i degrees.
         let Some(pos) = motion.positions.get(deg) else { continue };
-        let frame = layout.frame(&base, &layout.moving(geom, pos, force_of(deg)));
+        let frame = layout.frame(&base, &layout.moving(deg, geom, pos, force_of(deg)));
         let png = raster::to_png(&svg::to_string(&frame, &opts), width)?;
         let file = dir.join(format!("{stem}-{deg}.png"));
         std::fs::write(&file, png)?;

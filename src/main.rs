@@ -291,6 +291,7 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 positions,
                 sets: set.clone(),
                 picture_only: false,
+                held_scales: Vec::new(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
             finish(outcome, &out, json, quiet, verbose)

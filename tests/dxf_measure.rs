@@ -80,23 +80,31 @@ fn texts<'a>(dxf: &'a Value, layer: &str) -> Vec<&'a str> {
 /// The scale printed as `key = value unit/mm` on the position's layer, or else on a layer
 /// every position shares (not `POS_…`): (value, unit).
 fn printed_scale(dxf: &Value, layer: &str, key: &str) -> (f64, String) {
+    printed_scales(dxf, layer, key).swap_remove(0)
+}
+
+/// Every scale `key = value unit/mm` printed on the position's `layer` (each force figure
+/// states its own k_f), then those every position shares; at least one.
+fn printed_scales(dxf: &Value, layer: &str, key: &str) -> Vec<(f64, String)> {
     let needle = format!("{key} = ");
     let find = |t: &str| -> Option<(f64, String)> {
         let after = t.split(&needle).nth(1)?;
         let (value, rest) = after.split_once(' ')?;
-        let unit = rest.strip_suffix("/mm")?;
+        // The unit up to its `/mm` (a caption may state a second scale after it).
+        let (unit, _) = rest.split_once("/mm")?;
         Some((value.parse().ok()?, unit.to_string()))
     };
-    let own = texts(dxf, layer).into_iter().find_map(find);
-    own.or_else(|| {
+    let mut all: Vec<(f64, String)> = texts(dxf, layer).into_iter().filter_map(find).collect();
+    all.extend(
         dxf["texts"]
             .as_array()
             .unwrap()
             .iter()
             .filter(|t| !t["layer"].as_str().unwrap().starts_with("POS_"))
-            .find_map(|t| find(t["text"].as_str().unwrap()))
-    })
-    .unwrap_or_else(|| panic!("no `{key} = …/mm` in the DXF"))
+            .filter_map(|t| find(t["text"].as_str().unwrap())),
+    );
+    assert!(!all.is_empty(), "no `{key} = …/mm` in the DXF");
+    all
 }
 
 /// The position layer whose label text is `label` (`φ1 = 30°`, `t = 0.0156 s`).
@@ -123,16 +131,19 @@ fn arrows(dxf: &Value, layer: &str, colors: &[i64]) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// Some arrow of `layer` in `colors`, times `k`, is the vector `want` (relative [`REL_TOL`]).
-fn assert_measured(dxf: &Value, layer: &str, colors: &[i64], k: f64, want: (f64, f64), what: &str) {
+/// Some arrow of `layer` in `colors`, times one of the printed `ks` (its figure's), is the
+/// vector `want` (relative [`REL_TOL`]).
+fn assert_measured(dxf: &Value, layer: &str, colors: &[i64], ks: &[f64], want: (f64, f64), what: &str) {
     let size = libm::hypot(want.0, want.1);
     assert!(size > 0.0, "{what}: a zero vector measures nothing");
     let found = arrows(dxf, layer, colors);
-    let best =
-        found.iter().map(|(x, y)| libm::hypot(k * x - want.0, k * y - want.1) / size).fold(f64::INFINITY, f64::min);
+    let best = ks
+        .iter()
+        .flat_map(|k| found.iter().map(move |(x, y)| libm::hypot(k * x - want.0, k * y - want.1) / size))
+        .fold(f64::INFINITY, f64::min);
     assert!(
         best <= REL_TOL,
-        "{what}: no arrow on {layer} measures {want:?} at the printed k = {k} (nearest off by {best:e} relative; {} arrows)",
+        "{what}: no arrow on {layer} measures {want:?} at a printed k of {ks:?} (nearest off by {best:e} relative; {} arrows)",
         found.len()
     );
 }
@@ -186,15 +197,18 @@ fn check(case: &Case) {
     assert_joint(&dxf, &layer, k_l, (col(jx), jy.map_or(0.0, col)), &format!("{tag}: joint {jx}"));
 
     for (x, y, colors, key) in &case.vectors {
-        let (k, unit) = printed_scale(&dxf, &layer, key);
+        let printed = printed_scales(&dxf, &layer, key);
         let want_unit = match *key {
             "k_v" => format!("({}/s)", case.len),
             "k_a" => format!("({}/s²)", case.len),
             _ => "N".to_string(),
         };
-        assert_eq!(unit, want_unit, "{tag}: {key}'s unit");
+        for (_, unit) in &printed {
+            assert_eq!(*unit, want_unit, "{tag}: {key}'s unit");
+        }
+        let ks: Vec<f64> = printed.iter().map(|(k, _)| *k).collect();
         let want = (col(x), y.map_or(0.0, col));
-        assert_measured(&dxf, &layer, colors, k, want, &format!("{tag}: {x} at {key} = {k}"));
+        assert_measured(&dxf, &layer, colors, &ks, want, &format!("{tag}: {x} at {key} of {ks:?}"));
     }
 }
 

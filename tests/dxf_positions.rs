@@ -117,7 +117,11 @@ fn positions_choose_what_a_four_bar_run_draws() {
         v
     };
     assert_eq!(files("frames"), ["pos_000.svg", "pos_090.svg", "pos_180.svg"]);
-    assert_eq!(files("sheets"), ["pos_000.svg", "pos_090.svg", "pos_180.svg"]);
+    let pages: Vec<String> = ["000", "090", "180"]
+        .iter()
+        .flat_map(|p| ["forces", "mechanism", "polygons"].map(|k| format!("pos_{p}-{k}.svg")))
+        .collect();
+    assert_eq!(files("sheets"), pages);
     // The first frame drawn is the first asked for; the CSV keeps every position.
     let svg = std::fs::read_to_string(dir.join("fourbar-chebyshev.svg")).unwrap();
     assert!(svg.contains("φ1 = 90°"), "the picture is the first position asked for");

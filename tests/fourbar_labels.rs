@@ -13,7 +13,7 @@
 mod common;
 
 use mechdraw::draw::{Drawing, HAlign, Shape};
-use mechdraw::figure::fourbar::{Layout, ModelUnits, Show};
+use mechdraw::figure::fourbar::{Layout, ModelUnits, Scale, Show};
 use mechdraw::figure::shared::polygon::MARK_RADIUS;
 use mechdraw::geom::{Point, Vector};
 use mechdraw::run::RunOptions;
@@ -31,7 +31,7 @@ fn template(set: &[&str]) -> (Vec<Drawing>, MotionSpec, Motion, Layout) {
     let frames = (0..a.len()).map(|k| a.frame_of(&a.pose(k))).collect();
     let Scene::Fourbar(s) = loaded.scene else { panic!("not a four-bar") };
     let motion = solve_motion(&s.spec).unwrap();
-    let show = Show { velocity: true, acceleration: true, forces: true };
+    let show = Show { velocity: true, acceleration: true, forces: true, ..Show::default() };
     let layout = Layout::new(&s.spec.geometry, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
     (frames, s.spec, motion, layout)
 }
@@ -112,19 +112,19 @@ fn every_force_is_named_in_every_frame() {
     }
 }
 
-/// Drawn units per physical unit of `scale` (the model is drawn 1:1 in metres).
-fn per_unit(layout: &Layout, v: Vector, which: usize) -> Vector {
-    let (s, _) = [layout.frame.velocity, layout.frame.acceleration, layout.frame.forces][which].unwrap();
-    s.draw(v)
+/// The scale and pole of the velocity (`which` 0) or acceleration (1) polygon at position
+/// `k` (each frame has its own).
+fn place(layout: &Layout, k: usize, pos: &mechdraw::solve::fourbar::Position, which: usize) -> (Scale, Point) {
+    let (v, a) = layout.polygon_places(k, pos);
+    [v, a][which].unwrap()
 }
 
 #[test]
 fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
     let (frames, spec, motion, layout) = template(&[]);
-    let (_, pole) = layout.frame.acceleration.unwrap();
     let s = layout.frame.sizes;
-    let (sa, _) = layout.frame.acceleration.unwrap();
-    for (d, pos) in frames.iter().zip(&motion.positions) {
+    for (i, (d, pos)) in frames.iter().zip(&motion.positions).enumerate() {
+        let (sa, pole) = place(&layout, i, pos, 1);
         let k = pos.kin.unwrap();
         let acc = d.layers.iter().position(|l| l.name == "ACCELERATION").unwrap();
         let marks: Vec<Point> = d
@@ -140,7 +140,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
             })
             .collect();
         assert_eq!(marks.len(), 4, "{:?}", pos.phi1.to_degrees());
-        let at = |v: Vector| pole + per_unit(&layout, v, 1);
+        let at = |v: Vector| pole + sa.draw(v);
         // The seed's construction: c1′ the middle of πa′ (G1 the middle of O1A), c21′ of a′b′,
         // c22′ of b′m′, c3′ of πb′ (G3 the middle of CB, C fixed); from the drawn a′, b′, m′.
         let (a1, b1, m1) = (at(k.a_a), at(k.a_b), at(k.a_m));
@@ -159,7 +159,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
         }
         // Each has its letter.
         let names: Vec<String> = texts(d).into_iter().filter(|t| t.layer == "ACCELERATION").map(|t| t.value).collect();
-        for n in ["c1'", "c21'", "c22'", "c3'"] {
+        for n in ["c1′", "c21′", "c22′", "c3′"] {
             assert!(names.iter().any(|x| x.split('≡').any(|p| p == n)), "no {n} in {names:?}");
         }
     }
@@ -169,7 +169,7 @@ fn centroid_images_lie_at_the_solvers_centroid_accelerations() {
 #[test]
 fn the_table_of_magnitudes_prints_the_solvers_values() {
     let (frames, _, motion, layout) = template(&[]);
-    let ff = layout.frame.force_figures.as_ref().unwrap();
+    let ff = layout.frame.forces.as_ref().unwrap();
     for (d, f) in frames.iter().zip(&motion.forces) {
         let t = texts(d);
         // Rows: a left-aligned name and a right-aligned "value unit" on one baseline.
@@ -209,14 +209,14 @@ fn a_ternary_couplers_images_are_closed_triangles() {
     // M off the line AB (α = 150°): the velocity image abm and the acceleration image a′b′m′
     // are triangles, all three sides drawn.
     let (frames, _, motion, layout) = template(&["alpha_deg=150", "phi1_deg.step=45"]);
-    for (d, pos) in frames.iter().zip(&motion.positions) {
+    for (i, (d, pos)) in frames.iter().zip(&motion.positions).enumerate() {
         let k = pos.kin.unwrap();
         for (which, layer, [a, b, m]) in
             [(0, "VELOCITY", [k.v_a, k.v_b, k.v_m]), (1, "ACCELERATION", [k.a_a, k.a_b, k.a_m])]
         {
-            let pole = [layout.frame.velocity, layout.frame.acceleration][which].unwrap().1;
+            let (scale, pole) = place(&layout, i, pos, which);
             let l = d.layers.iter().position(|x| x.name == layer).unwrap();
-            let at = |v: Vector| pole + per_unit(&layout, v, which);
+            let at = |v: Vector| pole + scale.draw(v);
             let segs: Vec<(Point, Point)> = d
                 .entities
                 .iter()
@@ -241,10 +241,10 @@ fn a_ternary_couplers_images_are_closed_triangles() {
 fn the_velocity_polygon_shows_the_directions_that_locate_b() {
     // ⊥AB through a, ⊥BC through p: dashed lines through b on the construction layer.
     let (frames, spec, motion, layout) = template(&["phi1_deg.step=30"]);
-    let (_, pole) = layout.frame.velocity.unwrap();
-    for (d, pos) in frames.iter().zip(&motion.positions) {
+    for (i, (d, pos)) in frames.iter().zip(&motion.positions).enumerate() {
+        let (sv, pole) = place(&layout, i, pos, 0);
         let k = pos.kin.unwrap();
-        let (a, b) = (pole + per_unit(&layout, k.v_a, 0), pole + per_unit(&layout, k.v_b, 0));
+        let (a, b) = (pole + sv.draw(k.v_a), pole + sv.draw(k.v_b));
         let con = d.layers.iter().position(|x| x.name == "CONSTRUCTION").unwrap();
         let lines: Vec<(Point, Point)> = d
             .entities

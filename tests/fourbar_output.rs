@@ -411,6 +411,7 @@ fn json_has_the_documented_keys_and_matches_the_csv() {
         "aM_mag",
         "Me1",
         "me1_joukowski",
+        "scales",
     ];
     for k in keys {
         assert!(doc.contains(&format!("`{k}`")), "position key {k} is not documented");

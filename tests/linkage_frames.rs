@@ -108,7 +108,8 @@ fn frames_draw_the_polygons_at_the_printed_scales() {
         let paper = d.paper_mm_per_unit.unwrap();
         let k_v = printed_scale(&d, "Velocity polygon", "k_v");
         let k_a = printed_scale(&d, "Acceleration polygon", "k_a");
-        let k_f = printed_scale(&d, "Force polygons", "k_f");
+        // Each force figure has its own scale, in its caption: R_A is found in the dyad's.
+        let k_f = printed_scale(&d, "Dyad 2–3 (RRP)", "k_f");
         // Some velocity arrow from the pole measures |v_A| at k_v, another |v_B| …
         let measured = |layer: &str, k: f64| -> Vec<f64> {
             arrows(&d, layer).iter().map(|(a, b)| (b - a).norm() * paper * k).collect()
@@ -119,7 +120,7 @@ fn frames_draw_the_polygons_at_the_printed_scales() {
         let st = &states[k];
         has(&measured("VELOCITY", k_v), st.velocity(crank_pin).norm(), "|v_A|");
         has(&measured("ACCELERATION", k_a), st.acceleration(crank_pin).norm(), "|a_A|");
-        // The reaction at the crank pin, on the mechanism and in the polygons, at k_f.
+        // The reaction at the crank pin in the dyad's polygon, at its k_f.
         let joint_a = s.mechanism.joints.iter().position(|j| j.name == "A").unwrap();
         has(&measured("FORCES", k_f), forces[k].reactions[joint_a].force.norm(), "|R_A|");
     }
@@ -172,7 +173,7 @@ fn slider_crank_forces_frame_golden_png() {
     not(feature = "system-tools"),
     ignore = "needs poppler-utils (pdftotext): bash .ci/test, or cargo test --features system-tools"
 )]
-fn linkage_sheets_have_a_page_per_sample_at_measured_scales() {
+fn linkage_sheets_have_a_page_set_per_sample_at_measured_scales() {
     let over: Vec<mechdraw::scene::Override> = ["time.steps=12".parse().unwrap()].to_vec();
     let l = scene::load(&common::root().join("templates/slider-crank.toml"), &over).unwrap();
     let Scene::Linkage(s) = &l.scene else { panic!() };
@@ -183,31 +184,56 @@ fn linkage_sheets_have_a_page_per_sample_at_measured_scales() {
         ..RunOptions::default()
     };
     let p = products(&l, &opts).unwrap();
-    assert_eq!(p.pages.len(), 13);
+    // The mechanism, the polygons and the forces of each of the 13 samples.
+    assert_eq!(p.pages.len(), 39);
     let (states, forces) = kinetostatics(s);
     let crank_pin = Anchor { body: Attach::Body(0), local: Vector::new(110.0, 0.0) };
-    for (k, page) in p.pages.iter().enumerate() {
-        let d = &page.drawing;
-        assert_eq!(d.paper_mm_per_unit, Some(1.0));
+    for (k, set) in p.pages.chunks(3).enumerate() {
+        let stems: Vec<&str> = set.iter().map(|g| g.stem.rsplit('-').next().unwrap()).collect();
+        assert_eq!(stems, ["mechanism", "polygons", "forces"]);
+        for page in set {
+            assert_eq!(page.drawing.paper_mm_per_unit, Some(1.0));
+        }
         // The page's own scales, in its panels' titles; measured in paper mm.
-        let k_v = printed_scale(d, "Velocity polygon", "k_v");
-        let k_f = printed_scale(d, "Force polygons", "k_f");
-        let measured =
-            |layer: &str, k: f64| -> Vec<f64> { arrows(d, layer).iter().map(|(a, b)| (b - a).norm() * k).collect() };
+        let measured = |d: &Drawing, layer: &str, k: f64| -> Vec<f64> {
+            arrows(d, layer).iter().map(|(a, b)| (b - a).norm() * k).collect()
+        };
+        let k_v = printed_scale(&set[1].drawing, "Velocity polygon", "k_v");
         let want = states[k].velocity(crank_pin).norm();
-        assert!(measured("VELOCITY", k_v).iter().any(|g| (g - want).abs() <= 1e-9 * want), "page {k}: |v_A|");
+        assert!(
+            measured(&set[1].drawing, "VELOCITY", k_v).iter().any(|g| (g - want).abs() <= 1e-9 * want),
+            "{k}: |v_A|"
+        );
+        // R_A found in the RRP dyad's figure, at its own k_f.
+        let k_f = printed_scale(&set[2].drawing, "Dyad 2–3 (RRP)", "k_f");
         let joint_a = s.mechanism.joints.iter().position(|j| j.name == "A").unwrap();
         let want = forces[k].reactions[joint_a].force.norm();
-        assert!(measured("FORCES", k_f).iter().any(|g| (g - want).abs() <= 1e-9 * want), "page {k}: |R_A|");
+        assert!(measured(&set[2].drawing, "FORCES", k_f).iter().any(|g| (g - want).abs() <= 1e-9 * want), "{k}: |R_A|");
     }
-    // The PDF: one page per sample, its time and the sheet number on it.
+    // The PDF: three pages per sample, its time and the sheet number on each.
     mechdraw::run::run(&l, &opts).unwrap();
     let pdf = tmp.path().join("slider-crank-sheets.pdf");
-    let out =
-        std::process::Command::new("pdftotext").args(["-f", "4", "-l", "4", "-layout"]).arg(&pdf).arg("-").output();
-    let text = String::from_utf8_lossy(&out.expect("run pdftotext (poppler-utils)").stdout).to_string();
+    let page = |n: usize| {
+        let out = std::process::Command::new("pdftotext")
+            .args(["-f", &n.to_string(), "-l", &n.to_string(), "-layout"])
+            .arg(&pdf)
+            .arg("-")
+            .output();
+        String::from_utf8_lossy(&out.expect("run pdftotext (poppler-utils)").stdout).to_string()
+    };
     let t = states[3].t;
-    for want in [format!("t = {t:.4} s"), "sheet 4 of 13".to_string(), "k_l = ".into(), "Me1".into(), "RA".into()] {
-        assert!(text.contains(&want), "page 4 lacks `{want}`:\n{text}");
+    let (mech, forces_page) = (page(10), page(12));
+    for want in [
+        format!("t = {t:.4} s"),
+        "sheet 10 of 39".to_string(),
+        "k_l = ".into(),
+        "Me1".into(),
+        "φ1 = ".into(),
+        "ω1 = ".into(),
+    ] {
+        assert!(mech.contains(&want), "page 10 lacks `{want}`:\n{mech}");
+    }
+    for want in ["sheet 12 of 39", "Crank 1 (driver)", "Dyad 2–3 (RRP)", "RA"] {
+        assert!(forces_page.contains(want), "page 12 lacks `{want}`:\n{forces_page}");
     }
 }

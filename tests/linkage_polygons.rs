@@ -3,7 +3,9 @@
 //! points (as drawn, from the pole) close against the solver's point velocities and
 //! accelerations, the per-body normal/tangential construction closes with ω and ε from the
 //! solver, and the shaper's Coriolis component is 2·ω3 × v_rel; the four-bar-as-linkage's
-//! velocity polygon has the points of the four-bar kind's closed form.
+//! velocity polygon has the points of the four-bar kind's closed form; the image principle:
+//! one point constructed per body, the others the vertices of an image similar to the
+//! body (a_X − a_R = (−ω² + ε·J)·RX for every point of it).
 
 #![allow(
     clippy::disallowed_methods,
@@ -64,7 +66,7 @@ fn shaper_polygons_close_at_every_frame_with_the_coriolis_component() {
             let an = anchor(&m, body, name);
             let l = name.to_lowercase();
             close(at(v, &l), st.velocity(an), vs, &format!("v {l} t={}", st.t));
-            close(at(a, &format!("{l}'")), st.acceleration(an), asc, &format!("a {l} t={}", st.t));
+            close(at(a, &format!("{l}′")), st.acceleration(an), asc, &format!("a {l} t={}", st.t));
         }
         // The sliding velocity: a3 → a is v_rel along the guide (rocker O3B).
         let s = st.sliding(&slide).unwrap();
@@ -76,29 +78,32 @@ fn shaper_polygons_close_at_every_frame_with_the_coriolis_component() {
         let o3a = st.point(point) - st.point(anchor(&m, "rocker", "O3"));
         close(at(v, "a3"), perp(o3a) * w3, vs, "v_A3");
         // Coriolis: π→a3' + k (2 ω3 × v_rel) + a_rel = a'.
-        let k = at(a, "k") - at(a, "a3'");
+        let k = at(a, "k") - at(a, "a3′");
         close(k, perp(s.v_rel) * (2.0 * w3), asc, "a_cor");
         assert!((k.norm() - 2.0 * w3.abs() * s.v_rel.norm()).abs() <= 1e-12 * asc);
-        close(at(a, "a'") - at(a, "k"), s.a_rel, asc, "a_rel");
+        close(at(a, "a′") - at(a, "k"), s.a_rel, asc, "a_rel");
         assert!(s.a_rel.perp(&o3b).abs() <= 1e-9 * asc * o3b.norm());
-        // The rocker's construction from O3: n then the tangential part ε3 × O3B to b' —
-        // left out only when a part vanishes (figure::linkage_polygon::NEGLIGIBLE_REL).
+        // The rocker's construction from O3 at the point under the block (the image
+        // principle: one point per body, meeting the Coriolis construction there): n then
+        // the tangential part ε3 × O3A3 to a3' — left out only when a part vanishes
+        // (figure::linkage::polygon::NEGLIGIBLE_REL); b' is then the image's vertex, on
+        // π a3' at O3B / O3A3 of it, with no construction of its own.
+        assert!(!a.points.iter().any(|p| p.name == "nBO3"), "t={}: B constructed besides A3", st.t);
+        close(at(a, "b′"), at(a, "a3′") * (o3b.norm() / o3a.norm()), asc, "b' by the image");
         let vanishes = |x: f64| x <= 1e-9 * asc;
-        if !a.points.iter().any(|p| p.name == "nBO3") {
-            assert!(vanishes(w3 * w3 * o3b.norm()) || vanishes(e3.abs() * o3b.norm()), "t={}: no nBO3", st.t);
+        if !a.points.iter().any(|p| p.name == "nA3O3") {
+            assert!(vanishes(w3 * w3 * o3a.norm()) || vanishes(e3.abs() * o3a.norm()), "t={}: no nA3O3", st.t);
             skipped += 1;
             continue;
         }
-        let nb = at(a, "nBO3");
-        close(nb, -o3b * (w3 * w3), asc, "a_BO3^n");
-        close(at(a, "b'") - nb, perp(o3b) * e3, asc, "a_BO3^t");
-        close(at(a, "a3'") - at(a, "nA3O3"), perp(o3a) * e3, asc, "a_A3O3^t");
+        close(at(a, "nA3O3"), -o3a * (w3 * w3), asc, "a_A3O3^n");
+        close(at(a, "a3′") - at(a, "nA3O3"), perp(o3a) * e3, asc, "a_A3O3^t");
         // The link BE: from b', normal −ω4²·BE then ε4 × BE to e'.
         let link = Attach::Body(m.bodies.iter().position(|b| b.name == "link").unwrap());
         let (_, w4, e4) = st.angular(link);
         let be = st.point(anchor(&m, "link", "E")) - st.point(anchor(&m, "link", "B"));
-        close(at(a, "nEB") - at(a, "b'"), -be * (w4 * w4), asc, "a_EB^n");
-        close(at(a, "e'") - at(a, "nEB"), perp(be) * e4, asc, "a_EB^t");
+        close(at(a, "nEB") - at(a, "b′"), -be * (w4 * w4), asc, "a_EB^n");
+        close(at(a, "e′") - at(a, "nEB"), perp(be) * e4, asc, "a_EB^t");
     }
     assert!(skipped <= 2, "{skipped} of {} frames without the rocker's construction", states.len());
 }
@@ -143,7 +148,34 @@ fn fourbar_as_linkage_has_the_fourbar_polygon_points() {
             skipped += 1;
             continue;
         }
-        close(at(acc, "nBA") - at(acc, "a'"), -ab * (w2s * w2s), at(acc, "a'").norm(), "a_BA^n");
+        close(at(acc, "nBA") - at(acc, "a′"), -ab * (w2s * w2s), at(acc, "a′").norm(), "a_BA^n");
     }
     assert!(skipped <= 2, "{skipped} of {} frames without the coupler's construction", states.len());
+}
+
+#[test]
+fn one_point_is_constructed_per_body_and_the_others_follow_by_the_image() {
+    let (m, states) = linkage("templates/fourbar-linkage.toml");
+    let coupler = m.bodies.iter().position(|b| b.name == "coupler").unwrap();
+    for st in states.iter().step_by(7) {
+        let p = polygons(&m, st);
+        let a = &p.acceleration;
+        let names: Vec<&str> = a.points.iter().map(|p| p.name.as_str()).collect();
+        // B from A on the coupler (nBA) and from C on the rocker (nBC): the two tangential
+        // directions meet at b'; M is the image's third vertex, not constructed.
+        assert!(names.contains(&"nBA") && names.contains(&"nBC"), "{names:?}");
+        assert!(!names.iter().any(|n| n.starts_with("nM")), "{names:?}");
+        // The image a'b'm' is similar to ABM: the same complex factor −ω² + ε·J for both sides.
+        let (_, w, e) = st.angular(Attach::Body(coupler));
+        let pt = |n: &str| st.point(anchor(&m, "coupler", n));
+        let (ab, am) = (pt("B") - pt("A"), pt("M") - pt("A"));
+        let scale = at(a, "a′").norm().max(at(a, "m′").norm());
+        close(at(a, "b′") - at(a, "a′"), -ab * (w * w) + perp(ab) * e, scale, "a'b'");
+        close(at(a, "m′") - at(a, "a′"), -am * (w * w) + perp(am) * e, scale, "a'm'");
+        // The velocity polygon shows the directions that locate b: ⊥AB through a, ⊥CB through p.
+        let v = &p.velocity;
+        let dirs: Vec<(usize, usize)> = v.directions.iter().map(|d| (d.through, d.reaches)).collect();
+        let idx = |n: &str| v.points.iter().position(|p| p.name == n).unwrap() + 1;
+        assert!(dirs.contains(&(idx("a"), idx("b"))) && dirs.contains(&(0, idx("b"))), "{dirs:?}");
+    }
 }

@@ -199,6 +199,7 @@ fn with_png_every_svg_has_its_png_next_to_it_frames_and_printed_pages_too() {
         let svg = std::str::from_utf8(of(n)).unwrap();
         assert!(of(&png) == &mechdraw::draw::raster::to_png(svg, PNG_WIDTH_PX).unwrap(), "{png}");
     }
-    // 12 positions at a 30° step: a frame and a printed page for each.
-    assert_eq!((frames, pages), (12, 12));
+    // 12 positions at a 30° step: a frame and three printed pages (mechanism, polygons,
+    // forces) for each.
+    assert_eq!((frames, pages), (12, 36));
 }

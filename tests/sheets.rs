@@ -1,10 +1,12 @@
-//! Printed sheets (`--sheets a4|a3`, issue 14 item 3), checked on the template four-bar
-//! every 30° (12 positions): the PDF has one page per position and each page carries its
-//! φ1 (read back with poppler's `pdftotext`); every sheet SVG is 297 × 210 mm (420 × 297);
-//! every polygon fills at least half of its panel's area, measured on the sheet's drawing;
-//! the value table's numbers are the solver's (the JSON records') to the printed digits;
-//! a length measured on a sheet times the scale printed in its panel is the value (k_v × mm
-//! = |v|); the files on disk are the in-memory bytes; a golden PNG of the page at φ1 = 90°.
+//! Printed sheets (`--sheets a4|a3`, issue 14 item 3, issue 31), checked on the template
+//! four-bar every 30° (12 positions): the PDF has a set of three pages per position (the
+//! mechanism, the polygons, the forces) and each page carries its φ1 and what it shows (read
+//! back with poppler's `pdftotext`); every sheet SVG is 297 × 210 mm (420 × 297); every
+//! polygon fills at least half of its panel's area, measured on the sheet's drawing; the
+//! value table's numbers are the solver's (the JSON records') to the printed digits; a
+//! length measured on a sheet times the scale printed in its panel is the value (k_v × mm =
+//! |v|); every panel has a scale bar as long as its value; the files on disk are the
+//! in-memory bytes; golden PNGs of the three pages at φ1 = 90°.
 
 #![allow(
     clippy::disallowed_methods,
@@ -38,6 +40,11 @@ fn products(paper: Paper) -> (scene::Loaded, Products) {
     (l, p)
 }
 
+/// The pages of one kind (`mechanism`, `polygons`, `forces`), in order.
+fn pages_of<'a>(p: &'a Products, kind: &str) -> Vec<&'a mechdraw::run::products::Page> {
+    p.pages.iter().filter(|g| g.stem.ends_with(&format!("-{kind}"))).collect()
+}
+
 /// Crank angles of the run, degrees, as the JSON records give them.
 fn angles(p: &Products) -> Vec<f64> {
     p.summary["positions"].as_array().unwrap().iter().map(|r| r["phi1_deg"].as_f64().unwrap()).collect()
@@ -58,24 +65,33 @@ fn the_pdf_has_a_page_per_position_each_with_its_crank_angle() {
     let info = Command::new("pdfinfo").arg(&pdf).output().expect("run pdfinfo (poppler-utils)");
     let info = String::from_utf8_lossy(&info.stdout);
     let field = |k: &str| info.lines().find_map(|l| l.strip_prefix(k)).map(str::trim).unwrap_or("").to_string();
-    assert_eq!(field("Pages:"), "12", "{info}");
+    assert_eq!(field("Pages:"), "36", "{info}");
     // True size: 297 × 210 mm is 841.89 × 595.276 pt.
     assert!(field("Page size:").starts_with("841.89 x 595.276 pts"), "{info}");
     let products = mechdraw::run::products(&l, &opts).unwrap();
     for (i, deg) in angles(&products).iter().enumerate() {
-        let page = (i + 1).to_string();
-        let out = Command::new("pdftotext")
-            .args(["-f", &page, "-l", &page, "-layout"])
-            .arg(&pdf)
-            .arg("-")
-            .output()
-            .expect("run pdftotext (poppler-utils)");
-        let text = String::from_utf8_lossy(&out.stdout);
-        let want = format!("φ1 = {}°", deg.round() as i64);
-        assert!(text.contains(&want), "page {page} lacks `{want}`:\n{text}");
-        assert!(text.contains(&format!("sheet {page} of 12")), "page {page}:\n{text}");
-        for k in ["k_l = 0.005 m/mm", "k_v = ", "k_a = ", "k_f = ", "ω1 = 20 rad/s", "Me1"] {
-            assert!(text.contains(k), "page {page} lacks `{k}`:\n{text}");
+        for (j, shows) in [
+            &["k_l = 0.0015 m/mm", "ω1 = 20 rad/s", "Me1", "forces k_f = "][..],
+            &["Velocity polygon", "k_v = ", "Acceleration polygon", "k_a = "][..],
+            &["Dyad 2–3", "Crank 1", "k_f = "][..],
+        ]
+        .iter()
+        .enumerate()
+        {
+            let page = (3 * i + j + 1).to_string();
+            let out = Command::new("pdftotext")
+                .args(["-f", &page, "-l", &page, "-layout"])
+                .arg(&pdf)
+                .arg("-")
+                .output()
+                .expect("run pdftotext (poppler-utils)");
+            let text = String::from_utf8_lossy(&out.stdout);
+            let want = format!("φ1 = {}°", deg.round() as i64);
+            assert!(text.contains(&want), "page {page} lacks `{want}`:\n{text}");
+            assert!(text.contains(&format!("sheet {page} of 36")), "page {page}:\n{text}");
+            for k in *shows {
+                assert!(text.contains(k), "page {page} lacks `{k}`:\n{text}");
+            }
         }
     }
 }
@@ -86,8 +102,8 @@ fn sheet_svgs_are_true_size_paper() {
         let (_, p) = products(paper);
         let files = bytes::to_files(&p, &WriteOptions::default()).unwrap();
         let sheets: Vec<&(String, Vec<u8>)> = files.iter().filter(|(n, _)| n.starts_with("sheets/")).collect();
-        assert_eq!(sheets.len(), 12);
-        assert_eq!(sheets[3].0, format!("sheets/{NAME}/pos_090.svg"));
+        assert_eq!(sheets.len(), 36);
+        assert_eq!(sheets[9].0, format!("sheets/{NAME}/pos_090-mechanism.svg"));
         for (n, b) in sheets {
             let s = std::str::from_utf8(b).unwrap();
             let head = &s[..s.find('>').unwrap()];
@@ -140,12 +156,12 @@ fn drawn_extent(d: &Drawing, layer: &str) -> Option<Bounds> {
 fn every_polygon_fills_at_least_half_of_its_panel_less_its_letters() {
     for paper in [Paper::A4, Paper::A3] {
         let (_, p) = products(paper);
-        assert_eq!(p.pages.len(), 12);
+        assert_eq!(p.pages.len(), 36);
         let mut fills = Vec::new();
-        for page in &p.pages {
+        for page in pages_of(&p, "polygons") {
             let frames = panel_frames(&page.drawing);
-            assert_eq!(frames.len(), 4, "{}: mechanism and three polygon panels", page.stem);
-            for layer in ["VELOCITY", "ACCELERATION", "FORCES"] {
+            assert_eq!(frames.len(), 2, "{}: the two polygons' panels", page.stem);
+            for layer in ["VELOCITY", "ACCELERATION"] {
                 let e = drawn_extent(&page.drawing, layer).unwrap_or_else(|| panic!("{}: no {layer}", page.stem));
                 let mid = Point::new((e.min.x + e.max.x) / 2.0, (e.min.y + e.max.y) / 2.0);
                 let frame = frames
@@ -154,7 +170,7 @@ fn every_polygon_fills_at_least_half_of_its_panel_less_its_letters() {
                     .unwrap_or_else(|| panic!("{}: {layer} is in no panel", page.stem));
                 let area = Panel::of_outline(*frame, paper.sizes()).area;
                 // Fitted to the area less room for the letters at its outer points.
-                let room = 2.0 * mechdraw::figure::shared::sheet_polygons::LETTER_ROOM * paper.sizes().text;
+                let room = 2.0 * mechdraw::figure::shared::sheet_pages::LETTER_ROOM * paper.sizes().text;
                 let (w, h) =
                     ((area.width() - room).max(0.5 * area.width()), (area.height() - room).max(0.5 * area.height()));
                 let fill = (e.width() / w).max(e.height() / h);
@@ -217,7 +233,7 @@ fn the_value_table_is_the_solvers() {
     let (_, p) = products(Paper::A4);
     let records = p.summary["positions"].as_array().unwrap();
     let mut checked = 0;
-    for (page, rec) in p.pages.iter().zip(records) {
+    for (page, rec) in pages_of(&p, "mechanism").into_iter().zip(records) {
         let rows = table_rows(&page.drawing);
         let scalar = |row: &str, key: &str| {
             let cells = &rows[row];
@@ -275,7 +291,9 @@ fn files_on_disk_are_the_in_memory_bytes_with_sheets() {
     assert_eq!(written, order);
     assert!(
         order.contains(&format!("{NAME}-sheets.pdf").as_str())
-            && order.contains(&format!("sheets/{NAME}/pos_120.svg").as_str())
+            && order.contains(&format!("sheets/{NAME}/pos_120-mechanism.svg").as_str())
+            && order.contains(&format!("sheets/{NAME}/pos_120-polygons.svg").as_str())
+            && order.contains(&format!("sheets/{NAME}/pos_120-forces.svg").as_str())
     );
 }
 
@@ -288,14 +306,30 @@ fn chain_and_triad_scenes_have_no_sheets() {
     assert_eq!(err.exit_code(), 2);
 }
 
-#[test]
-fn golden_sheet_at_90_degrees() {
+/// The A4 page `kind` at φ1 = 90° against its golden PNG.
+fn golden_page(kind: &str) {
     let (_, p) = products(Paper::A4);
-    let page = p.pages.iter().find(|pg| pg.stem == "pos_090").unwrap();
+    let stem = format!("pos_090-{kind}");
+    let page = p.pages.iter().find(|pg| pg.stem == stem).unwrap();
     let files = bytes::to_files(&p, &WriteOptions::default()).unwrap();
-    let svg = &files.iter().find(|(n, _)| *n == format!("sheets/{NAME}/pos_090.svg")).unwrap().1;
+    let svg = &files.iter().find(|(n, _)| *n == format!("sheets/{NAME}/{stem}.svg")).unwrap().1;
     assert_eq!(page.window, Paper::A4.bounds());
-    common::assert_golden_png("fourbar/sheet_a4_090.png", std::str::from_utf8(svg).unwrap());
+    common::assert_golden_png(&format!("fourbar/sheet_a4_090_{kind}.png"), std::str::from_utf8(svg).unwrap());
+}
+
+#[test]
+fn golden_mechanism_sheet_at_90_degrees() {
+    golden_page("mechanism");
+}
+
+#[test]
+fn golden_polygons_sheet_at_90_degrees() {
+    golden_page("polygons");
+}
+
+#[test]
+fn golden_forces_sheet_at_90_degrees() {
+    golden_page("forces");
 }
 
 /// The scale printed in the title of the panel named `title` (`k_v = 0.02 (m/s)/mm` → 0.02).
@@ -339,7 +373,7 @@ fn longest_from_pole(d: &Drawing, layer: &str) -> f64 {
 fn a_length_measured_on_the_sheet_times_its_printed_scale_is_the_value() {
     let (_, p) = products(Paper::A4);
     let records = p.summary["positions"].as_array().unwrap();
-    for (page, rec) in p.pages.iter().zip(records) {
+    for (page, rec) in pages_of(&p, "polygons").into_iter().zip(records) {
         let d = &page.drawing;
         let largest =
             |keys: [&str; 3]| keys.iter().map(|k| rec[format!("{k}_mag")].as_f64().unwrap()).fold(0.0, f64::max);
@@ -367,27 +401,40 @@ fn every_panel_of_every_page_has_a_scale_bar_whose_length_is_its_value() {
                 _ => None,
             })
             .collect();
-        // A bar is its "0" and its label (value and unit) level with it, at either end.
+        // A bar is its "0" and its label (value and unit) level with it.
         let zeros: Vec<Point> = texts.iter().filter(|(_, v)| *v == "0").map(|(at, _)| *at).collect();
-        assert_eq!(zeros.len(), 4, "{}: one bar per panel", page.stem);
-        for (title, unit) in [
-            ("Mechanism", " m"),
-            ("Velocity polygon", " m/s"),
-            ("Acceleration polygon", " m/s²"),
-            ("Force polygons", " N"),
-        ] {
-            let k = printed_scale(d, title);
-            let value: f64 = texts
+        let panels: &[(&str, &str, &str)] = match page.stem.rsplit('-').next().unwrap() {
+            "mechanism" => &[("Mechanism", "k_l", " m")],
+            "polygons" => &[("Velocity polygon", "k_v", " m/s"), ("Acceleration polygon", "k_a", " m/s²")],
+            _ => &[("Dyad 2–3", "k_f", " N"), ("Crank 1", "k_f", " N")],
+        };
+        assert_eq!(zeros.len(), panels.len(), "{}: one bar per panel", page.stem);
+        let all: Vec<&str> = d
+            .entities
+            .iter()
+            .filter_map(|e| match &e.shape {
+                Shape::Text { value, .. } => Some(value.as_str()),
+                _ => None,
+            })
+            .collect();
+        for (title, symbol, unit) in panels {
+            let heading =
+                all.iter().find(|t| t.starts_with(title)).unwrap_or_else(|| panic!("{}: no {title}", page.stem));
+            let k: f64 =
+                heading.split(&format!("{symbol} = ")).nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+            // The bar's label on the level of a "0".
+            let length = texts
                 .iter()
-                .filter(|(_, v)| v.ends_with(unit) && v.split(' ').count() == 2)
-                .find_map(|(_, v)| v.split(' ').next()?.parse().ok())
-                .unwrap_or_else(|| panic!("{}: no bar label in{unit}", page.stem));
-            let length = value / k;
-            let has_line = d.entities.iter().any(|e| {
-                e.layer == dims
-                    && matches!(e.shape, Shape::Line { from, to } if ((to - from).norm() - length).abs() < 1e-9 && (to.y - from.y).abs() < 1e-12)
-            });
-            assert!(has_line, "{}: no {title} bar {length} mm long", page.stem);
+                .filter(|(at, v)| v.ends_with(unit) && v.split(' ').count() == 2 && zeros.iter().any(|z| (z.y - at.y).abs() < 1e-9))
+                .filter_map(|(_, v)| v.split(' ').next()?.parse::<f64>().ok())
+                .map(|value| value / k)
+                .find(|length| {
+                    d.entities.iter().any(|e| {
+                        e.layer == dims
+                            && matches!(e.shape, Shape::Line { from, to } if ((to - from).norm() - length).abs() < 1e-9 && (to.y - from.y).abs() < 1e-12)
+                    })
+                });
+            assert!(length.is_some(), "{}: no {title} bar at {symbol} = {k}", page.stem);
         }
     }
 }

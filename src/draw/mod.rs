@@ -11,6 +11,7 @@
 //! so a drawing prints at any scale.
 
 pub mod dxf;
+pub mod font;
 pub mod parts;
 #[cfg(feature = "pdf")]
 pub mod pdf;
@@ -285,6 +286,9 @@ pub struct ScaleCaption {
     /// Paper millimetres per model unit of the figure the caption is on: the medium of
     /// [`ScaleCaption::on_paper`], for a writer that has no scale of its own.
     pub paper_mm_per_unit: f64,
+    /// A second scale stated after this one on the same line (`Mechanism   k_l = 10 mm/mm`
+    /// then `, forces k_f = 200 N/mm`), written for the same medium.
+    pub then: Option<Box<ScaleCaption>>,
 }
 
 impl ScaleCaption {
@@ -296,14 +300,25 @@ impl ScaleCaption {
             per_unit: per_mm * paper_mm_per_unit,
             after: after.into(),
             paper_mm_per_unit,
+            then: None,
         }
+    }
+
+    /// This caption with `next` stated after it on the same line (after any it already has).
+    pub fn then(mut self, next: ScaleCaption) -> Self {
+        self.then = Some(Box::new(match self.then.take() {
+            Some(t) => t.then(next),
+            None => next,
+        }));
+        self
     }
 
     /// The caption for a medium that draws a model unit `mm_per_unit` millimetres long:
     /// the value [`ScaleCaption::per_unit`] / `mm_per_unit`, written in plain decimals
     /// (no exponent) to 10 significant digits.
     pub fn text(&self, mm_per_unit: f64) -> String {
-        format!("{}{}{}", self.before, plain_decimal(self.per_unit / mm_per_unit), self.after)
+        let next = self.then.as_ref().map_or_else(String::new, |t| t.text(mm_per_unit));
+        format!("{}{}{}{next}", self.before, plain_decimal(self.per_unit / mm_per_unit), self.after)
     }
 
     /// The caption on the figure's paper.
@@ -420,7 +435,13 @@ impl Shape {
             Shape::Arrow { from, to, head } => [&xy(from)[..], &xy(to), &[*head]].concat(),
             Shape::Text { at, height, rotation, .. } => vec![at.x, at.y, *height, *rotation],
             Shape::ScaleText { at, height, rotation, caption, .. } => {
-                vec![at.x, at.y, *height, *rotation, caption.per_unit, caption.paper_mm_per_unit]
+                let mut v = vec![at.x, at.y, *height, *rotation];
+                let mut next = Some(caption);
+                while let Some(c) = next {
+                    v.extend([c.per_unit, c.paper_mm_per_unit]);
+                    next = c.then.as_deref();
+                }
+                v
             }
             Shape::AngularDimension { vertex, first, second, radius, .. } => {
                 [&xy(vertex)[..], &xy(first), &xy(second), &[*radius]].concat()
@@ -621,6 +642,33 @@ impl Drawing {
     }
 }
 
+/// The corners of a text's box as drawn in DejaVu Sans ([`font::measure`]: its advances,
+/// from the baseline less its deepest descender to its highest glyph, at least the cap
+/// height), turned with the text about its insertion point: lower-left, lower-right,
+/// upper-right, upper-left; a scale's caption as its paper writes it. `None` for a shape that
+/// is not a text.
+pub fn text_corners(shape: &Shape) -> Option<[Point; 4]> {
+    if let Some(text) = shape.scale_text_in(None) {
+        return text_corners(&text);
+    }
+    let Shape::Text { at, height, value, halign, valign, rotation } = shape else { return None };
+    let e = font::measure(value, *height);
+    let x0 = match halign {
+        HAlign::Left => 0.0,
+        HAlign::Center => -0.5 * e.width,
+        HAlign::Right => -e.width,
+    };
+    let base = match valign {
+        VAlign::Baseline => 0.0,
+        VAlign::Middle => -0.5 * height,
+        VAlign::Top => -height,
+    };
+    let (y0, y1) = (base - e.descent, base + e.ascent);
+    let (sin, cos) = if *rotation == 0.0 { (0.0, 1.0) } else { (libm::sin(*rotation), libm::cos(*rotation)) };
+    let turn = |x: f64, y: f64| *at + Vector::new(cos * x - sin * y, sin * x + cos * y);
+    Some([turn(x0, y0), turn(x0 + e.width, y0), turn(x0 + e.width, y1), turn(x0, y1)])
+}
+
 /// Calls `add` with points whose bounding box covers the shape (dimensions: their
 /// exploded geometry, as drawn).
 fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Point)) {
@@ -652,16 +700,10 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
                 Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation };
             shape_extent_points(&text, style, add);
         }
-        Shape::Text { at, height, value, halign, .. } => {
-            // The writers' width estimate (DejaVu Sans advances).
-            let w = parts::text_width(value, *height);
-            let x0 = match halign {
-                HAlign::Left => at.x,
-                HAlign::Center => at.x - w / 2.0,
-                HAlign::Right => at.x - w,
-            };
-            add(Point::new(x0, at.y - 0.3 * height));
-            add(Point::new(x0 + w, at.y + height));
+        Shape::Text { .. } => {
+            if let Some([a, b, c, d]) = text_corners(shape) {
+                [a, b, c, d].into_iter().for_each(&mut *add);
+            }
         }
         Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
             for part in parts::explode_dimension(shape, style) {

@@ -21,8 +21,8 @@ pub const ANGULAR_TEXT_GAP: f64 = 0.3;
 /// still crosses one of the rays, in text heights.
 pub const ANGULAR_TEXT_STEP: f64 = 0.1;
 /// Cap height of DejaVu Sans, in ems: the SVG writer sets the font size to the text height
-/// / 0.73, so a text height is a cap height.
-pub const CAP_HEIGHT_EM: f64 = 0.73;
+/// / 0.73, so a text height is a cap height ([`super::font::CAP_HEIGHT_EM`]).
+pub const CAP_HEIGHT_EM: f64 = super::font::CAP_HEIGHT_EM;
 /// Depth of descenders (`φ`, `y`) below the baseline, in text heights (DejaVu Sans: 0.24 em
 /// ≈ 0.32 cap heights); part of a text's estimated box.
 pub const TEXT_DESCENT: f64 = 0.3;
@@ -42,38 +42,17 @@ pub const LINEAR_ARROW_STUB: f64 = 2.0;
 /// sizes (about the seed's "small circle": half an arrowhead across).
 pub const BASE_CIRCLE_RADIUS: f64 = 0.3;
 
-/// Font units per em of DejaVu Sans.
-const UNITS_PER_EM: f64 = 2048.0;
-
-/// Estimated advance of a character in DejaVu Sans (the font the SVG names and the golden
-/// images use), in font units ([`UNITS_PER_EM`]): the font's own advances for digits,
-/// punctuation and the signs a dimension holds, 0.70 em for other capitals and 0.60 em (the
-/// font's average) for the rest.
-fn char_advance(c: char) -> f64 {
-    match c {
-        '0'..='9' => 1303.0,
-        ' ' | '.' | ',' | ':' | ';' | '\'' | '!' | '|' | '′' => 651.0,
-        '±' | '=' | '+' | '<' | '>' | '×' => 1716.0,
-        '-' => 739.0,
-        '(' | ')' | '[' | ']' => 799.0,
-        '°' => 1024.0,
-        'A'..='Z' => 1434.0,
-        _ => 1229.0,
-    }
-}
-
-/// Estimated width (model units) of `text` drawn `height` high (cap height): the sum of
-/// `char_advance`s over [`CAP_HEIGHT_EM`]. The writers leave the glyphs to the reader's
-/// font, so this is an estimate (exact for DejaVu Sans digits and signs), the same for both
-/// writers.
+/// Width (model units) of `text` drawn `height` high (cap height): the sum of its advances
+/// in DejaVu Sans, the font the SVG, PNG and PDF draw it in ([`super::font`]; the DXF leaves
+/// the glyphs to the reader's font: see [`widest_text_width`]).
 pub fn text_width(text: &str, height: f64) -> f64 {
-    chars_width(text.chars(), height)
+    super::font::width(text, height)
 }
 
 /// [`text_width`] of the text made of `chars` (a text read with some characters replaced,
 /// without building it).
 pub fn chars_width(chars: impl Iterator<Item = char>, height: f64) -> f64 {
-    height / CAP_HEIGHT_EM * chars.map(char_advance).sum::<f64>() / UNITS_PER_EM
+    super::font::measure_chars(chars, height).width
 }
 
 /// Advance of a character in LibreCAD's stroke font for the DXF's text style (AZOMIX, see
@@ -93,8 +72,8 @@ fn azomix_advance(c: char) -> f64 {
 /// panel, the gap between a title and the text beside it) measures it with this; where a
 /// writer places a text (centring, right alignment), [`text_width`] stays its estimate.
 pub fn widest_text_width(text: &str, height: f64) -> f64 {
-    let dejavu = 1.0 / (CAP_HEIGHT_EM * UNITS_PER_EM);
-    height * text.chars().map(|c| (char_advance(c) * dejavu).max(azomix_advance(c) / 9.0)).sum::<f64>()
+    let dejavu = 1.0 / CAP_HEIGHT_EM;
+    height * text.chars().map(|c| (super::font::glyph(c).advance * dejavu).max(azomix_advance(c) / 9.0)).sum::<f64>()
 }
 
 /// Whether a linear dimension measured along `angle` (radians) has its text turned by half

@@ -133,16 +133,20 @@ fn keep_letters_off_dimension(letters: &mut labels::Polygon, dim: &Shape, style:
 
 /// The box of a dimension's text.
 fn dimension_text_box(dim: &Shape, style: &DimStyle) -> Option<TextBox> {
-    explode_dimension(dim, style).into_iter().find_map(|part| match part {
-        Shape::Text { at, height, value, .. } => Some(TextBox::centred(at, &value, height)),
-        _ => None,
+    explode_dimension(dim, style).into_iter().find_map(|part| {
+        // The text as drawn (its descenders: φ), turned with it.
+        let c = crate::draw::text_corners(&part)?;
+        let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+        let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+        Some(TextBox { min, max })
     })
 }
 
 /// Radii tried for an angular dimension, as multiples of its preferred radius, in order:
 /// the first whose text overlaps no earlier dimension's text and crosses no line is drawn,
 /// else the first that overlaps the fewest texts, then crosses the fewest lines.
-const DIMENSION_RADII: [f64; 12] = [1.0, 0.85, 1.15, 0.7, 1.3, 0.55, 1.45, 1.6, 1.75, 1.9, 2.05, 2.2];
+const DIMENSION_RADII: [f64; 20] =
+    [1.0, 0.85, 1.15, 0.7, 1.3, 0.55, 1.45, 0.45, 1.6, 1.75, 1.9, 2.05, 2.2, 2.4, 2.6, 2.8, 3.0, 3.3, 3.6, 4.0];
 
 /// The text of the angular dimension of phi_i (`i` from 1), radians in.
 pub fn phi_text(i: usize, phi: f64) -> String {
@@ -162,12 +166,14 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     let mechanism = d.layer("MECHANISM", Aci::BLACK, LineType::Continuous);
     let dimensions = d.layer("DIMENSIONS", Aci::BLUE, LineType::Continuous);
     let text = d.layer("TEXT", Aci::BLACK, LineType::Continuous);
-    // Every line drawn, for the dimension texts and the letters to keep off.
+    // Every line drawn, for the dimension texts and the letters to keep off (the
+    // construction circles only for the letters: they are broken under a dimension's text).
     let mut lines: Vec<(Point, Point)> = Vec::new();
+    let mut circles: Vec<(Point, Point)> = Vec::new();
 
     for (o, r) in t.o.iter().zip(t.r) {
         d.add(construction, Shape::Circle { center: *o, radius: r });
-        arc_segments(&mut lines, *o, r, 0.0, std::f64::consts::TAU);
+        arc_segments(&mut circles, *o, r, 0.0, std::f64::consts::TAU);
     }
 
     if let Some(a) = f.approximate {
@@ -232,10 +238,12 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         d.add(dimensions, dim);
     }
 
+    // The construction circles broken where a dimension's text lies over them.
+    labels::break_around(&mut d, construction, &dimension_texts, 0.3 * s.text);
     // Letters: each preferably in the widest free direction around its point, placed by the
     // letter placer clear of the joint, every line (circles, both triangles, links,
     // dimensions), the ground symbols and the dimension texts.
-    for (u, v) in &lines {
+    for (u, v) in lines.iter().chain(&circles) {
         letters.segment(*u, *v);
     }
     for o in t.o {

@@ -232,6 +232,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
         summary,
         report,
         warnings,
+        frame_scales: Vec::new(),
     })
 }
 

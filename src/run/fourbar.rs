@@ -10,7 +10,7 @@ use serde::Serialize;
 use serde_json::{Value, json};
 
 use super::fourbar_teaching as teaching;
-use super::positions::{DriveAxis, Positions};
+use super::positions::DriveAxis;
 use super::products::{self, Extras, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -35,13 +35,8 @@ use crate::solve::fourbar::{
 /// gap (skipped angles): curves break there.
 const GAP_STEPS: f64 = 1.5;
 
-pub(super) fn products(
-    scene: &FourbarScene,
-    file: &str,
-    paper: Option<Paper>,
-    chosen: Option<&Positions>,
-    picture_only: bool,
-) -> Result<Products, Error> {
+pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
+    let (paper, chosen, picture_only) = (opts.sheets, opts.positions.as_ref(), opts.picture_only);
     let spec = &scene.spec;
     let motion = solve_motion(spec).map_err(|e| solve_err(file)(e.into()))?;
     // The positions drawn (`--positions`: crank angles φ1 in degrees).
@@ -56,13 +51,15 @@ pub(super) fn products(
         velocity: spec.outputs.velocity,
         acceleration: spec.outputs.acceleration,
         forces: spec.outputs.forces && !motion.forces.is_empty(),
+        scales: super::scale_choice(scene.frame_scales),
     };
     let forces = if show.forces { Some(motion.forces.as_slice()) } else { None };
     let external = spec.dynamics.as_ref().map_or(&[][..], |d| d.forces.as_slice());
     let link_loads = spec.dynamics.as_ref().map_or(&[][..], |d| d.loads.as_slice());
-    let layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units)
+    let mut layout = Layout::new(&spec.geometry, &motion.positions, forces, show, units)
         .with_drive(spec.omega1, external)
         .with_link_loads(link_loads);
+    layout.frame.hold(&opts.held_scales);
     let mut warnings = motion.warnings();
     if motion.positions.is_empty() {
         warnings.push("no crank angle of the sweep could be assembled: nothing to draw".to_string());
@@ -78,6 +75,7 @@ pub(super) fn products(
     let mut curve = runs(&motion.positions, step, |p| p.m);
     close_full_turn(&mut curve, &motion.positions, step);
     let base = layout.base(&geom, &curve);
+    let layout = layout.with_backdrop(&base);
     let names = position_names(&motion.positions, spec.sweep.from_deg, step);
     let labels = motion.positions.iter().map(|p| format!("φ1 = {}°", angle_text(deg(p.phi1)))).collect();
     let extras = if picture_only {
@@ -158,11 +156,16 @@ pub(super) fn products(
             let (spec, layout) = (spec.clone(), layout.clone());
             Box::new(move |k, s_deg| {
                 let (pos, force) = solve_at(&spec, sides.get(k).copied().unwrap_or(spec.geometry.branch), s_deg)?;
-                Ok(layout.moving(&spec.geometry, &pos, force.as_ref().filter(|_| show.forces)))
+                Ok(layout.moving(k, &spec.geometry, &pos, force.as_ref().filter(|_| show.forces)))
             })
         },
     };
-    let pose = move |k: usize| layout.moving(&geom, &positions[k], forces.get(k).filter(|_| show.forces));
+    // The scales each drawn frame is drawn at (in the animation's order).
+    let frame_scales = if chosen.is_some() { drawn.clone() } else { (0..positions.len()).collect() }
+        .into_iter()
+        .map(|k| layout.frame.scales_at(k))
+        .collect();
+    let pose = move |k: usize| layout.moving(k, &geom, &positions[k], forces.get(k).filter(|_| show.forces));
     let animation = Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive);
     let animation = if chosen.is_some() { animation.keep(drawn) } else { animation };
     Ok(extras.with_motion(
@@ -171,6 +174,7 @@ pub(super) fn products(
         animation,
         PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
         warnings,
+        frame_scales,
     ))
 }
 
@@ -661,7 +665,16 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         .par_iter()
         .enumerate()
         .map(|(i, p)| {
-            let record = position_record(p, forces_at(motion, i, forces), qs, (&scene.name, i))?;
+            let mut record = position_record(p, forces_at(motion, i, forces), qs, (&scene.name, i))?;
+            // The scales this position's frame is drawn at (each frame its own by default).
+            let k = layout.frame.scales_at(i);
+            let mut scales = serde_json::Map::new();
+            scales.extend(k.k_v.map(|v| ("k_v".to_string(), Value::from(v))));
+            scales.extend(k.k_a.map(|v| ("k_a".to_string(), Value::from(v))));
+            if !k.k_f.is_empty() {
+                scales.insert("k_f".to_string(), Value::from(k.k_f.clone()));
+            }
+            record.insert("scales".to_string(), Value::Object(scales));
             Ok(Value::Object(record.into_iter().collect()))
         })
         .collect::<Result<_, Error>>()?;
@@ -676,9 +689,9 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
     .filter_map(|(n, on)| on.then_some(n))
     .collect();
     let len = layout.frame.units.length;
-    let scale = |s: Option<(crate::figure::fourbar::Scale, Point)>, unit: String| {
-        s.map(|(s, _)| ScaleRecord { value: s.per_mm, unit })
-    };
+    // The first frame's scales (each frame prints its own with scales per frame).
+    let first = layout.frame.scales_at(0);
+    let scale = |s: Option<f64>, unit: String| s.map(|value| ScaleRecord { value, unit });
     let s = Summary {
         kind: "fourbar",
         name: &scene.name,
@@ -693,9 +706,9 @@ fn summary(scene: &FourbarScene, motion: &Motion, layout: &Layout, qs: &[Quantit
         dead_points: &motion.dead_points,
         scales: Scales {
             k_l: ScaleRecord { value: layout.frame.k_l, unit: format!("{len}/mm") },
-            k_v: scale(layout.frame.velocity, format!("({len}/s)/mm")),
-            k_a: scale(layout.frame.acceleration, format!("({len}/s²)/mm")),
-            k_f: scale(layout.frame.forces, "N/mm".to_string()),
+            k_v: scale(first.k_v, format!("({len}/s)/mm")),
+            k_a: scale(first.k_a, format!("({len}/s²)/mm")),
+            k_f: scale(first.k_f.first().copied(), "N/mm".to_string()),
         },
         positions: Vec::new(),
     };
@@ -714,14 +727,18 @@ fn report_text(scene: &FourbarScene, motion: &Motion, layout: &Layout) -> String
     }
     let k_l = crate::figure::fourbar::scale_text(layout.frame.k_l);
     s.push_str(&format!("; k_l = {k_l} {}/mm", layout.frame.units.length));
+    let first = layout.frame.scales_at(0);
     for (n, sc, u) in [
-        ("k_v", layout.frame.velocity, format!("({}/s)/mm", layout.frame.units.length)),
-        ("k_a", layout.frame.acceleration, format!("({}/s²)/mm", layout.frame.units.length)),
-        ("k_f", layout.frame.forces, "N/mm".to_string()),
+        ("k_v", first.k_v, format!("({}/s)/mm", layout.frame.units.length)),
+        ("k_a", first.k_a, format!("({}/s²)/mm", layout.frame.units.length)),
+        ("k_f", first.k_f.first().copied(), "N/mm".to_string()),
     ] {
-        if let Some((sc, _)) = sc {
-            s.push_str(&format!("; {n} = {} {u}", crate::figure::fourbar::scale_text(sc.per_mm)));
+        if let Some(sc) = sc {
+            s.push_str(&format!("; {n} = {} {u}", crate::figure::fourbar::scale_text(sc)));
         }
+    }
+    if layout.show.scales == crate::figure::fourbar::ScaleChoice::PerFrame {
+        s.push_str(" at the first frame (each frame prints its own)");
     }
     s.push('\n');
     s
@@ -832,8 +849,9 @@ fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], units: ModelUn
     sheet::Table { header, rows }
 }
 
-/// The printed pages, one per drawn position (`drawn`: indices into the motion's positions,
-/// in parallel): `sheets/<name>/<position>.svg` and the PDF, numbered among themselves.
+/// The printed pages, a set per drawn position (`drawn`: indices into the motion's positions,
+/// in parallel): `sheets/<name>/<position>-<page>.svg` (`mechanism`, `polygons`, `forces`)
+/// and the PDF with every page in order, numbered among themselves.
 #[allow(clippy::too_many_arguments)]
 fn sheet_pages(
     paper: Paper,
@@ -847,23 +865,28 @@ fn sheet_pages(
     drawn: &[usize],
 ) -> Vec<products::Page> {
     let geom = scene.spec.geometry;
+    let rows =
+        motion.positions.first().map_or(0, |p| sheet_table(p, forces_at(motion, 0, show.forces), qs, units).rows.len());
+    let (external, loads) =
+        scene.spec.dynamics.as_ref().map_or((&[][..], &[][..]), |d| (d.forces.as_slice(), d.loads.as_slice()));
     let sheets =
-        FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units);
-    let n = drawn.len();
-    drawn
+        FourbarSheets::new(paper, &scene.name, scene.spec.omega1, &geom, &motion.positions, curve, show, units, rows)
+            .with_loads(external, loads);
+    let per = sheets.per_position();
+    let total = drawn.len() * per;
+    let sets: Vec<Vec<products::Page>> = drawn
         .par_iter()
         .enumerate()
         .map(|(j, &i)| {
             let p = &motion.positions[i];
             let f = forces_at(motion, i, show.forces);
             let table = sheet_table(p, f, qs, units);
-            let (drawing, _) = sheets.page(&geom, p, f, &table, (j + 1, n));
-            products::Page {
-                stem: names[i].to_lowercase(),
-                drawing,
-                window: paper.bounds(),
-                hairline_mm: sheet::HAIRLINE_MM,
-            }
+            let set = sheets.pages(&geom, p, f, &table, (j * per + 1, total));
+            set.pages
+                .into_iter()
+                .map(|(kind, drawing)| products::Page::printed(&names[i], kind, drawing, paper))
+                .collect()
         })
-        .collect()
+        .collect();
+    sets.into_iter().flatten().collect()
 }

@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
-use super::positions::{DriveAxis, Positions};
+use super::positions::DriveAxis;
 use super::products::{self, Extras, Picture, PositionsSource, Products};
 use super::solve_err;
 use crate::Error;
@@ -128,14 +128,8 @@ fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error
     Ok((anchor, Point::new(nums[0], nums[1])))
 }
 
-pub(super) fn products(
-    scene: &LinkageScene,
-    file: &str,
-    drag: &[String],
-    paper: Option<Paper>,
-    positions: Option<&Positions>,
-    picture_only: bool,
-) -> Result<Products, Error> {
+pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
+    let (drag, paper, positions, picture_only) = (&opts.drag, opts.sheets, opts.positions.as_ref(), opts.picture_only);
     let serr = solve_err(file);
     let mut solver = match Solver::new(scene.mechanism.clone()) {
         Ok(s) => s,
@@ -200,10 +194,13 @@ pub(super) fn products(
         acceleration: p.acceleration && out.acceleration,
         forces: p.forces && out.forces,
         points: p.points.clone(),
+        per_body: p.per_body,
+        scales: super::scale_choice(scene.frame_scales),
     };
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
-    let frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
+    let mut frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
+    frames.frame.hold(&opts.held_scales);
     let base = frames.base(&figure, &motion);
     let window = frames.frame.window;
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
@@ -411,13 +408,18 @@ pub(super) fn products(
             Box::new(move |k, t| {
                 let (state, force) = at.solve(k, t)?;
                 let force = at.dynamics.as_ref().zip(force.as_ref());
-                Ok(frames.moving(&figure, &mech, &state, force))
+                Ok(frames.moving(k, &figure, &mech, &state, force))
             })
         },
     };
+    // The scales each drawn frame is drawn at (in the animation's order).
+    let frame_scales = if positions.is_some() { drawn.clone() } else { (0..states.len()).collect() }
+        .into_iter()
+        .map(|k| frames.frame.scales_at(k))
+        .collect();
     let pose = move |k: usize| {
         let force = dynamics.as_ref().zip(forces.get(k));
-        frames.moving(&figure, &mech, &states[k], force)
+        frames.moving(k, &figure, &mech, &states[k], force)
     };
     let animation = Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive);
     let animation = if positions.is_some() { animation.keep(drawn) } else { animation };
@@ -427,6 +429,7 @@ pub(super) fn products(
         animation,
         PositionsSource { field: "time.steps", advice: "use fewer steps" },
         warnings,
+        frame_scales,
     ))
 }
 
@@ -557,6 +560,7 @@ fn drag_products(scene: &LinkageScene, file: &str, drag: &[String], mut solver: 
         summary,
         report,
         warnings: Vec::new(),
+        frame_scales: Vec::new(),
     })
 }
 
@@ -656,13 +660,15 @@ fn force_diagrams(scene: &LinkageScene, forces: &[Forces], x_label: &str, x: &[f
     }
     for (d, driver) in mech.drivers.iter().enumerate() {
         let name = &driver.name;
+        // Named as the table and the sheets name it (Me1, Fe1).
+        let symbol = linkage_forces::driver_name(mech, d);
         let (title, y_label) = match driver.target {
             DriverTarget::JointDistance(_) => {
-                (format!("Driving force of driver {name} (along its guide)"), format!("F_{name} [N]"))
+                (format!("Balancing force {symbol} of driver {name} (along its guide)"), format!("{symbol} [N]"))
             }
             _ => (
-                format!("Driving torque of driver {name} (balancing moment, positive with the driver)"),
-                format!("M_{name} [N·m]"),
+                format!("Balancing moment {symbol} of driver {name} (positive with the driver)"),
+                format!("{symbol} [N·m]"),
             ),
         };
         out.push(plot(format!("drive.{name}"), title, y_label, forces.iter().map(|f| f.drivers[d]).collect()));
@@ -1050,10 +1056,19 @@ struct DragSummary<'a> {
 }
 
 /// One sample's values for its sheet: each measured quantity (its diagram's symbol and
-/// unit) and, with forces, every reaction's magnitude and the drivers' forces, 4
-/// significant digits ([`sheet::number`]).
-fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScene, &Forces)>) -> sheet::Table {
+/// unit) and, with forces, every applied force, every reaction's magnitude and the
+/// drivers' forces, 4 significant digits ([`sheet::number`]); rounding noise as 0.
+fn sheet_table(
+    scene: &LinkageScene,
+    plots: &[Plot],
+    k: usize,
+    forces: Option<(&crate::solve::linkage::Dynamics, &State, &Forces)>,
+) -> sheet::Table {
     let header = ["", "value", "unit"].map(String::from).to_vec();
+    // One unit system on the page: the scene's (the diagrams draw velocities in m/s; a mm
+    // scene's sheet in mm/s, as its polygons).
+    let per_m = 1.0 / metres_per_unit(scene.units);
+    let lu = scene.units.length();
     let mut rows: Vec<Vec<String>> = plots
         .iter()
         .map(|p| {
@@ -1061,19 +1076,34 @@ fn sheet_table(plots: &[Plot], k: usize, forces: Option<(&LinkageScene, &Forces)
                 Some((n, u)) => (n.to_string(), u.trim_end_matches(']').to_string()),
                 None => (p.y_label.clone(), String::new()),
             };
+            let (factor, unit) = match unit.as_str() {
+                "m/s" => (per_m, format!("{lu}/s")),
+                "m/s²" => (per_m, format!("{lu}/s²")),
+                _ => (1.0, unit),
+            };
             // A value below 1e-9 of its series' largest is rounding noise (ω = 1e-15 rad/s
             // at a dead centre) and prints as 0.
             let largest = p.values.iter().filter(|v| v.is_finite()).fold(0.0, |m: f64, v| m.max(v.abs()));
             let v = p.values[k];
-            let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v) };
+            let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v * factor) };
             vec![name, text, unit]
         })
         .collect();
-    if let Some((scene, f)) = forces {
-        let lu = scene.units.length();
-        let per_nm = 1.0 / metres_per_unit(scene.units);
-        for m in linkage_forces::magnitudes(&scene.mechanism, f, &format!("N·{lu}"), per_nm) {
-            rows.push(vec![m.name, sheet::number(m.value), m.unit]);
+    if let Some((dynamics, state, f)) = forces {
+        let mech = &scene.mechanism;
+        // Every applied force (inertia forces, weights, loads), then the reactions and the
+        // drivers' forces.
+        let applied = linkage_forces::applied_magnitudes(mech, dynamics, state, f);
+        let all: Vec<_> =
+            applied.into_iter().chain(linkage_forces::magnitudes(mech, f, &format!("N·{lu}"), per_m)).collect();
+        // A value below 1e-9 of the largest of its unit on the page is rounding noise (the
+        // inertia force 7e-14 N of a slider at rest) and prints as 0.
+        let largest = |unit: &str| {
+            all.iter().filter(|m| m.unit == unit && m.value.is_finite()).fold(0.0, |a: f64, m| a.max(m.value.abs()))
+        };
+        for m in &all {
+            let text = if m.value.abs() < 1e-9 * largest(&m.unit) { "0".to_string() } else { sheet::number(m.value) };
+            rows.push(vec![m.name.clone(), text, m.unit.clone()]);
         }
     }
     sheet::Table { header, rows }
@@ -1093,22 +1123,27 @@ fn sheet_pages(
     names: &[String],
     drawn: &[usize],
 ) -> Vec<products::Page> {
-    let sheets = LinkageSheets::new(paper, &scene.name, figure, states, show, forces.is_some());
-    let n = drawn.len();
-    drawn
+    // The table's rows: the most any sample has (a load acts only on part of the motion).
+    let rows = (0..states.len())
+        .map(|k| sheet_table(scene, plots, k, forces.map(|(d, f)| (d, &states[k], &f[k]))).rows.len())
+        .max()
+        .unwrap_or(0);
+    let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows);
+    let per = sheets.per_position();
+    let total = drawn.len() * per;
+    let sets: Vec<Vec<products::Page>> = drawn
         .par_iter()
         .enumerate()
         .map(|(j, &k)| {
             let st = &states[k];
             let force = forces.map(|(d, f)| (d, &f[k]));
-            let table = sheet_table(plots, k, force.map(|(_, f)| (scene, f)));
-            let (drawing, _) = sheets.page(&scene.mechanism, st, force, &table, (j + 1, n));
-            products::Page {
-                stem: names[k].to_lowercase(),
-                drawing,
-                window: paper.bounds(),
-                hairline_mm: sheet::HAIRLINE_MM,
-            }
+            let table = sheet_table(scene, plots, k, force.map(|(d, f)| (d, st, f)));
+            sheets
+                .pages(&scene.mechanism, st, force, &table, (j * per + 1, total))
+                .into_iter()
+                .map(|(kind, drawing)| products::Page::printed(&names[k], kind, drawing, paper))
+                .collect()
         })
-        .collect()
+        .collect();
+    sets.into_iter().flatten().collect()
 }

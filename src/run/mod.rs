@@ -60,6 +60,12 @@ pub struct RunOptions {
     /// the rest when it is asked for; kinds whose whole products are cheap (triad, chain)
     /// make everything anyway. The picture and the warnings are the same either way.
     pub picture_only: bool,
+    /// The scales an earlier run of the same motion drew each frame's polygons at
+    /// ([`Products::frame_scales`]): each polygon keeps its scale at a position while it
+    /// fills half to all of its panel there (the live page, so that a polygon visibly grows
+    /// as a field's slider moves: [`PanelFrame::hold`](crate::figure::shared::panels::PanelFrame::hold)).
+    /// Empty: the frames' own choice, as the command line makes it.
+    pub held_scales: Vec<crate::figure::shared::panels::FrameScales>,
 }
 
 /// Whether [`RunOptions::picture_only`] makes less than a whole run of `scene`: it does for
@@ -123,11 +129,10 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             });
         }
     }
-    let positions = opts.positions.as_ref();
     match &loaded.scene {
         Scene::Triad(s) => triad::products(s, &file),
-        Scene::Fourbar(s) => fourbar::products(s, &file, opts.sheets, positions, opts.picture_only),
-        Scene::Linkage(s) => linkage::products(s, &file, &opts.drag, opts.sheets, positions, opts.picture_only),
+        Scene::Fourbar(s) => fourbar::products(s, &file, opts),
+        Scene::Linkage(s) => linkage::products(s, &file, opts),
         Scene::Chain(s) => chain::products(s, &file),
     }
 }
@@ -254,4 +259,13 @@ pub(crate) fn check_drawn(file: &str, field: &str, count: usize, advice: &str) -
 /// Wraps a solver error with the scene file.
 pub(crate) fn solve_err(file: &str) -> impl FnOnce(crate::solve::SolveError) -> Error + '_ {
     move |source| Error::Solve { file: file.to_string(), source }
+}
+
+/// The figures' scale choice for the scene's `[frames] scales`.
+fn scale_choice(s: crate::scene::FrameScales) -> crate::figure::shared::panels::ScaleChoice {
+    use crate::figure::shared::panels::ScaleChoice;
+    match s {
+        crate::scene::FrameScales::PerFrame => ScaleChoice::PerFrame,
+        crate::scene::FrameScales::Fixed => ScaleChoice::Fixed,
+    }
 }

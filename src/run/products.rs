@@ -3,6 +3,7 @@
 //! turns it into named files (DXF, SVG, frames, viewer, PNG, CSV, JSON) and
 //! [`super::output`] puts those on disk. A kind never names a file or calls a writer.
 
+use crate::figure::shared::panels::FrameScales;
 use serde::Serialize;
 
 use crate::Error;
@@ -69,6 +70,24 @@ pub struct Page {
     pub hairline_mm: f64,
 }
 
+impl Page {
+    /// A printed page of position `position` (`POS_090`) on `paper`: `kind` (`mechanism`,
+    /// `polygons`, `forces`) after the position's name in its stem (`pos_090-forces`).
+    pub(crate) fn printed(
+        position: &str,
+        kind: &str,
+        drawing: Drawing,
+        paper: crate::figure::shared::sheet::Paper,
+    ) -> Page {
+        Page {
+            stem: format!("{}-{kind}", position.to_lowercase()),
+            drawing,
+            window: paper.bounds(),
+            hairline_mm: crate::figure::shared::sheet::HAIRLINE_MM,
+        }
+    }
+}
+
 /// A CSV table: `<scene name><suffix>.csv`.
 #[derive(Debug, Clone)]
 pub struct Table {
@@ -114,6 +133,10 @@ pub struct Products {
     pub report: String,
     /// Warnings (skipped positions, dead points, ...), one line each.
     pub warnings: Vec<String>,
+    /// The scales each frame of a motion draws its polygons and force figures at, one per
+    /// position (empty for a still picture or a kind without polygons): what
+    /// [`RunOptions::held_scales`](super::RunOptions) takes from an earlier run.
+    pub frame_scales: Vec<FrameScales>,
 }
 
 /// What a run makes besides its picture and warnings (all of it empty, the summary `Null`,
@@ -144,6 +167,7 @@ impl Extras {
         animation: Animation,
         positions: PositionsSource,
         warnings: Vec<String>,
+        frame_scales: Vec<FrameScales>,
     ) -> Products {
         Products {
             name,
@@ -157,6 +181,7 @@ impl Extras {
             summary: self.summary,
             report: self.report,
             warnings,
+            frame_scales,
         }
     }
 }

@@ -944,6 +944,7 @@ pub(crate) fn products(study: &Study, kind: &str) -> super::Products {
         summary: extras.summary,
         report: extras.report,
         warnings,
+        frame_scales: Vec::new(),
     }
 }
 

@@ -408,5 +408,6 @@ pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error
         summary: summary(scene, &results)?,
         report: report(scene, &results),
         warnings: results.warnings,
+        frame_scales: Vec::new(),
     })
 }

@@ -66,6 +66,9 @@ pub struct RawFourbarScene {
     /// ([`super::tolerance`]).
     #[serde(default)]
     pub tolerances: Option<toml::Table>,
+    /// How the frames are drawn.
+    #[serde(default)]
+    pub frames: Option<super::RawFrames>,
 }
 
 /// `phi1_deg = { from, to, step }`.
@@ -184,6 +187,8 @@ pub struct FourbarScene {
     pub centres: bool,
     /// `[tolerances]`, checked (boxed: most scenes have none).
     pub tolerances: Option<Box<FourbarTolerances>>,
+    /// How the frames' polygon scales are chosen.
+    pub frame_scales: super::FrameScales,
 }
 
 /// A four-bar's checked `[tolerances]`: the study and the watched outputs.
@@ -305,12 +310,14 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
     let centres = raw.outputs.as_ref().is_some_and(|l| l.iter().any(|s| s == "centres"));
     let tolerances =
         raw.tolerances.as_ref().map(|t| check_tolerances(t, &geometry, sweep.count()).map(Box::new)).transpose()?;
+    let frame_scales = super::check_frames(raw.frames.as_ref())?;
     Ok(FourbarScene {
         name,
         units: raw.units,
         spec: MotionSpec { geometry, omega1, epsilon1, sweep, outputs, dynamics },
         centres,
         tolerances,
+        frame_scales,
     })
 }
 

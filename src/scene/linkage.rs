@@ -270,6 +270,8 @@ pub struct RawLinkageScene {
     pub load: Vec<RawLoad>,
     /// What the frames draw beside the mechanism.
     pub polygons: Option<RawPolygons>,
+    /// How the frames are drawn.
+    pub frames: Option<super::RawFrames>,
     /// What is computed: `"position"`, `"velocity"`, `"acceleration"`, `"forces"`.
     pub outputs: Option<Vec<String>>,
     /// `[tolerances]`: toleranced fields, watched outputs, settings
@@ -305,6 +307,9 @@ pub struct RawPolygons {
     pub forces: Option<bool>,
     /// The points shown, by name (default: every body point).
     pub points: Option<Vec<String>>,
+    /// `"groups"` (one force figure per Assur group, the default) or `"bodies"` (one per
+    /// moving body).
+    pub force_figures: Option<String>,
 }
 
 /// What the frames draw beside the mechanism (from `[polygons]`).
@@ -318,6 +323,8 @@ pub struct Polygons {
     pub forces: bool,
     /// The points shown (`None`: every body point).
     pub points: Option<Vec<String>>,
+    /// One force figure per moving body instead of one per Assur group.
+    pub per_body: bool,
 }
 
 /// `[diagrams]`.
@@ -432,6 +439,8 @@ pub struct LinkageScene {
     pub dynamics: Option<Dynamics>,
     /// What the frames draw beside the mechanism.
     pub polygons: Polygons,
+    /// How the frames' polygon scales are chosen.
+    pub frame_scales: super::FrameScales,
     /// What is computed.
     pub outputs: Outputs,
     /// `[tolerances]`, checked (boxed: most scenes have none).
@@ -658,6 +667,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         check_load_ranges(&d.loads, &times)?;
     }
     let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
+    let frame_scales = super::check_frames(raw.frames.as_ref())?;
     let outputs = check_outputs(raw.outputs.as_deref(), dynamics.is_some(), &raw.measure, &measures)?;
     let tolerances = raw
         .tolerances
@@ -674,6 +684,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         diagram_axis,
         dynamics,
         polygons,
+        frame_scales,
         outputs,
         tolerances,
     })
@@ -820,11 +831,25 @@ fn check_polygons(raw: Option<&RawPolygons>, mech: &Mechanism) -> Result<Polygon
             }
         }
     }
+    let per_body = match raw.force_figures.as_deref() {
+        None | Some("groups") => false,
+        Some("bodies") => true,
+        Some(other) => {
+            return Err(FieldError::new(
+                "polygons.force_figures",
+                format!(
+                    "`{other}` is not a choice: \"groups\" (one force figure per Assur group, the default) or \
+                     \"bodies\" (one per moving body)"
+                ),
+            ));
+        }
+    };
     Ok(Polygons {
         velocity: raw.velocity.unwrap_or(true),
         acceleration: raw.acceleration.unwrap_or(true),
         forces: raw.forces.unwrap_or(true),
         points: raw.points,
+        per_body,
     })
 }
 

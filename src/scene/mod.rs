@@ -69,6 +69,40 @@ pub struct Loaded {
     pub text: String,
 }
 
+/// `[frames]`: how an animation's frames are drawn.
+#[derive(Debug, Clone, Default, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawFrames {
+    /// `"per-frame"` (the default) or `"fixed"`.
+    pub scales: Option<String>,
+}
+
+/// How the frames' polygon scales are chosen (`[frames] scales`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FrameScales {
+    /// Each frame's polygons at their own nice scale, each filling half to all of its panel,
+    /// kept from frame to frame while it does (`"per-frame"`, the default).
+    #[default]
+    PerFrame,
+    /// One scale per polygon for the whole run (`"fixed"`).
+    Fixed,
+}
+
+/// `[frames]`, checked.
+pub fn check_frames(raw: Option<&RawFrames>) -> Result<FrameScales, FieldError> {
+    match raw.and_then(|f| f.scales.as_deref()) {
+        None | Some("per-frame") => Ok(FrameScales::PerFrame),
+        Some("fixed") => Ok(FrameScales::Fixed),
+        Some(other) => Err(FieldError::new(
+            "frames.scales",
+            format!(
+                "`{other}` is not a choice: \"per-frame\" (each frame's polygons at their own nice scale, the \
+                 default) or \"fixed\" (one scale per polygon for the whole run)"
+            ),
+        )),
+    }
+}
+
 /// Length units of a scene, stated once per file.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize, serde::Serialize)]
 pub enum Units {

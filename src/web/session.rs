@@ -10,6 +10,7 @@ use crate::Error;
 use crate::draw::Drawing;
 use crate::draw::svg::{self, SvgOptions};
 use crate::figure::shared::animation::{Drive, DriveState};
+use crate::figure::shared::panels::FrameScales;
 use crate::geom::Point;
 use crate::run::bytes::{self, WriteOptions};
 use crate::run::products::{Picture, Products};
@@ -71,7 +72,7 @@ impl std::fmt::Debug for Session {
 impl Session {
     /// Opens the scene in `text` (named `file` in messages).
     pub fn new(text: &str, file: &str) -> Result<Session, Error> {
-        let (products, motion) = solve(text, file)?;
+        let (products, motion) = solve(text, file, &[])?;
         Ok(Session {
             file: file.to_string(),
             text: text.to_string(),
@@ -96,9 +97,14 @@ impl Session {
     }
 
     /// Replaces the scene's text (the page's TOML editor, an undo, a build step); on an error
-    /// nothing changes.
+    /// nothing changes. The picture keeps the scales its polygons and force figures were
+    /// drawn at, position by position, while each still fills half to all of its panel
+    /// ([`RunOptions::held_scales`]): as a field's slider moves, a polygon is seen to grow
+    /// and shrink, and its scale steps only when it would leave its panel or shrink under
+    /// half of it. (The files, [`Session::products`], are the command line's for the text.)
     pub fn replace(&mut self, text: &str) -> Result<(), Error> {
-        let (products, motion) = solve(text, &self.file)?;
+        let held = self.made.shown().frame_scales.clone();
+        let (products, motion) = solve(text, &self.file, &held)?;
         (self.text, self.made, self.motion, self.dragged) = (text.to_string(), products, motion, None);
         self.positions_points = OnceLock::new();
         Ok(())
@@ -174,14 +180,22 @@ impl Session {
     }
 
     /// Position `k`'s frame as an SVG document: for a motion, byte for byte the command
-    /// line's `frames/<name>/<position>.svg`; for a still picture, `<name>.svg`. `None` past
-    /// the last position.
+    /// line's `frames/<name>/<position>.svg` (after a change, with the polygons at the
+    /// scales held from the picture before it: [`Session::replace`]); for a still picture,
+    /// `<name>.svg`. `None` past the last position.
     pub fn frame(&self, k: usize) -> Option<String> {
         match &self.made.shown().picture {
             Picture::Still(d) => (k == 0).then(|| bytes::picture_svg(d)),
             Picture::Motion(a) if k < a.len() => self.whole(&a.pose(k)),
             Picture::Motion(_) => None,
         }
+    }
+
+    /// The scales each position's frame draws its polygons and force figures at (empty for
+    /// a still picture): the command line's when the scene was opened, then held from
+    /// change to change ([`Session::replace`]).
+    pub fn frame_scales(&self) -> &[FrameScales] {
+        &self.made.shown().frame_scales
     }
 
     /// A motion's base: what every frame shares (the header, the ground, the traced paths,
@@ -425,12 +439,16 @@ fn loaded(text: &str, file: &str) -> Result<Loaded, Error> {
     Ok(Loaded { path: PathBuf::from(file), scene: scene::parse(text, file, &[])?, text: text.to_string() })
 }
 
-fn solve(text: &str, file: &str) -> Result<Solved, Error> {
+/// Solves `text` (named `file` in messages): the picture (and for the kinds whose whole run
+/// is cheap, everything), its polygons at the scales `held` of an earlier picture where they
+/// still fill half to all of their panels.
+fn solve(text: &str, file: &str, held: &[FrameScales]) -> Result<Solved, Error> {
     let loaded = loaded(text, file)?;
     let alone = run::picture_alone(&loaded.scene);
     // Before solving, as the command line: a mistyped step is refused at once.
     run::check_positions(&loaded.scene, file)?;
-    let p = run::products(&loaded, &RunOptions { no_frames: true, picture_only: alone, ..RunOptions::default() })?;
+    let opts = RunOptions { no_frames: true, picture_only: alone, held_scales: held.to_vec(), ..RunOptions::default() };
+    let p = run::products(&loaded, &opts)?;
     if let (Picture::Motion(a), Some(source)) = (&p.picture, p.positions) {
         run::check_drawn(file, source.field, a.len(), source.advice)?;
     }

@@ -177,69 +177,88 @@ pub fn seed_triad() -> mechdraw::solve::triad::Triad {
     .expect("the seed's triad is valid")
 }
 
-/// A text of a drawing as the letter placer measures it: its layer, its value and its box
-/// (label width by one cap height, from its alignment, turned with the text; a circled link
-/// number's circle).
+/// A text of a drawing with its box as the font draws it (the bundled DejaVu Sans's advances,
+/// from its deepest descender to its highest glyph: `mechdraw::draw::text_corners`, the
+/// letter placer's measure), or, for a circled link number, its circle's square.
 #[derive(Debug, Clone)]
 pub struct TextBox {
     pub layer: String,
     pub value: String,
     pub at: mechdraw::geom::Point,
     pub halign: mechdraw::draw::HAlign,
+    /// Lower-left and upper-right of the axis-aligned box holding it (turned with a turned
+    /// text).
     pub min: mechdraw::geom::Point,
     pub max: mechdraw::geom::Point,
+    /// Its rotation (radians) and its box in its own frame (unturned, from `at`): for
+    /// strokes crossing it.
+    pub rotation: f64,
+    pub local: (mechdraw::geom::Vector, mechdraw::geom::Vector),
+    /// Whether it is a circled link number (its box is its circle's square).
+    pub circled: bool,
+}
+
+/// Every shape of `d` as drawn, with its layer: dimensions exploded into their parts.
+pub fn drawn_shapes(d: &mechdraw::draw::Drawing) -> Vec<(String, mechdraw::draw::Shape)> {
+    use mechdraw::draw::{Shape, parts};
+    let mut out = Vec::new();
+    for e in &d.entities {
+        let layer = d.layers[e.layer].name.clone();
+        match &e.shape {
+            dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                out.extend(parts::explode_dimension(dim, &d.dim_style).into_iter().map(|s| (layer.clone(), s)))
+            }
+            // A scale caption as the paper states it.
+            caption @ Shape::ScaleText { .. } => out.extend(caption.scale_text_in(None).map(|t| (layer, t))),
+            other => out.push((layer, other.clone())),
+        }
+    }
+    out
 }
 
 /// Every text of `d` with its box.
 pub fn text_boxes(d: &mechdraw::draw::Drawing) -> Vec<TextBox> {
-    use mechdraw::draw::{HAlign, Shape, VAlign};
-    use mechdraw::figure::shared::labels::{CIRCLE_RADIUS, label_width};
+    use mechdraw::draw::Shape;
+    use mechdraw::figure::shared::labels::CIRCLE_RADIUS;
     use mechdraw::geom::{Point, Vector};
-    let circles: Vec<(Point, f64)> = d
-        .entities
+    let shapes = drawn_shapes(d);
+    let circles: Vec<(Point, f64)> = shapes
         .iter()
-        .filter_map(|e| match e.shape {
-            Shape::Circle { center, radius } => Some((center, radius)),
+        .filter_map(|(_, s)| match s {
+            Shape::Circle { center, radius } => Some((*center, *radius)),
             _ => None,
         })
         .collect();
-    d.entities
+    shapes
         .iter()
-        // A scale caption as the paper states it.
-        .map(|e| (e, e.shape.scale_text_in(None)))
-        .filter_map(|(e, caption)| match caption.as_ref().unwrap_or(&e.shape) {
-            Shape::Text { at, height, value, halign, valign, rotation } => {
-                let (h, w) = (*height, label_width(value, *height));
-                let x0 = match halign {
-                    HAlign::Left => at.x,
-                    HAlign::Center => at.x - 0.5 * w,
-                    HAlign::Right => at.x - w,
-                };
-                let y0 = match valign {
-                    VAlign::Baseline => at.y,
-                    VAlign::Middle => at.y - 0.5 * h,
-                    VAlign::Top => at.y - h,
-                };
-                let (mut min, mut max) = (Point::new(x0, y0), Point::new(x0 + w, y0 + h));
-                let r = CIRCLE_RADIUS * h;
-                if circles.iter().any(|(c, cr)| *c == *at && (cr - r).abs() < 1e-12 * r) {
-                    (min, max) = (*at - Vector::new(r, r), *at + Vector::new(r, r));
-                }
-                // A rotated text: the box of its rotated corners (about its insertion point).
-                if *rotation != 0.0 {
-                    let (sin, cos) = rotation.sin_cos();
-                    let turn = |p: Point| {
-                        let v = p - *at;
-                        *at + Vector::new(cos * v.x - sin * v.y, sin * v.x + cos * v.y)
-                    };
-                    let corners = [min, Point::new(max.x, min.y), max, Point::new(min.x, max.y)].map(turn);
-                    min = corners.iter().fold(corners[0], |m, c| Point::new(m.x.min(c.x), m.y.min(c.y)));
-                    max = corners.iter().fold(corners[0], |m, c| Point::new(m.x.max(c.x), m.y.max(c.y)));
-                }
-                let layer = d.layers[e.layer].name.clone();
-                Some(TextBox { layer, value: value.clone(), at: *at, halign: *halign, min, max })
+        .filter_map(|(layer, shape)| {
+            let Shape::Text { at, height, value, halign, rotation, .. } = shape else { return None };
+            let corners = mechdraw::draw::text_corners(shape)?;
+            let (sin, cos) = rotation.sin_cos();
+            let back = |p: Point| {
+                let v = p - *at;
+                Vector::new(cos * v.x + sin * v.y, -sin * v.x + cos * v.y)
+            };
+            let mut local = (back(corners[0]), back(corners[2]));
+            let mut min = corners.iter().fold(corners[0], |m, c| Point::new(m.x.min(c.x), m.y.min(c.y)));
+            let mut max = corners.iter().fold(corners[0], |m, c| Point::new(m.x.max(c.x), m.y.max(c.y)));
+            let r = CIRCLE_RADIUS * height;
+            let circled = circles.iter().any(|(c, cr)| *c == *at && (cr - r).abs() < 1e-12 * r);
+            if circled {
+                (min, max) = (*at - Vector::new(r, r), *at + Vector::new(r, r));
+                local = (Vector::new(-r, -r), Vector::new(r, r));
             }
-            _ => None,
+            Some(TextBox {
+                layer: layer.clone(),
+                value: value.clone(),
+                at: *at,
+                halign: *halign,
+                min,
+                max,
+                rotation: *rotation,
+                local,
+                circled,
+            })
         })
         .collect()
 }
@@ -261,6 +280,245 @@ pub fn overlapping_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
 /// Whether the boxes of two texts overlap.
 pub fn boxes_overlap(a: &TextBox, b: &TextBox) -> bool {
     a.min.x < b.max.x && b.min.x < a.max.x && a.min.y < b.max.y && b.min.y < a.max.y
+}
+
+/// A stroke of a drawing: a straight piece of a line drawn `width` wide.
+#[derive(Debug, Clone, Copy)]
+pub struct Stroke {
+    pub from: mechdraw::geom::Point,
+    pub to: mechdraw::geom::Point,
+    pub width: f64,
+}
+
+/// Every stroke of a shape as straight pieces (circles and arcs at 1° chords, the sides of
+/// filled shapes and of arrowheads), none for a text.
+pub fn strokes_of(shape: &mechdraw::draw::Shape) -> Vec<Stroke> {
+    use mechdraw::draw::{Shape, parts};
+    use mechdraw::geom::{Point, Vector};
+    let seg = |from: Point, to: Point, width: f64| Stroke { from, to, width };
+    let ring = |c: Point, r: f64, start: f64, sweep: f64| {
+        // Chords of 2.5° at most: 0.02 % of the radius from the arc.
+        let n = ((sweep.abs().to_degrees() / 2.5).ceil() as usize).max(1);
+        let at = |k: usize| {
+            let a = start + sweep * k as f64 / n as f64;
+            c + Vector::new(a.cos(), a.sin()) * r
+        };
+        (0..n).map(|k| seg(at(k), at(k + 1), 0.0)).collect::<Vec<_>>()
+    };
+    let closed = |pts: &[Point], width: f64| {
+        (0..pts.len()).map(|i| seg(pts[i], pts[(i + 1) % pts.len()], width)).collect::<Vec<_>>()
+    };
+    match shape {
+        Shape::Circle { center, radius } => ring(*center, *radius, 0.0, std::f64::consts::TAU),
+        Shape::Arc { center, radius, start, end } => ring(*center, *radius, *start, parts::arc_sweep(*start, *end)),
+        Shape::Line { from, to } => vec![seg(*from, *to, 0.0)],
+        Shape::Polyline { points, closed: c, width } => {
+            if *c && points.len() > 2 {
+                closed(points, *width)
+            } else {
+                points.windows(2).map(|w| seg(w[0], w[1], *width)).collect()
+            }
+        }
+        Shape::Filled { points } => closed(points, 0.0),
+        Shape::Arrow { from, to, head } => match parts::arrow(*from, *to, *head) {
+            Some((base, tri)) => {
+                let mut out = vec![seg(*from, base, 0.0)];
+                out.extend(closed(&tri, 0.0));
+                out
+            }
+            None => vec![seg(*from, *to, 0.0)],
+        },
+        _ => Vec::new(),
+    }
+}
+
+/// The distance between the segment a–b and the box lo–hi (0 when they meet).
+pub fn segment_box_distance(
+    a: mechdraw::geom::Vector,
+    b: mechdraw::geom::Vector,
+    lo: mechdraw::geom::Vector,
+    hi: mechdraw::geom::Vector,
+) -> f64 {
+    use mechdraw::geom::Vector;
+    if segment_crosses_box(a, b, lo, hi) {
+        return 0.0;
+    }
+    let to_segment = |p: Vector| {
+        let ab = b - a;
+        let t = if ab.norm_squared() > 0.0 { ((p - a).dot(&ab) / ab.norm_squared()).clamp(0.0, 1.0) } else { 0.0 };
+        (p - (a + ab * t)).norm()
+    };
+    let to_box = |p: Vector| (Vector::new(p.x.clamp(lo.x, hi.x), p.y.clamp(lo.y, hi.y)) - p).norm();
+    let corners = [lo, Vector::new(hi.x, lo.y), hi, Vector::new(lo.x, hi.y)];
+    corners.iter().map(|c| to_segment(*c)).chain([to_box(a), to_box(b)]).fold(f64::INFINITY, f64::min)
+}
+
+/// Whether the segment a–b passes through the interior of the box lo–hi (Liang–Barsky).
+pub fn segment_crosses_box(
+    a: mechdraw::geom::Vector,
+    b: mechdraw::geom::Vector,
+    lo: mechdraw::geom::Vector,
+    hi: mechdraw::geom::Vector,
+) -> bool {
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-d.x, a.x - lo.x), (d.x, hi.x - a.x), (-d.y, a.y - lo.y), (d.y, hi.y - a.y)] {
+        if p == 0.0 {
+            if q <= 0.0 {
+                return false;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    t0 < t1
+}
+
+/// The texts of `d` crossed by a stroke of another element: (text, what crosses it). A stroke
+/// crosses a text when it passes through the inside of its box (shrunk by a millionth of the
+/// text's height, so that a leader ending on the box's edge does not count) or, drawn wide,
+/// comes nearer to the box than half its width; a circled number's own circle does not
+/// count.
+pub fn crossed_texts(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
+    use mechdraw::draw::Shape;
+    use mechdraw::geom::{Point, Vector};
+    /// What a shape strokes: a full circle (tested exactly), or straight pieces.
+    enum Ink {
+        Circle(Point, f64),
+        Pieces(Vec<Stroke>),
+    }
+    let shapes = drawn_shapes(d);
+    // Each shape's strokes with their bounding box (grown by the widest stroke's half).
+    let inks: Vec<(String, Ink, Point, Point)> = shapes
+        .iter()
+        .filter(|(_, s)| !matches!(s, Shape::Text { .. }))
+        .filter_map(|(layer, s)| {
+            let what = match s {
+                Shape::Circle { .. } => "circle",
+                Shape::Arc { .. } => "arc",
+                Shape::Line { .. } => "line",
+                Shape::Polyline { .. } => "polyline",
+                Shape::Filled { .. } => "filled shape",
+                Shape::Arrow { .. } => "arrow",
+                _ => "dimension",
+            };
+            let (ink, lo, hi) = match s {
+                Shape::Circle { center, radius } => {
+                    let r = Vector::new(*radius, *radius);
+                    (Ink::Circle(*center, *radius), center - r, center + r)
+                }
+                _ => {
+                    let pieces = strokes_of(s);
+                    let first = pieces.first()?;
+                    let grow = pieces.iter().map(|p| 0.5 * p.width).fold(0.0, f64::max);
+                    let (mut lo, mut hi) = (first.from, first.from);
+                    for p in &pieces {
+                        for q in [p.from, p.to] {
+                            lo = Point::new(lo.x.min(q.x), lo.y.min(q.y));
+                            hi = Point::new(hi.x.max(q.x), hi.y.max(q.y));
+                        }
+                    }
+                    let g = Vector::new(grow, grow);
+                    (Ink::Pieces(pieces), lo - g, hi + g)
+                }
+            };
+            Some((format!("{what} on {layer}"), ink, lo, hi))
+        })
+        .collect();
+    let mut out = Vec::new();
+    for t in text_boxes(d).iter().filter(|t| !t.value.trim().is_empty()) {
+        let h = (t.local.1.y - t.local.0.y).abs().max(1e-300);
+        let (sin, cos) = t.rotation.sin_cos();
+        let local = |p: Point| {
+            let v = p - t.at;
+            Vector::new(cos * v.x + sin * v.y, -sin * v.x + cos * v.y)
+        };
+        for (what, ink, lo, hi) in &inks {
+            if lo.x >= t.max.x || hi.x <= t.min.x || lo.y >= t.max.y || hi.y <= t.min.y {
+                continue;
+            }
+            let eps = 1e-6 * h;
+            let hit = match ink {
+                Ink::Circle(c, r) => {
+                    if t.circled && *c == t.at {
+                        continue;
+                    }
+                    // The circle passes through the box's inside: the box's nearest point is
+                    // inside the circle and its farthest corner outside.
+                    let (c, (bl, bh)) = (local(*c), (t.local.0, t.local.1));
+                    let near = Vector::new(c.x.clamp(bl.x, bh.x), c.y.clamp(bl.y, bh.y));
+                    let far = Vector::new(
+                        if c.x - bl.x > bh.x - c.x { bl.x } else { bh.x },
+                        if c.y - bl.y > bh.y - c.y { bl.y } else { bh.y },
+                    );
+                    (near - c).norm() < *r - eps && (far - c).norm() > *r + eps
+                }
+                Ink::Pieces(pieces) => pieces.iter().any(|s| {
+                    let (a, b) = (local(s.from), local(s.to));
+                    let (lo, hi) = (t.local.0, t.local.1);
+                    // Through the box, or (a wide stroke) nearer to it than half its width.
+                    let g = Vector::new(eps, eps);
+                    segment_crosses_box(a, b, lo + g, hi - g)
+                        || (s.width > 0.0 && segment_box_distance(a, b, lo, hi) < 0.5 * s.width - eps)
+                }),
+            };
+            if hit {
+                out.push((t.value.clone(), what.clone()));
+            }
+        }
+    }
+    out
+}
+
+/// The panels of a drawing: the rectangles drawn as closed four-point polylines on a layer
+/// named `SHEET` or `PANELS` (a sheet's border, title block and panel frames; a frame's
+/// panels).
+pub fn panels(d: &mechdraw::draw::Drawing) -> Vec<(mechdraw::geom::Point, mechdraw::geom::Point)> {
+    use mechdraw::draw::Shape;
+    use mechdraw::geom::Point;
+    d.entities
+        .iter()
+        .filter(|e| matches!(d.layers[e.layer].name.as_str(), "SHEET" | "PANELS"))
+        .filter_map(|e| match &e.shape {
+            Shape::Polyline { points, closed: true, .. } if points.len() == 4 => {
+                let min = points.iter().fold(points[0], |m, p| Point::new(m.x.min(p.x), m.y.min(p.y)));
+                let max = points.iter().fold(points[0], |m, p| Point::new(m.x.max(p.x), m.y.max(p.y)));
+                // Axis-aligned rectangles only.
+                points
+                    .iter()
+                    .all(|p| (p.x == min.x || p.x == max.x) && (p.y == min.y || p.y == max.y))
+                    .then_some((min, max))
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+/// The texts of `d` that leave the panel their insertion point is in (the smallest panel
+/// holding it): (text, the panel's corners).
+pub fn texts_outside_their_panel(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
+    let panels = panels(d);
+    let mut out = Vec::new();
+    for t in text_boxes(d).iter().filter(|t| !t.value.trim().is_empty()) {
+        let inside = |(lo, hi): &(mechdraw::geom::Point, mechdraw::geom::Point), p: mechdraw::geom::Point| {
+            p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y
+        };
+        let home = panels
+            .iter()
+            .filter(|p| inside(p, t.at))
+            .min_by(|a, b| ((a.1 - a.0).x * (a.1 - a.0).y).total_cmp(&((b.1 - b.0).x * (b.1 - b.0).y)));
+        if let Some(p) = home
+            && !(inside(p, t.min) && inside(p, t.max))
+        {
+            out.push((t.value.clone(), format!("{:.1},{:.1}–{:.1},{:.1}", p.0.x, p.0.y, p.1.x, p.1.y)));
+        }
+    }
+    out
 }
 
 /// Every file under `dir` (from `rel`), with `/`-separated paths relative to `dir`, pushed

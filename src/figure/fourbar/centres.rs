@@ -49,39 +49,32 @@ fn coord(v: f64) -> String {
     if s == "-0" { "0".into() } else { s.into() }
 }
 
-/// Draws the centres `c` and the Kennedy lines inside `window` on `d` (a
-/// [`content_drawing`] with the [`CENTRES`] layer), the names keeping off `keep_off`.
-/// Returns one note per centre not drawn as a point (outside `window` or at infinity),
-/// with its coordinates less `offset` (where the drawing has moved the mechanism to).
+/// Draws the centres `c` (small circles) and the Kennedy lines inside `window` on `d` (a
+/// [`content_drawing`] with the [`CENTRES`] layer). Returns the centres drawn, to be named
+/// ([`name_centres`]), and one note per centre not drawn as a point (outside `window` or at
+/// infinity), with its coordinates less `offset` (where the drawing has moved the mechanism
+/// to).
 pub fn draw_centres(
     d: &mut Drawing,
     c: &Centres,
     window: &Bounds,
     s: Sizes,
-    keep_off: &[TextBox],
     offset: Vector,
-) -> Vec<String> {
+) -> (Vec<(&'static str, Point)>, Vec<String>) {
     let con = layer_of(d, layers::CONSTRUCTION);
     let layer =
         d.layers.iter().position(|l| l.name == CENTRES.0).unwrap_or_else(|| d.layer(CENTRES.0, CENTRES.1, CENTRES.2));
-    let mut letters = labels::Polygon::of_points();
-    for b in keep_off {
-        letters.keep_off(*b);
-    }
     for line in c.kennedy_lines() {
         if let Some((a, b)) = clip_line(line.through, line.direction, window) {
             d.add(con, Shape::Line { from: a, to: b });
-            letters.segment(a, b);
         }
     }
-    let mut notes = Vec::new();
-    let mid = Point::from((window.min.coords + window.max.coords) / 2.0);
+    let (mut drawn, mut notes) = (Vec::new(), Vec::new());
     for (name, centre) in c.named() {
         match centre {
             Centre::At(p) if inside(p, window) => {
                 d.add(layer, Shape::Circle { center: p, radius: 0.45 * s.joint });
-                // Away from the panel's middle: outside the linkage.
-                letters.letter(p, name, 0.85 * s.text, p - mid, None);
+                drawn.push((name, p));
             }
             Centre::At(p) => {
                 let q = p - offset;
@@ -93,8 +86,25 @@ pub fn draw_centres(
             }
         }
     }
+    (drawn, notes)
+}
+
+/// Names the centres drawn by [`draw_centres`] in `window`: each letter away from the
+/// window's middle (outside the linkage), clear of everything already in `d` and inside
+/// `panel`.
+pub fn name_centres(d: &mut Drawing, drawn: &[(&str, Point)], window: &Bounds, s: Sizes, panel: TextBox) {
+    let layer =
+        d.layers.iter().position(|l| l.name == CENTRES.0).unwrap_or_else(|| d.layer(CENTRES.0, CENTRES.1, CENTRES.2));
+    let mut letters = labels::Polygon::of_points();
+    let mid = Point::from((window.min.coords + window.max.coords) / 2.0);
+    for (name, p) in drawn {
+        // On two or three Kennedy lines through the centre: a leader lets the name go out
+        // between them.
+        letters.name_with_leader(*p, name, 0.85 * s.text, p - mid, None);
+    }
+    letters.keep_off_drawing(d);
+    letters.keep_within(panel);
     letters.draw(d, layer);
-    notes
 }
 
 /// Panels per row of the centres sheet.
@@ -128,13 +138,15 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
             Point::new(win.max.x, win.max.y + title_room),
             Point::new(win.min.x, win.max.y + title_room),
         ];
-        d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        d.add(frame, Shape::Polyline { points: corners.clone(), closed: true, width: 0.0 });
         let mech = layer_of(&d, layers::MECHANISM);
         for q in [g.o1, g.c] {
             ground(&mut d, mech, q, s);
         }
-        let boxes = mechanism(&mut d, &g, &p, &[], None, s);
-        let notes = draw_centres(&mut d, &centres(&g, &p), &win, s, &boxes, off);
+        let panel = TextBox { min: corners[0], max: corners[2] };
+        // The lines and centres first, the title and the notes, then the letters of the
+        // mechanism and of the centres clear of them all.
+        let (drawn, notes) = draw_centres(&mut d, &centres(&g, &p), &win, s, off);
         let title = format!("φ1 = {}°", angle_text(pos.phi1.to_degrees()));
         let at = Point::new(win.min.x + 0.5 * s.text, win.max.y + 0.6 * s.text);
         d.push(Entity {
@@ -166,6 +178,8 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
                 },
             });
         }
+        let _ = mechanism(&mut d, &g, &p, &[], None, s, labels::Around { backdrop: None, within: Some(panel) });
+        name_centres(&mut d, &drawn, &win, s, panel);
     }
     // The sheet's heading above the first row, with its length scale.
     let heading = length_caption("Instantaneous centres and Kennedy's lines   ", k_l, units);

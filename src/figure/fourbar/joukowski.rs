@@ -42,18 +42,9 @@ pub struct LeverUnits {
     pub moment: &'static str,
 }
 
-/// `v` to four significant digits (no exponent for ordinary magnitudes).
+/// `v` to four significant digits, never with an exponent ([`crate::figure::shared::sheet::number`]).
 pub fn sig4(v: f64) -> String {
-    if v == 0.0 || !v.is_finite() {
-        return format!("{v}");
-    }
-    let mag = libm::log10(v.abs()).floor() as i32;
-    if !(-4..6).contains(&mag) {
-        return format!("{v:.3e}");
-    }
-    let decimals = (3 - mag).max(0) as usize;
-    let s = format!("{v:.decimals$}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".into() } else { s }
+    crate::figure::shared::sheet::number(v)
 }
 
 /// Length of a load's arrow on the lever, in panel sizes: the loads differ by two orders
@@ -107,7 +98,14 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             Point::new(hi.x, hi.y + title_room),
             Point::new(lo.x, hi.y + title_room),
         ];
+        let frame_box = labels::TextBox { min: corners[0], max: corners[2] };
         d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        let title = if lever.crank_speed != panel.omega1 {
+            format!("Joukowski's lever   φ1 = {}°, ω1 = 0", angle_text(panel.phi1_deg))
+        } else {
+            format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg))
+        };
+        d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         let arrows: Vec<(&LeverForce, bool)> =
             lever.forces.iter().map(|f| (f, false)).chain(lever.balancing.iter().map(|f| (f, true))).collect();
         let dir = |f: &LeverForce| unit_or(f.force, Vector::zeros()) * arrow;
@@ -161,6 +159,9 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             }
             names.segment(from, from + v);
         }
+        // Clear of everything drawn (the polygon, the arrows, the title) and inside the panel.
+        letters.keep_off_drawing(&d);
+        letters.keep_within(frame_box);
         let boxes = letters.draw(&mut d, vel);
         for b in boxes {
             names.keep_off(b);
@@ -169,15 +170,11 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             let from = at(f.image);
             let v = dir(f);
             let color = balancing.then_some(Aci::RED);
-            names.letter(from + v * 0.6, &f.name, small, perp(v), color);
+            names.name_with_leader(from + v * 0.6, &f.name, small, perp(v), color);
         }
+        names.keep_off_drawing(&d);
+        names.keep_within(frame_box);
         names.draw(&mut d, frc);
-        let title = if lever.crank_speed != panel.omega1 {
-            format!("Joukowski's lever   φ1 = {}°, ω1 = 0", angle_text(panel.phi1_deg))
-        } else {
-            format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg))
-        };
-        d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
         // The table: load, its image point, |F| [N], M_p [N·(unit)/s].
         let largest = arrows.iter().map(|(f, _)| f.moment.abs()).fold(0.0, f64::max);
         let left = lo.x + 0.5 * s.text;
@@ -248,6 +245,7 @@ mod tests {
         assert_eq!(sig4(1490.12), "1490");
         assert_eq!(sig4(0.0123456), "0.01235");
         assert_eq!(sig4(0.0), "0");
-        assert_eq!(sig4(1.5e7), "1.500e7");
+        assert_eq!(sig4(1.5e7), "15000000");
+        assert_eq!(sig4(-2.5e-6), "-0.000002500");
     }
 }

@@ -45,6 +45,7 @@ use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
 use crate::figure::shared::forces::{self, ForcePolygon, NamedVector, Resultant};
 use crate::figure::shared::labels;
+pub use crate::figure::shared::panels::ScaleChoice;
 pub use crate::figure::shared::panels::TABLE_CAPTION;
 use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
 use crate::figure::shared::polygon::{Direction, NamedPoint, POLE, PointPolygon, Side, SideKind};
@@ -65,6 +66,8 @@ pub struct Show {
     /// The force polygons (the dyad's and the crank's), the table of magnitudes, and the
     /// reactions R_A, R_B, R_C, R_O and the load F on the mechanism.
     pub forces: bool,
+    /// How the frames' polygon scales are chosen (the scene's `[frames] scales`).
+    pub scales: ScaleChoice,
 }
 
 /// Panels, scales and what the four-bar draws on its mechanism, for one run: computed once
@@ -83,7 +86,13 @@ pub struct Layout {
     pub external: Vec<ExternalForce>,
     /// The link loads, drawn where they act ([`Layout::with_link_loads`]).
     pub link_loads: Vec<LinkLoad>,
+    /// What every frame shares ([`Layout::base`]), for each frame's letters to keep off
+    /// ([`Layout::with_backdrop`]).
+    pub backdrop: Option<Drawing>,
 }
+
+/// Where a polygon is drawn: its scale and its pole.
+pub type Place = (Scale, Point);
 
 /// Caption of the dyad's force polygon.
 pub const DYAD_CAPTION: &str = "Dyad 2–3 (Fig. 4)";
@@ -110,17 +119,18 @@ impl Layout {
             velocity: show.velocity && !kins.is_empty(),
             acceleration: show.acceleration && !kins.is_empty(),
             forces: show.forces && forces.is_some_and(|f| !f.is_empty()),
+            scales: show.scales,
         };
-        let velocity =
-            show.velocity.then(|| kins.iter().flat_map(|(_, k)| velocity_polygon(k).physical_points()).collect());
-        let acceleration = show
-            .acceleration
-            .then(|| kins.iter().flat_map(|(p, k)| acceleration_polygon(p, geom.c, k).physical_points()).collect());
+        // Each polygon's extent at each position (frame k draws positions[k]).
+        let per_position = |poly: &dyn Fn(&Position, &Kinematics) -> PointPolygon| -> Vec<Option<Extent>> {
+            positions.iter().map(|p| p.kin.as_ref().and_then(|k| Extent::of(poly(p, k).physical_points()))).collect()
+        };
+        let velocity = show.velocity.then(|| per_position(&|_, k| velocity_polygon(k)));
+        let acceleration = show.acceleration.then(|| per_position(&|p, k| acceleration_polygon(p, geom.c, k)));
         let force_spec = forces.filter(|_| show.forces).map(|fs| {
             let moment_unit = format!("N·{}", units.length);
-            let extent = |poly: fn(&Forces) -> ForcePolygon| {
-                fs.iter().map(|f| Extent::of(poly(f).physical_points())).fold(None, Extent::union)
-            };
+            let extent =
+                |poly: fn(&Forces) -> ForcePolygon| fs.iter().map(|f| Extent::of(poly(f).physical_points())).collect();
             ForceSpec {
                 figures: vec![
                     (DYAD_CAPTION.to_string(), extent(dyad_polygon)),
@@ -147,8 +157,9 @@ impl Layout {
             velocity,
             acceleration,
             forces: force_spec,
+            scales: show.scales,
         });
-        Layout { show, frame, omega1: None, external: Vec::new(), link_loads: Vec::new() }
+        Layout { show, frame, omega1: None, external: Vec::new(), link_loads: Vec::new(), backdrop: None }
     }
 
     /// The layout with the crank's angular velocity `omega1` (rad/s, CCW positive: the ω1
@@ -164,6 +175,13 @@ impl Layout {
     /// where and when they act: `F1` on the crank, `F2` on the coupler, `F3` on the rocker).
     pub fn with_link_loads(mut self, loads: &[LinkLoad]) -> Layout {
         self.link_loads = loads.to_vec();
+        self
+    }
+
+    /// The layout with what every frame shares drawn once ([`Layout::base`]): each frame's
+    /// letters keep clear of it (the coupler curve, the ground symbols, the titles).
+    pub fn with_backdrop(mut self, base: &Drawing) -> Layout {
+        self.backdrop = Some(base.clone());
         self
     }
 
@@ -188,14 +206,15 @@ impl Layout {
 
     /// One position on the content layers: the mechanism (with R_A, R_B, R_C, R_O and the
     /// acting loads when forces are shown), the crank-angle text, the polygons asked for, and
-    /// with forces the table of magnitudes.
-    pub fn moving(&self, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
+    /// with forces the table of magnitudes; `k` is the position's index in the run (or the
+    /// nearest's, for one between them), for the polygons' scales.
+    pub fn moving(&self, k: usize, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
         let mut d = self.frame.paper_drawing();
         let s = self.frame.sizes;
         self.frame.draw_position_text(&mut d, format!("φ1 = {}°", angle_text(pos.phi1.to_degrees())));
         // The reactions and the loads drawn on the mechanism, for its letters to keep off.
-        let arrows = match (force, self.frame.forces) {
-            (Some(f), Some((scale, _))) => {
+        let arrows = match (force, self.frame.mechanism_forces) {
+            (Some(f), Some(scale)) => {
                 let links = links_of(geom, pos);
                 let inside = Point::from((geom.o1.coords + pos.a.coords + pos.b.coords + geom.c.coords) / 4.0);
                 let mut acting = on_mechanism(geom, pos, f, &self.external);
@@ -206,15 +225,51 @@ impl Layout {
         };
         let omega1 = self.omega1.or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
         forces::draw_on_mechanism(&mut d, &arrows, s);
-        let _ = mechanism(&mut d, geom, pos, &arrows, omega1, s);
+        let (ll, ur) = self.frame.mechanism_panel();
+        let within = Some(labels::TextBox { min: ll, max: ur });
+        let _ = mechanism(
+            &mut d,
+            geom,
+            pos,
+            &arrows,
+            omega1,
+            s,
+            labels::Around { backdrop: self.backdrop.as_ref(), within },
+        );
         let kin = pos.kin.as_ref();
         let velocity = kin.map(|k| velocity_figure(pos, geom.c, k));
         let acceleration = kin.map(|k| acceleration_polygon(pos, geom.c, k));
         let moment_unit = format!("N·{}", self.frame.units.length);
         let figures = force.map(|f| ([dyad_polygon(f), crank_polygon(f)], magnitudes(f, &moment_unit)));
         let figures = figures.as_ref().map(|(p, m)| (&p[..], &m[..]));
-        self.frame.draw_polygons(&mut d, velocity.as_ref(), acceleration.as_ref(), figures);
+        self.frame.draw_polygons(&mut d, k, velocity.as_ref(), acceleration.as_ref(), figures);
         d
+    }
+
+    /// The velocity and acceleration polygons' scales and poles at position `k` of the run
+    /// (`pos`), as [`Layout::moving`] draws them.
+    pub fn polygon_places(&self, k: usize, pos: &Position) -> (Option<Place>, Option<Place>) {
+        let Some(kin) = pos.kin.as_ref() else { return (None, None) };
+        let k_l = self.frame.k_l;
+        let v =
+            self.frame.velocity.as_ref().map(|s| s.place(k, Extent::of(velocity_polygon(kin).physical_points()), k_l));
+        let a = self
+            .frame
+            .acceleration
+            .as_ref()
+            .map(|s| s.place(k, Extent::of(acceleration_polygon(pos, pos.c, kin).physical_points()), k_l));
+        (v, a)
+    }
+
+    /// The force figures' (the dyad's, the crank's) scales and poles at position `k` with
+    /// forces `f`, as [`Layout::moving`] draws them.
+    pub fn force_places(&self, k: usize, f: &Forces) -> Vec<Place> {
+        let Some(cells) = &self.frame.forces else { return Vec::new() };
+        [dyad_polygon(f), crank_polygon(f)]
+            .iter()
+            .zip(&cells.figures)
+            .map(|(p, slot)| slot.place(k, Extent::of(p.physical_points()), self.frame.k_l))
+            .collect()
     }
 
     /// One animation frame: `base` with `moving` on top.
@@ -256,6 +311,7 @@ pub(crate) fn mechanism(
     arrows: &[forces::ForceArrow],
     omega1: Option<f64>,
     s: Sizes,
+    around: labels::Around<'_>,
 ) -> Vec<labels::TextBox> {
     let mech = layer_of(d, layers::MECHANISM);
     let frc = layer_of(d, layers::FORCES);
@@ -324,6 +380,9 @@ pub(crate) fn mechanism(
         let v = a.arrow.1 - a.arrow.0;
         letters.letter(a.arrow.1, &a.force.name, s.text, v, None);
     }
+    // Clear of everything drawn so far and around.
+    letters.keep_off_drawing(d);
+    letters.around(around);
     // Letters and numbers on the mechanism's layer, force names on the forces' layer.
     let placed = letters.place();
     let on_mechanism = placed.len() - arrows.len();
@@ -410,15 +469,15 @@ pub(crate) fn acceleration_polygon(pos: &Position, c_pivot: Point, k: &Kinematic
         pole_away: vec![a1, b1],
         // The points first, then the ends of the normal components, then the centroids.
         points: vec![
-            point("a'", POLE, k.a_a),
-            point("b'", POLE, k.a_b),
-            point("m'", POLE, k.a_m),
+            point("a′", POLE, k.a_a),
+            point("b′", POLE, k.a_b),
+            point("m′", POLE, k.a_m),
             point("nBA", a1, k.a_ba_n),
             point("nBC", POLE, k.a_bc_n),
-            point("c1'", POLE, k.a_g1),
-            point("c21'", POLE, k.a_g21),
-            point("c22'", POLE, k.a_g22),
-            point("c3'", POLE, k.a_g3),
+            point("c1′", POLE, k.a_g1),
+            point("c21′", POLE, k.a_g21),
+            point("c22′", POLE, k.a_g22),
+            point("c3′", POLE, k.a_g3),
         ],
         // Tangential directions: ⊥AB through n_BA, ⊥BC through n_BC.
         directions: vec![
@@ -467,6 +526,8 @@ pub fn dyad_polygon(f: &Forces) -> ForcePolygon {
             resultant("RB", p_f, int, 0.7),
             resultant("RC", p_fi3, int, 0.3),
         ],
+        // R_C^t and R_A^t close it.
+        found: 2,
     }
 }
 
@@ -485,6 +546,7 @@ pub fn crank_polygon(f: &Forces) -> ForcePolygon {
         pole: "f1".into(),
         chain,
         resultants: vec![Resultant { name: "RO".into(), from, to: 0, name_at: 0.5 }],
+        found: 0,
     }
 }
 
@@ -641,18 +703,22 @@ pub(crate) mod tests {
         let lay = Layout::new(&g, &pos, None, show, ModelUnits::SI);
         let curve = vec![pos.iter().map(|p| p.m).collect::<Vec<_>>()];
         let base = lay.base(&g, &curve);
-        let frames = [0usize, 90, 180].iter().map(|&i| lay.frame(&base, &lay.moving(&g, &pos[i], None))).collect();
+        let frames = [0usize, 90, 180].iter().map(|&i| lay.frame(&base, &lay.moving(i, &g, &pos[i], None))).collect();
         (lay, frames)
     }
 
     #[test]
     fn polygons_are_drawn_at_their_scale_beside_the_mechanism() {
-        let show = Show { velocity: true, acceleration: true, forces: false };
+        let show = Show { velocity: true, acceleration: true, forces: false, ..Show::default() };
         let (lay, frames) = run(show);
         let g = chebyshev();
         let p = closed_form(&g, 0.0, 20.0);
         let k = p.kin.unwrap();
-        let (sv, pole) = lay.frame.velocity.unwrap();
+        let (sv, pole) = lay.frame.velocity.as_ref().unwrap().place(
+            0,
+            Extent::of(velocity_polygon(&k).physical_points()),
+            lay.frame.k_l,
+        );
         // v_A = ω1·l1 = 0.8 m/s; its arrow is 0.8 / k_v paper mm long = 0.8 / k_v · k_l m.
         let d = &frames[0];
         let vel = layer_of(d, layers::VELOCITY);
@@ -711,7 +777,7 @@ pub(crate) mod tests {
             panic!("not a four-bar scene")
         };
         let motion = crate::solve::fourbar::solve_motion(&scene.spec).unwrap();
-        let show = Show { velocity: true, acceleration: true, forces: true };
+        let show = Show { velocity: true, acceleration: true, forces: true, ..Show::default() };
         let lay = Layout::new(&scene.spec.geometry, &motion.positions, Some(&motion.forces), show, ModelUnits::SI);
         (scene.spec.geometry, motion, lay)
     }
@@ -719,7 +785,7 @@ pub(crate) mod tests {
     /// The letters of each polygon in a drawn position: (polygon, centre, text, height),
     /// polygon 0 velocity, 1 acceleration, 2 force (the force panel's texts only).
     fn polygon_letters(lay: &Layout, d: &Drawing) -> Vec<(usize, Point, String, f64)> {
-        let force_panel = lay.frame.panels.iter().find(|p| p.0.before.starts_with("Force")).cloned();
+        let force_panel = lay.frame.panels.iter().find(|p| p.0.on_paper().starts_with("Force")).cloned();
         let (vel, acc, frc) =
             (layer_of(d, layers::VELOCITY), layer_of(d, layers::ACCELERATION), layer_of(d, layers::FORCES));
         d.entities
@@ -754,7 +820,7 @@ pub(crate) mod tests {
         let mut examples = Vec::new();
         let mut first_bad = None;
         for (i, pos) in motion.positions.iter().enumerate() {
-            let d = lay.moving(&g, pos, Some(&motion.forces[i]));
+            let d = lay.moving(i, &g, pos, Some(&motion.forces[i]));
             let letters = polygon_letters(&lay, &d);
             for (j, a) in letters.iter().enumerate() {
                 for b in &letters[..j] {
@@ -773,7 +839,7 @@ pub(crate) mod tests {
         if let Some(deg) = first_bad {
             // The first frame with overlapping letters, to look at: target/labels-overlap.png.
             let base = lay.base(&g, &[motion.positions.iter().map(|p| p.m).collect()]);
-            let f = lay.frame(&base, &lay.moving(&g, &motion.positions[deg], Some(&motion.forces[deg])));
+            let f = lay.frame(&base, &lay.moving(deg, &g, &motion.positions[deg], Some(&motion.forces[deg])));
             let opts = crate::draw::svg::SvgOptions { window: Some(lay.frame.window), ..Default::default() };
             let png = crate::draw::raster::to_png(&crate::draw::svg::to_string(&f, &opts), 1400).unwrap();
             let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("target");
@@ -786,13 +852,16 @@ pub(crate) mod tests {
     fn polygon_letters_stay_near_their_points_over_the_template_motion() {
         use crate::figure::shared::labels::{COINCIDENT, SAME_POINT, max_distance, max_leader_distance};
         let (g, motion, lay) = template_motion();
-        let (sv, pv) = lay.frame.velocity.unwrap();
-        let (sa, pa) = lay.frame.acceleration.unwrap();
-        let force_panel = lay.frame.panels.iter().find(|p| p.0.before.starts_with("Force")).cloned().unwrap();
+        let force_panel = lay.frame.panels.iter().find(|p| p.0.on_paper().starts_with("Force")).cloned().unwrap();
         let mut checked = 0;
         for (i, pos) in motion.positions.iter().enumerate() {
             let k = pos.kin.unwrap();
-            let d = lay.moving(&g, pos, Some(&motion.forces[i]));
+            let k_l = lay.frame.k_l;
+            let (sv, pv) =
+                lay.frame.velocity.as_ref().unwrap().place(i, Extent::of(velocity_polygon(&k).physical_points()), k_l);
+            let acc = acceleration_polygon(pos, g.c, &k);
+            let (sa, pa) = lay.frame.acceleration.as_ref().unwrap().place(i, Extent::of(acc.physical_points()), k_l);
+            let d = lay.moving(i, &g, pos, Some(&motion.forces[i]));
             let frc = layer_of(&d, layers::FORCES);
             // The force polygons' sides, for their names.
             let sides: Vec<(Point, Point)> = d
@@ -805,7 +874,7 @@ pub(crate) mod tests {
                 .collect();
             for (poly, at, text, h) in polygon_letters(&lay, &d) {
                 // Force names and the centroids' letters may go further out, with a leader.
-                let leader = poly == 2 || text.starts_with('c');
+                let leader = poly == 2 || text.starts_with('c') || text.starts_with('n');
                 let reach = if leader { max_leader_distance(&text, h) } else { max_distance(&text, h) }
                     + COINCIDENT * h
                     + 1e-9 * h;
@@ -816,15 +885,15 @@ pub(crate) mod tests {
                         (0, "b") => (at - (pv + sv.draw(k.v_b))).norm(),
                         (0, "m") => (at - (pv + sv.draw(k.v_m))).norm(),
                         (1, "π") => (at - pa).norm(),
-                        (1, "a'") => (at - (pa + sa.draw(k.a_a))).norm(),
-                        (1, "b'") => (at - (pa + sa.draw(k.a_b))).norm(),
-                        (1, "m'") => (at - (pa + sa.draw(k.a_m))).norm(),
+                        (1, "a′") => (at - (pa + sa.draw(k.a_a))).norm(),
+                        (1, "b′") => (at - (pa + sa.draw(k.a_b))).norm(),
+                        (1, "m′") => (at - (pa + sa.draw(k.a_m))).norm(),
                         (1, "nBA") => (at - (pa + sa.draw(k.a_a + k.a_ba_n))).norm(),
                         (1, "nBC") => (at - (pa + sa.draw(k.a_bc_n))).norm(),
-                        (1, "c1'") => (at - (pa + sa.draw(k.a_g1))).norm(),
-                        (1, "c21'") => (at - (pa + sa.draw(k.a_g21))).norm(),
-                        (1, "c22'") => (at - (pa + sa.draw(k.a_g22))).norm(),
-                        (1, "c3'") => (at - (pa + sa.draw(k.a_g3))).norm(),
+                        (1, "c1′") => (at - (pa + sa.draw(k.a_g1))).norm(),
+                        (1, "c21′") => (at - (pa + sa.draw(k.a_g21))).norm(),
+                        (1, "c22′") => (at - (pa + sa.draw(k.a_g22))).norm(),
+                        (1, "c3′") => (at - (pa + sa.draw(k.a_g3))).norm(),
                         (2, _) => sides
                             .iter()
                             .map(|&(a, b)| {

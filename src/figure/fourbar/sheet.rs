@@ -1,47 +1,58 @@
-//! The four-bar on printed sheets (issue 14, item 3): one page per position with the
-//! mechanism, the velocity polygon, the acceleration polygon and the force polygons, each
-//! in its own panel ([`crate::figure::shared::sheet`]), drawn by the same functions as the animation
-//! (`figure::fourbar::mechanism`, [`crate::figure::shared::polygon::draw`], [`crate::figure::shared::forces::draw`] on the
-//! four-bar's adapters), in paper millimetres.
-//!
-//! Scales: the mechanism has one k_l for the whole run (a nice value at which the whole
-//! motion, the coupler curve included, fits its panel), so that pages compare; each polygon
-//! gets its own nice scale on each page ([`crate::figure::shared::sheet::fit`]: it fills about two thirds of
-//! its panel, at least half), unlike the animation, whose polygons keep the run's fixed
-//! scales. Every scale is printed in its panel's title and in the title block.
+//! The four-bar on printed sheets (issue 14, item 3; issue 31): per position a set of pages
+//! ([`crate::figure::shared::sheet_pages`]) — the mechanism page (the mechanism with its
+//! coupler curve in the largest panel, at one drafting scale k_l for the run, with the
+//! loads and reactions at the page's force scale, the ω1 arrow and link numbers, and the
+//! table of the position's values), the polygons page (the velocity polygon with the
+//! directions that locate b, the acceleration polygon, each at its own nice scale), and
+//! with forces the forces page (the dyad's figure, seed 003 Fig. 4, and the crank's, Fig. 5,
+//! each at its own k_f, at least 60 mm long) — drawn by the same functions as the animation,
+//! in paper millimetres. Every scale is printed in its panel's title and in the title block.
 
 use crate::draw::Drawing;
-use crate::geom::{Point, Vector, deg};
-use crate::solve::fourbar::{Forces, Geometry, Position};
+use crate::geom::{Point, Vector, cross, deg};
+use crate::solve::fourbar::{ExternalForce, Forces, Geometry, LinkLoad, Position};
 
 use crate::figure::fourbar::{
-    Show, acceleration_polygon, angle_text, crank_polygon, dyad_polygon, mechanism, velocity_polygon,
+    CRANK_CAPTION, DYAD_CAPTION, Show, acceleration_polygon, angle_text, crank_polygon, dyad_polygon,
+    link_loads_on_mechanism, links_of, mechanism, on_mechanism, velocity_figure,
 };
-use crate::figure::shared::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
-pub use crate::figure::shared::sheet_polygons::PageScales;
-use crate::figure::shared::sheet_polygons::{self, PageFit, PagePolygons, Shown};
-use crate::figure::shared::vocab::{ModelUnits, ground, layer_of, layers, path};
+use crate::figure::shared::forces;
+use crate::figure::shared::labels::{Around, TextBox};
+use crate::figure::shared::panels::scale_line;
+use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
+use crate::figure::shared::sheet_pages::{
+    MechanismPage, forces_page, mechanism_bar, mechanism_force_scale, polygons_page,
+};
+use crate::figure::shared::vocab::{ModelUnits, Scale, ground, layer_of, layers, length_scale_text, path};
 
-/// What every page of a run shares: the layout, the mechanism's scale and placement, the
-/// coupler curve on paper.
+/// The longest force drawn on the mechanism page, as a fraction of the mechanism's drawn
+/// size.
+pub const MECHANISM_FORCE_FRACTION: f64 = 0.3;
+
+/// What every page set of a run shares: the mechanism page's layout, scale and placement,
+/// the coupler curve on paper.
 #[derive(Debug, Clone)]
 pub struct FourbarSheets {
-    /// Where everything goes.
-    pub layout: SheetLayout,
-    /// The polygons drawn (their panels follow the mechanism's in this order).
+    /// The paper.
+    pub paper: Paper,
+    /// The mechanism page (its layout, k_l, the model's origin on paper).
+    pub mechanism_page: MechanismPage,
+    /// The polygons drawn.
     pub show: Show,
     /// The model's units.
     pub units: ModelUnits,
-    /// k_l: model length units per paper millimetre.
-    pub k_l: f64,
     /// The scene's name, for the title block.
     pub name: String,
-    /// ω1, rad/s, for the title block.
+    /// ω1, rad/s, for the title block and the ω1 arrow.
     pub omega1: f64,
-    /// The paper point of the model's origin.
-    origin: Point,
+    /// The external forces and link loads, drawn on the mechanism where they act.
+    pub external: Vec<ExternalForce>,
+    /// The link loads.
+    pub link_loads: Vec<LinkLoad>,
     /// The coupler curve on paper.
     curve: Vec<Vec<Point>>,
+    /// The mechanism's drawn size, paper mm.
+    drawn_mm: f64,
 }
 
 /// The smallest box holding the finite vectors of `vs`.
@@ -51,9 +62,16 @@ fn extent(vs: impl IntoIterator<Item = Vector>) -> Option<(Vector, Vector)> {
         .fold(None, |e, v| Some(e.map_or((v, v), |(lo, hi): (Vector, Vector)| (lo.inf(&v), hi.sup(&v)))))
 }
 
+/// The pages of one position.
+pub struct PositionPages {
+    /// `mechanism`, `polygons`, `forces`, with each page's drawing (paper mm).
+    pub pages: Vec<(&'static str, Drawing)>,
+}
+
 impl FourbarSheets {
     /// The sheets of a run on `paper`: `positions` the assembled positions, `curve` the
-    /// coupler curve (runs of points, model units), `show` the polygons asked for.
+    /// coupler curve (runs of points, model units), `show` the polygons asked for, `table_rows`
+    /// the rows of the mechanism page's table.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         paper: Paper,
@@ -64,85 +82,124 @@ impl FourbarSheets {
         curve: &[Vec<Point>],
         show: Show,
         units: ModelUnits,
+        table_rows: usize,
     ) -> FourbarSheets {
-        let panels = 1 + [show.velocity, show.acceleration, show.forces].iter().filter(|s| **s).count();
-        // Title cells: φ1, ω1, k_l, a scale per polygon, the sheet number.
-        let layout = SheetLayout::new(paper, panels, 3 + panels);
-        let s = layout.sizes;
+        let s = paper.sizes();
         let pts = positions.iter().flat_map(|p| [p.a.coords, p.b.coords, p.m.coords]);
         let (lo, hi) =
             extent(pts.chain([geom.o1.coords, geom.c.coords]).chain(curve.iter().flatten().map(|p| p.coords)))
                 .unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        // Room for the letters around the links and the ground symbols under the pivots.
-        let area = layout.panels[0].area;
-        let room = Vector::new(3.0 * s.text, 3.0 * s.text + 2.0 * s.ground);
-        let Fit { per_mm: k_l, .. } = sheet::finest(hi - lo, Vector::new(area.width(), area.height()) - room);
-        let origin = sheet::centre(lo, hi, k_l, area) + Vector::new(0.0, s.ground);
-        let to_paper = |p: &Point| origin + p.coords / k_l;
+        // Room for the letters and link numbers around the links, the ground symbols under
+        // the pivots.
+        let room = Vector::new(2.0 * s.text + 1.0, 2.0 * s.text + s.ground);
+        let page = MechanismPage::new(paper, lo, hi, room, table_rows, 5);
+        let to_paper = |p: &Point| page.origin + p.coords / page.k_l;
         let curve = curve.iter().map(|run| run.iter().map(to_paper).collect()).collect();
-        FourbarSheets { layout, show, units, k_l, name: name.to_string(), omega1, origin, curve }
+        let drawn_mm = (hi - lo).amax() / page.k_l;
+        FourbarSheets {
+            paper,
+            mechanism_page: page,
+            show,
+            units,
+            name: name.to_string(),
+            omega1,
+            external: Vec::new(),
+            link_loads: Vec::new(),
+            curve,
+            drawn_mm,
+        }
+    }
+
+    /// The sheets with the scene's external forces and link loads (drawn on the mechanism).
+    pub fn with_loads(mut self, external: &[ExternalForce], link_loads: &[LinkLoad]) -> FourbarSheets {
+        self.external = external.to_vec();
+        self.link_loads = link_loads.to_vec();
+        self
+    }
+
+    /// k_l, model length units per paper millimetre.
+    pub fn k_l(&self) -> f64 {
+        self.mechanism_page.k_l
     }
 
     /// A model point on paper.
     fn paper(&self, p: Point) -> Point {
-        self.origin + p.coords / self.k_l
+        self.mechanism_page.origin + p.coords / self.k_l()
     }
 
-    /// The page of one position: `table` its values, `sheet` its number (from 1) and the
-    /// number of pages. Returns the drawing (paper mm, [`Drawing::paper_mm_per_unit`] 1)
-    /// and the page's scales.
-    pub fn page(
+    /// How many pages a position has.
+    pub fn per_position(&self) -> usize {
+        1 + usize::from(self.show.velocity || self.show.acceleration) + usize::from(self.show.forces)
+    }
+
+    /// The pages of one position: `table` its values, `first` the number of its first page
+    /// and `total` the run's pages.
+    pub fn pages(
         &self,
         geom: &Geometry,
         pos: &Position,
         force: Option<&Forces>,
         table: &Table,
-        sheet: (usize, usize),
-    ) -> (Drawing, PageScales) {
-        let kin = pos.kin.as_ref();
-        let velocity = kin.map(velocity_polygon);
-        let acceleration = kin.map(|k| acceleration_polygon(pos, geom.c, k));
-        let figures = force.map(|f| [dyad_polygon(f), crank_polygon(f)]);
-        let polys = PagePolygons {
-            velocity: velocity.as_ref(),
-            acceleration: acceleration.as_ref(),
-            forces: figures.as_ref().map(|f| &f[..]),
-        };
-        let shown =
-            Shown { velocity: self.show.velocity, acceleration: self.show.acceleration, forces: self.show.forces };
-        let fit = PageFit::new(&self.layout, shown, polys);
-        let scales = fit.scales(self.k_l);
-        let (titles, scale_cells) = sheet_polygons::titles(&scales, shown, self.units);
-        let mut cells = vec![format!("ω1 = {} rad/s", angle_text(self.omega1))];
-        cells.extend(scale_cells);
-        let title = TitleBlock {
+        (first, total): (usize, usize),
+    ) -> PositionPages {
+        let position = format!("φ1 = {}°", angle_text(deg(pos.phi1)));
+        let omega = format!("ω1 = {} rad/s", angle_text(self.omega1));
+        let title = |cells: Vec<String>, n: usize| TitleBlock {
             name: self.name.clone(),
             subject: "four-bar".to_string(),
-            position: format!("φ1 = {}°", angle_text(deg(pos.phi1))),
+            position: position.clone(),
             cells,
-            sheet,
+            sheet: (first + n, total),
         };
-        let mut d = sheet::page(&self.layout, &title, table, &titles);
-        let s = self.layout.sizes;
-
-        // The mechanism at k_l, with its coupler curve.
-        let cc = layer_of(&d, layers::COUPLER_CURVE);
-        for run in &self.curve {
-            path(&mut d, cc, run.clone());
+        let mut pages = vec![("mechanism", self.mechanism_sheet(geom, pos, force, table, &title, &omega))];
+        let kin = pos.kin.as_ref();
+        if let (true, Some(k)) = (self.show.velocity || self.show.acceleration, kin) {
+            let velocity = velocity_figure(pos, geom.c, k);
+            let acceleration = acceleration_polygon(pos, geom.c, k);
+            let len = self.units.length;
+            let (vu, au) = (format!("{len}/s"), format!("{len}/s²"));
+            let mut polys: Vec<(&_, layers::Layer, &str, &str, &str)> = Vec::new();
+            if self.show.velocity {
+                polys.push((&velocity, layers::VELOCITY, &vu, "Velocity polygon", "k_v"));
+            }
+            if self.show.acceleration {
+                polys.push((&acceleration, layers::ACCELERATION, &au, "Acceleration polygon", "k_a"));
+            }
+            let n = pages.len();
+            let with_omega = |cells: Vec<String>| title(std::iter::once(omega.clone()).chain(cells).collect(), n);
+            pages.push(("polygons", polygons_page(self.paper, &polys, with_omega)));
         }
+        if let (true, Some(f)) = (self.show.forces, force) {
+            let figures = [dyad_polygon(f), crank_polygon(f)];
+            let captions = [DYAD_CAPTION.to_string(), CRANK_CAPTION.to_string()];
+            let n = pages.len();
+            pages.push(("forces", forces_page(self.paper, &figures, &captions, title(vec![omega.clone()], n))));
+        }
+        PositionPages { pages }
+    }
+
+    /// The mechanism page.
+    fn mechanism_sheet(
+        &self,
+        geom: &Geometry,
+        pos: &Position,
+        force: Option<&Forces>,
+        table: &Table,
+        title: &dyn Fn(Vec<String>, usize) -> TitleBlock,
+        omega: &str,
+    ) -> Drawing {
+        let k_l = self.k_l();
+        let page = &self.mechanism_page;
+        let s = page.layout.sizes;
         let on_paper = Geometry {
             o1: self.paper(geom.o1),
             c: self.paper(geom.c),
-            l1: geom.l1 / self.k_l,
-            l_ab: geom.l_ab / self.k_l,
-            l_bm: geom.l_bm / self.k_l,
-            l_bc: geom.l_bc / self.k_l,
+            l1: geom.l1 / k_l,
+            l_ab: geom.l_ab / k_l,
+            l_bm: geom.l_bm / k_l,
+            l_bc: geom.l_bc / k_l,
             ..*geom
         };
-        let mech = layer_of(&d, layers::MECHANISM);
-        for p in [on_paper.o1, on_paper.c] {
-            ground(&mut d, mech, p, s);
-        }
         let p = Position {
             a: self.paper(pos.a),
             b: self.paper(pos.b),
@@ -151,11 +208,52 @@ impl FourbarSheets {
             kin: None,
             ..*pos
         };
-        let _ = mechanism(&mut d, &on_paper, &p, &[], Some(self.omega1), s);
-
-        // Each polygon at its own scale, centred in its panel, and the scale bars.
-        fit.draw(&mut d, polys, s);
-        sheet_polygons::scale_bars(&mut d, &self.layout, &scales, shown, self.units);
-        (d, scales)
+        // The loads and reactions on the mechanism, at this page's force scale.
+        let acting: Vec<_> = force
+            .filter(|_| self.show.forces)
+            .map(|f| {
+                let mut a = on_mechanism(geom, pos, f, &self.external);
+                a.extend(link_loads_on_mechanism(geom, pos, &self.link_loads));
+                a.into_iter().map(|(at, nv)| (self.paper(at), nv)).collect()
+            })
+            .unwrap_or_default();
+        let area = page.layout.panels[0].area;
+        let k_f = (!acting.is_empty()).then(|| {
+            let at: Vec<(Point, Vector)> = acting.iter().map(|(p, nv)| (*p, nv.v)).collect();
+            mechanism_force_scale(&at, MECHANISM_FORCE_FRACTION * self.drawn_mm, area)
+        });
+        let len = self.units.length;
+        let k_l_text = length_scale_text(k_l, self.units);
+        let mut heading = format!("Mechanism   {k_l_text}");
+        let mut cells = vec![omega.to_string(), k_l_text];
+        if let Some(k) = k_f {
+            heading.push_str(&format!(", forces {}", scale_line("k_f", k, "N")));
+            cells.push(format!("forces {}", scale_line("k_f", k, "N")));
+        }
+        let _ = len;
+        let mut d = sheet::page(&page.layout, &title(cells, 0), table, &[heading]);
+        mechanism_bar(&mut d, &page.layout, k_l, self.units.length);
+        let cc = layer_of(&d, layers::COUPLER_CURVE);
+        for run in &self.curve {
+            path(&mut d, cc, run.clone());
+        }
+        let mech = layer_of(&d, layers::MECHANISM);
+        for q in [on_paper.o1, on_paper.c] {
+            ground(&mut d, mech, q, s);
+        }
+        let arrows = match k_f {
+            Some(k) => {
+                let links = links_of(&on_paper, &p);
+                let inside = Point::from((on_paper.o1.coords + p.a.coords + p.b.coords + on_paper.c.coords) / 4.0);
+                forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s)
+            }
+            None => Vec::new(),
+        };
+        forces::draw_on_mechanism(&mut d, &arrows, s);
+        let omega1 = Some(self.omega1).filter(|w| *w != 0.0).or_else(|| pos.kin.map(|k| cross(pos.a - geom.o1, k.v_a)));
+        let outline = page.layout.panels[0].outline;
+        let within = Some(TextBox { min: outline.min, max: outline.max });
+        let _ = mechanism(&mut d, &on_paper, &p, &arrows, omega1, s, Around { backdrop: None, within });
+        d
     }
 }

@@ -13,15 +13,19 @@ use crate::draw::Drawing;
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
-use crate::figure::linkage::forces::{body_forces, body_polygon, caption, magnitudes, on_mechanism};
+use crate::figure::linkage::forces::{ForceFigures, magnitudes, on_mechanism};
 use crate::figure::linkage::polygon::{LinkagePolygons, polygons_of};
 use crate::figure::linkage::{self as fig, LinkageFigure};
 use crate::figure::shared::forces::{self, ForcePolygon};
-use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
+use crate::figure::shared::labels::{Around, TextBox};
+use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec, ScaleChoice};
 use crate::figure::shared::vocab::{layer_of, layers};
 
-/// Largest extent of the mechanism's motion on paper, millimetres (as the four-bar's).
-pub const MECHANISM_MM: f64 = 100.0;
+/// Largest extent of the mechanism's motion on paper, millimetres: the mechanism the largest
+/// figure of the frame (a linkage's motion is long: the shaper's 950 mm at 1:5).
+pub const MECHANISM_MM: f64 = 200.0;
+/// The size of a polygon's panel on paper, millimetres.
+pub const POLYGON_MM: f64 = 120.0;
 
 /// What a linkage frame shows beside its mechanism (the scene's `[polygons]` table).
 #[derive(Debug, Clone, PartialEq, Eq)]
@@ -34,11 +38,22 @@ pub struct Show {
     pub forces: bool,
     /// The points the polygons show, by name (`None`: every joint point).
     pub points: Option<Vec<String>>,
+    /// One force figure per moving body instead of one per Assur group.
+    pub per_body: bool,
+    /// How the frames' polygon scales are chosen (the scene's `[frames] scales`).
+    pub scales: ScaleChoice,
 }
 
 impl Default for Show {
     fn default() -> Show {
-        Show { velocity: true, acceleration: true, forces: true, points: None }
+        Show {
+            velocity: true,
+            acceleration: true,
+            forces: true,
+            points: None,
+            per_body: false,
+            scales: ScaleChoice::default(),
+        }
     }
 }
 
@@ -62,6 +77,10 @@ pub struct LinkageFrames {
     pub spans: Vec<Option<(Point, Point)>>,
     /// N·m to the moment unit of the table (1000 in a mm scene).
     moment_per_nm: f64,
+    /// The force figures drawn.
+    figures: ForceFigures,
+    /// What every frame shares (for the letters of each to keep off), once drawn.
+    backdrop: Option<Drawing>,
 }
 
 /// Every body point and guide end over the motion.
@@ -103,22 +122,20 @@ impl LinkageFrames {
         } else {
             Vec::new()
         };
-        let velocity = show.velocity.then(|| polys.iter().flat_map(|p| p.velocity.physical_points()).collect());
+        let velocity = show.velocity.then(|| polys.iter().map(|p| Extent::of(p.velocity.physical_points())).collect());
         let acceleration =
-            show.acceleration.then(|| polys.iter().flat_map(|p| p.acceleration.physical_points()).collect());
+            show.acceleration.then(|| polys.iter().map(|p| Extent::of(p.acceleration.physical_points())).collect());
         let moment_unit = format!("N·{}", units.length);
         let moment_per_nm = 1000.0 / units.mm_per_unit;
+        let force_figures = ForceFigures::new(mech, show.per_body);
         let force_spec = forces.filter(|_| show.forces).map(|rf| {
-            let per_body: Vec<Vec<Vec<_>>> =
-                states.iter().zip(rf.forces).map(|(s, f)| body_forces(mech, rf.dynamics, s, f)).collect();
-            let figures = (0..mech.bodies.len())
-                .map(|b| {
-                    let e = per_body
-                        .iter()
-                        .map(|bf| Extent::of(body_polygon(b, &bf[b]).physical_points()))
-                        .fold(None, Extent::union);
-                    (caption(mech, b), e)
-                })
+            let polygons: Vec<Vec<ForcePolygon>> =
+                states.iter().zip(rf.forces).map(|(s, f)| force_figures.polygons(mech, rf.dynamics, s, f)).collect();
+            let figures = force_figures
+                .captions(mech)
+                .into_iter()
+                .enumerate()
+                .map(|(i, caption)| (caption, polygons.iter().map(|p| Extent::of(p[i].physical_points())).collect()))
                 .collect();
             let rows: Vec<_> =
                 rf.forces.iter().flat_map(|f| magnitudes(mech, f, &moment_unit, moment_per_nm)).collect();
@@ -136,12 +153,13 @@ impl LinkageFrames {
             mechanism,
             size: mechanism.size(),
             mechanism_mm: MECHANISM_MM,
-            polygon_mm: Some(MECHANISM_MM),
+            polygon_mm: Some(POLYGON_MM),
             pad: |s| (3.5 * s.joint + 1.6 * s.text, 2.0 * s.joint),
             position_text,
             velocity,
             acceleration,
             forces: force_spec,
+            scales: show.scales,
         });
         let spans = fig::guide_spans(fig, &motion, &frame.sizes);
         let show = Show {
@@ -150,7 +168,10 @@ impl LinkageFrames {
             forces: frame.forces.is_some(),
             ..show
         };
-        LinkageFrames { frame, show, spans, moment_per_nm }
+        let mut out = LinkageFrames { frame, show, spans, moment_per_nm, figures: force_figures, backdrop: None };
+        let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
+        out.backdrop = Some(out.base(fig, &motion));
+        out
     }
 
     /// What every frame shares: the traced points' paths, the panels' titles with their
@@ -167,6 +188,7 @@ impl LinkageFrames {
     /// forces are shown), the polygons, the force figures and the table.
     pub fn moving(
         &self,
+        k: usize,
         fig: &LinkageFigure,
         mech: &Mechanism,
         state: &State,
@@ -176,8 +198,8 @@ impl LinkageFrames {
         let s = self.frame.sizes;
         self.frame.draw_position_text(&mut d, time_text(state.t));
         let force = force.filter(|_| self.show.forces);
-        let arrows = match (force, self.frame.forces) {
-            (Some((dynamics, f)), Some((scale, _))) => {
+        let arrows = match (force, self.frame.mechanism_forces) {
+            (Some((dynamics, f)), Some(scale)) => {
                 let links = links_of(fig, &state.q);
                 let pts: Vec<Point> = links.iter().flat_map(|(a, b)| [*a, *b]).collect();
                 let inside = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64);
@@ -187,25 +209,27 @@ impl LinkageFrames {
         };
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let layer = layer_of(&d, layers::MECHANISM);
-        fig::mechanism_with_forces(&mut d, layer, fig, &state.q, &self.spans, &arrows, &s);
+        let (ll, ur) = self.frame.mechanism_panel();
+        let around = Around { backdrop: self.backdrop.as_ref(), within: Some(TextBox { min: ll, max: ur }) };
+        let omega = fig.crank.map(|(b, _)| state.angular(Attach::Body(b)).1);
+        fig::mechanism_with_forces(&mut d, layer, fig, &state.q, &self.spans, &arrows, omega, &s, around);
         let polys = (self.show.velocity || self.show.acceleration)
             .then(|| polygons_of(mech, state, self.show.points.as_deref()));
         let moment_unit = format!("N·{}", self.frame.units.length);
         let figures: Option<(Vec<ForcePolygon>, _)> = force.map(|(dynamics, f)| {
-            let per_body = body_forces(mech, dynamics, state, f);
-            let polys = per_body.iter().enumerate().map(|(b, bf)| body_polygon(b, bf)).collect();
+            let polys = self.figures.polygons(mech, dynamics, state, f);
             (polys, magnitudes(mech, f, &moment_unit, self.moment_per_nm))
         });
         let figures = figures.as_ref().map(|(p, m)| (&p[..], &m[..]));
         let vel = polys.as_ref().filter(|_| self.show.velocity).map(|p| &p.velocity);
         let acc = polys.as_ref().filter(|_| self.show.acceleration).map(|p| &p.acceleration);
-        self.frame.draw_polygons(&mut d, vel, acc, figures);
+        self.frame.draw_polygons(&mut d, k, vel, acc, figures);
         d
     }
 }
 
 /// The bodies' outlines as segments at `q`, for force arrows to keep off.
-fn links_of(fig: &LinkageFigure, q: &[f64]) -> Vec<(Point, Point)> {
+pub(crate) fn links_of(fig: &LinkageFigure, q: &[f64]) -> Vec<(Point, Point)> {
     let mut out = Vec::new();
     for (i, b) in fig.bodies.iter().enumerate() {
         let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();

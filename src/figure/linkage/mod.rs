@@ -76,6 +76,9 @@ pub struct LinkageFigure {
     pub traced: Vec<Anchor>,
     /// The model's units, for the length scale's text (millimetres unless set).
     pub units: ModelUnits,
+    /// The driven crank, when the mechanism has one angular driver: its body and its point
+    /// pinned to the ground (where the ω arrow is drawn).
+    pub crank: Option<(usize, Anchor)>,
 }
 
 impl LinkageFigure {
@@ -98,7 +101,18 @@ impl LinkageFigure {
                 }
             })
             .collect();
-        LinkageFigure { bodies, joints, traced, units: ModelUnits::MM }
+        // The crank: the angular driver's body and its ground pivot.
+        let crank = mechanism.angular_driver().and_then(|(_, body)| {
+            let Attach::Body(b) = body else { return None };
+            mechanism.joints.iter().find_map(|j| match j.kind {
+                JointKind::Revolute { a, b: other } if a.body == Attach::Ground && other.body == body => {
+                    Some((b, other))
+                }
+                JointKind::Revolute { a, b: other } if other.body == Attach::Ground && a.body == body => Some((b, a)),
+                _ => None,
+            })
+        });
+        LinkageFigure { bodies, joints, traced, units: ModelUnits::MM, crank }
     }
 
     /// The figure with its model's units (for the printed length scale).
@@ -134,7 +148,8 @@ impl LinkageFigure {
             })
             .collect();
         let traced = self.traced.iter().map(|a| anchor(*a)).collect();
-        LinkageFigure { bodies, joints, traced, units: self.units }
+        let crank = self.crank.map(|(b, a)| (b, anchor(a)));
+        LinkageFigure { bodies, joints, traced, units: self.units, crank }
     }
 }
 
@@ -173,12 +188,6 @@ pub fn paper_style(fig: &LinkageFigure, motion: &[&[f64]]) -> Style {
 
 /// Sizes of the symbols: the shared table from paper millimetres ([`paper_style`]).
 pub type Style = Sizes;
-
-/// Colour of the i-th body's outline.
-fn body_color(i: usize) -> Aci {
-    const COLORS: [Aci; 6] = [Aci::BLUE, Aci::GREEN, Aci::MAGENTA, Aci::ORANGE, Aci::CYAN, Aci::RED];
-    COLORS[i % COLORS.len()]
-}
 
 fn anchor_at(q: &[f64], a: Anchor) -> Point {
     place(q, a.body, a.local)
@@ -221,12 +230,15 @@ pub fn mechanism(
     spans: &[Option<(Point, Point)>],
     style: &Style,
 ) {
-    mechanism_with_forces(d, layer, fig, q, spans, &[], style);
+    mechanism_with_forces(d, layer, fig, q, spans, &[], None, style, labels::Around::default());
 }
 
 /// [`mechanism`] with the names of the force arrows `arrows` (drawn on the mechanism by
 /// [`crate::figure::shared::forces::draw_on_mechanism`]) placed with the points' names, clear of them, on
-/// the `FORCES` layer.
+/// the `FORCES` layer; every name clear of what `d` already holds and of `around`. With the
+/// crank's angular velocity `omega` (rad/s, CCW positive), its ω arrow at its pivot. The
+/// links in black, each with its number in a circle.
+#[allow(clippy::too_many_arguments)]
 pub fn mechanism_with_forces(
     d: &mut Drawing,
     layer: usize,
@@ -234,7 +246,9 @@ pub fn mechanism_with_forces(
     q: &[f64],
     spans: &[Option<(Point, Point)>],
     arrows: &[ForceArrow],
+    omega: Option<f64>,
     style: &Style,
+    around: labels::Around<'_>,
 ) {
     let s = *style;
     // The names go through the letter placer, clear of the joints, the bodies' outlines,
@@ -260,7 +274,8 @@ pub fn mechanism_with_forces(
             letters.segment(pts[k], pts[(k + 1) % n]);
         }
         if pts.len() >= 2 {
-            vocab::link(d, layer, pts, b.points.len() >= 3, Some(body_color(i)), s);
+            // In black, as a kinematic diagram is drawn; the vectors are coloured.
+            vocab::link(d, layer, pts, b.points.len() >= 3, None, s);
         }
     }
     // Joints.
@@ -314,9 +329,76 @@ pub fn mechanism_with_forces(
             name_at(&mut letters, p, name, up_right, s.joint);
         }
     }
+    // The links' numbers, beside each link's middle, away from the mechanism's middle.
+    let centre = {
+        let pts: Vec<Point> = (0..fig.bodies.len())
+            .flat_map(|i| fig.bodies[i].points.iter().map(move |(_, v)| place(q, Attach::Body(i), *v)))
+            .collect();
+        Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64)
+    };
+    for (i, b) in fig.bodies.iter().enumerate() {
+        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+        let (mid, dir, clear) = match pts.as_slice() {
+            [] => continue,
+            [p] => (*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_height),
+            [p, r, ..] => {
+                // Along the link where it is clearest of the joints (another link passing
+                // near a pivot leaves its middle crowded).
+                let joints: Vec<Point> = fig
+                    .joints
+                    .iter()
+                    .map(|j| match j {
+                        JointSymbol::Pin { at, .. } => anchor_at(q, *at),
+                        JointSymbol::Slider { point, .. } => anchor_at(q, *point),
+                    })
+                    .collect();
+                let clearance = |x: Point| joints.iter().map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
+                let along = [0.5, 0.38, 0.62, 0.28, 0.72].map(|t| p + (r - p) * t);
+                let mid = along.iter().copied().find(|x| clearance(*x) >= 4.0 * s.text).unwrap_or_else(|| {
+                    along.iter().copied().fold(along[0], |a, x| if clearance(x) > clearance(a) { x } else { a })
+                });
+                let mut n = perp(vocab::unit_or(r - p, Vector::new(1.0, 0.0)));
+                if n.dot(&(mid - centre)) < 0.0 {
+                    n = -n;
+                }
+                (mid, n, 0.5 * s.link)
+            }
+        };
+        letters.circled(mid, &(i + 1).to_string(), s.text, dir, clear);
+    }
+    // The crank's ω arrow: an arc of 120° about its pivot in the widest sector free of the
+    // links and forces that leave the pivot and of its ground symbol, its head in the sense
+    // of rotation; its letter with a leader where crowded.
+    if let (Some((body, pivot)), Some(w)) = (fig.crank, omega.filter(|w| *w != 0.0 && w.is_finite())) {
+        let p = anchor_at(q, pivot);
+        let near =
+            |x: Point| (x - p).norm() <= 1e-9 * (1.0 + x.coords.norm() + p.coords.norm()) || (x - p).norm() < s.joint;
+        let mut taken: Vec<f64> = Vec::new();
+        for (i, b) in fig.bodies.iter().enumerate() {
+            let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+            for w2 in pts.windows(2) {
+                for (x, y) in [(w2[0], w2[1]), (w2[1], w2[0])] {
+                    if near(x) {
+                        taken.push(crate::geom::angle_of(y - x));
+                    }
+                }
+            }
+        }
+        taken.extend(arrows.iter().filter(|a| near(a.arrow.0)).map(|a| crate::geom::angle_of(a.arrow.1 - a.arrow.0)));
+        // The ground symbol under the pivot.
+        taken.extend([-0.5 * std::f64::consts::PI - 0.6, -0.5 * std::f64::consts::PI + 0.6]);
+        let mid_angle = widest_gap(&mut taken);
+        let half = 60f64.to_radians();
+        let (a0, a1) = (mid_angle - half, mid_angle + half);
+        let (from, sweep) = if w > 0.0 { (a0, a1 - a0) } else { (a1, a0 - a1) };
+        let mid = vocab::turn_arrow(d, layer, p, 3.5 * s.joint, from, sweep, s);
+        letters.name_with_leader(mid, &format!("ω{}", body + 1), s.text, mid - p, None);
+    }
     for a in arrows {
         letters.letter(a.arrow.1, &a.force.name, s.text, a.arrow.1 - a.arrow.0, None);
     }
+    letters.keep_off_drawing(d);
+    letters.around(around);
     if arrows.is_empty() {
         letters.draw(d, layer);
         return;
@@ -329,6 +411,24 @@ pub fn mechanism_with_forces(
         let l = if i < on_mechanism { layer } else { frc };
         labels::draw_placed(d, l, p, Some(LineType::Continuous));
     }
+}
+
+/// The middle of the widest gap between the directions `taken` (radians, any range; sorted
+/// here), the upper half of the turn when nothing is taken.
+fn widest_gap(taken: &mut [f64]) -> f64 {
+    let tau = std::f64::consts::TAU;
+    for a in taken.iter_mut() {
+        *a = a.rem_euclid(tau);
+    }
+    taken.sort_by(f64::total_cmp);
+    let mut best = (0.0, 0.5 * std::f64::consts::PI);
+    for (i, a) in taken.iter().enumerate() {
+        let next = if i + 1 < taken.len() { taken[i + 1] } else { taken[0] + tau };
+        if next - a > best.0 {
+            best = (next - a, a + 0.5 * (next - a));
+        }
+    }
+    best.1
 }
 
 /// Paths of the traced points over the motion, on layer `layer` (dashed grey).

@@ -5,14 +5,20 @@
 //! `block.A` pinned together are one point `a`); a point pinned to the ground is the pole.
 //! In the velocity polygon (pole `p`) every point is reached from the pole by its absolute
 //! velocity, and each body's image joins its points with its relative velocities (arrows
-//! from each point to the next: ab is v_BA). In the acceleration polygon (pole `π`,
-//! primed letters) every point is reached from the pole by its absolute acceleration; for
-//! each body with two or more points, every point X is also constructed from the body's
-//! reference point R (its ground pivot when it has one, else its first point) as the
-//! four-bar's `nBA`: the normal part a_XR^n = −ω²·RX (towards R) to the point `nXR`, then
-//! the tangential part a_XR^t = ε × RX (dashed, along its dashed direction ⊥RX) to x′ —
-//! unless either part vanishes ([`NEGLIGIBLE_REL`]: a crank at constant speed, a body that
-//! only translates), when x′ is reached by the image side alone.
+//! from each point to the next: ab is v_BA). By the image principle a body's image is
+//! similar to the body, so one point per body is constructed from the body's reference
+//! point R (its ground pivot when it has one, else its first point) and its other points
+//! are the image's vertices: the point constructed is the guide body's point under a
+//! sliding block (the Coriolis construction meets it there), else the body's first other
+//! point X (none for a floating body whose every point another body constructs: a
+//! triad's ternary link). In the velocity polygon its direction ⊥RX is drawn dashed through r (with the
+//! four-bar: ⊥AB through a and ⊥BC through p meet at b). In the acceleration polygon (pole
+//! `π`, primed letters) every point is reached from the pole by its absolute acceleration,
+//! and X is constructed from R as the four-bar's `nBA`: the normal part a_XR^n = −ω²·RX
+//! (towards R) to the point `nXR`, then the tangential part a_XR^t = ε × RX (dashed, along
+//! its dashed direction ⊥RX) to x′ — unless either part vanishes ([`NEGLIGIBLE_REL`]: a
+//! crank at constant speed, a body that only translates), when x′ is reached by the image
+//! side alone.
 //!
 //! At a prismatic joint whose guide moves (the shaper's block A2 on the rocker 3), the
 //! guide body's point under the sliding point gets its own letter (`a3`, the letter and the
@@ -202,6 +208,40 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
         }
     }
 
+    // The image principle: each body's polygon image is similar to the body, so one of its
+    // points is constructed from its reference point R (its ground pivot, else its first
+    // point) and the others follow as the image's vertices. The point constructed: the
+    // rocker's point under a sliding block when the body is a moving guide (the Coriolis
+    // construction meets it), else the body's first other point.
+    let targets: Vec<Option<(usize, usize)>> = lay
+        .members
+        .iter()
+        .enumerate()
+        .map(|(body, members)| {
+            if members.len() < 2 {
+                return None;
+            }
+            let reference = if members.contains(&POLE) { POLE } else { members[0] };
+            let guide = lay.guides.iter().map(|(g, _, _)| *g).find(|g| members.contains(g) && *g != reference);
+            let target = guide.or_else(|| members.iter().copied().find(|&x| x != reference))?;
+            let _ = body;
+            Some((reference, target))
+        })
+        .collect();
+    // A floating body (no ground pivot) whose every point another body constructs (a triad's
+    // ternary link) adds no construction of its own: its image is already drawn.
+    let targets: Vec<Option<(usize, usize)>> = targets
+        .iter()
+        .enumerate()
+        .map(|(body, t)| {
+            let members = &lay.members[body];
+            let elsewhere =
+                |x: usize| targets.iter().enumerate().any(|(b, t)| b != body && t.is_some_and(|t| t.1 == x));
+            let covered = !members.contains(&POLE) && members.iter().all(|&x| elsewhere(x));
+            t.filter(|_| !covered)
+        })
+        .collect();
+
     // Velocity polygon.
     let v_points: Vec<NamedPoint> = lay
         .points
@@ -214,12 +254,26 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
     // v_BA, as the four-bar draws it): arrows.
     v_sides.extend(images.iter().map(|s| Side { kind: SideKind::Vector, ..*s }));
     let mut v_dirs = Vec::new();
+    // The directions that locate each body's constructed point: v_XR ⊥ RX through r (none
+    // for a body that only translates: x is r).
+    let fastest = motions.iter().map(|(v, _)| v.norm()).fold(0.0, f64::max);
+    for (body, t) in targets.iter().enumerate() {
+        let Some((reference, x)) = *t else { continue };
+        let rx = position_of(&lay, state, body, x, mech) - position_of(&lay, state, body, reference, mech);
+        let (_, omega, _) = state.angular(Attach::Body(body));
+        if (rx * omega).norm() <= NEGLIGIBLE_REL * fastest {
+            continue;
+        }
+        v_dirs.push(Direction { through: reference, dir: perp(rx), reaches: x });
+    }
     for (guide, sliding, kind) in &lay.guides {
         v_sides.push(vector(*guide, *sliding));
         v_dirs.push(Direction { through: *guide, dir: guide_dir(state, kind), reaches: *sliding });
     }
+    // The pole p, named p₀ when a point's letter is p (a piston P).
+    let velocity_pole = if v_points.iter().any(|p| p.name == "p") { "p₀" } else { "p" };
     let velocity = PointPolygon {
-        pole: "p".into(),
+        pole: velocity_pole.into(),
         pole_away: (1..=n.min(2)).collect(),
         points: v_points,
         directions: v_dirs,
@@ -232,24 +286,19 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
         .points
         .iter()
         .zip(&motions)
-        .map(|(p, (_, a))| NamedPoint { name: format!("{}'", p.name.to_lowercase()), from: POLE, v: *a })
+        .map(|(p, (_, a))| NamedPoint { name: format!("{}′", p.name.to_lowercase()), from: POLE, v: *a })
         .collect();
     let mut a_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
     let mut a_dirs = Vec::new();
     let largest = motions.iter().map(|(_, a)| a.norm()).fold(0.0, f64::max);
     let upper = |k: usize| if k == POLE { String::new() } else { lay.points[k - 1].name.clone() };
-    for (body, members) in lay.members.iter().enumerate() {
-        if members.len() < 2 {
-            continue;
-        }
+    for (body, t) in targets.iter().enumerate() {
+        let Some((reference, target)) = *t else { continue };
         let (_, omega, epsilon) = state.angular(Attach::Body(body));
-        let reference = if members.contains(&POLE) { POLE } else { members[0] };
         let r_at = position_of(&lay, state, body, reference, mech);
         let ref_name = if reference == POLE { pivot_name(mech, body) } else { upper(reference) };
-        for &x in members {
-            if x == reference {
-                continue;
-            }
+        {
+            let x = target;
             let rx = position_of(&lay, state, body, x, mech) - r_at;
             // No construction where a part vanishes (a crank at constant speed, a body
             // that only translates): the point would coincide with its image.

@@ -1,62 +1,77 @@
-//! Any linkage on printed sheets (issue 15 §3): one page per position with the mechanism
-//! (its traced paths, at one k_l for the run), the velocity polygon, the acceleration
-//! polygon and the force polygons (one per body), each in its own panel
-//! ([`crate::figure::shared::sheet`]), drawn by the same code as the four-bar's sheets
-//! ([`crate::figure::shared::sheet_polygons`]: each polygon at its own nice scale on each page) and the
-//! linkage's frames ([`crate::figure::linkage::mechanism`], [`crate::figure::linkage::polygon`],
-//! [`crate::figure::linkage::forces`]), in paper millimetres.
+//! Any linkage on printed sheets (issue 15 §3, issue 31): per position a set of pages
+//! ([`crate::figure::shared::sheet_pages`]) — the mechanism page (the mechanism with its
+//! traced paths in the largest panel, at one drafting scale k_l for the run, with the loads
+//! and reactions at the page's force scale, and the table of the position's values), the
+//! polygons page (the velocity and acceleration polygons, each at its own nice scale), and
+//! with forces the forces page (one figure per Assur group, or per body when the scene asks,
+//! each at its own k_f, at least 60 mm long) — drawn by the same code as the four-bar's
+//! sheets and the linkage's frames, in paper millimetres. The title block states t, and φ1
+//! and ω1 of an angular driver.
 
 use crate::draw::Drawing;
-use crate::geom::{Point, Vector};
+use crate::geom::{Point, Vector, deg};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
-use crate::figure::linkage::forces::{body_forces, body_polygon};
-use crate::figure::linkage::frame::{Show, time_text};
+use crate::figure::linkage::forces::{ForceFigures, on_mechanism};
+use crate::figure::linkage::frame::{Show, links_of, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
-use crate::figure::shared::sheet::{self, Fit, Paper, SheetLayout, Table, TitleBlock};
-use crate::figure::shared::sheet_polygons::{self, PageFit, PagePolygons, PageScales, Shown};
-use crate::figure::shared::vocab::{layer_of, layers};
+use crate::figure::shared::forces;
+use crate::figure::shared::labels::{Around, TextBox};
+use crate::figure::shared::panels::scale_line;
+use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
+use crate::figure::shared::sheet_pages::{
+    MechanismPage, forces_page, mechanism_bar, mechanism_force_scale, polygons_page,
+};
+use crate::figure::shared::vocab::{Scale, layer_of, layers, length_scale_text};
 
-/// What every page of a run shares: the layout, the mechanism's scale and placement, the
-/// figure and the traced paths on paper.
+/// The longest force drawn on the mechanism page, as a fraction of the mechanism's drawn size.
+pub const MECHANISM_FORCE_FRACTION: f64 = 0.3;
+
+/// What every page set of a run shares: the mechanism page, the figure and the traced
+/// paths on paper.
 #[derive(Debug, Clone)]
 pub struct LinkageSheets {
-    /// Where everything goes.
-    pub layout: SheetLayout,
+    /// The paper.
+    pub paper: Paper,
+    /// The mechanism page (its layout, k_l, the model's origin on paper).
+    pub mechanism_page: MechanismPage,
     /// What is drawn.
     pub show: Show,
-    /// k_l: model length units per paper millimetre.
-    pub k_l: f64,
     /// The scene's name, for the title block.
     pub name: String,
-    /// The paper point of the model's origin.
-    origin: Point,
     /// The figure on paper.
     paper_figure: LinkageFigure,
     /// The traced paths, on paper.
     paths: Drawing,
     /// The ground guides' spans on paper.
     spans: Vec<Option<(Point, Point)>>,
+    /// The force figures drawn.
+    figures: ForceFigures,
+    /// The mechanism's drawn size, paper mm.
+    drawn_mm: f64,
 }
 
 impl LinkageSheets {
-    /// The sheets of a run over `states` on `paper`; `show` as the frames' (the force panel
-    /// only when `forces`).
+    /// The sheets of a run over `states` on `paper`; `show` as the frames' (the forces page
+    /// only when `forces`); `table_rows` the rows of the mechanism page's table.
+    #[allow(clippy::too_many_arguments)]
     pub fn new(
         paper: Paper,
         name: &str,
+        mech: &Mechanism,
         figure: &LinkageFigure,
         states: &[State],
         show: Show,
         forces: bool,
+        table_rows: usize,
     ) -> LinkageSheets {
         let show = Show { forces: show.forces && forces, ..show };
-        let shown = shown(&show);
-        // Title cells: t, k_l, a scale per polygon, the sheet number.
-        let layout = SheetLayout::new(paper, 1 + shown.count(), 3 + shown.count());
-        let s = layout.sizes;
+        let s = paper.sizes();
         let motion: Vec<&[f64]> = states.iter().map(|st| st.q.as_slice()).collect();
+        // What is drawn: every body point over the motion and the ground guides over their
+        // travel (no far-away ground point that only fixes a guide's direction).
+        let spans = fig::guide_spans(figure, &motion, &s);
         let pts = motion.iter().flat_map(|q| {
             figure
                 .bodies
@@ -65,14 +80,16 @@ impl LinkageSheets {
                 .flat_map(move |(i, b)| b.points.iter().map(move |(_, v)| place(q, Attach::Body(i), *v).coords))
         });
         let (lo, hi) = pts
+            .chain(spans.iter().flatten().flat_map(|(a, b)| [a.coords, b.coords]))
             .filter(|v| v.x.is_finite() && v.y.is_finite())
             .fold(None, |e: Option<(Vector, Vector)>, v| Some(e.map_or((v, v), |(lo, hi)| (lo.inf(&v), hi.sup(&v)))))
             .unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        // Room for the letters and the ground symbols and guides around the links.
-        let area = layout.panels[0].area;
-        let room = Vector::new(3.0 * s.text + 2.0 * s.slider_length, 3.0 * s.text + 2.0 * s.ground);
-        let Fit { per_mm: k_l, .. } = sheet::finest(hi - lo, Vector::new(area.width(), area.height()) - room);
-        let origin = sheet::centre(lo, hi, k_l, area) + Vector::new(0.0, s.ground);
+        // Room for the letters, the ground symbols and the sliders' blocks around the links.
+        let sliders = figure.joints.iter().any(|j| matches!(j, fig::JointSymbol::Slider { .. }));
+        let (sl, sh) = if sliders { (s.slider_length, s.slider_height) } else { (1.0, 0.0) };
+        let room = Vector::new(2.0 * s.text + sl, s.text + s.ground + 0.5 * sh);
+        let page = MechanismPage::new(paper, lo, hi, room, table_rows, 6);
+        let (origin, k_l) = (page.origin, page.k_l);
         let paper_figure = figure.on_paper(origin, k_l);
         let paper_motion: Vec<Vec<f64>> = motion.iter().map(|q| fig::on_paper(q, origin, k_l)).collect();
         let paper_refs: Vec<&[f64]> = paper_motion.iter().map(Vec::as_slice).collect();
@@ -80,53 +97,141 @@ impl LinkageSheets {
         let mut paths = Drawing::new(crate::draw::DimStyle { text_height: s.text, arrow_size: s.head });
         let tl = fig::trajectory_layer(&mut paths);
         fig::trajectories(&mut paths, tl, &paper_figure, &paper_refs);
-        LinkageSheets { layout, show, k_l, name: name.to_string(), origin, paper_figure, paths, spans }
+        let figures = ForceFigures::new(mech, show.per_body);
+        let drawn_mm = (hi - lo).amax() / k_l;
+        LinkageSheets {
+            paper,
+            mechanism_page: page,
+            show,
+            name: name.to_string(),
+            paper_figure,
+            paths,
+            spans,
+            figures,
+            drawn_mm,
+        }
     }
 
-    /// The page of one position: `table` its values, `sheet` its number (from 1) and the
-    /// number of pages. Returns the drawing (paper mm, [`Drawing::paper_mm_per_unit`] 1)
-    /// and the page's scales.
-    pub fn page(
+    /// k_l, model length units per paper millimetre.
+    pub fn k_l(&self) -> f64 {
+        self.mechanism_page.k_l
+    }
+
+    /// How many pages a position has.
+    pub fn per_position(&self) -> usize {
+        1 + usize::from(self.show.velocity || self.show.acceleration) + usize::from(self.show.forces)
+    }
+
+    /// The pages of one position: `table` its values, `first` the number of its first page
+    /// and `total` the run's pages: (`mechanism`, `polygons`, `forces`; each drawing in paper
+    /// mm).
+    pub fn pages(
         &self,
         mech: &Mechanism,
         state: &State,
         force: Option<(&Dynamics, &Forces)>,
         table: &Table,
-        sheet: (usize, usize),
-    ) -> (Drawing, PageScales) {
-        let shown = shown(&self.show);
-        let polys =
-            (shown.velocity || shown.acceleration).then(|| polygons_of(mech, state, self.show.points.as_deref()));
-        let figures: Option<Vec<_>> = force.filter(|_| shown.forces).map(|(dynamics, f)| {
-            body_forces(mech, dynamics, state, f).iter().enumerate().map(|(b, bf)| body_polygon(b, bf)).collect()
-        });
-        let page_polys = PagePolygons {
-            velocity: polys.as_ref().filter(|_| shown.velocity).map(|p| &p.velocity),
-            acceleration: polys.as_ref().filter(|_| shown.acceleration).map(|p| &p.acceleration),
-            forces: figures.as_deref(),
+        (first, total): (usize, usize),
+    ) -> Vec<(&'static str, Drawing)> {
+        // t, and φ1 and ω1 of an angular driver (the diagrams are drawn against φ1).
+        let mut driver = Vec::new();
+        if let Some((d, body)) = mech.angular_driver() {
+            let n = match body {
+                Attach::Body(i) => i + 1,
+                Attach::Ground => 0,
+            };
+            let phi = deg(d.law.eval(state.t).value).rem_euclid(360.0);
+            driver.push(format!("φ{n} = {}°", crate::figure::fourbar::angle_text(phi)));
+            driver.push(format!("ω{n} = {} rad/s", sheet::number(state.angular(body).1)));
+        }
+        let title = |cells: Vec<String>, n: usize| {
+            let mut all = driver.clone();
+            all.extend(cells);
+            TitleBlock {
+                name: self.name.clone(),
+                subject: "linkage".to_string(),
+                position: time_text(state.t),
+                cells: all,
+                sheet: (first + n, total),
+            }
         };
-        let fit = PageFit::new(&self.layout, shown, page_polys);
-        let scales = fit.scales(self.k_l);
-        let (titles, cells) = sheet_polygons::titles(&scales, shown, self.paper_figure.units);
-        let title = TitleBlock {
-            name: self.name.clone(),
-            subject: "linkage".to_string(),
-            position: time_text(state.t),
-            cells,
-            sheet,
-        };
-        let mut d = sheet::page(&self.layout, &title, table, &titles);
-        let s = self.layout.sizes;
-        d.append(&self.paths);
-        let q = fig::on_paper(&state.q, self.origin, self.k_l);
-        let mech_layer = layer_of(&d, layers::MECHANISM);
-        fig::mechanism(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &s);
-        fit.draw(&mut d, page_polys, s);
-        sheet_polygons::scale_bars(&mut d, &self.layout, &scales, shown, self.paper_figure.units);
-        (d, scales)
+        let mut pages = vec![("mechanism", self.mechanism_sheet(mech, state, force, table, &title))];
+        let units = self.paper_figure.units;
+        if self.show.velocity || self.show.acceleration {
+            let polys = polygons_of(mech, state, self.show.points.as_deref());
+            let len = units.length;
+            let (vu, au) = (format!("{len}/s"), format!("{len}/s²"));
+            let mut shown: Vec<(&_, layers::Layer, &str, &str, &str)> = Vec::new();
+            if self.show.velocity {
+                shown.push((&polys.velocity, layers::VELOCITY, &vu, "Velocity polygon", "k_v"));
+            }
+            if self.show.acceleration {
+                shown.push((&polys.acceleration, layers::ACCELERATION, &au, "Acceleration polygon", "k_a"));
+            }
+            let n = pages.len();
+            pages.push(("polygons", polygons_page(self.paper, &shown, |cells| title(cells, n))));
+        }
+        if let (true, Some((dynamics, f))) = (self.show.forces, force) {
+            let figures = self.figures.polygons(mech, dynamics, state, f);
+            let captions = self.figures.captions(mech);
+            let n = pages.len();
+            pages.push(("forces", forces_page(self.paper, &figures, &captions, title(Vec::new(), n))));
+        }
+        pages
     }
-}
 
-fn shown(show: &Show) -> Shown {
-    Shown { velocity: show.velocity, acceleration: show.acceleration, forces: show.forces }
+    /// The mechanism page.
+    fn mechanism_sheet(
+        &self,
+        mech: &Mechanism,
+        state: &State,
+        force: Option<(&Dynamics, &Forces)>,
+        table: &Table,
+        title: &dyn Fn(Vec<String>, usize) -> TitleBlock,
+    ) -> Drawing {
+        let (k_l, origin) = (self.k_l(), self.mechanism_page.origin);
+        let layout = &self.mechanism_page.layout;
+        let s = layout.sizes;
+        let q = fig::on_paper(&state.q, origin, k_l);
+        // The loads and reactions on the mechanism, at this page's force scale.
+        let acting: Vec<_> = force
+            .filter(|_| self.show.forces)
+            .map(|(dynamics, f)| {
+                on_mechanism(mech, dynamics, state, f)
+                    .into_iter()
+                    .map(|(at, nv)| (origin + at.coords / k_l, nv))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let k_f = (!acting.is_empty()).then(|| {
+            let at: Vec<(Point, Vector)> = acting.iter().map(|(p, nv): &(Point, _)| (*p, nv.v)).collect();
+            mechanism_force_scale(&at, MECHANISM_FORCE_FRACTION * self.drawn_mm, layout.panels[0].area)
+        });
+        let k_l_text = length_scale_text(k_l, self.paper_figure.units);
+        let mut heading = format!("Mechanism   {k_l_text}");
+        let mut cells = vec![k_l_text];
+        if let Some(k) = k_f {
+            heading.push_str(&format!(", forces {}", scale_line("k_f", k, "N")));
+            cells.push(format!("forces {}", scale_line("k_f", k, "N")));
+        }
+        let mut d = sheet::page(layout, &title(cells, 0), table, &[heading]);
+        mechanism_bar(&mut d, layout, k_l, self.paper_figure.units.length);
+        d.append(&self.paths);
+        let arrows = match k_f {
+            Some(k) => {
+                let links = links_of(&self.paper_figure, &q);
+                let pts: Vec<Point> = links.iter().flat_map(|(a, b)| [*a, *b]).collect();
+                let inside = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64);
+                forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s)
+            }
+            None => Vec::new(),
+        };
+        forces::draw_on_mechanism(&mut d, &arrows, s);
+        let mech_layer = layer_of(&d, layers::MECHANISM);
+        let outline = layout.panels[0].outline;
+        let around = Around { backdrop: None, within: Some(TextBox { min: outline.min, max: outline.max }) };
+        let omega = self.paper_figure.crank.map(|(b, _)| state.angular(Attach::Body(b)).1);
+        fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, omega, &s, around);
+        d
+    }
 }

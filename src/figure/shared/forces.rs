@@ -75,6 +75,9 @@ pub struct ForcePolygon {
     pub chain: Vec<NamedVector>,
     /// Resultants drawn across it.
     pub resultants: Vec<Resultant>,
+    /// How many of the chain's last vectors are the unknowns that closing the polygon finds
+    /// (the dyad's R_C^t and R_A^t): drawn in [`RESULTANT`] red, as the resultants.
+    pub found: usize,
 }
 
 impl ForcePolygon {
@@ -116,10 +119,26 @@ pub fn draw(
     s: Sizes,
     keep_off: &[TextBox],
 ) -> Vec<TextBox> {
+    draw_within(d, poly, scale, pole, s, keep_off, None)
+}
+
+/// [`draw`], the names inside `within` (the figure's panel) where they can be.
+pub fn draw_within(
+    d: &mut Drawing,
+    poly: &ForcePolygon,
+    scale: Scale,
+    pole: Point,
+    s: Sizes,
+    keep_off: &[TextBox],
+    within: Option<TextBox>,
+) -> Vec<TextBox> {
     let l = layer_of(d, layers::FORCES);
     let mut names = labels::Polygon::of_names();
     for b in keep_off {
         names.keep_off(*b);
+    }
+    if let Some(w) = within {
+        names.keep_within(w);
     }
     let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
@@ -127,13 +146,18 @@ pub fn draw(
     names.letter(pole, &poly.pole, s.text, pole - centroid, None);
     // Every segment drawn so far, for resultants to keep off.
     let mut drawn: Vec<(Point, Point)> = Vec::new();
+    // The names: (drawn segment, name, force, where along it, colour).
+    type Named<'a> = ((Point, Point), &'a str, Vector, f64, Option<Aci>);
+    let mut named: Vec<Named<'_>> = Vec::new();
+    let first_found = poly.chain.len().saturating_sub(poly.found);
     for (i, nv) in poly.chain.iter().enumerate() {
         let seg = (pts[i], pts[i + 1]);
-        if arrow(d, l, None, seg, s) {
+        let color = (i >= first_found).then_some(RESULTANT);
+        if arrow(d, l, color, seg, s) {
             drawn.push(seg);
         }
         names.segment(seg.0, seg.1);
-        name(&mut names, seg, &nv.name, nv.v, 0.5, centroid, None, s);
+        named.push((seg, &nv.name, nv.v, 0.5, color));
     }
     for r in &poly.resultants {
         let seg = (pts[r.from], pts[r.to]);
@@ -143,8 +167,16 @@ pub fn draw(
         }
         names.segment(placed.0, placed.1);
         let v = pts[r.to] - pts[r.from];
-        name(&mut names, placed, &r.name, v, r.name_at, centroid, Some(RESULTANT), s);
+        named.push((placed, &r.name, v, r.name_at, Some(RESULTANT)));
     }
+    // The shortest vectors' names first: they have the fewest places beside them (a long
+    // vector's name finds room anywhere along it).
+    named.sort_by(|a, b| (a.0.1 - a.0.0).norm().total_cmp(&(b.0.1 - b.0.0).norm()));
+    for (seg, text, v, at, color) in named {
+        name(&mut names, seg, text, v, at, centroid, color, s);
+    }
+    // Off everything drawn so far (this figure's arrows, the other figures, texts).
+    names.keep_off_drawing(d);
     names.draw(d, l)
 }
 
@@ -409,6 +441,7 @@ mod tests {
                 NamedVector::new("T2", Vector::new(-4.0, 5.0)),
             ],
             resultants: vec![Resultant { name: "T".into(), from: 2, to: 4, name_at: 0.5 }],
+            found: 0,
         }
     }
 
@@ -471,7 +504,7 @@ mod tests {
             })
             .collect();
         chain.push(NamedVector::new("R", Vector::new(30.0, 0.0)));
-        let poly = ForcePolygon { pole: "f".into(), chain, resultants: vec![] };
+        let poly = ForcePolygon { pole: "f".into(), chain, resultants: vec![], found: 0 };
         let mut d = drawing(s);
         let boxes = draw(&mut d, &poly, Scale::new(0.1, ModelUnits::MM), Point::new(0.0, 0.0), s, &[]);
         assert_eq!(boxes.len(), 10);

@@ -31,7 +31,7 @@
 //! Everything here is deterministic: the same polygon gives the same letters in the same
 //! places.
 
-use crate::draw::parts::chars_width;
+use crate::draw::font;
 use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
@@ -62,6 +62,14 @@ pub const SAME_POINT: &str = "≡";
 const TURNS: [f64; 16] = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0, 5.0, -5.0, 6.0, -6.0, 7.0, -7.0, 8.0];
 /// The step between directions tried: 22.5°.
 const TURN: f64 = std::f64::consts::PI / 8.0;
+/// Directions tried for a name with a leader, in multiples of [`TURN_FINE`]: twice as many,
+/// so that a leader can pass between the letters around a crowded point.
+const TURNS_FINE: [f64; 32] = [
+    0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0, 5.0, -5.0, 6.0, -6.0, 7.0, -7.0, 8.0, -8.0, 9.0, -9.0, 10.0,
+    -10.0, 11.0, -11.0, 12.0, -12.0, 13.0, -13.0, 14.0, -14.0, 15.0, -15.0, 16.0,
+];
+/// The step between the directions of [`TURNS_FINE`]: 11.25°.
+const TURN_FINE: f64 = std::f64::consts::PI / 16.0;
 
 /// An axis-aligned box (an estimated text box), model units.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,15 +81,23 @@ pub struct TextBox {
 }
 
 impl TextBox {
-    /// The estimated box of `text`, `height` high, centred at `centre`: [`label_width`] wide,
-    /// one height tall.
+    /// The box of `text`, `height` high, drawn centred at `centre` (as [`draw_placed`] draws
+    /// a label: the middle of its capitals at `centre`), measured in the font it is drawn in
+    /// ([`font::measure`]): its advances wide, from its deepest descender to its highest
+    /// glyph (at least the cap height) tall.
     pub fn centred(centre: Point, text: &str, height: f64) -> TextBox {
-        TextBox::around(centre, TextBox::half_size(text, height))
+        let (half, shift) = TextBox::half_size(text, height);
+        TextBox::around(centre - shift, half)
     }
 
-    /// Half the width and half the height of [`TextBox::centred`]'s box.
-    fn half_size(text: &str, height: f64) -> Vector {
-        Vector::new(0.5 * label_width(text, height), 0.5 * height)
+    /// Half the width and half the height of [`TextBox::centred`]'s box, and the shift from
+    /// the box's centre to the text's centre (the middle of its capitals).
+    fn half_size(text: &str, height: f64) -> (Vector, Vector) {
+        let e = font::measure(text, height);
+        // Box from (baseline − descent) to (baseline + ascent), the baseline half a height
+        // under the text's centre.
+        let middle = -0.5 * height + 0.5 * (e.ascent - e.descent);
+        (Vector::new(0.5 * e.width, 0.5 * (e.ascent + e.descent)), Vector::new(0.0, -middle))
     }
 
     /// The box with half-sizes `half` centred at `centre`.
@@ -123,7 +139,7 @@ impl TextBox {
 /// crosses, segments its box crosses.
 type Score = (usize, usize, usize);
 /// A segment: its two ends.
-type Segment = (Point, Point);
+pub type Segment = (Point, Point);
 
 /// One letter waiting to be placed.
 #[derive(Debug, Clone)]
@@ -142,14 +158,26 @@ struct Letter {
 }
 
 impl Letter {
-    /// Half the width and half the height of its box.
-    fn half(&self) -> Vector {
+    /// Half the width and half the height of its box, and the shift from the box's centre
+    /// to where its text is drawn (a circle's box is centred on its text).
+    fn half(&self) -> (Vector, Vector) {
         if self.circled {
-            Vector::new(CIRCLE_RADIUS * self.height, CIRCLE_RADIUS * self.height)
+            (Vector::new(CIRCLE_RADIUS * self.height, CIRCLE_RADIUS * self.height), Vector::zeros())
         } else {
             TextBox::half_size(&self.text, self.height)
         }
     }
+}
+
+/// What letters placed into a drawing keep clear of besides what the drawing holds: what is
+/// drawn elsewhere on the same frame (its shared part: paths, titles), and the panel they stay
+/// inside.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct Around<'a> {
+    /// Drawn elsewhere on the same page or frame: its strokes and texts are kept off.
+    pub backdrop: Option<&'a Drawing>,
+    /// The panel the letters stay inside.
+    pub within: Option<TextBox>,
 }
 
 /// A placed label: where its text's centre goes, and what is drawn with it.
@@ -189,6 +217,8 @@ pub struct Polygon {
     segments: Vec<(Point, Point)>,
     obstacles: Vec<TextBox>,
     merge: bool,
+    /// The box every label should stay inside (its panel), when set.
+    within: Option<TextBox>,
 }
 
 impl Polygon {
@@ -249,6 +279,66 @@ impl Polygon {
         self.obstacles.push(b);
     }
 
+    /// The box every label should stay inside (its panel): a candidate reaching out of it
+    /// scores as if it overlapped a letter.
+    pub fn keep_within(&mut self, b: TextBox) {
+        self.within = Some(b);
+    }
+
+    /// Whether `bx` leaves the box labels should stay inside.
+    fn outside(&self, bx: &TextBox) -> bool {
+        self.within
+            .is_some_and(|w| bx.min.x < w.min.x || bx.min.y < w.min.y || bx.max.x > w.max.x || bx.max.y > w.max.y)
+    }
+
+    /// Every stroke of `shapes` ([`strokes`]) as a segment letters should not cover.
+    pub fn keep_off_shapes<'a>(&mut self, shapes: impl IntoIterator<Item = &'a Shape>) {
+        for shape in shapes {
+            for (a, b) in strokes(shape) {
+                self.segment(a, b);
+            }
+        }
+    }
+
+    /// Everything drawn in `d` so far: its strokes as segments letters should not cover,
+    /// its texts as boxes they must not overlap.
+    pub fn keep_off_drawing(&mut self, d: &Drawing) {
+        self.keep_off_shapes(d.entities.iter().map(|e| &e.shape));
+        // A circled number's box is its circle's square.
+        let circles: Vec<(Point, f64)> = d
+            .entities
+            .iter()
+            .filter_map(|e| match e.shape {
+                Shape::Circle { center, radius } => Some((center, radius)),
+                _ => None,
+            })
+            .collect();
+        for e in &d.entities {
+            if let Shape::Text { at, height, .. } = &e.shape {
+                let r = CIRCLE_RADIUS * height;
+                if circles.iter().any(|(c, cr)| c == at && (cr - r).abs() <= 1e-12 * r) {
+                    self.keep_off(TextBox::around(*at, Vector::new(r, r)));
+                    continue;
+                }
+            }
+            if let Some(c) = crate::draw::text_corners(&e.shape) {
+                let min = c.iter().fold(c[0], |m, p| Point::new(m.x.min(p.x), m.y.min(p.y)));
+                let max = c.iter().fold(c[0], |m, p| Point::new(m.x.max(p.x), m.y.max(p.y)));
+                self.keep_off(TextBox { min, max });
+            }
+        }
+    }
+
+    /// Keeps the letters clear of what `around` holds ([`Around`]).
+    pub fn around(&mut self, around: Around<'_>) {
+        if let Some(b) = around.backdrop {
+            self.keep_off_drawing(b);
+        }
+        if let Some(w) = around.within {
+            self.keep_within(w);
+        }
+    }
+
     /// A segment of the polygon that letters should not cover.
     pub fn segment(&mut self, a: Point, b: Point) {
         if a.x.is_finite() && a.y.is_finite() && b.x.is_finite() && b.y.is_finite() {
@@ -280,7 +370,7 @@ impl Polygon {
         let mut out = Vec::with_capacity(letters.len());
         for l in letters.iter() {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
-            let half = l.half();
+            let (half, shift) = l.half();
             let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
             // Every candidate's box and leader lie inside `reach` (with room for rounding):
             // what lies wholly outside it is neither overlapped nor crossed by any of them.
@@ -293,12 +383,12 @@ impl Polygon {
             near_lines.clear();
             near_lines.extend(lines.iter().filter(|(_, b)| !apart(b)).copied());
             let (blockers_near, lines_near): (&[TextBox], &[(Segment, TextBox)]) = (&near_blockers, &near_lines);
-            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, l.leader) {
                 let bx = TextBox::around(c, half);
                 let bound = best.as_ref().map(|(s, ..)| *s);
                 // Overlapped letters counted only until the candidate has lost.
                 let most_hits = bound.map_or(usize::MAX, |s| s.0);
-                let mut hits = 0;
+                let mut hits = usize::from(self.outside(&bx));
                 for b in blockers_near {
                     if b.overlaps(&bx) {
                         hits += 1;
@@ -345,7 +435,7 @@ impl Polygon {
                 blockers.push(bx);
                 lines.extend(leader.map(|s| (s, segment_box(s))));
                 out.push(Placed {
-                    centre: c,
+                    centre: c + shift,
                     text: l.text.clone(),
                     height: l.height,
                     color: l.color,
@@ -413,6 +503,167 @@ fn leader_line(at: Point, centre: Point, half: Vector, height: f64) -> Option<(P
     ((at - edge).norm() >= LEADER_MIN * height).then_some((at, edge))
 }
 
+/// Of the texts `candidates` (in order of preference), the first whose box (as drawn:
+/// [`crate::draw::text_corners`]) overlaps no text and is crossed by no stroke of `d` (but
+/// those on the layers `breakable`, which [`break_around`] interrupts under it) and stays
+/// inside `within`; else the one with the fewest such conflicts (the first on a tie). `None`
+/// for no candidate. For a text that has a few good places (a diagram's label).
+pub fn first_free(d: &Drawing, candidates: Vec<Shape>, within: Option<TextBox>, breakable: &[usize]) -> Option<Shape> {
+    let mut p = Polygon::of_names();
+    let mut solid = d.clone();
+    solid.entities.retain(|e| !breakable.contains(&e.layer));
+    p.keep_off_drawing(&solid);
+    let conflicts = |shape: &Shape| -> usize {
+        let Some(c) = crate::draw::text_corners(shape) else { return usize::MAX };
+        let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+        let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+        let bx = TextBox { min, max };
+        let outside = within.is_some_and(|w| min.x < w.min.x || min.y < w.min.y || max.x > w.max.x || max.y > w.max.y);
+        p.obstacles.iter().filter(|o| o.overlaps(&bx)).count()
+            + p.segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count()
+            + usize::from(outside)
+    };
+    let mut best: Option<(usize, Shape)> = None;
+    for c in candidates {
+        let n = conflicts(&c);
+        if n == 0 {
+            return Some(c);
+        }
+        if best.as_ref().is_none_or(|(b, _)| n < *b) {
+            best = Some((n, c));
+        }
+    }
+    best.map(|(_, c)| c)
+}
+
+/// Breaks the thin lines and circles on `layer` of `d` where they pass through one of
+/// `boxes` grown by `gap` (a drafting convention: a construction line or a grid line is
+/// interrupted where a text is written over it, ISO 129-1's "not crossed by any line"): a
+/// line becomes the pieces outside the boxes, a circle the arcs outside them (to 0.5°).
+pub fn break_around(d: &mut Drawing, layer: usize, boxes: &[TextBox], gap: f64) {
+    if boxes.is_empty() {
+        return;
+    }
+    let grown: Vec<TextBox> = boxes
+        .iter()
+        .map(|b| TextBox { min: b.min - Vector::new(gap, gap), max: b.max + Vector::new(gap, gap) })
+        .collect();
+    let inside = |p: Point| grown.iter().any(|b| p.x > b.min.x && p.x < b.max.x && p.y > b.min.y && p.y < b.max.y);
+    let mut out = Vec::with_capacity(d.entities.len());
+    for e in std::mem::take(&mut d.entities) {
+        let pieces: Option<Vec<Shape>> = match (&e.shape, e.layer == layer) {
+            (Shape::Line { from, to }, true) if grown.iter().any(|b| b.crosses(*from, *to)) => {
+                // Sampled finely along the line, the runs outside every box kept.
+                let n = 400;
+                let at = |k: usize| *from + (*to - *from) * (k as f64 / n as f64);
+                Some(
+                    runs(n, |k| !inside(at(k)))
+                        .into_iter()
+                        .map(|(i, j)| Shape::Line { from: at(i), to: at(j) })
+                        .collect(),
+                )
+            }
+            (Shape::Circle { center, radius }, true) => {
+                let n = 720;
+                let angle = |k: usize| std::f64::consts::TAU * k as f64 / n as f64;
+                let at = |k: usize| *center + Vector::new(libm::cos(angle(k)), libm::sin(angle(k))) * *radius;
+                let keep = runs(n, |k| !inside(at(k)));
+                (keep.len() != 1 || keep[0] != (0, n)).then(|| {
+                    keep.into_iter()
+                        .map(|(i, j)| Shape::Arc { center: *center, radius: *radius, start: angle(i), end: angle(j) })
+                        .collect()
+                })
+            }
+            _ => None,
+        };
+        match pieces {
+            Some(p) => out.extend(p.into_iter().map(|shape| Entity { shape, ..e.clone() })),
+            None => out.push(e),
+        }
+    }
+    d.entities = out;
+}
+
+/// The runs `(first, last)` of consecutive samples `0..=n` for which `keep` holds (a run
+/// of one sample dropped).
+fn runs(n: usize, keep: impl Fn(usize) -> bool) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    let mut start: Option<usize> = None;
+    for k in 0..=n {
+        match (keep(k), start) {
+            (true, None) => start = Some(k),
+            (false, Some(s)) => {
+                if k - 1 > s {
+                    out.push((s, k - 1));
+                }
+                start = None;
+            }
+            _ => {}
+        }
+    }
+    if let Some(s) = start
+        && n > s
+    {
+        out.push((s, n));
+    }
+    out
+}
+
+/// Largest angle a chord of a circle or an arc stands for in [`strokes`]: 5° (the chord
+/// is then within 0.1 % of the radius of the arc).
+const CHORD: f64 = std::f64::consts::PI / 36.0;
+
+/// The strokes of a drawn shape as straight segments, as a reader draws them: a line; a
+/// polyline's sides (a wide one's two edges, half its width either side); an arrow's shaft
+/// and its head's sides; a filled shape's outline; circles and arcs as chords of at most 5°.
+/// Texts and dimensions give none (a dimension's text is placed by its own rules).
+pub fn strokes(shape: &Shape) -> Vec<Segment> {
+    let ring = |c: Point, r: f64, start: f64, sweep: f64| {
+        let n = ((sweep.abs() / CHORD).ceil() as usize).max(1);
+        let at = |k: usize| {
+            let a = start + sweep * k as f64 / n as f64;
+            c + Vector::new(libm::cos(a), libm::sin(a)) * r
+        };
+        (0..n).map(|k| (at(k), at(k + 1))).collect::<Vec<_>>()
+    };
+    let closed = |pts: &[Point]| (0..pts.len()).map(|i| (pts[i], pts[(i + 1) % pts.len()])).collect::<Vec<_>>();
+    match shape {
+        Shape::Circle { center, radius } => ring(*center, *radius, 0.0, std::f64::consts::TAU),
+        Shape::Arc { center, radius, start, end } => {
+            ring(*center, *radius, *start, crate::draw::parts::arc_sweep(*start, *end))
+        }
+        Shape::Line { from, to } => vec![(*from, *to)],
+        Shape::Polyline { points, closed: c, width } => {
+            let sides: Vec<Segment> =
+                if *c && points.len() > 2 { closed(points) } else { points.windows(2).map(|w| (w[0], w[1])).collect() };
+            if *width <= 0.0 {
+                return sides;
+            }
+            // The band's two edges.
+            sides
+                .into_iter()
+                .flat_map(|(a, b)| {
+                    let n = crate::geom::perp(unit(b - a, Vector::new(1.0, 0.0))) * (0.5 * width);
+                    [(a + n, b + n), (a - n, b - n)]
+                })
+                .collect()
+        }
+        Shape::Filled { points } => closed(points),
+        Shape::Arrow { from, to, head } => match crate::draw::parts::arrow(*from, *to, *head) {
+            Some((base, tri)) => {
+                let mut out = vec![(*from, base)];
+                out.extend(closed(&tri));
+                out
+            }
+            None => vec![(*from, *to)],
+        },
+        Shape::Text { .. }
+        | Shape::ScaleText { .. }
+        | Shape::AngularDimension { .. }
+        | Shape::LinearDimension { .. } => Vec::new(),
+    }
+}
+
 /// The bounding box of a segment.
 fn segment_box((a, b): Segment) -> TextBox {
     TextBox { min: Point::new(a.x.min(b.x), a.y.min(b.y)), max: Point::new(a.x.max(b.x), a.y.max(b.y)) }
@@ -437,14 +688,10 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
     out
 }
 
-/// Estimated width of a label: [`text_width`](crate::draw::parts::text_width), with
-/// [`SAME_POINT`] as wide as `=` (DejaVu Sans draws both 1716 font units wide; `text_width` would count it as an average letter,
-/// and a combined label `a≡b≡m` would print over its neighbours).
+/// Width of a label `height` high: its advances in the font it is drawn in
+/// ([`font::width`]).
 pub fn label_width(text: &str, height: f64) -> f64 {
-    // `SAME_POINT` is one character, replaced by one.
-    const SAME: char = '≡';
-    const _: () = assert!(SAME_POINT.len() == SAME.len_utf8());
-    chars_width(text.chars().map(|c| if c == SAME { '=' } else { c }), height)
+    font::width(text, height)
 }
 
 /// Unit vector of `v`, or `fallback` for a zero or non-finite `v`.
@@ -455,30 +702,35 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
-    candidates_in(at, TextBox::half_size(text, height), height, dir, 0.0, &RINGS)
+    let (half, shift) = TextBox::half_size(text, height);
+    candidates_in(at, half, height, dir, 0.0, false).map(move |c| c + shift)
 }
 
 /// Candidate centres for a box of half-sizes `half` whose edge keeps `clear` more than
-/// [`LABEL_GAP`] from `at`, at the distances `rings`.
+/// [`LABEL_GAP`] from `at`, at the distances [`RINGS`] (a name with a leader: [`LEADER_RINGS`],
+/// in twice as many directions).
 fn candidates_in(
     at: Point,
     half: Vector,
     height: f64,
     dir: Vector,
     clear: f64,
-    rings: &[f64],
-) -> impl Iterator<Item = Point> + '_ {
+    leader: bool,
+) -> impl Iterator<Item = Point> {
     let u0 = unit(dir, Vector::new(0.0, 1.0));
     let base = libm::atan2(u0.y, u0.x);
     let (hw, hh) = (half.x, half.y);
+    // Names with a leader go further out and try twice as many directions.
+    let (rings, turns, turn): (&[f64], &[f64], f64) =
+        if leader { (&LEADER_RINGS, &TURNS_FINE, TURN_FINE) } else { (&RINGS, &TURNS, TURN) };
     // Lazy: most letters take their first candidate, so the directions are not computed
     // ahead (a run places some ten thousand letters); each direction (and its reach) is
     // computed once, on the first ring, and kept for the others.
-    let mut dirs = [(Vector::zeros(), 0.0); TURNS.len()];
+    let mut dirs = [(Vector::zeros(), 0.0); TURNS_FINE.len()];
     let mut known = 0;
-    rings.iter().flat_map(move |&ring| (0..TURNS.len()).map(move |i| (ring, i))).map(move |(ring, i)| {
+    rings.iter().flat_map(move |&ring| (0..turns.len()).map(move |i| (ring, i))).map(move |(ring, i)| {
         if i == known {
-            let a = base + TURNS[i] * TURN;
+            let a = base + turns[i] * turn;
             let u = Vector::new(libm::cos(a), libm::sin(a));
             // From the box's centre to its edge along u.
             let reach = (hw / u.x.abs().max(1e-12)).min(hh / u.y.abs().max(1e-12));
@@ -504,14 +756,14 @@ fn candidates_reach(at: Point, half: Vector, height: f64, clear: f64, rings: &[f
 /// The farthest a label's centre can be from its point: the last ring in the worst
 /// direction.
 pub fn max_distance(text: &str, height: f64) -> f64 {
-    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    RINGS[RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(hw, hh))
+    let (half, shift) = TextBox::half_size(text, height);
+    RINGS[RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(half.x, half.y)) + shift.norm()
 }
 
 /// The farthest a name with a leader ([`Polygon::name_with_leader`]) can be from its point.
 pub fn max_leader_distance(text: &str, height: f64) -> f64 {
-    let (hw, hh) = (0.5 * label_width(text, height), 0.5 * height);
-    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(hw, hh))
+    let (half, shift) = TextBox::half_size(text, height);
+    LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(half.x, half.y)) + shift.norm()
 }
 
 #[cfg(test)]
@@ -612,12 +864,12 @@ mod tests {
         let mut out = Vec::new();
         for l in &letters {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
-            let half = l.half();
-            let rings: &[f64] = if l.leader { &LEADER_RINGS } else { &RINGS };
-            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, rings) {
+            let (half, shift) = l.half();
+            for c in candidates_in(l.at, half, l.height, l.dir, l.clear, l.leader) {
                 let bx = TextBox::around(c, half);
                 let leader = if l.leader { leader_line(l.at, c, half, l.height) } else { None };
-                let hits = boxes.iter().chain(&p.obstacles).filter(|b| b.overlaps(&bx)).count();
+                let hits =
+                    boxes.iter().chain(&p.obstacles).filter(|b| b.overlaps(&bx)).count() + usize::from(p.outside(&bx));
                 let through =
                     leader.map_or(0, |(a, b)| boxes.iter().chain(&p.obstacles).filter(|x| x.crosses(a, b)).count());
                 let crossed = p.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
@@ -633,7 +885,7 @@ mod tests {
                 boxes.push(bx);
                 leaders.extend(leader);
                 let (text, height, color, circled) = (l.text.clone(), l.height, l.color, l.circled);
-                out.push(Placed { centre: c, text, height, color, leader, circled });
+                out.push(Placed { centre: c + shift, text, height, color, leader, circled });
             }
         }
         out

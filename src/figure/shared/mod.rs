@@ -1,7 +1,7 @@
 //! The drawing vocabulary every kind's figures share: line styles and layers ([`vocab`]),
 //! labels placed clear of each other ([`labels`]), panels with scale bars ([`panels`]),
 //! vector polygons ([`polygon`]) and forces ([`forces`]), printed sheets ([`sheet`],
-//! [`sheet_polygons`]), diagrams ([`plot`]) and animations ([`animation`]).
+//! [`sheet_pages`]), diagrams ([`plot`]) and animations ([`animation`]).
 
 pub mod animation;
 pub mod forces;
@@ -10,5 +10,5 @@ pub mod panels;
 pub mod plot;
 pub mod polygon;
 pub mod sheet;
-pub mod sheet_polygons;
+pub mod sheet_pages;
 pub mod vocab;

@@ -1,23 +1,33 @@
 //! The graph-analytical frame of any mechanism (issue 15 §3: one figure pipeline): the
 //! mechanism's panel and, beside it, the velocity polygon's, the acceleration polygon's and
 //! the force panel (one force polygon per isolated group or body, captioned, and a table of
-//! magnitudes), each panel titled with its scale and carrying a scale bar. The four-bar
-//! kind and the linkage kind both draw their frames through [`PanelFrame`]: they describe
-//! their polygons as [`PointPolygon`]s and [`ForcePolygon`]s and draw their own mechanism in
-//! the first panel; the panels, scales, titles, bars, captions and the polygons' drawing
-//! are here, once.
+//! magnitudes), each panel framed, titled with its scale and carrying a scale bar. The
+//! four-bar kind and the linkage kind both draw their frames through [`PanelFrame`]: they
+//! describe their polygons as [`PointPolygon`]s and [`ForcePolygon`]s and draw their own
+//! mechanism in the first panel; the panels, scales, titles, bars, captions and the
+//! polygons' drawing are here, once.
 //!
 //! # Layout and scales
 //! One [`PanelFrame`] is computed per run from every position, so all frames share one
-//! window and one set of scales and an animation does not jump. The mechanism is drawn at a
-//! length scale k_l (model units per paper millimetre, a nice value 1, 2, 2.5, 5 × 10ᵏ) that
-//! draws its motion at most `mechanism_mm` long on paper; the drawings carry
-//! `paper_mm_per_unit = 1/k_l`. Each polygon's panel is about as large on paper as the
-//! mechanism (or a stated size), at a nice scale per printed millimetre (`k_v = 0.01 (m/s)/mm`: one measured
-//! millimetre stands for 0.01 m/s) chosen from the largest polygon over the motion. Panels
-//! sit in a grid: up to three in a row, four as 2 × 2. The force panel holds its figures in
-//! rows of up to [`FORCE_ROW`] items (the figures, then the table), each figure hanging from
-//! the top of its row under its caption.
+//! window and the mechanism keeps one length scale k_l (model units per paper millimetre, a
+//! drafting scale [`drafting_scale`]) that draws its motion at most `mechanism_mm` long on paper;
+//! the drawings carry `paper_mm_per_unit = 1/k_l`. Panels sit in a grid: up to three in a
+//! row, four as 2 × 2; the force panel holds its figures in cells, in rows of up to
+//! [`FORCE_ROW`] items (the figures, then the table), each under its caption.
+//!
+//! The polygons' scales per printed millimetre (`k_v = 0.01 (m/s)/mm`: one measured
+//! millimetre stands for 0.01 m/s) are chosen one of two ways ([`ScaleChoice`], the scene's
+//! `[frames] scales`):
+//! - per frame (the default): each polygon, and each force figure on its own, takes at each
+//!   position the nice scale at which it fills between half and all of its panel
+//!   ([`sheet::frame_scales`]: kept from frame to frame while it does, so the animation
+//!   does not flicker), centred in its panel; the scale is printed in the panel's title (a
+//!   force figure's in its caption) and drawn as the panel's scale bar in every frame;
+//! - fixed: one scale per polygon for the whole run, chosen from the largest polygon over
+//!   the motion (its panel about as large as the mechanism), the pole fixed.
+//!
+//! The forces drawn on the mechanism keep one scale for the run (printed in the mechanism
+//! panel's title).
 
 use crate::draw::parts::widest_text_width;
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, ScaleCaption, Shape, VAlign};
@@ -26,10 +36,68 @@ use crate::geom::{Point, Vector};
 use crate::figure::shared::forces::{self, ForcePolygon, Magnitude};
 use crate::figure::shared::labels;
 use crate::figure::shared::polygon::{self, PointPolygon};
+use crate::figure::shared::sheet;
 use crate::figure::shared::vocab::{
-    ModelUnits, Scale, Sizes, bar_value, caption_width, content_drawing, layer_of, layers, length_caption,
-    length_scale, nice_scale, scale_bar, scale_bar_room, scale_text,
+    ModelUnits, Scale, Sizes, bar_value, caption_width, content_drawing, drafting_scale, layer_of, layers,
+    length_caption, nice_scale, scale_bar, scale_bar_room, scale_text,
 };
+
+/// A panel's title: none, plain words, or words stating a scale (each medium writes its
+/// value for the millimetres it draws: [`ScaleCaption`]).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Title {
+    /// No title (drawn with each position: a polygon's scale per frame).
+    None,
+    /// Words without a scale (`Force polygons`).
+    Words(String),
+    /// Words with a scale (`Velocity polygon   k_v = 0.1 (m/s)/mm`).
+    Scale(ScaleCaption),
+}
+
+impl Title {
+    /// The title as a medium drawing a model unit `mm_per_unit` millimetres long writes it.
+    pub fn text(&self, mm_per_unit: f64) -> String {
+        match self {
+            Title::None => String::new(),
+            Title::Words(w) => w.clone(),
+            Title::Scale(c) => c.text(mm_per_unit),
+        }
+    }
+
+    /// The title on its figure's paper.
+    pub fn on_paper(&self) -> String {
+        match self {
+            Title::Scale(c) => c.on_paper(),
+            other => other.text(1.0),
+        }
+    }
+
+    /// The width it takes in the widest reader, in whichever medium writes it wider.
+    fn width(&self, units: ModelUnits, height: f64) -> f64 {
+        match self {
+            Title::None => 0.0,
+            Title::Words(w) => widest_text_width(w, height),
+            Title::Scale(c) => caption_width(c, units, height),
+        }
+    }
+
+    /// Draws it left-aligned on its baseline at `at` on `layer`.
+    fn draw(&self, d: &mut Drawing, layer: usize, at: Point, height: f64) {
+        match self {
+            Title::None => {}
+            Title::Words(w) => text(d, layer, at, height, w),
+            Title::Scale(c) => d.scale_text(layer, at, height, c.clone()),
+        }
+    }
+}
+
+/// A caption stating a scale: `before` then `k_v = 0.1 (m/s)/mm` (`per_mm` per paper mm of a
+/// figure printed at `paper_mm_per_unit`), each medium writing the value for its own
+/// millimetres.
+pub fn scale_caption(before: &str, symbol: &str, per_mm: f64, unit: &str, paper_mm_per_unit: f64) -> ScaleCaption {
+    let unit = if unit.contains('/') { format!("({unit})") } else { unit.to_string() };
+    ScaleCaption::new(format!("{before}{symbol} = "), per_mm, format!(" {unit}/mm"), paper_mm_per_unit)
+}
 
 /// Gap between panels on paper, millimetres.
 pub const PANEL_GAP_MM: f64 = 10.0;
@@ -37,6 +105,39 @@ pub const PANEL_GAP_MM: f64 = 10.0;
 pub const FORCE_ROW: usize = 3;
 /// Caption of the table of magnitudes.
 pub const TABLE_CAPTION: &str = "Magnitudes";
+/// The longest force drawn on the mechanism, as a fraction of the mechanism's drawn size.
+pub const MECHANISM_FORCE_FRACTION: f64 = 0.35;
+/// Side of a force figure's cell on paper when each figure has its own scale, as a fraction
+/// of a polygon panel's.
+pub const FORCE_CELL_FRACTION: f64 = 0.8;
+/// Room between a polygon and its panel's edges for the letters at its outer points, in
+/// letter heights (each side).
+pub const LETTER_ROOM: f64 = 2.0;
+
+/// How the polygons' scales are chosen over an animation (the scene's `[frames] scales`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum ScaleChoice {
+    /// A nice scale per frame, each polygon filling half to all of its panel, kept while it
+    /// does (`"per-frame"`, the default).
+    #[default]
+    PerFrame,
+    /// One scale per polygon for the whole run (`"fixed"`).
+    Fixed,
+}
+
+impl std::str::FromStr for ScaleChoice {
+    type Err = String;
+    fn from_str(s: &str) -> Result<ScaleChoice, String> {
+        match s {
+            "per-frame" => Ok(ScaleChoice::PerFrame),
+            "fixed" => Ok(ScaleChoice::Fixed),
+            _ => Err(format!(
+                "`{s}` is not a choice: \"per-frame\" (each frame's polygons at their own nice scale, the default) or \
+                 \"fixed\" (one scale per polygon for the whole run)"
+            )),
+        }
+    }
+}
 
 /// Bounding box of physical vectors.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -76,14 +177,19 @@ impl Extent {
     pub fn size(&self) -> f64 {
         (self.max - self.min).amax()
     }
+
+    /// Width and height.
+    pub fn sides(&self) -> Vector {
+        self.max - self.min
+    }
 }
 
 /// The force panel asked of a [`PanelFrame`]: its figures over the whole motion.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ForceSpec {
-    /// Each figure's caption and the extent of its points over the motion (relative to its
-    /// pole, N), in the order they are drawn.
-    pub figures: Vec<(String, Option<Extent>)>,
+    /// Each figure's caption and the extent of its points at each position (relative to
+    /// its pole, N), in the order they are drawn.
+    pub figures: Vec<(String, Vec<Option<Extent>>)>,
     /// The rows of the table at every position (for its width).
     pub rows: Vec<Magnitude>,
     /// The number of rows of the table at one position.
@@ -112,46 +218,95 @@ pub struct PanelSpec {
     pub pad: fn(Sizes) -> (f64, f64),
     /// The widest text written right of the mechanism's title (`φ1 = 359.999°`).
     pub position_text: String,
-    /// Every point of the velocity polygon over the motion (relative to the pole), when
-    /// drawn.
-    pub velocity: Option<Vec<Vector>>,
-    /// Every point of the acceleration polygon over the motion, when drawn.
-    pub acceleration: Option<Vec<Vector>>,
+    /// The velocity polygon's points at each position (relative to the pole), when drawn.
+    pub velocity: Option<Vec<Option<Extent>>>,
+    /// The acceleration polygon's, when drawn.
+    pub acceleration: Option<Vec<Option<Extent>>>,
     /// The force panel, when drawn.
     pub forces: Option<ForceSpec>,
+    /// How the polygons' scales are chosen.
+    pub scales: ScaleChoice,
 }
 
-/// The force panel as placed: every figure's pole, its caption, and the table.
+/// One scaled figure of a frame: a polygon in its panel, or a force figure in its cell.
 #[derive(Debug, Clone, PartialEq)]
-pub struct ForceFigures {
-    /// The pole of each figure, in the order of [`ForceSpec::figures`].
-    pub poles: Vec<Point>,
+pub struct Slot {
+    /// The scale's symbol: `k_v`, `k_a`, `k_f`.
+    pub symbol: &'static str,
+    /// The unit of its vectors (`m/s`, `N`).
+    pub unit: String,
+    /// What it is: `Velocity polygon`, a force figure's caption.
+    pub title: String,
+    /// The left end of its title's baseline, and the title's height.
+    pub title_at: (Point, f64),
+    /// The area it is fitted in (model units).
+    pub area: Bounds,
+    /// Where its scale bar starts (`None`: it shares its panel's).
+    pub bar_at: Option<Point>,
+    /// Physical units per paper millimetre at each position (one for a fixed scale).
+    pub scales: Vec<f64>,
+    /// The pole when the scale is fixed (`None`: centred in the area at each position).
+    pub pole: Option<Point>,
+    /// The figure's physical size (width, height) at each position its scales were chosen
+    /// for (per frame; empty for a fixed scale).
+    pub sides: Vec<Option<Vector>>,
+}
+
+impl Slot {
+    /// The scale of this figure at position `k` for a figure of physical size `extent` (the
+    /// position's own scale, or, between positions, the nearest's while the figure fills
+    /// half to all of the area at it: [`sheet::scale_near`]).
+    fn per_mm(&self, k: usize, extent: Option<Vector>, k_l: f64) -> f64 {
+        let last = self.scales.len().saturating_sub(1);
+        let stored = self.scales.get(k.min(last)).copied();
+        if self.pole.is_some() {
+            return stored.unwrap_or(1.0);
+        }
+        let area = Vector::new(self.area.width(), self.area.height()) / k_l;
+        sheet::scale_near(stored, extent, area)
+    }
+
+    /// The scale and the pole of a figure whose points (relative to its pole) span
+    /// `extent`, at position `k`.
+    pub fn place(&self, k: usize, extent: Option<Extent>, k_l: f64) -> (Scale, Point) {
+        let per_mm = self.per_mm(k, extent.map(|e| e.sides()), k_l);
+        let scale = Scale::on_paper(per_mm, 1.0 / k_l);
+        let pole = self.pole.unwrap_or_else(|| {
+            let mid = Point::from((self.area.min.coords + self.area.max.coords) / 2.0);
+            match extent {
+                Some(e) => mid - scale.draw((e.min + e.max) / 2.0),
+                None => mid,
+            }
+        });
+        (scale, pole)
+    }
+
+    /// The title with the scale `per_mm`: `Velocity polygon   k_v = 0.1 (m/s)/mm`, on a
+    /// figure printed at `paper_mm_per_unit`.
+    fn title_with(&self, per_mm: f64, paper_mm_per_unit: f64) -> ScaleCaption {
+        scale_caption(&format!("{}   ", self.title), self.symbol, per_mm, &self.unit, paper_mm_per_unit)
+    }
+}
+
+/// `k_v = 0.1 (m/s)/mm`, `k_f = 50 N/mm`.
+pub fn scale_line(symbol: &str, per_mm: f64, unit: &str) -> String {
+    let unit = if unit.contains('/') { format!("({unit})") } else { unit.to_string() };
+    format!("{symbol} = {} {unit}/mm", scale_text(per_mm))
+}
+
+/// The force panel as placed: a slot per figure, the table.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ForceCells {
+    /// One slot per figure, in the order of [`ForceSpec::figures`].
+    pub figures: Vec<Slot>,
     /// Upper-left corner of the table of magnitudes.
     pub table_at: Point,
     /// Width of the table (values right-aligned at its right edge).
     pub table_width: f64,
     /// Rows of the table.
     pub row_count: usize,
-    /// Captions: text and the left end of its baseline.
-    pub captions: Vec<(String, Point)>,
-}
-
-impl ForceFigures {
-    /// The boxes of the captions and of the table (for the polygons' names to keep off).
-    pub fn text_boxes(&self, s: Sizes) -> Vec<labels::TextBox> {
-        let h = forces::NAME_HEIGHT * s.text;
-        let mut out: Vec<labels::TextBox> = self
-            .captions
-            .iter()
-            .map(|(t, at)| labels::TextBox { min: *at, max: *at + Vector::new(widest_text_width(t, h), h) })
-            .collect();
-        let table_h = forces::TABLE_PITCH * forces::TABLE_TEXT * s.text * self.row_count as f64;
-        out.push(labels::TextBox {
-            min: self.table_at - Vector::new(0.0, table_h),
-            max: self.table_at + Vector::new(self.table_width, 0.0),
-        });
-        out
-    }
+    /// The table's caption and the left end of its baseline.
+    pub table_caption: (String, Point),
 }
 
 /// Panel placement and scales for one run (see the module docs).
@@ -164,31 +319,24 @@ pub struct PanelFrame {
     pub k_l: f64,
     /// Sizes of letters, arrows, links and joints (from paper millimetres at k_l).
     pub sizes: Sizes,
-    /// Velocity scale and the pole p (when drawn).
-    pub velocity: Option<(Scale, Point)>,
-    /// Acceleration scale and the pole π (when drawn).
-    pub acceleration: Option<(Scale, Point)>,
-    /// Force scale and the pole of the first force figure, when drawn.
-    pub forces: Option<(Scale, Point)>,
-    /// The force panel's figures, captions and table, when drawn.
-    pub force_figures: Option<ForceFigures>,
-    /// The panels with their titles, each a scale caption (`Velocity polygon   k_v = …`):
-    /// (title, lower-left, upper-right), the mechanism's first.
-    pub panels: Vec<(ScaleCaption, Point, Point)>,
-    /// The scale bar of each panel: left end, length (model units), label (value and
-    /// unit), in the order of `panels`.
+    /// How the polygons' scales are chosen.
+    pub choice: ScaleChoice,
+    /// The velocity polygon's slot (when drawn).
+    pub velocity: Option<Slot>,
+    /// The acceleration polygon's slot (when drawn).
+    pub acceleration: Option<Slot>,
+    /// The force panel's figures and table (when drawn).
+    pub forces: Option<ForceCells>,
+    /// The scale of the forces drawn on the mechanism (when drawn).
+    pub mechanism_forces: Option<Scale>,
+    /// The panels: (title drawn in every frame's base, lower-left, upper-right), the
+    /// mechanism's first, then velocity, acceleration, forces as drawn. A polygon's title
+    /// with a scale per frame is drawn with each position ([`Slot::title`]).
+    pub panels: Vec<(Title, Point, Point)>,
+    /// The scale bars drawn in every frame's base: left end, length (model units), label.
     pub bars: Vec<(Point, f64, String)>,
     /// The fixed window of every frame.
     pub window: Bounds,
-}
-
-/// What a polygon panel is before placing: title, scale, extent, which, unit of its bar.
-struct PolygonPanel {
-    title: ScaleCaption,
-    scale: Scale,
-    extent: Extent,
-    which: Which,
-    unit: String,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq)]
@@ -198,13 +346,22 @@ enum Which {
     Forces,
 }
 
+/// A polygon panel before placing: which, its content's drawn size, its title (widest), the
+/// slot's parts.
+struct Pending {
+    which: Which,
+    content: Vector,
+    title: Title,
+}
+
 impl PanelFrame {
     /// The frame of a run (see the module docs).
     pub fn new(spec: &PanelSpec) -> PanelFrame {
         let units = spec.units;
         let mech = spec.mechanism;
         let size = spec.size.max(f64::MIN_POSITIVE);
-        let k_l = length_scale(size, spec.mechanism_mm);
+        // A drafting scale (1, 1.5, 2, 2.5, 4, 5 × 10ᵏ): the mechanism as large as it may be.
+        let k_l = drafting_scale(size / spec.mechanism_mm);
         let paper = 1.0 / k_l;
         let sizes = Sizes::on_paper(k_l);
         let bar_room = scale_bar_room(sizes);
@@ -213,41 +370,38 @@ impl PanelFrame {
         let (pad, below) = (spec.pad)(sizes);
         let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + below + bar_room);
         let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
-        // Each polygon's panel about as large on paper as the mechanism.
+        // Each polygon's panel about as large on paper as the mechanism (model units).
         let target_mm = spec.polygon_mm.unwrap_or(size * paper);
-        let scale_for = |e: Option<Extent>| -> (Scale, Extent) {
-            let e = e.unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() });
-            (Scale::on_paper(nice_scale(e.size() / target_mm), paper), e)
-        };
-        let mut polys: Vec<PolygonPanel> = Vec::new();
-        if let Some(points) = &spec.velocity {
-            let (scale, extent) = scale_for(Extent::of(points.iter().copied()));
-            let unit = format!("{}/s", units.length);
-            let title = ScaleCaption::new("Velocity polygon   k_v = ", scale.per_mm, format!(" ({unit})/mm"), paper);
-            polys.push(PolygonPanel { title, scale, extent, which: Which::Velocity, unit });
+        let target = target_mm * k_l;
+        let room = LETTER_ROOM * sizes.text;
+        let union = |e: &[Option<Extent>]| e.iter().copied().fold(None, Extent::union);
+        let fixed_scale = |e: Option<Extent>| nice_scale(e.map_or(0.0, |e| e.size()) / target_mm);
+        let length = units.length;
+        // The polygons' panels: content size (the area plus letter room) and widest title.
+        let mut pending = Vec::new();
+        for (which, points, symbol, unit, title) in [
+            (Which::Velocity, &spec.velocity, "k_v", format!("{length}/s"), "Velocity polygon"),
+            (Which::Acceleration, &spec.acceleration, "k_a", format!("{length}/s²"), "Acceleration polygon"),
+        ] {
+            let Some(points) = points else { continue };
+            let all = union(points);
+            let (content, k) = match spec.scales {
+                ScaleChoice::Fixed => {
+                    let k = fixed_scale(all);
+                    let e = all.map_or(Vector::zeros(), |e| e.sides());
+                    (Scale::on_paper(k, paper).draw(e) + Vector::new(2.0 * room, 2.0 * room), Some(k))
+                }
+                ScaleChoice::PerFrame => (Vector::new(target, target) + Vector::new(2.0 * room, 2.0 * room), None),
+            };
+            // The widest title it takes: with the finest scale of the run (most digits).
+            let widest = Title::Scale(scale_caption(&format!("{title}   "), symbol, k.unwrap_or(0.0025), &unit, paper));
+            pending.push((Pending { which, content, title: widest }, symbol, unit, title, all, k, points.clone()));
         }
-        if let Some(points) = &spec.acceleration {
-            let (scale, extent) = scale_for(Extent::of(points.iter().copied()));
-            let unit = format!("{}/s²", units.length);
-            let title =
-                ScaleCaption::new("Acceleration polygon   k_a = ", scale.per_mm, format!(" ({unit})/mm"), paper);
-            polys.push(PolygonPanel { title, scale, extent, which: Which::Acceleration, unit });
-        }
-        let mut force_panel = None;
+        let mut force_cells = None;
         if let Some(fs) = &spec.forces {
-            // The scale of the largest figure.
-            let larger = fs.figures.iter().fold(None, |best: Option<Extent>, (_, e)| match (best, e) {
-                (Some(b), Some(e)) if e.size() > b.size() => Some(*e),
-                (None, e) => *e,
-                (b, _) => b,
-            });
-            let (scale, _) = scale_for(larger);
-            let table = forces::table_size(&fs.rows, fs.row_count, sizes);
-            let (extent, panel) = ForcePanel::arrange(scale, &fs.figures, table, fs.row_count, sizes);
-            force_panel = Some(panel);
-            let title = ScaleCaption::new("Force polygons   k_f = ", scale.per_mm, " N/mm", paper);
-            polys.push(PolygonPanel { title, scale, extent, which: Which::Forces, unit: "N".into() });
+            let cells = ForceLayout::arrange(spec, fs, sizes, target_mm, k_l);
             // The forces drawn on the mechanism, with their names, stay in its panel.
+            let scale = cells.mechanism_scale;
             let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
             for (at, v) in &fs.on_mechanism {
                 let tip = at + scale.draw(*v);
@@ -256,24 +410,46 @@ impl PanelFrame {
                     mech_max = Point::from(mech_max.coords.sup(&(tip + room).coords));
                 }
             }
+            let title = match spec.scales {
+                ScaleChoice::Fixed => Title::Scale(scale_caption("Force polygons   ", "k_f", cells.common, "N", paper)),
+                ScaleChoice::PerFrame => Title::Words("Force polygons".to_string()),
+            };
+            pending.push((
+                Pending { which: Which::Forces, content: cells.size + Vector::new(1.2 * sizes.text, bar_room), title },
+                "k_f",
+                "N".to_string(),
+                "",
+                None,
+                Some(cells.common),
+                Vec::new(),
+            ));
+            force_cells = Some(cells);
         }
 
         // Grid: up to three panels in a row, four as 2 × 2.
         let title_room = 2.6 * sizes.text;
         let gap = PANEL_GAP_MM * k_l;
-        let mech_title = length_caption("Mechanism   ", k_l, units);
+        let mech_title = Title::Scale(match (&force_cells, spec.scales) {
+            (Some(c), ScaleChoice::PerFrame) => length_caption("Mechanism   ", k_l, units).then(scale_caption(
+                ", forces ",
+                "k_f",
+                c.mechanism_scale.per_mm,
+                "N",
+                paper,
+            )),
+            _ => length_caption("Mechanism   ", k_l, units),
+        });
         // Each panel at least as wide as its title (the mechanism's with the position's
-        // text right of it, the title as the SVG or the DXF states it) and its scale bar, as
-        // the widest reader draws them.
-        let wide_enough = |b: Vector, title: &ScaleCaption, extra: &str| {
-            let w = caption_width(title, units, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
+        // text right of it; the title as the SVG or the DXF states it), as the widest reader
+        // draws them.
+        let wide_enough = |b: Vector, title: &Title, extra: &str| {
+            let w = title.width(units, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
             Vector::new(b.x.max(w), b.y)
         };
-        let mut boxes: Vec<(ScaleCaption, Vector)> =
+        let mut boxes: Vec<(Title, Vector)> =
             vec![(mech_title.clone(), wide_enough(mech_max - mech_min, &mech_title, &spec.position_text))];
-        for p in &polys {
-            let room = Vector::new(2.0 * sizes.text, 2.0 * sizes.text + bar_room);
-            boxes.push((p.title.clone(), wide_enough(p.scale.draw(p.extent.max - p.extent.min) + room, &p.title, "")));
+        for (p, ..) in &pending {
+            boxes.push((p.title.clone(), wide_enough(p.content + Vector::new(0.0, bar_room), &p.title, "")));
         }
         let cols = if boxes.len() == 4 { 2 } else { boxes.len() };
         let rows = boxes.len().div_ceil(cols);
@@ -283,44 +459,94 @@ impl PanelFrame {
             col_w[i % cols] = col_w[i % cols].max(b.x);
             row_h[i / cols] = row_h[i / cols].max(b.y + title_room);
         }
-        // Cell i's upper-left corner; row 0 on top, the mechanism's at its own lower-left.
-        let mut panels = Vec::new();
-        let mut origins = Vec::new();
-        for (i, (title, b)) in boxes.iter().enumerate() {
+        // Each cell's panel: as wide as its column, as tall as its row; row 0 on top.
+        let mut rects = Vec::new();
+        for i in 0..boxes.len() {
             let (r, c) = (i / cols, i % cols);
-            let x = mech_min.x + col_w[..c].iter().sum::<f64>() + gap * c as f64;
-            let top = mech_min.y + row_h[0] - row_h[..r].iter().sum::<f64>() - gap * r as f64 - title_room + title_room;
-            let y_top = top - title_room;
-            let lower_left = Point::new(x, y_top - b.y);
-            origins.push(lower_left);
-            panels.push((title.clone(), lower_left, Point::new(x + b.x, y_top + title_room)));
+            let x = col_w[..c].iter().sum::<f64>() + gap * c as f64;
+            let top = -row_h[..r].iter().sum::<f64>() - gap * r as f64;
+            rects.push((Point::new(x, top - row_h[r]), Point::new(x + col_w[c], top)));
         }
-        // The mechanism panel must sit where the mechanism is: shift everything so.
-        let shift = mech_min - origins[0];
-        for p in panels.iter_mut() {
-            p.1 += shift;
-            p.2 += shift;
+        // The mechanism panel must sit where the mechanism is: its content hangs from under
+        // its title.
+        let shift = Point::new(mech_min.x, mech_max.y + title_room) - Point::new(rects[0].0.x, rects[0].1.y);
+        for r in rects.iter_mut() {
+            r.0 += shift;
+            r.1 += shift;
         }
-        // Scale bars at the foot of each panel: the mechanism's in the scene's length unit.
-        let bar_at = |ll: Point| ll + Vector::new(2.0 * sizes.small_text(), 0.5 * bar_room);
-        let length = bar_value(k_l);
-        let mut bars = vec![(bar_at(panels[0].1), length, format!("{} {}", scale_text(length), units.length))];
-        let (mut velocity, mut acceleration, mut force, mut force_figures) = (None, None, None, None);
-        for (j, p) in polys.iter().enumerate() {
-            let ll = origins[j + 1] + shift + Vector::new(sizes.text, sizes.text + bar_room);
-            let pole = ll - p.scale.draw(p.extent.min);
-            let value = bar_value(p.scale.per_mm);
-            bars.push((
-                bar_at(panels[j + 1].1),
-                p.scale.draw(Vector::new(value, 0.0)).x,
-                format!("{} {}", scale_text(value), p.unit),
-            ));
+        let bar_at = |ll: Point| ll + Vector::new(2.0 * sizes.small_text(), 0.5 * bar_room + 0.5 * sizes.text);
+        let length_bar = bar_value(k_l);
+        let mut panels = vec![(boxes[0].0.clone(), rects[0].0, rects[0].1)];
+        let mut bars = vec![(bar_at(rects[0].0), length_bar, format!("{} {}", scale_text(length_bar), units.length))];
+        let (mut velocity, mut acceleration, mut forces, mut mechanism_forces) = (None, None, None, None);
+        for (j, (p, symbol, unit, title, all, k, _)) in pending.into_iter().enumerate() {
+            let (ll, ur) = rects[j + 1];
+            let title_at = (Point::new(ll.x + 0.6 * sizes.text, ur.y - 1.2 * sizes.text), sizes.text);
+            // The content under the title band, over the bar strip.
+            let content_ll = Point::new(ll.x, ur.y - title_room - p.content.y);
             match p.which {
-                Which::Velocity => velocity = Some((p.scale, pole)),
-                Which::Acceleration => acceleration = Some((p.scale, pole)),
+                Which::Velocity | Which::Acceleration => {
+                    // The whole panel under its title band, over its bar strip, less the
+                    // letters' room.
+                    let area = Bounds {
+                        min: ll + Vector::new(room, bar_room + 0.5 * sizes.text + room),
+                        max: ur - Vector::new(room, title_room + room),
+                    };
+                    let points = &fixed_points(&spec.velocity, &spec.acceleration, p.which);
+                    let (scales, pole, sides) = match k {
+                        Some(k) => {
+                            // The run's extent centred in the area.
+                            let scale = Scale::on_paper(k, paper);
+                            let mid = Point::from((area.min.coords + area.max.coords) / 2.0);
+                            let pole = mid - scale.draw(all.map_or(Vector::zeros(), |e| (e.min + e.max) / 2.0));
+                            (vec![k], Some(pole), Vec::new())
+                        }
+                        None => {
+                            let a = Vector::new(area.width(), area.height()) / k_l;
+                            let sides: Vec<Option<Vector>> = points.iter().map(|e| e.map(|e| e.sides())).collect();
+                            (sheet::frame_scales(&sides, a), None, sides)
+                        }
+                    };
+                    let slot = Slot {
+                        symbol,
+                        unit: unit.clone(),
+                        title: title.to_string(),
+                        title_at,
+                        area,
+                        bar_at: Some(bar_at(ll)),
+                        scales,
+                        pole,
+                        sides,
+                    };
+                    let panel_title = if slot.pole.is_some() {
+                        Title::Scale(slot.title_with(slot.scales[0], paper))
+                    } else {
+                        Title::None
+                    };
+                    if slot.pole.is_some() {
+                        let value = bar_value(slot.scales[0]);
+                        let drawn = Scale::on_paper(slot.scales[0], paper).draw(Vector::new(value, 0.0)).x;
+                        bars.push((bar_at(ll), drawn, format!("{} {unit}", scale_text(value))));
+                    }
+                    panels.push((panel_title, ll, ur));
+                    if p.which == Which::Velocity {
+                        velocity = Some(slot);
+                    } else {
+                        acceleration = Some(slot);
+                    }
+                }
                 Which::Forces => {
-                    force = Some((p.scale, pole));
-                    force_figures = force_panel.as_ref().map(|fp| fp.place(pole));
+                    if let Some(c) = force_cells.take() {
+                        mechanism_forces = Some(c.mechanism_scale);
+                        forces = Some(c.place(content_ll + Vector::new(0.6 * sizes.text, 0.0), spec.scales, paper));
+                    }
+                    if spec.scales == ScaleChoice::Fixed {
+                        let k = k.unwrap_or(1.0);
+                        let value = bar_value(k);
+                        let drawn = Scale::on_paper(k, paper).draw(Vector::new(value, 0.0)).x;
+                        bars.push((bar_at(ll), drawn, format!("{} N", scale_text(value))));
+                    }
+                    panels.push((p.title.clone(), ll, ur));
                 }
             }
         }
@@ -329,7 +555,19 @@ impl PanelFrame {
             window.min = Point::new(window.min.x.min(p.1.x), window.min.y.min(p.1.y));
             window.max = Point::new(window.max.x.max(p.2.x), window.max.y.max(p.2.y));
         }
-        PanelFrame { units, k_l, sizes, velocity, acceleration, forces: force, force_figures, panels, bars, window }
+        PanelFrame {
+            units,
+            k_l,
+            sizes,
+            choice: spec.scales,
+            velocity,
+            acceleration,
+            forces,
+            mechanism_forces,
+            panels,
+            bars,
+            window,
+        }
     }
 
     /// A drawing on the content layers, on this frame's paper (1/k_l paper mm per unit).
@@ -341,55 +579,109 @@ impl PanelFrame {
 
     /// Where a panel's title starts (left end of its baseline), for the panel from `ll` to `ur`.
     fn title_at(&self, ll: Point, ur: Point) -> Point {
-        Point::new(ll.x, ur.y - 1.2 * self.sizes.text)
+        Point::new(ll.x + 0.6 * self.sizes.text, ur.y - 1.2 * self.sizes.text)
     }
 
-    /// The boxes of the panels' titles (for letters to keep off).
-    pub fn title_boxes(&self) -> Vec<labels::TextBox> {
-        self.panels
+    /// The scales of position `k` as stored for the run (each force figure's k_f in order).
+    pub fn scales_at(&self, k: usize) -> FrameScales {
+        let at = |slot: &Slot| slot.scales.get(k.min(slot.scales.len().saturating_sub(1))).copied();
+        FrameScales {
+            k_v: self.velocity.as_ref().and_then(at),
+            k_a: self.acceleration.as_ref().and_then(at),
+            k_f: self.forces.as_ref().map_or_else(Vec::new, |f| f.figures.iter().filter_map(at).collect()),
+        }
+    }
+
+    /// The scales per frame chosen again after an earlier run of the same motion drawn at
+    /// `previous[k]` at position `k` (the live page's picture before a field changed): each
+    /// polygon and force figure keeps its earlier scale at a position while it fills half to
+    /// all of its area there ([`sheet::held_scales`]). Nothing changes with fixed scales or
+    /// when `previous` has another number of positions (or of force figures).
+    pub fn hold(&mut self, previous: &[FrameScales]) {
+        if self.choice != ScaleChoice::PerFrame {
+            return;
+        }
+        let k_l = self.k_l;
+        let held = |slot: &mut Slot, earlier: Vec<Option<f64>>| {
+            if slot.pole.is_none() && earlier.len() == slot.sides.len() {
+                let area = Vector::new(slot.area.width(), slot.area.height()) / k_l;
+                slot.scales = sheet::held_scales(&earlier, &slot.sides, area);
+            }
+        };
+        if let Some(slot) = &mut self.velocity {
+            held(slot, previous.iter().map(|f| f.k_v).collect());
+        }
+        if let Some(slot) = &mut self.acceleration {
+            held(slot, previous.iter().map(|f| f.k_a).collect());
+        }
+        if let Some(cells) = &mut self.forces {
+            let n = cells.figures.len();
+            if previous.iter().all(|f| f.k_f.len() == n) {
+                for (i, slot) in cells.figures.iter_mut().enumerate() {
+                    held(slot, previous.iter().map(|f| f.k_f.get(i).copied()).collect());
+                }
+            }
+        }
+    }
+
+    /// The panel the mechanism is drawn in: lower-left and upper-right.
+    pub fn mechanism_panel(&self) -> (Point, Point) {
+        (self.panels[0].1, self.panels[0].2)
+    }
+
+    /// The boxes of the titles and scale bars every frame shares (for letters to keep off).
+    pub fn text_boxes(&self) -> Vec<labels::TextBox> {
+        let mut out: Vec<labels::TextBox> = self
+            .panels
             .iter()
+            .filter(|(t, ..)| *t != Title::None)
             .map(|(title, ll, ur)| {
                 let at = self.title_at(*ll, *ur);
-                let h = self.sizes.text;
-                labels::TextBox { min: at, max: at + Vector::new(caption_width(title, self.units, h), h) }
+                let e = crate::draw::font::measure(&title.on_paper(), self.sizes.text);
+                let w = title.width(self.units, self.sizes.text).max(e.width);
+                labels::TextBox { min: at - Vector::new(0.0, e.descent), max: at + Vector::new(w, e.ascent) }
             })
-            .collect()
-    }
-
-    /// The boxes of the panels' titles and scale bars (for letters to keep off).
-    pub fn text_boxes(&self) -> Vec<labels::TextBox> {
-        let mut out = self.title_boxes();
+            .collect();
         let mut scratch = Drawing::new(DimStyle { text_height: self.sizes.text, arrow_size: self.sizes.head });
         for (at, length, label) in &self.bars {
             out.push(scale_bar(&mut scratch, 0, *at, *length, label, self.sizes));
+        }
+        if let Some(f) = &self.forces {
+            let (c, at) = &f.table_caption;
+            out.push(text_box(*at, c, forces::NAME_HEIGHT * self.sizes.text));
+            let table_h = forces::TABLE_PITCH * forces::TABLE_TEXT * self.sizes.text * f.row_count as f64;
+            out.push(labels::TextBox {
+                min: f.table_at - Vector::new(0.0, table_h),
+                max: f.table_at + Vector::new(f.table_width, 0.0),
+            });
+            if self.choice == ScaleChoice::Fixed {
+                out.extend(f.figures.iter().map(|s| text_box(s.title_at.0, &s.title, s.title_at.1)));
+            }
         }
         out
     }
 
     /// What every frame shares, drawn after the mechanism's own fixed parts: the panels'
-    /// titles with their scales, each panel's scale bar, and the force figures' captions
-    /// (on `DIMENSIONS`).
+    /// frames (on `PANELS`), the titles and scale bars that do not change, and the
+    /// force figures' captions when their scale is fixed (on `DIMENSIONS`).
     pub fn draw_titles(&self, d: &mut Drawing) {
         let dims = layer_of(d, layers::DIMENSIONS);
+        let frames = layer_of(d, layers::PANELS);
         for (title, ll, ur) in &self.panels {
-            let at = self.title_at(*ll, *ur);
-            d.scale_text(dims, at, self.sizes.text, title.clone());
+            let points = vec![*ll, Point::new(ur.x, ll.y), *ur, Point::new(ll.x, ur.y)];
+            d.add(frames, Shape::Polyline { points, closed: true, width: 0.0 });
+            title.draw(d, dims, self.title_at(*ll, *ur), self.sizes.text);
         }
         for (at, length, label) in &self.bars {
             scale_bar(d, dims, *at, *length, label, self.sizes);
         }
-        if let Some(ff) = &self.force_figures {
-            let h = forces::NAME_HEIGHT * self.sizes.text;
-            for (caption, at) in &ff.captions {
-                let shape = Shape::Text {
-                    at: *at,
-                    height: h,
-                    value: caption.clone(),
-                    halign: HAlign::Left,
-                    valign: VAlign::Baseline,
-                    rotation: 0.0,
-                };
-                d.add(dims, shape);
+        if let Some(f) = &self.forces {
+            let (c, at) = &f.table_caption;
+            text(d, dims, *at, forces::NAME_HEIGHT * self.sizes.text, c);
+            if self.choice == ScaleChoice::Fixed {
+                for s in &f.figures {
+                    text(d, dims, s.title_at.0, s.title_at.1, &s.title);
+                }
             }
         }
     }
@@ -403,7 +695,7 @@ impl PanelFrame {
         d.add(
             text,
             Shape::Text {
-                at: Point::new(ur.x, ur.y - 1.2 * s.text),
+                at: Point::new(ur.x - 0.6 * s.text, ur.y - 1.2 * s.text),
                 height: s.text,
                 value,
                 halign: HAlign::Right,
@@ -413,140 +705,314 @@ impl PanelFrame {
         );
     }
 
-    /// One position's polygons in their panels: the velocity and acceleration polygons
-    /// (their letters off the panel titles and scale bars), and the force figures with the table of
-    /// magnitudes (the names off the captions, the table and each other).
+    /// One position's polygons in their panels (position `k` of the run, or the nearest
+    /// to a position between them): the velocity and acceleration polygons (their letters
+    /// off the panel titles and scale bars, inside their panels), and the force figures with
+    /// the table of magnitudes (the names off the captions, the table and each other); with
+    /// scales per frame, each panel's title with its scale and its scale bar. Returns the
+    /// scales drawn: k_v, k_a, and each force figure's k_f.
     pub fn draw_polygons(
         &self,
         d: &mut Drawing,
+        k: usize,
         velocity: Option<&PointPolygon>,
         acceleration: Option<&PointPolygon>,
         force: Option<(&[ForcePolygon], &[Magnitude])>,
-    ) {
+    ) -> FrameScales {
         let s = self.sizes;
-        let titles = self.text_boxes();
-        if let (Some(poly), Some((scale, pole))) = (velocity, self.velocity) {
-            polygon::draw_keeping_off(d, poly, layers::VELOCITY, scale, pole, s, &titles);
+        let mut keep_off = self.text_boxes();
+        let mut drawn = FrameScales::default();
+        let per_frame = self.choice == ScaleChoice::PerFrame;
+        for (poly, slot, layer, out) in [
+            (velocity, &self.velocity, layers::VELOCITY, &mut drawn.k_v),
+            (acceleration, &self.acceleration, layers::ACCELERATION, &mut drawn.k_a),
+        ] {
+            let (Some(poly), Some(slot)) = (poly, slot) else { continue };
+            let (scale, pole) = slot.place(k, Extent::of(poly.physical_points()), self.k_l);
+            *out = Some(scale.per_mm);
+            if per_frame {
+                keep_off.extend(self.draw_slot_scale(d, slot, scale.per_mm));
+            }
+            let within = self.panel_of(slot);
+            // Construction lines within the polygon's area and the letters' room around it.
+            let room = Vector::new(LETTER_ROOM * s.text, LETTER_ROOM * s.text);
+            let clip = labels::TextBox { min: slot.area.min - room, max: slot.area.max + room };
+            polygon::draw_within(d, poly, layer, scale, pole, s, &keep_off, within, Some(clip));
         }
-        if let (Some(poly), Some((scale, pole))) = (acceleration, self.acceleration) {
-            polygon::draw_keeping_off(d, poly, layers::ACCELERATION, scale, pole, s, &titles);
-        }
-        if let (Some((figures, rows)), Some((scale, _)), Some(ff)) = (force, self.forces, &self.force_figures) {
-            let mut keep_off = ff.text_boxes(s);
-            keep_off.extend(titles.iter().copied());
-            for (fig, pole) in figures.iter().zip(&ff.poles) {
-                let names = forces::draw(d, fig, scale, *pole, s, &keep_off);
+        if let (Some((figures, rows)), Some(cells)) = (force, &self.forces) {
+            let within = self.panels.last().map(|p| labels::TextBox { min: p.1, max: p.2 });
+            for (fig, slot) in figures.iter().zip(&cells.figures) {
+                let (scale, pole) = slot.place(k, Extent::of(fig.physical_points()), self.k_l);
+                drawn.k_f.push(scale.per_mm);
+                if per_frame {
+                    keep_off.extend(self.draw_slot_scale(d, slot, scale.per_mm));
+                }
+                let names = forces::draw_within(d, fig, scale, pole, s, &keep_off, within);
                 keep_off.extend(names);
             }
-            forces::table(d, rows, ff.table_at, ff.table_width, s);
+            forces::table(d, rows, cells.table_at, cells.table_width, s);
         }
+        drawn
     }
+
+    /// The panel a polygon's slot is in, as a box for its letters to stay inside.
+    fn panel_of(&self, slot: &Slot) -> Option<labels::TextBox> {
+        let c = Point::from((slot.area.min.coords + slot.area.max.coords) / 2.0);
+        self.panels
+            .iter()
+            .find(|p| c.x >= p.1.x && c.x <= p.2.x && c.y >= p.1.y && c.y <= p.2.y)
+            .map(|p| labels::TextBox { min: p.1, max: p.2 })
+    }
+
+    /// A slot's title with its scale this frame and its scale bar (on `DIMENSIONS`);
+    /// returns their boxes.
+    fn draw_slot_scale(&self, d: &mut Drawing, slot: &Slot, per_mm: f64) -> Vec<labels::TextBox> {
+        let dims = layer_of(d, layers::DIMENSIONS);
+        let title = Title::Scale(slot.title_with(per_mm, 1.0 / self.k_l));
+        title.draw(d, dims, slot.title_at.0, slot.title_at.1);
+        let (at, h) = slot.title_at;
+        let e = crate::draw::font::measure(&title.on_paper(), h);
+        let w = title.width(self.units, h).max(e.width);
+        let mut out =
+            vec![labels::TextBox { min: at - Vector::new(0.0, e.descent), max: at + Vector::new(w, e.ascent) }];
+        if let Some(at) = slot.bar_at {
+            let value = bar_value(per_mm);
+            let drawn = Scale::on_paper(per_mm, 1.0 / self.k_l).draw(Vector::new(value, 0.0)).x;
+            out.push(scale_bar(d, dims, at, drawn, &format!("{} {}", scale_text(value), slot.unit), self.sizes));
+        }
+        out
+    }
+}
+
+/// The scales one frame was drawn at (physical units per paper mm).
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct FrameScales {
+    /// The velocity polygon's.
+    pub k_v: Option<f64>,
+    /// The acceleration polygon's.
+    pub k_a: Option<f64>,
+    /// Each force figure's.
+    pub k_f: Vec<f64>,
+}
+
+/// A left-aligned, baseline text on `layer`.
+fn text(d: &mut Drawing, layer: usize, at: Point, height: f64, value: &str) {
+    d.add(
+        layer,
+        Shape::Text {
+            at,
+            height,
+            value: value.to_string(),
+            halign: HAlign::Left,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        },
+    );
+}
+
+/// The box of a left-aligned, baseline text as drawn.
+fn text_box(at: Point, value: &str, height: f64) -> labels::TextBox {
+    let e = crate::draw::font::measure(value, height);
+    let w = widest_text_width(value, height).max(e.width);
+    labels::TextBox { min: at - Vector::new(0.0, e.descent), max: at + Vector::new(w, e.ascent) }
+}
+
+/// The per-position extents of the velocity or acceleration polygon.
+fn fixed_points(
+    velocity: &Option<Vec<Option<Extent>>>,
+    acceleration: &Option<Vec<Option<Extent>>>,
+    which: Which,
+) -> Vec<Option<Extent>> {
+    match which {
+        Which::Velocity => velocity.clone().unwrap_or_default(),
+        _ => acceleration.clone().unwrap_or_default(),
+    }
+}
+
+/// The scale of the forces drawn on the mechanism: the nice scale that draws the largest of
+/// them at most [`MECHANISM_FORCE_FRACTION`] of the mechanism's drawn size `mechanism_mm`.
+fn mechanism_force_scale(fs: &ForceSpec, mechanism_mm: f64) -> f64 {
+    let largest = fs.on_mechanism.iter().map(|(_, v)| v.norm()).filter(|n| n.is_finite()).fold(0.0, f64::max);
+    nice_scale(largest / (MECHANISM_FORCE_FRACTION * mechanism_mm))
 }
 
 /// How the force panel is arranged: its figures and the table in rows of up to
-/// [`FORCE_ROW`] items under their captions, each hanging from the top of its row, at one
-/// force scale (drawn units from the panel's lower-left).
+/// [`FORCE_ROW`] items, each under its caption; with fixed scales each figure's cell is its
+/// drawn extent at the common scale, with a scale per frame a square cell for each.
 #[derive(Debug, Clone)]
-struct ForcePanel {
-    scale: Scale,
-    /// The physical point drawn at the panel's lower-left (the first figure's pole is
-    /// placed by the grid from it).
-    e_min: Vector,
-    /// Each figure: its physical extent's minimum, drawn height, and the drawn offset of
-    /// its column and of its row's top from the panel's lower-left.
-    figures: Vec<(Vector, f64, Vector)>,
-    /// The table's column offset and row top, and its width.
-    table: (Vector, f64),
+struct ForceLayout {
+    /// The common scale (fixed scales; with scales per frame, the mechanism's).
+    common: f64,
+    /// The scale of the forces on the mechanism.
+    mechanism_scale: Scale,
+    /// The panel's content size (model units).
+    size: Vector,
+    /// Each item's cell from the content's lower-left: (lower-left, size, caption's left
+    /// baseline point); the table last.
+    cells: Vec<(Vector, Vector, Vector)>,
+    /// The figures' extents over the run (fixed scales), their per-position sizes (per frame).
+    extents: Vec<Option<Extent>>,
+    /// The captions, the table's last.
+    captions: Vec<String>,
+    /// Room kept in a cell for the letters around a figure (per frame).
+    room: f64,
+    /// Rows of the table.
     row_count: usize,
-    /// Captions with the drawn offsets of their column and of their row's top.
-    captions: Vec<(String, Vector)>,
-    /// Caption text height.
+    /// Width of the table.
+    table_width: f64,
+    /// Each figure's scales at each position (per frame).
+    scales: Vec<Vec<f64>>,
+    /// Each figure's physical size at each position (per frame).
+    sides: Vec<Vec<Option<Vector>>>,
+    /// Height of the captions.
     caption_h: f64,
+    /// The strip of a cell's scale bar, and the bar's inset from the cell's left.
+    bar_room: f64,
+    bar_inset: f64,
 }
 
-impl ForcePanel {
-    /// The panel for the figures of physical extents `figures` and a table of drawn size
-    /// `table`, at `scale`; returns the physical extent the grid sizes the panel by (its
-    /// minimum drawn at the panel's lower-left puts the first figure's pole in place).
-    fn arrange(
-        scale: Scale,
-        figures: &[(String, Option<Extent>)],
-        table: Vector,
-        row_count: usize,
-        sizes: Sizes,
-    ) -> (Extent, ForcePanel) {
-        let zero = Extent { min: Vector::zeros(), max: Vector::zeros() };
+impl ForceLayout {
+    fn arrange(spec: &PanelSpec, fs: &ForceSpec, sizes: Sizes, target_mm: f64, k_l: f64) -> ForceLayout {
+        let paper = 1.0 / k_l;
         let caption_h = forces::NAME_HEIGHT * sizes.text;
         let gap = 2.0 * sizes.text;
-        // Items: (caption, drawn size, physical minimum); the table last.
-        let mut items: Vec<(String, Vector, Option<Vector>)> = figures
-            .iter()
-            .map(|(caption, e)| {
-                let e = e.unwrap_or(zero);
-                (caption.clone(), scale.draw(e.max - e.min), Some(e.min))
-            })
-            .collect();
-        items.push((TABLE_CAPTION.to_string(), table, None));
-        let rows: Vec<&[(String, Vector, Option<Vector>)]> = items.chunks(FORCE_ROW).collect();
-        // Each row's height; the tops from the bottom up (the last row's top at its height).
-        let heights: Vec<f64> = rows.iter().map(|r| r.iter().map(|i| i.1.y).fold(0.0, f64::max)).collect();
-        let mut tops = vec![0.0; rows.len()];
-        let mut below = 0.0;
-        for r in (0..rows.len()).rev() {
-            tops[r] = if r + 1 == rows.len() { heights[r] } else { below + 2.0 * caption_h + heights[r] };
-            below = tops[r];
+        let bar_room = scale_bar_room(sizes);
+        let extents: Vec<Option<Extent>> =
+            fs.figures.iter().map(|(_, e)| e.iter().copied().fold(None, Extent::union)).collect();
+        let largest = extents.iter().flatten().map(Extent::size).fold(0.0, f64::max);
+        let common = nice_scale(largest / target_mm);
+        let room = LETTER_ROOM * sizes.text;
+        let cell_side = FORCE_CELL_FRACTION * target_mm * k_l;
+        // Each figure's content size (and per frame its scales), then the table.
+        let mut items: Vec<(String, Vector)> = Vec::new();
+        let (mut scales, mut all_sides) = (Vec::new(), Vec::new());
+        for ((caption, per_position), all) in fs.figures.iter().zip(&extents) {
+            let (content, widest) = match spec.scales {
+                ScaleChoice::Fixed => {
+                    let e = all.map_or(Vector::zeros(), |e| e.sides());
+                    let widest = widest_text_width(caption, caption_h);
+                    (Scale::on_paper(common, paper).draw(e) + Vector::new(0.0, 1.0 * room), widest)
+                }
+                ScaleChoice::PerFrame => {
+                    let area = Vector::new(cell_side, cell_side) / k_l;
+                    let sides: Vec<Option<Vector>> = per_position.iter().map(|e| e.map(|e| e.sides())).collect();
+                    let k = sheet::frame_scales(&sides, area);
+                    // Its caption with the widest of its scales, as the SVG or the DXF writes it.
+                    let widest = k
+                        .iter()
+                        .map(|k| {
+                            let c = scale_caption(&format!("{caption}   "), "k_f", *k, "N", paper);
+                            caption_width(&c, spec.units, caption_h)
+                        })
+                        .fold(widest_text_width(caption, caption_h), f64::max);
+                    scales.push(k);
+                    all_sides.push(sides);
+                    (Vector::new(cell_side + 2.0 * room, cell_side + 2.0 * room + bar_room), widest)
+                }
+            };
+            let w = content.x.max(widest);
+            items.push((caption.clone(), Vector::new(w, content.y)));
         }
-        let mut placed: Vec<(Vector, f64, Vector)> = Vec::new();
-        let mut table_at = (Vector::zeros(), 0.0);
-        let mut captions = Vec::new();
+        let table = forces::table_size(&fs.rows, fs.row_count, sizes);
+        let table_w = table.x.max(widest_text_width(TABLE_CAPTION, caption_h));
+        items.push((TABLE_CAPTION.to_string(), Vector::new(table_w, table.y)));
+        // Rows from the top: each row as tall as its tallest item plus a caption band.
+        let band = 2.0 * caption_h;
+        let rows: Vec<&[(String, Vector)]> = items.chunks(FORCE_ROW).collect();
+        let heights: Vec<f64> = rows.iter().map(|r| r.iter().map(|i| i.1.y).fold(0.0, f64::max) + band).collect();
+        let total_h: f64 = heights.iter().sum::<f64>() + gap * (rows.len().saturating_sub(1)) as f64;
+        let mut cells = Vec::new();
         let mut width: f64 = 0.0;
+        let mut top = total_h;
         for (r, row) in rows.iter().enumerate() {
             let mut x = 0.0;
-            for (caption, drawn, min) in row.iter() {
-                let col = drawn.x.max(widest_text_width(caption, caption_h));
-                let at = Vector::new(x, tops[r]);
-                captions.push((caption.clone(), Vector::new(x, tops[r])));
-                match min {
-                    Some(min) => placed.push((*min, drawn.y, at)),
-                    None => table_at = (at, col),
-                }
-                width = width.max(x + col);
-                x = x + col + gap;
+            for (_, sz) in row.iter() {
+                let caption_at = Vector::new(x, top - 1.2 * caption_h);
+                let ll = Vector::new(x, top - band - sz.y);
+                cells.push((ll, *sz, caption_at));
+                width = width.max(x + sz.x);
+                x += sz.x + gap;
             }
+            top -= heights[r] + gap;
         }
-        let total = Vector::new(width, tops[0] + 2.0 * caption_h);
-        // Drawn units per physical unit.
-        let k = scale.draw(Vector::new(1.0, 0.0)).x;
-        // The first figure hangs from the top of its row.
-        let (min0, h0, _) = placed.first().copied().unwrap_or((Vector::zeros(), 0.0, Vector::new(0.0, tops[0])));
-        let e_min = min0 - Vector::new(0.0, (tops[0] - h0) / k);
-        let e = Extent { min: e_min, max: e_min + total / k };
-        (e, ForcePanel { scale, e_min, figures: placed, table: table_at, row_count, captions, caption_h })
+        let mechanism_scale = Scale::on_paper(
+            match spec.scales {
+                ScaleChoice::Fixed => common,
+                ScaleChoice::PerFrame => mechanism_force_scale(fs, spec.size.max(f64::MIN_POSITIVE) * paper),
+            },
+            paper,
+        );
+        ForceLayout {
+            common,
+            mechanism_scale,
+            size: Vector::new(width, total_h),
+            cells,
+            extents,
+            captions: fs.figures.iter().map(|(c, _)| c.clone()).collect(),
+            room,
+            row_count: fs.row_count,
+            table_width: table.x,
+            scales,
+            sides: all_sides,
+            caption_h,
+            bar_room,
+            bar_inset: 2.0 * sizes.small_text(),
+        }
     }
 
-    /// The figures around the first figure's pole `pole` as the grid placed it.
-    fn place(&self, pole: Point) -> ForceFigures {
-        let origin = pole + self.scale.draw(self.e_min);
-        let poles = self
-            .figures
-            .iter()
-            .enumerate()
-            .map(
-                |(i, (min, h, at))| {
-                    if i == 0 { pole } else { origin + Vector::new(at.x, at.y - h) - self.scale.draw(*min) }
+    /// The cells placed with the content's lower-left at `origin`.
+    fn place(self, origin: Point, choice: ScaleChoice, paper: f64) -> ForceCells {
+        let n = self.captions.len();
+        let mut figures = Vec::with_capacity(n);
+        for (i, caption) in self.captions.iter().enumerate() {
+            let (ll, sz, cap) = self.cells[i];
+            let ll = origin + ll;
+            let title_at = (origin + cap, self.caption_h);
+            let slot = match choice {
+                ScaleChoice::Fixed => {
+                    let scale = Scale::on_paper(self.common, paper);
+                    let e = self.extents[i].unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() });
+                    // Hanging from the top of its cell.
+                    let drawn = scale.draw(e.sides());
+                    let top_left = Point::new(ll.x, ll.y + sz.y);
+                    let min = top_left - Vector::new(0.0, drawn.y);
+                    Slot {
+                        symbol: "k_f",
+                        unit: "N".into(),
+                        title: caption.clone(),
+                        title_at,
+                        area: Bounds { min, max: min + drawn },
+                        bar_at: None,
+                        scales: vec![self.common],
+                        pole: Some(min - scale.draw(e.min)),
+                        sides: Vec::new(),
+                    }
+                }
+                ScaleChoice::PerFrame => Slot {
+                    symbol: "k_f",
+                    unit: "N".into(),
+                    title: caption.clone(),
+                    title_at,
+                    // Over the strip of its scale bar, letter room all round.
+                    area: Bounds {
+                        min: ll + Vector::new(self.room, self.bar_room + self.room),
+                        max: ll + sz - Vector::new(self.room, self.room),
+                    },
+                    bar_at: Some(ll + Vector::new(self.bar_inset, 0.5 * self.bar_room)),
+                    scales: self.scales.get(i).cloned().unwrap_or_default(),
+                    pole: None,
+                    sides: self.sides.get(i).cloned().unwrap_or_default(),
                 },
-            )
-            .collect();
-        ForceFigures {
-            poles,
-            table_at: origin + self.table.0,
-            table_width: self.table.1,
+            };
+            figures.push(slot);
+        }
+        let (tll, tsz, tcap) = self.cells[n];
+        ForceCells {
+            figures,
+            table_at: origin + tll + Vector::new(0.0, tsz.y),
+            table_width: self.table_width,
             row_count: self.row_count,
-            captions: self
-                .captions
-                .iter()
-                .map(|(c, at)| (c.clone(), Point::new(origin.x + at.x, origin.y + at.y + 0.8 * self.caption_h)))
-                .collect(),
+            table_caption: (TABLE_CAPTION.to_string(), origin + tcap),
         }
     }
 }

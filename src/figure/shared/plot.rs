@@ -15,6 +15,7 @@
 
 use crate::draw::parts::text_width;
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::figure::shared::labels::{TextBox, first_free};
 use crate::geom::Point;
 
 /// One curve of a diagram.
@@ -396,6 +397,20 @@ pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
     dr
 }
 
+/// The grid's lines broken under the text `t` (ISO 129-1: no line across a text).
+fn break_grid(dr: &mut Drawing, l: &PlotLayers, t: &Shape) {
+    if let Some(c) = crate::draw::text_corners(t) {
+        let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+        let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+        crate::figure::shared::labels::break_around(dr, l.grid, &[TextBox { min, max }], 0.5);
+    }
+}
+
+/// The plot's frame, for its labels to stay inside.
+fn frame_box() -> TextBox {
+    TextBox { min: Point::new(0.0, 0.0), max: Point::new(PLOT_WIDTH, PLOT_HEIGHT) }
+}
+
 /// The axes' ticks of a diagram: the abscissa over the data, the ordinate over the data and
 /// the reference `levels`.
 fn diagram_ticks(d: &Diagram, levels: &[&Level]) -> (Ticks, Ticks) {
@@ -446,8 +461,25 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
             linetype: Some(LineType::Dashed),
             shape: Shape::Line { from: Point::new(0.0, y), to: Point::new(PLOT_WIDTH, y) },
         });
-        let at = Point::new(PLOT_WIDTH - 1.0, y + 1.0);
-        text(dr, l.text, at, TEXT_H, &v.label, (HAlign::Right, VAlign::Baseline), 0.0);
+        // Above the line at its right end, else further left, else under it: clear of the
+        // curves and the grid's numbers.
+        let candidates = (0..8)
+            .flat_map(|k| {
+                let x = PLOT_WIDTH - 1.0 - k as f64 * PLOT_WIDTH / 8.0;
+                [(y + 1.0, VAlign::Baseline), (y - 1.0, VAlign::Top)].map(|(y, valign)| Shape::Text {
+                    at: Point::new(x, y),
+                    height: TEXT_H,
+                    value: v.label.clone(),
+                    halign: HAlign::Right,
+                    valign,
+                    rotation: 0.0,
+                })
+            })
+            .collect();
+        if let Some(t) = first_free(dr, candidates, Some(frame_box()), &[l.grid]) {
+            break_grid(dr, l, &t);
+            dr.add(l.text, t);
+        }
     }
     for m in marks.points.iter().filter(|m| m.x.is_finite() && m.y.is_finite()) {
         let p = map(m.x, m.y);
@@ -458,14 +490,34 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
         // it is free once clear of the mark.
         let right = p.x < PLOT_WIDTH / 2.0;
         let side = if right { 1.0 } else { -1.0 };
-        let at = Point::new(p.x + side * PLOT_WIDTH / 8.0, p.y);
-        dr.add_colored(
-            l.data,
-            Aci::RED,
-            Shape::Line { from: Point::new(p.x + side * 4.0 * CURVE_W, p.y), to: Point::new(at.x - side, p.y) },
-        );
         let halign = if right { HAlign::Left } else { HAlign::Right };
-        text(dr, l.text, at, TEXT_H, &m.label, (halign, VAlign::Middle), 0.0);
+        // Level with the mark an eighth of the frame aside, else higher or lower (the grid's
+        // lines and the curve kept clear), with a red leader from the mark.
+        let candidates: Vec<(Point, Shape)> = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0]
+            .iter()
+            .flat_map(|k| {
+                [1.0, 1.5, 2.0].map(|far| {
+                    let at = Point::new(p.x + side * far * PLOT_WIDTH / 8.0, p.y + k * 1.6 * TEXT_H);
+                    let t = Shape::Text {
+                        at,
+                        height: TEXT_H,
+                        value: m.label.clone(),
+                        halign,
+                        valign: VAlign::Middle,
+                        rotation: 0.0,
+                    };
+                    (at, t)
+                })
+            })
+            .collect();
+        let chosen = first_free(dr, candidates.iter().map(|c| c.1.clone()).collect(), Some(frame_box()), &[l.grid]);
+        if let Some(t) = chosen {
+            break_grid(dr, l, &t);
+            let at = candidates.iter().find(|c| c.1 == t).map_or(p, |c| c.0);
+            let from = p + (at - p).normalize() * (4.0 * CURVE_W);
+            dr.add_colored(l.data, Aci::RED, Shape::Line { from, to: Point::new(at.x - side, at.y) });
+            dr.add(l.text, t);
+        }
     }
 }
 
@@ -506,8 +558,25 @@ pub fn histogram(h: &Histogram) -> Drawing {
             linetype: Some(LineType::Dashed),
             shape: Shape::Line { from: p, to: Point::new(p.x, PLOT_HEIGHT) },
         });
-        let y = PLOT_HEIGHT - 3.0 - 4.5 * (i % 4) as f64;
-        text(&mut dr, l.text, Point::new(p.x + 1.0, y), TEXT_H, label, (HAlign::Left, VAlign::Top), 0.0);
+        // Beside its line near the top, else lower, on either side: clear of the bars.
+        let preferred = PLOT_HEIGHT - 3.0 - 4.5 * (i % 4) as f64;
+        let candidates = (0..12)
+            .flat_map(|k| {
+                let y = preferred - 4.5 * k as f64;
+                [(p.x + 1.0, HAlign::Left), (p.x - 1.0, HAlign::Right)].map(|(x, halign)| Shape::Text {
+                    at: Point::new(x, y),
+                    height: TEXT_H,
+                    value: label.clone(),
+                    halign,
+                    valign: VAlign::Top,
+                    rotation: 0.0,
+                })
+            })
+            .collect();
+        if let Some(t) = first_free(&dr, candidates, Some(frame_box()), &[l.grid]) {
+            break_grid(&mut dr, &l, &t);
+            dr.add(l.text, t);
+        }
     }
     dr
 }

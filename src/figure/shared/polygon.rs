@@ -128,12 +128,33 @@ pub fn draw_keeping_off(
     s: Sizes,
     keep_off: &[labels::TextBox],
 ) {
+    draw_within(d, poly, layer, scale, pole, s, keep_off, None, None);
+}
+
+/// [`draw_keeping_off`], its letters inside `within` (its panel) where they can be, its
+/// construction lines cut at the edges of `clip` (the panel's drawing area: off its title
+/// and its scale bar).
+#[allow(clippy::too_many_arguments)]
+pub fn draw_within(
+    d: &mut Drawing,
+    poly: &PointPolygon,
+    layer: layers::Layer,
+    scale: Scale,
+    pole: Point,
+    s: Sizes,
+    keep_off: &[labels::TextBox],
+    within: Option<labels::TextBox>,
+    clip: Option<labels::TextBox>,
+) {
     let l = layer_of(d, layer);
     let c = layer_of(d, layers::CONSTRUCTION);
     let pts = poly.drawn_points(scale, pole);
     let mut letters = labels::Polygon::of_points();
     for b in keep_off {
         letters.keep_off(*b);
+    }
+    if let Some(w) = within {
+        letters.keep_within(w);
     }
     // Directions: full dashed lines through their point, reaching a little past the point
     // found on both sides.
@@ -143,8 +164,9 @@ pub fn draw_keeping_off(
         let u = unit_or(dir.dir, Vector::new(1.0, 0.0));
         let t0 = (found - n).dot(&u);
         let (lo, hi) = (t0.min(0.0) - reach, t0.max(0.0) + reach);
-        d.add(c, Shape::Line { from: n + u * lo, to: n + u * hi });
-        letters.segment(n + u * lo, n + u * hi);
+        let Some((from, to)) = clipped((n + u * lo, n + u * hi), clip) else { continue };
+        d.add(c, Shape::Line { from, to });
+        letters.segment(from, to);
     }
     for side in &poly.sides {
         let (from, to) = (pts[side.from], pts[side.to]);
@@ -162,15 +184,43 @@ pub fn draw_keeping_off(
     let mut away = poly.pole_away.iter().map(|&i| pole - pts[i]);
     let first = away.next().unwrap_or_else(Vector::zeros);
     letters.letter(pole, &poly.pole, s.text, away.fold(first, |acc, v| acc + v), None);
+    // Off everything drawn so far (this polygon's lines, the other panels' figures, texts).
+    letters.keep_off_drawing(d);
     for (i, p) in poly.points.iter().enumerate() {
         let at = pts[i + 1];
-        if poly.marks.contains(&(i + 1)) {
+        // A centroid's image, and a construction's point (where a component starts: n_BA,
+        // the Coriolis k), may take its letter further out with a leader.
+        let construction = poly.sides.iter().any(|s| s.kind == SideKind::Component && s.from == i + 1);
+        if poly.marks.contains(&(i + 1)) || construction {
             letters.name_with_leader(at, &p.name, s.text, at - pts[p.from], None);
         } else {
             letters.letter(at, &p.name, s.text, at - pts[p.from], None);
         }
     }
     letters.draw(d, l);
+}
+
+/// The part of the segment inside `clip` (Liang–Barsky), `None` when it has none; the
+/// segment itself without a clip.
+fn clipped((a, b): (Point, Point), clip: Option<labels::TextBox>) -> Option<(Point, Point)> {
+    let Some(c) = clip else { return Some((a, b)) };
+    let d = b - a;
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [(-d.x, a.x - c.min.x), (d.x, c.max.x - a.x), (-d.y, a.y - c.min.y), (d.y, c.max.y - a.y)] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return None;
+            }
+        } else {
+            let r = q / p;
+            if p < 0.0 {
+                t0 = t0.max(r);
+            } else {
+                t1 = t1.min(r);
+            }
+        }
+    }
+    (t0 < t1).then(|| (a + d * t0, a + d * t1))
 }
 
 #[cfg(test)]

@@ -146,22 +146,28 @@ fn title_rows(cells: usize) -> usize {
     1 + cells.div_ceil(2)
 }
 
+/// The border, the right column's left edge and the title block of a page on `paper` with
+/// `title_cells` cells besides the title block's name row: (sizes, border, right, title).
+pub(crate) fn page_frame(paper: Paper, title_cells: usize) -> (Sizes, Bounds, f64, Bounds) {
+    let size = paper.size_mm();
+    let sizes = paper.sizes();
+    let border = Bounds { min: Point::new(20.0, 10.0), max: Point::new(size.x - 10.0, size.y - 10.0) };
+    let column = match paper {
+        Paper::A4 => 100.0,
+        Paper::A3 => 130.0,
+    };
+    let row = 2.4 * sizes.text;
+    let title_h = 1.4 * row + (title_rows(title_cells) - 1) as f64 * row;
+    let right = border.max.x - column;
+    let title = Bounds { min: Point::new(right, border.min.y), max: Point::new(border.max.x, border.min.y + title_h) };
+    (sizes, border, right, title)
+}
+
 impl SheetLayout {
     /// The layout of a sheet on `paper` with `panels` panels (1 or 2 in a row, more in two
     /// columns) and a title block of `title_cells` cells besides its name row.
     pub fn new(paper: Paper, panels: usize, title_cells: usize) -> SheetLayout {
-        let size = paper.size_mm();
-        let sizes = paper.sizes();
-        let border = Bounds { min: Point::new(20.0, 10.0), max: Point::new(size.x - 10.0, size.y - 10.0) };
-        let column = match paper {
-            Paper::A4 => 100.0,
-            Paper::A3 => 130.0,
-        };
-        let row = 2.4 * sizes.text;
-        let title_h = 1.4 * row + (title_rows(title_cells) - 1) as f64 * row;
-        let right = border.max.x - column;
-        let title =
-            Bounds { min: Point::new(right, border.min.y), max: Point::new(border.max.x, border.min.y + title_h) };
+        let (sizes, border, right, title) = page_frame(paper, title_cells);
         let table = Bounds { min: Point::new(right, title.max.y), max: border.max };
         let n = panels.max(1);
         let cols = if n <= 2 { n } else { 2 };
@@ -210,8 +216,9 @@ pub struct Table {
     pub rows: Vec<Vec<String>>,
 }
 
-/// A number for a table: 4 significant digits (what a graphical construction is read to),
-/// without exponent between 1e-4 and 1e6, trailing zeros kept so that columns align.
+/// A number for a drawing: 4 significant digits (what a graphical construction is read to;
+/// a value of 1000 or more to the unit: 1833229), in decimals, never with an exponent,
+/// trailing zeros kept so that columns align.
 pub fn number(v: f64) -> String {
     if !v.is_finite() {
         return "–".to_string();
@@ -220,10 +227,7 @@ pub fn number(v: f64) -> String {
         return "0".to_string();
     }
     let mag = libm::log10(v.abs()).floor();
-    if !(-4.0..6.0).contains(&mag) {
-        return format!("{v:.3e}");
-    }
-    let decimals = (3.0 - mag).max(0.0) as usize;
+    let decimals = (3.0 - mag).clamp(0.0, 20.0) as usize;
     let s = format!("{v:.decimals$}");
     if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".to_string() } else { s }
 }
@@ -261,6 +265,61 @@ pub fn finest(extent: Vector, area: Vector) -> Fit {
     }
     let per_mm = nice_scale(full);
     Fit { per_mm, fill: full / per_mm }
+}
+
+/// The fill of `area` (its tighter direction) by a figure of physical `extent` at `per_mm`
+/// (physical units per paper mm; `area` in paper mm).
+pub fn fill(extent: Vector, area: Vector, per_mm: f64) -> f64 {
+    (extent.x / area.x).max(extent.y / area.y) / per_mm
+}
+
+/// The least fill of its area a figure keeps from frame to frame before it takes a finer
+/// scale ([`frame_scales`]): half.
+pub const MIN_FRAME_FILL: f64 = 0.5;
+
+/// The scale of a figure at each frame of an animation (issue 31: every polygon readable at
+/// every position), physical units per paper mm, for the figure's physical size `extents[k]`
+/// (width, height; `None` or zero where nothing is drawn) at frame `k` in an area `area`
+/// (paper mm): each frame keeps the previous frame's scale while the figure fills between
+/// [`MIN_FRAME_FILL`] and all of the area at it, and else takes [`fit`]'s (a nice scale at
+/// which it fills between half and all of it). The scale so changes in steps, and only
+/// when it must (hysteresis: a figure that grows and shrinks a little about a step does not
+/// make the animation flicker); a frame with nothing to draw keeps the last scale (1 before
+/// any). The live page and the frames use this one choice ([`scale_near`] between frames).
+pub fn frame_scales(extents: &[Option<Vector>], area: Vector) -> Vec<f64> {
+    held_scales(&[], extents, area)
+}
+
+/// [`frame_scales`] after an earlier run of the same motion drawn at `previous[k]` at frame
+/// `k` (the live page's picture before a field's slider moved; `None` or missing where it
+/// drew nothing): each frame keeps its earlier scale while the figure fills between
+/// [`MIN_FRAME_FILL`] and all of the area at it, so a polygon visibly grows and shrinks as
+/// a length or a load changes, and takes another only when it would leave its area or
+/// shrink under half of it; a frame without an earlier scale follows the frame before it,
+/// as [`frame_scales`] does.
+pub fn held_scales(previous: &[Option<f64>], extents: &[Option<Vector>], area: Vector) -> Vec<f64> {
+    let mut out = Vec::with_capacity(extents.len());
+    let mut last: Option<f64> = None;
+    for (k, e) in extents.iter().enumerate() {
+        let before = previous.get(k).copied().flatten().or(last);
+        let scale = scale_near(before, *e, area);
+        last = Some(scale);
+        out.push(scale);
+    }
+    out
+}
+
+/// The scale of a figure of physical size `extent` in `area` (paper mm) after a frame drawn
+/// at `previous` (see [`frame_scales`]): `previous` while the figure fills between
+/// [`MIN_FRAME_FILL`] and all of the area at it, else [`fit`]'s.
+pub fn scale_near(previous: Option<f64>, extent: Option<Vector>, area: Vector) -> f64 {
+    let drawable = extent.filter(|e| e.x.is_finite() && e.y.is_finite() && e.x.max(e.y) > 0.0);
+    match (previous, drawable) {
+        (Some(k), None) => k,
+        (None, None) => 1.0,
+        (Some(k), Some(e)) if (MIN_FRAME_FILL..=1.0).contains(&fill(e, area, k)) => k,
+        (_, Some(e)) => fit(e, area).per_mm,
+    }
 }
 
 /// Where to put a figure's origin (its pole) so that the figure spanning `min`…`max`
@@ -333,11 +392,13 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
 /// sized to the rows (at most 0.9 letter height).
 fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
     let ncols = table.header.len();
-    if ncols == 0 {
+    if ncols == 0 || b.width() <= 0.0 || b.height() <= 0.0 {
         return;
     }
     let pad = 0.6 * s.text;
-    let n = table.rows.len() + 1;
+    let sets = table_sets(b, table.rows.len(), ncols, s);
+    let per_set = table.rows.len().div_ceil(sets).max(1);
+    let n = per_set + 1;
     let row = ((b.height() - 2.0 * pad) / n as f64).min(2.0 * s.text);
     let h = (0.5 * row).min(0.9 * s.text);
     // Columns: the name and the unit a little wider than the numbers.
@@ -353,38 +414,56 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
         })
         .collect();
     let total: f64 = weights.iter().sum();
-    let width = b.width() - 2.0 * pad;
-    let mut edges = vec![b.min.x + pad];
-    for w in &weights {
-        edges.push(edges.last().copied().unwrap_or(0.0) + width * w / total);
-    }
+    let set_w = (b.width() - 2.0 * pad) / sets as f64;
     let top = b.max.y - pad;
-    let cell = |d: &mut Drawing, r: usize, c: usize, value: &str| {
-        let y = top - (r as f64 + 0.5) * row;
-        let numeric = c > 0 && c + 1 < ncols;
-        let (x, halign) =
-            if numeric { (edges[c + 1] - 1.2 * pad, HAlign::Right) } else { (edges[c] + 0.3 * pad, HAlign::Left) };
-        d.add(
-            l,
-            Shape::Text {
-                at: Point::new(x, y),
-                height: h,
-                value: value.to_string(),
-                halign,
-                valign: VAlign::Middle,
-                rotation: 0.0,
-            },
-        );
-    };
-    for (c, v) in table.header.iter().enumerate() {
-        cell(d, 0, c, v);
-    }
-    d.add(l, Shape::Line { from: Point::new(b.min.x + pad, top - row), to: Point::new(b.max.x - pad, top - row) });
-    for (r, cells) in table.rows.iter().enumerate() {
-        for (c, v) in cells.iter().enumerate().take(ncols) {
-            cell(d, r + 1, c, v);
+    for set in 0..sets {
+        let x0 = b.min.x + pad + set as f64 * set_w;
+        let mut edges = vec![x0];
+        for w in &weights {
+            edges.push(edges.last().copied().unwrap_or(0.0) + (set_w - pad) * w / total);
+        }
+        let cell = |d: &mut Drawing, r: usize, c: usize, value: &str| {
+            let y = top - (r as f64 + 0.5) * row;
+            let numeric = c > 0 && c + 1 < ncols;
+            let (x, halign) =
+                if numeric { (edges[c + 1] - 1.2 * pad, HAlign::Right) } else { (edges[c] + 0.3 * pad, HAlign::Left) };
+            d.add(
+                l,
+                Shape::Text {
+                    at: Point::new(x, y),
+                    height: h,
+                    value: value.to_string(),
+                    halign,
+                    valign: VAlign::Middle,
+                    rotation: 0.0,
+                },
+            );
+        };
+        for (c, v) in table.header.iter().enumerate() {
+            cell(d, 0, c, v);
+        }
+        d.add(l, Shape::Line { from: Point::new(x0, top - row), to: Point::new(x0 + set_w - pad, top - row) });
+        for (r, cells) in table.rows.iter().skip(set * per_set).take(per_set).enumerate() {
+            for (c, v) in cells.iter().enumerate().take(ncols) {
+                cell(d, r + 1, c, v);
+            }
         }
     }
+}
+
+/// The height of a table row on a sheet, in letter heights: its text 0.9 letters high.
+pub const TABLE_ROW: f64 = 1.8;
+/// The least width of one set of a table's columns, in letter heights per column.
+pub const TABLE_COLUMN_MIN: f64 = 7.0;
+
+/// Into how many sets of columns side by side a table of `rows` rows and `ncols` columns is
+/// split in the box `b` so that its rows keep [`TABLE_ROW`] letters of height (one set when
+/// it fits, at most as many as the box's width holds).
+pub fn table_sets(b: Bounds, rows: usize, ncols: usize, s: Sizes) -> usize {
+    let pad = 0.6 * s.text;
+    let fits = |sets: usize| (rows.div_ceil(sets) + 1) as f64 * TABLE_ROW * s.text <= b.height() - 2.0 * pad + 1e-9;
+    let most = ((b.width() - 2.0 * pad) / (TABLE_COLUMN_MIN * s.text * ncols as f64)).floor().max(1.0) as usize;
+    (1..=most).find(|&k| fits(k)).unwrap_or(most)
 }
 
 #[cfg(test)]
@@ -414,13 +493,72 @@ mod tests {
     }
 
     #[test]
+    fn frame_scales_step_only_when_the_figure_leaves_half_to_all_of_its_area() {
+        let area = Vector::new(100.0, 80.0);
+        // A figure breathing between 60 and 95 units wide: one scale throughout (it fills
+        // 0.6–0.95 of the area at 1 unit/mm).
+        let breathing: Vec<Option<Vector>> =
+            (0..40).map(|k| Some(Vector::new(77.5 + 17.5 * (k as f64 * 0.5).sin(), 10.0))).collect();
+        let k = frame_scales(&breathing, area);
+        assert!(k.iter().all(|&x| x == k[0]), "{k:?}");
+        // A figure growing from 10 to 1000 units: steps up, always filling half to all.
+        let growing: Vec<Option<Vector>> =
+            (0..200).map(|i| Some(Vector::new(10.0 * 10f64.powf(i as f64 / 100.0), 5.0))).collect();
+        let k = frame_scales(&growing, area);
+        for (e, k) in growing.iter().zip(&k) {
+            let f = fill(e.unwrap(), area, *k);
+            assert!((MIN_FRAME_FILL..=1.0).contains(&f), "{e:?} at {k}: fill {f}");
+        }
+        let steps = k.windows(2).filter(|w| w[0] != w[1]).count();
+        assert!((3..=8).contains(&steps), "{steps} steps over two decades: {k:?}");
+        // Nothing to draw keeps the last scale.
+        assert_eq!(frame_scales(&[Some(Vector::new(50.0, 1.0)), None, Some(Vector::zeros())], area), vec![1.0; 3]);
+        assert_eq!(frame_scales(&[None], area), vec![1.0]);
+        // Coming down from a coarser scale, a figure keeps it while it fills half the area
+        // (fit alone would take the finer one at once).
+        let size = Vector::new(130.0, 1.0);
+        let e = Some(size);
+        assert_eq!(fit(size, area).per_mm, 2.0);
+        assert_eq!(scale_near(Some(2.5), e, area), 2.5);
+        assert_eq!(scale_near(Some(5.0), e, area), 2.0);
+    }
+
+    #[test]
+    fn held_scales_keep_an_earlier_runs_scale_while_the_figure_fills_half_to_all_of_its_area() {
+        let area = Vector::new(100.0, 80.0);
+        let e = |w: f64| Some(Vector::new(w, 1.0));
+        let same = |w: f64| vec![e(w); 6];
+        // An earlier run drew a figure 200 units wide at 2.5 units/mm (fill 0.8). Shrunk to
+        // 130 units it keeps 2.5 (fill 0.52), where a fresh run takes 2 (fill 0.65): the
+        // student sees it shrink.
+        let before = frame_scales(&same(200.0), area);
+        assert_eq!(before, vec![2.5; 6]);
+        let prev: Vec<Option<f64>> = before.iter().copied().map(Some).collect();
+        assert_eq!(held_scales(&prev, &same(130.0), area), vec![2.5; 6]);
+        assert_eq!(frame_scales(&same(130.0), area), vec![2.0; 6]);
+        // Grown to 240 units (fill 0.96) it is held; to 260 it would leave the area:
+        // re-chosen (5 units/mm, fill 0.52).
+        assert_eq!(held_scales(&prev, &same(240.0), area), vec![2.5; 6]);
+        assert_eq!(held_scales(&prev, &same(260.0), area), vec![5.0; 6]);
+        // Shrunk under half (120 units, fill 0.48): re-chosen (2 units/mm, fill 0.6).
+        assert_eq!(held_scales(&prev, &same(120.0), area), vec![2.0; 6]);
+        // Each frame its own earlier scale; a frame without one follows the frame before.
+        let prev = [Some(2.5), Some(1.0), None, Some(2.0)];
+        assert_eq!(held_scales(&prev, &[e(130.0), e(90.0), e(60.0), e(110.0)], area), vec![2.5, 1.0, 1.0, 2.0]);
+        // No earlier run: the frame-to-frame choice.
+        assert_eq!(held_scales(&[], &same(130.0), area), frame_scales(&same(130.0), area));
+    }
+
+    #[test]
     fn numbers_have_four_significant_digits() {
         assert_eq!(number(0.123456), "0.1235");
         assert_eq!(number(-12.3456), "-12.35");
         assert_eq!(number(1490.04), "1490");
         assert_eq!(number(20.0), "20.00");
         assert_eq!(number(0.0), "0");
-        assert_eq!(number(-1e-7), "-1.000e-7");
+        assert_eq!(number(-1e-7), "-0.0000001000");
+        assert_eq!(number(-1833229.4), "-1833229");
+        assert_eq!(number(529411.765), "529412");
         assert_eq!(number(f64::NAN), "–");
     }
 

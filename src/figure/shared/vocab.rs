@@ -71,6 +71,27 @@ pub fn nice_scale(raw: f64) -> f64 {
     10.0 * mag
 }
 
+/// The mantissas of the drafting scales a mechanism is drawn at (GOST 2.302's reduction
+/// scales 1:2, 1:2.5, 1:4, 1:5, 1:10, 1:15, …, and their decades): a sheet's k_l is one of
+/// these × 10ᵏ. They are finer than the nice scales of the polygons (no mantissa more than
+/// 1.6 from the next), so that a mechanism can fill its panel.
+pub const DRAFTING_MANTISSAS: [f64; 6] = [1.0, 1.5, 2.0, 2.5, 4.0, 5.0];
+
+/// The smallest drafting scale ([`DRAFTING_MANTISSAS`] × 10ᵏ) at least `raw`; 1 for a zero
+/// or non-finite `raw`.
+pub fn drafting_scale(raw: f64) -> f64 {
+    if !(raw.is_finite() && raw > 0.0) {
+        return 1.0;
+    }
+    let mag = libm::pow(10f64, libm::log10(raw).floor());
+    for m in DRAFTING_MANTISSAS.iter().chain(&[10.0]) {
+        if m * mag >= raw * (1.0 - 1e-12) {
+            return m * mag;
+        }
+    }
+    10.0 * mag
+}
+
 /// The length scale k_l of a figure, model units per paper millimetre: the nice value
 /// (1, 2, 2.5, 5 × 10ᵏ) that draws a model extent `extent` (model units) at most
 /// `target_mm` paper millimetres long (0.002 m/mm draws a 0.2 m mechanism 100 mm long).
@@ -143,9 +164,11 @@ pub mod layers {
     pub const DIMENSIONS: Layer = ("DIMENSIONS", Aci::BLACK, LineType::Continuous);
     /// Per-position text (the crank angle).
     pub const TEXT: Layer = ("TEXT", Aci::BLACK, LineType::Continuous);
+    /// The frames of an animation's panels: thin light grey rectangles.
+    pub const PANELS: Layer = ("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
     /// Every content layer, in drawing order (later on top).
-    pub const ALL: [Layer; 8] =
-        [COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
+    pub const ALL: [Layer; 9] =
+        [PANELS, COUPLER_CURVE, CONSTRUCTION, VELOCITY, ACCELERATION, FORCES, MECHANISM, DIMENSIONS, TEXT];
 }
 
 /// A drawing with the content layers created in drawing order.
@@ -537,6 +560,16 @@ mod tests {
         assert_eq!(scale_text(2e-5), "0.00002");
         assert_eq!(scale_text(1e5), "100000");
         assert_eq!(scale_text(0.1 + 0.2), "0.3");
+        assert_eq!(scale_text(2e5), "200000");
+        assert_eq!(scale_text(0.0025), "0.0025");
+    }
+
+    #[test]
+    fn drafting_scales_round_up_to_the_next_gost_mantissa() {
+        for (raw, k) in [(0.0013, 0.0015), (0.0016, 0.002), (3.0, 4.0), (4.4, 5.0), (0.9, 1.0), (150.0, 150.0)] {
+            assert!((drafting_scale(raw) - k).abs() < 1e-12 * k, "{raw} -> {}", drafting_scale(raw));
+        }
+        assert_eq!(drafting_scale(f64::NAN), 1.0);
     }
 
     #[test]
