@@ -80,6 +80,11 @@ enum Command {
         /// (DIR/<name>-design.toml) but not the design's whole run.
         #[arg(long)]
         no_analysis: bool,
+        /// Scenes with [tolerances]: run only the share K of N of the Monte Carlo and write its
+        /// partial statistics, DIR/<name>-shard-K-of-N.json, for `mechdraw merge` (any batch
+        /// engine can run the shards: docs/tolerances.md).
+        #[arg(long, value_name = "K/N")]
+        shard: Option<String>,
         /// No progress bar and no report on stderr.
         #[arg(short, long)]
         quiet: bool,
@@ -117,6 +122,29 @@ enum Command {
         /// No report on stderr.
         #[arg(short, long)]
         quiet: bool,
+    },
+    /// Merge the shards of a tolerance study (`run --shard K/N`) into exactly the statistics
+    /// of one run with the same seed, and write its tolerance files: <name>-tolerances.csv,
+    /// <name>-contributions.csv, <name>.json (its `tolerances`), the band drawing, the
+    /// diagrams and charts.
+    Merge {
+        /// The shard files, every K of one N once.
+        shards: Vec<PathBuf>,
+        /// Output directory.
+        #[arg(short, long, value_name = "DIR", default_value = "out")]
+        out: PathBuf,
+        /// Print the JSON summary on stdout.
+        #[arg(long)]
+        json: bool,
+        /// Also write PNG copies of the drawings and diagrams.
+        #[arg(long)]
+        png: bool,
+        /// No report on stderr.
+        #[arg(short, long)]
+        quiet: bool,
+        /// List every file written (`wrote DIR/…` one a line) instead of a count per folder.
+        #[arg(short, long)]
+        verbose: bool,
     },
     /// Write the live pages of scenes, the module they share and an index.html linking them:
     /// a gallery to publish as static files or open from disk (each page solves and draws
@@ -170,6 +198,39 @@ enum Command {
         #[arg(long)]
         quick: bool,
     },
+}
+
+/// Prints a run's JSON (when asked), warnings, report and written files.
+fn finish(
+    outcome: mechdraw::run::Outcome,
+    out: &std::path::Path,
+    json: bool,
+    quiet: bool,
+    verbose: bool,
+) -> anyhow::Result<()> {
+    if json {
+        print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
+    }
+    if !quiet {
+        for w in &outcome.warnings {
+            eprintln!("warning: {w}");
+        }
+        if !outcome.report.is_empty() {
+            eprintln!("{}", outcome.report.trim_end());
+        }
+        eprint!("{}", mechdraw::run::listing::summary(out, &outcome.written, verbose));
+    }
+    Ok(())
+}
+
+/// `--shard K/N`.
+fn parse_shard(spec: &str) -> Result<(u64, u64), mechdraw::Error> {
+    let bad = || mechdraw::Error::Option {
+        option: "--shard".into(),
+        message: format!("`{spec}` is not K/N (e.g. 2/4: the second of four shards)"),
+    };
+    let (k, n) = spec.split_once('/').ok_or_else(bad)?;
+    Ok((k.trim().parse().map_err(|_| bad())?, n.trim().parse().map_err(|_| bad())?))
 }
 
 fn overrides(set: &[String]) -> Result<Vec<Override>, mechdraw::Error> {
@@ -246,10 +307,15 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             dxf_version,
             dxf_dimensions,
             no_analysis,
+            shard,
             quiet,
             verbose,
         } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            if let Some(spec) = shard {
+                let outcome = mechdraw::run::run_shard(&loaded, parse_shard(&spec)?, &set, &out)?;
+                return finish(outcome, &out, json, quiet, verbose);
+            }
             let opts = RunOptions {
                 out_dir: Some(out.clone()),
                 png,
@@ -265,19 +331,12 @@ fn run(cli: Cli) -> anyhow::Result<()> {
                 held_scales: Vec::new(),
             };
             let outcome = mechdraw::run::run(&loaded, &opts)?;
-            if json {
-                print_stdout(&serde_json::to_string_pretty(&outcome.summary)?)?;
-            }
-            if !quiet {
-                for w in &outcome.warnings {
-                    eprintln!("warning: {w}");
-                }
-                if !outcome.report.is_empty() {
-                    eprintln!("{}", outcome.report.trim_end());
-                }
-                eprint!("{}", mechdraw::run::listing::summary(&out, &outcome.written, verbose));
-            }
-            Ok(())
+            finish(outcome, &out, json, quiet, verbose)
+        }
+        Command::Merge { shards, out, json, png, quiet, verbose } => {
+            let opts = RunOptions { out_dir: Some(out.clone()), png, ..RunOptions::default() };
+            let outcome = mechdraw::run::merge(&shards, &opts)?;
+            finish(outcome, &out, json, quiet, verbose)
         }
         Command::Report { scene, out, set, paper, positions, png, quiet } => {
             let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;

@@ -19,6 +19,7 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
     assert_eq!(lines.next(), Some("problem,method,setting,ns_per_solve,error,residual,distance"));
     let mut rows: HashMap<(String, String), f64> = HashMap::new();
     let mut assur = Vec::new();
+    let mut cold = Vec::new();
     for line in lines {
         let f: Vec<&str> = line.split(',').collect();
         assert_eq!(f.len(), 7, "{line}");
@@ -29,11 +30,18 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
         if f[1] == "Assur groups" {
             assur.push((f[0].to_string(), f[2].to_string(), err));
         }
+        if f[1] == "Assur groups (cold)" {
+            cold.push((f[0].to_string(), f[2].to_string(), err));
+        }
     }
     // The Assur-group route on the four-bar and the shaper, positions only and with rates:
     // exact to rounding against the same references as the general solver.
     assert_eq!(assur.len(), 4, "{assur:?}");
     assert!(assur.iter().all(|(_, _, e)| *e < 1e-13), "{assur:?}");
+    // Its cold sweeps (a fresh solver; a refitted one resumed from a known state): the
+    // same answers.
+    assert_eq!(cold.len(), 4, "{cold:?}");
+    assert!(cold.iter().all(|(_, _, e)| *e < 1e-13), "{cold:?}");
     let err = |method: &str, setting: &str| rows[&(method.to_string(), setting.to_string())];
     // Exact or converged methods sit near rounding against the independent references.
     assert!(err("closed-form dyad", "exact") < 1e-14);

@@ -240,10 +240,56 @@ fn assur(
         let _ = solver.motion_into(rest, &mut motion);
         motion.qd.first().copied().unwrap_or(0.0)
     }) / steps;
-    Ok(vec![
+    let mut rows = vec![
         Measurement::new(problem, "Assur groups", "positions", ns_pos, pos.0, pos.1),
         Measurement::new(problem, "Assur groups", "pos+vel+acc", ns_full, full.0, full.1),
-    ])
+    ];
+    rows.extend(cold(budget, problem, s, &start, &score));
+    Ok(rows)
+}
+
+/// A cold sweep, nanoseconds per position over the whole motion (its first position
+/// included), positions only: a fresh solver (`cold, new`: the mechanism copied and
+/// decomposed, the first position assembled by the general solver from the scene's
+/// placement, as a run starts), and a solver refitted to the mechanism's numbers and resumed
+/// from a known state (`cold, refit`: [`AssurSolver::refit`], the first position by the
+/// groups' closed forms; what each tolerance sample costs). Error as [`assur`]'s, on each
+/// route's own answers.
+fn cold(
+    budget: Budget,
+    problem: &str,
+    s: &LinkageScene,
+    start: &State,
+    score: &impl Fn(&State) -> (f64, f64),
+) -> Vec<Measurement> {
+    let n = s.times.len().max(1) as f64;
+    let worst = |qs: &[f64]| {
+        let nq = start.q.len().max(1);
+        qs.chunks_exact(nq).zip(&s.times).fold((0.0_f64, 0.0_f64), |m, (q, &t)| {
+            let v = score(&State { t, q: q.to_vec(), ..start.clone() });
+            (m.0.max(v.0), m.1.max(v.1))
+        })
+    };
+    let mut q = Vec::new();
+    let ns_new = ns_per_call(budget, || {
+        q.clear();
+        AssurSolver::new(s.mechanism.clone()).map(|mut a| a.positions_into(&s.times, &mut q)).is_ok() as usize as f64
+    }) / n;
+    let fresh = worst(&q);
+    let Ok(mut solver) = AssurSolver::new(s.mechanism.clone()) else { return Vec::new() };
+    let ns_refit = ns_per_call(budget, || {
+        q.clear();
+        if solver.refit(|_| {}).is_err() {
+            return 0.0;
+        }
+        solver.resume(start);
+        solver.positions_into(&s.times, &mut q).is_ok() as usize as f64
+    }) / n;
+    let refit = worst(&q);
+    vec![
+        Measurement::new(problem, "Assur groups (cold)", "new", ns_new, fresh.0, fresh.1),
+        Measurement::new(problem, "Assur groups (cold)", "refit", ns_refit, refit.0, refit.1),
+    ]
 }
 
 fn scene_msg(m: String) -> crate::solve::linkage::LinkageError {

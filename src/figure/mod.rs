@@ -12,4 +12,5 @@ pub mod linkage;
 pub mod report;
 pub mod shared;
 pub mod synthesis;
+pub mod tolerances;
 pub mod triad;

@@ -124,14 +124,18 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
             Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names, &drawn),
             None => Vec::new(),
         };
-        Extras {
+        let mut extras = Extras {
             sheets,
             pages,
             diagrams,
             tables: vec![products::Table { suffix: String::new(), csv }],
             summary,
             report,
+        };
+        if let Some(study) = super::tolerance::fourbar(scene, &motion.positions, None) {
+            warnings.extend(study.add_to(&mut extras));
         }
+        extras
     };
     let title = format!("{name}: four-bar, {} positions", motion.positions.len());
     let window = layout.frame.window;

@@ -370,14 +370,20 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
         for (k, s) in states.iter().enumerate() {
             csv.row(std::iter::once(s.t).chain(all_cols().map(|c| c.values[k])));
         }
-        Extras {
+        let mut extras = Extras {
             sheets: Vec::new(),
             pages,
             diagrams,
             tables: vec![products::Table { suffix: String::new(), csv }],
             summary,
             report,
+        };
+        if let Some(study) =
+            super::tolerance::linkage(scene, None).map_err(|e| super::tolerance::tolerance_err(file, e))?
+        {
+            warnings.extend(study.add_to(&mut extras));
         }
+        extras
     };
     let (mech, dynamics) = (scene.mechanism.clone(), scene.dynamics.clone());
     let forces = forces.unwrap_or_default();

@@ -20,9 +20,12 @@ pub mod positions;
 pub mod products;
 pub mod report;
 pub mod synthesis;
+mod tolerance;
 mod triad;
 
 pub use products::Products;
+#[cfg(feature = "cli")]
+pub use tolerance::{merge, run_shard};
 
 use std::path::PathBuf;
 

@@ -114,6 +114,7 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("chain-humienny-3.toml", include_str!("../../templates/chain-humienny-3.toml")),
     ("fourbar-chebyshev.toml", include_str!("../../templates/fourbar-chebyshev.toml")),
     ("fourbar-linkage.toml", include_str!("../../templates/fourbar-linkage.toml")),
+    ("fourbar-tolerances.toml", include_str!("../../templates/fourbar-tolerances.toml")),
     ("shaper-forces.toml", include_str!("../../templates/shaper-forces.toml")),
     ("shaper.toml", include_str!("../../templates/shaper.toml")),
     ("slider-crank.toml", include_str!("../../templates/slider-crank.toml")),

@@ -5,6 +5,7 @@
 
 use serde::Deserialize;
 
+use super::tolerance::{self, Tolerances};
 use super::{
     FieldError, MAX_ANGULAR_ACCELERATION, MAX_ANGULAR_SPEED, MAX_FORCE_N, MAX_GRAVITY, MAX_INERTIA_KG_M2, MAX_MASS_KG,
     MAX_TORQUE_N_M, Units, angle_deg, finite_point, non_negative_within, pair_within, positive, within,
@@ -12,6 +13,7 @@ use super::{
 use crate::geom::{Side, Vector};
 use crate::solve::fourbar::{ANGLE_EPS_DEG, Geometry, MAX_POSITIONS, MotionSpec, Outputs, Sweep};
 use crate::solve::fourbar::{CrankRange, Dynamics, ExternalForce, ForcePoint, Link, LinkLoad, LinkMass};
+use crate::solve::tolerance::fourbar::{FourbarOutput, FourbarParam};
 
 /// Standard gravity in m/s², the default `dynamics.g` (in every scene: g is in m/s²
 /// whatever the length unit).
@@ -60,6 +62,10 @@ pub struct RawFourbarScene {
     /// Masses, gravity and external forces.
     #[serde(default)]
     pub dynamics: Option<RawDynamics>,
+    /// `[tolerances]`: toleranced fields, watched outputs, settings
+    /// ([`super::tolerance`]).
+    #[serde(default)]
+    pub tolerances: Option<toml::Table>,
     /// How the frames are drawn.
     #[serde(default)]
     pub frames: Option<super::RawFrames>,
@@ -179,8 +185,65 @@ pub struct FourbarScene {
     /// `outputs` names "centres": draw the instantaneous centres with Kennedy's lines (a
     /// sheet `<name>-centres`).
     pub centres: bool,
+    /// `[tolerances]`, checked (boxed: most scenes have none).
+    pub tolerances: Option<Box<FourbarTolerances>>,
     /// How the frames' polygon scales are chosen.
     pub frame_scales: super::FrameScales,
+}
+
+/// A four-bar's checked `[tolerances]`: the study and the watched outputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FourbarTolerances {
+    /// Dimensions, their fields, settings.
+    pub study: Tolerances<FourbarParam>,
+    /// The watched outputs (points first, then angles; `M` when none is named).
+    pub outputs: Vec<FourbarOutput>,
+}
+
+/// Checks a four-bar's `[tolerances]` table (sweep of `count` positions).
+fn check_tolerances(t: &toml::Table, geometry: &Geometry, count: usize) -> Result<FourbarTolerances, FieldError> {
+    let valid = FourbarParam::ALL.map(FourbarParam::field).join(", ");
+    let resolve = |path: &str| match FourbarParam::from_field(path) {
+        Some(p) => Ok((p, p.nominal(geometry))),
+        None => Err(format!(
+            "is not a dimension of the four-bar that a tolerance can act on; valid: {valid} (o1 and c are points: o1[0] is x, o1[1] is y)"
+        )),
+    };
+    let study = tolerance::check(t, &tolerance::Kind { resolve: &resolve, positions: count, components: (4, 1) })?;
+    let mut outputs = Vec::new();
+    let points = if study.outputs.points.is_empty() && study.outputs.angles.is_empty() {
+        vec!["M".to_string()]
+    } else {
+        study.outputs.points.clone()
+    };
+    for (i, name) in points.iter().enumerate() {
+        match FourbarOutput::from_name(name) {
+            Some(o @ FourbarOutput::Point(_)) => outputs.push(o),
+            _ => {
+                return Err(FieldError::new(
+                    format!("tolerances.outputs.points[{i}]"),
+                    format!("\"{name}\" is not a point of the four-bar; valid: \"A\", \"B\", \"M\""),
+                ));
+            }
+        }
+    }
+    for (i, name) in study.outputs.angles.iter().enumerate() {
+        match FourbarOutput::from_name(name) {
+            Some(o @ (FourbarOutput::Phi2 | FourbarOutput::Phi3)) => outputs.push(o),
+            _ => {
+                return Err(FieldError::new(
+                    format!("tolerances.outputs.angles[{i}]"),
+                    format!(
+                        "\"{name}\" is not a link whose angle is watched; valid: \"coupler\" (φ2), \"rocker\" (φ3)"
+                    ),
+                ));
+            }
+        }
+    }
+    if let Some(dup) = outputs.iter().enumerate().find(|(i, o)| outputs[..*i].contains(o)) {
+        return Err(FieldError::new("tolerances.outputs", format!("names {} twice", dup.1.name())));
+    }
+    Ok(FourbarTolerances { study, outputs })
 }
 
 const OUTPUT_NAMES: &str = "\"position\", \"velocity\", \"acceleration\", \"forces\", \"centres\"";
@@ -245,12 +308,15 @@ pub fn check(raw: RawFourbarScene) -> Result<FourbarScene, FieldError> {
     }
     let dynamics = raw.dynamics.as_ref().map(|d| check_dynamics(d, raw.units)).transpose()?;
     let centres = raw.outputs.as_ref().is_some_and(|l| l.iter().any(|s| s == "centres"));
+    let tolerances =
+        raw.tolerances.as_ref().map(|t| check_tolerances(t, &geometry, sweep.count()).map(Box::new)).transpose()?;
     let frame_scales = super::check_frames(raw.frames.as_ref())?;
     Ok(FourbarScene {
         name,
         units: raw.units,
         spec: MotionSpec { geometry, omega1, epsilon1, sweep, outputs, dynamics },
         centres,
+        tolerances,
         frame_scales,
     })
 }

@@ -58,6 +58,7 @@
 use serde::Deserialize;
 use serde::de::{MapAccess, Visitor};
 
+use super::tolerance::{self, Tolerances};
 use super::{
     FieldError, MAX_FORCE_N, MAX_GRAVITY, MAX_INERTIA_KG_M2, MAX_MASS_KG, MAX_TIME_S, MAX_TORQUE_N_M, Units, angle_deg,
     finite_point, non_negative_within, pair_within, within,
@@ -68,6 +69,7 @@ use crate::solve::linkage::{
     Anchor, Attach, Body, Driver, DriverTarget, Dynamics, Joint, JointKind, Load, LoadAction, LoadValue,
     MassProperties, Mechanism, TimeWindow,
 };
+use crate::solve::tolerance::linkage::{LinkageOutput, LinkageParam};
 
 /// Largest number of time steps a scene may ask for.
 pub const MAX_STEPS: u32 = 100_000;
@@ -272,6 +274,10 @@ pub struct RawLinkageScene {
     pub frames: Option<super::RawFrames>,
     /// What is computed: `"position"`, `"velocity"`, `"acceleration"`, `"forces"`.
     pub outputs: Option<Vec<String>>,
+    /// `[tolerances]`: toleranced fields, watched outputs, settings
+    /// ([`super::tolerance`]).
+    #[serde(default)]
+    pub tolerances: Option<toml::Table>,
 }
 
 /// What a linkage run computes (the scene's `outputs`; positions always).
@@ -437,6 +443,144 @@ pub struct LinkageScene {
     pub frame_scales: super::FrameScales,
     /// What is computed.
     pub outputs: Outputs,
+    /// `[tolerances]`, checked (boxed: most scenes have none).
+    pub tolerances: Option<Box<LinkageTolerances>>,
+}
+
+/// A linkage's checked `[tolerances]`: the study and the watched outputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct LinkageTolerances {
+    /// Dimensions, the mechanism's numbers each moves, settings.
+    pub study: Tolerances<LinkageParam>,
+    /// The watched outputs (points first, then angles).
+    pub outputs: Vec<LinkageOutput>,
+}
+
+/// What a `[tolerances]` key of a linkage may name.
+const TOLERANCE_FIELDS: &str = "ground.points.P[0|1] (a ground point's x or y), body[i].points.P[0|1] (a body point's x or y, \
+in body coordinates), joint[i].prismatic.angle_deg (a prismatic joint's locked angle); quote the key, e.g. \
+\"body[1].points.B\" = [0.05, 0.05]";
+
+/// The joint anchors (joint, role: revolute 0, 1; prismatic 0 point, 1 and 2 the line)
+/// made from the point `body.point` as the scene names it.
+fn anchors_named(joints: &[RawJoint], spec: &str) -> Vec<(usize, usize)> {
+    let mut out = Vec::new();
+    for (j, raw) in joints.iter().enumerate() {
+        let specs: Vec<&String> = match (&raw.revolute, &raw.prismatic) {
+            (Some(pair), _) => pair.iter().collect(),
+            (_, Some(p)) => std::iter::once(&p.point).chain(p.line.iter()).collect(),
+            _ => Vec::new(),
+        };
+        out.extend(specs.iter().enumerate().filter(|(_, s)| s.as_str() == spec).map(|(role, _)| (j, role)));
+    }
+    out
+}
+
+/// The field a `[tolerances]` path names in a linkage (`ground.points.O[1]`,
+/// `body[2].points.B[0]`, `joint[3].prismatic.angle_deg`) and its nominal value.
+fn tolerance_field(
+    path: &str,
+    ground: &[(String, Point)],
+    mech: &Mechanism,
+    joints: &[RawJoint],
+) -> Result<(LinkageParam, f64), String> {
+    let bad = || format!("is not a number of the linkage that a tolerance can act on; valid: {TOLERANCE_FIELDS}");
+    let coordinate = |rest: &str| -> Option<(String, usize)> {
+        let (name, idx) = rest.strip_suffix(']')?.rsplit_once('[')?;
+        let c = idx.parse::<usize>().ok().filter(|c| *c < 2)?;
+        Some((name.to_string(), c))
+    };
+    if let Some(rest) = path.strip_prefix("ground.points.") {
+        let (name, c) = coordinate(rest).ok_or_else(bad)?;
+        let Some((_, at)) = ground.iter().find(|(n, _)| *n == name) else {
+            return Err(format!(
+                "the ground has no point `{name}`; its points are: {}",
+                ground.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+            ));
+        };
+        let anchors = anchors_named(joints, &format!("ground.{name}"));
+        if anchors.is_empty() {
+            return Err(format!("ground point `{name}` is in no joint: a tolerance on it moves nothing"));
+        }
+        return Ok((LinkageParam::point(None, &anchors, c), if c == 0 { at.x } else { at.y }));
+    }
+    if let Some(rest) = path.strip_prefix("body[") {
+        let (i, rest) = rest.split_once(']').ok_or_else(bad)?;
+        let i: usize = i.parse().map_err(|_| bad())?;
+        let rest = rest.strip_prefix(".points.").ok_or_else(bad)?;
+        let (name, c) = coordinate(rest).ok_or_else(bad)?;
+        let Some(body) = mech.bodies.get(i) else {
+            return Err(format!("there is no body[{i}]: the scene has {} bodies (body[0]..)", mech.bodies.len()));
+        };
+        let Some(k) = body.points.iter().position(|(n, _)| *n == name) else {
+            return Err(format!(
+                "body[{i}] (`{}`) has no point `{name}`; its points are: {}",
+                body.name,
+                body.points.iter().map(|(n, _)| n.as_str()).collect::<Vec<_>>().join(", ")
+            ));
+        };
+        let v = body.points[k].1;
+        let anchors = anchors_named(joints, &format!("{}.{name}", body.name));
+        return Ok((LinkageParam::point(Some((i, k)), &anchors, c), if c == 0 { v.x } else { v.y }));
+    }
+    if let Some(rest) = path.strip_prefix("joint[") {
+        let (j, rest) = rest.split_once(']').ok_or_else(bad)?;
+        let j: usize = j.parse().map_err(|_| bad())?;
+        if rest != ".prismatic.angle_deg" {
+            return Err(bad());
+        }
+        return match mech.joints.get(j).map(|x| &x.kind) {
+            Some(JointKind::Prismatic { angle, .. }) => Ok((LinkageParam::prismatic_angle(j), angle.to_degrees())),
+            Some(_) => Err(format!("joint[{j}] is not prismatic: only a prismatic joint has a locked angle")),
+            None => Err(format!("there is no joint[{j}]: the scene has {} joints (joint[0]..)", mech.joints.len())),
+        };
+    }
+    Err(bad())
+}
+
+/// Checks a linkage's `[tolerances]` table (a motion of `count` positions).
+fn check_tolerances(
+    t: &toml::Table,
+    ground: &[(String, Point)],
+    mech: &Mechanism,
+    joints: &[RawJoint],
+    count: usize,
+) -> Result<LinkageTolerances, FieldError> {
+    let field_of = |path: &str| tolerance_field(path, ground, mech, joints);
+    let study = tolerance::check(t, &tolerance::Kind { resolve: &field_of, positions: count, components: (4, 1) })?;
+    if study.outputs.points.is_empty() && study.outputs.angles.is_empty() {
+        return Err(FieldError::new(
+            "tolerances.outputs",
+            "name what to watch: points = [\"body.P\", ...] (a body's point) and/or angles = [\"body\", ...]",
+        ));
+    }
+    let mut outputs = Vec::new();
+    for (i, spec) in study.outputs.points.iter().enumerate() {
+        let field = format!("tolerances.outputs.points[{i}]");
+        let a = resolve(spec, ground, &mech.bodies).map_err(|m| FieldError::new(field.clone(), m))?;
+        let Attach::Body(body) = a.body else {
+            return Err(FieldError::new(field, format!("`{spec}` is a ground point: it does not move")));
+        };
+        let pname = spec.split_once('.').map_or("", |(_, p)| p);
+        let point = mech.bodies[body].points.iter().position(|(n, _)| n == pname).unwrap_or(0);
+        outputs.push(LinkageOutput::Point { name: spec.clone(), body, point });
+    }
+    for (i, name) in study.outputs.angles.iter().enumerate() {
+        let Some(body) = mech.bodies.iter().position(|b| b.name == *name) else {
+            return Err(FieldError::new(
+                format!("tolerances.outputs.angles[{i}]"),
+                format!(
+                    "\"{name}\" is not a body; the bodies are: {}",
+                    mech.bodies.iter().map(|b| b.name.as_str()).collect::<Vec<_>>().join(", ")
+                ),
+            ));
+        };
+        outputs.push(LinkageOutput::Angle { name: format!("{name}_deg"), body });
+    }
+    if let Some((_, dup)) = outputs.iter().enumerate().find(|(i, o)| outputs[..*i].contains(o)) {
+        return Err(FieldError::new("tolerances.outputs", format!("names {} twice", dup.name())));
+    }
+    Ok(LinkageTolerances { study, outputs })
 }
 
 impl LinkageScene {
@@ -525,6 +669,11 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
     let polygons = check_polygons(raw.polygons.as_ref(), &mechanism)?;
     let frame_scales = super::check_frames(raw.frames.as_ref())?;
     let outputs = check_outputs(raw.outputs.as_deref(), dynamics.is_some(), &raw.measure, &measures)?;
+    let tolerances = raw
+        .tolerances
+        .as_ref()
+        .map(|t| check_tolerances(t, &ground_points, &mechanism, &raw.joint, times.len()).map(Box::new))
+        .transpose()?;
     Ok(LinkageScene {
         name,
         units: raw.units,
@@ -537,6 +686,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         polygons,
         frame_scales,
         outputs,
+        tolerances,
     })
 }
 

@@ -12,6 +12,7 @@ pub mod fourbar;
 pub mod linkage;
 mod overrides;
 pub mod synthesis;
+pub mod tolerance;
 pub mod triad;
 
 use std::path::PathBuf;

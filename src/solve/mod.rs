@@ -6,6 +6,7 @@ pub mod fourbar;
 pub mod linkage;
 pub mod stroke;
 pub mod synthesis;
+pub mod tolerance;
 pub mod triad;
 
 /// A solver failure, by mechanism kind.

@@ -100,6 +100,7 @@ pub fn parameters(table: &toml::Table) -> Vec<Parameter> {
     raw.into_iter()
         .map(|(path, value, integer)| {
             let m = match kind {
+                _ if path.starts_with("tolerances.") => tolerances(&path),
                 "fourbar" => fourbar(&path, table),
                 "linkage" => linkage(&path, table),
                 "triad" => triad(&path),
@@ -127,6 +128,45 @@ pub fn parameters(table: &toml::Table) -> Vec<Parameter> {
             }
         })
         .collect()
+}
+
+/// A number of `[tolerances]` (docs/tolerances.md): a setting, or a toleranced field's band
+/// (`± l_ab`, `l_ab +`, `ground.points.O[1] Cp`), in the field's unit (degrees for a
+/// `…_deg` field, whose band is then a plain number).
+fn tolerances(path: &str) -> Option<Meaning> {
+    let rest = path.strip_prefix("tolerances.")?;
+    if let Some(setting) = rest.strip_prefix("settings.") {
+        let (label, role) = match setting {
+            "samples" => ("Monte Carlo samples", Role::Count),
+            "seed" => ("random seed", Role::Count),
+            "bins" => ("histogram bins", Role::Count),
+            "cp" => ("Cp of every dimension", Role::Plain),
+            "k" => ("k (half band in σ)", Role::Plain),
+            "trust" => ("trust fraction (MC σ vs linear)", Role::Plain),
+            "magnification" => ("band drawing magnification", Role::Plain),
+            _ => return None,
+        };
+        return meaning(label, "tolerances", role);
+    }
+    let (field, part) = match rest.rsplit_once('.') {
+        Some((f, p)) if ["tol", "plus", "minus", "upper", "lower", "cp", "k"].contains(&p) => (f, p),
+        _ => (rest, "tol"),
+    };
+    let label = match part {
+        "tol" => format!("± {field}"),
+        "plus" => format!("{field} +"),
+        "minus" => format!("{field} −"),
+        "cp" => format!("{field} Cp"),
+        other => format!("{field} {other}"),
+    };
+    let degrees = field.trim_end_matches(|c: char| c == ']' || c.is_ascii_digit() || c == '[').ends_with("_deg");
+    let role = match part {
+        "cp" | "k" => Role::Plain,
+        "upper" | "lower" => Role::Coordinate,
+        _ => Role::Length,
+    };
+    let role = if degrees && role != Role::Plain { Role::Plain } else { role };
+    meaning(label, "tolerances", role)
 }
 
 /// Every number in `value`, depth first in the table's order: (`--set` path, value,

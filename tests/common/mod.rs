@@ -559,12 +559,15 @@ pub fn reduced_templates() -> Vec<(std::path::PathBuf, Vec<String>)> {
         .map(|path| {
             let text = std::fs::read_to_string(&path).unwrap();
             let kind = text.lines().find_map(|l| l.strip_prefix("kind = ")).unwrap().trim_matches('"').to_string();
-            let set = match kind.as_str() {
+            let mut set = match kind.as_str() {
                 "fourbar" => vec!["phi1_deg.step=30".to_string()],
                 "linkage" => vec!["time.steps=12".to_string()],
                 "chain" => vec!["stackup.samples=20000".to_string()],
                 _ => vec![],
             };
+            if text.lines().any(|l| l.trim() == "[tolerances]") {
+                set.push("tolerances.settings.samples=2000".to_string());
+            }
             (path, set)
         })
         .collect()

@@ -213,20 +213,26 @@ fn text(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, (halign, vali
     d.add(layer, Shape::Text { at, height: h, value: s.to_string(), halign, valign, rotation: rot });
 }
 
-/// Draws the frame, grid, ticks, numbers, labels and title for axes `xt` × `yt`; returns
-/// the map from data to paper coordinates.
+/// Draws the frame, grid, ticks, numbers, labels and title for axes `xt` × `yt` (`xt`
+/// `None`: the x axis runs over [0, `slots`] with no ticks, its categories drawn by the
+/// caller); returns the map from data to paper coordinates.
 fn axes(
     d: &mut Drawing,
     l: &PlotLayers,
     title: &str,
     x_label: &str,
     y_label: &str,
-    xt: &Ticks,
+    xt: Result<&Ticks, f64>,
     yt: &Ticks,
 ) -> impl Fn(f64, f64) -> Point + use<> {
+    let slots = Ticks { lo: 0.0, hi: xt.err().unwrap_or(1.0), step: 1.0, first: 0.0 };
+    let (xt, x_ticks) = match xt {
+        Ok(t) => (t, true),
+        Err(_) => (&slots, false),
+    };
     let map = data_to_paper(xt, yt);
     let (xd, yd) = (xt.decimals(), yt.decimals());
-    for x in xt.values() {
+    for x in xt.values().into_iter().filter(|_| x_ticks) {
         let p = map(x, yt.lo);
         if p.x > 1e-9 && p.x < PLOT_WIDTH - 1e-9 {
             d.add(l.grid, Shape::Line { from: p, to: Point::new(p.x, PLOT_HEIGHT) });
@@ -345,7 +351,7 @@ pub fn diagram_marked(d: &Diagram, marks: &Marks) -> Drawing {
     let (mut dr, l) = new_plot();
     let levels: Vec<&Level> = marks.levels.iter().filter(|v| v.y.is_finite()).collect();
     let (xt, yt) = diagram_ticks(d, &levels);
-    let map = axes(&mut dr, &l, &d.title, &d.x_label, &d.y_label, &xt, &yt);
+    let map = axes(&mut dr, &l, &d.title, &d.x_label, &d.y_label, Ok(&xt), &yt);
     for (i, s) in d.series.iter().enumerate() {
         let color = SERIES_COLORS[i % SERIES_COLORS.len()];
         let mut run: Vec<Point> = Vec::new();
@@ -536,7 +542,7 @@ pub fn histogram(h: &Histogram) -> Drawing {
     let max_count = h.counts.iter().copied().max().unwrap_or(0) as f64;
     let yt = nice_ticks(0.0, max_count.max(1.0), MAX_TICKS, false);
     let yt = Ticks { step: yt.step.max(1.0), ..yt };
-    let map = axes(&mut dr, &l, &h.title, &h.x_label, "count", &xt, &yt);
+    let map = axes(&mut dr, &l, &h.title, &h.x_label, "count", Ok(&xt), &yt);
     let fill = dr.layer("PLOT_BARS", Aci(151), LineType::Continuous);
     for (i, &c) in h.counts.iter().enumerate() {
         if c == 0 {
@@ -580,6 +586,90 @@ pub fn histogram(h: &Histogram) -> Drawing {
             break_grid(&mut dr, &l, &t);
             dr.add(l.text, t);
         }
+    }
+    dr
+}
+
+/// A bar chart of named values (a Pareto chart: values sorted by the caller), with an
+/// optional line over the bars on the same axis (the cumulative share).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Bars {
+    /// Title above the plot.
+    pub title: String,
+    /// y-axis label with unit.
+    pub y_label: String,
+    /// Each bar: its category label, its value (≥ 0) and a note written under the label.
+    pub bars: Vec<(String, f64, String)>,
+    /// A line through one value per bar, at the bars' middles, with its legend.
+    pub line: Option<(String, Vec<f64>)>,
+    /// The y axis reaches at least this (100 for percentages).
+    pub y_max: f64,
+}
+
+/// Draws a bar chart: one filled bar per category (its label and note under the axis,
+/// turned upright when the labels do not fit side by side), the optional line
+/// with round markers, ticks, title and axis labels.
+pub fn bars(b: &Bars) -> Drawing {
+    let (mut dr, l) = new_plot();
+    let n = b.bars.len().max(1);
+    let top =
+        b.bars.iter().map(|x| x.1).chain(b.line.iter().flat_map(|l| l.1.iter().copied())).filter(|v| v.is_finite());
+    let y1 = top.fold(b.y_max, f64::max);
+    let yt = nice_ticks(0.0, y1, MAX_TICKS, false);
+    // The x axis is the bar slots: no numbers, the categories instead.
+    let map = axes(&mut dr, &l, &b.title, "", &b.y_label, Err(n as f64), &yt);
+    let slot = PLOT_WIDTH / n as f64;
+    let fit = |s: &str| text_width(s, NUMBER_H) < 0.9 * slot;
+    // A category that does not fit on one line breaks after its last '.' (a field path,
+    // `rocker.` over `B[0]`) when both parts fit; else every category is turned upright.
+    let lines = |s: &str| -> Vec<String> {
+        match s.rfind('.') {
+            Some(i) if !fit(s) && i + 1 < s.len() => vec![s[..=i].to_string(), s[i + 1..].to_string()],
+            _ => vec![s.to_string()],
+        }
+    };
+    let fits = b.bars.iter().all(|x| lines(&x.0).iter().all(|l| fit(l)) && fit(&x.2));
+    let fill = dr.layer("PLOT_BARS", Aci(151), LineType::Continuous);
+    for (i, (label, v, note)) in b.bars.iter().enumerate() {
+        let (x0, x1) = (i as f64 + 0.2, i as f64 + 0.8);
+        let v = if v.is_finite() { v.max(0.0) } else { 0.0 };
+        let (p0, p1) = (map(x0, 0.0), map(x1, v));
+        let corners = vec![p0, Point::new(p1.x, p0.y), p1, Point::new(p0.x, p1.y)];
+        if v > 0.0 {
+            dr.add(fill, Shape::Filled { points: corners.clone() });
+        }
+        dr.add_colored(l.data, Aci::BLUE, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        let mid = 0.5 * (p0.x + p1.x);
+        let below = Point::new(mid, -TICK - 1.0);
+        // The category under its bar, its note under that (clear of the bars and the line).
+        if fits {
+            let mut at = below;
+            for line in lines(label) {
+                text(&mut dr, l.text, at, NUMBER_H, &line, (HAlign::Center, VAlign::Top), 0.0);
+                at.y -= 1.6 * NUMBER_H;
+            }
+            text(&mut dr, l.text, at, NUMBER_H, note, (HAlign::Center, VAlign::Top), 0.0);
+        } else {
+            let both = if note.is_empty() { label.clone() } else { format!("{label} ({note})") };
+            text(&mut dr, l.text, below, NUMBER_H, &both, (HAlign::Right, VAlign::Middle), std::f64::consts::FRAC_PI_2);
+        }
+    }
+    if let Some((legend, ys)) = &b.line {
+        let pts: Vec<Point> =
+            ys.iter().enumerate().filter(|(_, y)| y.is_finite()).map(|(i, y)| map(i as f64 + 0.5, *y)).collect();
+        for p in &pts {
+            dr.add_colored(l.data, Aci::RED, Shape::Circle { center: *p, radius: 2.0 * CURVE_W });
+        }
+        if pts.len() >= 2 {
+            dr.add_colored(l.data, Aci::RED, Shape::Polyline { points: pts, closed: false, width: CURVE_W });
+        }
+        let (x, y) = (PLOT_WIDTH + 4.0, PLOT_HEIGHT - 5.0);
+        dr.add_colored(
+            l.data,
+            Aci::RED,
+            Shape::Polyline { points: vec![Point::new(x, y), Point::new(x + 8.0, y)], closed: false, width: CURVE_W },
+        );
+        text(&mut dr, l.text, Point::new(x + 10.0, y), TEXT_H, legend, (HAlign::Left, VAlign::Middle), 0.0);
     }
     dr
 }

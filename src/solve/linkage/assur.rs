@@ -817,7 +817,14 @@ impl Plan {
     }
 
     fn new(mech: &Mechanism, g: Group, con_of_joint: &[usize], con_of_driver: &[usize], solver: &Solver) -> (Plan, Op) {
-        let position = match g.kind {
+        let position = Plan::position_of(mech, &g);
+        Plan::compiled(mech, g, con_of_joint, con_of_driver, solver, position)
+    }
+
+    /// How group `g` of `mech` is positioned: its closed form with every number resolved,
+    /// or Newton.
+    fn position_of(mech: &Mechanism, g: &Group) -> Position {
+        match g.kind {
             GroupKind::Driven(DrivenKind::Angle) => {
                 let (u, j, d) = (g.bodies[0], g.joints[0], g.drivers[0]);
                 let pin = pin_of(mech, j, u);
@@ -843,10 +850,21 @@ impl Plan {
                     None => Position::Newton,
                 }
             }
-            GroupKind::Dyad(_) => Plan::dyad(mech, &g).unwrap_or(Position::Newton),
-            GroupKind::Triad => triad_plan(mech, &g).map_or(Position::Newton, |t| Position::Triad(Box::new(t))),
+            GroupKind::Dyad(_) => Plan::dyad(mech, g).unwrap_or(Position::Newton),
+            GroupKind::Triad => triad_plan(mech, g).map_or(Position::Newton, |t| Position::Triad(Box::new(t))),
             GroupKind::General => Position::Newton,
-        };
+        }
+    }
+
+    /// The plan of group `g` positioned by `position`: its constraints' rows and buffers.
+    fn compiled(
+        mech: &Mechanism,
+        g: Group,
+        con_of_joint: &[usize],
+        con_of_driver: &[usize],
+        solver: &Solver,
+        position: Position,
+    ) -> (Plan, Op) {
         let mut cons = Vec::new();
         let mut row = 0;
         let mut rows = Vec::new();
@@ -1205,6 +1223,34 @@ impl AssurSolver {
             work: vec![0.0; most * most + 2 * most],
             sweep: Sweep::default(),
         })
+    }
+
+    /// Changes the mechanism's numbers in place by `change` (body points, joint anchors,
+    /// locked angles: a tolerance study's sample) and recompiles the constraints and the
+    /// groups' closed forms, keeping the decomposition, the groups and every buffer (no
+    /// allocation but a triad's plan). `change` must keep the bodies, joints and drivers
+    /// (their number and kinds); the branches are forgotten, so the next step takes each
+    /// group's root nearest its prediction: [`AssurSolver::resume`] from a state of the
+    /// mechanism before the change, then step, and each group stays in that state's
+    /// assembly mode. Errors as [`Solver::new`] for a driver that no longer fits its joint.
+    pub fn refit(&mut self, change: impl FnOnce(&mut Mechanism)) -> Result<(), LinkageError> {
+        let counts = |m: &Mechanism| (m.bodies.len(), m.joints.len(), m.drivers.len());
+        let before = counts(&self.inner.mech);
+        change(&mut self.inner.mech);
+        if counts(&self.inner.mech) != before {
+            return Err(LinkageError::InvalidModel {
+                what: "a refit changed the number of bodies, joints or drivers".to_string(),
+            });
+        }
+        self.inner.recompile()?;
+        for (plan, op) in self.plans.iter().zip(self.ops.iter_mut()) {
+            op.position = Plan::position_of(&self.inner.mech, &plan.group);
+            op.side = 0.0;
+        }
+        self.fallback = None;
+        self.rates_valid = false;
+        self.dt_prev = None;
+        Ok(())
     }
 
     /// The groups in solving order.

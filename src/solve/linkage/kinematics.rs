@@ -276,6 +276,71 @@ pub struct Solver {
     pub(super) near: Option<NearSingular>,
 }
 
+/// The mechanism's constraints into `cons` (cleared first; its memory kept): joints in
+/// order (a revolute's coincidence, a prismatic's point on line and locked rotation), then
+/// the drivers.
+fn compile(mech: &Mechanism, cons: &mut Vec<Con>) -> Result<(), LinkageError> {
+    cons.clear();
+    for jt in &mech.joints {
+        match jt.kind {
+            JointKind::Revolute { a, b } => cons.push(Con::Coincide { a, b }),
+            JointKind::Prismatic { point, q1, q2, angle } => {
+                let u = (q2.local - q1.local).normalize();
+                cons.push(Con::OnLine { p: point, q: q1, guide: q1.body, u });
+                cons.push(Con::Angle { i: point.body, j: q1.body, offset: angle, law: None });
+            }
+        }
+    }
+    for (k, d) in mech.drivers.iter().enumerate() {
+        match d.target {
+            DriverTarget::BodyAngle(b) => {
+                cons.push(Con::Angle { i: Attach::Body(b), j: Attach::Ground, offset: 0.0, law: Some(k) })
+            }
+            DriverTarget::JointAngle(j) => match mech.joints[j].kind {
+                JointKind::Revolute { a, b } => {
+                    cons.push(Con::Angle { i: b.body, j: a.body, offset: 0.0, law: Some(k) })
+                }
+                JointKind::Prismatic { .. } => {
+                    return Err(LinkageError::InvalidModel {
+                        what: format!("driver `{}`: an angle driver on a prismatic joint", d.name),
+                    });
+                }
+            },
+            DriverTarget::JointDistance(j) => match mech.joints[j].kind {
+                JointKind::Prismatic { point, q1, q2, .. } => {
+                    let u = (q2.local - q1.local).normalize();
+                    cons.push(Con::Distance { p: point, q: q1, guide: q1.body, u, law: k })
+                }
+                JointKind::Revolute { .. } => {
+                    return Err(LinkageError::InvalidModel {
+                        what: format!("driver `{}`: a distance driver on a revolute joint", d.name),
+                    });
+                }
+            },
+        }
+    }
+    Ok(())
+}
+
+/// The names of the constraints' rows, in [`compile`]'s order (for messages).
+fn constraint_names(mech: &Mechanism) -> Vec<String> {
+    let mut names = Vec::new();
+    for jt in &mech.joints {
+        match jt.kind {
+            JointKind::Revolute { .. } => {
+                names.push(format!("revolute joint `{}` (x)", jt.name));
+                names.push(format!("revolute joint `{}` (y)", jt.name));
+            }
+            JointKind::Prismatic { .. } => {
+                names.push(format!("prismatic joint `{}` (point on line)", jt.name));
+                names.push(format!("prismatic joint `{}` (rotation locked)", jt.name));
+            }
+        }
+    }
+    names.extend(mech.drivers.iter().map(|d| format!("driver `{}`", d.name)));
+    names
+}
+
 impl Solver {
     /// Compiles the mechanism; counts degrees of freedom against drivers first.
     pub fn new(mech: Mechanism) -> Result<Solver, LinkageError> {
@@ -295,52 +360,8 @@ impl Solver {
             return Err(LinkageError::DofMismatch { bodies: nb, equations, dof, drivers: mech.drivers.len(), hint });
         }
         let mut cons = Vec::new();
-        let mut names = Vec::new();
-        for jt in &mech.joints {
-            match jt.kind {
-                JointKind::Revolute { a, b } => {
-                    cons.push(Con::Coincide { a, b });
-                    names.push(format!("revolute joint `{}` (x)", jt.name));
-                    names.push(format!("revolute joint `{}` (y)", jt.name));
-                }
-                JointKind::Prismatic { point, q1, q2, angle } => {
-                    let u = (q2.local - q1.local).normalize();
-                    cons.push(Con::OnLine { p: point, q: q1, guide: q1.body, u });
-                    names.push(format!("prismatic joint `{}` (point on line)", jt.name));
-                    cons.push(Con::Angle { i: point.body, j: q1.body, offset: angle, law: None });
-                    names.push(format!("prismatic joint `{}` (rotation locked)", jt.name));
-                }
-            }
-        }
-        for (k, d) in mech.drivers.iter().enumerate() {
-            match d.target {
-                DriverTarget::BodyAngle(b) => {
-                    cons.push(Con::Angle { i: Attach::Body(b), j: Attach::Ground, offset: 0.0, law: Some(k) })
-                }
-                DriverTarget::JointAngle(j) => match mech.joints[j].kind {
-                    JointKind::Revolute { a, b } => {
-                        cons.push(Con::Angle { i: b.body, j: a.body, offset: 0.0, law: Some(k) })
-                    }
-                    JointKind::Prismatic { .. } => {
-                        return Err(LinkageError::InvalidModel {
-                            what: format!("driver `{}`: an angle driver on a prismatic joint", d.name),
-                        });
-                    }
-                },
-                DriverTarget::JointDistance(j) => match mech.joints[j].kind {
-                    JointKind::Prismatic { point, q1, q2, .. } => {
-                        let u = (q2.local - q1.local).normalize();
-                        cons.push(Con::Distance { p: point, q: q1, guide: q1.body, u, law: k })
-                    }
-                    JointKind::Revolute { .. } => {
-                        return Err(LinkageError::InvalidModel {
-                            what: format!("driver `{}`: a distance driver on a revolute joint", d.name),
-                        });
-                    }
-                },
-            }
-            names.push(format!("driver `{}`", d.name));
-        }
+        compile(&mech, &mut cons)?;
+        let names = constraint_names(&mech);
         let mut row_scale = Vec::new();
         for c in &cons {
             for _ in 0..c.rows() {
@@ -378,6 +399,16 @@ impl Solver {
             newton_tol: NEWTON_TOL,
             near: None,
         })
+    }
+
+    /// Recompiles the constraints from the mechanism's numbers after they changed in place
+    /// (points, anchors, locked angles; the same bodies, joints and drivers), keeping the
+    /// buffers.
+    pub(super) fn recompile(&mut self) -> Result<(), LinkageError> {
+        let mut cons = std::mem::take(&mut self.cons);
+        let done = compile(&self.mech, &mut cons);
+        self.cons = cons;
+        done
     }
 
     /// Sets the Newton goal: the largest relative constraint residual at which an
@@ -834,6 +865,39 @@ impl Solver {
             });
         }
         Ok(out)
+    }
+
+    /// Φ(q, t) at the coordinates `q` (raw rows in the solver's constraint order, the
+    /// drivers' rows last): what a tolerance study differences between two mechanisms that
+    /// differ in one dimension. Leaves the solver's own q as it was.
+    pub fn residual_at(&mut self, t: f64, q: &[f64]) -> Result<Vec<f64>, LinkageError> {
+        let saved = std::mem::replace(&mut self.q, q.to_vec());
+        self.eval_law_values(t)?;
+        self.residual();
+        self.q = saved;
+        fill_poses(&self.q, &mut self.poses);
+        Ok(self.phi.clone())
+    }
+
+    /// Solves Φq(q)·x = b at the coordinates `q` for each column b of `cols` (n values
+    /// each, in place), on the equilibrated factorisation the solver steps with; `false`
+    /// (`cols` unchanged) when Φq is singular there. Leaves the solver at `q`.
+    pub fn solve_jacobian_at(&mut self, q: &[f64], cols: &mut [f64]) -> bool {
+        let n = self.n;
+        if q.len() != n || n == 0 || !cols.len().is_multiple_of(n) {
+            return false;
+        }
+        self.q.copy_from_slice(q);
+        fill_poses(&self.q, &mut self.poses);
+        if !self.factor() {
+            return false;
+        }
+        for c in cols.chunks_exact_mut(n) {
+            self.rhs[..n].copy_from_slice(c);
+            self.solve_in_place();
+            c.copy_from_slice(&self.rhs[..n]);
+        }
+        true
     }
 
     /// Relative residual of every constraint row at `state` (for checks).
