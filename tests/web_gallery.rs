@@ -9,13 +9,13 @@
 mod common;
 
 /// The module, as the pages carry it (inflated). Issue 32's target is 1.5 MB, not met yet:
-/// the module was 1.92 MB when the page was rebuilt, 2.06 MB after issues 28, 29 and 31 landed
-/// (bounded expressions and ranges with their messages, LibreCAD's glyph widths, per-group
-/// force figures, placement on the real font's advances): docs/web.md, "Size", says what is in
-/// it and what would take it below 1.5 MB. This bound keeps it from growing further unnoticed.
-const MODULE_MAX_BYTES: usize = 2_100_000;
+/// the module was 1.92 MB when the page was rebuilt, 2.51 MB once issues 28, 29, 31 and the
+/// page's report (33), tolerances (34) and synthesis (35) landed: docs/web.md, "Size", says what
+/// is in it and what would take it below 1.5 MB. This bound keeps it from growing further
+/// unnoticed.
+const MODULE_MAX_BYTES: usize = 2_600_000;
 /// ... and gzipped (what a web server sends): the issue's target is 600 KB, today 764 KB.
-const MODULE_MAX_GZIP_BYTES: usize = 850_000;
+const MODULE_MAX_GZIP_BYTES: usize = 1_050_000;
 /// A run's page: one self-contained file (module inside) that a student can mail.
 const PAGE_MAX_BYTES: u64 = 2_000_000;
 /// The whole gallery: every template's page and the module once.

@@ -144,6 +144,23 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
+         * A synthesis's designed scene (`<name>-design.toml`), to open in the page; `""` for the
+         * other kinds.
+         * @returns {string}
+         */
+        design() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_design(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
          * Each diagram's marker at position `k` as JSON `[[x, y] or null, ...]`, SVG user units.
          * @param {number} k
          * @returns {string}
@@ -440,6 +457,33 @@ let wasm_bindgen = (function(exports) {
             if (ret[1]) {
                 throw takeFromExternrefTable0(ret[0]);
             }
+        }
+        /**
+         * The report of the scene as it stands (`paper` `a4` or `a3`, `positions` as
+         * `--positions` takes it, `""` for the report's choice), as the page offers it: its
+         * pages in one HTML document to print to PDF, its table and JSON (the PDF is the command
+         * line's: this module has no PDF writer).
+         * @param {string} paper
+         * @param {string} positions
+         * @returns {Files}
+         */
+        report(paper, positions) {
+            let ptr0, len0, ptr1, len1;
+            try {
+                ptr0 = passStringToWasm0(paper, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+                len0 = WASM_VECTOR_LEN;
+                ptr1 = passStringToWasm0(positions, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+                len1 = WASM_VECTOR_LEN;
+            } catch (e) {
+                if (ptr1) { wasm.__wbindgen_free(ptr1, len1 * 1, 1); }
+                if (ptr0) { wasm.__wbindgen_free(ptr0, len0 * 1, 1); }
+                throw e;
+            }
+            const ret = wasm.live_report(this.__wbg_ptr, ptr0, len0, ptr1, len1);
+            if (ret[2]) {
+                throw takeFromExternrefTable0(ret[1]);
+            }
+            return Files.__wrap(ret[0]);
         }
         /**
          * Edit mode: `point` dragged to (`x`, `y`) at position `k` changes the dimensions it
