@@ -429,7 +429,10 @@ with Browser() as b:
     _, px, py = next(p for p in grips if p[0] == "P2")
     grid = page.eval("grid()")
     step = grid["step"]
-    target = (round(px + 5 * step, 9), round(py + 2 * step, 9))
+    # A grid point 5 steps right and 2 up of the one nearest P2 (P2 itself need not be on the
+    # grid): the pointer lands on it, not half-way between two, so its snap is not a coin toss.
+    on_grid = lambda v: math.floor(v / step + 0.5) * step
+    target = (round(on_grid(px) + 5 * step, 9), round(on_grid(py) + 2 * step, 9))
     drag(page, "P2", [(px + 2 * step, py + step), target], edit=True)
     settle(page)
     out["synthesis_drag"] = {
