@@ -8,7 +8,6 @@
 use crate::draw::{Bounds, Drawing};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, OnPaper, Sketch};
-use crate::figure::shared::vocab::{bar_value, layer_of, layers, scale_bar};
 use crate::geom::{Point, Vector};
 
 /// What the kinematic diagram page shows.
@@ -55,18 +54,16 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &KinematicPage) -> (Drawi
         sketch::Frame { at, sizes: s, area },
         Marks { numbers: true, driver: true, loads: true },
     );
-    let dims = layer_of(&d, layers::DIMENSIONS);
-    let value = bar_value(at.k_l);
-    scale_bar(
+    page::scale_bar_and_notes(
         &mut d,
-        dims,
-        Point::new(area.min.x + 2.0 * s.text, area.min.y + 0.5 * s.text),
-        value / at.k_l,
-        &format!("{} {}", page::plain(value), p.unit),
+        area,
+        at.k_l,
+        p.unit,
+        right,
+        "Links, joints and loads",
+        &p.lists,
+        0.9 * s.text,
         s,
     );
-    let list_area = page::panel(&mut d, right, "Links, joints and loads", s);
-    let l = page::sheet_layer(&mut d);
-    page::lines(&mut d, l, list_area, &p.lists, 0.9 * s.text, s);
     (d, at.k_l)
 }

@@ -10,7 +10,7 @@
 
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign, parts};
 use crate::figure::shared::sheet::{Paper, SHEET_LAYER};
-use crate::figure::shared::vocab::{Sizes, content_drawing};
+use crate::figure::shared::vocab::{self, Sizes, content_drawing};
 use crate::geom::{Point, Vector};
 
 /// Thinnest stroke on a page, paper mm.
@@ -287,6 +287,37 @@ pub fn rows(area: Bounds, n: usize, gap: f64) -> Vec<Bounds> {
             Bounds { min: Point::new(area.min.x, top - h), max: Point::new(area.max.x, top) }
         })
         .collect()
+}
+
+/// A mechanism page's scale bar at its panel's lower left (`area` in paper mm, the figure at
+/// `k_l` model units per paper mm, `unit` the model's) and its right-hand panel of text lines
+/// titled `title`, each line `line_height` high: the kinematic diagram's and the plan's shared
+/// furniture.
+#[allow(clippy::too_many_arguments)]
+pub fn scale_bar_and_notes(
+    d: &mut Drawing,
+    area: Bounds,
+    k_l: f64,
+    unit: &str,
+    right: Bounds,
+    title: &str,
+    lines_: &[String],
+    line_height: f64,
+    s: Sizes,
+) {
+    let dims = vocab::layer_of(d, vocab::layers::DIMENSIONS);
+    let value = vocab::bar_value(k_l);
+    vocab::scale_bar(
+        d,
+        dims,
+        Point::new(area.min.x + 2.0 * s.text, area.min.y + 0.5 * s.text),
+        value / k_l,
+        &format!("{} {unit}", plain(value)),
+        s,
+    );
+    let notes = panel(d, right, title, s);
+    let l = sheet_layer(d);
+    lines(d, l, notes, lines_, line_height, s);
 }
 
 #[cfg(test)]

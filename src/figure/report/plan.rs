@@ -9,7 +9,7 @@ use crate::figure::linkage as fig;
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, Sketch};
 use crate::figure::shared::labels;
-use crate::figure::shared::vocab::{Sizes, bar_value, layer_of, layers, scale_bar};
+use crate::figure::shared::vocab::{Sizes, layer_of, layers};
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Anchor, Attach, place};
 
@@ -149,18 +149,17 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &PlanPage) -> (Drawing, f
         }
     }
     letters.draw(&mut d, mech);
-    let value = bar_value(at.k_l);
-    scale_bar(
+    page::scale_bar_and_notes(
         &mut d,
-        dims,
-        Point::new(area.min.x + 2.0 * s.text, area.min.y + 0.5 * s.text),
-        value / at.k_l,
-        &format!("{} {}", page::plain(value), p.unit),
+        area,
+        at.k_l,
+        p.unit,
+        right,
+        "Positions, strokes, time ratio",
+        &p.notes,
+        0.85 * s.text,
         s,
     );
-    let notes = page::panel(&mut d, right, "Positions, strokes, time ratio", s);
-    let l = page::sheet_layer(&mut d);
-    page::lines(&mut d, l, notes, &p.notes, 0.85 * s.text, s);
     (d, at.k_l)
 }
 
