@@ -8,7 +8,7 @@ use std::sync::Arc;
 use super::Frame;
 use super::motion::{self, At, Chosen, Cycle, Dead, DriveAxis, MotionReport};
 use crate::Error;
-use crate::figure::linkage::sheet::LinkageSheets;
+use crate::figure::linkage::sheet::{LinkageSheets, row_counts};
 use crate::figure::report::diagrams::MarkedDiagram;
 use crate::figure::report::plan::PlanDimension;
 use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
@@ -418,10 +418,9 @@ pub(super) fn motion_report<'a>(
     let rows = (0..solved.states.len())
         .map(|k| {
             let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
-            run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))).rows.len()
+            row_counts(&run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))))
         })
-        .max()
-        .unwrap_or(0);
+        .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
     let sheets = LinkageSheets::new(
         paper,
         &scene.name,
