@@ -215,7 +215,10 @@ with Browser() as b:
     out["share"] = {"link_length": len(link), "link_prefix": link.split("#", 1)[1][:9],
                     "same_text": shared.eval("document.getElementById('scene').value") == out["redo"]["text"],
                     "same_session": shared.eval("live.scene_text()") == out["redo"]["session"],
+                    # The page that was edited holds its polygons' scales (Session::replace);
+                    # the fresh tab draws the text as the command line does.
                     "same_frames": shared.eval("[0, 90, 200].map((k) => live.frame(k))") == frames,
+                    "frames": shared.eval("[0, 90, 200].map((k) => live.frame(k))"),
                     "notice": text(shared, "notice"), "error": text(shared, "error")}
     shared.screenshot(os.path.join(SHOTS, "fourbar-shared.png"))
     # A link cut short: the page says so and opens its own scene.
