@@ -894,6 +894,8 @@ struct ForceLayout {
     captions: Vec<String>,
     /// Room kept in a cell for the letters around a figure (per frame).
     room: f64,
+    /// The side of the square a figure's scales are chosen for (per frame), model units.
+    cell_side: f64,
     /// Rows of the table.
     row_count: usize,
     /// Width of the table.
@@ -988,6 +990,7 @@ impl ForceLayout {
             extents,
             captions: fs.figures.iter().map(|(c, _)| c.clone()).collect(),
             room,
+            cell_side,
             row_count: fs.row_count,
             table_width: table.x,
             scales,
@@ -1031,10 +1034,11 @@ impl ForceLayout {
                     unit: "N".into(),
                     title: caption.clone(),
                     title_at,
-                    // Over the strip of its scale bar, letter room all round.
-                    area: Bounds {
-                        min: ll + Vector::new(self.room, self.bar_room + self.room),
-                        max: ll + sz - Vector::new(self.room, self.room),
+                    // The square its scales were chosen for, over the strip of its scale
+                    // bar, letter room all round, centred across a cell its caption widened.
+                    area: {
+                        let inset = Vector::new(0.5 * (sz.x - self.cell_side), self.bar_room + self.room);
+                        Bounds { min: ll + inset, max: ll + inset + Vector::new(self.cell_side, self.cell_side) }
                     },
                     bar_at: Some(ll + Vector::new(self.bar_inset, 0.5 * self.bar_room)),
                     scales: self.scales.get(i).cloned().unwrap_or_default(),
