@@ -8,7 +8,9 @@
     reason = "expected values and test data from std's math: independent of the libm the library calls"
 )]
 
-use mechdraw::draw::{Drawing, Shape};
+mod common;
+
+use mechdraw::draw::Drawing;
 use mechdraw::run::{self, Products, RunOptions};
 use mechdraw::scene::{self, Loaded, Override};
 
@@ -83,17 +85,6 @@ fn num(v: &serde_json::Value) -> f64 {
     v.as_f64().unwrap_or_else(|| panic!("not a number: {v}"))
 }
 
-/// The texts of a diagram.
-fn texts(d: &Drawing) -> Vec<String> {
-    d.entities
-        .iter()
-        .filter_map(|e| match &e.shape {
-            Shape::Text { value, .. } => Some(value.clone()),
-            _ => None,
-        })
-        .collect()
-}
-
 fn diagram<'a>(p: &'a Products, stem: &str) -> &'a Drawing {
     &p.diagrams.iter().find(|d| d.stem == stem).unwrap_or_else(|| panic!("no diagram {stem}")).drawing
 }
@@ -144,21 +135,21 @@ fn less_than_a_turn_gives_the_stroke_over_the_motion_and_no_time_ratio() {
 #[test]
 fn diagrams_are_drawn_against_the_crank_angle_with_textbook_names_and_units() {
     let p = products(&slider_crank(""), &[]);
-    let x = texts(diagram(&p, "C.x"));
+    let x = common::texts(diagram(&p, "C.x"));
     for want in ["Displacement of the slider point C", "sC [mm]", "φ1 [°]", "0", "360"] {
         assert!(x.iter().any(|t| t == want), "{want} not in {x:?}");
     }
-    let v = texts(diagram(&p, "C.vx"));
+    let v = common::texts(diagram(&p, "C.vx"));
     assert!(v.iter().any(|t| t == "Velocity of the slider point C") && v.iter().any(|t| t == "vC [m/s]"), "{v:?}");
-    let a = texts(diagram(&p, "C.ax"));
+    let a = common::texts(diagram(&p, "C.ax"));
     assert!(a.iter().any(|t| t == "Acceleration of the slider point C") && a.iter().any(|t| t == "aC [m/s²]"), "{a:?}");
     // y is across the guide: a coordinate diagram.
-    assert!(texts(diagram(&p, "C.y")).iter().any(|t| t == "yC [mm]"));
+    assert!(common::texts(diagram(&p, "C.y")).iter().any(|t| t == "yC [mm]"));
     // The rod is body 2 (ψ2, ω2, ε2); the crank, which the driver turns, gives φ1.
-    let rod = texts(diagram(&p, "rod.angle_deg"));
+    let rod = common::texts(diagram(&p, "rod.angle_deg"));
     assert!(rod.iter().any(|t| t == "ψ2 [°]") && rod.iter().any(|t| t == "Angle of the rod"), "{rod:?}");
-    assert!(texts(diagram(&p, "rod.omega")).iter().any(|t| t == "ω2 [rad/s]"));
-    assert!(texts(diagram(&p, "rod.eps")).iter().any(|t| t == "ε2 [rad/s²]"));
+    assert!(common::texts(diagram(&p, "rod.omega")).iter().any(|t| t == "ω2 [rad/s]"));
+    assert!(common::texts(diagram(&p, "rod.eps")).iter().any(|t| t == "ε2 [rad/s²]"));
     // |v_C| ≤ ω·R·(1 + R/√(L² − …)) < 2π·30·1.5 mm/s ≈ 0.28 m/s: the ticks are in m/s, not
     // mm/s (no tick beyond 1).
     let ticks: Vec<f64> = v.iter().filter_map(|t| t.parse::<f64>().ok()).collect();
@@ -174,10 +165,10 @@ fn diagrams_are_drawn_against_the_crank_angle_with_textbook_names_and_units() {
 #[test]
 fn the_abscissa_and_the_symbols_are_chosen_in_the_scene() {
     let p = products(&slider_crank("[diagrams]\nx = \"t\""), &[]);
-    assert!(texts(diagram(&p, "C.x")).iter().any(|t| t == "t [s]"));
+    assert!(common::texts(diagram(&p, "C.x")).iter().any(|t| t == "t [s]"));
     let with_symbol = slider_crank("").replace("point = \"slider.C\"\n", "point = \"slider.C\"\nsymbol = \"5\"\n");
     let p = products(&with_symbol, &[]);
-    assert!(texts(diagram(&p, "C.x")).iter().any(|t| t == "s5 [mm]"));
+    assert!(common::texts(diagram(&p, "C.x")).iter().any(|t| t == "s5 [mm]"));
     assert!(p.summary["strokes"]["C"]["H"].is_number());
     // Driven along the guide (a distance driver): no angle to draw against.
     let by_distance = slider_crank("[diagrams]\nx = \"angle\"")
@@ -188,7 +179,7 @@ fn the_abscissa_and_the_symbols_are_chosen_in_the_scene() {
     // curves would fold back), "angle" refused, no K.
     let swinging = slider_crank("").replace("law = \"2*pi*t\"", "law = \"sin(2*pi*t)\"");
     let p = products(&swinging, &[]);
-    assert!(texts(diagram(&p, "C.x")).iter().any(|t| t == "t [s]"));
+    assert!(common::texts(diagram(&p, "C.x")).iter().any(|t| t == "t [s]"));
     assert_eq!(p.summary["strokes"]["C"]["K_not_reported"], "the driver turns back within the motion");
     let e = load(&swinging.replacen("[[measure]]", "[diagrams]\nx = \"angle\"\n[[measure]]", 1), &[])
         .unwrap_err()

@@ -186,21 +186,12 @@ fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_leas
         let figures = ForceFigures::new(mech, false);
         let pages: Vec<&Drawing> = p.pages.iter().filter(|g| g.stem.ends_with("-forces")).map(|g| &g.drawing).collect();
         assert_eq!(pages.len(), states.len(), "{stem}");
-        let texts = |d: &Drawing| -> Vec<String> {
-            d.entities
-                .iter()
-                .filter_map(|e| match &e.shape {
-                    Shape::Text { value, .. } => Some(value.clone()),
-                    _ => None,
-                })
-                .collect()
-        };
         for (k, d) in pages.iter().enumerate() {
             let polys = figures.polygons(mech, dynamics, &states[k], &forces[k]);
             check_forces_page(&format!("{stem} sample {k}"), d, &polys);
             // The table of forces is on this page (every reaction of the figures named in
             // it, the driver's moment Me1), not on the mechanism page.
-            let here = texts(d);
+            let here = common::texts(d);
             let names: Vec<&str> = polys.iter().flat_map(|p| p.chain.iter()).map(|nv| nv.name.as_str()).collect();
             for name in names.iter().filter(|n| n.starts_with('R')) {
                 assert!(here.iter().any(|t| t == name), "{stem} sample {k}: no row {name} on the forces page");
@@ -208,7 +199,7 @@ fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_leas
             assert!(here.iter().any(|t| t == "Me1"), "{stem} sample {k}: no row Me1 on the forces page");
         }
         for d in p.pages.iter().filter(|g| g.stem.ends_with("-mechanism")) {
-            assert!(!texts(&d.drawing).iter().any(|t| t == "N"), "{stem}: a force's row on the mechanism page");
+            assert!(!common::texts(&d.drawing).iter().any(|t| t == "N"), "{stem}: a force's row on the mechanism page");
         }
     }
 }

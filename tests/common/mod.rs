@@ -595,3 +595,14 @@ pub fn take_live_page(files: &mut Vec<(String, Vec<u8>)>, name: &str) -> String 
     assert!(page.contains("window.MECHDRAW_WASM = \"") && page.len() > 300_000, "{file}: the module is missing");
     page
 }
+
+/// Every text of a drawing, in drawing order.
+pub fn texts(d: &mechdraw::draw::Drawing) -> Vec<String> {
+    d.entities
+        .iter()
+        .filter_map(|e| match &e.shape {
+            mechdraw::draw::Shape::Text { value, .. } => Some(value.clone()),
+            _ => None,
+        })
+        .collect()
+}
