@@ -188,7 +188,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
     let text_panel = Bounds { max: crate::geom::Point::new(left.max.x, split), ..left };
     // The mechanism's scale, and the groups' (the coarser of it and what their panels need).
     let probe = page::panel_area(mech_panel, true, s);
-    let (lo, hi) = p.sketch.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
+    let (lo, hi) = p.sketch.extent_with_guides(p.q, p.motion, s).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
     let at = sketch::fit(lo, hi, probe, sketch::room(s));
     let n = p.structure.groups.len().max(1);
     let cols = if n <= 2 { 1 } else { 2 };
