@@ -99,7 +99,8 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     // Parts: title, structure, kinematic diagram, plan; for each position asked for the
-    // printed sheets `run --sheets` draws of one position; the run's diagrams four to a page.
+    // printed sheets `run --sheets` draws of one position and the groups' free-body page;
+    // the run's diagrams four to a page.
     let loaded = scene::load(&template("shaper-forces"), &[]).unwrap();
     let diagrams = mechdraw::run::products(&loaded, &Default::default()).unwrap().diagrams.len();
     let one = common::root().join("target/test-report/count-one");
@@ -121,7 +122,7 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
         .status()
         .unwrap();
     assert!(ok.success());
-    let per_position = pdf_pages(&one.join("shaper-forces-sheets.pdf"));
+    let per_position = pdf_pages(&one.join("shaper-forces-sheets.pdf")) + 1;
     let expected = 4 + 3 * per_position + diagrams.div_ceil(4);
     assert_eq!(pdf_pages(&dir.join("shaper-forces-report.pdf")), expected);
     let svgs = std::fs::read_dir(dir.join("report/shaper-forces")).unwrap().count();
@@ -796,6 +797,32 @@ fn the_free_body_figures_draw_every_reaction_of_the_table_to_their_printed_k_f()
             }
         }
         assert!(checked >= 2 * rows.len(), "{name}: {checked} reactions checked");
+    }
+}
+
+#[test]
+fn the_four_bars_free_body_figures_draw_its_reactions_to_their_printed_k_f() {
+    let r = report_of("fourbar-chebyshev", None);
+    let (header, rows) = table(&r);
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name}")) - 1;
+    let pages = position_pages(&r);
+    assert_eq!(pages.len(), rows.len());
+    for ((mark, row), pages) in rows.iter().zip(&pages) {
+        let fb = pages.last().unwrap();
+        let ks = printed_scales(fb, "F");
+        assert!(!ks.is_empty(), "position {mark}: k_F printed");
+        let arrows = arrow_vectors(fb, "FORCES");
+        // R_B is inside the dyad: not drawn. R_A on both groups (−R_A on the crank).
+        for (reaction, signs) in [("R_A", &[1.0, -1.0][..]), ("R_C", &[1.0][..]), ("R_O", &[1.0][..])] {
+            let (fx, fy) = (row[col(&format!("{reaction}_x"))], row[col(&format!("{reaction}_y"))]);
+            let value = libm::hypot(fx, fy);
+            for sg in signs {
+                let found = arrows
+                    .iter()
+                    .any(|(x, y)| ks.iter().any(|k| libm::hypot(x * k - sg * fx, y * k - sg * fy) <= 1e-9 * value));
+                assert!(found, "position {mark}: {sg}·{reaction} = ({fx}, {fy}) not drawn at a printed k_F {ks:?}");
+            }
+        }
     }
 }
 

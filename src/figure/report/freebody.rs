@@ -33,16 +33,30 @@ pub struct FreeBodyPage<'a> {
     pub mechanism: &'a Mechanism,
     /// Its structure (the groups, in solving order).
     pub structure: &'a Structure,
-    /// Masses, loads.
-    pub dynamics: &'a Dynamics,
-    /// The position.
-    pub state: &'a State,
-    /// Its reactions and drivers' forces.
-    pub forces: &'a Forces,
+    /// The position (x, y, φ per body, model units).
+    pub q: &'a [f64],
+    /// What acts on each group from outside it, one per group of `structure`.
+    pub loads: Vec<GroupLoads>,
     /// Which position (`t = 0.25 s`).
     pub position: String,
     /// The length unit (`mm`, `m`).
     pub unit: &'a str,
+    /// The couples' values times this are N·(`unit`) (1 / metres per unit for N·m).
+    pub couple_factor: f64,
+}
+
+/// What acts on every group of `structure` from outside it at one sample of a linkage
+/// ([`body_forces`], [`body_couples`], [`group_loads`]); couples in N·m.
+pub fn linkage_loads(
+    mech: &Mechanism,
+    structure: &Structure,
+    dynamics: &Dynamics,
+    state: &State,
+    f: &Forces,
+) -> Vec<GroupLoads> {
+    let forces = body_forces(mech, dynamics, state, f);
+    let couples = body_couples(mech, dynamics, state, f);
+    structure.groups.iter().map(|g| group_loads(mech, g, &forces, &couples)).collect()
 }
 
 /// A couple acting on a body: where it is drawn, its name, its value (N·m,
@@ -198,8 +212,6 @@ pub const NEGLIGIBLE_REL: f64 = 1e-9;
 /// k_F), the groups in solving order.
 pub fn page(frame: &ReportFrame, title: &PageTitle, p: &FreeBodyPage) -> Drawing {
     let s = frame.sizes;
-    let forces = body_forces(p.mechanism, p.dynamics, p.state, p.forces);
-    let couples = body_couples(p.mechanism, p.dynamics, p.state, p.forces);
     let groups = &p.structure.groups;
     let n = groups.len().max(1);
     let cols = if n == 1 {
@@ -216,9 +228,8 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &FreeBodyPage) -> Drawing
     let mut title = title.clone();
     title.cells = vec![p.position.clone(), "forces to k_F, couples by value".into()];
     let mut d = frame.page(&title);
-    for (g, cell) in groups.iter().zip(&cells) {
-        let loads = group_loads(p.mechanism, g, &forces, &couples);
-        group_panel(&mut d, *cell, p, g, &loads, s);
+    for ((g, loads), cell) in groups.iter().zip(&p.loads).zip(&cells) {
+        group_panel(&mut d, *cell, p, g, loads, s);
     }
     if let Some(spare) = cells.get(groups.len()) {
         let area = page::panel(&mut d, *spare, "How the figures are drawn", s);
@@ -265,7 +276,7 @@ fn notes(p: &FreeBodyPage) -> Vec<String> {
 /// One group's panel.
 fn group_panel(d: &mut Drawing, cell: Bounds, p: &FreeBodyPage, g: &GroupStructure, loads: &GroupLoads, s: Sizes) {
     let gs = group_sketch(p.sketch, p.mechanism, g);
-    let q = p.state.q.as_slice();
+    let q = p.q;
     let probe = page::panel_area(cell, true, s);
     let (lo, hi) = gs.extent(&[q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
     // The group in the panel's middle, the arrows round it.
@@ -304,8 +315,9 @@ fn group_panel(d: &mut Drawing, cell: Bounds, p: &FreeBodyPage, g: &GroupStructu
         }
         names.push((from, to, nv.name.clone(), color, false));
     }
-    let per_nm = 1.0 / p.dynamics.length_unit_m;
-    for (k, c) in loads.couples.iter().enumerate() {
+    let per_nm = p.couple_factor;
+    // A couple of exactly 0 (the crank's inertia moment at constant speed) is not drawn.
+    for (k, c) in loads.couples.iter().filter(|c| c.value != 0.0 && c.value.is_finite()).enumerate() {
         let centre = at.point(c.at);
         let r = 2.5 * s.joint + k as f64 * 0.8 * s.joint;
         let sweep = 1.4 * c.value.signum();

@@ -306,7 +306,7 @@ fn number_links(
             let crossed = segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
             let hit = boxes.iter().filter(|b| b.overlaps(&grown)).count()
                 + placed.iter().filter(|b| b.overlaps(&grown)).count();
-            10 * outside + 4 * near_joint + 4 * hit + crossed
+            100 * outside + 20 * hit + 8 * near_joint + 3 * crossed
         };
         let Some(best) = candidates.iter().copied().map(|c| (cost(c), c)).min_by_key(|(k, _)| *k) else { continue };
         let c = best.1;
@@ -378,6 +378,13 @@ fn number_candidates(pts: &[Point], centre: Point, r: f64, s: Sizes) -> Vec<Poin
                         out.push(on + nrm * reach);
                         out.push(on - nrm * reach);
                     }
+                }
+                // Crowded: round the side's middle, further out.
+                for k in 0..32 {
+                    let turn = std::f64::consts::PI / 8.0 * (k % 16) as f64;
+                    let reach = near + (2.0 + 1.5 * (k / 16) as f64) * s.text;
+                    let dir = Vector::new(libm::cos(turn), libm::sin(turn));
+                    out.push(mid + dir * reach);
                 }
             }
         }

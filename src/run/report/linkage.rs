@@ -477,11 +477,11 @@ pub(super) fn motion_report<'a>(
                     sketch,
                     mechanism: &scene.mechanism,
                     structure,
-                    dynamics,
-                    state,
-                    forces: f,
+                    q: &state.q,
+                    loads: freebody::linkage_loads(&scene.mechanism, structure, dynamics, state, f),
                     position: c.label.clone(),
                     unit,
+                    couple_factor: 1.0 / dynamics.length_unit_m,
                 };
                 let part = format!("5  Position {}: free-body figures of the groups", c.mark);
                 out.push(freebody::page(&frame.frame, &frame.title(&part, first + out.len(), total), &p));
