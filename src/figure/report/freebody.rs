@@ -221,10 +221,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &FreeBodyPage) -> Drawing
     } else {
         3
     };
-    let cells: Vec<Bounds> = page::rows(frame.content, n.div_ceil(cols), 0.0)
-        .into_iter()
-        .flat_map(|r| page::columns(r, cols, 0.0))
-        .collect();
+    let cells = page::grid(frame.content, n, cols);
     let mut title = title.clone();
     title.cells = vec![p.position.clone(), "forces to k_F, couples by value".into()];
     let mut d = frame.page(&title);

@@ -286,6 +286,12 @@ pub use crate::figure::shared::sheet::{scientific, significant};
 /// Distance between lines of text, in letter heights.
 pub const LINE_SPACING: f64 = 1.8;
 
+/// `n` cells of `area`, `cols` to a row, row by row from the top (no gaps).
+pub fn grid(area: Bounds, n: usize, cols: usize) -> Vec<Bounds> {
+    let cols = cols.max(1);
+    rows(area, n.max(1).div_ceil(cols), 0.0).into_iter().flat_map(|r| columns(r, cols, 0.0)).collect()
+}
+
 /// The area split into `n` columns side by side, `gap` mm apart.
 pub fn columns(area: Bounds, n: usize, gap: f64) -> Vec<Bounds> {
     let n = n.max(1);
