@@ -204,8 +204,8 @@ pub fn group_loads(
 /// Share of a panel's smaller side the largest force of its group is drawn as.
 pub const LARGEST_FORCE_SHARE: f64 = 0.3;
 
-/// A force drawn shorter than this fraction of its group's largest is left out (rounding
-/// noise: the inertia force of a slider at rest).
+/// A force below this fraction of its group's largest, or a couple below this fraction of
+/// the page's largest, is left out (rounding noise: the inertia force of a slider at rest).
 pub const NEGLIGIBLE_REL: f64 = 1e-9;
 
 /// The free-body page of one position: a panel per group (its caption with its k_l and
@@ -225,8 +225,11 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &FreeBodyPage) -> Drawing
     let mut title = title.clone();
     title.cells = vec![p.position.clone(), "forces to k_F, couples by value".into()];
     let mut d = frame.page(&title);
+    // A couple below NEGLIGIBLE_REL of the page's largest is rounding noise (an inertia
+    // moment of 1e-15 N·mm where ε = 0): not drawn.
+    let largest_couple = p.loads.iter().flat_map(|l| &l.couples).map(|c| c.value.abs()).fold(0.0, f64::max);
     for ((g, loads), cell) in groups.iter().zip(&p.loads).zip(&cells) {
-        group_panel(&mut d, *cell, p, g, loads, s);
+        group_panel(&mut d, *cell, p, g, loads, NEGLIGIBLE_REL * largest_couple, s);
     }
     if let Some(spare) = cells.get(groups.len()) {
         let area = page::panel(&mut d, *spare, "How the figures are drawn", s);
@@ -271,7 +274,15 @@ fn notes(p: &FreeBodyPage) -> Vec<String> {
 }
 
 /// One group's panel.
-fn group_panel(d: &mut Drawing, cell: Bounds, p: &FreeBodyPage, g: &GroupStructure, loads: &GroupLoads, s: Sizes) {
+fn group_panel(
+    d: &mut Drawing,
+    cell: Bounds,
+    p: &FreeBodyPage,
+    g: &GroupStructure,
+    loads: &GroupLoads,
+    least_couple: f64,
+    s: Sizes,
+) {
     let gs = group_sketch(p.sketch, p.mechanism, g);
     let q = p.q;
     let probe = page::panel_area(cell, true, s);
@@ -313,8 +324,9 @@ fn group_panel(d: &mut Drawing, cell: Bounds, p: &FreeBodyPage, g: &GroupStructu
         names.push((from, to, nv.name.clone(), color, false));
     }
     let per_nm = p.couple_factor;
-    // A couple of exactly 0 (the crank's inertia moment at constant speed) is not drawn.
-    for (k, c) in loads.couples.iter().filter(|c| c.value != 0.0 && c.value.is_finite()).enumerate() {
+    // A couple of 0 (the crank's inertia moment at constant speed) or at rounding level is
+    // not drawn.
+    for (k, c) in loads.couples.iter().filter(|c| c.value.abs() > least_couple && c.value.is_finite()).enumerate() {
         let centre = at.point(c.at);
         let r = 2.5 * s.joint + k as f64 * 0.8 * s.joint;
         let sweep = 1.4 * c.value.signum();
