@@ -125,6 +125,7 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("synthesis-slider-crank.toml", include_str!("../../templates/synthesis-slider-crank.toml")),
     ("triad-driven.toml", include_str!("../../templates/triad-driven.toml")),
     ("triad-popa.toml", include_str!("../../templates/triad-popa.toml")),
+    ("triad-tolerances.toml", include_str!("../../templates/triad-tolerances.toml")),
 ];
 
 /// Writes the live page of every scene (`(file name, text)`) into `dir`, the module once in

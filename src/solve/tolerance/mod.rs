@@ -22,6 +22,7 @@ pub mod linkage;
 pub mod model;
 pub mod monte_carlo;
 pub mod stats;
+pub mod triad;
 
 pub use linear::{Linear, Share};
 pub use model::{Component, Dimension, Distribution, Projection};
