@@ -117,6 +117,7 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("fourbar-tolerances.toml", include_str!("../../templates/fourbar-tolerances.toml")),
     ("shaper-forces.toml", include_str!("../../templates/shaper-forces.toml")),
     ("shaper.toml", include_str!("../../templates/shaper.toml")),
+    ("slider-crank-tolerances.toml", include_str!("../../templates/slider-crank-tolerances.toml")),
     ("slider-crank.toml", include_str!("../../templates/slider-crank.toml")),
     ("synthesis-crank-rocker.toml", include_str!("../../templates/synthesis-crank-rocker.toml")),
     ("synthesis-function.toml", include_str!("../../templates/synthesis-function.toml")),

@@ -364,6 +364,9 @@ impl Study {
         if let Value::Object(m) = &mut extras.summary {
             m.insert("tolerances".into(), self.summary_json(&notes));
         }
+        if !extras.report.is_empty() && !extras.report.ends_with('\n') {
+            extras.report.push('\n');
+        }
         extras.report.push_str(&self.report(&notes));
         if !self.paths.is_empty() {
             extras
@@ -393,7 +396,8 @@ impl Study {
         if self.axis.motion { short(self.axis.values[k]) } else { format!("{}", self.axis.values[k]) }
     }
 
-    /// The position's label on the figures (`φ1 = 123°`).
+    /// The position's label on the figures and in the texts (`φ1 = 123°`, `t = 0.09 s`,
+    /// `mode = 2`).
     fn at_label(&self, k: usize) -> String {
         let gap = if self.axis.unit == "°" || self.axis.unit.is_empty() { "" } else { " " };
         format!("{} = {}{gap}{}", self.axis.symbol, self.position_value(k), self.axis.unit)
@@ -706,11 +710,9 @@ impl Study {
             let Some(k) = self.worst(c) else { continue };
             let l = self.linear[k].as_ref().map(|l| &l[c]);
             out.push_str(&format!(
-                "  {}: widest at {} = {}{}: WC ±{}, RSS ±{}, MC ±{}\n",
+                "  {}: widest at {}: WC ±{}, RSS ±{}, MC ±{}\n",
                 self.comps[c].name,
-                self.axis.symbol,
-                self.position_value(k),
-                self.axis.unit,
+                self.at_label(k),
                 l.map_or("–".into(), |l| short(l.worst_case)),
                 l.map_or("–".into(), |l| short(l.rss)),
                 self.spread(k, c).map_or("–".into(), short),
@@ -730,11 +732,8 @@ impl Study {
     pub fn warnings(&self, notes: &[Vec<String>]) -> Vec<String> {
         let mut w = Vec::new();
         if self.mc.failed_samples > 0 {
-            let at: Vec<String> = (0..self.positions())
-                .filter(|&k| self.mc.failed_at[k] > 0)
-                .take(5)
-                .map(|k| format!("{} = {}{}", self.axis.symbol, self.position_value(k), self.axis.unit))
-                .collect();
+            let at: Vec<String> =
+                (0..self.positions()).filter(|&k| self.mc.failed_at[k] > 0).take(5).map(|k| self.at_label(k)).collect();
             w.push(format!(
                 "tolerances: {} of {} Monte Carlo samples ({:.3} %) cannot be assembled {} (first at {}); they are left out of the statistics",
                 self.mc.failed_samples,
@@ -747,11 +746,9 @@ impl Study {
         let bad: Vec<usize> = (0..self.positions()).filter(|&k| !notes[k].is_empty()).collect();
         if let Some(&k) = bad.first() {
             w.push(format!(
-                "tolerances: the linear result is not to be trusted at {} positions, e.g. {} = {}{}: {}",
+                "tolerances: the linear result is not to be trusted at {} positions, e.g. {}: {}",
                 bad.len(),
-                self.axis.symbol,
-                self.position_value(k),
-                self.axis.unit,
+                self.at_label(k),
                 notes[k].join("; ")
             ));
         }
