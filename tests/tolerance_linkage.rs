@@ -414,7 +414,8 @@ fn the_slider_crank_tolerance_template_runs_end_to_end_and_its_numbers_hold() {
     let set = |d: &mechdraw::solve::tolerance::Dimension, v: f64| -> Override {
         format!("{}={v:e}", d.name).parse().unwrap()
     };
-    let diffs: Vec<(Vec<[f64; 3]>, Vec<[f64; 3]>)> =
+    type Sweep = Vec<[f64; 3]>;
+    let diffs: Vec<(Sweep, Sweep)> =
         tol.study.dims.iter().map(|d| (solve(&[set(d, d.nominal + h)]), solve(&[set(d, d.nominal - h)]))).collect();
     for k in (20..360).step_by(45) {
         for (j, d) in tol.study.dims.iter().enumerate() {
