@@ -22,8 +22,8 @@
 //! other orientation or lies nearer another nominal mode than its own (the modes have merged
 //! and parted) — is counted as not assembled there.
 
-use super::Dimension;
 use super::monte_carlo::Model;
+use super::{Dimension, wrap_deg};
 use crate::geom::{Point, Vector, cross, perp};
 use crate::solve::triad::newton::{NEWTON_RESIDUAL_REL, NewtonOptions, newton_to, solve3, system};
 use crate::solve::triad::{Configuration, Orientation, Triad};
@@ -199,13 +199,6 @@ impl TriadOutput {
             TriadOutput::Triangle => [crate::geom::angle_of(c.a[1] - c.a[0]).to_degrees(), 0.0],
         }
     }
-}
-
-/// An angle difference in degrees wrapped into (−180, 180].
-#[inline]
-fn wrap_deg(d: f64) -> f64 {
-    let w = d - 360.0 * libm::floor((d + 180.0) / 360.0);
-    if w == -180.0 { 180.0 } else { w }
 }
 
 /// The largest distance between corresponding vertices of two configurations.
