@@ -11,7 +11,16 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
     let dir = tempfile::tempdir().unwrap();
     let out = common::mechdraw().args(["bench", "--quick", "--out"]).arg(dir.path()).output().unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    for f in ["chart.svg", "chart.png", "basins.svg", "basins.png", "methods.csv", "outputs.csv", "bench.md"] {
+    for f in [
+        "chart.svg",
+        "chart.png",
+        "basins.svg",
+        "basins.png",
+        "methods.csv",
+        "outputs.csv",
+        "tolerance.csv",
+        "bench.md",
+    ] {
         assert!(dir.path().join(f).is_file(), "{f} missing");
     }
     let csv = std::fs::read_to_string(dir.path().join("methods.csv")).unwrap();
@@ -54,7 +63,19 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
     assert!(err("pattern (secant)", "ε=1e-2") > 1e-9);
     let runs = std::fs::read_to_string(dir.path().join("outputs.csv")).unwrap();
     assert_eq!(runs.lines().count(), 7, "{runs}");
+    // The tolerance Monte Carlo's row (issue 34's target is the 1e5 row of a full bench):
+    // the template's 6 dimensions, 5 components, 360 positions, every sample assembled.
+    let tol = std::fs::read_to_string(dir.path().join("tolerance.csv")).unwrap();
+    let rows: Vec<&str> = tol.lines().collect();
+    assert_eq!(rows[0], "scene,samples,positions,dimensions,components,threads,wall_s,ns_per_sample_position,failed");
+    let f: Vec<&str> = rows[1].split(',').collect();
+    assert_eq!(&f[..5], ["fourbar-tolerances", "10000", "360", "6", "5"], "{tol}");
+    assert_eq!(f[8], "0", "{tol}");
+    let wall: f64 = f[6].parse().unwrap();
+    let ns: f64 = f[7].parse().unwrap();
+    assert!(wall > 0.0 && (ns * 1e-9 * 10000.0 * 360.0 / wall - 1.0).abs() < 1e-3, "{tol}");
     let md = std::fs::read_to_string(dir.path().join("bench.md")).unwrap();
+    assert!(md.contains("| fourbar-tolerances | 10000 | 360 | 6 | 5 |"), "{md}");
     assert!(md.contains("cores") && md.contains("build"), "{md}");
     assert_eq!(md.lines().filter(|l| l.starts_with("- ") && l.contains("per solve")).count(), 3, "{md}");
     let svg = std::fs::read_to_string(dir.path().join("basins.svg")).unwrap();

@@ -368,3 +368,100 @@ fn monte_carlo_samples_equal_fresh_solves_of_the_scene_with_its_fields_set() {
     check_samples_against_fresh_solves("slider-crank.toml", SLIDER_CRANK);
     check_samples_against_fresh_solves("shaper.toml", SHAPER);
 }
+
+/// A CSV as header → column index and rows of fields.
+fn csv(path: &Path) -> (std::collections::HashMap<String, usize>, Vec<Vec<String>>) {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines();
+    let header = lines.next().unwrap().split(',').enumerate().map(|(i, h)| (h.to_string(), i)).collect();
+    (header, lines.map(|l| l.split(',').map(str::to_string).collect()).collect())
+}
+
+#[test]
+fn the_slider_crank_tolerance_template_runs_end_to_end_and_its_numbers_hold() {
+    use mechdraw::scene::Override;
+    use mechdraw::solve::linkage::AssurSolver;
+    const NAME: &str = "slider-crank-tolerances";
+    let path = common::root().join("templates").join(format!("{NAME}.toml"));
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let o = run(&["run", path.to_str().unwrap(), "--no-frames", "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let Scene::Linkage(s) = mechdraw::scene::parse(&text, NAME, &[]).unwrap() else { panic!() };
+    let tol = s.tolerances.as_ref().unwrap();
+    let (piston, rod) = (s.anchor("piston.B").unwrap(), 1usize);
+    // piston.B's x and y and the rod's angle (degrees) at every position, of the scene with
+    // the fields `sets` — solved from scratch by the Assur route, as a run solves it.
+    let solve = |sets: &[Override]| -> Vec<[f64; 3]> {
+        let Scene::Linkage(t) = mechdraw::scene::parse(&text, NAME, sets).unwrap() else { panic!() };
+        let states = AssurSolver::new(t.mechanism.clone()).unwrap().run_positions_states(&t.times).unwrap();
+        states
+            .iter()
+            .map(|st| {
+                let p = st.point(piston);
+                [p.x, p.y, st.q[3 * rod + 2].to_degrees()]
+            })
+            .collect()
+    };
+    // Sensitivities in the contributions table against central differences of the solver
+    // at 8 positions (h = 1e-4 mm: 1e-7 of the mechanism's size).
+    let (h_idx, rows) = csv(&out.join(format!("{NAME}-contributions.csv")));
+    let np = tol.study.dims.len();
+    let per_position = 5 * np; // components x, y, normal, along, rod_deg.value
+    assert_eq!(rows.len(), s.times.len() * per_position);
+    let h = 1e-4;
+    let set = |d: &mechdraw::solve::tolerance::Dimension, v: f64| -> Override {
+        format!("{}={v:e}", d.name).parse().unwrap()
+    };
+    type Sweep = Vec<[f64; 3]>;
+    let diffs: Vec<(Sweep, Sweep)> =
+        tol.study.dims.iter().map(|d| (solve(&[set(d, d.nominal + h)]), solve(&[set(d, d.nominal - h)]))).collect();
+    for k in (20..360).step_by(45) {
+        for (j, d) in tol.study.dims.iter().enumerate() {
+            let (plus, minus) = (&diffs[j].0[k], &diffs[j].1[k]);
+            for (c, name, ch) in [(0, "piston.B.x", 0), (1, "piston.B.y", 1), (4, "rod_deg.value", 2)] {
+                let row = &rows[k * per_position + c * np + j];
+                assert_eq!(
+                    (row[h_idx["component"]].as_str(), row[h_idx["dimension"]].as_str()),
+                    (name, d.name.as_str())
+                );
+                let s_csv: f64 = row[h_idx["sensitivity"]].parse().unwrap();
+                let fd = (plus[ch] - minus[ch]) / (2.0 * h);
+                assert!(
+                    (s_csv - fd).abs() <= 1e-6 * (1.0 + fd.abs()),
+                    "position {k}, ∂{name}/∂{}: table {s_csv} vs central difference {fd}",
+                    d.name
+                );
+            }
+        }
+    }
+    // Monte Carlo against the linear stack-up, per position, away from the dead centres
+    // (0° and 180°: there x is second order in the offsets and σ's ratio is not linear).
+    let (t_idx, trows) = csv(&out.join(format!("{NAME}-tolerances.csv")));
+    let n = tol.study.settings.samples as f64;
+    let f = |row: &[String], col: &str| -> f64 { row[t_idx[col]].parse().unwrap() };
+    for (k, row) in trows.iter().enumerate() {
+        for comp in ["piston.B.x", "piston.B.y", "piston.B.along", "rod_deg.value"] {
+            let (sigma, mc) = (f(row, &format!("{comp}.sigma")), f(row, &format!("{comp}.mc_sigma")));
+            let (wc, shift) = (f(row, &format!("{comp}.wc")), f(row, &format!("{comp}.shift")));
+            let nominal = f(row, &format!("{comp}.nominal"));
+            let (lo, hi) =
+                (f(row, &format!("{comp}.mc_p0.135")) - nominal, f(row, &format!("{comp}.mc_p99.865")) - nominal);
+            // The ±3σ percentiles lie inside the worst case (RSS ≤ WC), to a bin's width.
+            let bin = 4.0 * wc / tol.study.settings.bins as f64;
+            assert!(lo >= shift - wc - bin && hi <= shift + wc + bin, "position {k}, {comp}: [{lo}, {hi}] vs WC {wc}");
+            let crank_deg = 360.0 * k as f64 / 360.0;
+            if (crank_deg % 180.0).min(180.0 - crank_deg % 180.0) < 10.0 || sigma <= 1e-9 * wc {
+                continue;
+            }
+            // σ's sampling error σ/√(2N) (0.5 % at N = 2e4): 5 of them, plus 1 % for the
+            // second order of ±0.1 mm on a 495 mm rod.
+            let bound = 5.0 / (2.0 * n).sqrt() + 0.01;
+            assert!((mc / sigma - 1.0).abs() <= bound, "position {k}, {comp}: MC σ {mc} vs linear σ {sigma}");
+        }
+    }
+    let v = json(&out.join(format!("{NAME}.json")));
+    assert_eq!(v["tolerances"]["failed_samples"], 0);
+    assert_eq!(v["tolerances"]["drawn"], tol.study.settings.samples);
+}

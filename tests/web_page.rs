@@ -674,10 +674,19 @@ fn a_synthesis_page_follows_psi_and_opens_the_design_undo_comes_back() {
     assert!(num(&o["positions"]) > 1.0, "the design's motion");
     assert_eq!(o["design_shown"], false);
     assert!(o["frame0"].as_str().unwrap().contains("<svg"));
-    // Undo: the synthesis as it was.
+    // The design is a scene of its own: its name in the title and in messages, its text kept
+    // under its own key; the synthesis's key keeps the synthesis.
+    assert_eq!(o["title"], "mechdraw live: synthesis-crank-rocker-design.toml", "{o}");
+    assert_eq!(o["heading"], "mechdraw live: synthesis-crank-rocker-design.toml", "{o}");
+    assert_eq!(o["file"], "synthesis-crank-rocker-design.toml");
+    assert_eq!(o["stored_design"], p["design"]);
+    assert_eq!(o["stored_synthesis"], p["text"]);
+    // Undo: the synthesis as it was, under its own name.
     let back = &observed()["synthesis_back"];
     assert_eq!(back["text"], p["text"]);
     assert_eq!(back["design_shown"], true);
+    assert_eq!(back["title"], "mechdraw live: synthesis-crank-rocker.toml", "{back}");
+    assert_eq!(back["file"], "synthesis-crank-rocker.toml");
 }
 
 #[test]

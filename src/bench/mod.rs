@@ -11,6 +11,7 @@ pub mod chart;
 pub mod reference;
 pub mod suite;
 pub mod timing;
+pub mod tolerance;
 
 use crate::draw::svg::{self, SvgOptions};
 use crate::error::Error;
@@ -86,6 +87,8 @@ pub struct BenchReport {
     pub methods: Vec<Measurement>,
     /// Output costs.
     pub runs: Vec<RunCost>,
+    /// The tolerance study's Monte Carlo, timed.
+    pub tolerance: Vec<tolerance::MonteCarloCost>,
     /// Machine and build, one line.
     pub machine: String,
     /// Files written.
@@ -93,6 +96,11 @@ pub struct BenchReport {
     /// Wall time of the whole bench, seconds.
     pub seconds: f64,
 }
+
+/// Samples of the timed tolerance Monte Carlo (issue 34's target row: 1e5 × 360 positions).
+pub const TOLERANCE_SAMPLES: u64 = 100_000;
+/// Samples of the timed tolerance Monte Carlo in a smoke run (`--quick`).
+pub const TOLERANCE_SAMPLES_QUICK: u64 = 10_000;
 
 /// Number of starts per basin strip (every 1°).
 pub const BASIN_STARTS: usize = 360;
@@ -208,6 +216,22 @@ pub fn markdown(report: &BenchReport) -> String {
             sci(m.distance)
         );
     }
+    let _ = writeln!(
+        s,
+        "\nTolerance Monte Carlo over the whole motion (docs/tolerances.md; issue 34's target: 1e5 samples × 360 positions ≤ 5 s):\n"
+    );
+    let _ = writeln!(
+        s,
+        "| scene | samples | positions | dimensions | components | threads | wall | ns per sample-position |"
+    );
+    let _ = writeln!(s, "|---|---:|---:|---:|---:|---:|---:|---:|");
+    for t in &report.tolerance {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {:.3} s | {:.1} |",
+            t.scene, t.samples, t.positions, t.dimensions, t.components, t.threads, t.wall_s, t.ns_per_sample_position
+        );
+    }
     let _ = writeln!(s, "\nWhat a scene's `outputs` cost (whole `mechdraw run`, median of runs):\n");
     let _ = writeln!(s, "| scene | outputs | frames | files | ms per run |");
     let _ = writeln!(s, "|---|---|---|---:|---:|");
@@ -230,7 +254,8 @@ fn png(svg_text: &str, what: &str) -> Result<Vec<u8>, Error> {
 }
 
 /// Runs every measurement and writes, under `opts.out_dir`: `chart.svg`/`.png` (speed
-/// against accuracy), `methods.csv`, `outputs.csv`, `bench.md`, `basins.svg`/`.png`.
+/// against accuracy), `methods.csv`, `outputs.csv`, `tolerance.csv`, `bench.md`,
+/// `basins.svg`/`.png`.
 pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let t0 = std::time::Instant::now();
     let budget = if opts.quick { timing::Budget::QUICK } else { timing::Budget::NORMAL };
@@ -243,6 +268,9 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let runs = suite::outputs_cost(&scratch, if opts.quick { 1 } else { 3 });
     let _ = std::fs::remove_dir_all(&scratch);
     let runs = runs?;
+    // The issue's target row (1e5 samples × 360 positions); a smoke run times 1e4.
+    let tolerance =
+        vec![tolerance::fourbar_monte_carlo(if opts.quick { TOLERANCE_SAMPLES_QUICK } else { TOLERANCE_SAMPLES })?];
 
     let triad = suite::popa_triad()?;
     let modes = reference::triad_modes(&triad)
@@ -260,7 +288,8 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     out.write("basins.svg", basin_svg)?;
     out.write("methods.csv", methods_csv(&methods))?;
     out.write("outputs.csv", runs_csv(&runs))?;
-    let mut report = BenchReport { methods, runs, machine: machine(), written: Vec::new(), seconds: 0.0 };
+    out.write("tolerance.csv", tolerance::csv(&tolerance))?;
+    let mut report = BenchReport { methods, runs, tolerance, machine: machine(), written: Vec::new(), seconds: 0.0 };
     report.seconds = t0.elapsed().as_secs_f64();
     out.write("bench.md", markdown(&report))?;
     report.written = out.commit()?;

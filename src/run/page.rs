@@ -117,6 +117,7 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("fourbar-tolerances.toml", include_str!("../../templates/fourbar-tolerances.toml")),
     ("shaper-forces.toml", include_str!("../../templates/shaper-forces.toml")),
     ("shaper.toml", include_str!("../../templates/shaper.toml")),
+    ("slider-crank-tolerances.toml", include_str!("../../templates/slider-crank-tolerances.toml")),
     ("slider-crank.toml", include_str!("../../templates/slider-crank.toml")),
     ("synthesis-crank-rocker.toml", include_str!("../../templates/synthesis-crank-rocker.toml")),
     ("synthesis-function.toml", include_str!("../../templates/synthesis-function.toml")),
@@ -125,6 +126,7 @@ pub const TEMPLATES: &[(&str, &str)] = &[
     ("synthesis-slider-crank.toml", include_str!("../../templates/synthesis-slider-crank.toml")),
     ("triad-driven.toml", include_str!("../../templates/triad-driven.toml")),
     ("triad-popa.toml", include_str!("../../templates/triad-popa.toml")),
+    ("triad-tolerances.toml", include_str!("../../templates/triad-tolerances.toml")),
 ];
 
 /// Writes the live page of every scene (`(file name, text)`) into `dir`, the module once in

@@ -30,6 +30,9 @@ pub(crate) struct Axis {
     pub unit: &'static str,
     /// The value at each position.
     pub values: Vec<f64>,
+    /// Whether the positions are a motion's (a triad's are its assembly modes: no path, no
+    /// band against a position).
+    pub motion: bool,
 }
 
 /// A watched point's nominal path, for the band drawing.
@@ -77,10 +80,11 @@ pub(crate) struct Study {
     pub labels: Vec<String>,
 }
 
-/// A watched output as the components see it: its name, and for a point the unit
-/// tangents of its nominal path (one per position).
+/// A watched output as the components see it: its name, whether it is a point, and for a
+/// point on a path the unit tangents of its nominal path (one per position).
 struct Watched {
     name: String,
+    point: bool,
     tangents: Option<Vec<Vector>>,
 }
 
@@ -94,18 +98,6 @@ fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Com
     let np = nominal.len() / channels.max(1);
     for w in watched {
         let name = w.name.as_str();
-        let Some(tangents) = &w.tangents else {
-            comps.push(Component {
-                name: format!("{name}.value"),
-                output: name.to_string(),
-                part: "value",
-                absolute: true,
-                projection: Projection::Channel(ch),
-            });
-            ch += 1;
-            continue;
-        };
-        let normals: Vec<Vector> = tangents.iter().map(|t| perp(*t)).collect();
         let comp = |part: &'static str, absolute, projection| Component {
             name: format!("{name}.{part}"),
             output: name.to_string(),
@@ -113,6 +105,19 @@ fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Com
             absolute,
             projection,
         };
+        if !w.point {
+            comps.push(comp("value", true, Projection::Channel(ch)));
+            ch += 1;
+            continue;
+        }
+        let Some(tangents) = &w.tangents else {
+            // A point with no path (a triad's vertex): its coordinates only.
+            comps.push(comp("x", true, Projection::Channel(ch)));
+            comps.push(comp("y", true, Projection::Channel(ch + 1)));
+            ch += 2;
+            continue;
+        };
+        let normals: Vec<Vector> = tangents.iter().map(|t| perp(*t)).collect();
         comps.push(comp("x", true, Projection::Channel(ch)));
         comps.push(comp("y", true, Projection::Channel(ch + 1)));
         paths.push(WatchedPath {
@@ -135,6 +140,7 @@ fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<WatchedPath>
         .iter()
         .map(|o| Watched {
             name: o.name().to_string(),
+            point: matches!(o, FourbarOutput::Point(_)),
             tangents: match o {
                 FourbarOutput::Point(p) => Some(model.tangents(*p)),
                 _ => None,
@@ -175,7 +181,7 @@ impl Analysis {
         Study {
             name: String::new(),
             units: Units::Si,
-            axis: Axis { column: "", symbol: "", unit: "", values: Vec::new() },
+            axis: Axis { column: "", symbol: "", unit: "", values: Vec::new(), motion: true },
             dims: self.dims,
             comps: Vec::new(),
             nominal: self.nominal,
@@ -225,6 +231,7 @@ pub(crate) fn fourbar(
         symbol: "φ1",
         unit: "°",
         values: positions.iter().map(|p| p.phi1.to_degrees()).collect(),
+        motion: true,
     };
     let settings = tol.study.settings.clone();
     Some(Study {
@@ -255,6 +262,7 @@ pub(crate) fn linkage(
         .enumerate()
         .map(|(i, o)| Watched {
             name: o.name().to_string(),
+            point: matches!(o, LinkageOutput::Point { .. }),
             tangents: matches!(o, LinkageOutput::Point { .. }).then(|| model.tangents(i)),
         })
         .collect();
@@ -270,7 +278,7 @@ pub(crate) fn linkage(
             }
         }
     }
-    let axis = Axis { column: "t", symbol: "t", unit: "s", values: scene.times.clone() };
+    let axis = Axis { column: "t", symbol: "t", unit: "s", values: scene.times.clone(), motion: true };
     let labels = tol.study.dims.iter().map(|d| chart_label(scene, &d.name)).collect();
     let settings = tol.study.settings.clone();
     Ok(Some(Study {
@@ -283,6 +291,45 @@ pub(crate) fn linkage(
         labels,
         ..a.into(settings)
     }))
+}
+
+/// The study of a triad scene in its assembly modes `modes` (as the run found them):
+/// `chunks` of its Monte Carlo (all of them for a whole run, a shard's share, or none for a
+/// merge); `None` without `[tolerances]`.
+pub(crate) fn triad(
+    scene: &crate::scene::triad::TriadScene,
+    triad: &crate::solve::triad::Triad,
+    modes: &[crate::solve::triad::Configuration],
+    chunks: Option<Range<u64>>,
+) -> Option<Study> {
+    use crate::solve::tolerance::triad::{TriadModel, TriadOutput};
+    let tol = scene.tolerances.as_ref()?;
+    let model = TriadModel::new(*triad, modes.to_vec(), tol.study.params.clone(), tol.outputs.clone());
+    let watched: Vec<Watched> = model
+        .outputs()
+        .iter()
+        .map(|o| Watched { name: o.name(), point: matches!(o, TriadOutput::Vertex(_)), tangents: None })
+        .collect();
+    let (comps, paths) = components(&watched, model.nominal(), model.channels());
+    let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
+    let axis = Axis {
+        column: "mode",
+        symbol: "mode",
+        unit: "",
+        values: (1..=modes.len()).map(|m| m as f64).collect(),
+        motion: false,
+    };
+    let settings = tol.study.settings.clone();
+    Some(Study {
+        name: scene.name.clone(),
+        units: scene.units,
+        axis,
+        comps,
+        paths,
+        sketch: Vec::new(),
+        labels: Vec::new(),
+        ..a.into(settings)
+    })
 }
 
 /// A linkage field's name on the charts: `ground.C[0]` for `ground.points.C[0]`,
@@ -317,9 +364,16 @@ impl Study {
         if let Value::Object(m) = &mut extras.summary {
             m.insert("tolerances".into(), self.summary_json(&notes));
         }
+        if !extras.report.is_empty() && !extras.report.ends_with('\n') {
+            extras.report.push('\n');
+        }
         extras.report.push_str(&self.report(&notes));
-        extras.sheets.push(super::products::Sheet { suffix: "tolerance-band".into(), drawing: self.band_drawing() });
-        for c in 0..self.comps.len() {
+        if !self.paths.is_empty() {
+            extras
+                .sheets
+                .push(super::products::Sheet { suffix: "tolerance-band".into(), drawing: self.band_drawing() });
+        }
+        for c in (0..self.comps.len()).filter(|_| self.axis.motion) {
             let name = &self.comps[c].name;
             extras.diagrams.push(super::products::Diagram {
                 stem: format!("{name}-band"),
@@ -337,10 +391,16 @@ impl Study {
         self.warnings(&notes)
     }
 
-    /// The position's label on the figures (`φ1 = 123°`).
+    /// Position `k`'s value as the texts write it (a mode's number as a whole number).
+    fn position_value(&self, k: usize) -> String {
+        if self.axis.motion { short(self.axis.values[k]) } else { format!("{}", self.axis.values[k]) }
+    }
+
+    /// The position's label on the figures and in the texts (`φ1 = 123°`, `t = 0.09 s`,
+    /// `mode = 2`).
     fn at_label(&self, k: usize) -> String {
-        let gap = if self.axis.unit == "°" { "" } else { " " };
-        format!("{} = {}{gap}{}", self.axis.symbol, short(self.axis.values[k]), self.axis.unit)
+        let gap = if self.axis.unit == "°" || self.axis.unit.is_empty() { "" } else { " " };
+        format!("{} = {}{gap}{}", self.axis.symbol, self.position_value(k), self.axis.unit)
     }
 
     /// The band drawing of the watched points.
@@ -472,9 +532,17 @@ impl Study {
             .map(|(k, _)| k)
     }
 
-    /// The components whose charts are drawn: a point's normal, an angle's value.
+    /// The components whose charts are drawn: a point's normal (its x and y when it has no
+    /// path: a triad's vertex), an angle's value.
     pub fn headline(&self) -> Vec<usize> {
-        (0..self.comps.len()).filter(|&c| matches!(self.comps[c].part, "normal" | "value")).collect()
+        let has_normal = |o: &str| self.comps.iter().any(|c| c.output == o && c.part == "normal");
+        (0..self.comps.len())
+            .filter(|&c| match self.comps[c].part {
+                "normal" | "value" => true,
+                "x" | "y" => !has_normal(&self.comps[c].output),
+                _ => false,
+            })
+            .collect()
     }
 
     /// `<name>-tolerances.csv`: one row per position (see docs/tolerances.md).
@@ -642,11 +710,9 @@ impl Study {
             let Some(k) = self.worst(c) else { continue };
             let l = self.linear[k].as_ref().map(|l| &l[c]);
             out.push_str(&format!(
-                "  {}: widest at {} = {}{}: WC ±{}, RSS ±{}, MC ±{}\n",
+                "  {}: widest at {}: WC ±{}, RSS ±{}, MC ±{}\n",
                 self.comps[c].name,
-                self.axis.symbol,
-                short(self.axis.values[k]),
-                self.axis.unit,
+                self.at_label(k),
                 l.map_or("–".into(), |l| short(l.worst_case)),
                 l.map_or("–".into(), |l| short(l.rss)),
                 self.spread(k, c).map_or("–".into(), short),
@@ -666,27 +732,23 @@ impl Study {
     pub fn warnings(&self, notes: &[Vec<String>]) -> Vec<String> {
         let mut w = Vec::new();
         if self.mc.failed_samples > 0 {
-            let at: Vec<String> = (0..self.positions())
-                .filter(|&k| self.mc.failed_at[k] > 0)
-                .take(5)
-                .map(|k| format!("{} = {}{}", self.axis.symbol, short(self.axis.values[k]), self.axis.unit))
-                .collect();
+            let at: Vec<String> =
+                (0..self.positions()).filter(|&k| self.mc.failed_at[k] > 0).take(5).map(|k| self.at_label(k)).collect();
             w.push(format!(
-                "tolerances: {} of {} Monte Carlo samples ({:.3} %) cannot be assembled somewhere in the motion (first at {}); they are left out of the statistics",
+                "tolerances: {} of {} Monte Carlo samples ({:.3} %) cannot be assembled {} (first at {}); they are left out of the statistics",
                 self.mc.failed_samples,
                 self.mc.drawn,
                 100.0 * self.mc.failed_samples as f64 / self.mc.drawn.max(1) as f64,
+                if self.axis.motion { "somewhere in the motion" } else { "in some assembly mode" },
                 at.join(", ")
             ));
         }
         let bad: Vec<usize> = (0..self.positions()).filter(|&k| !notes[k].is_empty()).collect();
         if let Some(&k) = bad.first() {
             w.push(format!(
-                "tolerances: the linear result is not to be trusted at {} positions, e.g. {} = {}{}: {}",
+                "tolerances: the linear result is not to be trusted at {} positions, e.g. {}: {}",
                 bad.len(),
-                self.axis.symbol,
-                short(self.axis.values[k]),
-                self.axis.unit,
+                self.at_label(k),
                 notes[k].join("; ")
             ));
         }
@@ -898,6 +960,13 @@ pub(crate) fn study_of(
             Ok(fourbar(s, &motion.positions, chunks))
         }
         Scene::Linkage(s) => linkage(s, chunks).map_err(|e| tolerance_err(file, e)),
+        Scene::Triad(s) => {
+            if s.tolerances.is_none() {
+                return Ok(None);
+            }
+            let r = super::triad::solve(s).map_err(|e| super::solve_err(file)(e.into()))?;
+            Ok(triad(s, &r.triad, &r.modes, chunks))
+        }
         _ => Ok(None),
     }
 }
@@ -917,6 +986,7 @@ fn settings_of(scene: &crate::scene::Scene) -> Option<&Settings> {
     match scene {
         Scene::Fourbar(s) => s.tolerances.as_ref().map(|t| &t.study.settings),
         Scene::Linkage(s) => s.tolerances.as_ref().map(|t| &t.study.settings),
+        Scene::Triad(s) => s.tolerances.as_ref().map(|t| &t.study.settings),
         _ => None,
     }
 }

@@ -396,19 +396,29 @@ pub fn modes_figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawin
 
 pub(super) fn products(scene: &TriadScene, file: &str) -> Result<Products, Error> {
     let results = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
+    let mut extras = products::Extras {
+        sheets: vec![Sheet { suffix: "modes".into(), drawing: modes_figure(scene, &results) }],
+        summary: summary(scene, &results)?,
+        report: report(scene, &results),
+        ..Default::default()
+    };
+    let mut warnings = results.warnings.clone();
+    if let Some(study) = super::tolerance::triad(scene, &results.triad, &results.modes, None) {
+        warnings.extend(study.add_to(&mut extras));
+    }
     Ok(Products {
         name: scene.name.clone(),
         mm_per_unit: super::mm_per_unit(scene.units),
         picture: Picture::Still(figure(scene, &results)),
         positions: None,
-        sheets: vec![Sheet { suffix: "modes".into(), drawing: modes_figure(scene, &results) }],
+        sheets: extras.sheets,
         pages: Vec::new(),
-        diagrams: Vec::new(),
-        tables: Vec::new(),
+        diagrams: extras.diagrams,
+        tables: extras.tables,
         texts: Vec::new(),
-        summary: summary(scene, &results)?,
-        report: report(scene, &results),
-        warnings: results.warnings,
+        summary: extras.summary,
+        report: extras.report,
+        warnings,
         derived: Vec::new(),
         frame_scales: Vec::new(),
     })

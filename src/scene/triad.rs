@@ -27,8 +27,11 @@
 
 use serde::Deserialize;
 
+use super::tolerance::{self, Tolerances};
 use super::{FieldError, MAX_LENGTH, Units, angle_deg, finite_point, positive};
 use crate::geom::{Point, Side};
+use crate::solve::tolerance::triad::{TriadOutput, TriadParam};
+use crate::solve::triad::Triad;
 
 /// Which triangle orientations the all-modes search covers.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
@@ -161,6 +164,10 @@ pub struct RawTriadScene {
     /// (default: the one the pattern method reaches).
     #[serde(default)]
     pub mode: Option<i64>,
+    /// `[tolerances]`: toleranced fields, watched outputs, settings
+    /// ([`super::tolerance`]).
+    #[serde(default)]
+    pub tolerances: Option<toml::Table>,
 }
 
 /// Checked pattern-method settings (angles in radians).
@@ -214,6 +221,63 @@ pub struct TriadScene {
     pub newton: NewtonSettings,
     /// The assembly mode drawn, numbered from 1 (`None`: the pattern method's).
     pub mode: Option<usize>,
+    /// `[tolerances]`, checked (boxed: most scenes have none).
+    pub tolerances: Option<Box<TriadTolerances>>,
+}
+
+/// A triad's checked `[tolerances]`: the study and the watched outputs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TriadTolerances {
+    /// Dimensions, their fields, settings.
+    pub study: Tolerances<TriadParam>,
+    /// The watched outputs (vertices first, then angles; the three vertices when none is
+    /// named).
+    pub outputs: Vec<TriadOutput>,
+}
+
+/// Most assembly modes a triad has (6 per orientation): the positions of its study.
+const MAX_MODES: usize = 12;
+
+/// Checks a triad's `[tolerances]` table.
+fn check_tolerances(t: &toml::Table, triad: &Triad) -> Result<TriadTolerances, FieldError> {
+    let valid = TriadParam::ALL.map(TriadParam::field).join(", ");
+    let resolve = |path: &str| match TriadParam::from_field(path) {
+        Some(p) => Ok((p, p.nominal(triad))),
+        None => Err(format!(
+            "is not a dimension of the triad that a tolerance can act on; valid: {valid} (o1, o2, o3 are points: o1[0] is x, o1[1] is y)"
+        )),
+    };
+    let study = tolerance::check(t, &tolerance::Kind { resolve: &resolve, positions: MAX_MODES, components: (2, 1) })?;
+    let mut outputs = Vec::new();
+    let points = if study.outputs.points.is_empty() && study.outputs.angles.is_empty() {
+        vec!["A1".to_string(), "A2".to_string(), "A3".to_string()]
+    } else {
+        study.outputs.points.clone()
+    };
+    for (i, name) in points.iter().enumerate() {
+        let o = TriadOutput::point(name).ok_or_else(|| {
+            FieldError::new(
+                format!("tolerances.outputs.points[{i}]"),
+                format!("\"{name}\" is not a vertex of the triad; valid: \"A1\", \"A2\", \"A3\""),
+            )
+        })?;
+        outputs.push(o);
+    }
+    for (i, name) in study.outputs.angles.iter().enumerate() {
+        let o = TriadOutput::angle(name).ok_or_else(|| {
+            FieldError::new(
+                format!("tolerances.outputs.angles[{i}]"),
+                format!(
+                    "\"{name}\" is not an angle of the triad; valid: \"phi1\", \"phi2\", \"phi3\" (the links O_iA_i), \"triangle\" (A1 → A2)"
+                ),
+            )
+        })?;
+        outputs.push(o);
+    }
+    if let Some(dup) = outputs.iter().enumerate().find(|(i, o)| outputs[..*i].contains(o)) {
+        return Err(FieldError::new("tolerances.outputs", format!("names {} twice", dup.1.name())));
+    }
+    Ok(TriadTolerances { study, outputs })
 }
 
 /// Largest iteration cap accepted.
@@ -296,7 +360,25 @@ pub fn check(raw: RawTriadScene) -> Result<TriadScene, FieldError> {
             ));
         }
     };
-    Ok(TriadScene { name, units: raw.units, o, r, l12, l23, l13, orientation: raw.orientation, pattern, newton, mode })
+    // The lengths are checked above, so the triad is one.
+    let tolerances = match (&raw.tolerances, Triad::new(o, r, l12, l23, l13)) {
+        (Some(t), Ok(triad)) => Some(Box::new(check_tolerances(t, &triad)?)),
+        _ => None,
+    };
+    Ok(TriadScene {
+        name,
+        units: raw.units,
+        o,
+        r,
+        l12,
+        l23,
+        l13,
+        orientation: raw.orientation,
+        pattern,
+        newton,
+        mode,
+        tolerances,
+    })
 }
 
 #[cfg(test)]

@@ -10,6 +10,7 @@
 //! differentiated directly, φ2 and φ3 as the angles of B − A and B − C.
 
 use super::monte_carlo::Model;
+use super::wrap_deg;
 use crate::geom::{CircleIntersection, Point, Side, Vector, cross, perp};
 use crate::solve::fourbar::{Geometry, Position, Prepared, kinematics_eps};
 
@@ -174,18 +175,6 @@ fn point(pos: &Position, p: FourbarPoint) -> Point {
         FourbarPoint::A => pos.a,
         FourbarPoint::B => pos.b,
         FourbarPoint::M => pos.m,
-    }
-}
-
-/// An angle difference in degrees wrapped into (−180, 180].
-#[inline]
-fn wrap_deg(d: f64) -> f64 {
-    if d > 180.0 {
-        d - 360.0
-    } else if d <= -180.0 {
-        d + 360.0
-    } else {
-        d
     }
 }
 

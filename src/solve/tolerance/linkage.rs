@@ -25,8 +25,8 @@
 //! mode, kept by continuity). A position the sample cannot be assembled at is marked, and
 //! the sweep resumes after it from the nominal's state there.
 
-use super::Dimension;
 use super::monte_carlo::Model;
+use super::{Dimension, wrap_deg};
 use crate::geom::{Point, Vector, perp, rotate};
 use crate::solve::linkage::{AssurSolver, Attach, JointKind, LinkageError, Mechanism, Solver, State};
 
@@ -179,13 +179,6 @@ impl LinkageOutput {
             LinkageOutput::Angle { .. } => 1,
         }
     }
-}
-
-/// An angle difference in degrees wrapped into (−180, 180].
-#[inline]
-fn wrap_deg(d: f64) -> f64 {
-    let w = d - 360.0 * libm::floor((d + 180.0) / 360.0);
-    if w == -180.0 { 180.0 } else { w }
 }
 
 /// Why a linkage cannot be studied.

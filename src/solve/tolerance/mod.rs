@@ -22,6 +22,7 @@ pub mod linkage;
 pub mod model;
 pub mod monte_carlo;
 pub mod stats;
+pub mod triad;
 
 pub use linear::{Linear, Share};
 pub use model::{Component, Dimension, Distribution, Projection};
@@ -41,6 +42,14 @@ pub const DEFAULT_TRUST_FRACTION: f64 = 0.1;
 /// more than this fraction of its distance from the dead point (see
 /// [`Sensitive::dead_point`]).
 pub const DEAD_POINT_FRACTION: f64 = 0.5;
+
+/// An angle difference in degrees wrapped into (−180, 180] (a sample's angle less the
+/// nominal's).
+#[inline]
+pub(crate) fn wrap_deg(d: f64) -> f64 {
+    let w = d - 360.0 * libm::floor((d + 180.0) / 360.0);
+    if w == -180.0 { 180.0 } else { w }
+}
 
 /// A model whose channels have exact sensitivities.
 pub trait Sensitive: Model {

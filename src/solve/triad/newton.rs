@@ -45,7 +45,7 @@ pub struct NewtonSolution {
 
 /// Residuals g and Jacobian J of the three-angle system at `phi`.
 #[inline]
-fn system(t: &Triad, phi: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
+pub(crate) fn system(t: &Triad, phi: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
     let (s1, c1) = libm::sincos(phi[0]);
     let (s2, c2) = libm::sincos(phi[1]);
     let (s3, c3) = libm::sincos(phi[2]);
@@ -79,7 +79,7 @@ fn system(t: &Triad, phi: &[f64; 3]) -> ([f64; 3], [[f64; 3]; 3]) {
 /// Solves `j·x = b` with the adjugate (Cramer's rule sharing the cofactors); `None` when
 /// `j` is singular (see [`SINGULAR_REL`]).
 #[inline]
-fn solve3(j: &[[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
+pub(crate) fn solve3(j: &[[f64; 3]; 3], b: [f64; 3]) -> Option<[f64; 3]> {
     let [[a, bb, c], [d, e, f], [g, h, i]] = *j;
     // Cofactors.
     let c00 = e * i - f * h;
