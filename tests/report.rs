@@ -99,7 +99,8 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     // Parts: title, structure, kinematic diagram, plan; for each position asked for the
-    // printed sheets `run --sheets` draws of one position; the run's diagrams four to a page.
+    // printed sheets `run --sheets` draws of one position and the groups' free-body page;
+    // the run's diagrams four to a page.
     let loaded = scene::load(&template("shaper-forces"), &[]).unwrap();
     let diagrams = mechdraw::run::products(&loaded, &Default::default()).unwrap().diagrams.len();
     let one = common::root().join("target/test-report/count-one");
@@ -121,7 +122,7 @@ fn the_report_has_a_page_per_part_asked_for_and_says_so_in_its_files() {
         .status()
         .unwrap();
     assert!(ok.success());
-    let per_position = pdf_pages(&one.join("shaper-forces-sheets.pdf"));
+    let per_position = pdf_pages(&one.join("shaper-forces-sheets.pdf")) + 1;
     let expected = 4 + 3 * per_position + diagrams.div_ceil(4);
     assert_eq!(pdf_pages(&dir.join("shaper-forces-report.pdf")), expected);
     let svgs = std::fs::read_dir(dir.join("report/shaper-forces")).unwrap().count();
@@ -736,4 +737,131 @@ fn a_redundant_link_is_refused_with_the_formulas_value_and_why_the_joints_leave_
     }
     assert!(!out.exists(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The arrows drawn on layer `layer` of `d`, as vectors (paper mm).
+fn arrow_vectors(d: &Drawing, layer: &str) -> Vec<(f64, f64)> {
+    d.entities
+        .iter()
+        .filter(|e| d.layers[e.layer].name == layer)
+        .filter_map(|e| match &e.shape {
+            Shape::Arrow { from, to, .. } => Some((to.x - from.x, to.y - from.y)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_free_body_figures_draw_every_reaction_of_the_table_to_their_printed_k_f() {
+    for name in ["shaper-forces", "slider-crank"] {
+        let r = report_of(name, None);
+        let (header, rows) = table(&r);
+        let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name}")) - 1;
+        let loaded = scene::load(&template(name), &[]).unwrap();
+        let Scene::Linkage(s) = &loaded.scene else { panic!() };
+        let st = Structure::of(&s.mechanism, None);
+        // A joint between two links of one group has no arrow (its reactions cancel there).
+        let inside = |j: &mechdraw::solve::linkage::Joint| {
+            let bodies = match j.kind {
+                mechdraw::solve::linkage::JointKind::Revolute { a, b } => [a.body, b.body],
+                mechdraw::solve::linkage::JointKind::Prismatic { point, q1, .. } => [q1.body, point.body],
+            };
+            st.groups.iter().any(|g| {
+                bodies
+                    .iter()
+                    .all(|x| matches!(x, mechdraw::solve::linkage::Attach::Body(i) if g.group.bodies.contains(i)))
+            })
+        };
+        let pages = position_pages(&r);
+        assert_eq!(pages.len(), rows.len());
+        let mut checked = 0;
+        for ((mark, row), pages) in rows.iter().zip(&pages) {
+            let fb = pages.last().unwrap();
+            let ks = printed_scales(fb, "F");
+            assert_eq!(ks.len().min(1), 1, "{name} position {mark}: k_F printed");
+            let arrows = arrow_vectors(fb, "FORCES");
+            for j in s.mechanism.joints.iter().filter(|j| !inside(j)) {
+                let (fx, fy) = (row[col(&format!("{}.Fx", j.name))], row[col(&format!("{}.Fy", j.name))]);
+                let value = libm::hypot(fx, fy);
+                if value < 1e-9 {
+                    continue;
+                }
+                // The reaction on either of its links: +R or −R, componentwise to 1e-9.
+                let found = arrows.iter().any(|(x, y)| {
+                    ks.iter().any(|k| {
+                        [1.0, -1.0].iter().any(|sg| libm::hypot(sg * x * k - fx, sg * y * k - fy) <= 1e-9 * value)
+                    })
+                });
+                assert!(found, "{name} position {mark}: R_{} = ({fx}, {fy}) not drawn at a printed k_F", j.name);
+                checked += 1;
+            }
+        }
+        assert!(checked >= 2 * rows.len(), "{name}: {checked} reactions checked");
+    }
+}
+
+#[test]
+fn the_four_bars_free_body_figures_draw_its_reactions_to_their_printed_k_f() {
+    let r = report_of("fourbar-chebyshev", None);
+    let (header, rows) = table(&r);
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap_or_else(|| panic!("{name}")) - 1;
+    let pages = position_pages(&r);
+    assert_eq!(pages.len(), rows.len());
+    for ((mark, row), pages) in rows.iter().zip(&pages) {
+        let fb = pages.last().unwrap();
+        let ks = printed_scales(fb, "F");
+        assert!(!ks.is_empty(), "position {mark}: k_F printed");
+        let arrows = arrow_vectors(fb, "FORCES");
+        // R_B is inside the dyad: not drawn. R_A on both groups (−R_A on the crank).
+        for (reaction, signs) in [("R_A", &[1.0, -1.0][..]), ("R_C", &[1.0][..]), ("R_O", &[1.0][..])] {
+            let (fx, fy) = (row[col(&format!("{reaction}_x"))], row[col(&format!("{reaction}_y"))]);
+            let value = libm::hypot(fx, fy);
+            for sg in signs {
+                let found = arrows
+                    .iter()
+                    .any(|(x, y)| ks.iter().any(|k| libm::hypot(x * k - sg * fx, y * k - sg * fy) <= 1e-9 * value));
+                assert!(found, "position {mark}: {sg}·{reaction} = ({fx}, {fy}) not drawn at a printed k_F {ks:?}");
+            }
+        }
+    }
+}
+
+#[test]
+fn each_groups_free_body_is_in_equilibrium_with_its_couples() {
+    use mechdraw::figure::linkage::forces::body_forces;
+    use mechdraw::figure::report::freebody::{body_couples, group_loads};
+    for name in ["shaper-forces", "slider-crank"] {
+        let loaded = scene::load(&template(name), &[]).unwrap();
+        let Scene::Linkage(s) = &loaded.scene else { panic!() };
+        let dynamics = s.dynamics.as_ref().unwrap();
+        let mut solver = mechdraw::solve::linkage::Solver::new(s.mechanism.clone()).unwrap();
+        let (states, forces) = solver.run_kinetostatics(&s.times, dynamics).unwrap();
+        let st = Structure::of(&s.mechanism, Some(&states[0].q));
+        let m = dynamics.length_unit_m;
+        for k in (0..states.len()).step_by(states.len() / 7 + 1) {
+            let bf = body_forces(&s.mechanism, dynamics, &states[k], &forces[k]);
+            let bc = body_couples(&s.mechanism, dynamics, &states[k], &forces[k]);
+            for g in &st.groups {
+                let loads = group_loads(&s.mechanism, g, &bf, &bc);
+                let (mut sx, mut sy, mut sm, mut scale) = (0.0, 0.0, 0.0, 0.0f64);
+                for (p, nv) in &loads.forces {
+                    sx += nv.v.x;
+                    sy += nv.v.y;
+                    // About the origin, N·m.
+                    let mz = m * (p.x * nv.v.y - p.y * nv.v.x);
+                    sm += mz;
+                    scale = scale.max(nv.v.norm()).max(mz.abs());
+                }
+                for c in &loads.couples {
+                    sm += c.value;
+                    scale = scale.max(c.value.abs());
+                }
+                assert!(
+                    libm::hypot(sx, sy) <= 1e-9 * scale && sm.abs() <= 1e-9 * scale,
+                    "{name} sample {k} {:?}: ΣF = ({sx}, {sy}), ΣM = {sm} (scale {scale})",
+                    g.group.bodies
+                );
+            }
+        }
+    }
 }

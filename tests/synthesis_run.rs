@@ -144,6 +144,15 @@ fn the_live_session_follows_a_change_of_psi_and_hands_over_the_design() {
     let e = s.set("time_ratio", "0.9").unwrap_err().to_string();
     assert!(e.contains("field `time_ratio`"), "{e}");
     assert_eq!(s.frame(0).unwrap(), after);
+    // The page opens the design in the same session under the design's own file name (its
+    // title, storage key and messages): the command line's `<name>-design.toml`.
+    let name = s.design_file().unwrap();
+    assert_eq!(name, "synthesis-crank-rocker-design.toml");
+    s.rename(&name);
+    s.replace(&s.design_text().unwrap()).unwrap();
+    assert!(s.positions() > 1 && s.design_file().is_none(), "the design is a four-bar, animated");
+    let e = s.set("l_ab", "-1").unwrap_err().to_string();
+    assert!(e.contains("synthesis-crank-rocker-design.toml"), "{e}");
 }
 
 /// A grip of the session's edit points.

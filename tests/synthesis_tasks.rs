@@ -129,6 +129,88 @@ fn the_shaper_template_comes_back_from_its_stroke_and_time_ratio() {
     assert!((rocker.points[1].1.norm() - 600.0).abs() < 1e-9 * 600.0);
 }
 
+/// The slider-crank template's crank and rod against a closed form derived apart from the
+/// construction (no circle k, no offset line): in the triangle O1B1B2 of the two extremes,
+/// O1B1 = b − a, O1B2 = b + a, B1B2 = H and the angle at O1 is θ; its area is ½·H·e (O1 lies e
+/// from the guide) = ½·(b − a)(b + a)·sin θ, and the law of cosines gives
+/// H² = (2a)² + 2(b − a)(b + a)(1 − cos θ). Hence
+/// 2a = √(H² − 2·H·e·tan(θ/2)) and 2b = √((2a)² + 4·H·e / sin θ).
+#[test]
+fn the_slider_crank_template_matches_the_triangle_of_its_extremes() {
+    let p = products("synthesis-slider-crank");
+    let req = &p.summary["requirement"];
+    let (h, k) = (req["stroke"].as_f64().unwrap(), req["time_ratio"].as_f64().unwrap());
+    let e = req["choice"]["offset"].as_f64().unwrap();
+    let theta = std::f64::consts::PI * (k - 1.0) / (k + 1.0);
+    let two_a2 = h * h - 2.0 * h * e * libm::tan(theta / 2.0);
+    let a = 0.5 * libm::sqrt(two_a2);
+    let b = 0.5 * libm::sqrt(two_a2 + 4.0 * h * e / libm::sin(theta));
+    let d = &p.summary["design"];
+    let (crank, rod) = (d["crank"].as_f64().unwrap(), d["rod"].as_f64().unwrap());
+    assert!((crank - a).abs() <= 1e-9 * a, "crank {crank}, closed form {a}");
+    assert!((rod - b).abs() <= 1e-9 * b, "rod {rod}, closed form {b}");
+    // The numbers the template quotes.
+    assert!((a - 23.822).abs() < 5e-4 && (b - 58.370).abs() < 5e-4, "a = {a}, b = {b}");
+    // And mechdraw's linkage solver, on the design file, finds H and K over a full crank turn
+    // (the check table, to 1e-9: every_template_design_reaches_…).
+    assert_eq!(p.summary["check"]["ok"], true);
+}
+
+/// The motion template's fixed pivots against the circumcentres of each moving pivot's three
+/// positions, computed here from the requirement alone (the coupler moved as a rigid body from
+/// pose 1 to poses 2 and 3, the circumcentre by its determinant formula; the synthesis
+/// intersects perpendicular bisectors), and the link lengths that follow.
+#[test]
+fn the_motion_template_pivots_are_the_circumcentres_of_its_pivot_positions() {
+    let p = products("synthesis-motion");
+    let req = &p.summary["requirement"];
+    let pt = |v: &serde_json::Value| Point::new(v[0].as_f64().unwrap(), v[1].as_f64().unwrap());
+    let poses: Vec<(Point, f64)> = req["positions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| (pt(&q["at"]), q["angle_deg"].as_f64().unwrap().to_radians()))
+        .collect();
+    // A point fixed to the coupler, given in pose 1, in pose j.
+    let moved = |q1: Point, j: usize| {
+        let (p1, a1) = poses[0];
+        let (pj, aj) = poses[j];
+        let (s, c) = (libm::sin(aj - a1), libm::cos(aj - a1));
+        let v = q1 - p1;
+        Point::new(pj.x + c * v.x - s * v.y, pj.y + s * v.x + c * v.y)
+    };
+    let circumcentre = |q: [Point; 3]| {
+        let [a, b, c] = q;
+        let d = 2.0 * (a.x * (b.y - c.y) + b.x * (c.y - a.y) + c.x * (a.y - b.y));
+        let (a2, b2, c2) = (a.x * a.x + a.y * a.y, b.x * b.x + b.y * b.y, c.x * c.x + c.y * c.y);
+        Point::new(
+            (a2 * (b.y - c.y) + b2 * (c.y - a.y) + c2 * (a.y - b.y)) / d,
+            (a2 * (c.x - b.x) + b2 * (a.x - c.x) + c2 * (b.x - a.x)) / d,
+        )
+    };
+    let (a1, b1) = (pt(&req["a1"]), pt(&req["b1"]));
+    let o1 = circumcentre([a1, moved(a1, 1), moved(a1, 2)]);
+    let c = circumcentre([b1, moved(b1, 1), moved(b1, 2)]);
+    let d = &p.summary["design"];
+    let tol = 1e-9 * 100.0;
+    assert!((pt(&d["o1"]) - o1).norm() <= tol, "O1 {:?}, circumcentre {o1:?}", d["o1"]);
+    assert!((pt(&d["c"]) - c).norm() <= tol, "C {:?}, circumcentre {c:?}", d["c"]);
+    for (field, value) in [
+        ("crank", (a1 - o1).norm()),
+        ("rocker", (b1 - c).norm()),
+        ("coupler", (b1 - a1).norm()),
+        ("ground", (c - o1).norm()),
+    ] {
+        let got = d[field].as_f64().unwrap();
+        assert!((got - value).abs() <= tol, "{field} {got}, closed form {value}");
+    }
+    // The numbers the template quotes.
+    assert!((o1 - Point::new(39.7464, -80.7330)).norm() < 1e-3 && (c - Point::new(59.1416, -80.3900)).norm() < 1e-3);
+    // And mechdraw's four-bar solver, on the design file, puts the coupler on the three
+    // positions (the check table's nine rows, to 1e-9: every_template_design_reaches_…).
+    assert_eq!(p.summary["check"]["ok"], true);
+}
+
 /// The error of a run of `text` (a scene file).
 fn error_of(text: &str) -> Error {
     let loaded = scene::Loaded {

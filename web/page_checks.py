@@ -215,7 +215,10 @@ with Browser() as b:
     out["share"] = {"link_length": len(link), "link_prefix": link.split("#", 1)[1][:9],
                     "same_text": shared.eval("document.getElementById('scene').value") == out["redo"]["text"],
                     "same_session": shared.eval("live.scene_text()") == out["redo"]["session"],
+                    # The page that was edited holds its polygons' scales (Session::replace);
+                    # the fresh tab draws the text as the command line does.
                     "same_frames": shared.eval("[0, 90, 200].map((k) => live.frame(k))") == frames,
+                    "frames": shared.eval("[0, 90, 200].map((k) => live.frame(k))"),
                     "notice": text(shared, "notice"), "error": text(shared, "error")}
     shared.screenshot(os.path.join(SHOTS, "fourbar-shared.png"))
     # A link cut short: the page says so and opens its own scene.
@@ -458,11 +461,15 @@ with Browser() as b:
     out["synthesis_open"] = {"text": page.eval("live.scene_text()"), "editor": page.eval("document.getElementById('scene').value"),
                              "positions": page.eval("live.positions()"), "error": text(page, "error"),
                              "design_shown": page.eval("!document.getElementById('design').hidden"),
-                             "frame0": page.eval("live.frame(0)")}
+                             "frame0": page.eval("live.frame(0)"), "title": page.eval("document.title"),
+                             "heading": text(page, "title"), "file": page.eval("live.file()"),
+                             "stored_design": page.eval("localStorage.getItem('mechdraw/synthesis-crank-rocker-design.toml')"),
+                             "stored_synthesis": page.eval("localStorage.getItem('mechdraw/synthesis-crank-rocker.toml')")}
     page.screenshot(os.path.join(SHOTS, "synthesis-crank-rocker-design.png"))
     page.eval("document.getElementById('undo').click()")
     settle(page)
-    out["synthesis_back"] = {"text": page.eval("live.scene_text()"), "design_shown": page.eval("!document.getElementById('design').hidden")}
+    out["synthesis_back"] = {"text": page.eval("live.scene_text()"), "design_shown": page.eval("!document.getElementById('design').hidden"),
+                             "title": page.eval("document.title"), "file": page.eval("live.file()")}
     note_errors("synthesis-crank-rocker", page)
 
     # ---- The gallery: every page from file:// and from a static web server. ----

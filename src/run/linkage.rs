@@ -16,7 +16,7 @@ use crate::draw::{Aci, LineType};
 use crate::figure::linkage as fig;
 use crate::figure::linkage::forces as linkage_forces;
 use crate::figure::linkage::frame::{LinkageFrames, RunForces, Show};
-use crate::figure::linkage::sheet::LinkageSheets;
+use crate::figure::linkage::sheet::{LinkageSheets, row_counts};
 use crate::figure::shared::animation::{Animation, Drive, DriveState};
 use crate::figure::shared::plot::{Diagram, Series, diagram, track};
 use crate::figure::shared::sheet::{self, Paper};
@@ -1137,9 +1137,8 @@ fn sheet_pages(
 ) -> Vec<products::Page> {
     // The table's rows: the most any sample has (a load acts only on part of the motion).
     let rows = (0..states.len())
-        .map(|k| sheet_table(scene, plots, k, forces.map(|(d, f)| (d, &states[k], &f[k]))).rows.len())
-        .max()
-        .unwrap_or(0);
+        .map(|k| row_counts(&sheet_table(scene, plots, k, forces.map(|(d, f)| (d, &states[k], &f[k])))))
+        .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
     let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows);
     let per = sheets.per_position();
     let total = drawn.len() * per;

@@ -209,6 +209,22 @@ impl Live {
         self.0.design_text().unwrap_or_default()
     }
 
+    /// The file name of a synthesis's designed scene (`<name>-design.toml`: the page's title
+    /// and storage key once the design is opened); `""` for the other kinds.
+    pub fn design_file(&self) -> String {
+        self.0.design_file().unwrap_or_default()
+    }
+
+    /// The scene's file name in messages from now on (`file`, a design's `<name>-design.toml`).
+    pub fn rename(&mut self, file: &str) {
+        self.0.rename(file);
+    }
+
+    /// The scene's file name, as messages give it.
+    pub fn file(&self) -> String {
+        self.0.file().to_string()
+    }
+
     /// The report of the scene as it stands (`paper` `a4` or `a3`, `positions` as
     /// `--positions` takes it, `""` for the report's choice), as the page offers it: its
     /// pages in one HTML document to print to PDF, its table and JSON (the PDF is the command

@@ -167,6 +167,20 @@ impl Session {
         p.texts.iter().find(|t| t.suffix == "-design.toml").map(|t| t.text.clone())
     }
 
+    /// The file name of the scene a synthesis designed (`<name>-design.toml`, as the command
+    /// line writes it: the name "open the design" gives the page); `None` for the other kinds.
+    pub fn design_file(&self) -> Option<String> {
+        // The design's own `name` (`<name>-design`), the stem of the file the command line writes.
+        let table: toml::Table = self.design_text()?.parse().ok()?;
+        table.get("name")?.as_str().map(|n| format!("{n}.toml"))
+    }
+
+    /// Names the scene `file` in messages from now on (the page opened another scene: a
+    /// synthesis's design); the text and the products stay as they are.
+    pub fn rename(&mut self, file: &str) {
+        self.file = file.to_string();
+    }
+
     /// The warnings of the scene as it stands (gaps, dead points, γ_min, ...), one line each.
     pub fn warnings(&self) -> &[String] {
         &self.made.shown().warnings

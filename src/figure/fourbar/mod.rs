@@ -17,7 +17,8 @@
 //! most [`MECHANISM_MM`] long on paper, and the drawing carries `paper_mm_per_unit = 1/k_l`,
 //! so the SVG is sized in millimetres and prints true at 100 %. Letters, arrowheads, joints
 //! and links are sized in paper millimetres ([`Sizes::on_paper`]: letters 3.5 mm). Each
-//! polygon gets a panel beside the mechanism, about as large, holding the polygon at every
+//! polygon gets a smaller panel in a column beside the mechanism (the force panel under
+//! both: the mechanism is the largest figure), holding the polygon at every
 //! position, at a scale per printed millimetre: `k_v = 0.01 (m/s)/mm` means that one
 //! millimetre measured on the printed page stands for 0.01 m/s. Scales are nice numbers
 //! chosen from the largest polygon over the motion. The mechanism panel's title prints k_l
@@ -54,7 +55,7 @@ use crate::figure::shared::vocab::{ground, ground_extent, joint, layer_of, layer
 
 /// Largest extent of the mechanism's motion on paper, millimetres: k_l is the nice value
 /// that draws it at most this long.
-pub const MECHANISM_MM: f64 = 100.0;
+pub const MECHANISM_MM: f64 = 150.0;
 
 /// Which polygons to draw (from the scene's `outputs`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]

@@ -173,7 +173,10 @@ impl FourbarSheets {
             let figures = [dyad_polygon(f), crank_polygon(f)];
             let captions = [DYAD_CAPTION.to_string(), CRANK_CAPTION.to_string()];
             let n = pages.len();
-            pages.push(("forces", forces_page(self.paper, &figures, &captions, title(vec![omega.clone()], n))));
+            pages.push((
+                "forces",
+                forces_page(self.paper, &figures, &captions, title(vec![omega.clone()], n), &Table::default()),
+            ));
         }
         PositionPages { pages }
     }

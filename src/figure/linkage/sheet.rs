@@ -6,7 +6,9 @@
 //! with forces the forces page (one figure per Assur group, or per body when the scene asks,
 //! each at its own k_f, at least 60 mm long) — drawn by the same code as the four-bar's
 //! sheets and the linkage's frames, in paper millimetres. The title block states t, and φ1
-//! and ω1 of an angular driver.
+//! and ω1 of an angular driver. With a forces page, the table of forces (every applied
+//! force, every reaction) is on it, and the mechanism page's table holds the kinematics, so
+//! that the mechanism is drawn large (crank ≥ 25 mm on A4).
 
 use crate::draw::Drawing;
 use crate::geom::{Point, Vector, deg};
@@ -54,7 +56,9 @@ pub struct LinkageSheets {
 
 impl LinkageSheets {
     /// The sheets of a run over `states` on `paper`; `show` as the frames' (the forces page
-    /// only when `forces`); `table_rows` the rows of the mechanism page's table.
+    /// only when `forces`); `table_rows` the most rows of a position's table over the run,
+    /// kinematics and forces ([`row_counts`]): the forces' rows go on the forces page when
+    /// there is one.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         paper: Paper,
@@ -64,9 +68,10 @@ impl LinkageSheets {
         states: &[State],
         show: Show,
         forces: bool,
-        table_rows: usize,
+        table_rows: (usize, usize),
     ) -> LinkageSheets {
         let show = Show { forces: show.forces && forces, ..show };
+        let table_rows = if show.forces { table_rows.0 } else { table_rows.0 + table_rows.1 };
         let s = paper.sizes();
         let motion: Vec<&[f64]> = states.iter().map(|st| st.q.as_slice()).collect();
         // What is drawn: every body point over the motion and the ground guides over their
@@ -155,7 +160,9 @@ impl LinkageSheets {
                 sheet: (first + n, total),
             }
         };
-        let mut pages = vec![("mechanism", self.mechanism_sheet(mech, state, force, table, &title))];
+        let (values, force_rows) = split_table(table);
+        let on_mechanism_page = if self.show.forces { &values } else { table };
+        let mut pages = vec![("mechanism", self.mechanism_sheet(mech, state, force, on_mechanism_page, &title))];
         let units = self.paper_figure.units;
         if self.show.velocity || self.show.acceleration {
             let polys = polygons_of(mech, state, self.show.points.as_deref());
@@ -175,7 +182,7 @@ impl LinkageSheets {
             let figures = self.figures.polygons(mech, dynamics, state, f);
             let captions = self.figures.captions(mech);
             let n = pages.len();
-            pages.push(("forces", forces_page(self.paper, &figures, &captions, title(Vec::new(), n))));
+            pages.push(("forces", forces_page(self.paper, &figures, &captions, title(Vec::new(), n), &force_rows)));
         }
         pages
     }
@@ -234,4 +241,23 @@ impl LinkageSheets {
         fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, omega, &s, around);
         d
     }
+}
+
+/// Whether a row of a position's table is a force's or a moment's (its unit N or N·…).
+fn is_force_row(row: &[String]) -> bool {
+    row.last().is_some_and(|u| u == "N" || u.starts_with("N·"))
+}
+
+/// A position's table split: its kinematics' rows, and its forces' (every applied force,
+/// every reaction, the drivers' forces), each under the same header.
+pub fn split_table(table: &Table) -> (Table, Table) {
+    let (forces, values): (Vec<Vec<String>>, Vec<Vec<String>>) =
+        table.rows.iter().cloned().partition(|r| is_force_row(r));
+    (Table { header: table.header.clone(), rows: values }, Table { header: table.header.clone(), rows: forces })
+}
+
+/// The rows of a position's table: (kinematics, forces), for [`LinkageSheets::new`].
+pub fn row_counts(table: &Table) -> (usize, usize) {
+    let forces = table.rows.iter().filter(|r| is_force_row(r)).count();
+    (table.rows.len() - forces, forces)
 }

@@ -137,10 +137,7 @@ pub fn text_page(frame: &ReportFrame, title: &PageTitle, blocks: &[(String, Bloc
     let mut d = frame.page(title);
     let n = blocks.len().max(1);
     let cols = columns.clamp(1, n);
-    let cells: Vec<Bounds> = page::rows(frame.content, n.div_ceil(cols), 0.0)
-        .into_iter()
-        .flat_map(|r| page::columns(r, cols, 0.0))
-        .collect();
+    let cells = page::grid(frame.content, n, cols);
     for ((t, b), cell) in blocks.iter().zip(cells) {
         let area = page::panel(&mut d, cell, t, s);
         block(&mut d, area, b, s);
@@ -166,10 +163,7 @@ pub fn positions_page(
     } else {
         4
     };
-    let cells: Vec<Bounds> = page::rows(frame.content, n.div_ceil(cols), 0.0)
-        .into_iter()
-        .flat_map(|r| page::columns(r, cols, 0.0))
-        .collect();
+    let cells = page::grid(frame.content, n, cols);
     let k_l = positions.iter().zip(&cells).fold(0.0f64, |k, ((_, sk, q), cell)| {
         let (lo, hi) = sk.extent(&[q.as_slice()]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
         k.max(sketch::fit(lo, hi, page::panel_area(*cell, true, s), sketch::room(s)).k_l)

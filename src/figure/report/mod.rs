@@ -16,6 +16,7 @@
 
 pub mod compose;
 pub mod diagrams;
+pub mod freebody;
 pub mod kinematic;
 pub mod page;
 pub mod plan;

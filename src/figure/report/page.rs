@@ -81,12 +81,33 @@ impl ReportFrame {
     /// The page with its border and title block drawn (paper mm, the content layers of
     /// [`content_drawing`] and the sheet's layer).
     pub fn page(&self, title: &PageTitle) -> Drawing {
+        self.page_with(title, true)
+    }
+
+    /// [`ReportFrame::page`] without the notes strip's frame: for a page whose left panel
+    /// runs down to the border beside the title block ([`ReportFrame::tall_left`]).
+    pub fn open_page(&self, title: &PageTitle) -> Drawing {
+        self.page_with(title, false)
+    }
+
+    /// The left column from the border's top down to its bottom, as wide as the notes strip
+    /// (beside the title block), and the column above the title block.
+    pub fn tall_left(&self) -> (Bounds, Bounds) {
+        let left = Bounds { min: self.border.min, max: Point::new(self.title.min.x, self.border.max.y) };
+        let right = Bounds { min: Point::new(self.title.min.x, self.title.max.y), max: self.border.max };
+        (left, right)
+    }
+
+    /// The page, with or without the notes strip's frame.
+    fn page_with(&self, title: &PageTitle, notes: bool) -> Drawing {
         let s = self.sizes;
         let mut d = content_drawing(DimStyle { text_height: s.text, arrow_size: s.head });
         d.paper_mm_per_unit = Some(1.0);
         let l = sheet_layer(&mut d);
         rect(&mut d, l, self.border, 0.5);
-        rect(&mut d, l, self.notes, 0.0);
+        if notes {
+            rect(&mut d, l, self.notes, 0.0);
+        }
         let tb = self.title;
         rect(&mut d, l, tb, 0.5);
         let row = ROW * s.text;
@@ -264,6 +285,12 @@ pub use crate::figure::shared::sheet::{scientific, significant};
 
 /// Distance between lines of text, in letter heights.
 pub const LINE_SPACING: f64 = 1.8;
+
+/// `n` cells of `area`, `cols` to a row, row by row from the top (no gaps).
+pub fn grid(area: Bounds, n: usize, cols: usize) -> Vec<Bounds> {
+    let cols = cols.max(1);
+    rows(area, n.max(1).div_ceil(cols), 0.0).into_iter().flat_map(|r| columns(r, cols, 0.0)).collect()
+}
 
 /// The area split into `n` columns side by side, `gap` mm apart.
 pub fn columns(area: Bounds, n: usize, gap: f64) -> Vec<Bounds> {

@@ -101,14 +101,32 @@ impl Sketch {
     }
 }
 
-/// The placement that draws `lo`…`hi` (model units) centred in `area` at the finest nice
-/// scale leaving `room` paper mm on each side (for symbols and letters).
+impl Sketch {
+    /// [`Sketch::extent`] at `q` with the ground guides as long as `motion` needs them (a
+    /// slider's whole travel): what a diagram of one position draws.
+    pub fn extent_with_guides(&self, q: &[f64], motion: &[&[f64]], s: Sizes) -> Option<(Vector, Vector)> {
+        let mut b = self.extent(&[q])?;
+        let bare = Sizes { slider_length: 0.0, ..s };
+        for (a, c) in fig::guide_spans(&self.figure, motion, &bare).into_iter().flatten() {
+            for p in [a.coords, c.coords] {
+                if p.x.is_finite() && p.y.is_finite() {
+                    b = (b.0.inf(&p), b.1.sup(&p));
+                }
+            }
+        }
+        Some(b)
+    }
+}
+
+/// The placement that draws `lo`…`hi` (model units) centred in `area` at the finest drafting
+/// scale ([`vocab::drafting_scale`], as the sheets draw a mechanism) leaving `room` paper mm on each side (for symbols and letters).
 pub fn fit(lo: Vector, hi: Vector, area: Bounds, room: Vector) -> OnPaper {
     let inner = Vector::new(
         (area.width() - 2.0 * room.x).max(0.3 * area.width()),
         (area.height() - 2.0 * room.y).max(0.3 * area.height()),
     );
-    let k_l = sheet::finest(hi - lo, inner).per_mm;
+    let full = ((hi - lo).x / inner.x).max((hi - lo).y / inner.y);
+    let k_l = vocab::drafting_scale(full);
     OnPaper { k_l, origin: sheet::centre(lo, hi, k_l, area) }
 }
 
@@ -155,6 +173,10 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     let start = d.entities.len();
     let mech = layer_of(d, layers::MECHANISM);
     fig::mechanism(d, mech, &paper_fig, &pq, &spans, &s);
+    if marks.numbers {
+        // The linkage figure numbers its links for the sheets; the diagram places them itself.
+        strip_link_numbers(d, start, s.text);
+    }
     if marks == Marks::default() {
         return;
     }
@@ -192,32 +214,205 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
         letters.letter(mid, &dm.symbol, s.text, mid - pivot, None);
     }
     if marks.numbers {
-        let mut numbered_ground = false;
-        for (i, b) in paper_fig.bodies.iter().enumerate() {
-            let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(&pq, Attach::Body(i), *v)).collect();
-            let (at, dir) = match pts.as_slice() {
-                [] => continue,
-                [p] => (*p, Vector::new(-1.0, 1.0)),
-                [a, b, ..] if pts.len() == 2 => (Point::from((a.coords + b.coords) / 2.0), perp(b - a)),
-                _ => {
-                    let c = pts.iter().fold(Vector::zeros(), |acc, p| acc + p.coords) / pts.len() as f64;
-                    (Point::from(c), Vector::new(0.0, 1.0))
-                }
-            };
-            letters.circled(at, &(i + 1).to_string(), s.text, dir, 0.5 * s.link);
+        for b in number_links(d, mech, start, &paper_fig, &pq, s, area) {
+            letters.keep_off(b);
         }
-        for j in &paper_fig.joints {
-            if let fig::JointSymbol::Pin { at: a, grounded: true, .. } = j
-                && !numbered_ground
-            {
-                let p = place(&pq, a.body, a.local);
-                let foot = p - Vector::new(0.0, s.joint + s.ground);
-                letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
-                numbered_ground = true;
-            }
+        let ground = paper_fig.joints.iter().find_map(|j| match j {
+            fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
+            _ => None,
+        });
+        if let Some(p) = ground {
+            let foot = p - Vector::new(0.0, s.joint + s.ground);
+            letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
         }
     }
     letters.draw(d, mech);
+}
+
+/// Removes the circled link numbers drawn since entity `start` (a circle of
+/// [`labels::CIRCLE_RADIUS`] letter heights and the number centred in it).
+fn strip_link_numbers(d: &mut Drawing, start: usize, height: f64) {
+    let r = labels::CIRCLE_RADIUS * height;
+    let same = |a: Point, b: Point| (a - b).norm() <= 1e-9 * (1.0 + a.coords.norm());
+    let centres: Vec<Point> = d.entities[start.min(d.entities.len())..]
+        .iter()
+        .filter_map(|e| match e.shape {
+            Shape::Circle { center, radius } if (radius - r).abs() <= 1e-9 * r => Some(center),
+            _ => None,
+        })
+        .collect();
+    let mut k = 0;
+    d.entities.retain(|e| {
+        k += 1;
+        if k <= start {
+            return true;
+        }
+        match &e.shape {
+            Shape::Circle { center, radius } => !((radius - r).abs() <= 1e-9 * r && centres.contains(center)),
+            Shape::Text { at, value, .. } => {
+                !(value.chars().all(|c| c.is_ascii_digit()) && centres.iter().any(|c| same(*c, *at)))
+            }
+            _ => true,
+        }
+    });
+}
+
+/// Gap kept between a link number's circle and a joint, another number or the panel's
+/// edge, in letter heights.
+const NUMBER_GAP: f64 = 0.5;
+
+/// Places each moving link's number in a circle once, beside its longest side near the
+/// side's middle (a plate's number inside it when there is room), clear of every joint, of
+/// every stroke and text drawn since entity `start`, of the other numbers (by
+/// [`NUMBER_GAP`]) and inside `area`; draws them on `layer` and returns their boxes.
+fn number_links(
+    d: &mut Drawing,
+    layer: usize,
+    start: usize,
+    fig: &LinkageFigure,
+    pq: &[f64],
+    s: Sizes,
+    area: Bounds,
+) -> Vec<TextBox> {
+    let r = labels::CIRCLE_RADIUS * s.text;
+    let gap = NUMBER_GAP * s.text;
+    let (segments, mut boxes) = drawn(d, start);
+    let joints: Vec<Point> = fig
+        .joints
+        .iter()
+        .map(|j| match j {
+            fig::JointSymbol::Pin { at, .. } => place(pq, at.body, at.local),
+            fig::JointSymbol::Slider { point, .. } => place(pq, point.body, point.local),
+        })
+        .collect();
+    let body_points =
+        |i: usize| -> Vec<Point> { fig.bodies[i].points.iter().map(|(_, v)| place(pq, Attach::Body(i), *v)).collect() };
+    let all: Vec<Point> = (0..fig.bodies.len()).flat_map(body_points).collect();
+    let centre = Point::from(all.iter().map(|p| p.coords).sum::<Vector>() / all.len().max(1) as f64);
+    let mut placed: Vec<TextBox> = Vec::new();
+    for i in 0..fig.bodies.len() {
+        let pts = body_points(i);
+        let candidates = number_candidates(&pts, centre, r, s);
+        let cost = |c: Point| -> usize {
+            let bx = TextBox { min: c - Vector::new(r, r), max: c + Vector::new(r, r) };
+            let grown = TextBox { min: bx.min - Vector::new(gap, gap), max: bx.max + Vector::new(gap, gap) };
+            let outside = usize::from(
+                bx.min.x < area.min.x + gap
+                    || bx.min.y < area.min.y + gap
+                    || bx.max.x > area.max.x - gap
+                    || bx.max.y > area.max.y - gap,
+            );
+            let near_joint = joints.iter().filter(|j| (*j - c).norm() < r + s.joint + gap).count();
+            let crossed = segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
+            let hit = boxes.iter().filter(|b| b.overlaps(&grown)).count()
+                + placed.iter().filter(|b| b.overlaps(&grown)).count();
+            100 * outside + 20 * hit + 8 * near_joint + 3 * crossed
+        };
+        let Some(best) = candidates.iter().copied().map(|c| (cost(c), c)).min_by_key(|(k, _)| *k) else { continue };
+        let c = best.1;
+        labels::draw_placed(
+            d,
+            layer,
+            &labels::Placed {
+                centre: c,
+                text: (i + 1).to_string(),
+                height: s.text,
+                color: None,
+                leader: None,
+                circled: true,
+            },
+            None,
+        );
+        let bx = TextBox { min: c - Vector::new(r, r), max: c + Vector::new(r, r) };
+        placed.push(bx);
+        boxes.push(bx);
+    }
+    placed
+}
+
+/// Where a link's number may go, best first: inside a plate (three or more points not in
+/// a line) at its centroid; then beside each side, longest first, from its middle outwards,
+/// on the side away from the mechanism's `centre` first, at two distances; a one-point
+/// body (a slider's block) around its point.
+fn number_candidates(pts: &[Point], centre: Point, r: f64, s: Sizes) -> Vec<Point> {
+    let mut out = Vec::new();
+    let near = r + 0.5 * s.link + 0.4 * s.text;
+    match pts {
+        [] => {}
+        [p] => {
+            for k in 0..24 {
+                let a = std::f64::consts::FRAC_PI_4 * (k % 8) as f64 + 0.75 * std::f64::consts::PI;
+                let reach = r + 0.6 * s.slider_length + 0.4 * s.text + (k / 8) as f64 * s.text;
+                out.push(*p + Vector::new(libm::cos(a), libm::sin(a)) * reach);
+            }
+        }
+        _ => {
+            let n = pts.len();
+            // Twice the plate's area: points in a line (a coupler ABM) make a bar.
+            let area2: f64 = (0..n)
+                .map(|k| {
+                    let (a, b) = (pts[k], pts[(k + 1) % n]);
+                    a.x * b.y - b.x * a.y
+                })
+                .sum();
+            let plate = n >= 3 && area2.abs() > 4.0 * (2.0 * r) * (2.0 * r);
+            let mut sides: Vec<(Point, Point)> = if plate {
+                (0..n).map(|k| (pts[k], pts[(k + 1) % n])).collect()
+            } else {
+                pts.windows(2).map(|w| (w[0], w[1])).collect()
+            };
+            if plate {
+                let c = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / n as f64);
+                out.push(c);
+            }
+            sides.sort_by(|a, b| (b.1 - b.0).norm().total_cmp(&(a.1 - a.0).norm()));
+            for (a, b) in sides.into_iter().filter(|(a, b)| (b - a).norm() > 0.0) {
+                let mid = Point::from((a.coords + b.coords) / 2.0);
+                let mut nrm = perp(vocab::unit_or(b - a, Vector::new(1.0, 0.0)));
+                if nrm.dot(&(mid - centre)) < 0.0 {
+                    nrm = -nrm;
+                }
+                for t in [0.5, 0.42, 0.58, 0.34, 0.66, 0.26, 0.74, 0.18, 0.82] {
+                    let on = a + (b - a) * t;
+                    for reach in [near, near + s.text, near + 2.5 * s.text] {
+                        out.push(on + nrm * reach);
+                        out.push(on - nrm * reach);
+                    }
+                }
+                // Crowded: round the side's middle, further out.
+                for k in 0..32 {
+                    let turn = std::f64::consts::PI / 8.0 * (k % 16) as f64;
+                    let reach = near + (2.0 + 1.5 * (k / 16) as f64) * s.text;
+                    let dir = Vector::new(libm::cos(turn), libm::sin(turn));
+                    out.push(mid + dir * reach);
+                }
+            }
+        }
+    }
+    out
+}
+
+/// What is drawn in `d` from entity `start` on, as a number's circle must keep off it:
+/// every stroke as segments (dimensions exploded), every text's and every circle's box.
+fn drawn(d: &Drawing, start: usize) -> (Vec<labels::Segment>, Vec<TextBox>) {
+    let (mut segments, mut boxes) = (Vec::new(), Vec::new());
+    let mut one = |shape: &Shape| match shape {
+        Shape::Text { .. } => boxes.push(text_box(shape)),
+        Shape::Circle { center, radius } => boxes
+            .push(TextBox { min: center - Vector::new(*radius, *radius), max: center + Vector::new(*radius, *radius) }),
+        other => segments.extend(labels::strokes(other)),
+    };
+    for e in &d.entities[start.min(d.entities.len())..] {
+        match &e.shape {
+            dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                for part in parts::explode_dimension(dim, &d.dim_style) {
+                    one(&part);
+                }
+            }
+            other => one(other),
+        }
+    }
+    (segments, boxes)
 }
 
 /// The point of body `b` (on paper at `pq`) farthest from `from`: a crank's pin seen from

@@ -188,13 +188,11 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
     let text_panel = Bounds { max: crate::geom::Point::new(left.max.x, split), ..left };
     // The mechanism's scale, and the groups' (the coarser of it and what their panels need).
     let probe = page::panel_area(mech_panel, true, s);
-    let (lo, hi) = p.sketch.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
+    let (lo, hi) = p.sketch.extent_with_guides(p.q, p.motion, s).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
     let at = sketch::fit(lo, hi, probe, sketch::room(s));
     let n = p.structure.groups.len().max(1);
     let cols = if n <= 2 { 1 } else { 2 };
-    let rows_n = n.div_ceil(cols);
-    let cells: Vec<Bounds> =
-        page::rows(right, rows_n, 0.0).into_iter().flat_map(|r| page::columns(r, cols, 0.0)).collect();
+    let cells = page::grid(right, n, cols);
     let sketches: Vec<Sketch> = p.structure.groups.iter().map(|g| group_sketch(p.sketch, p.mechanism, g)).collect();
     let k_l = sketches.iter().zip(&cells).fold(at.k_l, |k, (gs, cell)| {
         let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));

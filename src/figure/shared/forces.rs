@@ -19,6 +19,7 @@ use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
 use crate::geom::{Point, Vector, cross, perp};
 
 use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::sheet;
 use crate::figure::shared::vocab::{Scale, Sizes, layer_of, layers, unit_or};
 
 /// Colour of the resultants of a polygon (the reactions found from it).
@@ -325,10 +326,12 @@ pub struct Magnitude {
     pub unit: String,
 }
 
-/// The text of a value in a table of magnitudes: three decimals (`52.371 N`, `-1.490 N·m`).
+/// The text of a value in a table of magnitudes: 4 significant digits as the sheets print
+/// them ([`sheet::number`]: `52.37 N`, `-1.490 N·m`, `241779 N·mm`); below 5e-4 (rounding
+/// noise of a force that vanishes) `0`.
 pub fn magnitude_text(value: f64, unit: &str) -> String {
     let v = if value.abs() < 5e-4 { 0.0 } else { value };
-    format!("{v:.3} {unit}")
+    format!("{} {unit}", sheet::number(v))
 }
 
 /// Height of a table's rows' text, in letter heights.
@@ -582,8 +585,9 @@ mod tests {
 
     #[test]
     fn magnitudes_print_with_three_decimals() {
-        assert_eq!(magnitude_text(52.3714, "N"), "52.371 N");
+        assert_eq!(magnitude_text(52.3714, "N"), "52.37 N");
         assert_eq!(magnitude_text(-1.49, "N·m"), "-1.490 N·m");
-        assert_eq!(magnitude_text(-1e-5, "N"), "0.000 N");
+        assert_eq!(magnitude_text(241779.383, "N·mm"), "241779 N·mm");
+        assert_eq!(magnitude_text(-1e-5, "N"), "0 N");
     }
 }

@@ -11,8 +11,9 @@
 //! One [`PanelFrame`] is computed per run from every position, so all frames share one
 //! window and the mechanism keeps one length scale k_l (model units per paper millimetre, a
 //! drafting scale [`drafting_scale`]) that draws its motion at most `mechanism_mm` long on paper;
-//! the drawings carry `paper_mm_per_unit = 1/k_l`. Panels sit in a grid: up to three in a
-//! row, four as 2 × 2; the force panel holds its figures in cells, in rows of up to
+//! the drawings carry `paper_mm_per_unit = 1/k_l`. The polygons' panels stand in a
+//! column right of the mechanism's, smaller than it, the force panel under both: the
+//! mechanism is the largest figure. The force panel holds its figures in cells, in rows of up to
 //! [`FORCE_ROW`] items (the figures, then the table), each under its caption.
 //!
 //! The polygons' scales per printed millimetre (`k_v = 0.01 (m/s)/mm`: one measured
@@ -102,7 +103,7 @@ pub fn scale_caption(before: &str, symbol: &str, per_mm: f64, unit: &str, paper_
 /// Gap between panels on paper, millimetres.
 pub const PANEL_GAP_MM: f64 = 10.0;
 /// Items (force figures and the table) in one row of the force panel.
-pub const FORCE_ROW: usize = 3;
+pub const FORCE_ROW: usize = 4;
 /// Caption of the table of magnitudes.
 pub const TABLE_CAPTION: &str = "Magnitudes";
 /// The longest force drawn on the mechanism, as a fraction of the mechanism's drawn size.
@@ -110,6 +111,12 @@ pub const MECHANISM_FORCE_FRACTION: f64 = 0.35;
 /// Side of a force figure's cell on paper when each figure has its own scale, as a fraction
 /// of a polygon panel's.
 pub const FORCE_CELL_FRACTION: f64 = 0.8;
+/// The smallest a polygon's panel is drawn beside the mechanism, as a fraction of the
+/// mechanism's drawn size.
+pub const SIDE_PANEL_MIN: f64 = 0.4;
+/// The smallest a force figure's cell is drawn (before [`FORCE_CELL_FRACTION`]), as a
+/// fraction of the mechanism's drawn size.
+pub const FORCE_PANEL_MIN: f64 = 0.6;
 /// Room between a polygon and its panel's edges for the letters at its outer points, in
 /// letter heights (each side).
 pub const LETTER_ROOM: f64 = 2.0;
@@ -370,10 +377,27 @@ impl PanelFrame {
         let (pad, below) = (spec.pad)(sizes);
         let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + below + bar_room);
         let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
-        // Each polygon's panel about as large on paper as the mechanism (model units).
-        let target_mm = spec.polygon_mm.unwrap_or(size * paper);
-        let target = target_mm * k_l;
         let room = LETTER_ROOM * sizes.text;
+        let title_room = 2.6 * sizes.text;
+        let gap = PANEL_GAP_MM * k_l;
+        // The polygons' panels stand in a column right of the mechanism, together about as
+        // tall as its panel: smaller than the mechanism, never under SIDE_PANEL_MIN of its
+        // drawn size, nor over `polygon_mm` (model units).
+        let size_mm = size * paper;
+        let cap_mm = spec.polygon_mm.unwrap_or(size_mm).min(size_mm);
+        let side_count = usize::from(spec.velocity.is_some()) + usize::from(spec.acceleration.is_some());
+        let target_mm = if side_count == 0 {
+            cap_mm
+        } else {
+            let n = side_count as f64;
+            let column = (mech_max.y - mech_min.y) + title_room - (n - 1.0) * gap;
+            let each = column / n - title_room - 2.0 * room - bar_room - 0.5 * sizes.text;
+            (each * paper).min(cap_mm).max(SIDE_PANEL_MIN * size_mm)
+        };
+        let target = target_mm * k_l;
+        // The force figures' cells, in the panel under both, as large as a polygon's or
+        // FORCE_PANEL_MIN of the mechanism.
+        let force_mm = cap_mm.min(target_mm.max(FORCE_PANEL_MIN * size_mm));
         let union = |e: &[Option<Extent>]| e.iter().copied().fold(None, Extent::union);
         let fixed_scale = |e: Option<Extent>| nice_scale(e.map_or(0.0, |e| e.size()) / target_mm);
         let length = units.length;
@@ -399,7 +423,7 @@ impl PanelFrame {
         }
         let mut force_cells = None;
         if let Some(fs) = &spec.forces {
-            let cells = ForceLayout::arrange(spec, fs, sizes, target_mm, k_l);
+            let cells = ForceLayout::arrange(spec, fs, sizes, force_mm, k_l);
             // The forces drawn on the mechanism, with their names, stay in its panel.
             let scale = cells.mechanism_scale;
             let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
@@ -426,9 +450,6 @@ impl PanelFrame {
             force_cells = Some(cells);
         }
 
-        // Grid: up to three panels in a row, four as 2 × 2.
-        let title_room = 2.6 * sizes.text;
-        let gap = PANEL_GAP_MM * k_l;
         let mech_title = Title::Scale(match (&force_cells, spec.scales) {
             (Some(c), ScaleChoice::PerFrame) => length_caption("Mechanism   ", k_l, units).then(scale_caption(
                 ", forces ",
@@ -451,29 +472,14 @@ impl PanelFrame {
         for (p, ..) in &pending {
             boxes.push((p.title.clone(), wide_enough(p.content + Vector::new(0.0, bar_room), &p.title, "")));
         }
-        let cols = if boxes.len() == 4 { 2 } else { boxes.len() };
-        let rows = boxes.len().div_ceil(cols);
-        let mut col_w = vec![0.0f64; cols];
-        let mut row_h = vec![0.0f64; rows];
-        for (i, (_, b)) in boxes.iter().enumerate() {
-            col_w[i % cols] = col_w[i % cols].max(b.x);
-            row_h[i / cols] = row_h[i / cols].max(b.y + title_room);
-        }
-        // Each cell's panel: as wide as its column, as tall as its row; row 0 on top.
-        let mut rects = Vec::new();
-        for i in 0..boxes.len() {
-            let (r, c) = (i / cols, i % cols);
-            let x = col_w[..c].iter().sum::<f64>() + gap * c as f64;
-            let top = -row_h[..r].iter().sum::<f64>() - gap * r as f64;
-            rects.push((Point::new(x, top - row_h[r]), Point::new(x + col_w[c], top)));
-        }
+        let which: Vec<Which> = pending.iter().map(|(p, ..)| p.which).collect();
+        let rects = arrange_panels(&boxes, &which, title_room, gap);
         // The mechanism panel must sit where the mechanism is: its content hangs from under
-        // its title.
-        let shift = Point::new(mech_min.x, mech_max.y + title_room) - Point::new(rects[0].0.x, rects[0].1.y);
-        for r in rects.iter_mut() {
-            r.0 += shift;
-            r.1 += shift;
-        }
+        // its title, centred in the panel when the panel is larger.
+        let spare = (rects[0].1 - rects[0].0) - (mech_max - mech_min) - Vector::new(0.0, title_room);
+        let shift = Point::new(mech_min.x - 0.5 * spare.x.max(0.0), mech_max.y + title_room + 0.5 * spare.y.max(0.0))
+            - Point::new(rects[0].0.x, rects[0].1.y);
+        let rects: Vec<(Point, Point)> = rects.into_iter().map(|(a, b)| (a + shift, b + shift)).collect();
         let bar_at = |ll: Point| ll + Vector::new(2.0 * sizes.small_text(), 0.5 * bar_room + 0.5 * sizes.text);
         let length_bar = bar_value(k_l);
         let mut panels = vec![(boxes[0].0.clone(), rects[0].0, rects[0].1)];
@@ -795,6 +801,38 @@ pub struct FrameScales {
     pub k_f: Vec<f64>,
 }
 
+/// The panels' rectangles (lower-left, upper-right; the mechanism's top-left at the
+/// origin) for content boxes `boxes` (the mechanism's first, then one per `which`): the
+/// mechanism on the left, the polygons' panels stacked in a column right of it (the shorter
+/// of the two stretched to the other's height, the spare height shared), the force panel
+/// under both, as wide as they are together.
+fn arrange_panels(boxes: &[(Title, Vector)], which: &[Which], title_room: f64, gap: f64) -> Vec<(Point, Point)> {
+    let mech = boxes[0].1 + Vector::new(0.0, title_room);
+    let side: Vec<usize> = (0..which.len()).filter(|&j| which[j] != Which::Forces).map(|j| j + 1).collect();
+    let col_w = side.iter().map(|&i| boxes[i].1.x).fold(0.0, f64::max);
+    let stack: f64 =
+        side.iter().map(|&i| boxes[i].1.y + title_room).sum::<f64>() + gap * side.len().saturating_sub(1) as f64;
+    let height = mech.y.max(stack);
+    let spare = if side.is_empty() { 0.0 } else { (height - stack) / side.len() as f64 };
+    let mut rects = vec![(Point::new(0.0, -height), Point::new(mech.x, 0.0)); boxes.len()];
+    let x = mech.x + gap;
+    let mut top = 0.0;
+    for &i in &side {
+        let h = boxes[i].1.y + title_room + spare;
+        rects[i] = (Point::new(x, top - h), Point::new(x + col_w, top));
+        top -= h + gap;
+    }
+    let width = if side.is_empty() { mech.x } else { x + col_w };
+    for (j, w) in which.iter().enumerate() {
+        if *w == Which::Forces {
+            let b = boxes[j + 1].1;
+            let top = -height - gap;
+            rects[j + 1] = (Point::new(0.0, top - b.y - title_room), Point::new(width.max(b.x), top));
+        }
+    }
+    rects
+}
+
 /// A left-aligned, baseline text on `layer`.
 fn text(d: &mut Drawing, layer: usize, at: Point, height: f64, value: &str) {
     d.add(
@@ -856,6 +894,8 @@ struct ForceLayout {
     captions: Vec<String>,
     /// Room kept in a cell for the letters around a figure (per frame).
     room: f64,
+    /// The side of the square a figure's scales are chosen for (per frame), model units.
+    cell_side: f64,
     /// Rows of the table.
     row_count: usize,
     /// Width of the table.
@@ -950,6 +990,7 @@ impl ForceLayout {
             extents,
             captions: fs.figures.iter().map(|(c, _)| c.clone()).collect(),
             room,
+            cell_side,
             row_count: fs.row_count,
             table_width: table.x,
             scales,
@@ -993,10 +1034,11 @@ impl ForceLayout {
                     unit: "N".into(),
                     title: caption.clone(),
                     title_at,
-                    // Over the strip of its scale bar, letter room all round.
-                    area: Bounds {
-                        min: ll + Vector::new(self.room, self.bar_room + self.room),
-                        max: ll + sz - Vector::new(self.room, self.room),
+                    // The square its scales were chosen for, over the strip of its scale
+                    // bar, letter room all round, centred across a cell its caption widened.
+                    area: {
+                        let inset = Vector::new(0.5 * (sz.x - self.cell_side), self.bar_room + self.room);
+                        Bounds { min: ll + inset, max: ll + inset + Vector::new(self.cell_side, self.cell_side) }
                     },
                     bar_at: Some(ll + Vector::new(self.bar_inset, 0.5 * self.bar_room)),
                     scales: self.scales.get(i).cloned().unwrap_or_default(),

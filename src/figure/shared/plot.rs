@@ -490,22 +490,32 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
             dr.add(l.text, t);
         }
     }
-    for m in marks.points.iter().filter(|m| m.x.is_finite() && m.y.is_finite()) {
+    let shown: Vec<&Mark> = marks.points.iter().filter(|m| m.x.is_finite() && m.y.is_finite()).collect();
+    // Every mark's circles first, for no label or leader to cross another mark.
+    let rings: Vec<TextBox> = shown
+        .iter()
+        .map(|m| {
+            let p = map(m.x, m.y);
+            dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 2.0 * CURVE_W });
+            dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 4.0 * CURVE_W });
+            let r = 4.0 * CURVE_W;
+            TextBox { min: Point::new(p.x - r, p.y - r), max: Point::new(p.x + r, p.y + r) }
+        })
+        .collect();
+    for (i, m) in shown.iter().enumerate() {
         let p = map(m.x, m.y);
-        dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 2.0 * CURVE_W });
-        dr.add_colored(l.data, Aci::RED, Shape::Circle { center: p, radius: 4.0 * CURVE_W });
         // At the mark's height, an eighth of the frame aside, with a leader: the curve leaves
         // an extreme upwards (a minimum) or downwards (a maximum), so the space level with
         // it is free once clear of the mark.
         let right = p.x < PLOT_WIDTH / 2.0;
-        let side = if right { 1.0 } else { -1.0 };
-        let halign = if right { HAlign::Left } else { HAlign::Right };
         // Level with the mark an eighth of the frame aside, else higher or lower (the grid's
-        // lines and the curve kept clear), with a red leader from the mark.
-        let candidates: Vec<(Point, Shape)> = [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0]
-            .iter()
-            .flat_map(|k| {
-                [1.0, 1.5, 2.0].map(|far| {
+        // lines and the curve kept clear), with a red leader from the mark; on the other side
+        // last (a curve too steep beside the mark for the label, a frame too narrow for it).
+        let mut candidates: Vec<(Point, Shape)> = Vec::new();
+        for side in if right { [1.0, -1.0] } else { [-1.0, 1.0] } {
+            let halign = if side > 0.0 { HAlign::Left } else { HAlign::Right };
+            for k in [0.0, 1.0, -1.0, 2.0, -2.0, 3.0, -3.0, 4.0, -4.0] {
+                for far in [1.0, 1.5, 2.0] {
                     let at = Point::new(p.x + side * far * PLOT_WIDTH / 8.0, p.y + k * 1.6 * TEXT_H);
                     let t = Shape::Text {
                         at,
@@ -515,16 +525,42 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
                         valign: VAlign::Middle,
                         rotation: 0.0,
                     };
-                    (at, t)
-                })
+                    candidates.push((at, t));
+                }
+            }
+        }
+        // A leader crosses no text already written (an earlier mark's label) and no other
+        // mark.
+        let written: Vec<TextBox> = dr
+            .entities
+            .iter()
+            .filter_map(|e| crate::draw::text_corners(&e.shape))
+            .map(|c| {
+                let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+                let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+                TextBox { min, max }
             })
+            .chain(rings.iter().enumerate().filter(|(j, _)| *j != i).map(|(_, r)| *r))
             .collect();
+        let leader = |at: Point| {
+            let side = if at.x > p.x { 1.0 } else { -1.0 };
+            (p + (at - p).normalize() * (4.0 * CURVE_W), Point::new(at.x - side, at.y))
+        };
+        let clear: Vec<(Point, Shape)> = candidates
+            .iter()
+            .filter(|(at, _)| {
+                let (a, b) = leader(*at);
+                !written.iter().any(|w| w.crosses(a, b))
+            })
+            .cloned()
+            .collect();
+        let candidates = if clear.is_empty() { candidates } else { clear };
         let chosen = first_free(dr, candidates.iter().map(|c| c.1.clone()).collect(), Some(frame_box()), &[l.grid]);
         if let Some(t) = chosen {
             break_grid(dr, l, &t);
             let at = candidates.iter().find(|c| c.1 == t).map_or(p, |c| c.0);
-            let from = p + (at - p).normalize() * (4.0 * CURVE_W);
-            dr.add_colored(l.data, Aci::RED, Shape::Line { from, to: Point::new(at.x - side, at.y) });
+            let (from, to) = leader(at);
+            dr.add_colored(l.data, Aci::RED, Shape::Line { from, to });
             dr.add(l.text, t);
         }
     }

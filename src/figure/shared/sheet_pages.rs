@@ -9,7 +9,8 @@
 //!    own nice scale on each page ([`sheet::fit`]), centred in its panel;
 //! 3. the forces page (with forces): one figure per group in solving order, each at the
 //!    coarsest nice k_f that draws it at least [`FORCE_FIGURE_MIN_MM`] long (so at most twice
-//!    that), captioned with its k_f and with its own scale bar, packed in rows.
+//!    that), captioned with its k_f and with its own scale bar, packed in rows; a linkage's
+//!    table of forces (every applied force, every reaction) packed after them, so that the mechanism page's table holds the kinematics only.
 //!
 //! This file knows no mechanism: a kind draws its mechanism and describes its polygons.
 
@@ -188,11 +189,18 @@ pub fn force_figure_scale(size: f64) -> f64 {
 }
 
 impl ForcesPage {
-    /// The page of `figures` (one per group, in solving order) with `captions`, packed in rows
-    /// from the top left, clear of the title block: each figure at the coarsest nice k_f that
+    /// The page of `figures` (one per group, in solving order) with `captions`, and a table of
+    /// `table_rows` rows after them, packed in rows from the top left, clear of the title
+    /// block: each figure at the coarsest nice k_f that
     /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
     /// page still holds them, at the next finer one (larger figures where there is room).
-    pub fn new(paper: Paper, figures: &[ForcePolygon], captions: &[String], title_cells: usize) -> ForcesPage {
+    pub fn new(
+        paper: Paper,
+        figures: &[ForcePolygon],
+        captions: &[String],
+        title_cells: usize,
+        table_rows: usize,
+    ) -> ForcesPage {
         let (sizes, border, right, title) = sheet::page_frame(paper, title_cells);
         let extents: Vec<Extent> = figures
             .iter()
@@ -200,10 +208,21 @@ impl ForcesPage {
             .collect();
         let mut scales: Vec<f64> = extents.iter().map(|e| force_figure_scale(e.size())).collect();
         let cell = |k: f64, e: &Extent, caption: &str| cell_size(k, e, caption, sizes);
+        let cells_at = |scales: &[f64]| -> Vec<Vector> {
+            scales.iter().zip(&extents).zip(captions).map(|((k, e), c)| cell(*k, e, c)).collect()
+        };
+        // The figures, then the table (when it has rows) as one more cell, in one to three
+        // sets of columns: the first arrangement the page holds.
         let pack_at = |scales: &[f64]| {
-            let sizes: Vec<Vector> =
-                scales.iter().zip(&extents).zip(captions).map(|((k, e), c)| cell(*k, e, c)).collect();
-            pack(&sizes, border, right, title)
+            let cells = cells_at(scales);
+            if table_rows == 0 {
+                return pack(&cells, border, right, title);
+            }
+            (1..=3).find_map(|sets| {
+                let mut all = cells.clone();
+                all.push(table_cell(table_rows, sets, sizes));
+                pack(&all, border, right, title)
+            })
         };
         let mut outlines = pack_at(&scales);
         if outlines.is_some() {
@@ -227,13 +246,18 @@ impl ForcesPage {
                 }
             }
         }
-        // A page that cannot hold them at their least length still draws them there, in rows
-        // running off the page (the checks report it).
-        let outlines = outlines.unwrap_or_else(|| {
-            let sizes: Vec<Vector> =
-                scales.iter().zip(&extents).zip(captions).map(|((k, e), c)| cell(*k, e, c)).collect();
-            pack_anyway(&sizes, border)
+        let mut outlines = outlines.unwrap_or_else(|| {
+            let mut cells = cells_at(&scales);
+            if table_rows > 0 {
+                cells.push(table_cell(table_rows, 1, sizes));
+            }
+            pack_anyway(&cells, border)
         });
+        let table = if table_rows > 0 && outlines.len() > figures.len() {
+            outlines.pop().unwrap_or(Bounds { min: title.max, max: title.max })
+        } else {
+            Bounds { min: title.max, max: title.max }
+        };
         let panels: Vec<Panel> = outlines.iter().map(|b| Panel::of_outline(*b, sizes)).collect();
         let places = scales
             .iter()
@@ -241,7 +265,6 @@ impl ForcesPage {
             .zip(&panels)
             .map(|((k, e), p)| (*k, sheet::centre(e.min, e.max, *k, p.area)))
             .collect();
-        let table = Bounds { min: title.max, max: title.max };
         ForcesPage { layout: SheetLayout { paper, sizes, border, panels, table, title }, places }
     }
 
@@ -315,10 +338,17 @@ pub fn polygons_page(
     d
 }
 
-/// The forces page: each figure (with its caption) at its own k_f in its cell.
-pub fn forces_page(paper: Paper, figures: &[ForcePolygon], captions: &[String], title: TitleBlock) -> Drawing {
-    let page = ForcesPage::new(paper, figures, captions, title.cells.len() + 2);
-    let mut d = sheet::page(&page.layout, &title, &Table::default(), &page.titles(captions));
+/// The forces page: each figure (with its caption) at its own k_f in its cell, and `table`
+/// (the forces' values, when it has rows) after them.
+pub fn forces_page(
+    paper: Paper,
+    figures: &[ForcePolygon],
+    captions: &[String],
+    title: TitleBlock,
+    table: &Table,
+) -> Drawing {
+    let page = ForcesPage::new(paper, figures, captions, title.cells.len() + 2, table.rows.len());
+    let mut d = sheet::page(&page.layout, &title, table, &page.titles(captions));
     page.draw(&mut d, figures);
     d
 }
@@ -340,6 +370,15 @@ fn cell_size(k: f64, e: &Extent, caption: &str, sizes: Sizes) -> Vector {
     let w = (drawn.x + room + 3.0 * sizes.text)
         .max(crate::draw::parts::widest_text_width(&title, sizes.text) + 1.2 * sizes.text);
     let h = drawn.y + room + 2.95 * sizes.text + 1.5 * sizes.text + scale_bar_room(sizes);
+    Vector::new(w, h)
+}
+
+/// The cell of a table of `rows` rows (and a header) in `sets` sets of three columns side by
+/// side, as [`sheet::table_sets`] lays it out.
+fn table_cell(rows: usize, sets: usize, s: Sizes) -> Vector {
+    let pad = 0.6 * s.text;
+    let w = sets as f64 * sheet::TABLE_COLUMN_MIN * s.text * 3.0 + 2.0 * pad + 1e-6;
+    let h = (rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * s.text + 2.0 * pad + 1e-6;
     Vector::new(w, h)
 }
 

@@ -42,8 +42,10 @@ pub fn construction(d: &Design, req: &Requirement, function: &str, units: ModelU
     c.arc_through(cp, d.c, &[bs, bf], 0.0, Style::Given);
     c.angle(o1, as_, af, 1.15 * d.a, &format!("Δφ = {}", angle_text((req.input.1 - req.input.0).abs())));
     c.angle(cp, bs, bf, 1.15 * d.c, &format!("Δψ = {}", angle_text((req.output.1 - req.output.0).abs())));
-    c.angle(o1, ahead(cp), a[0], 0.4 * d.a, &format!("φ1 = {}", signed_angle_text(d.phi[0] + d.crank_turn)));
-    c.angle(cp, ahead(cp), b[0], 0.4 * d.c, &format!("ψ1 = {}", signed_angle_text(d.psi[0] + d.rocker_turn)));
+    // The first precision point's angles named on the figure, their values in the caption
+    // (the sectors at the pivots are crowded by the other positions' links).
+    c.angle(o1, ahead(cp), a[0], 0.4 * d.a, "φ1");
+    c.angle(cp, ahead(cp), b[0], 0.4 * d.c, "ψ1");
     c.pivot(o1);
     c.pivot(cp);
     c.letter(o1, "O1");
@@ -84,9 +86,11 @@ fn caption(d: &Design, req: &Requirement, function: &str) -> Vec<String> {
             d.class.describe()
         ),
         format!(
-            "Crank angle = φ{}, rocker angle = ψ{}, both from O1C; the structural error over the range is charted in the diagrams.",
+            "Crank angle = φ{}, rocker angle = ψ{}, both from O1C (φ1 = {}, ψ1 = {} at the first precision point); the structural error over the range is charted in the diagrams.",
             turn(d.crank_turn),
-            turn(d.rocker_turn)
+            turn(d.rocker_turn),
+            signed_angle_text(d.phi[0] + d.crank_turn),
+            signed_angle_text(d.psi[0] + d.rocker_turn)
         ),
     ]
 }

@@ -16,11 +16,9 @@ pub mod motion;
 pub mod quick_return;
 pub mod slider_crank;
 
+use crate::draw::parts::explode_dimension;
 use crate::draw::{Bounds, DimStyle, Drawing, Shape};
-use crate::figure::shared::construction::{
-    arc_segments, caption, dimension_text_box, free_direction, keep_letters_off_dimension, length_scale_block,
-    place_dimension,
-};
+use crate::figure::shared::construction::{DIMENSION_RADII, arc_segments, caption, free_direction, length_scale_block};
 use crate::figure::shared::labels::{self, TextBox};
 use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
 use crate::geom::{Point, Vector, angle_of, normalize_angle, perp, polar};
@@ -69,11 +67,12 @@ pub struct Construction {
     units: ModelUnits,
     layers: [usize; 7],
     lines: Vec<(Point, Point)>,
-    dim_texts: Vec<TextBox>,
     points: Vec<(Point, String)>,
     names: Vec<(Point, String, Vector)>,
     keep_off: Vec<TextBox>,
-    dims: labels::Polygon,
+    /// Angles waiting to be dimensioned once every line is drawn: (vertex, first ray's
+    /// point, second's, preferred radius, text).
+    angles: Vec<(Point, Point, Point, f64, String)>,
 }
 
 impl Construction {
@@ -100,11 +99,10 @@ impl Construction {
             units,
             layers,
             lines: Vec::new(),
-            dim_texts: Vec::new(),
             points: Vec::new(),
             names: Vec::new(),
             keep_off: Vec::new(),
-            dims: labels::Polygon::of_names(),
+            angles: Vec::new(),
         }
     }
 
@@ -280,16 +278,79 @@ impl Construction {
     }
 
     /// The angle at `vertex` between the rays to `a` and to `b` (the smaller one), drawn as
-    /// an angular dimension with `text`, at about `radius` from the vertex.
+    /// an angular dimension with `text`, at about `radius` from the vertex: placed when the
+    /// drawing is finished, clear of everything drawn by then ([`Construction::finish`]).
     pub fn angle(&mut self, vertex: Point, a: Point, b: Point, radius: f64, text: &str) {
         let sweep = normalize_angle(angle_of(b - vertex) - angle_of(a - vertex));
         let (first, second) = if sweep <= std::f64::consts::PI { (a, b) } else { (b, a) };
-        let dim_at = |r: f64| Shape::AngularDimension { vertex, first, second, radius: r, text: text.to_string() };
-        let dim = place_dimension(dim_at, radius, &self.d.dim_style, &self.dim_texts, &self.lines);
-        self.dim_texts.extend(dimension_text_box(&dim, &self.d.dim_style));
-        keep_letters_off_dimension(&mut self.dims, &dim, &self.d.dim_style);
-        let layer = self.dimensions();
-        self.d.add(layer, dim);
+        self.angles.push((vertex, first, second, radius, text.to_string()));
+    }
+
+    /// The drawing as its ink lies: every dimension exploded into its lines, arcs,
+    /// arrowheads and text, for letters and other dimensions to keep clear of.
+    fn ink(&self) -> Drawing {
+        let mut ink = self.d.clone();
+        ink.entities = Vec::with_capacity(self.d.entities.len());
+        for e in &self.d.entities {
+            match &e.shape {
+                dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
+                    for part in explode_dimension(dim, &self.d.dim_style) {
+                        ink.push(crate::draw::Entity { shape: part, ..e.clone() });
+                    }
+                }
+                _ => ink.push(e.clone()),
+            }
+        }
+        ink
+    }
+
+    /// Every angle dimensioned, in the order asked for, each at the first of
+    /// [`DIMENSION_RADII`] × its preferred radius where its text overlaps no text or symbol
+    /// and no stroke crosses it, and its own arc and lines cross no text: against
+    /// everything drawn, the dimensions placed before it included. An angle whose text
+    /// names a value (`90° − θ = 54°`) and fits nowhere is tried with its name alone
+    /// (`90° − θ`, the caption states what it follows from); else the least crowded place
+    /// is taken (fewest overlaps, then fewest crossings).
+    fn place_angles(&mut self) {
+        let style = self.d.dim_style;
+        for (vertex, first, second, radius, text) in std::mem::take(&mut self.angles) {
+            let ink = self.ink();
+            let mut strokes = Vec::new();
+            let mut boxes = self.keep_off.clone();
+            for e in &ink.entities {
+                strokes.extend(labels::strokes(&e.shape));
+                boxes.extend(corners_box(&e.shape));
+            }
+            let crowding = |dim: &Shape| {
+                let parts = explode_dimension(dim, &style);
+                let own: Vec<(Point, Point)> = parts.iter().flat_map(labels::strokes).collect();
+                let Some(tb) = parts.iter().find_map(corners_box) else { return (0, 0) };
+                let over = boxes.iter().filter(|b| b.overlaps(&tb)).count()
+                    + boxes.iter().filter(|b| own.iter().any(|(u, v)| b.crosses(*u, *v))).count();
+                (over, strokes.iter().filter(|(u, v)| tb.crosses(*u, *v)).count())
+            };
+            // The full text (`90° − θ = 54°`) where it fits, else the angle's name alone
+            // (`90° − θ`: its value follows from the caption's), else the least crowded.
+            let short = text.split(" = ").next().unwrap_or(&text).to_string();
+            let texts = if short != text { vec![text.clone(), short] } else { vec![text.clone()] };
+            let dim_at =
+                |r: f64, t: &str| Shape::AngularDimension { vertex, first, second, radius: r, text: t.to_string() };
+            let mut best: Option<((usize, usize), Shape)> = None;
+            'texts: for t in &texts {
+                for k in DIMENSION_RADII {
+                    let dim = dim_at(k * radius, t);
+                    let score = crowding(&dim);
+                    if best.as_ref().is_none_or(|(b, _)| score < *b) {
+                        best = Some((score, dim));
+                    }
+                    if score == (0, 0) {
+                        break 'texts;
+                    }
+                }
+            }
+            let layer = self.dimensions();
+            self.d.add(layer, best.map_or_else(|| dim_at(radius, &text), |(_, dim)| dim));
+        }
     }
 
     /// A right-angle mark at `vertex` between the rays to `a` and to `b`.
@@ -316,8 +377,6 @@ impl Construction {
             text: text.to_string(),
             marks: Default::default(),
         };
-        self.dim_texts.extend(dimension_text_box(&dim, &self.d.dim_style));
-        keep_letters_off_dimension(&mut self.dims, &dim, &self.d.dim_style);
         let layer = self.dimensions();
         self.d.add(layer, dim);
     }
@@ -325,12 +384,11 @@ impl Construction {
     /// The finished drawing: the letters placed clear of every line, symbol and dimension,
     /// the title above, the caption below, the length scale and its bar under it.
     pub fn finish(mut self, title: &str, lines: &[String]) -> Drawing {
+        self.place_angles();
         let text = self.text();
         let mut letters = labels::Polygon::of_points();
+        letters.keep_off_drawing(&self.ink());
         for b in &self.keep_off {
-            letters.keep_off(*b);
-        }
-        for b in &self.dim_texts {
             letters.keep_off(*b);
         }
         for (a, b) in &self.lines {
@@ -338,32 +396,13 @@ impl Construction {
         }
         let near = 1e-9 * self.k_l * FIGURE_MM;
         for (p, name) in &self.points {
-            // Directions of every line through or ending at p.
-            let mut occupied = Vec::new();
-            for (a, b) in &self.lines {
-                let ab = *b - *a;
-                let len = ab.norm();
-                if len == 0.0 {
-                    continue;
-                }
-                let t = (*p - *a).dot(&ab) / (len * len);
-                let off = (*p - (*a + ab * t)).norm();
-                if off > near || !(-1e-9..=1.0 + 1e-9).contains(&t) {
-                    continue;
-                }
-                if t > 1e-9 {
-                    occupied.push(angle_of(-ab));
-                }
-                if t < 1.0 - 1e-9 {
-                    occupied.push(angle_of(ab));
-                }
-            }
-            let dir = free_direction(&occupied);
+            let dir = free_direction(&occupied_directions(&self.lines, *p, near));
             letters.letter_clear(*p, name, self.s.text, Vector::new(libm::cos(dir), libm::sin(dir)), self.s.joint);
         }
-        let boxes = letters.draw(&mut self.d, text);
-        let mut names = std::mem::take(&mut self.dims);
-        for b in boxes.iter().chain(&self.keep_off) {
+        letters.draw(&mut self.d, text);
+        let mut names = labels::Polygon::of_names();
+        names.keep_off_drawing(&self.ink());
+        for b in &self.keep_off {
             names.keep_off(*b);
         }
         for (a, b) in &self.lines {
@@ -388,6 +427,39 @@ impl Construction {
         }
         self.d
     }
+}
+
+/// The directions (radians) of every line of `lines` through or ending at `p` (within
+/// `near`), pointing away from `p`.
+fn occupied_directions(lines: &[(Point, Point)], p: Point, near: f64) -> Vec<f64> {
+    let mut occupied = Vec::new();
+    for (a, b) in lines {
+        let ab = *b - *a;
+        let len = ab.norm();
+        if len == 0.0 {
+            continue;
+        }
+        let t = (p - *a).dot(&ab) / (len * len);
+        let off = (p - (*a + ab * t)).norm();
+        if off > near || !(-1e-9..=1.0 + 1e-9).contains(&t) {
+            continue;
+        }
+        if t > 1e-9 {
+            occupied.push(angle_of(-ab));
+        }
+        if t < 1.0 - 1e-9 {
+            occupied.push(angle_of(ab));
+        }
+    }
+    occupied
+}
+
+/// The axis-aligned box of a text as drawn (turned with it), `None` for another shape.
+fn corners_box(shape: &Shape) -> Option<TextBox> {
+    let c = crate::draw::text_corners(shape)?;
+    let min = c.iter().fold(c[0], |m, q| Point::new(m.x.min(q.x), m.y.min(q.y)));
+    let max = c.iter().fold(c[0], |m, q| Point::new(m.x.max(q.x), m.y.max(q.y)));
+    Some(TextBox { min, max })
 }
 
 /// The narrowest a caption is wrapped to, paper millimetres.

@@ -1,6 +1,6 @@
 //! The offset slider-crank for H and K, constructed: the guide with the slider's extremes
 //! B1, B2 (given, H dimensioned), B2P ⊥ B1B2 and ∠B2B1P = 90° − θ, the circle k on B1P, the
-//! line parallel to the guide at the offset e meeting k at the crank pivot O1, θ at O1,
+//! line parallel to the guide at the offset e meeting k at the crank pivot O1, θ at P,
 //! O1B1 swung onto O1B2 at E (B2E = 2a), the crank circle, and the mechanism at the
 //! stretched extreme (solid) and at the folded one (thin).
 
@@ -31,18 +31,21 @@ pub fn construction(d: &Design, choice: &str, units: ModelUnits) -> Drawing {
     c.point(d.p, "P", Style::Construction);
     c.name(d.centre + Vector::new(0.0, d.radius), "k", Vector::new(0.0, 1.0));
     // The offset line and the offset.
-    let off = (Point::new(ends.0.x, d.o.y), Point::new(ends.1.x, d.o.y));
+    // (through O1 and a little beyond: over the rod and the slider it would only crowd them)
+    let off = (Point::new(ends.0.x, d.o.y), Point::new((d.o.x + 0.3 * d.stroke).min(ends.1.x), d.o.y));
     c.line(off.0, off.1, Style::Construction);
     let foot = Point::new(d.o.x, d.b1.y);
     c.distance(foot, d.o, 2.0 * c.s.text + d.a, &format!("e = {}", len(d.e)));
-    // θ at O1, the swing of O1B1 onto O1B2, the crank circle.
+    // θ at P (every point of k, O1 too, sees B1B2 under θ: at O1 the angle is small and
+    // crowded by the crank, the rod and the slider), the swing of O1B1 onto O1B2, the crank
+    // circle.
+    c.angle(d.p, d.b1, d.b2, 0.3 * (d.p - d.b2).norm(), &format!("θ = {}", angle_text(d.theta)));
     c.line(d.o, d.b1, Style::Construction);
     c.line(d.o, d.b2, Style::Construction);
-    // The angle is small and low over the guide: named θ, its value in the caption.
-    c.angle(d.o, d.b1, d.b2, 0.5 * (d.a + (d.b1 - d.o).norm()), "θ");
     c.arc(d.o, (d.b1 - d.o).norm(), d.b1, d.e_point, Style::Construction);
     c.point(d.e_point, "E", Style::Construction);
-    c.segment_name(d.o, d.b1, "b − a");
+    // O1B1 = b − a is too short beside the crank circle, the joint A and B1's block for its
+    // name: the caption states it.
     c.segment_name(d.e_point, d.b2, "2a");
     c.circle(d.o, d.a, Style::Construction);
     // The mechanism at both extremes.

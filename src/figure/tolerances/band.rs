@@ -7,6 +7,7 @@
 //! the envelope curves (layers `TOL_NOMINAL`, `TOL_RSS`, `TOL_MC`).
 
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
+use crate::figure::shared::labels;
 use crate::figure::shared::vocab::{self, ModelUnits, Sizes, length_scale, nice_scale, scale_bar, scale_text};
 use crate::geom::{Point, Vector};
 
@@ -116,9 +117,6 @@ pub fn band_drawing(
         for side in [1.0, -1.0] {
             runs(&mut d, rss, (0..n).map(|k| p.rss[k].filter(|_| p.normals[k].norm() > 0.0).map(|v| off(k, side * v))));
         }
-        if let Some(q) = p.nominal.last() {
-            d.add(text, label(*q + Vector::new(s.text, 0.0), &p.name, s.text, HAlign::Left));
-        }
         if let Some((k, lab)) = &p.worst {
             let (k, nrm) = (*k, p.normals[*k]);
             let half = p.mc[k].map(|(a, b)| a.abs().max(b.abs())).or(p.rss[k]).unwrap_or(0.0);
@@ -131,6 +129,16 @@ pub fn band_drawing(
             d.add(text, label(tip, &format!("widest: {lab}"), s.small_text(), halign));
         }
     }
+    // Each point's name beside its path's last position, placed clear of the paths, bands
+    // and marks (the letter placer: the free side of the path first).
+    let mut names = labels::Polygon::of_points();
+    names.keep_off_drawing(&d);
+    for p in paths {
+        if let (Some(q), Some(n)) = (p.nominal.last(), p.normals.last()) {
+            names.letter_clear(*q, &p.name, s.text, *n, 0.3 * s.text);
+        }
+    }
+    names.draw(&mut d, text);
     // Title and legend above, scale bars below.
     let top = hi.y + 0.08 * extent;
     d.add(

@@ -14,9 +14,11 @@ use crate::figure::fourbar::sheet::FourbarSheets;
 use crate::figure::fourbar::{ModelUnits, Show};
 use crate::figure::linkage::LinkageFigure;
 use crate::figure::report::diagrams::MarkedDiagram;
+use crate::figure::report::freebody::{self, Couple, FreeBodyPage, GroupLoads};
 use crate::figure::report::plan::PlanDimension;
 use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
 use crate::figure::report::table::{Align, PaperTable};
+use crate::figure::shared::forces::NamedVector;
 use crate::figure::shared::plot::{self, Marks};
 use crate::figure::shared::sheet;
 use crate::geom::{self, Point, Vector, deg};
@@ -25,7 +27,8 @@ use crate::run::fourbar as run;
 use crate::scene::Units;
 use crate::scene::fourbar::FourbarScene;
 use crate::solve::expr::Expr;
-use crate::solve::fourbar::{Forces, Geometry, Motion, Position, position, solve_motion};
+use crate::solve::fourbar::kinetostatics::{CrankRange, Dynamics as FourbarDynamics, Link, loads};
+use crate::solve::fourbar::{Forces, Geometry, Kinematics, Motion, Position, position, solve_motion};
 use crate::solve::linkage::{Anchor, Attach, Body, Driver, DriverTarget, Joint, JointKind, Mechanism, Structure};
 
 /// The coupler point M in the coupler's frame (A at the origin, B on +x).
@@ -65,6 +68,71 @@ pub fn mechanism(g: &Geometry, omega1: f64) -> Mechanism {
         drivers,
         length_scale: g.l1.max(g.l_ab).max(g.l_bc).max(g.ground()),
     }
+}
+
+/// What acts on each group of the four-bar (the crank with its driver; the dyad 2–3) from
+/// outside it at position `p`, from the seed's route ([`Forces`]) and the applied loads
+/// ([`loads`]): the reactions named as the force polygons name them (R_O and −R_A on the
+/// crank; R_A and R_C on the dyad), the inertia forces and weights at the bars' centroids,
+/// the external forces at their points, the couples in N·(length unit).
+pub fn group_loads(
+    g: &Geometry,
+    p: &Position,
+    kin: &Kinematics,
+    f: &Forces,
+    d: &FourbarDynamics,
+    structure: &Structure,
+) -> Vec<GroupLoads> {
+    let l = loads(g, p, kin, d);
+    let nv = |name: &str, v: Vector| NamedVector { name: name.into(), v };
+    let couple = |at: Point, name: &str, value: f64| Couple { at, name: name.into(), value };
+    let phi1_deg = deg(p.phi1);
+    let acting = |r: Option<CrankRange>| r.is_none_or(|r| r.contains_deg(phi1_deg));
+    let mut crank = GroupLoads {
+        forces: vec![
+            (g.o1, nv("RO", f.r_o)),
+            (p.a, nv("−RA", -f.r_a)),
+            (l.g1_at, nv("Fi1", l.fi1)),
+            (l.g1_at, nv("G1", l.w1)),
+        ],
+        couples: vec![couple(g.o1, "Me1", f.me1), couple(l.g1_at, "Mi1", l.mi1)],
+    };
+    let mut dyad = GroupLoads {
+        forces: vec![
+            (p.a, nv("RA", f.r_a)),
+            (g.c, nv("RC", f.r_c)),
+            (l.g21_at, nv("Fi21", l.fi21)),
+            (l.g21_at, nv("G21", l.w21)),
+            (l.g22_at, nv("Fi22", l.fi22)),
+            (l.g22_at, nv("G22", l.w22)),
+            (l.g3_at, nv("Fi3", l.fi3)),
+            (l.g3_at, nv("G3", l.w3)),
+        ],
+        couples: vec![
+            couple(l.g21_at, "Mi21", l.mi21),
+            couple(l.g22_at, "Mi22", l.mi22),
+            couple(l.g3_at, "Mi3", l.mi3),
+        ],
+    };
+    for e in d.forces.iter().filter(|e| acting(e.range)) {
+        dyad.forces.push((e.at.at(p), nv("F", e.value)));
+    }
+    for load in d.loads.iter().filter(|x| acting(x.range)) {
+        let (start, _) = load.link.ends(g, p);
+        let at = start + load.link.to_world(g, p, load.at);
+        let (n, group) = match load.link {
+            Link::Crank => (1, &mut crank),
+            Link::Ab | Link::Bm => (2, &mut dyad),
+            Link::Rocker => (3, &mut dyad),
+        };
+        if load.force != Vector::zeros() {
+            group.forces.push((at, nv(&format!("F{n}"), load.force)));
+        }
+        if load.torque != 0.0 {
+            group.couples.push(couple(at, &format!("M{n}"), load.torque / d.length_unit_m));
+        }
+    }
+    structure.groups.iter().map(|s| if s.group.bodies == [0] { crank.clone() } else { dyad.clone() }).collect()
 }
 
 /// A position's coordinates as the linkage's (x, y, φ of crank, coupler, rocker).
@@ -389,7 +457,11 @@ pub(super) fn motion_report<'a>(
         rows,
     )
     .with_loads(external, loads);
-    let per_position = sheets.per_position();
+    let dynamics = spec.dynamics.clone();
+    let free_bodies = show.forces && dynamics.is_some();
+    let unit = scene.units.length();
+    let per_position = sheets.per_position() + usize::from(free_bodies);
+    let fb = Arc::new((sk.clone(), mech.clone(), structure.clone(), frame.clone()));
     let shared = Arc::new((motion, extra, qs));
     let draw_position =
         Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
@@ -399,7 +471,25 @@ pub(super) fn motion_report<'a>(
                 At::Exact(i) => (&extra[i].0, extra[i].1.as_ref().filter(|_| show.forces)),
             };
             let table = run::sheet_table(p, f, qs, units);
-            Ok(sheets.pages(&g, p, f, &table, (first, total)).pages.into_iter().map(|(_, d)| d).collect())
+            let mut out: Vec<crate::draw::Drawing> =
+                sheets.pages(&g, p, f, &table, (first, total)).pages.into_iter().map(|(_, d)| d).collect();
+            if let (true, Some(f), Some(dynamics), Some(kin)) = (free_bodies, f, dynamics.as_ref(), p.kin.as_ref()) {
+                let (sketch, mech, structure, frame) = &*fb;
+                let q = coordinates(&g, p);
+                let page = FreeBodyPage {
+                    sketch,
+                    mechanism: mech,
+                    structure,
+                    q: &q,
+                    loads: group_loads(&g, p, kin, f, dynamics, structure),
+                    position: c.label.clone(),
+                    unit,
+                    couple_factor: 1.0,
+                };
+                let part = format!("5  Position {}: free-body figures of the groups", c.mark);
+                out.push(freebody::page(&frame.frame, &frame.title(&part, first + out.len(), total), &page));
+            }
+            Ok(out)
         });
     let summary = serde_json::json!({
         "kind": "fourbar",
@@ -447,4 +537,48 @@ pub(super) fn motion_report<'a>(
         diagrams: marked,
     };
     Ok((r, table, summary, warnings))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Each group's free body (the crank with R_O, −R_A, Me1; the dyad with R_A, R_C) is in
+    /// equilibrium with the inertia forces and moments, the weights and the loads: ΣF = 0
+    /// and ΣM about the origin = 0, to 1e-9 of the largest term (d'Alembert), at every 30°.
+    #[test]
+    fn the_four_bars_free_bodies_are_in_equilibrium() {
+        let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("templates/fourbar-chebyshev.toml");
+        let loaded = crate::scene::load(&path, &[]).unwrap();
+        let crate::scene::Scene::Fourbar(scene) = &loaded.scene else { panic!("a four-bar") };
+        let spec = &scene.spec;
+        let g = spec.geometry;
+        let motion = solve_motion(spec).unwrap();
+        let d = spec.dynamics.as_ref().unwrap();
+        let mech = mechanism(&g, spec.omega1);
+        let structure = Structure::of(&mech, Some(&coordinates(&g, &motion.positions[0])));
+        let mut checked = 0;
+        for (p, f) in motion.positions.iter().zip(&motion.forces).step_by(30) {
+            for loads in group_loads(&g, p, p.kin.as_ref().unwrap(), f, d, &structure) {
+                let (mut sf, mut sm, mut scale) = (Vector::zeros(), 0.0, 0.0f64);
+                for (at, nv) in &loads.forces {
+                    let m = at.x * nv.v.y - at.y * nv.v.x;
+                    sf += nv.v;
+                    sm += m;
+                    scale = scale.max(nv.v.norm()).max(m.abs());
+                }
+                for c in &loads.couples {
+                    sm += c.value;
+                    scale = scale.max(c.value.abs());
+                }
+                assert!(
+                    sf.norm() <= 1e-9 * scale && sm.abs() <= 1e-9 * scale,
+                    "φ1 = {}: ΣF = {sf:?}, ΣM = {sm}",
+                    p.phi1
+                );
+                checked += 1;
+            }
+        }
+        assert!(checked >= 24, "{checked}");
+    }
 }

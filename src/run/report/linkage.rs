@@ -8,8 +8,9 @@ use std::sync::Arc;
 use super::Frame;
 use super::motion::{self, At, Chosen, Cycle, Dead, DriveAxis, MotionReport};
 use crate::Error;
-use crate::figure::linkage::sheet::LinkageSheets;
+use crate::figure::linkage::sheet::{LinkageSheets, row_counts};
 use crate::figure::report::diagrams::MarkedDiagram;
+use crate::figure::report::freebody::{self, FreeBodyPage};
 use crate::figure::report::plan::PlanDimension;
 use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
 use crate::figure::report::table::{Align, PaperTable};
@@ -418,10 +419,9 @@ pub(super) fn motion_report<'a>(
     let rows = (0..solved.states.len())
         .map(|k| {
             let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
-            run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))).rows.len()
+            row_counts(&run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))))
         })
-        .max()
-        .unwrap_or(0);
+        .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
     let sheets = LinkageSheets::new(
         paper,
         &scene.name,
@@ -432,7 +432,11 @@ pub(super) fn motion_report<'a>(
         solved.forces.is_some(),
         rows,
     );
-    let per_position = sheets.per_position();
+    // A page of the groups' free-body figures after each position's sheets, where the run
+    // has forces.
+    let free_bodies = show.forces && solved.forces.is_some() && scene.dynamics.is_some();
+    let per_position = sheets.per_position() + usize::from(free_bodies);
+    let fb = Arc::new((sk.clone(), structure.clone(), frame.clone()));
     let solved = Arc::new(solved);
     let strokes_owned: Arc<Vec<(String, Vector, crate::solve::stroke::Stroke)>> =
         Arc::new(strokes.iter().map(|g| (g.measure.label.clone(), g.guide, g.stroke.clone())).collect());
@@ -465,7 +469,23 @@ pub(super) fn motion_report<'a>(
             let force = scene.dynamics.as_ref().zip(force);
             let table = run::sheet_table(scene, &plots, draw_solved.states.len(), force.map(|(d, f)| (d, state, f)));
             let pages = sheets.pages(&scene.mechanism, state, force, &table, (first, total));
-            Ok(pages.into_iter().map(|(_, drawing)| drawing).collect())
+            let mut out: Vec<crate::draw::Drawing> = pages.into_iter().map(|(_, drawing)| drawing).collect();
+            if let (true, Some((dynamics, f))) = (free_bodies, force) {
+                let (sketch, structure, frame) = &*fb;
+                let p = FreeBodyPage {
+                    sketch,
+                    mechanism: &scene.mechanism,
+                    structure,
+                    q: &state.q,
+                    loads: freebody::linkage_loads(&scene.mechanism, structure, dynamics, state, f),
+                    position: c.label.clone(),
+                    unit,
+                    couple_factor: 1.0 / dynamics.length_unit_m,
+                };
+                let part = format!("5  Position {}: free-body figures of the groups", c.mark);
+                out.push(freebody::page(&frame.frame, &frame.title(&part, first + out.len(), total), &p));
+            }
+            Ok(out)
         });
     let summary = serde_json::json!({
         "kind": "linkage",

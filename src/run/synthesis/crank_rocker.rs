@@ -76,7 +76,6 @@ fn family_chart(syn: &Synthesis, unit: &str) -> Diagram {
     FamilyChart {
         title: "Crank-rocker family: smallest transmission angle against the ground length",
         x_label: format!("O1C = d [{unit}]"),
-        symbol: "d",
         samples: syn.family.samples.iter().map(|(d, g)| (*d, g.unwrap_or(f64::NAN))).collect(),
         design: (syn.design.d, syn.design.gamma_min),
         best: syn.family.best,

@@ -210,8 +210,6 @@ struct FamilyChart<'a> {
     title: &'a str,
     /// The free choice's axis label, with its unit.
     x_label: String,
-    /// The free choice's symbol on the marks (`d`, `e`).
-    symbol: &'a str,
     /// Samples (x, γ_min).
     samples: Vec<(f64, f64)>,
     /// The design: (x, γ_min).
@@ -225,7 +223,7 @@ struct FamilyChart<'a> {
 impl FamilyChart<'_> {
     fn diagram(self) -> Diagram {
         use crate::figure::shared::plot::{Diagram as Plot, Level, Mark, Marks, Series, diagram_marked};
-        use crate::figure::synthesis::{deg, len};
+        use crate::figure::synthesis::deg;
         let (x, y): (Vec<f64>, Vec<f64>) = self.samples.iter().map(|(x, g)| (*x, g.to_degrees())).unzip();
         let plot = Plot {
             title: self.title.into(),
@@ -235,7 +233,9 @@ impl FamilyChart<'_> {
         };
         let (dx, dg) = self.design;
         let mut points =
-            vec![Mark { x: dx, y: dg.to_degrees(), label: format!("design: {} = {}", self.symbol, len(dx)) }];
+            // "design" alone: the free choice's value is the abscissa's, and a longer label
+            // finds no room beside a steep family (the crank-rocker's at d = c).
+            vec![Mark { x: dx, y: dg.to_degrees(), label: "design".into() }];
         let (bx, bg) = self.best;
         if (bx - dx).abs() > self.apart {
             points.push(Mark { x: bx, y: bg.to_degrees(), label: format!("best: γ_min = {}", deg(bg)) });

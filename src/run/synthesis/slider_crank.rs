@@ -71,7 +71,6 @@ fn family_chart(syn: &Synthesis, unit: &str) -> Diagram {
     FamilyChart {
         title: "Offset slider-crank family: smallest transmission angle against the offset",
         x_label: format!("offset e [{unit}]"),
-        symbol: "e",
         samples: syn.family.samples.clone(),
         design: (syn.design.e, syn.design.gamma_min),
         best: syn.family.best,
