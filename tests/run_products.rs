@@ -135,7 +135,7 @@ fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
         let picture = &files.iter().find(|(n, _)| *n == format!("{}.svg", products.name)).unwrap().1;
         assert!(picture == &svg::to_string(&a.frame_of(&a.pose(0)), &opts).into_bytes(), "{stem}: picture");
     }
-    assert_eq!(animated, 7, "two four-bar and five linkage templates animate");
+    assert_eq!(animated, 8, "two four-bar and six linkage templates animate");
 }
 
 #[test]
