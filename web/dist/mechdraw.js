@@ -161,6 +161,23 @@ let wasm_bindgen = (function(exports) {
             }
         }
         /**
+         * The file name of a synthesis's designed scene (`<name>-design.toml`: the page's title
+         * and storage key once the design is opened); `""` for the other kinds.
+         * @returns {string}
+         */
+        design_file() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_design_file(this.__wbg_ptr);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
          * Each diagram's marker at position `k` as JSON `[[x, y] or null, ...]`, SVG user units.
          * @param {number} k
          * @returns {string}
@@ -280,6 +297,22 @@ let wasm_bindgen = (function(exports) {
             let deferred1_1;
             try {
                 const ret = wasm.live_edit_points(this.__wbg_ptr, k);
+                deferred1_0 = ret[0];
+                deferred1_1 = ret[1];
+                return getStringFromWasm0(ret[0], ret[1]);
+            } finally {
+                wasm.__wbindgen_free(deferred1_0, deferred1_1, 1);
+            }
+        }
+        /**
+         * The scene's file name, as messages give it.
+         * @returns {string}
+         */
+        file() {
+            let deferred1_0;
+            let deferred1_1;
+            try {
+                const ret = wasm.live_file(this.__wbg_ptr);
                 deferred1_0 = ret[0];
                 deferred1_1 = ret[1];
                 return getStringFromWasm0(ret[0], ret[1]);
@@ -445,6 +478,15 @@ let wasm_bindgen = (function(exports) {
         positions() {
             const ret = wasm.live_positions(this.__wbg_ptr);
             return ret >>> 0;
+        }
+        /**
+         * The scene's file name in messages from now on (`file`, a design's `<name>-design.toml`).
+         * @param {string} file
+         */
+        rename(file) {
+            const ptr0 = passStringToWasm0(file, wasm.__wbindgen_malloc, wasm.__wbindgen_realloc);
+            const len0 = WASM_VECTOR_LEN;
+            wasm.live_rename(this.__wbg_ptr, ptr0, len0);
         }
         /**
          * A new scene text (the TOML editor, an undo, a build step), and solve again.
