@@ -173,14 +173,17 @@ fn the_table_of_magnitudes_prints_the_solvers_values() {
     for (d, f) in frames.iter().zip(&motion.forces) {
         let t = texts(d);
         // Rows: a left-aligned name and a right-aligned "value unit" on one baseline.
-        let value_of = |name: &str| -> (f64, String) {
+        // The value and half a unit of its last printed digit (sheet::number: 4 significant
+        // digits, whole numbers in full).
+        let value_of = |name: &str| -> (f64, String, f64) {
             let n = t
                 .iter()
                 .find(|x| x.value == name && x.halign == HAlign::Left && x.at.x == ff.table_at.x)
                 .unwrap_or_else(|| panic!("no row {name}"));
             let v = t.iter().find(|x| x.halign == HAlign::Right && x.at.y == n.at.y).unwrap();
             let (num, unit) = v.value.split_once(' ').unwrap();
-            (num.parse().unwrap(), unit.to_string())
+            let decimals = num.split_once('.').map_or(0, |(_, f)| f.len());
+            (num.parse().unwrap(), unit.to_string(), 0.5 * 10f64.powi(-(decimals as i32)))
         };
         // |R| from the components, independently of the table's own arithmetic.
         let mag = |v: Vector| v.x.hypot(v.y);
@@ -194,13 +197,14 @@ fn the_table_of_magnitudes_prints_the_solvers_values() {
             ("RC", mag(f.r_c)),
             ("RO", mag(f.r_o)),
         ] {
-            let (got, unit) = value_of(name);
+            let (got, unit, half) = value_of(name);
             assert_eq!(unit, "N");
-            assert!((got - want).abs() <= 5e-4 + 1e-12, "{name}: {got} vs {want}");
+            assert!((got - want).abs() <= half * (1.0 + 1e-9), "{name}: {got} vs {want}");
+            assert!(half <= 5e-4 * want.abs().max(1.0), "{name}: {got} printed to fewer than 4 significant digits");
         }
-        let (me1, unit) = value_of("Me1");
+        let (me1, unit, half) = value_of("Me1");
         assert_eq!(unit, "N·m");
-        assert!((me1 - f.me1).abs() <= 5e-4 + 1e-12, "Me1: {me1} vs {}", f.me1);
+        assert!((me1 - f.me1).abs() <= half * (1.0 + 1e-9), "Me1: {me1} vs {}", f.me1);
     }
 }
 

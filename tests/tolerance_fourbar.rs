@@ -5,14 +5,16 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use common::tolerance::{assert_merged_equals_single, channel_components, run_sharded, scaled};
+
+use std::path::Path;
 
 use mechdraw::geom::{Point, Side, Vector};
 use mechdraw::scene::{Override, Scene};
 use mechdraw::solve::fourbar::{Geometry, Position, solve_motion};
 use mechdraw::solve::tolerance::fourbar::{FourbarModel, FourbarOutput, FourbarParam, FourbarPoint};
 use mechdraw::solve::tolerance::monte_carlo::{self, CHUNK, Model, chunk_count, sample_deviations};
-use mechdraw::solve::tolerance::{Dimension, Distribution, linear_all, ranges};
+use mechdraw::solve::tolerance::{Distribution, linear_all, ranges};
 
 const TEMPLATE: &str = "fourbar-tolerances.toml";
 
@@ -77,24 +79,6 @@ fn sensitivities_equal_central_differences_of_the_solver_at_eight_positions() {
     }
 }
 
-/// The template's dimensions with every band scaled by `f` and spread by `dist`.
-fn scaled(dims: &[Dimension], f: f64, dist: Distribution) -> Vec<Dimension> {
-    dims.iter().map(|d| Dimension { upper: d.upper * f, lower: d.lower * f, distribution: dist, ..d.clone() }).collect()
-}
-
-fn comps_of(model: &FourbarModel) -> Vec<mechdraw::solve::tolerance::Component> {
-    use mechdraw::solve::tolerance::{Component, Projection};
-    (0..model.channels())
-        .map(|c| Component {
-            name: format!("ch{c}"),
-            output: format!("ch{c}"),
-            part: "value",
-            absolute: true,
-            projection: Projection::Channel(c),
-        })
-        .collect()
-}
-
 #[test]
 fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     // Eight positions, 1e5 samples: σ's sampling error is σ/√(2N) = 0.22 %.
@@ -102,7 +86,7 @@ fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let tol = s.tolerances.as_ref().unwrap();
     let dims = scaled(&tol.study.dims, 0.01, Distribution::Normal { k: 3.0 });
     let model = FourbarModel::new(s.spec.geometry, &positions, tol.study.params.clone(), every_output());
-    let comps = comps_of(&model);
+    let comps = channel_components(model.channels());
     let linear = linear_all(&model, &dims, &comps);
     let n = 100_000;
     let mc = monte_carlo::run(&model, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
@@ -137,7 +121,7 @@ fn the_worst_case_bounds_every_monte_carlo_sample_in_the_linear_regime() {
     // Uniform: every sample inside its band; one thousandth of the template's tolerances.
     let dims = scaled(&tol.study.dims, 0.001, Distribution::Uniform);
     let model = FourbarModel::new(s.spec.geometry, &positions, tol.study.params.clone(), every_output());
-    let comps = comps_of(&model);
+    let comps = channel_components(model.channels());
     let linear = linear_all(&model, &dims, &comps);
     let n = 20_000;
     let mc = monte_carlo::run(&model, &dims, &comps, &ranges(&linear, comps.len()), 100, n, 3, 0..chunk_count(n));
@@ -187,7 +171,7 @@ fn monte_carlo_samples_equal_a_brute_force_closed_form_and_so_do_their_statistic
     let g0 = s.spec.geometry;
     let outputs = vec![FourbarOutput::Point(FourbarPoint::M), FourbarOutput::Point(FourbarPoint::B)];
     let model = FourbarModel::new(g0, &positions, params.clone(), outputs);
-    let comps = comps_of(&model);
+    let comps = channel_components(model.channels());
     let n = 3 * CHUNK + 10;
     let seed = 11;
     // Every sample: its deviations replayed, the geometry perturbed field by field here, the
@@ -258,35 +242,23 @@ fn json(path: &Path) -> serde_json::Value {
 #[test]
 fn shards_one_to_four_merged_equal_the_single_run() {
     let tmp = tempfile::tempdir().unwrap();
-    let (single, shards, merged) = (tmp.path().join("single"), tmp.path().join("shards"), tmp.path().join("merged"));
     let sets = ["--set", "tolerances.settings.samples=5000", "--set", "phi1_deg.step=5", "-q"];
-    let t = template_path();
-    let o = run(&[&["run", &t, "--no-frames", "--out", single.to_str().unwrap()], &sets[..]].concat());
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    // Shards written in reverse order, each into the same directory.
-    for k in (1..=4).rev() {
-        let spec = format!("{k}/4");
-        let o = run(&[&["run", &t, "--shard", &spec, "--out", shards.to_str().unwrap()], &sets[..]].concat());
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    }
-    let files: Vec<PathBuf> = (1..=4).map(|k| shards.join(format!("fourbar-tolerances-shard-{k}-of-4.json"))).collect();
+    // Shards written in reverse order, each into the same directory, and merged in that order.
+    let s = run_sharded(tmp.path(), &template_path(), "fourbar-tolerances", 4, &sets, &["--no-frames"], true);
+    let (single, merged, files) = (&s.single, &s.merged, &s.files);
     // Only the shard files are written by a shard run.
-    assert_eq!(std::fs::read_dir(&shards).unwrap().count(), 4);
-    let mut args = vec!["merge".to_string(), "-q".into(), "--out".into(), merged.display().to_string()];
-    args.extend(files.iter().rev().map(|f| f.display().to_string()));
-    let o = common::mechdraw().args(&args).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in [
-        "fourbar-tolerances-tolerances.csv",
-        "fourbar-tolerances-contributions.csv",
-        "fourbar-tolerances-tolerance-band.svg",
-        "fourbar-tolerances-tolerance-band.dxf",
-        "diagrams/fourbar-tolerances/M.normal-band.svg",
-        "diagrams/fourbar-tolerances/M.normal-pareto.svg",
-    ] {
-        let (a, b) = (std::fs::read(single.join(f)).unwrap(), std::fs::read(merged.join(f)).unwrap());
-        assert!(a == b, "{f} of the merged shards differs from the single run's");
-    }
+    assert_eq!(std::fs::read_dir(&s.shards).unwrap().count(), 4);
+    assert_merged_equals_single(
+        &s,
+        &[
+            "fourbar-tolerances-tolerances.csv",
+            "fourbar-tolerances-contributions.csv",
+            "fourbar-tolerances-tolerance-band.svg",
+            "fourbar-tolerances-tolerance-band.dxf",
+            "diagrams/fourbar-tolerances/M.normal-band.svg",
+            "diagrams/fourbar-tolerances/M.normal-pareto.svg",
+        ],
+    );
     let (a, b) = (json(&single.join("fourbar-tolerances.json")), json(&merged.join("fourbar-tolerances.json")));
     assert_eq!(a["tolerances"], b["tolerances"]);
     assert_eq!(a["tolerances"]["drawn"], 5000);

@@ -6,13 +6,15 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use common::tolerance::{assert_merged_equals_single, channel_components, run_sharded, scaled};
+
+use std::path::Path;
 
 use mechdraw::scene::Scene;
 use mechdraw::scene::linkage::LinkageScene;
 use mechdraw::solve::tolerance::linkage::LinkageModel;
 use mechdraw::solve::tolerance::monte_carlo::{self, Model, chunk_count};
-use mechdraw::solve::tolerance::{Component, Dimension, Distribution, Projection, linear_all, ranges};
+use mechdraw::solve::tolerance::{Distribution, linear_all, ranges};
 
 /// The slider-crank's tolerances: the crank pin, the rod's length, the crank pivot, the
 /// line of stroke's two points (its offset and its tilt).
@@ -80,18 +82,6 @@ fn model(s: &LinkageScene) -> LinkageModel {
     LinkageModel::new(s.mechanism.clone(), &s.times, tol.study.params.clone(), tol.outputs.clone()).unwrap()
 }
 
-fn channels_of(model: &LinkageModel) -> Vec<Component> {
-    (0..model.channels())
-        .map(|c| Component {
-            name: format!("ch{c}"),
-            output: format!("ch{c}"),
-            part: "value",
-            absolute: true,
-            projection: Projection::Channel(c),
-        })
-        .collect()
-}
-
 /// Sensitivities against central differences of the samples' own route (the Assur
 /// solver from the nominal's first pose), h = 1e-4 of the field's unit (mm, °), at 8
 /// positions spread over the motion.
@@ -143,17 +133,13 @@ fn shaper_sensitivities_equal_central_differences_at_eight_positions() {
     check_sensitivities("shaper.toml", SHAPER);
 }
 
-fn scaled(dims: &[Dimension], f: f64, dist: Distribution) -> Vec<Dimension> {
-    dims.iter().map(|d| Dimension { upper: d.upper * f, lower: d.lower * f, distribution: dist, ..d.clone() }).collect()
-}
-
 #[test]
 fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     // 12 positions of the shaper, 1e5 samples: σ's sampling error is σ/√(2N) = 0.22 %.
     let s = scene("shaper.toml", SHAPER, 11);
     let m = model(&s);
     let dims = scaled(&s.tolerances.as_ref().unwrap().study.dims, 1.0, Distribution::Normal { k: 3.0 });
-    let comps = channels_of(&m);
+    let comps = channel_components(m.channels());
     let linear = linear_all(&m, &dims, &comps);
     let n = 100_000;
     let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
@@ -179,7 +165,7 @@ fn the_worst_case_bounds_every_monte_carlo_sample_in_the_linear_regime() {
     let s = scene("slider-crank.toml", SLIDER_CRANK, 24);
     let m = model(&s);
     let dims = scaled(&s.tolerances.as_ref().unwrap().study.dims, 0.01, Distribution::Uniform);
-    let comps = channels_of(&m);
+    let comps = channel_components(m.channels());
     let linear = linear_all(&m, &dims, &comps);
     let n = 20_000;
     let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&linear, comps.len()), 100, n, 3, 0..chunk_count(n));
@@ -222,23 +208,12 @@ fn scene_file(dir: &Path, samples: u32) -> String {
 fn shards_one_to_three_merged_equal_the_single_run() {
     let tmp = tempfile::tempdir().unwrap();
     let t = scene_file(tmp.path(), 3000);
-    let (single, shards, merged) = (tmp.path().join("single"), tmp.path().join("shards"), tmp.path().join("merged"));
-    let o = run(&["run", &t, "--no-frames", "-q", "--out", single.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for k in 1..=3 {
-        let spec = format!("{k}/3");
-        let o = run(&["run", &t, "-q", "--shard", &spec, "--out", shards.to_str().unwrap()]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    }
-    let files: Vec<PathBuf> = (1..=3).map(|k| shards.join(format!("slider-crank-shard-{k}-of-3.json"))).collect();
-    let mut args = vec!["merge".to_string(), "-q".into(), "--out".into(), merged.display().to_string()];
-    args.extend(files.iter().map(|f| f.display().to_string()));
-    let o = common::mechdraw().args(&args).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in ["slider-crank-tolerances.csv", "slider-crank-contributions.csv", "slider-crank-tolerance-band.svg"] {
-        let (a, b) = (std::fs::read(single.join(f)).unwrap(), std::fs::read(merged.join(f)).unwrap());
-        assert!(a == b, "{f} of the merged shards differs from the single run's");
-    }
+    let s = run_sharded(tmp.path(), &t, "slider-crank", 3, &["-q"], &["--no-frames"], false);
+    let (single, merged) = (&s.single, &s.merged);
+    assert_merged_equals_single(
+        &s,
+        &["slider-crank-tolerances.csv", "slider-crank-contributions.csv", "slider-crank-tolerance-band.svg"],
+    );
     let (a, b) = (json(&single.join("slider-crank.json")), json(&merged.join("slider-crank.json")));
     assert_eq!(a["tolerances"], b["tolerances"]);
     assert_eq!(a["tolerances"]["drawn"], 3000);

@@ -7,13 +7,15 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use common::tolerance::{assert_merged_equals_single, channel_components, run_sharded, scaled};
+
+use std::path::Path;
 
 use mechdraw::scene::triad::TriadScene;
 use mechdraw::scene::{Override, Scene};
 use mechdraw::solve::tolerance::monte_carlo::{self, Model, chunk_count, sample_deviations};
 use mechdraw::solve::tolerance::triad::{TriadModel, TriadOutput, TriadParam};
-use mechdraw::solve::tolerance::{Dimension, Distribution, linear_all, ranges};
+use mechdraw::solve::tolerance::{Distribution, linear_all, ranges};
 use mechdraw::solve::triad::{Configuration, Triad, all_modes};
 
 const TEMPLATE: &str = "triad-tolerances.toml";
@@ -135,23 +137,6 @@ fn monte_carlo_samples_equal_the_all_modes_solver_of_the_scene_with_its_fields_s
     }
 }
 
-fn scaled(dims: &[Dimension], f: f64, dist: Distribution) -> Vec<Dimension> {
-    dims.iter().map(|d| Dimension { upper: d.upper * f, lower: d.lower * f, distribution: dist, ..d.clone() }).collect()
-}
-
-fn components(m: &TriadModel) -> Vec<mechdraw::solve::tolerance::Component> {
-    use mechdraw::solve::tolerance::{Component, Projection};
-    (0..m.channels())
-        .map(|c| Component {
-            name: format!("ch{c}"),
-            output: format!("ch{c}"),
-            part: "value",
-            absolute: true,
-            projection: Projection::Channel(c),
-        })
-        .collect()
-}
-
 #[test]
 fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let s = scene(&[]);
@@ -160,7 +145,7 @@ fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let m = TriadModel::new(t, all_modes(&t, None).unwrap(), tol.study.params.clone(), every_output());
     // A tenth of the template's tolerances: the linear regime.
     let dims = scaled(&tol.study.dims, 0.1, Distribution::Normal { k: 3.0 });
-    let comps = components(&m);
+    let comps = channel_components(m.channels());
     let lin = linear_all(&m, &dims, &comps);
     let n = 100_000u64;
     let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&lin, comps.len()), 400, n, 3, 0..chunk_count(n));
@@ -189,7 +174,7 @@ fn the_worst_case_bounds_every_uniform_sample_in_the_linear_regime() {
     let t = triad_of(&s);
     let m = TriadModel::new(t, all_modes(&t, None).unwrap(), tol.study.params.clone(), every_output());
     let dims = scaled(&tol.study.dims, 0.01, Distribution::Uniform);
-    let comps = components(&m);
+    let comps = channel_components(m.channels());
     let lin = linear_all(&m, &dims, &comps);
     let n = 20_000u64;
     let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&lin, comps.len()), 100, n, 8, 0..chunk_count(n));
@@ -226,23 +211,9 @@ fn scene_file(dir: &Path, samples: u32) -> String {
 fn the_template_runs_end_to_end_and_shards_merge_into_the_single_run() {
     let tmp = tempfile::tempdir().unwrap();
     let t = scene_file(tmp.path(), 3000);
-    let (single, shards, merged) = (tmp.path().join("single"), tmp.path().join("shards"), tmp.path().join("merged"));
-    let o = run(&["run", &t, "-q", "--out", single.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for k in 1..=4 {
-        let spec = format!("{k}/4");
-        let o = run(&["run", &t, "-q", "--shard", &spec, "--out", shards.to_str().unwrap()]);
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    }
-    let files: Vec<PathBuf> = (1..=4).map(|k| shards.join(format!("triad-tolerances-shard-{k}-of-4.json"))).collect();
-    let mut args = vec!["merge".to_string(), "-q".into(), "--out".into(), merged.display().to_string()];
-    args.extend(files.iter().map(|f| f.display().to_string()));
-    let o = common::mechdraw().args(&args).output().unwrap();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in ["triad-tolerances-tolerances.csv", "triad-tolerances-contributions.csv"] {
-        let (a, b) = (std::fs::read(single.join(f)).unwrap(), std::fs::read(merged.join(f)).unwrap());
-        assert!(a == b, "{f} of the merged shards differs from the single run's");
-    }
+    let s = run_sharded(tmp.path(), &t, "triad-tolerances", 4, &["-q"], &[], false);
+    let (single, merged) = (&s.single, &s.merged);
+    assert_merged_equals_single(&s, &["triad-tolerances-tolerances.csv", "triad-tolerances-contributions.csv"]);
     let (a, b) = (json(&single.join("triad-tolerances.json")), json(&merged.join("triad-tolerances.json")));
     assert_eq!(a["tolerances"], b["tolerances"]);
     let tol = &a["tolerances"];

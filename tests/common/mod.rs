@@ -13,6 +13,8 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
+pub mod tolerance;
+
 /// Channel tolerance of the image comparison: a pixel differs when any channel differs
 /// by more than this (as in resvg's own tests).
 pub const PIXEL_CHANNEL_TOL: u8 = 1;
