@@ -339,7 +339,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             finish(outcome, &out, json, quiet, verbose)
         }
         Command::Report { scene, out, set, paper, positions, png, quiet } => {
-            let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            // A redundant link is accepted: the report draws the structure and says why it
+            // stops there.
+            let loaded = scene::load_with(&scene, &overrides(&set)?, scene::linkage::Redundancy::Accepted)
+                .map_err(mechdraw::Error::from)?;
             let opts = mechdraw::run::report::ReportOptions { paper, positions };
             let (report, written) = mechdraw::run::report_run(&loaded, &opts, &out, png)?;
             if !quiet {
