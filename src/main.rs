@@ -96,7 +96,8 @@ enum Command {
     /// structural analysis, kinematic diagram, plan of positions, the chosen positions'
     /// polygons and forces, the diagrams; a triad's or a chain's own parts), the same pages as
     /// DIR/report/<name>/NN-<part>.svg, the chosen positions' values DIR/<name>-report.csv and
-    /// DIR/<name>-report.json (docs/report.md).
+    /// DIR/<name>-report.json (docs/report.md). A linkage with a redundant link, which `run`
+    /// refuses, gets its title page, structural analysis and kinematic diagram.
     Report {
         /// The scene file (TOML; see templates/).
         scene: PathBuf,
