@@ -234,6 +234,31 @@ fn position_pages(r: &Report) -> Vec<Vec<&Drawing>> {
     out
 }
 
+/// The page of part `title` (its first).
+fn part_page<'a>(r: &'a Report, title: &str) -> &'a Drawing {
+    let first = r.parts.iter().find(|(t, _)| t == title).unwrap_or_else(|| panic!("no part {title}")).1;
+    &r.pages[first - 1].drawing
+}
+
+#[test]
+fn the_kinematic_diagram_and_every_positions_mechanism_share_one_drafting_scale() {
+    // The same drawing at the same scale: a teacher compares the kinematic diagram with the
+    // mechanism of each position page. The shaper's diagram alone fits at 4 mm/mm, its
+    // position pages (the whole motion and the table) need 5: both are drawn at 5.
+    for (name, expected) in [("shaper-forces", Some(5.0)), ("slider-crank", None), ("fourbar-chebyshev", None)] {
+        let r = report_of(name, None);
+        let kin = printed_scales(part_page(&r, "Kinematic diagram"), "l");
+        assert_eq!(kin.len(), 1, "{name}: one k_l on the kinematic diagram: {kin:?}");
+        if let Some(k) = expected {
+            assert_eq!(kin[0], k, "{name}");
+        }
+        for pages in position_pages(&r) {
+            let on_mechanism = printed_scales(pages[0], "l");
+            assert_eq!(on_mechanism, kin, "{name}: the position's mechanism page against the kinematic diagram");
+        }
+    }
+}
+
 #[test]
 fn the_four_bars_printed_scales_measure_its_vectors_to_the_table() {
     let r = report_of("fourbar-chebyshev", None);

@@ -58,7 +58,8 @@ impl LinkageSheets {
     /// The sheets of a run over `states` on `paper`; `show` as the frames' (the forces page
     /// only when `forces`); `table_rows` the most rows of a position's table over the run,
     /// kinematics and forces ([`row_counts`]): the forces' rows go on the forces page when
-    /// there is one.
+    /// there is one; `held` a drafting scale to draw the mechanism at when it is coarser
+    /// than the page's own ([`MechanismPage::held`]: the report's one k_l for the mechanism).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         paper: Paper,
@@ -69,6 +70,7 @@ impl LinkageSheets {
         show: Show,
         forces: bool,
         table_rows: (usize, usize),
+        held: Option<f64>,
     ) -> LinkageSheets {
         let show = Show { forces: show.forces && forces, ..show };
         let table_rows = if show.forces { table_rows.0 } else { table_rows.0 + table_rows.1 };
@@ -93,7 +95,10 @@ impl LinkageSheets {
         let sliders = figure.joints.iter().any(|j| matches!(j, fig::JointSymbol::Slider { .. }));
         let (sl, sh) = if sliders { (s.slider_length, s.slider_height) } else { (1.0, 0.0) };
         let room = Vector::new(2.0 * s.text + sl, s.text + s.ground + 0.5 * sh);
-        let page = MechanismPage::new(paper, lo, hi, room, table_rows, 6);
+        let mut page = MechanismPage::new(paper, lo, hi, room, table_rows, 6);
+        if let Some(k) = held {
+            page = page.held(k, lo, hi);
+        }
         let (origin, k_l) = (page.origin, page.k_l);
         let paper_figure = figure.on_paper(origin, k_l);
         let paper_motion: Vec<Vec<f64>> = motion.iter().map(|q| fig::on_paper(q, origin, k_l)).collect();

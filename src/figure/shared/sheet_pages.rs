@@ -89,6 +89,17 @@ impl MechanismPage {
         let layout = SheetLayout { paper, sizes, border, panels: vec![outline], table, title };
         MechanismPage { layout, k_l, origin }
     }
+
+    /// The same page at `k_l` when it is coarser than the page's own (a report holding one
+    /// drafting scale for the mechanism across its pages): the arrangement kept, the motion
+    /// `lo`…`hi` centred again.
+    pub fn held(mut self, k_l: f64, lo: Vector, hi: Vector) -> Self {
+        if k_l > self.k_l {
+            self.k_l = k_l;
+            self.origin = sheet::centre(lo, hi, k_l, self.layout.panels[0].area);
+        }
+        self
+    }
 }
 
 /// The scale bar of the mechanism page's panel: `k_l` model units (`unit`) per paper mm.

@@ -422,16 +422,38 @@ pub(super) fn motion_report<'a>(
             row_counts(&run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))))
         })
         .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
-    let sheets = LinkageSheets::new(
-        paper,
-        &scene.name,
-        &scene.mechanism,
-        &figure,
-        &solved.states,
-        show.clone(),
-        solved.forces.is_some(),
-        rows,
-    );
+    let new_sheets = |held: Option<f64>| {
+        LinkageSheets::new(
+            paper,
+            &scene.name,
+            &scene.mechanism,
+            &figure,
+            &solved.states,
+            show.clone(),
+            solved.forces.is_some(),
+            rows,
+            held,
+        )
+    };
+    // One drafting scale for the mechanism: the kinematic diagram's and the position pages'
+    // (the same drawing), the coarser of the two pages' own.
+    let sheets = new_sheets(None);
+    let kin_scale = {
+        let motion: Vec<&[f64]> = solved.states.iter().map(|s| s.q.as_slice()).collect();
+        let q0 = plan.first().map_or(&[][..], |(_, q)| q.as_slice());
+        let probe = crate::figure::report::kinematic::KinematicPage {
+            sketch: &sk,
+            q: q0,
+            motion: &motion,
+            position: kin_label.clone(),
+            unit,
+            lists: lists.clone(),
+            held: None,
+        };
+        crate::figure::report::kinematic::scale(&frame.frame, &probe)
+    };
+    let drafting = kin_scale.max(sheets.k_l());
+    let sheets = if drafting > sheets.k_l() { new_sheets(Some(drafting)) } else { sheets };
     // A page of the groups' free-body figures after each position's sheets, where the run
     // has forces.
     let free_bodies = show.forces && solved.forces.is_some() && scene.dynamics.is_some();
@@ -516,6 +538,7 @@ pub(super) fn motion_report<'a>(
         dimensions,
         notes,
         kinematic: (kin_label, lists),
+        drafting: Some(drafting),
         unit,
         chosen,
         position_pages: per_position,
@@ -713,6 +736,7 @@ pub(super) fn structure_report<'a>(
                     position: "the scene's placement".into(),
                     unit,
                     lists: lists.clone(),
+                    held: None,
                 };
                 let title = f.title("3  Kinematic diagram", n.first, n.total);
                 Ok(vec![crate::figure::report::kinematic::page(&f.frame, &title, &p).0])
