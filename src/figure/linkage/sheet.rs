@@ -25,7 +25,7 @@ use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
 use crate::figure::shared::sheet_pages::{
     MechanismPage, forces_page, mechanism_bar, mechanism_force_scale, polygons_page,
 };
-use crate::figure::shared::vocab::{Scale, layer_of, layers, length_scale_text};
+use crate::figure::shared::vocab::{self, Scale, layer_of, layers, length_scale_text};
 
 /// The longest force drawn on the mechanism page, as a fraction of the mechanism's drawn size.
 pub const MECHANISM_FORCE_FRACTION: f64 = 0.3;
@@ -234,7 +234,9 @@ impl LinkageSheets {
                 let links = links_of(&self.paper_figure, &q);
                 let pts: Vec<Point> = links.iter().flat_map(|(a, b)| [*a, *b]).collect();
                 let inside = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64);
-                forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s)
+                let mut arrows = forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s);
+                clear_of_symbols(&mut arrows, &self.paper_figure, &q, s);
+                arrows
             }
             None => Vec::new(),
         };
@@ -245,6 +247,55 @@ impl LinkageSheets {
         let omega = self.paper_figure.crank.map(|(b, _)| state.angular(Attach::Body(b)).1);
         fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, omega, &s, around);
         d
+    }
+}
+
+/// Gap between a joint's symbol and the tail of a force drawn from the joint, in
+/// arrowheads.
+pub const SYMBOL_GAP: f64 = 0.3;
+
+/// Moves each force drawn from its point of action (not moved off a link) along its own
+/// line of action until its tail clears the symbol drawn there — a slider's block (the
+/// distance from its centre to the block's edge along the force) or a joint's circle — plus
+/// [`SYMBOL_GAP`] arrowheads: a reaction at a slider is drawn beside the block, not over the
+/// block and the guide's link (the shaper's RA and R32 at A). Its length, its direction and
+/// its line of action are kept (measured × k_f it is still the force); its `at` becomes its
+/// tail, so that no connector is drawn over the symbol (the line of action runs through the
+/// joint).
+pub fn clear_of_symbols(arrows: &mut [forces::ForceArrow], figure: &LinkageFigure, q: &[f64], s: vocab::Sizes) {
+    let blocks: Vec<(Point, Vector)> = figure
+        .joints
+        .iter()
+        .filter_map(|j| match j {
+            fig::JointSymbol::Slider { point, q1, q2, .. } => {
+                let dir = fig::anchor_at(q, *q2) - fig::anchor_at(q, *q1);
+                let len = dir.norm();
+                (len > 0.0).then(|| (fig::anchor_at(q, *point), dir / len))
+            }
+            fig::JointSymbol::Pin { .. } => None,
+        })
+        .collect();
+    let near = 1e-9 * (s.joint + s.slider_length);
+    for a in arrows.iter_mut() {
+        let v = a.arrow.1 - a.arrow.0;
+        let len = v.norm();
+        if a.arrow.0 != a.at || !(len > 0.0) {
+            continue;
+        }
+        let u = v / len;
+        let mut reach = s.joint;
+        for (p, g) in &blocks {
+            if (p - a.at).norm() <= near {
+                let (hl, hh) = (0.5 * s.slider_length, 0.5 * s.slider_height);
+                let (along, across) = (u.dot(g).abs(), crate::geom::cross(*g, u).abs());
+                let exit = (if along > 1e-12 { hl / along } else { f64::INFINITY })
+                    .min(if across > 1e-12 { hh / across } else { f64::INFINITY });
+                reach = reach.max(exit);
+            }
+        }
+        let shift = u * (reach + SYMBOL_GAP * s.head);
+        a.arrow = (a.arrow.0 + shift, a.arrow.1 + shift);
+        a.at = a.arrow.0;
     }
 }
 
