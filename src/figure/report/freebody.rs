@@ -6,8 +6,10 @@
 //! `RA`, `−RA`, `R32`), the driver's force or moment, and the couples — inertia moments
 //! `Mi<n>` = −J·ε, torque loads, a driver's `Me<n>`, a prismatic joint's couple — as turning
 //! arrows with their values. Every force is drawn to its group's printed force scale k_F
-//! (N/mm), its tail at the point it acts at: a reaction measured × k_F is the vector of the
-//! run's CSV and of the force polygon. The joints inside a group (their reactions cancel in
+//! (N/mm), its tail at the point it acts at (or its tip, when from the point it would run
+//! over a link of the group): a reaction measured × k_F is the vector of the run's CSV and
+//! of the force polygon. Each panel has its k_l and k_F in its caption and a scale bar of
+//! each. The joints inside a group (their reactions cancel in
 //! it) are drawn without their forces.
 //!
 //! Units: forces N; couples N·m written in N·(the scene's length unit), as the tables.
@@ -204,6 +206,12 @@ pub fn group_loads(
 /// Share of a panel's smaller side the largest force of its group is drawn as.
 pub const LARGEST_FORCE_SHARE: f64 = 0.3;
 
+/// Room kept round the group for its forces when its k_l is chosen, as a share of the
+/// largest force's length (each side; plus two letters): the forces that need more get a
+/// coarser k_F rather than the group a coarser k_l (the slider-crank's dyad was drawn at
+/// 10 mm/mm, 50 mm long, with a half share).
+pub const ROOM_SHARE: f64 = 0.25;
+
 /// A force below this fraction of its group's largest, or a couple below this fraction of
 /// the page's largest, is left out (rounding noise: the inertia force of a slider at rest).
 pub const NEGLIGIBLE_REL: f64 = 1e-9;
@@ -262,7 +270,7 @@ fn room_along(b: Bounds, p: Point, v: Vector) -> f64 {
 fn notes(p: &FreeBodyPage) -> Vec<String> {
     vec![
         format!("Position {}: each Assur group apart, as the solver takes them.", p.position),
-        "Forces in N, drawn from the point they act at to each panel's k_F (N per paper mm);".into(),
+        "Forces in N, drawn from (or onto) the point they act at to each panel's k_F (N per mm);".into(),
         "the lengths to the panel's k_l.".into(),
         "Red: the joints' reactions, the same vectors as in the group's force polygon".into(),
         "(RA: of the first body of joint A on the second, −RA the opposite; R32: of link 3 on 2).".into(),
@@ -290,7 +298,7 @@ fn group_panel(
     // The group in the panel's middle, the arrows round it.
     let side = probe.width().min(probe.height());
     let reach = LARGEST_FORCE_SHARE * side;
-    let room = Vector::new(0.5 * reach + 2.0 * s.text, 0.5 * reach + 2.0 * s.text);
+    let room = Vector::new(ROOM_SHARE * reach + 2.0 * s.text, ROOM_SHARE * reach + 2.0 * s.text);
     let at: OnPaper = sketch::fit(lo, hi, probe, room);
     let largest = loads.forces.iter().map(|(_, nv)| nv.v.norm()).fold(0.0, f64::max);
     // The largest force `reach` long, and every arrow's tip (with its name) inside the panel.
@@ -307,14 +315,14 @@ fn group_panel(
     let start = d.entities.len();
     sketch::draw(d, &gs, q, &[q], sketch::Frame { at, sizes: s, area }, Marks { numbers: true, ..Marks::default() });
     let frc = layer_of(d, layers::FORCES);
+    let links = group_links(&gs, q, at);
     // (from, to, name, colour, with a leader)
     let mut names: Vec<(Point, Point, String, Option<Aci>, bool)> = Vec::new();
     for (point, nv) in &loads.forces {
         if nv.v.norm() <= NEGLIGIBLE_REL * largest || nv.v.norm().is_nan() {
             continue;
         }
-        let from = at.point(*point);
-        let to = from + nv.v / k_f;
+        let (from, to) = placed(at.point(*point), nv.v / k_f, &links, inside, s);
         let reaction = nv.name.starts_with('R') || nv.name.starts_with("−R");
         let color = reaction.then_some(Aci::RED);
         match color {
@@ -347,6 +355,7 @@ fn group_panel(
     }
     let l = layer_of(d, layers::FORCES);
     letters.draw(d, l);
+    // The scale bars: the forces' and, over it, the lengths'.
     let dims = layer_of(d, layers::DIMENSIONS);
     let value = vocab::bar_value(k_f);
     vocab::scale_bar(
@@ -357,4 +366,64 @@ fn group_panel(
         &format!("{} N", page::plain(value)),
         s,
     );
+    let value = vocab::bar_value(at.k_l);
+    vocab::scale_bar(
+        d,
+        dims,
+        Point::new(area.min.x + s.text, area.min.y + 0.5 * s.text + LENGTH_BAR_RISE * s.text),
+        value / at.k_l,
+        &format!("{} {}", page::plain(value), p.unit),
+        s,
+    );
+}
+
+/// The length scale bar stands this many letter heights over the force scale bar.
+const LENGTH_BAR_RISE: f64 = 1.6;
+
+/// The group's links on paper: each body outline's sides.
+fn group_links(gs: &Sketch, q: &[f64], at: OnPaper) -> Vec<(Point, Point)> {
+    let mut out = Vec::new();
+    for (i, b) in gs.figure.bodies.iter().enumerate() {
+        let pts: Vec<Point> = b
+            .points
+            .iter()
+            .map(|(_, v)| at.point(crate::solve::linkage::place(q, Attach::Body(i), *v)))
+            .collect();
+        let sides = if pts.len() >= 3 { pts.len() } else { pts.len().saturating_sub(1) };
+        out.extend((0..sides).map(|k| (pts[k], pts[(k + 1) % pts.len()])));
+    }
+    out
+}
+
+/// Where the force `v` (paper mm) acting at `p` is drawn: from `p` (its tail at the point),
+/// or, when that arrow would run along or across one of the group's `links` away from the
+/// joint, onto `p` (its tip at the point) if that one is clear of them and inside `inside`.
+/// Either way its line of action runs through `p` and its length is the force over k_F.
+fn placed(p: Point, v: Vector, links: &[(Point, Point)], inside: Bounds, s: Sizes) -> (Point, Point) {
+    let band = s.link + 2.0 * crate::draw::parts::ARROW_HALF_WIDTH * s.head;
+    let clear = |a: (Point, Point)| {
+        !links.iter().any(|l| {
+            crate::figure::shared::forces::runs_over(a, *l, band, s) || crosses_away_from(a, *l, p, 1.5 * s.joint)
+        })
+    };
+    let from_p = (p, p + v);
+    if clear(from_p) {
+        return from_p;
+    }
+    let onto_p = (p - v, p);
+    let tail = onto_p.0;
+    let within = tail.x >= inside.min.x && tail.x <= inside.max.x && tail.y >= inside.min.y && tail.y <= inside.max.y;
+    if within && clear(onto_p) { onto_p } else { from_p }
+}
+
+/// Whether the segments `a` and `b` cross at a point farther than `r` from `p`.
+fn crosses_away_from(a: (Point, Point), b: (Point, Point), p: Point, r: f64) -> bool {
+    let (u, w) = (a.1 - a.0, b.1 - b.0);
+    let den = crate::geom::cross(u, w);
+    if den.abs() <= 1e-12 * u.norm() * w.norm() {
+        return false;
+    }
+    let d = b.0 - a.0;
+    let (t, k) = (crate::geom::cross(d, w) / den, crate::geom::cross(d, u) / den);
+    (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&k) && (a.0 + u * t - p).norm() > r
 }
