@@ -384,8 +384,8 @@ pub fn mechanism_with_forces(
                 }
             }
         }
-        // The forces from the pivot: from its centre, or from its circle's edge along their
-        // line of action (a sheet's [`sheet::clear_of_symbols`]).
+        // The forces from the pivot: from its centre, or from its symbol's edge along their
+        // line of action (a sheet's [`crate::figure::shared::clear_forces`]).
         let from_pivot = |a: &&ForceArrow| {
             let (t, v) = (a.arrow.0 - p, a.arrow.1 - a.arrow.0);
             near(a.arrow.0)

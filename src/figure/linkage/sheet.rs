@@ -18,7 +18,7 @@ use crate::figure::linkage::forces::{ForceFigures, on_mechanism};
 use crate::figure::linkage::frame::{Show, links_of, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
-use crate::figure::shared::forces;
+use crate::figure::shared::{clear_forces, forces};
 use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
 use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
@@ -235,7 +235,13 @@ impl LinkageSheets {
                 let pts: Vec<Point> = links.iter().flat_map(|(a, b)| [*a, *b]).collect();
                 let inside = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64);
                 let mut arrows = forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s);
-                clear_of_symbols(&mut arrows, &self.paper_figure, &q, s);
+                // Clear of the links, the guides and the joints' symbols.
+                let mut strokes = links.clone();
+                for (a, b) in self.spans.iter().flatten() {
+                    strokes.extend(clear_forces::guide_strokes(*a, *b, s));
+                }
+                let panel = layout.panels[0].area;
+                clear_forces::place(&mut arrows, &strokes, &symbols(&self.paper_figure, &q, s), Some((panel.min, panel.max)), s);
                 arrows
             }
             None => Vec::new(),
@@ -250,53 +256,36 @@ impl LinkageSheets {
     }
 }
 
-/// Gap between a joint's symbol and the tail of a force drawn from the joint, in
-/// arrowheads.
-pub const SYMBOL_GAP: f64 = 0.3;
-
-/// Moves each force drawn from its point of action (not moved off a link) along its own
-/// line of action until its tail clears the symbol drawn there — a slider's block (the
-/// distance from its centre to the block's edge along the force) or a joint's circle — plus
-/// [`SYMBOL_GAP`] arrowheads: a reaction at a slider is drawn beside the block, not over the
-/// block and the guide's link (the shaper's RA and R32 at A). Its length, its direction and
-/// its line of action are kept (measured × k_f it is still the force); its `at` becomes its
-/// tail, so that no connector is drawn over the symbol (the line of action runs through the
-/// joint).
-pub fn clear_of_symbols(arrows: &mut [forces::ForceArrow], figure: &LinkageFigure, q: &[f64], s: vocab::Sizes) {
-    let blocks: Vec<(Point, Vector)> = figure
-        .joints
-        .iter()
-        .filter_map(|j| match j {
+/// The mechanism's symbols at `q` (paper mm) that the forces keep clear of
+/// ([`clear_forces::place`]): every joint's circle, every slider's block, every pivot's
+/// ground symbol.
+pub fn symbols(figure: &LinkageFigure, q: &[f64], s: vocab::Sizes) -> Vec<clear_forces::Symbol> {
+    let mut out = Vec::new();
+    for j in &figure.joints {
+        match j {
+            fig::JointSymbol::Pin { at, grounded, .. } => {
+                let p = fig::anchor_at(q, *at);
+                out.push(clear_forces::Symbol::Circle { at: p, r: s.joint });
+                if *grounded {
+                    out.push(clear_forces::ground_block(p, s));
+                }
+            }
             fig::JointSymbol::Slider { point, q1, q2, .. } => {
                 let dir = fig::anchor_at(q, *q2) - fig::anchor_at(q, *q1);
                 let len = dir.norm();
-                (len > 0.0).then(|| (fig::anchor_at(q, *point), dir / len))
-            }
-            fig::JointSymbol::Pin { .. } => None,
-        })
-        .collect();
-    let near = 1e-9 * (s.joint + s.slider_length);
-    for a in arrows.iter_mut() {
-        let v = a.arrow.1 - a.arrow.0;
-        let len = v.norm();
-        if a.arrow.0 != a.at || !(len > 0.0) {
-            continue;
-        }
-        let u = v / len;
-        let mut reach = s.joint;
-        for (p, g) in &blocks {
-            if (p - a.at).norm() <= near {
-                let (hl, hh) = (0.5 * s.slider_length, 0.5 * s.slider_height);
-                let (along, across) = (u.dot(g).abs(), crate::geom::cross(*g, u).abs());
-                let exit = (if along > 1e-12 { hl / along } else { f64::INFINITY })
-                    .min(if across > 1e-12 { hh / across } else { f64::INFINITY });
-                reach = reach.max(exit);
+                if len > 0.0 {
+                    let p = fig::anchor_at(q, *point);
+                    out.push(clear_forces::Symbol::Block {
+                        at: p,
+                        centre: p,
+                        dir: dir / len,
+                        half: (0.5 * s.slider_length, 0.5 * s.slider_height),
+                    });
+                }
             }
         }
-        let shift = u * (reach + SYMBOL_GAP * s.head);
-        a.arrow = (a.arrow.0 + shift, a.arrow.1 + shift);
-        a.at = a.arrow.0;
     }
+    out
 }
 
 /// Whether a row of a position's table is a force's or a moment's (its unit N or N·…).

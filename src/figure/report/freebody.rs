@@ -19,7 +19,8 @@ use crate::figure::linkage::forces::{body_forces, driver_name, reaction_names};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, OnPaper, Sketch};
 use crate::figure::report::structure::{group_caption, group_sketch};
-use crate::figure::shared::forces::NamedVector;
+use crate::figure::shared::clear_forces;
+use crate::figure::shared::forces::{ForceArrow, NamedVector};
 use crate::figure::shared::labels;
 use crate::figure::shared::vocab::{self, Sizes, layer_of, layers, nice_scale};
 use crate::geom::{Point, Vector};
@@ -315,14 +316,21 @@ fn group_panel(
     let start = d.entities.len();
     sketch::draw(d, &gs, q, &[q], sketch::Frame { at, sizes: s, area }, Marks { numbers: true, ..Marks::default() });
     let frc = layer_of(d, layers::FORCES);
-    let links = group_links(&gs, q, at);
+    // The forces to k_F, clear of the group's links, guides and joints' symbols.
+    let mut arrows: Vec<ForceArrow> = loads
+        .forces
+        .iter()
+        .filter(|(_, nv)| nv.v.norm() > NEGLIGIBLE_REL * largest && !nv.v.norm().is_nan())
+        .map(|(point, nv)| {
+            let from = at.point(*point);
+            ForceArrow { at: from, force: nv.clone(), arrow: (from, from + nv.v / k_f) }
+        })
+        .collect();
+    clear_of_group(&mut arrows, &gs, q, (at, inside), s);
     // (from, to, name, colour, with a leader)
     let mut names: Vec<(Point, Point, String, Option<Aci>, bool)> = Vec::new();
-    for (point, nv) in &loads.forces {
-        if nv.v.norm() <= NEGLIGIBLE_REL * largest || nv.v.norm().is_nan() {
-            continue;
-        }
-        let (from, to) = placed(at.point(*point), nv.v / k_f, &links, inside, s);
+    for a in &arrows {
+        let (nv, (from, to)) = (&a.force, a.arrow);
         let reaction = nv.name.starts_with('R') || nv.name.starts_with("−R");
         let color = reaction.then_some(Aci::RED);
         match color {
@@ -380,50 +388,16 @@ fn group_panel(
 /// The length scale bar stands this many letter heights over the force scale bar.
 const LENGTH_BAR_RISE: f64 = 1.6;
 
-/// The group's links on paper: each body outline's sides.
-fn group_links(gs: &Sketch, q: &[f64], at: OnPaper) -> Vec<(Point, Point)> {
-    let mut out = Vec::new();
-    for (i, b) in gs.figure.bodies.iter().enumerate() {
-        let pts: Vec<Point> = b
-            .points
-            .iter()
-            .map(|(_, v)| at.point(crate::solve::linkage::place(q, Attach::Body(i), *v)))
-            .collect();
-        let sides = if pts.len() >= 3 { pts.len() } else { pts.len().saturating_sub(1) };
-        out.extend((0..sides).map(|k| (pts[k], pts[(k + 1) % pts.len()])));
+/// Places the group's forces ([`clear_forces::place`]) clear of its links, its ground
+/// guides and its joints' symbols as the panel draws them at `at`, inside the panel's
+/// drawing area `inside` where it can.
+fn clear_of_group(arrows: &mut [ForceArrow], gs: &Sketch, q: &[f64], (at, inside): (OnPaper, Bounds), s: Sizes) {
+    let paper_fig = gs.figure.on_paper(at.origin, at.k_l);
+    let paper_q = crate::figure::linkage::on_paper(q, at.origin, at.k_l);
+    let mut strokes = crate::figure::linkage::frame::links_of(&paper_fig, &paper_q);
+    for (a, b) in crate::figure::linkage::guide_spans(&paper_fig, &[&paper_q], &s).into_iter().flatten() {
+        strokes.extend(clear_forces::guide_strokes(a, b, s));
     }
-    out
-}
-
-/// Where the force `v` (paper mm) acting at `p` is drawn: from `p` (its tail at the point),
-/// or, when that arrow would run along or across one of the group's `links` away from the
-/// joint, onto `p` (its tip at the point) if that one is clear of them and inside `inside`.
-/// Either way its line of action runs through `p` and its length is the force over k_F.
-fn placed(p: Point, v: Vector, links: &[(Point, Point)], inside: Bounds, s: Sizes) -> (Point, Point) {
-    let band = s.link + 2.0 * crate::draw::parts::ARROW_HALF_WIDTH * s.head;
-    let clear = |a: (Point, Point)| {
-        !links.iter().any(|l| {
-            crate::figure::shared::forces::runs_over(a, *l, band, s) || crosses_away_from(a, *l, p, 1.5 * s.joint)
-        })
-    };
-    let from_p = (p, p + v);
-    if clear(from_p) {
-        return from_p;
-    }
-    let onto_p = (p - v, p);
-    let tail = onto_p.0;
-    let within = tail.x >= inside.min.x && tail.x <= inside.max.x && tail.y >= inside.min.y && tail.y <= inside.max.y;
-    if within && clear(onto_p) { onto_p } else { from_p }
-}
-
-/// Whether the segments `a` and `b` cross at a point farther than `r` from `p`.
-fn crosses_away_from(a: (Point, Point), b: (Point, Point), p: Point, r: f64) -> bool {
-    let (u, w) = (a.1 - a.0, b.1 - b.0);
-    let den = crate::geom::cross(u, w);
-    if den.abs() <= 1e-12 * u.norm() * w.norm() {
-        return false;
-    }
-    let d = b.0 - a.0;
-    let (t, k) = (crate::geom::cross(d, w) / den, crate::geom::cross(d, u) / den);
-    (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&k) && (a.0 + u * t - p).norm() > r
+    let symbols = crate::figure::linkage::sheet::symbols(&paper_fig, &paper_q, s);
+    clear_forces::place(arrows, &strokes, &symbols, Some((inside.min, inside.max)), s);
 }
