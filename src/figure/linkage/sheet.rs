@@ -18,7 +18,6 @@ use crate::figure::linkage::forces::{ForceFigures, on_mechanism};
 use crate::figure::linkage::frame::{Show, links_of, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
-use crate::figure::shared::{clear_forces, forces};
 use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
 use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
@@ -26,6 +25,7 @@ use crate::figure::shared::sheet_pages::{
     MechanismPage, forces_page, mechanism_bar, mechanism_force_scale, polygons_page,
 };
 use crate::figure::shared::vocab::{self, Scale, layer_of, layers, length_scale_text};
+use crate::figure::shared::{clear_forces, forces};
 
 /// The longest force drawn on the mechanism page, as a fraction of the mechanism's drawn size.
 pub const MECHANISM_FORCE_FRACTION: f64 = 0.3;
@@ -241,7 +241,13 @@ impl LinkageSheets {
                     strokes.extend(clear_forces::guide_strokes(*a, *b, s));
                 }
                 let panel = layout.panels[0].area;
-                clear_forces::place(&mut arrows, &strokes, &symbols(&self.paper_figure, &q, s), Some((panel.min, panel.max)), s);
+                clear_forces::place(
+                    &mut arrows,
+                    &strokes,
+                    &symbols(&self.paper_figure, &q, s),
+                    Some((panel.min, panel.max)),
+                    s,
+                );
                 arrows
             }
             None => Vec::new(),
