@@ -472,12 +472,30 @@ fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
             (foot, if over_title { right } else { border.max.x })
         };
         let used: f64 = members.iter().map(|&i| cells[i].width()).sum();
-        let spare = (end - border.min.x - used).max(0.0) / members.len() as f64;
-        let mut x = border.min.x;
-        for &i in members {
-            let w = cells[i].width() + spare;
-            cells[i] = Bounds { min: Point::new(x, foot), max: Point::new(x + w, *top) };
-            x += w;
+        let spread = |end: f64, foot_of: &dyn Fn(f64) -> f64| -> Vec<Bounds> {
+            let spare = (end - border.min.x - used).max(0.0) / members.len() as f64;
+            let mut x = border.min.x;
+            members
+                .iter()
+                .map(|&i| {
+                    let w = cells[i].width() + spare;
+                    let b = Bounds { min: Point::new(x, foot_of(x + w)), max: Point::new(x + w, *top) };
+                    x += w;
+                    b
+                })
+                .collect()
+        };
+        // The last row across the whole width, its cells over the title block ending at its
+        // top, when none of them gets shorter than it was packed (the four-bar's two tall
+        // figures), else as above.
+        let across = (r + 1 == n)
+            .then(|| spread(border.max.x, &|x_end| if x_end <= right + 1e-9 { border.min.y } else { title.max.y }));
+        let placed = match across {
+            Some(a) if members.iter().zip(&a).all(|(&i, b)| b.height() >= cells[i].height() - 1e-9) => a,
+            _ => spread(end, &|_| foot),
+        };
+        for (&i, b) in members.iter().zip(placed) {
+            cells[i] = b;
         }
     }
 }
