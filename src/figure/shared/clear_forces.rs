@@ -117,7 +117,7 @@ pub fn ground_block(p: Point, s: Sizes) -> Symbol {
 /// its line and its hatch's two edges.
 pub fn guide_strokes(a: Point, b: Point, s: Sizes) -> Vec<(Point, Point)> {
     let len = (b - a).norm();
-    if !(len > 0.0) {
+    if len.is_nan() || len <= 0.0 {
         return Vec::new();
     }
     let u = (b - a) / len;
@@ -161,7 +161,7 @@ pub fn place(
     for a in arrows.iter_mut() {
         let v = a.arrow.1 - a.arrow.0;
         let len = v.norm();
-        if !(len > 0.0) {
+        if len.is_nan() || len <= 0.0 {
             continue;
         }
         let (p, u) = (a.at, v / len);

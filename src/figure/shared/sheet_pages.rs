@@ -205,7 +205,7 @@ impl ForcesPage {
     /// block: each figure at the coarsest nice k_f that
     /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
     /// page still holds them, at the next finer one (larger figures where there is room);
-    /// the panels then stretched to use the page ([`fill`]) and each figure at the finest
+    /// the panels then stretched to use the page (`fill`) and each figure at the finest
     /// nice k_f its stretched panel holds.
     pub fn new(
         paper: Paper,
