@@ -513,12 +513,7 @@ pub(super) fn motion_report<'a>(
         "kind": "linkage",
         "mobility": structure.mobility.formula,
         "mobility_at_placement": structure.mobility.actual,
-        "groups": structure.groups.iter().map(|g| serde_json::json!({
-            "kind": g.group.kind_name(),
-            "bodies": g.group.bodies.iter().map(|&b| mech.bodies[b].name.clone()).collect::<Vec<_>>(),
-            "class": g.class,
-            "order": g.order,
-        })).collect::<Vec<_>>(),
+        "groups": groups_json(&structure, mech),
         "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "t": c.drive})).collect::<Vec<_>>(),
     });
     let r = MotionReport {
@@ -748,12 +743,7 @@ pub(super) fn structure_report<'a>(
         "mobility": m.formula,
         "mobility_at_placement": m.actual,
         "redundant": m.redundant(),
-        "groups": structure.groups.iter().map(|g| serde_json::json!({
-            "kind": g.group.kind_name(),
-            "bodies": g.group.bodies.iter().map(|&b| mech.bodies[b].name.clone()).collect::<Vec<_>>(),
-            "class": g.class,
-            "order": g.order,
-        })).collect::<Vec<_>>(),
+        "groups": groups_json(&structure, mech),
         "positions": [],
     });
     let warnings = vec![format!(
@@ -763,4 +753,20 @@ pub(super) fn structure_report<'a>(
         m.actual.unwrap_or(m.formula)
     )];
     Ok(super::Gathered { parts: vec![title, structure_part, kinematic_part], table: None, summary, warnings })
+}
+
+/// The summary's groups: each group's kind, bodies, class and order.
+fn groups_json(structure: &Structure, mech: &crate::solve::linkage::Mechanism) -> Vec<serde_json::Value> {
+    structure
+        .groups
+        .iter()
+        .map(|g| {
+            serde_json::json!({
+                "kind": g.group.kind_name(),
+                "bodies": g.group.bodies.iter().map(|&b| mech.bodies[b].name.clone()).collect::<Vec<_>>(),
+                "class": g.class,
+                "order": g.order,
+            })
+        })
+        .collect()
 }
