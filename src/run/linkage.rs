@@ -29,7 +29,7 @@ use crate::solve::linkage::{
     Solver, State,
 };
 use crate::solve::stroke::{self, Extreme, Stroke};
-use rayon::prelude::*;
+use crate::par::prelude::*;
 
 /// One measured column: its name and values over the motion (the CSV's and the JSON's;
 /// the diagrams draw them in textbook form, see `plot_of`).

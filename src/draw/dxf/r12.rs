@@ -48,7 +48,7 @@ pub(super) fn to_pieces_in(drawing: &Drawing, opts: &DxfOptions, per_job: usize)
     let doc = build_head(drawing, &opts);
     let first_handle = doc.header.next_available_handle.0;
     // The head serialised by the crate while the jobs count and write.
-    let (head, written) = rayon::join(
+    let (head, written) = crate::par::join(
         || -> Result<Vec<u8>, DxfError> {
             let mut raw = Vec::new();
             doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
@@ -99,7 +99,7 @@ type JobBytes = (Vec<u8>, Vec<u8>);
 /// next job's numbering starts; `None` if a job did not end where the count said (a bug:
 /// the caller then writes one job).
 fn jobs(drawing: &Drawing, opts: &DxfOptions, per_job: usize, first_handle: u64) -> Option<(Vec<JobBytes>, u64)> {
-    use rayon::prelude::*;
+    use crate::par::prelude::*;
     // Layer names escaped once, for every job.
     let layers: Vec<String> = drawing
         .layers

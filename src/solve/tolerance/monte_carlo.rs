@@ -16,7 +16,7 @@ use rand::distr::Distribution as _;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use rayon::prelude::*;
+use crate::par::prelude::*;
 
 use super::model::{Component, Dimension, Distribution};
 use super::stats::Tally;
