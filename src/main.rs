@@ -57,7 +57,7 @@ enum Command {
         /// DIR/sheets/<name>/<position>.svg and one PDF, DIR/<name>-sheets.pdf, to print at 100 %.
         #[arg(long, value_name = "PAPER")]
         sheets: Option<Paper>,
-        /// Four-bar and linkage scenes: draw only these positions (the DXF's position layers, the
+        /// Four-bar and linkage scenes, and a synthesis's design: draw only these positions (the DXF's position layers, the
         /// frames, the sheets): crank angles φ1 in degrees for a four-bar, times t in seconds for
         /// a linkage, as the frames label them, e.g. `0,90,180`; or `every=STEP`, the first
         /// position and every STEP after it (`every=30`). Each must be a position of the run
