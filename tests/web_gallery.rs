@@ -13,9 +13,9 @@ mod common;
 /// page's report (33), tolerances (34) and synthesis (35) landed, 2.19 MB after the fourth
 /// session's rounds (no rayon, no `dxf` crate, the linkage sweep one step at a time in the
 /// module): docs/web.md, "Size", says what is in it and what would take it below 1.5 MB. This
-/// bound is what was reached (2 186 107 bytes), so that the module does not grow unnoticed.
+/// bound is what was reached (2 186 245 bytes), so that the module does not grow unnoticed.
 const MODULE_MAX_BYTES: usize = 2_200_000;
-/// ... and gzipped (what a web server sends): the target is 600 KB, reached 915 210.
+/// ... and gzipped (what a web server sends): the target is 600 KB, reached 915 237.
 const MODULE_MAX_GZIP_BYTES: usize = 925_000;
 /// A run's page: one self-contained file (module inside) that a student can mail.
 const PAGE_MAX_BYTES: u64 = 2_000_000;
