@@ -61,6 +61,8 @@ pub(crate) struct Study {
     pub dims: Vec<Dimension>,
     /// Reported components.
     pub comps: Vec<Component>,
+    /// What each component measures.
+    pub quantities: Vec<Quantity>,
     /// Each position's and component's nominal value (0 for a deviation component).
     pub nominal: Vec<f64>,
     /// The linear stack-up per position (`None` at a dead point), per component.
@@ -80,19 +82,48 @@ pub(crate) struct Study {
     pub labels: Vec<String>,
 }
 
-/// A watched output as the components see it: its name, whether it is a point, and for a
-/// point on a path the unit tangents of its nominal path (one per position).
+/// What a component measures: its unit on the diagrams.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Quantity {
+    /// A length (a point's coordinate or deviation), scene units.
+    Length,
+    /// An angle, degrees.
+    Angle,
+    /// A velocity, scene units/s.
+    Velocity,
+    /// An acceleration, scene units/s².
+    Acceleration,
+    /// An angular velocity, rad/s.
+    AngularVelocity,
+    /// An angular acceleration, rad/s².
+    AngularAcceleration,
+}
+
+impl Quantity {
+    /// Whether it is a vector's (two channels: x, y).
+    fn vector(self) -> bool {
+        matches!(self, Quantity::Length | Quantity::Velocity | Quantity::Acceleration)
+    }
+}
+
+/// A watched output as the components see it: its name, what it measures, and for a
+/// vector of a point on a path the unit tangents of its nominal path (one per position).
 struct Watched {
     name: String,
-    point: bool,
+    quantity: Quantity,
     tangents: Option<Vec<Vector>>,
 }
 
 /// The components of watched outputs (channels in their order, 2 for a point, 1 for an
 /// angle; `nominal` the model's channel values, position-major): a point's x, y, normal and
 /// along; an angle's value.
-fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Component>, Vec<WatchedPath>) {
+fn components(
+    watched: &[Watched],
+    nominal: &[f64],
+    channels: usize,
+) -> (Vec<Component>, Vec<Quantity>, Vec<WatchedPath>) {
     let mut comps = Vec::new();
+    let mut quantities = Vec::new();
     let mut paths = Vec::new();
     let mut ch = 0;
     let np = nominal.len() / channels.max(1);
@@ -105,8 +136,10 @@ fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Com
             absolute,
             projection,
         };
-        if !w.point {
+        let before = comps.len();
+        if !w.quantity.vector() {
             comps.push(comp("value", true, Projection::Channel(ch)));
+            quantities.push(w.quantity);
             ch += 1;
             continue;
         }
@@ -114,37 +147,49 @@ fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Com
             // A point with no path (a triad's vertex): its coordinates only.
             comps.push(comp("x", true, Projection::Channel(ch)));
             comps.push(comp("y", true, Projection::Channel(ch + 1)));
+            quantities.extend([w.quantity; 2]);
             ch += 2;
             continue;
         };
         let normals: Vec<Vector> = tangents.iter().map(|t| perp(*t)).collect();
         comps.push(comp("x", true, Projection::Channel(ch)));
         comps.push(comp("y", true, Projection::Channel(ch + 1)));
-        paths.push(WatchedPath {
-            name: name.to_string(),
-            points: (0..np).map(|k| Point::new(nominal[k * channels + ch], nominal[k * channels + ch + 1])).collect(),
-            normals: normals.clone(),
-            normal: comps.len(),
-        });
+        // A point's position has a path to draw its band along; its rates do not.
+        if w.quantity == Quantity::Length {
+            paths.push(WatchedPath {
+                name: name.to_string(),
+                points: (0..np)
+                    .map(|k| Point::new(nominal[k * channels + ch], nominal[k * channels + ch + 1]))
+                    .collect(),
+                normals: normals.clone(),
+                normal: comps.len(),
+            });
+        }
         comps.push(comp("normal", false, Projection::Along { x: ch, y: ch + 1, dirs: normals }));
         comps.push(comp("along", false, Projection::Along { x: ch, y: ch + 1, dirs: tangents.clone() }));
+        quantities.extend(std::iter::repeat_n(w.quantity, comps.len() - before));
         ch += 2;
     }
-    (comps, paths)
+    (comps, quantities, paths)
 }
 
-/// The four-bar's components: a point's x, y, normal and along; an angle's value.
-fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<WatchedPath>) {
+/// The four-bar's components: a point's x, y, normal and along (its position's, velocity's
+/// or acceleration's, about the point's path); an angle's or a link's rate's value.
+fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<Quantity>, Vec<WatchedPath>) {
     let watched: Vec<Watched> = model
         .outputs()
         .iter()
         .map(|o| Watched {
             name: o.name().to_string(),
-            point: matches!(o, FourbarOutput::Point(_)),
-            tangents: match o {
-                FourbarOutput::Point(p) => Some(model.tangents(*p)),
-                _ => None,
+            quantity: match o {
+                FourbarOutput::Point(_) => Quantity::Length,
+                FourbarOutput::Phi2 | FourbarOutput::Phi3 => Quantity::Angle,
+                FourbarOutput::Velocity(_) => Quantity::Velocity,
+                FourbarOutput::Acceleration(_) => Quantity::Acceleration,
+                FourbarOutput::Omega2 | FourbarOutput::Omega3 => Quantity::AngularVelocity,
+                FourbarOutput::Eps2 | FourbarOutput::Eps3 => Quantity::AngularAcceleration,
             },
+            tangents: o.point().map(|p| model.tangents(p)),
         })
         .collect();
     components(&watched, model.nominal(), model.channels())
@@ -184,6 +229,7 @@ impl Analysis {
             axis: Axis { column: "", symbol: "", unit: "", values: Vec::new(), motion: true },
             dims: self.dims,
             comps: Vec::new(),
+            quantities: Vec::new(),
             nominal: self.nominal,
             linear: self.linear,
             dead: self.dead,
@@ -222,8 +268,9 @@ pub(crate) fn fourbar(
 ) -> Option<Study> {
     let tol = scene.tolerances.as_ref()?;
     let g = scene.spec.geometry;
-    let model = FourbarModel::new(g, positions, tol.study.params.clone(), tol.outputs.clone());
-    let (comps, paths) = fourbar_components(&model);
+    let model = FourbarModel::new(g, positions, tol.study.params.clone(), tol.outputs.clone())
+        .with_crank(scene.spec.omega1, scene.spec.epsilon1);
+    let (comps, quantities, paths) = fourbar_components(&model);
     let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     let sketch = positions.first().map(|p| vec![(g.o1, p.a), (p.a, p.b), (p.b, p.m), (g.c, p.b)]).unwrap_or_default();
     let axis = Axis {
@@ -239,6 +286,7 @@ pub(crate) fn fourbar(
         units: scene.units,
         axis,
         comps,
+        quantities,
         paths,
         sketch,
         labels: Vec::new(),
@@ -252,7 +300,7 @@ pub(crate) fn linkage(
     scene: &crate::scene::linkage::LinkageScene,
     chunks: Option<Range<u64>>,
 ) -> Result<Option<Study>, crate::solve::tolerance::linkage::LinkageToleranceError> {
-    use crate::solve::tolerance::linkage::{LinkageModel, LinkageOutput};
+    use crate::solve::tolerance::linkage::LinkageModel;
     let Some(tol) = scene.tolerances.as_ref() else { return Ok(None) };
     let model =
         LinkageModel::new(scene.mechanism.clone(), &scene.times, tol.study.params.clone(), tol.outputs.clone())?;
@@ -262,11 +310,11 @@ pub(crate) fn linkage(
         .enumerate()
         .map(|(i, o)| Watched {
             name: o.name().to_string(),
-            point: matches!(o, LinkageOutput::Point { .. }),
-            tangents: matches!(o, LinkageOutput::Point { .. }).then(|| model.tangents(i)),
+            quantity: linkage_quantity(o),
+            tangents: linkage_quantity(o).vector().then(|| model.tangents(i)),
         })
         .collect();
-    let (comps, paths) = components(&watched, model.nominal(), model.channels());
+    let (comps, quantities, paths) = components(&watched, model.nominal(), model.channels());
     let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     // The mechanism at its first position: each body's outline.
     let mut sketch = Vec::new();
@@ -286,6 +334,7 @@ pub(crate) fn linkage(
         units: scene.units,
         axis,
         comps,
+        quantities,
         paths,
         sketch,
         labels,
@@ -308,9 +357,13 @@ pub(crate) fn triad(
     let watched: Vec<Watched> = model
         .outputs()
         .iter()
-        .map(|o| Watched { name: o.name(), point: matches!(o, TriadOutput::Vertex(_)), tangents: None })
+        .map(|o| Watched {
+            name: o.name(),
+            quantity: if matches!(o, TriadOutput::Vertex(_)) { Quantity::Length } else { Quantity::Angle },
+            tangents: None,
+        })
         .collect();
-    let (comps, paths) = components(&watched, model.nominal(), model.channels());
+    let (comps, quantities, paths) = components(&watched, model.nominal(), model.channels());
     let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     let axis = Axis {
         column: "mode",
@@ -325,11 +378,25 @@ pub(crate) fn triad(
         units: scene.units,
         axis,
         comps,
+        quantities,
         paths,
         sketch: Vec::new(),
         labels: Vec::new(),
         ..a.into(settings)
     })
+}
+
+/// What a linkage's output measures.
+fn linkage_quantity(o: &crate::solve::tolerance::linkage::LinkageOutput) -> Quantity {
+    use crate::solve::tolerance::linkage::LinkageOutput as O;
+    match o {
+        O::Point { .. } => Quantity::Length,
+        O::Angle { .. } => Quantity::Angle,
+        O::Velocity { .. } => Quantity::Velocity,
+        O::Acceleration { .. } => Quantity::Acceleration,
+        O::Omega { .. } => Quantity::AngularVelocity,
+        O::Eps { .. } => Quantity::AngularAcceleration,
+    }
 }
 
 /// A linkage field's name on the charts: `ground.C[0]` for `ground.points.C[0]`,
@@ -439,12 +506,14 @@ impl Study {
     /// Component `c`'s deviations in the diagrams' unit: (factor, unit): lengths in mm for
     /// SI scenes and in µm for mm scenes, angles in degrees.
     fn deviation_unit(&self, c: usize) -> (f64, &'static str) {
-        if self.comps[c].part == "value" {
-            return (1.0, "°");
-        }
-        match self.units {
-            Units::Si => (1000.0, "mm"),
-            Units::Mm => (1000.0, "µm"),
+        let si = self.units == Units::Si;
+        match self.quantities[c] {
+            Quantity::Angle => (1.0, "°"),
+            Quantity::AngularVelocity => (1.0, "rad/s"),
+            Quantity::AngularAcceleration => (1.0, "rad/s²"),
+            Quantity::Length => (1000.0, if si { "mm" } else { "µm" }),
+            Quantity::Velocity => (1000.0, if si { "mm/s" } else { "µm/s" }),
+            Quantity::Acceleration => (1000.0, if si { "mm/s²" } else { "µm/s²" }),
         }
     }
 
@@ -533,13 +602,15 @@ impl Study {
     }
 
     /// The components whose charts are drawn: a point's normal (its x and y when it has no
-    /// path: a triad's vertex), an angle's value.
+    /// path: a triad's vertex), a point's velocity's or acceleration's component along the
+    /// path (the speed's, the tangential acceleration's), an angle's or a rate's value.
     pub fn headline(&self) -> Vec<usize> {
         let has_normal = |o: &str| self.comps.iter().any(|c| c.output == o && c.part == "normal");
         (0..self.comps.len())
-            .filter(|&c| match self.comps[c].part {
-                "normal" | "value" => true,
-                "x" | "y" => !has_normal(&self.comps[c].output),
+            .filter(|&c| match (self.comps[c].part, self.quantities[c]) {
+                ("normal", Quantity::Length) | ("value", _) => true,
+                ("along", Quantity::Velocity | Quantity::Acceleration) => true,
+                ("x" | "y", _) => !has_normal(&self.comps[c].output),
                 _ => false,
             })
             .collect()
