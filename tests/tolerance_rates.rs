@@ -265,3 +265,94 @@ fn linkage_rates_monte_carlo_sigma_tends_to_the_linear_sigma() {
         }
     }
 }
+
+fn run(args: &[&str]) -> std::process::Output {
+    common::mechdraw().args(args).output().unwrap()
+}
+
+#[test]
+fn a_fourbar_run_writes_the_rates_columns_json_and_diagrams() {
+    let tmp = tempfile::tempdir().unwrap();
+    let out = tmp.path().join("out");
+    let template = common::root().join("templates").join(TEMPLATE);
+    let o = run(&[
+        "run",
+        template.to_str().unwrap(),
+        "--no-frames",
+        "-q",
+        "--out",
+        out.to_str().unwrap(),
+        "--set",
+        "phi1_deg.step=10",
+        "--set",
+        "tolerances.settings.samples=2000",
+        "--set",
+        "tolerances.outputs.velocities=[\"M\", \"rocker\"]",
+        "--set",
+        "tolerances.outputs.accelerations=[\"M\", \"coupler\"]",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(out.join("fourbar-tolerances-tolerances.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    for col in
+        ["vM.x.wc", "vM.along.rss", "vM.normal.mc_sigma", "aM.y.mc_p99.865", "omega3.value.nominal", "eps2.value.wc"]
+    {
+        assert!(header.contains(&col), "no column {col} in {header:?}");
+    }
+    assert!(!csv.contains("NaN") && !csv.contains("inf"));
+    // The nominal rates are the run's own kinematics (ω1 = 20 rad/s): ω3 at φ1 = 0.
+    let (s, positions) = fourbar(&["phi1_deg.step=10"]);
+    let k0 = kinematics_eps(&s.spec.geometry, &positions[0], s.spec.omega1, s.spec.epsilon1).unwrap();
+    let row: Vec<&str> = csv.lines().nth(1).unwrap().split(',').collect();
+    let at = |c: &str| row[header.iter().position(|h| *h == c).unwrap()].parse::<f64>().unwrap();
+    assert!(
+        common::rel_close(at("omega3.value.nominal"), k0.omega3, 1e-3, 0.0),
+        "{} vs {}",
+        at("omega3.value.nominal"),
+        k0.omega3
+    );
+    assert!(common::rel_close(at("vM.x.nominal"), k0.v_m.x, 1e-3, 0.0));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("fourbar-tolerances.json")).unwrap()).unwrap();
+    let names: Vec<&str> =
+        v["tolerances"]["components"].as_array().unwrap().iter().map(|c| c["name"].as_str().unwrap()).collect();
+    for c in ["vM.x", "vM.y", "vM.normal", "vM.along", "omega3.value", "aM.along", "eps2.value"] {
+        assert!(names.contains(&c), "no component {c} in {names:?}");
+    }
+    assert!(v["tolerances"]["positions"][3]["values"]["vM.along"]["rss"].as_f64().unwrap() > 0.0);
+    // Their band diagrams and Pareto charts (the speed's and the tangential acceleration's).
+    let diagrams = out.join("diagrams").join("fourbar-tolerances");
+    for f in [
+        "vM.along-band.svg",
+        "omega3.value-band.svg",
+        "vM.along-pareto.svg",
+        "aM.along-pareto.svg",
+        "eps2.value-pareto.svg",
+    ] {
+        assert!(diagrams.join(f).exists(), "{f}");
+    }
+    let band = std::fs::read_to_string(diagrams.join("vM.along-band.svg")).unwrap();
+    assert!(band.contains("mm/s"), "the speed's deviations in mm/s");
+    // The band drawing is the points' paths only.
+    let drawing = std::fs::read_to_string(out.join("fourbar-tolerances-tolerance-band.svg")).unwrap();
+    assert!(!drawing.contains("vM"));
+}
+
+#[test]
+fn bad_rate_outputs_name_the_field_and_write_nothing() {
+    let tmp = tempfile::tempdir().unwrap();
+    let template = common::root().join("templates").join(TEMPLATE);
+    for (set, field) in [
+        ("tolerances.outputs.velocities=[\"Q\"]", "tolerances.outputs.velocities[0]"),
+        ("tolerances.outputs.accelerations=[\"M\", \"crank\"]", "tolerances.outputs.accelerations[1]"),
+        ("tolerances.outputs.velocities=[\"M\", \"M\"]", "tolerances.outputs"),
+        ("tolerances.outputs.speeds=[\"M\"]", "tolerances.outputs.speeds"),
+    ] {
+        let out = tmp.path().join("out");
+        let o = run(&["run", template.to_str().unwrap(), "--out", out.to_str().unwrap(), "--set", set]);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{set}: {err}");
+        assert!(err.contains(TEMPLATE) && err.contains(&format!("field `{field}`")), "{set}: {err}");
+        assert!(!out.exists(), "{set}: something was written");
+    }
+}

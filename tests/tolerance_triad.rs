@@ -223,12 +223,17 @@ fn the_template_runs_end_to_end_and_shards_merge_into_the_single_run() {
     let positions = tol["positions"].as_array().unwrap();
     let solutions = a["solutions"].as_array().unwrap();
     assert_eq!(positions.len(), solutions.len());
-    for (p, sol) in positions.iter().zip(solutions) {
+    for (k, (p, sol)) in positions.iter().zip(solutions).enumerate() {
+        // A mode is a whole number, written as one (`1`, not `1.0`).
+        assert!(p["mode"].is_u64() && p["mode"] == k + 1, "mode {}", p["mode"]);
         let nominal = p["values"]["A2.x"]["nominal"].as_f64().unwrap();
         assert_eq!(nominal, sol["A2"][0].as_f64().unwrap());
         let wc = p["values"]["A2.x"]["wc"].as_f64().unwrap();
         let rss = p["values"]["A2.x"]["rss"].as_f64().unwrap();
         assert!(wc > rss && rss > 0.0, "A2.x: wc {wc}, rss {rss}");
+    }
+    for c in tol["components"].as_array().unwrap() {
+        assert!(c["worst"]["mode"].is_u64(), "{}: widest mode {}", c["name"], c["worst"]["mode"]);
     }
     // Pareto charts of the vertices' coordinates and the angle; no band drawing (no path).
     let diagrams = single.join("diagrams").join("triad-tolerances");
@@ -290,6 +295,7 @@ fn bad_tolerances_name_the_file_and_field_and_write_nothing() {
         ("tolerances.l13=\"x\"", "tolerances.\"l13\""),
         ("tolerances.outputs.points=[\"A4\"]", "tolerances.outputs.points[0]"),
         ("tolerances.outputs.angles=[\"crank\"]", "tolerances.outputs.angles[0]"),
+        ("tolerances.outputs.velocities=[\"A1\"]", "tolerances.outputs.velocities"),
         ("tolerances.settings.samples=0", "tolerances.settings.samples"),
     ] {
         let out = tmp.path().join("out");

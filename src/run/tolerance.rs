@@ -463,6 +463,12 @@ impl Study {
         if self.axis.motion { short(self.axis.values[k]) } else { format!("{}", self.axis.values[k]) }
     }
 
+    /// Position `k`'s value in the JSON: a number, a mode's as an integer (`1`, not `1.0`).
+    fn position_json(&self, k: usize) -> Value {
+        let v = self.axis.values[k];
+        if self.axis.motion { json!(v) } else { json!(v as u64) }
+    }
+
     /// The position's label on the figures and in the texts (`φ1 = 123°`, `t = 0.09 s`,
     /// `mode = 2`).
     fn at_label(&self, k: usize) -> String {
@@ -526,9 +532,11 @@ impl Study {
             (0..self.positions()).map(|k| self.linear[k].as_ref().map(|l| f * g(&l[c]))).collect()
         };
         let comp = &self.comps[c];
+        // A rate's normal and along are about its point's path.
+        let whose = if self.quantities[c] == Quantity::Length { "its" } else { "the point's" };
         let what = match comp.part {
-            "normal" => format!("{} normal to its path", comp.output),
-            "along" => format!("{} along its path", comp.output),
+            "normal" => format!("{} normal to {whose} path", comp.output),
+            "along" => format!("{} along {whose} path", comp.output),
             "value" => comp.output.clone(),
             part => format!("{}.{part}", comp.output),
         };
@@ -711,7 +719,7 @@ impl Study {
                     "output": self.comps[c].output,
                     "part": self.comps[c].part,
                     "worst": w.map_or(Value::Null, |k| json!({
-                        self.axis.column: self.axis.values[k],
+                        self.axis.column: self.position_json(k),
                         "index": k,
                         "mc_half_spread": opt(self.spread(k, c)),
                         "wc": opt(self.linear[k].as_ref().map(|l| l[c].worst_case)),
@@ -745,7 +753,7 @@ impl Study {
                     }
                 }
                 json!({
-                    self.axis.column: self.axis.values[k],
+                    self.axis.column: self.position_json(k),
                     "failed": self.mc.failed_at[k],
                     "linear_trusted": notes[k].is_empty(),
                     "notes": notes[k],

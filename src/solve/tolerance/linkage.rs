@@ -30,6 +30,9 @@ use super::{Dimension, wrap_deg};
 use crate::geom::{Point, Vector, perp, rotate};
 use crate::solve::linkage::{AssurSolver, Attach, JointKind, LinkageError, Mechanism, Motion, Solver, State};
 
+/// ∂q̇/∂p and ∂q̈/∂p at one position, field-major.
+type RateSensitivities = (Vec<f64>, Vec<f64>);
+
 /// Coordinates, velocities and accelerations (q, q̇, q̈) of one position.
 type Rates<'a> = (&'a [f64], &'a [f64], &'a [f64]);
 
@@ -420,7 +423,7 @@ impl LinkageModel {
         pairs: &mut [(Solver, Solver, f64)],
         s: &State,
         dq: &[f64],
-    ) -> Result<Option<(Vec<f64>, Vec<f64>)>, LinkageError> {
+    ) -> Result<Option<RateSensitivities>, LinkageError> {
         let n = s.q.len();
         let diff =
             |p: &[f64], m: &[f64], h: f64| -> Vec<f64> { p.iter().zip(m).map(|(p, m)| (p - m) / (2.0 * h)).collect() };
