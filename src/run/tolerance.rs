@@ -80,6 +80,9 @@ pub(crate) struct Study {
     /// Each dimension's name on the charts (the field path, or a shorter name of the same
     /// field: a linkage's `rocker.B[0]` for `body[2].points.B[0]`).
     pub labels: Vec<String>,
+    /// A triad's pose in each of its modes (the zones' panels, zones not yet filled in);
+    /// empty for a motion.
+    pub poses: Vec<crate::figure::tolerances::ZonePanel>,
 }
 
 /// What a component measures: its unit on the diagrams.
@@ -238,6 +241,7 @@ impl Analysis {
             paths: Vec::new(),
             sketch: Vec::new(),
             labels: Vec::new(),
+            poses: Vec::new(),
         }
     }
 }
@@ -373,6 +377,16 @@ pub(crate) fn triad(
         motion: false,
     };
     let settings = tol.study.settings.clone();
+    let poses = modes
+        .iter()
+        .enumerate()
+        .map(|(k, c)| crate::figure::tolerances::ZonePanel {
+            heading: crate::figure::triad::mode_heading(k + 1, c, false),
+            pivots: triad.o,
+            vertices: c.a,
+            zones: Vec::new(),
+        })
+        .collect();
     Some(Study {
         name: scene.name.clone(),
         units: scene.units,
@@ -382,6 +396,7 @@ pub(crate) fn triad(
         paths,
         sketch: Vec::new(),
         labels: Vec::new(),
+        poses,
         ..a.into(settings)
     })
 }
@@ -439,6 +454,11 @@ impl Study {
             extras
                 .sheets
                 .push(super::products::Sheet { suffix: "tolerance-band".into(), drawing: self.band_drawing() });
+        }
+        if !self.poses.is_empty() {
+            extras
+                .sheets
+                .push(super::products::Sheet { suffix: "tolerance-zones".into(), drawing: self.zones_drawing() });
         }
         for c in (0..self.comps.len()).filter(|_| self.axis.motion) {
             let name = &self.comps[c].name;
@@ -507,6 +527,66 @@ impl Study {
             self.paths.iter().map(|p| p.name.as_str()).collect::<Vec<_>>().join(", ")
         );
         band_drawing(&paths, &self.sketch, units, self.settings.magnification, &title)
+    }
+
+    /// The zones drawing of a triad's vertices in each mode: the RSS ellipse from the
+    /// linear covariance of x and y (Σ s_x,i·s_y,i·σ_i² over the dimensions), the Monte
+    /// Carlo's percentile box of x and y.
+    fn zones_drawing(&self) -> crate::draw::Drawing {
+        use crate::figure::tolerances::{Zone, zones_drawing};
+        let index = |name: &str| self.comps.iter().position(|c| c.name == name);
+        let vertices: Vec<(String, usize, usize)> = self
+            .comps
+            .iter()
+            .filter(|c| c.part == "x")
+            .filter_map(|c| Some((c.output.clone(), index(&c.name)?, index(&format!("{}.y", c.output))?)))
+            .collect();
+        let nc = self.comps.len();
+        let panels: Vec<_> = self
+            .poses
+            .iter()
+            .enumerate()
+            .map(|(k, pose)| {
+                let zones = vertices
+                    .iter()
+                    .filter_map(|(name, cx, cy)| {
+                        let l = self.linear[k].as_ref()?;
+                        let (lx, ly) = (&l[*cx], &l[*cy]);
+                        let mut cov = [0.0; 3];
+                        for ((d, sx), sy) in self.dims.iter().zip(&lx.shares).zip(&ly.shares) {
+                            let v = d.sigma() * d.sigma();
+                            cov[0] += sx.sensitivity * sx.sensitivity * v;
+                            cov[1] += sx.sensitivity * sy.sensitivity * v;
+                            cov[2] += sy.sensitivity * sy.sensitivity * v;
+                        }
+                        let mc = self.mc.tallies[k * nc + cx]
+                            .summary()
+                            .zip(self.mc.tallies[k * nc + cy].summary())
+                            .map(|(x, y)| (Vector::new(x.p_low, y.p_low), Vector::new(x.p_high, y.p_high)));
+                        let at = Point::new(self.nominal[k * nc + cx], self.nominal[k * nc + cy]);
+                        let zone = Zone {
+                            name: name.clone(),
+                            at,
+                            shift: Vector::new(lx.shift, ly.shift),
+                            covariance: cov,
+                            mc,
+                        };
+                        cov.iter().all(|v| v.is_finite()).then_some(zone)
+                    })
+                    .collect();
+                crate::figure::tolerances::ZonePanel { zones, ..pose.clone() }
+            })
+            .collect();
+        let units = match self.units {
+            Units::Si => crate::figure::shared::vocab::ModelUnits::SI,
+            Units::Mm => crate::figure::shared::vocab::ModelUnits::MM,
+        };
+        let title = vec![format!(
+            "{}: tolerance zones of {} in each assembly mode",
+            self.name,
+            vertices.iter().map(|v| v.0.as_str()).collect::<Vec<_>>().join(", ")
+        )];
+        zones_drawing(&panels, units, self.settings.magnification, &title)
     }
 
     /// Component `c`'s deviations in the diagrams' unit: (factor, unit): lengths in mm for
