@@ -235,7 +235,7 @@ mod tests {
     fn the_ellipse_axes_are_the_covariance_eigenvalues() {
         // σx = 2, σy = 1, rotated by 30°.
         let (t, sx, sy) = (30f64.to_radians(), 2.0, 1.0);
-        let (s, c) = (t.sin(), t.cos());
+        let (s, c) = libm::sincos(t);
         let xx = c * c * sx * sx + s * s * sy * sy;
         let yy = s * s * sx * sx + c * c * sy * sy;
         let xy = c * s * (sx * sx - sy * sy);
