@@ -11,7 +11,7 @@
 mod common;
 
 use mechdraw::draw::dxf::{Dimensions, DxfOptions, DxfVersion};
-use mechdraw::run::{self, bytes, RunOptions};
+use mechdraw::run::{self, RunOptions, bytes};
 use std::path::{Path, PathBuf};
 
 /// Solves `path` with the `--set` changes `set` once and writes its DXF files in every
@@ -26,9 +26,11 @@ fn write_every_encoding(path: &Path, set: &[String], no_analysis: bool) -> (Vec<
     let (mut files, mut design) = (Vec::new(), None);
     for version in DxfVersion::ALL {
         for dimensions in [Dimensions::Entities, Dimensions::Exploded] {
-            let dir = common::root()
-                .join("target/test-out/dxf_templates")
-                .join(format!("{stem}-{}-{}", version.name(), dimensions.name()));
+            let dir = common::root().join("target/test-out/dxf_templates").join(format!(
+                "{stem}-{}-{}",
+                version.name(),
+                dimensions.name()
+            ));
             let _ = std::fs::remove_dir_all(&dir);
             let dxf = DxfOptions { version, dimensions, ..Default::default() };
             let wopts = bytes::WriteOptions { png: false, no_frames: true, dxf };

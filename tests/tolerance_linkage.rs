@@ -6,7 +6,10 @@
 
 mod common;
 
-use common::tolerance::{assert_merged_equals_single, channel_components, run_sharded, scaled};
+use common::tolerance::{
+    assert_merged_equals_single, assert_monte_carlo_sigma_is_linear, central_differences, channel_components,
+    run_sharded, scaled,
+};
 
 use std::path::Path;
 
@@ -89,25 +92,8 @@ fn check_sensitivities(template: &str, tolerances: &str) {
     let s = scene(template, tolerances, 72);
     let m = model(&s);
     let dims = &s.tolerances.as_ref().unwrap().study.dims;
-    let (np, nc, n) = (dims.len(), m.channels(), m.positions());
-    let mut work = m.work();
-    let h = 1e-4;
-    let mut plus = vec![0.0; n * nc];
-    let mut minus = vec![0.0; n * nc];
-    let mut failed = vec![false; n];
-    let mut fd = vec![vec![0.0; nc * np]; n];
-    for j in 0..np {
-        let mut dev = vec![0.0; np];
-        dev[j] = h;
-        assert!(!m.evaluate(&mut work, &dev, &mut plus, &mut failed));
-        dev[j] = -h;
-        assert!(!m.evaluate(&mut work, &dev, &mut minus, &mut failed));
-        for k in 0..n {
-            for c in 0..nc {
-                fd[k][c * np + j] = (plus[k * nc + c] - minus[k * nc + c]) / (2.0 * h);
-            }
-        }
-    }
+    let np = dims.len();
+    let fd = central_differences(&m, np, 1e-4);
     for k in (0..8).map(|i| 4 + 9 * i) {
         let exact = m.sensitivities(k).expect("a regular position");
         let scale = exact.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -139,25 +125,7 @@ fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let s = scene("shaper.toml", SHAPER, 11);
     let m = model(&s);
     let dims = scaled(&s.tolerances.as_ref().unwrap().study.dims, 1.0, Distribution::Normal { k: 3.0 });
-    let comps = channel_components(m.channels());
-    let linear = linear_all(&m, &dims, &comps);
-    let n = 100_000;
-    let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
-    assert_eq!(mc.failed_samples, 0);
-    let se = 1.0 / (2.0 * n as f64).sqrt();
-    for (k, lin) in linear.iter().enumerate() {
-        for c in 0..comps.len() {
-            let l = &lin.as_ref().unwrap()[c];
-            let t = mc.tallies[k * comps.len() + c].summary().unwrap();
-            assert!(
-                (t.sigma / l.sigma - 1.0).abs() < 5.0 * se,
-                "position {k}, channel {c}: MC σ {} vs linear σ {}",
-                t.sigma,
-                l.sigma
-            );
-            assert!((t.p_high - l.rss).abs() < 0.03 * l.rss, "p99.865 {} vs RSS {}", t.p_high, l.rss);
-        }
-    }
+    assert_monte_carlo_sigma_is_linear(&m, &dims, 100_000, 0.0);
 }
 
 #[test]

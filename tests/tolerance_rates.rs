@@ -8,15 +8,15 @@
 
 mod common;
 
-use common::tolerance::{channel_components, scaled};
+use common::tolerance::{assert_monte_carlo_sigma_is_linear, central_differences, scaled};
 
 use mechdraw::geom::Side;
 use mechdraw::scene::{Override, Scene};
 use mechdraw::solve::fourbar::{Geometry, Position, kinematics_eps, solve_motion};
+use mechdraw::solve::tolerance::Distribution;
 use mechdraw::solve::tolerance::fourbar::{FourbarModel, FourbarOutput, FourbarParam, FourbarPoint};
 use mechdraw::solve::tolerance::linkage::LinkageModel;
-use mechdraw::solve::tolerance::monte_carlo::{self, Model, chunk_count};
-use mechdraw::solve::tolerance::{Distribution, linear_all, ranges};
+use mechdraw::solve::tolerance::monte_carlo::Model;
 
 const TEMPLATE: &str = "fourbar-tolerances.toml";
 /// The crank's state the four-bar's rates are taken at (an angular acceleration too, so
@@ -103,28 +103,8 @@ fn fourbar_rates_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let dims = scaled(&tol.study.dims, 0.01, Distribution::Normal { k: 3.0 });
     let model =
         FourbarModel::new(s.spec.geometry, &positions, tol.study.params.clone(), every_rate()).with_crank(OMEGA1, EPS1);
-    let comps = channel_components(model.channels());
-    let linear = linear_all(&model, &dims, &comps);
-    let n = 100_000;
-    let mc = monte_carlo::run(&model, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
-    assert_eq!(mc.failed_samples, 0);
-    let se = 1.0 / (2.0 * n as f64).sqrt();
-    for (k, lin) in linear.iter().enumerate() {
-        for c in 0..comps.len() {
-            let l = &lin.as_ref().unwrap()[c];
-            let m = mc.tallies[k * comps.len() + c].summary().unwrap();
-            if l.sigma < 1e-12 * l.worst_case.max(1.0) {
-                continue;
-            }
-            assert!(
-                (m.sigma / l.sigma - 1.0).abs() < 5.0 * se,
-                "position {k}, channel {c}: MC σ {} vs linear σ {}",
-                m.sigma,
-                l.sigma
-            );
-            assert!((m.p_high - l.rss).abs() < 0.03 * l.rss, "p99.865 {} vs RSS {}", m.p_high, l.rss);
-        }
-    }
+    // A channel no toleranced field moves (at rounding level) is not compared.
+    assert_monte_carlo_sigma_is_linear(&model, &dims, 100_000, 1e-12);
 }
 
 /// The slider-crank's tolerances watching the piston pin's velocity and acceleration and
@@ -193,24 +173,8 @@ fn check_linkage_rates(template: &str, tolerances: &str) {
     let s = linkage_scene(template, tolerances, 72);
     let m = linkage_model(&s);
     let dims = &s.tolerances.as_ref().unwrap().study.dims;
-    let (np, nc, n) = (dims.len(), m.channels(), m.positions());
-    let mut work = m.work();
-    let h = 1e-4;
-    let (mut plus, mut minus) = (vec![0.0; n * nc], vec![0.0; n * nc]);
-    let mut failed = vec![false; n];
-    let mut fd = vec![vec![0.0; nc * np]; n];
-    for j in 0..np {
-        let mut dev = vec![0.0; np];
-        dev[j] = h;
-        assert!(!m.evaluate(&mut work, &dev, &mut plus, &mut failed));
-        dev[j] = -h;
-        assert!(!m.evaluate(&mut work, &dev, &mut minus, &mut failed));
-        for k in 0..n {
-            for c in 0..nc {
-                fd[k][c * np + j] = (plus[k * nc + c] - minus[k * nc + c]) / (2.0 * h);
-            }
-        }
-    }
+    let (np, nc) = (dims.len(), m.channels());
+    let fd = central_differences(&m, np, 1e-4);
     for k in (0..8).map(|i| 4 + 9 * i) {
         let exact = m.sensitivities(k).expect("a regular position");
         for c in 0..nc {
@@ -245,25 +209,7 @@ fn linkage_rates_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let s = linkage_scene("shaper.toml", SHAPER, 11);
     let m = linkage_model(&s);
     let dims = scaled(&s.tolerances.as_ref().unwrap().study.dims, 0.1, Distribution::Normal { k: 3.0 });
-    let comps = channel_components(m.channels());
-    let linear = linear_all(&m, &dims, &comps);
-    let n = 100_000;
-    let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
-    assert_eq!(mc.failed_samples, 0);
-    let se = 1.0 / (2.0 * n as f64).sqrt();
-    for (k, lin) in linear.iter().enumerate() {
-        for c in 0..comps.len() {
-            let l = &lin.as_ref().unwrap()[c];
-            let t = mc.tallies[k * comps.len() + c].summary().unwrap();
-            assert!(
-                (t.sigma / l.sigma - 1.0).abs() < 5.0 * se,
-                "position {k}, channel {c}: MC σ {} vs linear σ {}",
-                t.sigma,
-                l.sigma
-            );
-            assert!((t.p_high - l.rss).abs() < 0.03 * l.rss, "p99.865 {} vs RSS {}", t.p_high, l.rss);
-        }
-    }
+    assert_monte_carlo_sigma_is_linear(&m, &dims, 100_000, 0.0);
 }
 
 fn run(args: &[&str]) -> std::process::Output {
