@@ -6,7 +6,10 @@
 
 mod common;
 
-use common::tolerance::{assert_merged_equals_single, channel_components, run_sharded, scaled};
+use common::tolerance::{
+    assert_merged_equals_single, assert_monte_carlo_sigma_is_linear, central_differences, channel_components,
+    run_sharded, scaled,
+};
 
 use std::path::Path;
 
@@ -89,25 +92,8 @@ fn check_sensitivities(template: &str, tolerances: &str) {
     let s = scene(template, tolerances, 72);
     let m = model(&s);
     let dims = &s.tolerances.as_ref().unwrap().study.dims;
-    let (np, nc, n) = (dims.len(), m.channels(), m.positions());
-    let mut work = m.work();
-    let h = 1e-4;
-    let mut plus = vec![0.0; n * nc];
-    let mut minus = vec![0.0; n * nc];
-    let mut failed = vec![false; n];
-    let mut fd = vec![vec![0.0; nc * np]; n];
-    for j in 0..np {
-        let mut dev = vec![0.0; np];
-        dev[j] = h;
-        assert!(!m.evaluate(&mut work, &dev, &mut plus, &mut failed));
-        dev[j] = -h;
-        assert!(!m.evaluate(&mut work, &dev, &mut minus, &mut failed));
-        for k in 0..n {
-            for c in 0..nc {
-                fd[k][c * np + j] = (plus[k * nc + c] - minus[k * nc + c]) / (2.0 * h);
-            }
-        }
-    }
+    let np = dims.len();
+    let fd = central_differences(&m, np, 1e-4);
     for k in (0..8).map(|i| 4 + 9 * i) {
         let exact = m.sensitivities(k).expect("a regular position");
         let scale = exact.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -139,25 +125,7 @@ fn for_small_normal_tolerances_monte_carlo_sigma_tends_to_the_linear_sigma() {
     let s = scene("shaper.toml", SHAPER, 11);
     let m = model(&s);
     let dims = scaled(&s.tolerances.as_ref().unwrap().study.dims, 1.0, Distribution::Normal { k: 3.0 });
-    let comps = channel_components(m.channels());
-    let linear = linear_all(&m, &dims, &comps);
-    let n = 100_000;
-    let mc = monte_carlo::run(&m, &dims, &comps, &ranges(&linear, comps.len()), 400, n, 7, 0..chunk_count(n));
-    assert_eq!(mc.failed_samples, 0);
-    let se = 1.0 / (2.0 * n as f64).sqrt();
-    for (k, lin) in linear.iter().enumerate() {
-        for c in 0..comps.len() {
-            let l = &lin.as_ref().unwrap()[c];
-            let t = mc.tallies[k * comps.len() + c].summary().unwrap();
-            assert!(
-                (t.sigma / l.sigma - 1.0).abs() < 5.0 * se,
-                "position {k}, channel {c}: MC σ {} vs linear σ {}",
-                t.sigma,
-                l.sigma
-            );
-            assert!((t.p_high - l.rss).abs() < 0.03 * l.rss, "p99.865 {} vs RSS {}", t.p_high, l.rss);
-        }
-    }
+    assert_monte_carlo_sigma_is_linear(&m, &dims, 100_000, 0.0);
 }
 
 #[test]
@@ -309,9 +277,18 @@ fn check_samples_against_fresh_solves(template: &str, tolerances: &str) {
         let sets: Vec<Override> =
             dims.iter().zip(&dev).map(|(d, e)| format!("{}={:e}", d.name, d.nominal + e).parse().unwrap()).collect();
         let Scene::Linkage(t) = mechdraw::scene::parse(&text, template, &sets).unwrap() else { panic!() };
-        let states = AssurSolver::new(t.mechanism.clone()).unwrap().run_positions_states(&t.times).unwrap();
+        let states = AssurSolver::new(t.mechanism.clone()).unwrap().run(&t.times).unwrap();
         for (k, st) in states.iter().enumerate() {
             let mut c = 0;
+            // A rate against the fresh solve's, to 1e-10 of the nominal's size (or of 1).
+            let close = |fresh: f64, c: usize, what: &str| {
+                let (nominal, mc) = (m.nominal()[k * nc + c], out[k * nc + c]);
+                assert!(
+                    (fresh - nominal - mc).abs() <= 1e-10 * nominal.abs().max(1.0),
+                    "{template} sample {j}, position {k}, {what}: fresh {} vs Monte Carlo {mc}",
+                    fresh - nominal
+                );
+            };
             for o in &tol.outputs {
                 match o {
                     LinkageOutput::Point { name, .. } => {
@@ -332,6 +309,19 @@ fn check_samples_against_fresh_solves(template: &str, tolerances: &str) {
                         assert!((d - out[k * nc + c]).abs() <= 1e-10, "{name}: {d} vs {}", out[k * nc + c]);
                         c += 1;
                     }
+                    LinkageOutput::Velocity { name, .. } | LinkageOutput::Acceleration { name, .. } => {
+                        let (point, rate) = name.rsplit_once('.').unwrap();
+                        let a = t.anchor(point).unwrap();
+                        let v = if rate == "v" { st.velocity(a) } else { st.acceleration(a) };
+                        close(v.x, c, name);
+                        close(v.y, c + 1, name);
+                        c += 2;
+                    }
+                    LinkageOutput::Omega { name, body } | LinkageOutput::Eps { name, body } => {
+                        let (_, w, e) = st.angular(mechdraw::solve::linkage::Attach::Body(*body));
+                        close(if name.ends_with(".omega") { w } else { e }, c, name);
+                        c += 1;
+                    }
                 }
             }
         }
@@ -342,6 +332,10 @@ fn check_samples_against_fresh_solves(template: &str, tolerances: &str) {
 fn monte_carlo_samples_equal_fresh_solves_of_the_scene_with_its_fields_set() {
     check_samples_against_fresh_solves("slider-crank.toml", SLIDER_CRANK);
     check_samples_against_fresh_solves("shaper.toml", SHAPER);
+    // The rates: each sample's velocities and accelerations re-solved.
+    let rates =
+        "\nvelocities = [\"ram.E\", \"link.B\", \"rocker\"]\naccelerations = [\"ram.E\", \"link.B\", \"rocker\"]\n";
+    check_samples_against_fresh_solves("shaper.toml", &format!("{SHAPER}{rates}"));
 }
 
 /// A CSV as header → column index and rows of fields.
@@ -366,16 +360,18 @@ fn the_slider_crank_tolerance_template_runs_end_to_end_and_its_numbers_hold() {
     let Scene::Linkage(s) = mechdraw::scene::parse(&text, NAME, &[]).unwrap() else { panic!() };
     let tol = s.tolerances.as_ref().unwrap();
     let (piston, rod) = (s.anchor("piston.B").unwrap(), 1usize);
-    // piston.B's x and y and the rod's angle (degrees) at every position, of the scene with
-    // the fields `sets` — solved from scratch by the Assur route, as a run solves it.
-    let solve = |sets: &[Override]| -> Vec<[f64; 3]> {
+    // piston.B's x and y, the rod's angle (degrees), piston.B's velocity's and
+    // acceleration's x at every position, of the scene with the fields `sets` — solved from
+    // scratch by the Assur route, as a run solves it.
+    let solve = |sets: &[Override]| -> Vec<[f64; 5]> {
         let Scene::Linkage(t) = mechdraw::scene::parse(&text, NAME, sets).unwrap() else { panic!() };
-        let states = AssurSolver::new(t.mechanism.clone()).unwrap().run_positions_states(&t.times).unwrap();
+        let states = AssurSolver::new(t.mechanism.clone()).unwrap().run(&t.times).unwrap();
         states
             .iter()
             .map(|st| {
                 let p = st.point(piston);
-                [p.x, p.y, st.q[3 * rod + 2].to_degrees()]
+                let (v, a) = (st.velocity(piston), st.acceleration(piston));
+                [p.x, p.y, st.q[3 * rod + 2].to_degrees(), v.x, a.x]
             })
             .collect()
     };
@@ -383,19 +379,28 @@ fn the_slider_crank_tolerance_template_runs_end_to_end_and_its_numbers_hold() {
     // at 8 positions (h = 1e-4 mm: 1e-7 of the mechanism's size).
     let (h_idx, rows) = csv(&out.join(format!("{NAME}-contributions.csv")));
     let np = tol.study.dims.len();
-    let per_position = 5 * np; // components x, y, normal, along, rod_deg.value
+    // Components: piston.B's x, y, normal, along; rod_deg.value; piston.B.v's and
+    // piston.B.a's x, y, normal, along.
+    let per_position = 13 * np;
     assert_eq!(rows.len(), s.times.len() * per_position);
     let h = 1e-4;
     let set = |d: &mechdraw::solve::tolerance::Dimension, v: f64| -> Override {
         format!("{}={v:e}", d.name).parse().unwrap()
     };
-    type Sweep = Vec<[f64; 3]>;
+    type Sweep = Vec<[f64; 5]>;
     let diffs: Vec<(Sweep, Sweep)> =
         tol.study.dims.iter().map(|d| (solve(&[set(d, d.nominal + h)]), solve(&[set(d, d.nominal - h)]))).collect();
     for k in (20..360).step_by(45) {
         for (j, d) in tol.study.dims.iter().enumerate() {
             let (plus, minus) = (&diffs[j].0[k], &diffs[j].1[k]);
-            for (c, name, ch) in [(0, "piston.B.x", 0), (1, "piston.B.y", 1), (4, "rod_deg.value", 2)] {
+            let watched = [
+                (0, "piston.B.x", 0),
+                (1, "piston.B.y", 1),
+                (4, "rod_deg.value", 2),
+                (5, "piston.B.v.x", 3),
+                (9, "piston.B.a.x", 4),
+            ];
+            for (c, name, ch) in watched {
                 let row = &rows[k * per_position + c * np + j];
                 assert_eq!(
                     (row[h_idx["component"]].as_str(), row[h_idx["dimension"]].as_str()),
@@ -417,7 +422,9 @@ fn the_slider_crank_tolerance_template_runs_end_to_end_and_its_numbers_hold() {
     let n = tol.study.settings.samples as f64;
     let f = |row: &[String], col: &str| -> f64 { row[t_idx[col]].parse().unwrap() };
     for (k, row) in trows.iter().enumerate() {
-        for comp in ["piston.B.x", "piston.B.y", "piston.B.along", "rod_deg.value"] {
+        for comp in
+            ["piston.B.x", "piston.B.y", "piston.B.along", "rod_deg.value", "piston.B.v.along", "piston.B.a.along"]
+        {
             let (sigma, mc) = (f(row, &format!("{comp}.sigma")), f(row, &format!("{comp}.mc_sigma")));
             let (wc, shift) = (f(row, &format!("{comp}.wc")), f(row, &format!("{comp}.shift")));
             let nominal = f(row, &format!("{comp}.nominal"));

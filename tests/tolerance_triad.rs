@@ -223,12 +223,17 @@ fn the_template_runs_end_to_end_and_shards_merge_into_the_single_run() {
     let positions = tol["positions"].as_array().unwrap();
     let solutions = a["solutions"].as_array().unwrap();
     assert_eq!(positions.len(), solutions.len());
-    for (p, sol) in positions.iter().zip(solutions) {
+    for (k, (p, sol)) in positions.iter().zip(solutions).enumerate() {
+        // A mode is a whole number, written as one (`1`, not `1.0`).
+        assert!(p["mode"].is_u64() && p["mode"] == k + 1, "mode {}", p["mode"]);
         let nominal = p["values"]["A2.x"]["nominal"].as_f64().unwrap();
         assert_eq!(nominal, sol["A2"][0].as_f64().unwrap());
         let wc = p["values"]["A2.x"]["wc"].as_f64().unwrap();
         let rss = p["values"]["A2.x"]["rss"].as_f64().unwrap();
         assert!(wc > rss && rss > 0.0, "A2.x: wc {wc}, rss {rss}");
+    }
+    for c in tol["components"].as_array().unwrap() {
+        assert!(c["worst"]["mode"].is_u64(), "{}: widest mode {}", c["name"], c["worst"]["mode"]);
     }
     // Pareto charts of the vertices' coordinates and the angle; no band drawing (no path).
     let diagrams = single.join("diagrams").join("triad-tolerances");
@@ -290,6 +295,7 @@ fn bad_tolerances_name_the_file_and_field_and_write_nothing() {
         ("tolerances.l13=\"x\"", "tolerances.\"l13\""),
         ("tolerances.outputs.points=[\"A4\"]", "tolerances.outputs.points[0]"),
         ("tolerances.outputs.angles=[\"crank\"]", "tolerances.outputs.angles[0]"),
+        ("tolerances.outputs.velocities=[\"A1\"]", "tolerances.outputs.velocities"),
         ("tolerances.settings.samples=0", "tolerances.settings.samples"),
     ] {
         let out = tmp.path().join("out");
@@ -299,4 +305,75 @@ fn bad_tolerances_name_the_file_and_field_and_write_nothing() {
         assert!(err.contains("triad-tol.toml") && err.contains(&format!("field `{field}`")), "{set}: {err}");
         assert!(!out.exists(), "{set}: something was written");
     }
+}
+
+/// The drawing's polylines on `layer`, in drawing order.
+fn polylines(d: &mechdraw::draw::Drawing, layer: &str) -> Vec<Vec<mechdraw::geom::Point>> {
+    let l = d.layers.iter().position(|x| x.name == layer).unwrap();
+    d.entities
+        .iter()
+        .filter(|e| e.layer == l)
+        .filter_map(|e| match &e.shape {
+            mechdraw::draw::Shape::Polyline { points, .. } => Some(points.clone()),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_tolerance_zones_drawing_holds_each_modes_rss_ellipses_and_monte_carlo_boxes() {
+    let tmp = tempfile::tempdir().unwrap();
+    let t = scene_file(tmp.path(), 5000);
+    let out = tmp.path().join("out");
+    let o = run(&["run", &t, "-q", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    // The same study as products (same seed and samples): its drawing's numbers against the table's.
+    let loaded = mechdraw::scene::load(Path::new(&t), &[]).unwrap();
+    let p = mechdraw::run::products(&loaded, &mechdraw::run::RunOptions::default()).unwrap();
+    let d = &p.sheets.iter().find(|s| s.suffix == "tolerance-zones").expect("a zones sheet").drawing;
+    let texts: Vec<&str> = d.entities.iter().filter_map(|e| e.shape.text()).collect();
+    let mags: Vec<f64> = texts
+        .iter()
+        .filter_map(|t| t.strip_prefix("deviations × "))
+        .map(|t| t.split(':').next().unwrap().parse().unwrap())
+        .collect();
+    let csv = std::fs::read_to_string(out.join("triad-tolerances-tolerances.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let rows: Vec<Vec<f64>> = lines.map(|l| l.split(',').map(|v| v.parse().unwrap_or(f64::NAN)).collect()).collect();
+    assert_eq!(mags.len(), rows.len(), "a magnification per mode");
+    let (ellipses, boxes) = (polylines(d, "TOL_RSS"), polylines(d, "TOL_MC"));
+    assert_eq!((ellipses.len(), boxes.len()), (3 * rows.len(), 3 * rows.len()));
+    let span = |pts: &[mechdraw::geom::Point], x: bool| {
+        let v: Vec<f64> = pts.iter().map(|p| if x { p.x } else { p.y }).collect();
+        v.iter().fold(f64::MIN, |a, b| a.max(*b)) - v.iter().fold(f64::MAX, |a, b| a.min(*b))
+    };
+    for (k, row) in rows.iter().enumerate() {
+        let col = |c: &str| row[header.iter().position(|h| *h == c).unwrap()];
+        for (i, v) in ["A1", "A2", "A3"].iter().enumerate() {
+            let (e, b) = (&ellipses[3 * k + i], &boxes[3 * k + i]);
+            for (x, part) in [(true, "x"), (false, "y")] {
+                // The 3σ ellipse's extent in x (y) is the RSS of x (y): 72 points draw it to
+                // within 1 − cos(2.5°) of it.
+                let rss = col(&format!("{v}.{part}.rss"));
+                let half = 0.5 * span(e, x) / mags[k];
+                assert!(
+                    half <= rss * (1.0 + 1e-12) && half >= rss * (1.0 - 1e-3),
+                    "mode {}, {v}.{part}: ellipse ±{half} vs RSS {rss}",
+                    k + 1
+                );
+                // The box is the Monte Carlo's 0.135–99.865 % of x (y).
+                let mc = col(&format!("{v}.{part}.mc_p99.865")) - col(&format!("{v}.{part}.mc_p0.135"));
+                let drawn = span(b, x) / mags[k];
+                assert!((drawn - mc).abs() <= 1e-9 * mc, "mode {}, {v}.{part}: box {drawn} vs MC {mc}", k + 1);
+            }
+        }
+    }
+    // Every zone named, in every mode.
+    for v in ["A1", "A2", "A3"] {
+        assert_eq!(texts.iter().filter(|t| **t == v).count(), rows.len(), "{v}");
+    }
+    let svg = std::fs::read_to_string(out.join("triad-tolerances-tolerance-zones.svg")).unwrap();
+    common::assert_golden_png("triad-tolerances-zones.png", &svg);
+    common::assert_ezdxf_clean(&[&out.join("triad-tolerances-tolerance-zones.dxf")]);
 }

@@ -61,6 +61,8 @@ pub(crate) struct Study {
     pub dims: Vec<Dimension>,
     /// Reported components.
     pub comps: Vec<Component>,
+    /// What each component measures.
+    pub quantities: Vec<Quantity>,
     /// Each position's and component's nominal value (0 for a deviation component).
     pub nominal: Vec<f64>,
     /// The linear stack-up per position (`None` at a dead point), per component.
@@ -78,21 +80,53 @@ pub(crate) struct Study {
     /// Each dimension's name on the charts (the field path, or a shorter name of the same
     /// field: a linkage's `rocker.B[0]` for `body[2].points.B[0]`).
     pub labels: Vec<String>,
+    /// A triad's pose in each of its modes (the zones' panels, zones not yet filled in);
+    /// empty for a motion.
+    pub poses: Vec<crate::figure::tolerances::ZonePanel>,
 }
 
-/// A watched output as the components see it: its name, whether it is a point, and for a
-/// point on a path the unit tangents of its nominal path (one per position).
+/// What a component measures: its unit on the diagrams.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Quantity {
+    /// A length (a point's coordinate or deviation), scene units.
+    Length,
+    /// An angle, degrees.
+    Angle,
+    /// A velocity, scene units/s.
+    Velocity,
+    /// An acceleration, scene units/s².
+    Acceleration,
+    /// An angular velocity, rad/s.
+    AngularVelocity,
+    /// An angular acceleration, rad/s².
+    AngularAcceleration,
+}
+
+impl Quantity {
+    /// Whether it is a vector's (two channels: x, y).
+    fn vector(self) -> bool {
+        matches!(self, Quantity::Length | Quantity::Velocity | Quantity::Acceleration)
+    }
+}
+
+/// A watched output as the components see it: its name, what it measures, and for a
+/// vector of a point on a path the unit tangents of its nominal path (one per position).
 struct Watched {
     name: String,
-    point: bool,
+    quantity: Quantity,
     tangents: Option<Vec<Vector>>,
 }
 
 /// The components of watched outputs (channels in their order, 2 for a point, 1 for an
 /// angle; `nominal` the model's channel values, position-major): a point's x, y, normal and
 /// along; an angle's value.
-fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Component>, Vec<WatchedPath>) {
+fn components(
+    watched: &[Watched],
+    nominal: &[f64],
+    channels: usize,
+) -> (Vec<Component>, Vec<Quantity>, Vec<WatchedPath>) {
     let mut comps = Vec::new();
+    let mut quantities = Vec::new();
     let mut paths = Vec::new();
     let mut ch = 0;
     let np = nominal.len() / channels.max(1);
@@ -105,8 +139,10 @@ fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Com
             absolute,
             projection,
         };
-        if !w.point {
+        let before = comps.len();
+        if !w.quantity.vector() {
             comps.push(comp("value", true, Projection::Channel(ch)));
+            quantities.push(w.quantity);
             ch += 1;
             continue;
         }
@@ -114,37 +150,49 @@ fn components(watched: &[Watched], nominal: &[f64], channels: usize) -> (Vec<Com
             // A point with no path (a triad's vertex): its coordinates only.
             comps.push(comp("x", true, Projection::Channel(ch)));
             comps.push(comp("y", true, Projection::Channel(ch + 1)));
+            quantities.extend([w.quantity; 2]);
             ch += 2;
             continue;
         };
         let normals: Vec<Vector> = tangents.iter().map(|t| perp(*t)).collect();
         comps.push(comp("x", true, Projection::Channel(ch)));
         comps.push(comp("y", true, Projection::Channel(ch + 1)));
-        paths.push(WatchedPath {
-            name: name.to_string(),
-            points: (0..np).map(|k| Point::new(nominal[k * channels + ch], nominal[k * channels + ch + 1])).collect(),
-            normals: normals.clone(),
-            normal: comps.len(),
-        });
+        // A point's position has a path to draw its band along; its rates do not.
+        if w.quantity == Quantity::Length {
+            paths.push(WatchedPath {
+                name: name.to_string(),
+                points: (0..np)
+                    .map(|k| Point::new(nominal[k * channels + ch], nominal[k * channels + ch + 1]))
+                    .collect(),
+                normals: normals.clone(),
+                normal: comps.len(),
+            });
+        }
         comps.push(comp("normal", false, Projection::Along { x: ch, y: ch + 1, dirs: normals }));
         comps.push(comp("along", false, Projection::Along { x: ch, y: ch + 1, dirs: tangents.clone() }));
+        quantities.extend(std::iter::repeat_n(w.quantity, comps.len() - before));
         ch += 2;
     }
-    (comps, paths)
+    (comps, quantities, paths)
 }
 
-/// The four-bar's components: a point's x, y, normal and along; an angle's value.
-fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<WatchedPath>) {
+/// The four-bar's components: a point's x, y, normal and along (its position's, velocity's
+/// or acceleration's, about the point's path); an angle's or a link's rate's value.
+fn fourbar_components(model: &FourbarModel) -> (Vec<Component>, Vec<Quantity>, Vec<WatchedPath>) {
     let watched: Vec<Watched> = model
         .outputs()
         .iter()
         .map(|o| Watched {
             name: o.name().to_string(),
-            point: matches!(o, FourbarOutput::Point(_)),
-            tangents: match o {
-                FourbarOutput::Point(p) => Some(model.tangents(*p)),
-                _ => None,
+            quantity: match o {
+                FourbarOutput::Point(_) => Quantity::Length,
+                FourbarOutput::Phi2 | FourbarOutput::Phi3 => Quantity::Angle,
+                FourbarOutput::Velocity(_) => Quantity::Velocity,
+                FourbarOutput::Acceleration(_) => Quantity::Acceleration,
+                FourbarOutput::Omega2 | FourbarOutput::Omega3 => Quantity::AngularVelocity,
+                FourbarOutput::Eps2 | FourbarOutput::Eps3 => Quantity::AngularAcceleration,
             },
+            tangents: o.point().map(|p| model.tangents(p)),
         })
         .collect();
     components(&watched, model.nominal(), model.channels())
@@ -184,6 +232,7 @@ impl Analysis {
             axis: Axis { column: "", symbol: "", unit: "", values: Vec::new(), motion: true },
             dims: self.dims,
             comps: Vec::new(),
+            quantities: Vec::new(),
             nominal: self.nominal,
             linear: self.linear,
             dead: self.dead,
@@ -192,6 +241,7 @@ impl Analysis {
             paths: Vec::new(),
             sketch: Vec::new(),
             labels: Vec::new(),
+            poses: Vec::new(),
         }
     }
 }
@@ -222,8 +272,9 @@ pub(crate) fn fourbar(
 ) -> Option<Study> {
     let tol = scene.tolerances.as_ref()?;
     let g = scene.spec.geometry;
-    let model = FourbarModel::new(g, positions, tol.study.params.clone(), tol.outputs.clone());
-    let (comps, paths) = fourbar_components(&model);
+    let model = FourbarModel::new(g, positions, tol.study.params.clone(), tol.outputs.clone())
+        .with_crank(scene.spec.omega1, scene.spec.epsilon1);
+    let (comps, quantities, paths) = fourbar_components(&model);
     let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     let sketch = positions.first().map(|p| vec![(g.o1, p.a), (p.a, p.b), (p.b, p.m), (g.c, p.b)]).unwrap_or_default();
     let axis = Axis {
@@ -239,6 +290,7 @@ pub(crate) fn fourbar(
         units: scene.units,
         axis,
         comps,
+        quantities,
         paths,
         sketch,
         labels: Vec::new(),
@@ -252,7 +304,7 @@ pub(crate) fn linkage(
     scene: &crate::scene::linkage::LinkageScene,
     chunks: Option<Range<u64>>,
 ) -> Result<Option<Study>, crate::solve::tolerance::linkage::LinkageToleranceError> {
-    use crate::solve::tolerance::linkage::{LinkageModel, LinkageOutput};
+    use crate::solve::tolerance::linkage::LinkageModel;
     let Some(tol) = scene.tolerances.as_ref() else { return Ok(None) };
     let model =
         LinkageModel::new(scene.mechanism.clone(), &scene.times, tol.study.params.clone(), tol.outputs.clone())?;
@@ -262,11 +314,11 @@ pub(crate) fn linkage(
         .enumerate()
         .map(|(i, o)| Watched {
             name: o.name().to_string(),
-            point: matches!(o, LinkageOutput::Point { .. }),
-            tangents: matches!(o, LinkageOutput::Point { .. }).then(|| model.tangents(i)),
+            quantity: linkage_quantity(o),
+            tangents: linkage_quantity(o).vector().then(|| model.tangents(i)),
         })
         .collect();
-    let (comps, paths) = components(&watched, model.nominal(), model.channels());
+    let (comps, quantities, paths) = components(&watched, model.nominal(), model.channels());
     let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     // The mechanism at its first position: each body's outline.
     let mut sketch = Vec::new();
@@ -286,6 +338,7 @@ pub(crate) fn linkage(
         units: scene.units,
         axis,
         comps,
+        quantities,
         paths,
         sketch,
         labels,
@@ -308,9 +361,13 @@ pub(crate) fn triad(
     let watched: Vec<Watched> = model
         .outputs()
         .iter()
-        .map(|o| Watched { name: o.name(), point: matches!(o, TriadOutput::Vertex(_)), tangents: None })
+        .map(|o| Watched {
+            name: o.name(),
+            quantity: if matches!(o, TriadOutput::Vertex(_)) { Quantity::Length } else { Quantity::Angle },
+            tangents: None,
+        })
         .collect();
-    let (comps, paths) = components(&watched, model.nominal(), model.channels());
+    let (comps, quantities, paths) = components(&watched, model.nominal(), model.channels());
     let a = analyse(&model, model.nominal(), &tol.study.dims, &comps, &tol.study.settings, chunks);
     let axis = Axis {
         column: "mode",
@@ -320,16 +377,41 @@ pub(crate) fn triad(
         motion: false,
     };
     let settings = tol.study.settings.clone();
+    let poses = modes
+        .iter()
+        .enumerate()
+        .map(|(k, c)| crate::figure::tolerances::ZonePanel {
+            heading: crate::figure::triad::mode_heading(k + 1, c, false),
+            pivots: triad.o,
+            vertices: c.a,
+            zones: Vec::new(),
+        })
+        .collect();
     Some(Study {
         name: scene.name.clone(),
         units: scene.units,
         axis,
         comps,
+        quantities,
         paths,
         sketch: Vec::new(),
         labels: Vec::new(),
+        poses,
         ..a.into(settings)
     })
+}
+
+/// What a linkage's output measures.
+fn linkage_quantity(o: &crate::solve::tolerance::linkage::LinkageOutput) -> Quantity {
+    use crate::solve::tolerance::linkage::LinkageOutput as O;
+    match o {
+        O::Point { .. } => Quantity::Length,
+        O::Angle { .. } => Quantity::Angle,
+        O::Velocity { .. } => Quantity::Velocity,
+        O::Acceleration { .. } => Quantity::Acceleration,
+        O::Omega { .. } => Quantity::AngularVelocity,
+        O::Eps { .. } => Quantity::AngularAcceleration,
+    }
 }
 
 /// A linkage field's name on the charts: `ground.C[0]` for `ground.points.C[0]`,
@@ -373,6 +455,11 @@ impl Study {
                 .sheets
                 .push(super::products::Sheet { suffix: "tolerance-band".into(), drawing: self.band_drawing() });
         }
+        if !self.poses.is_empty() {
+            extras
+                .sheets
+                .push(super::products::Sheet { suffix: "tolerance-zones".into(), drawing: self.zones_drawing() });
+        }
         for c in (0..self.comps.len()).filter(|_| self.axis.motion) {
             let name = &self.comps[c].name;
             extras.diagrams.push(super::products::Diagram {
@@ -394,6 +481,12 @@ impl Study {
     /// Position `k`'s value as the texts write it (a mode's number as a whole number).
     fn position_value(&self, k: usize) -> String {
         if self.axis.motion { short(self.axis.values[k]) } else { format!("{}", self.axis.values[k]) }
+    }
+
+    /// Position `k`'s value in the JSON: a number, a mode's as an integer (`1`, not `1.0`).
+    fn position_json(&self, k: usize) -> Value {
+        let v = self.axis.values[k];
+        if self.axis.motion { json!(v) } else { json!(v as u64) }
     }
 
     /// The position's label on the figures and in the texts (`φ1 = 123°`, `t = 0.09 s`,
@@ -436,15 +529,77 @@ impl Study {
         band_drawing(&paths, &self.sketch, units, self.settings.magnification, &title)
     }
 
+    /// The zones drawing of a triad's vertices in each mode: the RSS ellipse from the
+    /// linear covariance of x and y (Σ s_x,i·s_y,i·σ_i² over the dimensions), the Monte
+    /// Carlo's percentile box of x and y.
+    fn zones_drawing(&self) -> crate::draw::Drawing {
+        use crate::figure::tolerances::{Zone, zones_drawing};
+        let index = |name: &str| self.comps.iter().position(|c| c.name == name);
+        let vertices: Vec<(String, usize, usize)> = self
+            .comps
+            .iter()
+            .filter(|c| c.part == "x")
+            .filter_map(|c| Some((c.output.clone(), index(&c.name)?, index(&format!("{}.y", c.output))?)))
+            .collect();
+        let nc = self.comps.len();
+        let panels: Vec<_> = self
+            .poses
+            .iter()
+            .enumerate()
+            .map(|(k, pose)| {
+                let zones = vertices
+                    .iter()
+                    .filter_map(|(name, cx, cy)| {
+                        let l = self.linear[k].as_ref()?;
+                        let (lx, ly) = (&l[*cx], &l[*cy]);
+                        let mut cov = [0.0; 3];
+                        for ((d, sx), sy) in self.dims.iter().zip(&lx.shares).zip(&ly.shares) {
+                            let v = d.sigma() * d.sigma();
+                            cov[0] += sx.sensitivity * sx.sensitivity * v;
+                            cov[1] += sx.sensitivity * sy.sensitivity * v;
+                            cov[2] += sy.sensitivity * sy.sensitivity * v;
+                        }
+                        let mc = self.mc.tallies[k * nc + cx]
+                            .summary()
+                            .zip(self.mc.tallies[k * nc + cy].summary())
+                            .map(|(x, y)| (Vector::new(x.p_low, y.p_low), Vector::new(x.p_high, y.p_high)));
+                        let at = Point::new(self.nominal[k * nc + cx], self.nominal[k * nc + cy]);
+                        let zone = Zone {
+                            name: name.clone(),
+                            at,
+                            shift: Vector::new(lx.shift, ly.shift),
+                            covariance: cov,
+                            mc,
+                        };
+                        cov.iter().all(|v| v.is_finite()).then_some(zone)
+                    })
+                    .collect();
+                crate::figure::tolerances::ZonePanel { zones, ..pose.clone() }
+            })
+            .collect();
+        let units = match self.units {
+            Units::Si => crate::figure::shared::vocab::ModelUnits::SI,
+            Units::Mm => crate::figure::shared::vocab::ModelUnits::MM,
+        };
+        let title = vec![format!(
+            "{}: tolerance zones of {} in each assembly mode",
+            self.name,
+            vertices.iter().map(|v| v.0.as_str()).collect::<Vec<_>>().join(", ")
+        )];
+        zones_drawing(&panels, units, self.settings.magnification, &title)
+    }
+
     /// Component `c`'s deviations in the diagrams' unit: (factor, unit): lengths in mm for
     /// SI scenes and in µm for mm scenes, angles in degrees.
     fn deviation_unit(&self, c: usize) -> (f64, &'static str) {
-        if self.comps[c].part == "value" {
-            return (1.0, "°");
-        }
-        match self.units {
-            Units::Si => (1000.0, "mm"),
-            Units::Mm => (1000.0, "µm"),
+        let si = self.units == Units::Si;
+        match self.quantities[c] {
+            Quantity::Angle => (1.0, "°"),
+            Quantity::AngularVelocity => (1.0, "rad/s"),
+            Quantity::AngularAcceleration => (1.0, "rad/s²"),
+            Quantity::Length => (1000.0, if si { "mm" } else { "µm" }),
+            Quantity::Velocity => (1000.0, if si { "mm/s" } else { "µm/s" }),
+            Quantity::Acceleration => (1000.0, if si { "mm/s²" } else { "µm/s²" }),
         }
     }
 
@@ -457,9 +612,11 @@ impl Study {
             (0..self.positions()).map(|k| self.linear[k].as_ref().map(|l| f * g(&l[c]))).collect()
         };
         let comp = &self.comps[c];
+        // A rate's normal and along are about its point's path.
+        let whose = if self.quantities[c] == Quantity::Length { "its" } else { "the point's" };
         let what = match comp.part {
-            "normal" => format!("{} normal to its path", comp.output),
-            "along" => format!("{} along its path", comp.output),
+            "normal" => format!("{} normal to {whose} path", comp.output),
+            "along" => format!("{} along {whose} path", comp.output),
             "value" => comp.output.clone(),
             part => format!("{}.{part}", comp.output),
         };
@@ -533,13 +690,15 @@ impl Study {
     }
 
     /// The components whose charts are drawn: a point's normal (its x and y when it has no
-    /// path: a triad's vertex), an angle's value.
+    /// path: a triad's vertex), a point's velocity's or acceleration's component along the
+    /// path (the speed's, the tangential acceleration's), an angle's or a rate's value.
     pub fn headline(&self) -> Vec<usize> {
         let has_normal = |o: &str| self.comps.iter().any(|c| c.output == o && c.part == "normal");
         (0..self.comps.len())
-            .filter(|&c| match self.comps[c].part {
-                "normal" | "value" => true,
-                "x" | "y" => !has_normal(&self.comps[c].output),
+            .filter(|&c| match (self.comps[c].part, self.quantities[c]) {
+                ("normal", Quantity::Length) | ("value", _) => true,
+                ("along", Quantity::Velocity | Quantity::Acceleration) => true,
+                ("x" | "y", _) => !has_normal(&self.comps[c].output),
                 _ => false,
             })
             .collect()
@@ -640,7 +799,7 @@ impl Study {
                     "output": self.comps[c].output,
                     "part": self.comps[c].part,
                     "worst": w.map_or(Value::Null, |k| json!({
-                        self.axis.column: self.axis.values[k],
+                        self.axis.column: self.position_json(k),
                         "index": k,
                         "mc_half_spread": opt(self.spread(k, c)),
                         "wc": opt(self.linear[k].as_ref().map(|l| l[c].worst_case)),
@@ -674,7 +833,7 @@ impl Study {
                     }
                 }
                 json!({
-                    self.axis.column: self.axis.values[k],
+                    self.axis.column: self.position_json(k),
                     "failed": self.mc.failed_at[k],
                     "linear_trusted": notes[k].is_empty(),
                     "notes": notes[k],

@@ -211,11 +211,7 @@ fn check_tolerances(t: &toml::Table, geometry: &Geometry, count: usize) -> Resul
     };
     let study = tolerance::check(t, &tolerance::Kind { resolve: &resolve, positions: count, components: (4, 1) })?;
     let mut outputs = Vec::new();
-    let points = if study.outputs.points.is_empty() && study.outputs.angles.is_empty() {
-        vec!["M".to_string()]
-    } else {
-        study.outputs.points.clone()
-    };
+    let points = if study.outputs.is_empty() { vec!["M".to_string()] } else { study.outputs.points.clone() };
     for (i, name) in points.iter().enumerate() {
         match FourbarOutput::from_name(name) {
             Some(o @ FourbarOutput::Point(_)) => outputs.push(o),
@@ -238,6 +234,23 @@ fn check_tolerances(t: &toml::Table, geometry: &Geometry, count: usize) -> Resul
                     ),
                 ));
             }
+        }
+    }
+    let rates = [
+        ("velocities", &study.outputs.velocities, FourbarOutput::velocity as fn(&str) -> Option<FourbarOutput>),
+        ("accelerations", &study.outputs.accelerations, FourbarOutput::acceleration),
+    ];
+    for (key, names, of) in rates {
+        for (i, name) in names.iter().enumerate() {
+            let Some(o) = of(name) else {
+                return Err(FieldError::new(
+                    format!("tolerances.outputs.{key}[{i}]"),
+                    format!(
+                        "\"{name}\" is neither a point nor a moving link of the four-bar; valid: \"A\", \"B\", \"M\" (a point), \"coupler\", \"rocker\" (a link)"
+                    ),
+                ));
+            };
+            outputs.push(o);
         }
     }
     if let Some(dup) = outputs.iter().enumerate().find(|(i, o)| outputs[..*i].contains(o)) {

@@ -548,21 +548,24 @@ fn check_tolerances(
 ) -> Result<LinkageTolerances, FieldError> {
     let field_of = |path: &str| tolerance_field(path, ground, mech, joints);
     let study = tolerance::check(t, &tolerance::Kind { resolve: &field_of, positions: count, components: (4, 1) })?;
-    if study.outputs.points.is_empty() && study.outputs.angles.is_empty() {
+    if study.outputs.is_empty() {
         return Err(FieldError::new(
             "tolerances.outputs",
-            "name what to watch: points = [\"body.P\", ...] (a body's point) and/or angles = [\"body\", ...]",
+            "name what to watch: points = [\"body.P\", ...] (a body's point), angles = [\"body\", ...], velocities = [...] or accelerations = [...] (points or bodies)",
         ));
     }
-    let mut outputs = Vec::new();
-    for (i, spec) in study.outputs.points.iter().enumerate() {
-        let field = format!("tolerances.outputs.points[{i}]");
-        let a = resolve(spec, ground, &mech.bodies).map_err(|m| FieldError::new(field.clone(), m))?;
+    // A body's point as (body, point index), or why it cannot be watched.
+    let body_point = |spec: &str, field: &str| -> Result<(usize, usize), FieldError> {
+        let a = resolve(spec, ground, &mech.bodies).map_err(|m| FieldError::new(field, m))?;
         let Attach::Body(body) = a.body else {
             return Err(FieldError::new(field, format!("`{spec}` is a ground point: it does not move")));
         };
         let pname = spec.split_once('.').map_or("", |(_, p)| p);
-        let point = mech.bodies[body].points.iter().position(|(n, _)| n == pname).unwrap_or(0);
+        Ok((body, mech.bodies[body].points.iter().position(|(n, _)| n == pname).unwrap_or(0)))
+    };
+    let mut outputs = Vec::new();
+    for (i, spec) in study.outputs.points.iter().enumerate() {
+        let (body, point) = body_point(spec, &format!("tolerances.outputs.points[{i}]"))?;
         outputs.push(LinkageOutput::Point { name: spec.clone(), body, point });
     }
     for (i, name) in study.outputs.angles.iter().enumerate() {
@@ -576,6 +579,27 @@ fn check_tolerances(
             ));
         };
         outputs.push(LinkageOutput::Angle { name: format!("{name}_deg"), body });
+    }
+    for (key, names) in [("velocities", &study.outputs.velocities), ("accelerations", &study.outputs.accelerations)] {
+        let velocity = key == "velocities";
+        for (i, spec) in names.iter().enumerate() {
+            let field = format!("tolerances.outputs.{key}[{i}]");
+            // A body's name watches its angular velocity or acceleration; `body.P`, the point's.
+            if let Some(body) = mech.bodies.iter().position(|b| b.name == *spec) {
+                outputs.push(if velocity {
+                    LinkageOutput::Omega { name: format!("{spec}.omega"), body }
+                } else {
+                    LinkageOutput::Eps { name: format!("{spec}.eps"), body }
+                });
+                continue;
+            }
+            let (body, point) = body_point(spec, &field)?;
+            outputs.push(if velocity {
+                LinkageOutput::Velocity { name: format!("{spec}.v"), body, point }
+            } else {
+                LinkageOutput::Acceleration { name: format!("{spec}.a"), body, point }
+            });
+        }
     }
     if let Some((_, dup)) = outputs.iter().enumerate().find(|(i, o)| outputs[..*i].contains(o)) {
         return Err(FieldError::new("tolerances.outputs", format!("names {} twice", dup.name())));

@@ -47,6 +47,17 @@ pub struct OutputNames {
     pub points: Vec<String>,
     /// Bodies whose angle is watched (`rocker`).
     pub angles: Vec<String>,
+    /// Points whose velocity, bodies whose angular velocity is watched (`M`, `rocker`).
+    pub velocities: Vec<String>,
+    /// Points whose acceleration, bodies whose angular acceleration is watched.
+    pub accelerations: Vec<String>,
+}
+
+impl OutputNames {
+    /// Whether nothing is named.
+    pub fn is_empty(&self) -> bool {
+        self.points.is_empty() && self.angles.is_empty() && self.velocities.is_empty() && self.accelerations.is_empty()
+    }
 }
 
 /// The study's settings.
@@ -225,14 +236,20 @@ fn names(field: &str, v: Option<&toml::Value>) -> Result<Vec<String>, FieldError
 fn outputs(v: Option<&toml::Value>) -> Result<OutputNames, FieldError> {
     let Some(v) = v else { return Ok(OutputNames::default()) };
     let toml::Value::Table(t) = v else {
-        return Err(err("tolerances.outputs", "must be a table: points = [...], angles = [...]"));
+        return Err(err(
+            "tolerances.outputs",
+            "must be a table: points = [...], angles = [...], velocities = [...], accelerations = [...]",
+        ));
     };
-    if let Some(k) = t.keys().find(|k| !["points", "angles"].contains(&k.as_str())) {
-        return Err(err(format!("tolerances.outputs.{k}"), "unknown field; valid: points, angles"));
+    const KEYS: [&str; 4] = ["points", "angles", "velocities", "accelerations"];
+    if let Some(k) = t.keys().find(|k| !KEYS.contains(&k.as_str())) {
+        return Err(err(format!("tolerances.outputs.{k}"), format!("unknown field; valid: {}", KEYS.join(", "))));
     }
     Ok(OutputNames {
         points: names("tolerances.outputs.points", t.get("points"))?,
         angles: names("tolerances.outputs.angles", t.get("angles"))?,
+        velocities: names("tolerances.outputs.velocities", t.get("velocities"))?,
+        accelerations: names("tolerances.outputs.accelerations", t.get("accelerations"))?,
     })
 }
 
@@ -358,7 +375,10 @@ pub fn check<P>(table: &toml::Table, kind: &Kind<'_, P>) -> Result<Tolerances<P>
     if dims.is_empty() {
         return Err(err("tolerances", "names no toleranced field: add e.g. l_ab = 0.00005 (± t in the field's unit)"));
     }
-    let components = outputs.points.len().max(1) * kind.components.0 + outputs.angles.len() * kind.components.1;
+    // A rate of a point has a point's components, at most.
+    let components = (outputs.points.len().max(1) + outputs.velocities.len() + outputs.accelerations.len())
+        * kind.components.0
+        + outputs.angles.len() * kind.components.1;
     let bytes = kind.positions as f64 * components as f64 * (settings.bins as f64 + 2.0) * 8.0 * THREADS_ESTIMATE;
     if bytes > MAX_STATISTICS_BYTES {
         return Err(err(

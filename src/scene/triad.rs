@@ -248,6 +248,14 @@ fn check_tolerances(t: &toml::Table, triad: &Triad) -> Result<TriadTolerances, F
         )),
     };
     let study = tolerance::check(t, &tolerance::Kind { resolve: &resolve, positions: MAX_MODES, components: (2, 1) })?;
+    for (key, names) in [("velocities", &study.outputs.velocities), ("accelerations", &study.outputs.accelerations)] {
+        if !names.is_empty() {
+            return Err(FieldError::new(
+                format!("tolerances.outputs.{key}"),
+                "a triad does not move: watch its vertices (points) and angles (angles)",
+            ));
+        }
+    }
     let mut outputs = Vec::new();
     let points = if study.outputs.points.is_empty() && study.outputs.angles.is_empty() {
         vec!["A1".to_string(), "A2".to_string(), "A3".to_string()]

@@ -24,6 +24,7 @@ mod kinetostatics;
 mod lanes;
 mod lu;
 pub mod structure;
+mod variations;
 
 pub use assur::{AssurSolver, DrivenKind, DyadKind, Group, GroupKind, Motion, Route, decompose};
 pub use kinematics::{NearSingular, Sliding, Solver, State};

@@ -28,7 +28,13 @@
 use super::monte_carlo::Model;
 use super::{Dimension, wrap_deg};
 use crate::geom::{Point, Vector, perp, rotate};
-use crate::solve::linkage::{AssurSolver, Attach, JointKind, LinkageError, Mechanism, Solver, State};
+use crate::solve::linkage::{AssurSolver, Attach, JointKind, LinkageError, Mechanism, Motion, Solver, State};
+
+/// ∂q̇/∂p and ∂q̈/∂p at one position, field-major.
+type RateSensitivities = (Vec<f64>, Vec<f64>);
+
+/// Coordinates, velocities and accelerations (q, q̇, q̈) of one position.
+type Rates<'a> = (&'a [f64], &'a [f64], &'a [f64]);
 
 /// The step of the central difference of Φ, relative to the mechanism's length scale (for
 /// a coordinate) or in degrees (for an angle).
@@ -162,21 +168,79 @@ pub enum LinkageOutput {
         /// The body.
         body: usize,
     },
+    /// The velocity (units/s) of point `point` of body `body`: two channels, x and y.
+    Velocity {
+        /// Its name in columns (`piston.B.v`).
+        name: String,
+        /// The body.
+        body: usize,
+        /// The point's index in the body.
+        point: usize,
+    },
+    /// The acceleration (units/s²) of point `point` of body `body`: two channels.
+    Acceleration {
+        /// Its name in columns (`piston.B.a`).
+        name: String,
+        /// The body.
+        body: usize,
+        /// The point's index in the body.
+        point: usize,
+    },
+    /// Body `body`'s angular velocity, rad/s, counter-clockwise positive: one channel.
+    Omega {
+        /// Its name in columns (`rod.omega`).
+        name: String,
+        /// The body.
+        body: usize,
+    },
+    /// Body `body`'s angular acceleration, rad/s²: one channel.
+    Eps {
+        /// Its name in columns (`rod.eps`).
+        name: String,
+        /// The body.
+        body: usize,
+    },
 }
 
 impl LinkageOutput {
     /// The output's name in columns.
     pub fn name(&self) -> &str {
         match self {
-            LinkageOutput::Point { name, .. } | LinkageOutput::Angle { name, .. } => name,
+            LinkageOutput::Point { name, .. }
+            | LinkageOutput::Angle { name, .. }
+            | LinkageOutput::Velocity { name, .. }
+            | LinkageOutput::Acceleration { name, .. }
+            | LinkageOutput::Omega { name, .. }
+            | LinkageOutput::Eps { name, .. } => name,
         }
     }
 
-    /// Its channels: 2 for a point, 1 for an angle.
+    /// Its channels: 2 for a point's position, velocity or acceleration, 1 for a body's
+    /// angle or its rates.
     pub fn channels(&self) -> usize {
-        match self {
-            LinkageOutput::Point { .. } => 2,
-            LinkageOutput::Angle { .. } => 1,
+        if self.is_vector() { 2 } else { 1 }
+    }
+
+    /// Whether it is a point's (two channels).
+    pub fn is_vector(&self) -> bool {
+        matches!(
+            self,
+            LinkageOutput::Point { .. } | LinkageOutput::Velocity { .. } | LinkageOutput::Acceleration { .. }
+        )
+    }
+
+    /// Whether it is a rate (a velocity or an acceleration).
+    pub fn is_rate(&self) -> bool {
+        !matches!(self, LinkageOutput::Point { .. } | LinkageOutput::Angle { .. })
+    }
+
+    /// The body and point whose position, velocity or acceleration it is.
+    pub fn point(&self) -> Option<(usize, usize)> {
+        match *self {
+            LinkageOutput::Point { body, point, .. }
+            | LinkageOutput::Velocity { body, point, .. }
+            | LinkageOutput::Acceleration { body, point, .. } => Some((body, point)),
+            _ => None,
         }
     }
 }
@@ -212,7 +276,8 @@ pub struct LinkageModel {
 pub struct LinkageWork {
     solver: Option<AssurSolver>,
     nominal: Mechanism,
-    q: Vec<f64>,
+    /// The sample's q over the motion (and q̇, q̈ when a rate is watched).
+    motion: Motion,
     /// The state a sample starts from (the nominal's first, its locked angles the sample's).
     start: Option<State>,
 }
@@ -230,7 +295,7 @@ impl LinkageModel {
         let channels = outputs.iter().map(LinkageOutput::channels).sum();
         let mut nominal = Vec::with_capacity(states.len() * channels);
         for s in &states {
-            Self::values(&mechanism, &outputs, &s.q, &mut nominal);
+            Self::values(&mechanism, &outputs, (&s.q, &s.qd, &s.qdd), &mut nominal);
         }
         let mut model = LinkageModel {
             mechanism,
@@ -246,16 +311,26 @@ impl LinkageModel {
         Ok(model)
     }
 
-    /// Appends the outputs' values at coordinates `q` of `mech` (angles in degrees).
-    fn values(mech: &Mechanism, outputs: &[LinkageOutput], q: &[f64], out: &mut Vec<f64>) {
+    /// Appends the outputs' values at coordinates `q`, velocities `qd` and accelerations
+    /// `qdd` of `mech` (angles in degrees).
+    fn values(mech: &Mechanism, outputs: &[LinkageOutput], (q, qd, qdd): Rates<'_>, out: &mut Vec<f64>) {
         for o in outputs {
-            match *o {
-                LinkageOutput::Point { body, point, .. } => {
-                    let p = Self::point(mech, q, body, point);
-                    out.extend_from_slice(&[p.x, p.y]);
+            let v = match *o {
+                LinkageOutput::Point { body, point, .. } => Self::point(mech, q, body, point).coords,
+                LinkageOutput::Angle { body, .. } => Vector::new(q[3 * body + 2].to_degrees(), 0.0),
+                LinkageOutput::Velocity { body, point, .. } => {
+                    let s = rotate(mech.bodies[body].points[point].1, q[3 * body + 2]);
+                    Vector::new(qd[3 * body], qd[3 * body + 1]) + perp(s) * qd[3 * body + 2]
                 }
-                LinkageOutput::Angle { body, .. } => out.push(q[3 * body + 2].to_degrees()),
-            }
+                LinkageOutput::Acceleration { body, point, .. } => {
+                    let s = rotate(mech.bodies[body].points[point].1, q[3 * body + 2]);
+                    let w = qd[3 * body + 2];
+                    Vector::new(qdd[3 * body], qdd[3 * body + 1]) + perp(s) * qdd[3 * body + 2] - s * (w * w)
+                }
+                LinkageOutput::Omega { body, .. } => Vector::new(qd[3 * body + 2], 0.0),
+                LinkageOutput::Eps { body, .. } => Vector::new(qdd[3 * body + 2], 0.0),
+            };
+            out.extend_from_slice(&[v.x, v.y][..o.channels()]);
         }
     }
 
@@ -304,6 +379,7 @@ impl LinkageModel {
         let mut nominal = Solver::new(self.mechanism.clone())?;
         let n = nominal.coordinates();
         let np = self.params.len();
+        let rates = self.outputs.iter().any(LinkageOutput::is_rate);
         let mut out = Vec::with_capacity(self.states.len());
         for s in &self.states {
             // Columns −∂Φ/∂p, one per field, solved in place into ∂q/∂p.
@@ -318,30 +394,121 @@ impl LinkageModel {
                 out.push(None);
                 continue;
             }
-            out.push(Some(self.channel_sensitivities(&s.q, &cols)));
+            let d = if rates {
+                match Self::rate_sensitivities(&mut nominal, &mut pairs, s, &cols)? {
+                    Some((vel, acc)) => [cols, vel, acc],
+                    None => {
+                        out.push(None);
+                        continue;
+                    }
+                }
+            } else {
+                [cols, Vec::new(), Vec::new()]
+            };
+            out.push(Some(self.channel_sensitivities(s, &d)));
         }
         Ok(out)
     }
 
-    /// The channels' sensitivities (channel-major) from ∂q/∂p (`dq`, field-major).
-    fn channel_sensitivities(&self, q: &[f64], dq: &[f64]) -> Vec<f64> {
-        let (n, np) = (q.len(), self.params.len());
+    /// ∂q̇/∂p and ∂q̈/∂p (field-major, n each) at the nominal state `s` from ∂q/∂p (`dq`),
+    /// `pairs` the mechanisms with each field at p ± h. The velocity equation Φq·q̇ = −Φt
+    /// (Φt depends on neither q nor p) differentiated: Φq·∂q̇ = −B(q̇, ∂q) − ∂p(Φq)·q̇; the
+    /// acceleration equation Φq·q̈ = γ(q, q̇, p): Φq·∂q̈ = γ_q·∂q − 2·B(q̇, ∂q̇) + ∂p(γ)
+    /// − B(q̈, ∂q) − ∂p(Φq)·q̈ (γ_q̇·w = −2·B(q̇, w); B the second variation, see
+    /// [`Solver::second_variation_at`]); ∂p(·) the central difference between the pair at
+    /// fixed q, q̇ (polynomials of degree ≤ 2 in a point's coordinates, affine in a locked
+    /// angle, as Φ is). `None` where Φq is singular.
+    fn rate_sensitivities(
+        nominal: &mut Solver,
+        pairs: &mut [(Solver, Solver, f64)],
+        s: &State,
+        dq: &[f64],
+    ) -> Result<Option<RateSensitivities>, LinkageError> {
+        let n = s.q.len();
+        let diff =
+            |p: &[f64], m: &[f64], h: f64| -> Vec<f64> { p.iter().zip(m).map(|(p, m)| (p - m) / (2.0 * h)).collect() };
+        let mut vel = vec![0.0; dq.len()];
+        for (j, (plus, minus, h)) in pairs.iter().enumerate() {
+            let b = nominal.second_variation_at(s.t, &s.q, &s.qd, &dq[j * n..(j + 1) * n])?;
+            let dj = diff(&plus.jacobian_times_at(&s.q, &s.qd), &minus.jacobian_times_at(&s.q, &s.qd), *h);
+            for i in 0..n {
+                vel[j * n + i] = -(b[i] + dj[i]);
+            }
+        }
+        if !nominal.solve_jacobian_at(&s.q, &mut vel) {
+            return Ok(None);
+        }
+        let mut acc = vec![0.0; dq.len()];
+        for (j, (plus, minus, h)) in pairs.iter_mut().enumerate() {
+            let (sj, vj) = (&dq[j * n..(j + 1) * n], &vel[j * n..(j + 1) * n]);
+            let gq = nominal.gamma_derivative_at(&s.q, &s.qd, sj);
+            let bv = nominal.second_variation_at(s.t, &s.q, &s.qd, vj)?;
+            let ba = nominal.second_variation_at(s.t, &s.q, &s.qdd, sj)?;
+            let dg = diff(&plus.gamma_at(s.t, &s.q, &s.qd)?, &minus.gamma_at(s.t, &s.q, &s.qd)?, *h);
+            let dj = diff(&plus.jacobian_times_at(&s.q, &s.qdd), &minus.jacobian_times_at(&s.q, &s.qdd), *h);
+            for i in 0..n {
+                acc[j * n + i] = gq[i] - 2.0 * bv[i] + dg[i] - ba[i] - dj[i];
+            }
+        }
+        if !nominal.solve_jacobian_at(&s.q, &mut acc) {
+            return Ok(None);
+        }
+        Ok(Some((vel, acc)))
+    }
+
+    /// The channels' sensitivities (channel-major) at the nominal state `s` from ∂q/∂p,
+    /// ∂q̇/∂p and ∂q̈/∂p (`d`, field-major; the last two empty when no rate is watched). A
+    /// point r = R + A(φ)·s moves by dR + A(φ)·s⊥·dφ + A(φ)·ds; its velocity
+    /// v = Ṙ + (A·s)⊥·ω and acceleration a = R̈ + (A·s)⊥·ε − A·s·ω² are differentiated
+    /// alike.
+    fn channel_sensitivities(&self, s: &State, d: &[Vec<f64>; 3]) -> Vec<f64> {
+        let (n, np) = (s.q.len(), self.params.len());
         let mut out = vec![0.0; self.channels * np];
+        let three = |v: &[f64], j: usize, b: usize| {
+            if v.is_empty() {
+                (Vector::zeros(), 0.0)
+            } else {
+                (Vector::new(v[j * n + 3 * b], v[j * n + 3 * b + 1]), v[j * n + 3 * b + 2])
+            }
+        };
         for (j, p) in self.params.iter().enumerate() {
-            let d = &dq[j * n..(j + 1) * n];
             let mut ch = 0;
             for o in &self.outputs {
-                match *o {
-                    LinkageOutput::Point { body, point, .. } => {
-                        let phi = q[3 * body + 2];
-                        let s = rotate(self.mechanism.bodies[body].points[point].1, phi);
-                        let dp = Vector::new(d[3 * body], d[3 * body + 1])
-                            + perp(s) * d[3 * body + 2]
-                            + rotate(p.moves_point(body, point), phi);
-                        out[ch * np + j] = dp.x;
-                        out[(ch + 1) * np + j] = dp.y;
+                let body = match *o {
+                    LinkageOutput::Point { body, .. }
+                    | LinkageOutput::Angle { body, .. }
+                    | LinkageOutput::Velocity { body, .. }
+                    | LinkageOutput::Acceleration { body, .. }
+                    | LinkageOutput::Omega { body, .. }
+                    | LinkageOutput::Eps { body, .. } => body,
+                };
+                let (dr, dphi) = three(&d[0], j, body);
+                let (dv, dw) = three(&d[1], j, body);
+                let (da, de) = three(&d[2], j, body);
+                let phi = s.q[3 * body + 2];
+                let (w, e) = (s.qd[3 * body + 2], s.qdd[3 * body + 2]);
+                // A·s and its change, for a point's outputs.
+                let arm = |point: usize| {
+                    let r = rotate(self.mechanism.bodies[body].points[point].1, phi);
+                    (r, perp(r) * dphi + rotate(p.moves_point(body, point), phi))
+                };
+                let v = match *o {
+                    LinkageOutput::Point { point, .. } => dr + arm(point).1,
+                    LinkageOutput::Velocity { point, .. } => {
+                        let (r, dr_) = arm(point);
+                        dv + perp(dr_) * w + perp(r) * dw
                     }
-                    LinkageOutput::Angle { body, .. } => out[ch * np + j] = d[3 * body + 2].to_degrees(),
+                    LinkageOutput::Acceleration { point, .. } => {
+                        let (r, dr_) = arm(point);
+                        da + perp(dr_) * e + perp(r) * de - dr_ * (w * w) - r * (2.0 * w * dw)
+                    }
+                    LinkageOutput::Angle { .. } => Vector::new(dphi.to_degrees(), 0.0),
+                    LinkageOutput::Omega { .. } => Vector::new(dw, 0.0),
+                    LinkageOutput::Eps { .. } => Vector::new(de, 0.0),
+                };
+                out[ch * np + j] = v.x;
+                if o.channels() == 2 {
+                    out[(ch + 1) * np + j] = v.y;
                 }
                 ch += o.channels();
             }
@@ -358,7 +525,7 @@ impl LinkageModel {
     /// point's velocity from the nominal's rates; where it is zero, the chord between the
     /// neighbouring positions; a zero vector where neither is defined).
     pub fn tangents(&self, output: usize) -> Vec<Vector> {
-        let LinkageOutput::Point { body, point, .. } = self.outputs[output] else {
+        let Some((body, point)) = self.outputs[output].point() else {
             return vec![Vector::zeros(); self.states.len()];
         };
         let at = |k: usize| Self::point(&self.mechanism, &self.states[k].q, body, point);
@@ -379,12 +546,13 @@ impl LinkageModel {
             .collect()
     }
 
-    /// The sample's q at every position into `work.q` (n per position; a position it
-    /// cannot be assembled at is set in `failed`, its q the nominal's there): the solver
-    /// refitted to the sample's numbers, resumed from the nominal's first state and swept
-    /// over the motion. `false` when the sample is no mechanism at all.
+    /// The sample's q at every position into `work.motion` (n per position; with q̇ and q̈
+    /// when a rate is watched; a position it cannot be assembled at is set in `failed`,
+    /// its state the nominal's there): the solver refitted to the sample's numbers,
+    /// resumed from the nominal's first state and swept over the motion. `false` when the
+    /// sample is no mechanism at all.
     fn solve_sample(&self, work: &mut LinkageWork, dev: &[f64], failed: &mut [bool]) -> bool {
-        let LinkageWork { solver, nominal, q, start } = work;
+        let LinkageWork { solver, nominal, motion, start } = work;
         let Some(solver) = solver.as_mut() else { return false };
         let refit = solver.refit(|m| {
             for p in &self.params {
@@ -397,8 +565,9 @@ impl LinkageModel {
         if refit.is_err() {
             return false;
         }
+        let rates = self.outputs.iter().any(LinkageOutput::is_rate);
         let n = solver.q().len().max(1);
-        q.clear();
+        motion.clear();
         let mut k = 0;
         if let (Some(first), Some(start)) = (self.states.first(), start.as_mut()) {
             start.q.copy_from_slice(&first.q);
@@ -406,16 +575,25 @@ impl LinkageModel {
             solver.resume(start);
         }
         while k < self.times.len() {
-            let before = q.len() / n;
-            let done = solver.positions_into(&self.times[k..], q);
-            k += q.len() / n - before;
+            let before = motion.q.len() / n;
+            let done = if rates {
+                solver.motion_into(&self.times[k..], motion)
+            } else {
+                solver.positions_into(&self.times[k..], &mut motion.q)
+            };
+            k += motion.q.len() / n - before;
             if done.is_ok() {
                 break;
             }
             // Position k cannot be assembled: mark it, resume from the nominal's state there.
             failed[k] = true;
-            q.extend_from_slice(&self.states[k].q);
-            solver.resume(&self.states[k]);
+            let st = &self.states[k];
+            motion.q.extend_from_slice(&st.q);
+            if rates {
+                motion.qd.extend_from_slice(&st.qd);
+                motion.qdd.extend_from_slice(&st.qdd);
+            }
+            solver.resume(st);
             k += 1;
         }
         true
@@ -502,7 +680,7 @@ impl Model for LinkageModel {
         LinkageWork {
             solver: AssurSolver::new(self.mechanism.clone()).ok(),
             nominal: self.mechanism.clone(),
-            q: Vec::new(),
+            motion: Motion::default(),
             start: self.states.first().cloned(),
         }
     }
@@ -515,25 +693,29 @@ impl Model for LinkageModel {
         let Some(solver) = work.solver.as_ref() else { return true };
         let mech = solver.mechanism();
         let ch = self.channels;
-        let n = work.q.len() / self.states.len().max(1);
+        let m = &work.motion;
+        let n = m.q.len() / self.states.len().max(1);
         let mut any = false;
+        let mut row = Vec::with_capacity(ch);
+        // Positions alone (no rate watched): the rates are not read.
+        let zero = if m.qd.is_empty() { vec![0.0; n] } else { Vec::new() };
         for k in 0..self.states.len() {
             if failed[k] {
                 any = true;
                 continue;
             }
-            let q = &work.q[k * n..(k + 1) * n];
+            let at = k * n..(k + 1) * n;
+            let q = &m.q[at.clone()];
+            let (qd, qdd) = if m.qd.is_empty() { (&zero[..], &zero[..]) } else { (&m.qd[at.clone()], &m.qdd[at]) };
+            row.clear();
+            Self::values(mech, &self.outputs, (q, qd, qdd), &mut row);
             let nominal = &self.nominal[k * ch..(k + 1) * ch];
-            let row = &mut out[k * ch..(k + 1) * ch];
+            let out = &mut out[k * ch..(k + 1) * ch];
             let mut c = 0;
             for o in &self.outputs {
-                match *o {
-                    LinkageOutput::Point { body, point, .. } => {
-                        let p = Self::point(mech, q, body, point);
-                        row[c] = p.x - nominal[c];
-                        row[c + 1] = p.y - nominal[c + 1];
-                    }
-                    LinkageOutput::Angle { body, .. } => row[c] = wrap_deg(q[3 * body + 2].to_degrees() - nominal[c]),
+                for i in 0..o.channels() {
+                    let d = row[c + i] - nominal[c + i];
+                    out[c + i] = if matches!(o, LinkageOutput::Angle { .. }) { wrap_deg(d) } else { d };
                 }
                 c += o.channels();
             }
