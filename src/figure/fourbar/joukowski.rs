@@ -61,7 +61,8 @@ const LEVER_HEIGHT: f64 = 0.85;
 
 /// A text line of a panel.
 fn line(d: &mut Drawing, layer: usize, at: Point, height: f64, value: String, halign: HAlign) {
-    let shape = Shape::Text { at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
+    let shape =
+        Shape::Text { runs: crate::draw::Runs::flat(), at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
     d.push(Entity { layer, color: None, linetype: None, shape });
 }
 
@@ -142,7 +143,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             if n.starts_with('c') {
                 d.add(vel, Shape::Circle { center: q, radius: 0.25 * s.joint });
             }
-            letters.letter(q, n, s.text, q - mid, None);
+            letters.letter(q, *n, s.text, q - mid, None);
         }
         for (f, balancing) in &arrows {
             let from = at(f.image);

@@ -360,8 +360,15 @@ pub fn table(d: &mut Drawing, rows: &[Magnitude], top_left: Point, width: f64, s
             (top_left.x, r.name.clone(), HAlign::Left),
             (top_left.x + width, magnitude_text(r.value, &r.unit), HAlign::Right),
         ] {
-            let shape =
-                Shape::Text { at: Point::new(x, y), height: h, value, halign, valign: VAlign::Baseline, rotation: 0.0 };
+            let shape = Shape::Text {
+                runs: crate::draw::Runs::flat(),
+                at: Point::new(x, y),
+                height: h,
+                value,
+                halign,
+                valign: VAlign::Baseline,
+                rotation: 0.0,
+            };
             d.push(Entity { layer: l, color: None, linetype: Some(LineType::Continuous), shape });
         }
     }

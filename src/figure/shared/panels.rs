@@ -701,6 +701,7 @@ impl PanelFrame {
         d.add(
             text,
             Shape::Text {
+                runs: crate::draw::Runs::flat(),
                 at: Point::new(ur.x - 0.6 * s.text, ur.y - 1.2 * s.text),
                 height: s.text,
                 value,
@@ -838,6 +839,7 @@ fn text(d: &mut Drawing, layer: usize, at: Point, height: f64, value: &str) {
     d.add(
         layer,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at,
             height,
             value: value.to_string(),

@@ -381,7 +381,18 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
         d.add(l, Shape::Polyline { points, closed: true, width });
     };
     let text = |d: &mut Drawing, at: Point, height: f64, value: &str, halign: HAlign| {
-        d.add(l, Shape::Text { at, height, value: value.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 });
+        d.add(
+            l,
+            Shape::Text {
+                runs: crate::draw::Runs::flat(),
+                at,
+                height,
+                value: value.to_string(),
+                halign,
+                valign: VAlign::Middle,
+                rotation: 0.0,
+            },
+        );
     };
     rect(&mut d, layout.border, 0.5);
     for (i, p) in layout.panels.iter().enumerate() {
@@ -470,6 +481,7 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
             d.add(
                 l,
                 Shape::Text {
+                    runs: crate::draw::Runs::flat(),
                     at: Point::new(x, y),
                     height: h,
                     value: value.to_string(),

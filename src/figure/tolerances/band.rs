@@ -144,6 +144,7 @@ pub fn band_drawing(
     d.add(
         text,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: Point::new(lo.x, top + 2.2 * s.text),
             height: s.text,
             value: title.to_string(),
@@ -177,7 +178,15 @@ pub fn band_drawing(
 }
 
 fn label(at: Point, s: &str, h: f64, halign: HAlign) -> Shape {
-    Shape::Text { at, height: h, value: s.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 }
+    Shape::Text {
+        runs: crate::draw::Runs::flat(),
+        at,
+        height: h,
+        value: s.to_string(),
+        halign,
+        valign: VAlign::Middle,
+        rotation: 0.0,
+    }
 }
 
 /// Polylines through the runs of defined points.
