@@ -538,7 +538,9 @@ fn text(
 /// `<tspan>` [`font::SUB_SIZE`] times smaller, lowered by `dy` = [`font::SUB_SHIFT_EM`]
 /// ems, and the base text after it in a `<tspan>` raised back; flat-only runs left out. No
 /// white space between the runs (a reader would draw it as a space). `dy` rather than
-/// `baseline-shift`: rsvg, resvg and Chromium place it alike.
+/// `baseline-shift`: rsvg, resvg and Chromium place it alike. The raised-back run keeps its
+/// spaces (`xml:space="preserve"`): rsvg drops a tspan's leading space (`k_v = 1` drawn
+/// `kv= 1`), resvg and Chromium do not.
 fn push_runs(out: &mut Vec<u8>, value: &str, runs: &Runs, size: f64) {
     let shift = font::SUB_SHIFT_EM * size;
     let mut lowered = false;
@@ -559,7 +561,7 @@ fn push_runs(out: &mut Vec<u8>, value: &str, runs: &Runs, size: f64) {
             RunKind::Base if lowered => {
                 out.extend_from_slice(b"<tspan");
                 push_attr_num(out, "dy", -shift);
-                out.push(b'>');
+                out.extend_from_slice(b" xml:space=\"preserve\">");
                 push_text(out, part);
                 out.extend_from_slice(b"</tspan>");
                 lowered = false;

@@ -250,7 +250,7 @@ fn runs_markup(value: &str, runs: &Runs, size: f64) -> String {
                 out += &format!(r#"<tspan font-size="{}">{}</tspan>"#, num(font::SUB_SIZE * size), esc(part))
             }
             (RunKind::Base, true) => {
-                out += &format!(r#"<tspan dy="{}">{}</tspan>"#, num(-shift), esc(part));
+                out += &format!(r#"<tspan dy="{}" xml:space="preserve">{}</tspan>"#, num(-shift), esc(part));
                 lowered = false;
             }
             (RunKind::Base, false) => out += &esc(part),

@@ -15,7 +15,7 @@ use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
 
 use crate::figure::fourbar::angle_text;
-use crate::figure::shared::labels::{self};
+use crate::figure::shared::labels::{self, Label};
 use crate::figure::shared::vocab::{
     ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, unit_or, vector,
 };
@@ -171,7 +171,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             let from = at(f.image);
             let v = dir(f);
             let color = balancing.then_some(Aci::RED);
-            names.name_with_leader(from + v * 0.6, &f.name, small, perp(v), color);
+            names.name_with_leader(from + v * 0.6, Label::quantity(&f.name), small, perp(v), color);
         }
         names.keep_off_drawing(&d);
         names.keep_within(frame_box);

@@ -45,7 +45,7 @@ use crate::solve::fourbar::{ExternalForce, Forces, Link, LinkLoad};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
 use crate::figure::shared::forces::{self, ForcePolygon, NamedVector, Resultant};
-use crate::figure::shared::labels;
+use crate::figure::shared::labels::{self, Label};
 pub use crate::figure::shared::panels::ScaleChoice;
 pub use crate::figure::shared::panels::TABLE_CAPTION;
 use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
@@ -212,7 +212,8 @@ impl Layout {
     pub fn moving(&self, k: usize, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
         let mut d = self.frame.paper_drawing();
         let s = self.frame.sizes;
-        self.frame.draw_position_text(&mut d, format!("φ1 = {}°", angle_text(pos.phi1.to_degrees())));
+        let phi = format!(" = {}°", angle_text(pos.phi1.to_degrees()));
+        self.frame.draw_position_text(&mut d, Label::with_subscript("φ", "1", &phi));
         // The reactions and the loads drawn on the mechanism, for its letters to keep off.
         let arrows = match (force, self.frame.mechanism_forces) {
             (Some(f), Some(scale)) => {
@@ -375,11 +376,11 @@ pub(crate) fn mechanism(
         letters.circled(mid, number, s.text, n, 0.5 * s.link);
     }
     if let Some(mid) = omega_mid {
-        letters.letter(mid, "ω1", s.text, mid - geom.o1, None);
+        letters.letter(mid, Label::quantity("ω1"), s.text, mid - geom.o1, None);
     }
     for a in arrows {
         let v = a.arrow.1 - a.arrow.0;
-        letters.letter(a.arrow.1, &a.force.name, s.text, v, None);
+        letters.letter(a.arrow.1, a.force.label(), s.text, v, None);
     }
     // Clear of everything drawn so far and around.
     letters.keep_off_drawing(d);
@@ -609,7 +610,7 @@ fn on_mechanism(geom: &Geometry, pos: &Position, f: &Forces, external: &[Externa
     for (i, e) in external.iter().enumerate() {
         if e.range.is_none_or(|r| r.contains_deg(phi1_deg)) {
             let name = if external.len() == 1 { "F".to_string() } else { format!("F{}", i + 1) };
-            out.push((e.at.at(pos), NamedVector { name, v: e.value }));
+            out.push((e.at.at(pos), NamedVector::new(&name, e.value)));
         }
     }
     out

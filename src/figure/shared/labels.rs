@@ -205,6 +205,14 @@ impl Label {
     }
 }
 
+impl Label {
+    /// `symbol`, its subscript `sub`, then `rest` at the base size: `φ` + `1` + ` = 30°`.
+    pub fn with_subscript(symbol: &str, sub: &str, rest: &str) -> Label {
+        let from = symbol.len();
+        Label { text: format!("{symbol}{sub}{rest}"), runs: Runs::subscript(&[from..from + sub.len()]) }
+    }
+}
+
 impl From<&str> for Label {
     /// A flat label.
     fn from(text: &str) -> Label {
