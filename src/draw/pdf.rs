@@ -286,8 +286,8 @@ struct Placing {
 
 /// Draws a text in its runs (the fill set): base runs at the font size of its cap height,
 /// subscripts [`SUB_SIZE`] times it on a baseline [`SUB_SHIFT_EM`] ems lower, one glyph run
-/// each (so the text is extracted as its runs' letters: `RA` reads "RA"); flat-only runs left
-/// out. Aligned on the width of what is drawn, as [`super::font::measure_runs`] measures it.
+/// each; flat-only runs not drawn. The text a reader extracts is the letters drawn: `RA` for
+/// R_A, `kv = 2` for k_v = 2, `φ1` for φ_1 (the `_` is only the DXF's). Aligned on the width of what is drawn, as [`super::font::measure_runs`] measures it.
 fn text(
     surface: &mut krilla::surface::Surface<'_>,
     f: &Frame,
@@ -296,6 +296,7 @@ fn text(
     p: Placing,
 ) {
     let size = f.len(p.height / CAP_HEIGHT_EM);
+    // (text, its glyphs, size, rise) per drawn run.
     let parts: Vec<(&str, Vec<KrillaGlyph>, f32, f32)> = runs
         .split(value)
         .filter_map(|(part, kind)| {
