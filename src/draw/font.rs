@@ -247,13 +247,13 @@ mod tests {
         let em = h / CAP_HEIGHT_EM;
         // RA with A a subscript: advance of R plus 0.7 × the advance of A (DejaVu Sans:
         // R 1423, A 1401 of 2048 units per em).
-        let e = measure_runs("RA", &Runs::subscript(&[1..2]), h);
+        let e = measure_runs("RA", &Runs::subscript(1..2), h);
         assert!((e.width - (1423.0 + 0.7 * 1401.0) / 2048.0 * em).abs() < 1e-12, "{e:?}");
         assert!((e.width - (width("R", h) + SUB_SIZE * width("A", h))).abs() < 1e-12);
         // The lowered A reaches 0.25 em below the baseline; R sets the top.
         assert!((e.descent - SUB_SHIFT_EM * em).abs() < 1e-12 && (e.ascent - h).abs() < 1e-12, "{e:?}");
         // A descender in the subscript goes deeper: 0.25 em + 0.7 × p's.
-        let e = measure_runs("ap", &Runs::subscript(&[1..2]), h);
+        let e = measure_runs("ap", &Runs::subscript(1..2), h);
         assert!((e.descent - (SUB_SHIFT_EM - SUB_SIZE * glyph('p').y_min) * em).abs() < 1e-12);
         // Flat runs (the `_` of k_v) are not drawn; flat text measures as `measure`.
         let k = "k_v = 2";

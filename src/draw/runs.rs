@@ -53,16 +53,13 @@ impl Runs {
         self.0.iter().all(|r| r.kind == RunKind::Base)
     }
 
-    /// The bytes `sub` of a value drawn as subscripts, the rest at the base size (ranges in
-    /// order, not overlapping, on character boundaries: `Runs::subscript(&[1..2])` for
-    /// `RA`).
-    pub fn subscript(sub: &[Range<usize>]) -> Runs {
-        let mut runs = Vec::with_capacity(2 * sub.len());
-        for r in sub.iter().filter(|r| !r.is_empty()) {
-            runs.push(Run { end: r.start, kind: RunKind::Base });
-            runs.push(Run { end: r.end, kind: RunKind::Sub });
+    /// The bytes `sub` of a value drawn as a subscript, the rest at the base size (on
+    /// character boundaries: `Runs::subscript(1..2)` for `RA`; empty: flat).
+    pub fn subscript(sub: Range<usize>) -> Runs {
+        if sub.is_empty() {
+            return Runs::flat();
         }
-        Runs(runs)
+        Runs(vec![Run { end: sub.start, kind: RunKind::Base }, Run { end: sub.end, kind: RunKind::Sub }])
     }
 
     /// The runs of a text marked up TeX-like: each `_` followed by a letter or digit starts a
@@ -118,15 +115,15 @@ mod tests {
     #[test]
     fn a_name_splits_at_its_subscript() {
         use RunKind::*;
-        assert_eq!(parts("RA", &Runs::subscript(&[1..2])), [("R".into(), Base), ("A".into(), Sub)]);
+        assert_eq!(parts("RA", &Runs::subscript(1..2)), [("R".into(), Base), ("A".into(), Sub)]);
         assert_eq!(parts("RA", &Runs::flat()), [("RA".into(), Base)]);
         // φ is two bytes: the subscript starts after it.
         assert_eq!(
-            parts("φ1 = 90°", &Runs::subscript(&["φ".len().."φ1".len()])),
+            parts("φ1 = 90°", &Runs::subscript("φ".len().."φ1".len())),
             [("φ".into(), Base), ("1".into(), Sub), (" = 90°".into(), Base)]
         );
         // A run off a character boundary ends the runs: the rest is base text, never lost.
-        assert_eq!(parts("φ1", &Runs::subscript(&[1..3])), [("φ1".into(), Base)]);
+        assert_eq!(parts("φ1", &Runs::subscript(1..3)), [("φ1".into(), Base)]);
     }
 
     #[test]

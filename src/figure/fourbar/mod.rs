@@ -212,8 +212,7 @@ impl Layout {
     pub fn moving(&self, k: usize, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
         let mut d = self.frame.paper_drawing();
         let s = self.frame.sizes;
-        let phi = format!(" = {}°", angle_text(pos.phi1.to_degrees()));
-        self.frame.draw_position_text(&mut d, Label::with_subscript("φ", "1", &phi));
+        self.frame.draw_position_text(&mut d, format!("φ1 = {}°", angle_text(pos.phi1.to_degrees())));
         // The reactions and the loads drawn on the mechanism, for its letters to keep off.
         let arrows = match (force, self.frame.mechanism_forces) {
             (Some(f), Some(scale)) => {

@@ -201,15 +201,7 @@ impl Label {
         let Some(symbol) = name[start..].chars().next() else { return Label::from(name) };
         let from = start + symbol.len_utf8();
         let end = name.trim_end_matches(['′', '\'', '″']).len().max(from);
-        Label { text: name.to_string(), runs: Runs::subscript(&[from..end]) }
-    }
-}
-
-impl Label {
-    /// `symbol`, its subscript `sub`, then `rest` at the base size: `φ` + `1` + ` = 30°`.
-    pub fn with_subscript(symbol: &str, sub: &str, rest: &str) -> Label {
-        let from = symbol.len();
-        Label { text: format!("{symbol}{sub}{rest}"), runs: Runs::subscript(&[from..from + sub.len()]) }
+        Label { text: name.to_string(), runs: Runs::subscript(from..end) }
     }
 }
 
