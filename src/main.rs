@@ -57,7 +57,7 @@ enum Command {
         /// DIR/sheets/<name>/<position>.svg and one PDF, DIR/<name>-sheets.pdf, to print at 100 %.
         #[arg(long, value_name = "PAPER")]
         sheets: Option<Paper>,
-        /// Four-bar and linkage scenes: draw only these positions (the DXF's position layers, the
+        /// Four-bar and linkage scenes, and a synthesis's design: draw only these positions (the DXF's position layers, the
         /// frames, the sheets): crank angles φ1 in degrees for a four-bar, times t in seconds for
         /// a linkage, as the frames label them, e.g. `0,90,180`; or `every=STEP`, the first
         /// position and every STEP after it (`every=30`). Each must be a position of the run
@@ -96,7 +96,8 @@ enum Command {
     /// structural analysis, kinematic diagram, plan of positions, the chosen positions'
     /// polygons and forces, the diagrams; a triad's or a chain's own parts), the same pages as
     /// DIR/report/<name>/NN-<part>.svg, the chosen positions' values DIR/<name>-report.csv and
-    /// DIR/<name>-report.json (docs/report.md).
+    /// DIR/<name>-report.json (docs/report.md). A linkage with a redundant link, which `run`
+    /// refuses, gets its title page, structural analysis and kinematic diagram.
     Report {
         /// The scene file (TOML; see templates/).
         scene: PathBuf,
@@ -339,7 +340,10 @@ fn run(cli: Cli) -> anyhow::Result<()> {
             finish(outcome, &out, json, quiet, verbose)
         }
         Command::Report { scene, out, set, paper, positions, png, quiet } => {
-            let loaded = scene::load(&scene, &overrides(&set)?).map_err(mechdraw::Error::from)?;
+            // A redundant link is accepted: the report draws the structure and says why it
+            // stops there.
+            let loaded = scene::load_with(&scene, &overrides(&set)?, scene::linkage::Redundancy::Accepted)
+                .map_err(mechdraw::Error::from)?;
             let opts = mechdraw::run::report::ReportOptions { paper, positions };
             let (report, written) = mechdraw::run::report_run(&loaded, &opts, &out, png)?;
             if !quiet {

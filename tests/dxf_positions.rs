@@ -141,6 +141,26 @@ fn positions_choose_what_a_linkage_run_draws() {
     assert_eq!(shown_positions(&dxf), ["POS_000"]);
 }
 
+/// A synthesis's design is a motion of its own: `--positions` chooses what its run draws
+/// (its crank angles, as a four-bar's); the construction is one drawing either way.
+#[test]
+fn positions_choose_what_a_synthesis_designs_run_draws() {
+    let scene = common::root().join("templates/synthesis-crank-rocker.toml");
+    let dir = out_dir("synthesis");
+    let out = run(&scene, &["--positions", "every=90"], &dir);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let design = dir.join("synthesis-crank-rocker-design.dxf");
+    assert_eq!(position_layers(&design), ["POS_000", "POS_090", "POS_180", "POS_270"]);
+    let mut frames: Vec<String> = std::fs::read_dir(dir.join("frames/synthesis-crank-rocker-design"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    frames.sort();
+    assert_eq!(frames, ["pos_000.svg", "pos_090.svg", "pos_180.svg", "pos_270.svg"]);
+    let csv = std::fs::read_to_string(dir.join("synthesis-crank-rocker-design.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 360, "the design's table keeps every position");
+}
+
 /// What the run does not have, an empty list, a step ≤ 0, a duplicate, a scene with no
 /// motion: refused naming the option and what is valid, exit 2, nothing written.
 #[test]
@@ -148,7 +168,8 @@ fn bad_positions_are_refused_before_anything_is_written() {
     let fourbar = common::root().join("templates/fourbar-chebyshev.toml");
     let linkage = common::root().join("templates/slider-crank.toml");
     let triad = common::root().join("templates/triad-popa.toml");
-    let cases: [(&Path, &str, &[&str]); 9] = [
+    let synthesis = common::root().join("templates/synthesis-crank-rocker.toml");
+    let cases: [(&Path, &str, &[&str]); 10] = [
         (&fourbar, "45.5", &["45.5°", "nearest is 45°", "0° to 359°"]),
         (&fourbar, "400", &["400°", "not a position"]),
         (&fourbar, "", &["empty", "0,90,180"]),
@@ -158,10 +179,15 @@ fn bad_positions_are_refused_before_anything_is_written() {
         (&fourbar, "0,90,0", &["listed twice"]),
         (&linkage, "0.1001", &["t = 0.1001 s", "nearest is 0.1 s"]),
         (&triad, "0", &["four-bar or linkage", "triad scene"]),
+        (&synthesis, "0", &["--no-analysis", "its design is not run"]),
     ];
     for (k, (scene, list, says)) in cases.iter().enumerate() {
         let dir = out_dir(&format!("bad{k}"));
-        let out = run(scene, &["--positions", list], &dir);
+        let mut args = vec!["--positions", list];
+        if scene.ends_with("synthesis-crank-rocker.toml") {
+            args.push("--no-analysis");
+        }
+        let out = run(scene, &args, &dir);
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "--positions {list:?}: {err}");
         assert!(err.contains("--positions"), "--positions {list:?}: the message names the option: {err}");

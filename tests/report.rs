@@ -234,6 +234,31 @@ fn position_pages(r: &Report) -> Vec<Vec<&Drawing>> {
     out
 }
 
+/// The page of part `title` (its first).
+fn part_page<'a>(r: &'a Report, title: &str) -> &'a Drawing {
+    let first = r.parts.iter().find(|(t, _)| t == title).unwrap_or_else(|| panic!("no part {title}")).1;
+    &r.pages[first - 1].drawing
+}
+
+#[test]
+fn the_kinematic_diagram_and_every_positions_mechanism_share_one_drafting_scale() {
+    // The same drawing at the same scale: a teacher compares the kinematic diagram with the
+    // mechanism of each position page. The shaper's diagram alone fits at 4 mm/mm, its
+    // position pages (the whole motion and the table) need 5: both are drawn at 5.
+    for (name, expected) in [("shaper-forces", Some(5.0)), ("slider-crank", None), ("fourbar-chebyshev", None)] {
+        let r = report_of(name, None);
+        let kin = printed_scales(part_page(&r, "Kinematic diagram"), "l");
+        assert_eq!(kin.len(), 1, "{name}: one k_l on the kinematic diagram: {kin:?}");
+        if let Some(k) = expected {
+            assert_eq!(kin[0], k, "{name}");
+        }
+        for pages in position_pages(&r) {
+            let on_mechanism = printed_scales(pages[0], "l");
+            assert_eq!(on_mechanism, kin, "{name}: the position's mechanism page against the kinematic diagram");
+        }
+    }
+}
+
 #[test]
 fn the_four_bars_printed_scales_measure_its_vectors_to_the_table() {
     let r = report_of("fourbar-chebyshev", None);
@@ -720,22 +745,79 @@ law = "10*t"
 "#;
 
 #[test]
-fn a_redundant_link_is_refused_with_the_formulas_value_and_why_the_joints_leave_more() {
-    // M = 3·4 − 2·6 = 0 by the formula; at the placement the joints' rank is 11, so they
-    // leave 1 degree of freedom: the third crank repeats an equation. The solver needs
-    // independent joints, so the report is refused, saying both and why.
+fn a_redundant_link_gets_its_structure_with_the_formulas_value_the_solvers_and_why_they_differ() {
+    // M = 3·4 − 2·6 − 0 = 0 by the formula; at the placement the joints' rank is 11 (the
+    // third crank repeats one equation of the parallelogram), so they leave 12 − 11 = 1
+    // degree of freedom, the one the driver takes. `mechdraw run` refuses it (the solver
+    // needs independent joints); the report draws its title page, its structure and its
+    // kinematic diagram (3 pages), says why the two mobilities differ and why it stops.
     let dir = common::root().join("target/test-report/redundant");
+    let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let scene = dir.join("parallelogram.toml");
     std::fs::write(&scene, PARALLELOGRAM).unwrap();
+    // `run` still refuses it, pointing at the report.
+    let o = common::mechdraw().arg("run").arg(&scene).arg("--out").arg(dir.join("run")).output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    for s in
+        ["0 degree(s) of freedom", "3 × 4 bodies − 2 × 6 joints", "leave 1", "12 − 11", "redundant", "mechdraw report"]
+    {
+        assert!(err.contains(s), "`{s}` not in: {err}");
+    }
+    assert!(!dir.join("run").exists(), "nothing written");
+    // The report: exit 0, three pages.
     let out = dir.join("out");
     let o = common::mechdraw().arg("report").arg(&scene).arg("--out").arg(&out).output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    for s in ["0 degree(s) of freedom", "3 × 4 bodies − 2 × 6 joints", "leave 1", "12 − 11", "redundant"] {
-        assert!(err.contains(s), "`{s}` not in: {err}");
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.contains("redundant link") && err.contains("3 pages"), "{err}");
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("parallelogram-report.json")).unwrap()).unwrap();
+    assert_eq!(json["kind"]["mobility"], 0, "{json}");
+    assert_eq!(json["kind"]["mobility_at_placement"], 1, "{json}");
+    assert_eq!(json["kind"]["redundant"], 1, "{json}");
+    assert_eq!(json["pages"], 3, "{json}");
+    let svgs: Vec<String> = std::fs::read_dir(out.join("report/parallelogram"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    let mut svgs = svgs;
+    svgs.sort();
+    assert_eq!(svgs, ["01-title.svg", "02-structure.svg", "03-kinematic.svg"]);
+    assert!(out.join("parallelogram-report.pdf").is_file());
+    // The structure page, through the library: the counts, both mobilities, the passive link.
+    let parsed =
+        scene::parse_with(PARALLELOGRAM, "parallelogram.toml", &[], scene::linkage::Redundancy::Accepted).unwrap();
+    assert!(scene::parse(PARALLELOGRAM, "parallelogram.toml", &[]).is_err(), "refused by default");
+    let loaded = scene::Loaded { path: scene.clone(), scene: parsed, text: PARALLELOGRAM.into() };
+    let r = report(&loaded, &ReportOptions::default()).unwrap();
+    assert_eq!(r.pages.len(), 3);
+    let text = common::texts(&r.pages[1].drawing).join(" ");
+    for s in [
+        "n = 4 moving links",
+        "p₅ = 6 lower pairs",
+        "M = 3·4 − 2·6 − 0 = 0",
+        "leave 1 degree(s) of freedom",
+        "12 − 11",
+        "repeat others",
+        "stops at the structure",
+        "passive link (4)",
+        "W = 3·1 − 2·2 = −1",
+        "I(0,1) → II(2,3) → passive(4)",
+    ] {
+        assert!(text.contains(s), "`{s}` not on the structure page: {text}");
     }
-    assert!(!out.exists(), "nothing written");
+    // `--positions` has nothing to choose from: refused, nothing written.
+    let out2 = dir.join("out2");
+    let o = common::mechdraw()
+        .args(["report", scene.to_str().unwrap(), "--positions", "0", "--out", out2.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.contains("--positions") && err.contains("redundant link"), "{err}");
+    assert!(!out2.exists(), "nothing written");
     let _ = std::fs::remove_dir_all(&dir);
 }
 

@@ -38,11 +38,18 @@ fn templates() -> Vec<(String, scene::Loaded)> {
     out
 }
 
+/// The run's options for a template: a synthesis's design (a motion of its own, 360
+/// positions) draws every 30th, as the reduced four-bars do.
+fn options(loaded: &scene::Loaded) -> RunOptions {
+    let positions = matches!(loaded.scene, scene::Scene::Synthesis(_)).then(|| "every=30".parse().unwrap());
+    RunOptions { positions, ..RunOptions::default() }
+}
+
 #[test]
 fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
     for (stem, loaded) in templates() {
         let tmp = tempfile::tempdir().unwrap();
-        let opts = RunOptions { out_dir: Some(tmp.path().to_path_buf()), png: true, ..RunOptions::default() };
+        let opts = RunOptions { out_dir: Some(tmp.path().to_path_buf()), png: true, ..options(&loaded) };
         let outcome = mechdraw::run::run(&loaded, &opts).unwrap();
         let products = mechdraw::run::products(&loaded, &opts).unwrap();
         let memory = bytes::to_files(&products, &WriteOptions { png: true, ..WriteOptions::default() }).unwrap();
@@ -119,7 +126,7 @@ fn files_on_disk_are_the_in_memory_bytes_for_every_template() {
 fn spliced_frames_are_the_svg_writers_output_for_the_whole_frame() {
     let mut animated = 0;
     for (stem, loaded) in templates() {
-        let products = mechdraw::run::products(&loaded, &RunOptions::default()).unwrap();
+        let products = mechdraw::run::products(&loaded, &options(&loaded)).unwrap();
         let Picture::Motion(a) = &products.picture else { continue };
         animated += 1;
         let files = bytes::to_files(&products, &WriteOptions::default()).unwrap();

@@ -1139,7 +1139,8 @@ fn sheet_pages(
     let rows = (0..states.len())
         .map(|k| row_counts(&sheet_table(scene, plots, k, forces.map(|(d, f)| (d, &states[k], &f[k])))))
         .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
-    let sheets = LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows);
+    let sheets =
+        LinkageSheets::new(paper, &scene.name, &scene.mechanism, figure, states, show, forces.is_some(), rows, None);
     let per = sheets.per_position();
     let total = drawn.len() * per;
     let sets: Vec<Vec<products::Page>> = drawn

@@ -55,7 +55,8 @@ pub struct RunOptions {
     /// to the scene file's text when it opens.
     pub sets: Vec<String>,
     /// `--positions LIST`: draw only these positions of a motion (four-bar and linkage
-    /// scenes; [`positions::Positions`]); `None` draws every position.
+    /// scenes, and a synthesis's design; [`positions::Positions`]); `None` draws every
+    /// position.
     pub positions: Option<positions::Positions>,
     /// Only the picture and the warnings: no sheets, printed pages, diagrams, tables, JSON
     /// summary or report (`Null` and empty). The live page's answer to a change, which makes
@@ -125,6 +126,9 @@ pub fn products(loaded: &Loaded, opts: &RunOptions) -> Result<Products, Error> {
             Scene::Fourbar(_) => None,
             Scene::Linkage(_) if !opts.drag.is_empty() => Some("--drag draws one configuration".to_string()),
             Scene::Linkage(_) => None,
+            // The design's run draws them (its motion: crank angles or times, as its kind's).
+            Scene::Synthesis(_) if !opts.no_analysis => None,
+            Scene::Synthesis(_) => Some(format!("{file} is a synthesis run with --no-analysis: its design is not run")),
             other => Some(format!("{file} is a {} scene with one drawing", other.kind())),
         };
         if let Some(why) = drawn_one {

@@ -647,6 +647,23 @@ fn resolve(spec: &str, ground: &[(String, Point)], bodies: &[Body]) -> Result<An
 /// drivers against the degrees of freedom, the measures, in that order (the first field in
 /// error is reported).
 pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
+    check_with(raw, Redundancy::Refused)
+}
+
+/// Whether a scene whose joints repeat equations (a redundant, passive link) is accepted.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Redundancy {
+    /// Refused with the counts and why ([`check`]): the solver needs independent joints.
+    Refused,
+    /// Accepted when the joints at the scene's placement leave as many degrees of freedom as
+    /// there are drivers although the formula's count is off: `mechdraw report` draws such
+    /// a scene's structure (the formula's mobility against the rank's) and stops there.
+    /// Any other mismatch is refused as by [`check`].
+    Accepted,
+}
+
+/// [`check`], with a redundant link accepted or not.
+pub fn check_with(raw: RawLinkageScene, redundancy: Redundancy) -> Result<LinkageScene, FieldError> {
     let name = super::check_name(&raw.name)?;
     let times = check_time(&raw.time)?;
     let ground_points = check_ground(&raw.ground)?;
@@ -658,7 +675,7 @@ pub fn check(raw: RawLinkageScene) -> Result<LinkageScene, FieldError> {
         let field = format!("driver[{k}].law");
         check_law_range(&field, &d.law, &times, (None, true), MAX_LAW, "a driver's value")?;
     }
-    check_degrees_of_freedom(&bodies, &joints, &drivers, length_scale)?;
+    check_degrees_of_freedom(&bodies, &joints, &drivers, length_scale, redundancy)?;
     let measures = check_measures(&raw.measure, &ground_points, &bodies)?;
     let mechanism = Mechanism { bodies, joints, drivers, length_scale };
     let diagram_axis = check_diagram_axis(&raw.diagrams, &mechanism, &times)?;
@@ -1273,24 +1290,30 @@ fn check_drivers(raw: &[RawDriver], bodies: &[Body], joints: &[Joint]) -> Result
 /// solving; the message says what to add or remove. When the count is off but the joints at
 /// the scene's placement leave as many degrees of freedom as there are drivers (3n − rank of
 /// the joint equations: a redundant, passive link such as a parallelogram's third crank),
-/// the message says so: the solver needs independent joints.
+/// the message says so: the solver needs independent joints (with [`Redundancy::Accepted`],
+/// that case passes).
 fn check_degrees_of_freedom(
     bodies: &[Body],
     joints: &[Joint],
     drivers: &[Driver],
     length_scale: f64,
+    redundancy: Redundancy,
 ) -> Result<(), FieldError> {
     let dof = 3 * bodies.len() as i64 - 2 * joints.len() as i64;
     if dof != drivers.len() as i64 {
         let m = Mechanism { bodies: bodies.to_vec(), joints: joints.to_vec(), drivers: Vec::new(), length_scale };
         let q: Vec<f64> = bodies.iter().flat_map(|b| [b.at.x, b.at.y, b.angle]).collect();
         let at_placement = 3 * bodies.len() as i64 - crate::solve::linkage::structure::joint_rank(&m, &q) as i64;
-        let advice = if at_placement == drivers.len() as i64 && dof < at_placement {
+        let redundant = at_placement == drivers.len() as i64 && dof < at_placement;
+        if redundant && redundancy == Redundancy::Accepted {
+            return Ok(());
+        }
+        let advice = if redundant {
             format!(
                 "the count does not see that at the scene's placement the joints leave {at_placement} (3n − rank of \
                  the joint equations = {} − {}): {} joint equation(s) repeat others, a redundant (passive) link such \
                  as a parallelogram's third crank; the solver needs independent joints: remove the redundant link and \
-                 its joints",
+                 its joints (`mechdraw report` draws the scene's structural analysis as it is)",
                 3 * bodies.len(),
                 3 * bodies.len() as i64 - at_placement,
                 at_placement - dof

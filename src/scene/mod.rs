@@ -297,14 +297,35 @@ pub fn finite_point(field: &str, p: [f64; 2]) -> Result<crate::geom::Point, Fiel
 /// system: feature `cli`; the core takes the text, [`parse`]).
 #[cfg(feature = "cli")]
 pub fn load(path: &std::path::Path, overrides: &[Override]) -> Result<Loaded, SceneError> {
+    load_with(path, overrides, linkage::Redundancy::Refused)
+}
+
+/// [`load`], with a linkage's redundant link accepted or not ([`linkage::Redundancy`]:
+/// `mechdraw report` accepts it to draw the structure).
+#[cfg(feature = "cli")]
+pub fn load_with(
+    path: &std::path::Path,
+    overrides: &[Override],
+    redundancy: linkage::Redundancy,
+) -> Result<Loaded, SceneError> {
     let file = path.display().to_string();
     let text = std::fs::read_to_string(path).map_err(|source| SceneError::Read { file: file.clone(), source })?;
-    let scene = parse(&text, &file, overrides)?;
+    let scene = parse_with(&text, &file, overrides, redundancy)?;
     Ok(Loaded { path: path.to_path_buf(), scene, text })
 }
 
 /// Parses and checks scene text; `file` names it in messages.
 pub fn parse(text: &str, file: &str, overrides: &[Override]) -> Result<Scene, SceneError> {
+    parse_with(text, file, overrides, linkage::Redundancy::Refused)
+}
+
+/// [`parse`], with a linkage's redundant link accepted or not.
+pub fn parse_with(
+    text: &str,
+    file: &str,
+    overrides: &[Override],
+    redundancy: linkage::Redundancy,
+) -> Result<Scene, SceneError> {
     let mut table: toml::Table = text.parse().map_err(|e: toml::de::Error| SceneError::Syntax {
         file: file.to_string(),
         // The parser quotes the offending line: a megabyte-long one is cut.
@@ -328,7 +349,7 @@ pub fn parse(text: &str, file: &str, overrides: &[Override]) -> Result<Scene, Sc
     let checked = match kind.as_str() {
         "triad" => triad::check(read(table, file)?).map(Scene::Triad),
         "fourbar" => fourbar::check(read(table, file)?).map(Scene::Fourbar),
-        "linkage" => linkage::check(read(table, file)?).map(Scene::Linkage),
+        "linkage" => linkage::check_with(read(table, file)?, redundancy).map(Scene::Linkage),
         "chain" => chain::check(read(table, file)?).map(Scene::Chain),
         "synthesis" => return synthesis::check(table, file).map(Scene::Synthesis),
         other => {

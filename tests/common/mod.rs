@@ -622,3 +622,59 @@ pub fn texts(d: &mechdraw::draw::Drawing) -> Vec<String> {
         })
         .collect()
 }
+
+/// The force arrows of `d` (layer `FORCES`) drawn over the mechanism (layer `MECHANISM`):
+/// (the arrow's name-less description, what it crosses). An arrow's shaft crosses a stroke of
+/// the mechanism — a link, a slider's block, a guide, a joint's circle, the ground symbol, not
+/// the ω arc —
+/// farther from its tail than the largest joint circle's radius (a force drawn from a joint
+/// leaves its circle; one at a link's centroid starts on the link): a reaction drawn from a
+/// slider's centre over its block and its guide's link is one (the shaper's R32 at A was).
+pub fn arrows_over_mechanism(d: &mechdraw::draw::Drawing) -> Vec<(String, String)> {
+    use mechdraw::draw::Shape;
+    use mechdraw::geom::Point;
+    let shapes = drawn_shapes(d);
+    let radius = shapes
+        .iter()
+        .filter(|(l, _)| l == "MECHANISM")
+        .filter_map(|(_, s)| match s {
+            Shape::Circle { radius, .. } => Some(*radius),
+            _ => None,
+        })
+        .fold(0.0, f64::max);
+    let reach = 1.05 * radius + 1e-9;
+    // The links, guides, blocks, joints and ground symbols; not the driver's ω arc with its
+    // head (an annotation drawn round the pivot after the forces, on the same layer).
+    let mech: Vec<Stroke> = shapes
+        .iter()
+        .filter(|(l, s)| l == "MECHANISM" && !matches!(s, Shape::Arc { .. } | Shape::Filled { .. }))
+        .flat_map(|(_, s)| strokes_of(s))
+        .collect();
+    let cross = |a: mechdraw::geom::Vector, b: mechdraw::geom::Vector| a.x * b.y - a.y * b.x;
+    let mut out = Vec::new();
+    for (_, s) in shapes.iter().filter(|(l, _)| l == "FORCES") {
+        let Shape::Arrow { from, .. } = s else { continue };
+        let Some(shaft) = strokes_of(s).into_iter().next() else { continue };
+        let (a, u) = (shaft.from, shaft.to - shaft.from);
+        for m in &mech {
+            let w = m.to - m.from;
+            let den = cross(u, w);
+            if den.abs() <= 1e-12 * u.norm() * w.norm() {
+                continue;
+            }
+            let dd = m.from - a;
+            let (t, k) = (cross(dd, w) / den, cross(dd, u) / den);
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&k) {
+                let x: Point = a + u * t;
+                if (x - from).norm() > reach {
+                    out.push((
+                        format!("arrow from ({:.1}, {:.1})", from.x, from.y),
+                        format!("a mechanism stroke at ({:.1}, {:.1})", x.x, x.y),
+                    ));
+                    break;
+                }
+            }
+        }
+    }
+    out
+}

@@ -16,6 +16,7 @@ use crate::figure::fourbar::{
     CRANK_CAPTION, DYAD_CAPTION, Show, acceleration_polygon, angle_text, crank_polygon, dyad_polygon,
     link_loads_on_mechanism, links_of, mechanism, on_mechanism, velocity_figure,
 };
+use crate::figure::shared::clear_forces::{self, Symbol};
 use crate::figure::shared::forces;
 use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
@@ -249,7 +250,14 @@ impl FourbarSheets {
             Some(k) => {
                 let links = links_of(&on_paper, &p);
                 let inside = Point::from((on_paper.o1.coords + p.a.coords + p.b.coords + on_paper.c.coords) / 4.0);
-                forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s)
+                let mut arrows = forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s);
+                // Clear of the links and the joints' symbols (the pivots' ground symbols).
+                let mut symbols: Vec<Symbol> =
+                    [on_paper.o1, p.a, p.b, on_paper.c].iter().map(|&at| Symbol::Circle { at, r: s.joint }).collect();
+                symbols.extend([on_paper.o1, on_paper.c].map(|at| clear_forces::ground_block(at, s)));
+                let panel = page.layout.panels[0].area;
+                clear_forces::place(&mut arrows, &links, &symbols, Some((panel.min, panel.max)), s);
+                arrows
             }
             None => Vec::new(),
         };

@@ -189,7 +189,7 @@ pub fn paper_style(fig: &LinkageFigure, motion: &[&[f64]]) -> Style {
 /// Sizes of the symbols: the shared table from paper millimetres ([`paper_style`]).
 pub type Style = Sizes;
 
-fn anchor_at(q: &[f64], a: Anchor) -> Point {
+pub(crate) fn anchor_at(q: &[f64], a: Anchor) -> Point {
     place(q, a.body, a.local)
 }
 
@@ -384,7 +384,16 @@ pub fn mechanism_with_forces(
                 }
             }
         }
-        taken.extend(arrows.iter().filter(|a| near(a.arrow.0)).map(|a| crate::geom::angle_of(a.arrow.1 - a.arrow.0)));
+        // The forces from the pivot: from its centre, or from its symbol's edge along their
+        // line of action (a sheet's [`crate::figure::shared::clear_forces`]).
+        let from_pivot = |a: &&ForceArrow| {
+            let (t, v) = (a.arrow.0 - p, a.arrow.1 - a.arrow.0);
+            near(a.arrow.0)
+                || (t.norm() <= s.joint + s.head
+                    && v.norm() > 0.0
+                    && crate::geom::cross(v, t).abs() <= 1e-9 * v.norm() * (1.0 + t.norm()))
+        };
+        taken.extend(arrows.iter().filter(from_pivot).map(|a| crate::geom::angle_of(a.arrow.1 - a.arrow.0)));
         // The ground symbol under the pivot.
         taken.extend([-0.5 * std::f64::consts::PI - 0.6, -0.5 * std::f64::consts::PI + 0.6]);
         let mid_angle = widest_gap(&mut taken);

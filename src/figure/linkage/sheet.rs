@@ -18,14 +18,14 @@ use crate::figure::linkage::forces::{ForceFigures, on_mechanism};
 use crate::figure::linkage::frame::{Show, links_of, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
-use crate::figure::shared::forces;
 use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
 use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
 use crate::figure::shared::sheet_pages::{
     MechanismPage, forces_page, mechanism_bar, mechanism_force_scale, polygons_page,
 };
-use crate::figure::shared::vocab::{Scale, layer_of, layers, length_scale_text};
+use crate::figure::shared::vocab::{self, Scale, layer_of, layers, length_scale_text};
+use crate::figure::shared::{clear_forces, forces};
 
 /// The longest force drawn on the mechanism page, as a fraction of the mechanism's drawn size.
 pub const MECHANISM_FORCE_FRACTION: f64 = 0.3;
@@ -58,7 +58,8 @@ impl LinkageSheets {
     /// The sheets of a run over `states` on `paper`; `show` as the frames' (the forces page
     /// only when `forces`); `table_rows` the most rows of a position's table over the run,
     /// kinematics and forces ([`row_counts`]): the forces' rows go on the forces page when
-    /// there is one.
+    /// there is one; `held` a drafting scale to draw the mechanism at when it is coarser
+    /// than the page's own ([`MechanismPage::held`]: the report's one k_l for the mechanism).
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         paper: Paper,
@@ -69,6 +70,7 @@ impl LinkageSheets {
         show: Show,
         forces: bool,
         table_rows: (usize, usize),
+        held: Option<f64>,
     ) -> LinkageSheets {
         let show = Show { forces: show.forces && forces, ..show };
         let table_rows = if show.forces { table_rows.0 } else { table_rows.0 + table_rows.1 };
@@ -93,7 +95,10 @@ impl LinkageSheets {
         let sliders = figure.joints.iter().any(|j| matches!(j, fig::JointSymbol::Slider { .. }));
         let (sl, sh) = if sliders { (s.slider_length, s.slider_height) } else { (1.0, 0.0) };
         let room = Vector::new(2.0 * s.text + sl, s.text + s.ground + 0.5 * sh);
-        let page = MechanismPage::new(paper, lo, hi, room, table_rows, 6);
+        let mut page = MechanismPage::new(paper, lo, hi, room, table_rows, 6);
+        if let Some(k) = held {
+            page = page.held(k, lo, hi);
+        }
         let (origin, k_l) = (page.origin, page.k_l);
         let paper_figure = figure.on_paper(origin, k_l);
         let paper_motion: Vec<Vec<f64>> = motion.iter().map(|q| fig::on_paper(q, origin, k_l)).collect();
@@ -229,7 +234,21 @@ impl LinkageSheets {
                 let links = links_of(&self.paper_figure, &q);
                 let pts: Vec<Point> = links.iter().flat_map(|(a, b)| [*a, *b]).collect();
                 let inside = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64);
-                forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s)
+                let mut arrows = forces::arrows_on_mechanism(&acting, Scale::on_paper(k, 1.0), &links, inside, s);
+                // Clear of the links, the guides and the joints' symbols.
+                let mut strokes = links.clone();
+                for (a, b) in self.spans.iter().flatten() {
+                    strokes.extend(clear_forces::guide_strokes(*a, *b, s));
+                }
+                let panel = layout.panels[0].area;
+                clear_forces::place(
+                    &mut arrows,
+                    &strokes,
+                    &symbols(&self.paper_figure, &q, s),
+                    Some((panel.min, panel.max)),
+                    s,
+                );
+                arrows
             }
             None => Vec::new(),
         };
@@ -241,6 +260,38 @@ impl LinkageSheets {
         fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, omega, &s, around);
         d
     }
+}
+
+/// The mechanism's symbols at `q` (paper mm) that the forces keep clear of
+/// ([`clear_forces::place`]): every joint's circle, every slider's block, every pivot's
+/// ground symbol.
+pub fn symbols(figure: &LinkageFigure, q: &[f64], s: vocab::Sizes) -> Vec<clear_forces::Symbol> {
+    let mut out = Vec::new();
+    for j in &figure.joints {
+        match j {
+            fig::JointSymbol::Pin { at, grounded, .. } => {
+                let p = fig::anchor_at(q, *at);
+                out.push(clear_forces::Symbol::Circle { at: p, r: s.joint });
+                if *grounded {
+                    out.push(clear_forces::ground_block(p, s));
+                }
+            }
+            fig::JointSymbol::Slider { point, q1, q2, .. } => {
+                let dir = fig::anchor_at(q, *q2) - fig::anchor_at(q, *q1);
+                let len = dir.norm();
+                if len > 0.0 {
+                    let p = fig::anchor_at(q, *point);
+                    out.push(clear_forces::Symbol::Block {
+                        at: p,
+                        centre: p,
+                        dir: dir / len,
+                        half: (0.5 * s.slider_length, 0.5 * s.slider_height),
+                    });
+                }
+            }
+        }
+    }
+    out
 }
 
 /// Whether a row of a position's table is a force's or a moment's (its unit N or N·…).

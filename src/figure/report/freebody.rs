@@ -6,8 +6,10 @@
 //! `RA`, `−RA`, `R32`), the driver's force or moment, and the couples — inertia moments
 //! `Mi<n>` = −J·ε, torque loads, a driver's `Me<n>`, a prismatic joint's couple — as turning
 //! arrows with their values. Every force is drawn to its group's printed force scale k_F
-//! (N/mm), its tail at the point it acts at: a reaction measured × k_F is the vector of the
-//! run's CSV and of the force polygon. The joints inside a group (their reactions cancel in
+//! (N/mm), its tail at the point it acts at (or its tip, when from the point it would run
+//! over a link of the group): a reaction measured × k_F is the vector of the run's CSV and
+//! of the force polygon. Each panel has its k_l and k_F in its caption and a scale bar of
+//! each. The joints inside a group (their reactions cancel in
 //! it) are drawn without their forces.
 //!
 //! Units: forces N; couples N·m written in N·(the scene's length unit), as the tables.
@@ -17,7 +19,8 @@ use crate::figure::linkage::forces::{body_forces, driver_name, reaction_names};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
 use crate::figure::report::sketch::{self, Marks, OnPaper, Sketch};
 use crate::figure::report::structure::{group_caption, group_sketch};
-use crate::figure::shared::forces::NamedVector;
+use crate::figure::shared::clear_forces;
+use crate::figure::shared::forces::{ForceArrow, NamedVector};
 use crate::figure::shared::labels;
 use crate::figure::shared::vocab::{self, Sizes, layer_of, layers, nice_scale};
 use crate::geom::{Point, Vector};
@@ -204,6 +207,12 @@ pub fn group_loads(
 /// Share of a panel's smaller side the largest force of its group is drawn as.
 pub const LARGEST_FORCE_SHARE: f64 = 0.3;
 
+/// Room kept round the group for its forces when its k_l is chosen, as a share of the
+/// largest force's length (each side; plus two letters): the forces that need more get a
+/// coarser k_F rather than the group a coarser k_l (the slider-crank's dyad was drawn at
+/// 10 mm/mm, 50 mm long, with a half share).
+pub const ROOM_SHARE: f64 = 0.25;
+
 /// A force below this fraction of its group's largest, or a couple below this fraction of
 /// the page's largest, is left out (rounding noise: the inertia force of a slider at rest).
 pub const NEGLIGIBLE_REL: f64 = 1e-9;
@@ -262,7 +271,7 @@ fn room_along(b: Bounds, p: Point, v: Vector) -> f64 {
 fn notes(p: &FreeBodyPage) -> Vec<String> {
     vec![
         format!("Position {}: each Assur group apart, as the solver takes them.", p.position),
-        "Forces in N, drawn from the point they act at to each panel's k_F (N per paper mm);".into(),
+        "Forces in N, drawn from (or onto) the point they act at to each panel's k_F (N per mm);".into(),
         "the lengths to the panel's k_l.".into(),
         "Red: the joints' reactions, the same vectors as in the group's force polygon".into(),
         "(RA: of the first body of joint A on the second, −RA the opposite; R32: of link 3 on 2).".into(),
@@ -290,7 +299,7 @@ fn group_panel(
     // The group in the panel's middle, the arrows round it.
     let side = probe.width().min(probe.height());
     let reach = LARGEST_FORCE_SHARE * side;
-    let room = Vector::new(0.5 * reach + 2.0 * s.text, 0.5 * reach + 2.0 * s.text);
+    let room = Vector::new(ROOM_SHARE * reach + 2.0 * s.text, ROOM_SHARE * reach + 2.0 * s.text);
     let at: OnPaper = sketch::fit(lo, hi, probe, room);
     let largest = loads.forces.iter().map(|(_, nv)| nv.v.norm()).fold(0.0, f64::max);
     // The largest force `reach` long, and every arrow's tip (with its name) inside the panel.
@@ -307,14 +316,21 @@ fn group_panel(
     let start = d.entities.len();
     sketch::draw(d, &gs, q, &[q], sketch::Frame { at, sizes: s, area }, Marks { numbers: true, ..Marks::default() });
     let frc = layer_of(d, layers::FORCES);
+    // The forces to k_F, clear of the group's links, guides and joints' symbols.
+    let mut arrows: Vec<ForceArrow> = loads
+        .forces
+        .iter()
+        .filter(|(_, nv)| nv.v.norm() > NEGLIGIBLE_REL * largest && !nv.v.norm().is_nan())
+        .map(|(point, nv)| {
+            let from = at.point(*point);
+            ForceArrow { at: from, force: nv.clone(), arrow: (from, from + nv.v / k_f) }
+        })
+        .collect();
+    clear_of_group(&mut arrows, &gs, q, (at, inside), s);
     // (from, to, name, colour, with a leader)
     let mut names: Vec<(Point, Point, String, Option<Aci>, bool)> = Vec::new();
-    for (point, nv) in &loads.forces {
-        if nv.v.norm() <= NEGLIGIBLE_REL * largest || nv.v.norm().is_nan() {
-            continue;
-        }
-        let from = at.point(*point);
-        let to = from + nv.v / k_f;
+    for a in &arrows {
+        let (nv, (from, to)) = (&a.force, a.arrow);
         let reaction = nv.name.starts_with('R') || nv.name.starts_with("−R");
         let color = reaction.then_some(Aci::RED);
         match color {
@@ -347,6 +363,7 @@ fn group_panel(
     }
     let l = layer_of(d, layers::FORCES);
     letters.draw(d, l);
+    // The scale bars: the forces' and, over it, the lengths'.
     let dims = layer_of(d, layers::DIMENSIONS);
     let value = vocab::bar_value(k_f);
     vocab::scale_bar(
@@ -357,4 +374,30 @@ fn group_panel(
         &format!("{} N", page::plain(value)),
         s,
     );
+    let value = vocab::bar_value(at.k_l);
+    vocab::scale_bar(
+        d,
+        dims,
+        Point::new(area.min.x + s.text, area.min.y + 0.5 * s.text + LENGTH_BAR_RISE * s.text),
+        value / at.k_l,
+        &format!("{} {}", page::plain(value), p.unit),
+        s,
+    );
+}
+
+/// The length scale bar stands this many letter heights over the force scale bar.
+const LENGTH_BAR_RISE: f64 = 1.6;
+
+/// Places the group's forces ([`clear_forces::place`]) clear of its links, its ground
+/// guides and its joints' symbols as the panel draws them at `at`, inside the panel's
+/// drawing area `inside` where it can.
+fn clear_of_group(arrows: &mut [ForceArrow], gs: &Sketch, q: &[f64], (at, inside): (OnPaper, Bounds), s: Sizes) {
+    let paper_fig = gs.figure.on_paper(at.origin, at.k_l);
+    let paper_q = crate::figure::linkage::on_paper(q, at.origin, at.k_l);
+    let mut strokes = crate::figure::linkage::frame::links_of(&paper_fig, &paper_q);
+    for (a, b) in crate::figure::linkage::guide_spans(&paper_fig, &[&paper_q], &s).into_iter().flatten() {
+        strokes.extend(clear_forces::guide_strokes(a, b, s));
+    }
+    let symbols = crate::figure::linkage::sheet::symbols(&paper_fig, &paper_q, s);
+    clear_forces::place(arrows, &strokes, &symbols, Some((inside.min, inside.max)), s);
 }

@@ -30,6 +30,32 @@ pub struct KinematicPage<'a> {
     pub unit: &'a str,
     /// The lists beside the diagram: links, joints, loads.
     pub lists: Vec<String>,
+    /// The report's drafting scale for the mechanism, when it holds one (the position
+    /// pages' k_l, so that the same drawing has the same scale): the diagram is drawn at
+    /// the coarser of it and its own ([`scale`]).
+    pub held: Option<f64>,
+}
+
+/// Where the diagram goes: the wide panel (over the lists) or the tall one (beside them),
+/// and its placement at its own finest k_l.
+fn arrangement(frame: &ReportFrame, p: &KinematicPage) -> (bool, Bounds, OnPaper) {
+    let s = frame.sizes;
+    let room = sketch::room(s) + Vector::new(0.0, 2.0 * s.text);
+    // Two layouts, the one drawing the mechanism larger kept: a tall panel beside the lists
+    // (a four-bar, a shaper), or a wide one over them (a slider-crank's long guide).
+    let c = frame.content;
+    let (tall, _) = frame.tall_left();
+    let split = c.min.y + WIDE_LISTS_SHARE * c.height();
+    let wide = Bounds { min: Point::new(c.min.x, split), max: c.max };
+    let at_tall = placement(p, page::panel_area(tall, true, s), room, s);
+    let at_wide = placement(p, page::panel_area(wide, true, s), room, s);
+    let is_wide = at_wide.k_l < at_tall.k_l;
+    if is_wide { (true, wide, at_wide) } else { (false, tall, at_tall) }
+}
+
+/// The finest drafting scale at which the diagram fits its page (without a held scale).
+pub fn scale(frame: &ReportFrame, p: &KinematicPage) -> f64 {
+    arrangement(frame, p).2.k_l
 }
 
 /// The kinematic diagram page; returns it with its k_l. The diagram's panel runs from the
@@ -37,17 +63,17 @@ pub struct KinematicPage<'a> {
 /// figure); the lists stand in the column above the title block.
 pub fn page(frame: &ReportFrame, title: &PageTitle, p: &KinematicPage) -> (Drawing, f64) {
     let s = frame.sizes;
-    let room = sketch::room(s) + Vector::new(0.0, 2.0 * s.text);
-    // Two layouts, the one drawing the mechanism larger kept: a tall panel beside the lists
-    // (a four-bar, a shaper), or a wide one over them (a slider-crank's long guide).
     let c = frame.content;
-    let (tall, right) = frame.tall_left();
+    let (_, right) = frame.tall_left();
     let split = c.min.y + WIDE_LISTS_SHARE * c.height();
-    let wide = Bounds { min: Point::new(c.min.x, split), max: c.max };
-    let at_tall = placement(p, page::panel_area(tall, true, s), room, s);
-    let at_wide = placement(p, page::panel_area(wide, true, s), room, s);
-    let is_wide = at_wide.k_l < at_tall.k_l;
-    let (left, at) = if is_wide { (wide, at_wide) } else { (tall, at_tall) };
+    let (is_wide, left, mut at) = arrangement(frame, p);
+    if let Some(k) = p.held.filter(|&k| k > at.k_l) {
+        // The held scale is coarser: the same drawing, smaller, centred where it was.
+        let mid = page::panel_area(left, true, s);
+        let centre = Point::new(0.5 * (mid.min.x + mid.max.x), 0.5 * (mid.min.y + mid.max.y));
+        let model = (centre - at.origin) * at.k_l;
+        at = OnPaper { k_l: k, origin: centre - model / k };
+    }
     let mut title = title.clone();
     let k_text = format!("k_l = {} {}/mm", page::plain(at.k_l), p.unit);
     title.cells = vec![k_text.clone(), p.position.clone()];

@@ -185,14 +185,23 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     keep_inside(&mut letters, area);
     let frc = layer_of(d, layers::FORCES);
     if marks.loads {
+        let symbols = crate::figure::linkage::sheet::symbols(&paper_fig, &pq, s);
         for load in &sketch.loads {
             let a = at.anchor(load.at);
             let p = place(&pq, a.body, a.local);
             let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
-            // Not to scale: a fixed length on paper, its tip at the point.
-            let from = p - u * (6.0 * s.text);
-            d.add(frc, Shape::Arrow { from, to: p, head: s.head });
-            letters.segment(from, p);
+            // Not to scale: a fixed length on paper, its tip at the point, or at the edge of
+            // the symbol drawn there (a slider's block), on its line of action.
+            let near = |x: Point| (x - p).norm() <= 1e-9 * (1.0 + p.coords.norm());
+            let edge = symbols
+                .iter()
+                .filter(|x| near(x.at()))
+                .map(|x| x.reach(-u) + crate::figure::shared::clear_forces::SYMBOL_GAP * s.head)
+                .fold(0.0, f64::max);
+            let to = p - u * edge;
+            let from = to - u * (6.0 * s.text);
+            d.add(frc, Shape::Arrow { from, to, head: s.head });
+            letters.segment(from, to);
             letters.letter(from, &load.name, s.text, -u, None);
         }
     }

@@ -54,6 +54,9 @@ pub fn group_caption(g: &GroupStructure) -> String {
     if g.is_driver() {
         return format!("I(0,{}) driver and frame", links.join(","));
     }
+    if g.is_passive() {
+        return format!("passive link ({}): not an Assur group", links.join(","));
+    }
     let what = match g.group.kind {
         crate::solve::linkage::GroupKind::Dyad(k) => format!("dyad {}", k.name()),
         crate::solve::linkage::GroupKind::Triad => "triad 6R".to_string(),
@@ -105,6 +108,15 @@ pub fn mobility_lines(p: &StructurePage) -> Vec<String> {
         )),
         None => {}
     }
+    if m.redundant() > 0 {
+        out.push(
+            "The solver takes the joints' equations as independent: with a repeated one it has no motion to solve, so \
+             this report stops at the structure and the kinematic diagram (no plan of positions, no velocity, \
+             acceleration or force pages: the reactions of a redundant link are statically indeterminate). Remove the \
+             passive link and its joints to analyse the motion."
+                .to_string(),
+        );
+    }
     let effective = m.actual.unwrap_or(m.formula);
     out.push(if effective == 0 && st.drivers == 0 {
         "M = 0: with its outer pairs on the frame it is a structure, an Assur group on its own; a driver moving \
@@ -136,12 +148,16 @@ fn group_lines(p: &StructurePage) -> Vec<String> {
             if !inner.is_empty() {
                 line.push_str(&format!("; inner {}", inner.join(", ")));
             }
+            let w = 3 * g.group.bodies.len() as i64 - 2 * g.group.joints.len() as i64;
             line.push_str(&format!(
                 "; W = 3·{} − 2·{} = {}",
                 g.group.bodies.len(),
                 g.group.joints.len(),
-                3 * g.group.bodies.len() as i64 - 2 * g.group.joints.len() as i64
+                if w < 0 { format!("−{}", -w) } else { w.to_string() }
             ));
+            if g.is_passive() {
+                line.push_str(&format!(": {} joint equation(s) more than its coordinates", -w));
+            }
             line
         })
         .collect()

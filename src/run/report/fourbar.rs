@@ -530,6 +530,9 @@ pub(super) fn motion_report<'a>(
         dimensions,
         notes,
         kinematic: (format!("φ1 = {}°", motion::trimmed(values[plan_idx.first().copied().unwrap_or(0)])), lists),
+        // The four-bar's sheets fit its motion in the same panel as the diagram's own fit
+        // (both 0.0015 m/mm for the Chebyshev four-bar): not held.
+        drafting: None,
         unit,
         chosen,
         position_pages: per_position,

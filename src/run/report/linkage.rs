@@ -422,16 +422,38 @@ pub(super) fn motion_report<'a>(
             row_counts(&run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))))
         })
         .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
-    let sheets = LinkageSheets::new(
-        paper,
-        &scene.name,
-        &scene.mechanism,
-        &figure,
-        &solved.states,
-        show.clone(),
-        solved.forces.is_some(),
-        rows,
-    );
+    let new_sheets = |held: Option<f64>| {
+        LinkageSheets::new(
+            paper,
+            &scene.name,
+            &scene.mechanism,
+            &figure,
+            &solved.states,
+            show.clone(),
+            solved.forces.is_some(),
+            rows,
+            held,
+        )
+    };
+    // One drafting scale for the mechanism: the kinematic diagram's and the position pages'
+    // (the same drawing), the coarser of the two pages' own.
+    let sheets = new_sheets(None);
+    let kin_scale = {
+        let motion: Vec<&[f64]> = solved.states.iter().map(|s| s.q.as_slice()).collect();
+        let q0 = plan.first().map_or(&[][..], |(_, q)| q.as_slice());
+        let probe = crate::figure::report::kinematic::KinematicPage {
+            sketch: &sk,
+            q: q0,
+            motion: &motion,
+            position: kin_label.clone(),
+            unit,
+            lists: lists.clone(),
+            held: None,
+        };
+        crate::figure::report::kinematic::scale(&frame.frame, &probe)
+    };
+    let drafting = kin_scale.max(sheets.k_l());
+    let sheets = if drafting > sheets.k_l() { new_sheets(Some(drafting)) } else { sheets };
     // A page of the groups' free-body figures after each position's sheets, where the run
     // has forces.
     let free_bodies = show.forces && solved.forces.is_some() && scene.dynamics.is_some();
@@ -491,12 +513,7 @@ pub(super) fn motion_report<'a>(
         "kind": "linkage",
         "mobility": structure.mobility.formula,
         "mobility_at_placement": structure.mobility.actual,
-        "groups": structure.groups.iter().map(|g| serde_json::json!({
-            "kind": g.group.kind_name(),
-            "bodies": g.group.bodies.iter().map(|&b| mech.bodies[b].name.clone()).collect::<Vec<_>>(),
-            "class": g.class,
-            "order": g.order,
-        })).collect::<Vec<_>>(),
+        "groups": groups_json(&structure, mech),
         "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "t": c.drive})).collect::<Vec<_>>(),
     });
     let r = MotionReport {
@@ -516,6 +533,7 @@ pub(super) fn motion_report<'a>(
         dimensions,
         notes,
         kinematic: (kin_label, lists),
+        drafting: Some(drafting),
         unit,
         chosen,
         position_pages: per_position,
@@ -628,4 +646,127 @@ fn chosen_table(scene: &LinkageScene, solved: &Solved, chosen: &[Chosen]) -> Csv
         csv.row_text(row);
     }
     csv
+}
+
+/// Whether the scene's joints repeat equations (a redundant, passive link: the formula's
+/// mobility is not the number of drivers while the joints at the scene's placement leave
+/// that many; only [`crate::scene::linkage::Redundancy::Accepted`] lets such a scene load).
+pub(super) fn is_redundant(scene: &LinkageScene) -> bool {
+    scene.mechanism.drivers.len() as i64 != Structure::of(&scene.mechanism, None).mobility.formula
+}
+
+/// The placement written in the scene (x, y, φ per body): what a redundant scene's pages
+/// draw, the solver not having assembled it.
+fn placement(scene: &LinkageScene) -> Vec<f64> {
+    scene.mechanism.bodies.iter().flat_map(|b| [b.at.x, b.at.y, b.angle]).collect()
+}
+
+/// The report of a scene with a redundant link ([`is_redundant`]): the solver needs
+/// independent joint equations, so there is no motion to analyse; the report is the title
+/// page, the structural analysis (the formula's mobility against the rank's, and why the
+/// report stops there) and the kinematic diagram, at the scene's placement.
+pub(super) fn structure_report<'a>(
+    scene: &'a LinkageScene,
+    file: &str,
+    opts: &super::ReportOptions,
+    frame: Frame,
+) -> Result<super::Gathered<'a>, Error> {
+    let mech = &scene.mechanism;
+    let q0 = Arc::new(placement(scene));
+    let structure = Arc::new(Structure::of(mech, Some(&q0)));
+    let m = structure.mobility;
+    if opts.positions.is_some() {
+        return Err(Error::Option {
+            option: "--positions".into(),
+            message: format!(
+                "{file} has a redundant link ({}, but the joints leave {}): its motion is not solved, so there are no \
+                 positions to choose; its report is the structural analysis (leave out --positions)",
+                m.worked(),
+                m.actual.unwrap_or(m.formula)
+            ),
+        });
+    }
+    let sk = Arc::new(sketch(scene));
+    let unit = scene.units.length();
+    let title = super::title_part(
+        frame.clone(),
+        "Structural analysis of a planar linkage with a redundant link".into(),
+        format!("linkage {} ({} bodies, {} joints)", scene.name, mech.bodies.len(), mech.joints.len()),
+        data(scene),
+    );
+    let structure_part = {
+        let (f, sk, st, q0) = (frame.clone(), sk.clone(), structure.clone(), q0.clone());
+        super::Part {
+            title: "Structural analysis".into(),
+            stem: "structure".into(),
+            pages: 1,
+            draw: Box::new(move |n| {
+                let motion = [q0.as_slice()];
+                let p = crate::figure::report::structure::StructurePage {
+                    sketch: &sk,
+                    mechanism: mech,
+                    structure: &st,
+                    q: &q0,
+                    motion: &motion,
+                    unit,
+                };
+                let title = f.title("2  Structural analysis", n.first, n.total);
+                Ok(vec![crate::figure::report::structure::page(&f.frame, &title, &p)])
+            }),
+        }
+    };
+    let kinematic_part = {
+        let (f, sk, q0) = (frame.clone(), sk.clone(), q0.clone());
+        let lists = kinematic_lists(scene);
+        super::Part {
+            title: "Kinematic diagram".into(),
+            stem: "kinematic".into(),
+            pages: 1,
+            draw: Box::new(move |n| {
+                let motion = [q0.as_slice()];
+                let p = crate::figure::report::kinematic::KinematicPage {
+                    sketch: &sk,
+                    q: &q0,
+                    motion: &motion,
+                    position: "the scene's placement".into(),
+                    unit,
+                    lists: lists.clone(),
+                    held: None,
+                };
+                let title = f.title("3  Kinematic diagram", n.first, n.total);
+                Ok(vec![crate::figure::report::kinematic::page(&f.frame, &title, &p).0])
+            }),
+        }
+    };
+    let summary = serde_json::json!({
+        "kind": "linkage",
+        "mobility": m.formula,
+        "mobility_at_placement": m.actual,
+        "redundant": m.redundant(),
+        "groups": groups_json(&structure, mech),
+        "positions": [],
+    });
+    let warnings = vec![format!(
+        "{file} has a redundant link ({}, the joints leave {}): the report is its structure; the solver needs \
+         independent joints for the motion's pages",
+        m.worked(),
+        m.actual.unwrap_or(m.formula)
+    )];
+    Ok(super::Gathered { parts: vec![title, structure_part, kinematic_part], table: None, summary, warnings })
+}
+
+/// The summary's groups: each group's kind, bodies, class and order.
+fn groups_json(structure: &Structure, mech: &crate::solve::linkage::Mechanism) -> Vec<serde_json::Value> {
+    structure
+        .groups
+        .iter()
+        .map(|g| {
+            serde_json::json!({
+                "kind": g.group.kind_name(),
+                "bodies": g.group.bodies.iter().map(|&b| mech.bodies[b].name.clone()).collect::<Vec<_>>(),
+                "class": g.class,
+                "order": g.order,
+            })
+        })
+        .collect()
 }

@@ -165,6 +165,9 @@ pub fn report(loaded: &Loaded, opts: &ReportOptions) -> Result<Report, Error> {
             let (r, table, summary, warnings) = fourbar::motion_report(s, &file, opts, frame("four-bar"))?;
             assemble(name, opts.paper, Gathered { parts: motion::parts(&r), table: Some(table), summary, warnings })
         }
+        Scene::Linkage(s) if linkage::is_redundant(s) => {
+            assemble(name, opts.paper, linkage::structure_report(s, &file, opts, frame("linkage"))?)
+        }
         Scene::Linkage(s) => {
             let (r, table, summary, warnings) = linkage::motion_report(s, &file, opts, frame("linkage"))?;
             assemble(name, opts.paper, Gathered { parts: motion::parts(&r), table: Some(table), summary, warnings })

@@ -223,6 +223,9 @@ pub struct MotionReport<'a> {
     pub notes: Vec<String>,
     /// The kinematic diagram's position label and lists.
     pub kinematic: (String, Vec<String>),
+    /// The drafting scale the kinematic diagram and the position pages' mechanism share
+    /// (the coarser of their own), when the kind holds one.
+    pub drafting: Option<f64>,
     /// The length unit.
     pub unit: &'static str,
     /// The chosen positions.
@@ -277,6 +280,7 @@ pub fn parts<'a>(r: &'a MotionReport<'a>) -> Vec<Part<'a>> {
                     position: r.kinematic.0.clone(),
                     unit: r.unit,
                     lists: r.kinematic.1.clone(),
+                    held: r.drafting,
                 };
                 Ok(vec![kinematic::page(&f.frame, &f.title("3  Kinematic diagram", n.first, n.total), &p).0])
             }),

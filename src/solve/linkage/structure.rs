@@ -86,6 +86,13 @@ impl GroupStructure {
     pub fn is_driver(&self) -> bool {
         matches!(self.group.kind, GroupKind::Driven(_))
     }
+
+    /// Whether it is a passive (redundant) link rather than an Assur group: what is left once
+    /// the groups are taken, with more joint equations than coordinates (W < 0), e.g. a
+    /// parallelogram's third crank. It has no class.
+    pub fn is_passive(&self) -> bool {
+        !self.is_driver() && self.mobility < 0
+    }
 }
 
 /// The structure of a mechanism: its mobility and its groups in solving order.
@@ -113,9 +120,10 @@ impl Structure {
         Structure { mobility, drivers: mech.drivers.len(), groups }
     }
 
-    /// The mechanism's class: its groups' highest (I with no Assur group).
+    /// The mechanism's class: its groups' highest (I with no Assur group; a passive link
+    /// has no class).
     pub fn class(&self) -> u32 {
-        self.groups.iter().map(|g| g.class).max().unwrap_or(1)
+        self.groups.iter().filter(|g| !g.is_passive()).map(|g| g.class).max().unwrap_or(1)
     }
 
     /// The formula of the structure as a course writes it: `I(0,1) → II(2,3) → II(4,5)`
@@ -129,6 +137,9 @@ impl Structure {
                 let mut links: Vec<String> = numbers.iter().map(usize::to_string).collect();
                 if g.is_driver() {
                     links.insert(0, "0".into());
+                }
+                if g.is_passive() {
+                    return format!("passive({})", links.join(","));
                 }
                 format!("{}({})", roman(g.class), links.join(","))
             })
