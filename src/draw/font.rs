@@ -88,10 +88,7 @@ pub fn measure_chars(chars: impl Iterator<Item = char>, height: f64) -> TextExte
             high = high.max(g.y_max);
         }
     }
-    let em = height / CAP_HEIGHT_EM;
-    let low = if low > -OVERSHOOT_EM { 0.0 } else { low };
-    let high = if high < CAP_HEIGHT_EM + OVERSHOOT_EM { CAP_HEIGHT_EM } else { high };
-    TextExtent { width: advance * em, ascent: high * em, descent: -low * em }
+    extent(advance, low, high, height)
 }
 
 /// The extent of `value` drawn `height` high (cap height) in its `runs`, as the SVG, PNG and
@@ -123,6 +120,13 @@ pub fn measure_runs(value: &str, runs: &super::Runs, height: f64) -> TextExtent 
             }
         }
     }
+    extent(advance, low, high, height)
+}
+
+/// The extent of a text `height` high whose advances sum to `advance` and whose glyphs
+/// reach from `low` to `high` (ems, y up): round letters' overshoot of the baseline and the
+/// cap height ([`OVERSHOOT_EM`]) counts as standing on them.
+fn extent(advance: f64, low: f64, high: f64, height: f64) -> TextExtent {
     let em = height / CAP_HEIGHT_EM;
     let low = if low > -OVERSHOOT_EM { 0.0 } else { low };
     let high = if high < CAP_HEIGHT_EM + OVERSHOOT_EM { CAP_HEIGHT_EM } else { high };

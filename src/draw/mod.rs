@@ -763,19 +763,10 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
             add(*to);
         }
         Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
-        Shape::ScaleText { at, height, caption, halign, valign, rotation } => {
-            let value = caption.on_paper();
-            let runs = Runs::underscored(&value);
-            let text = Shape::Text {
-                at: *at,
-                height: *height,
-                value,
-                runs,
-                halign: *halign,
-                valign: *valign,
-                rotation: *rotation,
-            };
-            shape_extent_points(&text, style, add);
+        Shape::ScaleText { .. } => {
+            if let Some(text) = shape.scale_text_in(None) {
+                shape_extent_points(&text, style, add);
+            }
         }
         Shape::Text { .. } => {
             if let Some([a, b, c, d]) = text_corners(shape) {
