@@ -24,6 +24,7 @@ pub mod draw;
 mod error;
 pub mod figure;
 pub mod geom;
+mod par;
 pub mod report;
 pub mod run;
 pub mod scene;

@@ -120,7 +120,7 @@ impl Csv {
 
     /// Appends rows of numbers (as [`Csv::row`] each), formatted in parallel.
     pub fn rows(&mut self, rows: &[Vec<f64>]) {
-        use rayon::prelude::*;
+        use crate::par::prelude::*;
         let formatted: Vec<Vec<String>> = rows.par_iter().map(|r| r.iter().copied().map(number).collect()).collect();
         self.rows.extend(formatted);
     }

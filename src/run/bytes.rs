@@ -27,7 +27,7 @@
 
 use std::sync::Mutex;
 
-use rayon::prelude::*;
+use crate::par::prelude::*;
 
 use super::finite::{check_csv, check_drawing};
 use super::paths::RelPath;
@@ -127,7 +127,7 @@ pub fn write(
             let mut files: Vec<Owned> = Vec::new();
             still_files(&mut files, name, d, wopts)?;
             let (extras, diagrams) =
-                rayon::join(|| extra_files(p, wopts), || diagram_files(&p.diagrams, name, wopts.png));
+                crate::par::join(|| extra_files(p, wopts), || diagram_files(&p.diagrams, name, wopts.png));
             files.extend(extras?);
             files.extend(diagrams?);
             files.extend(page_files(name, &p.pages, wopts.png)?);
@@ -263,7 +263,7 @@ fn paper_files(pdf_name: Option<&RelPath>, dir: &[&str], pages: &[Page], png: bo
     for p in pages {
         check_drawing(&p.drawing, &format!("{doc_name}, page {}", p.stem))?;
     }
-    let (doc, svgs) = rayon::join(
+    let (doc, svgs) = crate::par::join(
         || pdf_name.map(|n| pdf_bytes(pages, n.as_str()).map(|b| (n.clone(), b))).transpose(),
         || {
             pages
@@ -402,7 +402,7 @@ fn motion(
     // The DXF's pieces first, on every core (its jobs are the largest part of the run; the
     // sheets, the tables and the JSON meanwhile), then the file written on one core while
     // the frames, the diagrams and the printed pages are made on the other.
-    let (pieces, extras) = rayon::join(
+    let (pieces, extras) = crate::par::join(
         || {
             dxf::to_pieces(&a.all_positions(&poses), &opts.dxf)
                 .map_err(|e| Error::Export { what: dxf_name.to_string(), message: e.to_string() })
@@ -410,17 +410,17 @@ fn motion(
         || extra_files(p, opts).and_then(|f| put_owned(sink, f)),
     );
     let dxf_file = (dxf_name.clone(), pieces?);
-    let (dxf, (frames, (diagrams, pages))) = rayon::join(
+    let (dxf, (frames, (diagrams, pages))) = crate::par::join(
         || {
             // The entities, most of the file, are not copied to join them (and are freed here).
             let (name, pieces) = dxf_file;
             sink.put(&[(name, pieces.iter().map(Vec::as_slice).collect())])
         },
         || {
-            rayon::join(
+            crate::par::join(
                 || frame_files(a, &poses, &svg_opts, opts, tick, sink, name),
                 || {
-                    rayon::join(
+                    crate::par::join(
                         || diagram_files(&p.diagrams, name, opts.png).and_then(|f| put_owned(sink, f)),
                         || page_files(name, &p.pages, opts.png).and_then(|f| put_owned(sink, f)),
                     )

@@ -3,7 +3,7 @@
 //! one SVG frame per position, the HTML viewer, the diagrams, the CSV and the JSON summary.
 //! The output formats are documented in docs/fourbar-output.md.
 
-use rayon::prelude::*;
+use crate::par::prelude::*;
 use std::collections::BTreeMap;
 
 use serde::Serialize;
@@ -83,10 +83,10 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
     } else {
         let qs = reported(&spec.outputs, layout.show.forces);
         // The table, the summary with the report, and Joukowski's levers side by side.
-        let (mut csv, ((summary, mut report), levers)) = rayon::join(
+        let (mut csv, ((summary, mut report), levers)) = crate::par::join(
             || table(&motion, &qs, layout.show.forces),
             || {
-                rayon::join(
+                crate::par::join(
                     || (summary(scene, &motion, &layout, &qs), report_text(scene, &motion, &layout)),
                     || if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() },
                 )

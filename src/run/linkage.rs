@@ -21,6 +21,7 @@ use crate::figure::shared::animation::{Animation, Drive, DriveState};
 use crate::figure::shared::plot::{Diagram, Series, diagram, track};
 use crate::figure::shared::sheet::{self, Paper};
 use crate::geom::{Point, deg};
+use crate::par::prelude::*;
 use crate::report::Csv;
 use crate::scene::Units;
 use crate::scene::linkage::{DiagramAxis, LinkageScene, Measure, MeasureTarget, Quantity};
@@ -29,7 +30,6 @@ use crate::solve::linkage::{
     Solver, State,
 };
 use crate::solve::stroke::{self, Extreme, Stroke};
-use rayon::prelude::*;
 
 /// One measured column: its name and values over the motion (the CSV's and the JSON's;
 /// the diagrams draw them in textbook form, see `plot_of`).

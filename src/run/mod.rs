@@ -192,7 +192,7 @@ pub fn run(loaded: &Loaded, opts: &RunOptions) -> Result<Outcome, Error> {
     // The live page `<name>.html` (every kind), unless --no-frames: written while the
     // products become files.
     let page_rel = paths::RelPath::join(&[&format!("{}.html", p.name)])?;
-    let (order, page) = rayon::join(
+    let (order, page) = crate::par::join(
         || bytes::write(&p, &wopts, &tick, &out),
         || -> Result<bool, Error> {
             if opts.no_frames {

@@ -9,9 +9,9 @@
 //! scene as a person reads it, [`share`] packs a scene into a link. On `wasm32` the `js`
 //! module exports all of it to the page through wasm-bindgen.
 //!
-//! No file system, no terminal, no thread pool of its own: rayon runs its parallel
-//! iterators on the calling thread where threads cannot be spawned (wasm32-unknown-unknown),
-//! and the Monte Carlo of a chain is seeded from the scene.
+//! No file system, no terminal, no threads: the module is built without the feature
+//! `parallel`, so the run's parallel iterators run in order (src/par.rs), and the Monte
+//! Carlo of a chain is seeded from the scene (the same bits on any thread count).
 
 pub mod build;
 pub mod edit;

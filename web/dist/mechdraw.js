@@ -806,35 +806,7 @@ let wasm_bindgen = (function(exports) {
             __wbg___wbindgen_throw_4c88d8bf264fd984: function(arg0, arg1) {
                 throw new Error(getStringFromWasm0(arg0, arg1));
             },
-            __wbg_getRandomValues_66707e3bcfdab577: function() { return handleError(function (arg0, arg1) {
-                globalThis.crypto.getRandomValues(getArrayU8FromWasm0(arg0, arg1));
-            }, arguments); },
-            __wbg_getTime_edc91481cbc4cd78: function(arg0) {
-                const ret = arg0.getTime();
-                return ret;
-            },
-            __wbg_getTimezoneOffset_87127d92c2c117e9: function(arg0) {
-                const ret = arg0.getTimezoneOffset();
-                return ret;
-            },
-            __wbg_new_0_36d738a0c8cfac43: function() {
-                const ret = new Date();
-                return ret;
-            },
-            __wbg_new_3e95cd7386bb9a6c: function(arg0) {
-                const ret = new Date(arg0);
-                return ret;
-            },
-            __wbg_new_with_year_month_day_hr_min_sec_a22891157876dabc: function(arg0, arg1, arg2, arg3, arg4, arg5) {
-                const ret = new Date(arg0 >>> 0, arg1, arg2, arg3, arg4, arg5);
-                return ret;
-            },
-            __wbindgen_generic_0000000000000001: function(arg0) {
-                // Cast intrinsic for `F64 -> Externref`.
-                const ret = arg0;
-                return ret;
-            },
-            __wbindgen_generic_0000000000000002: function(arg0, arg1) {
+            __wbindgen_generic_0000000000000001: function(arg0, arg1) {
                 // Cast intrinsic for `Ref(String) -> Externref`.
                 const ret = getStringFromWasm0(arg0, arg1);
                 return ret;
@@ -861,12 +833,6 @@ let wasm_bindgen = (function(exports) {
         ? { register: () => {}, unregister: () => {} }
         : new FinalizationRegistry(ptr => wasm.__wbg_live_free(ptr, 1));
 
-    function addToExternrefTable0(obj) {
-        const idx = wasm.__externref_table_alloc();
-        wasm.__wbindgen_externrefs.set(idx, obj);
-        return idx;
-    }
-
     function getArrayU8FromWasm0(ptr, len) {
         ptr = ptr >>> 0;
         return getUint8ArrayMemory0().subarray(ptr / 1, ptr / 1 + len);
@@ -883,15 +849,6 @@ let wasm_bindgen = (function(exports) {
             cachedUint8ArrayMemory0 = new Uint8Array(wasm.memory.buffer);
         }
         return cachedUint8ArrayMemory0;
-    }
-
-    function handleError(f, args) {
-        try {
-            return f.apply(this, args);
-        } catch (e) {
-            const idx = addToExternrefTable0(e);
-            wasm.__wbindgen_exn_store(idx);
-        }
     }
 
     function passStringToWasm0(arg, malloc, realloc) {

@@ -6,13 +6,15 @@
 //! [`DxfOptions::mm_per_unit`] (a scene in metres: 1000). Dimensions are DIMENSION entities
 //! with their blocks, or with [`Dimensions::Exploded`] the blocks' entities in model space.
 //!
-//! How it is written: HEADER and TABLES (small) through the `dxf` crate, then the fix-up
-//! pass below; for R12 the BLOCKS and ENTITIES sections by hand (`r12.rs`), straight into the
-//! output buffer in exactly the form the crate and the fix-up give them, because the crate
-//! route (a struct per entity, a `String` per value, a re-parse of the whole text) took
-//! about 185 ms for the four-bar run's 8 MB animation drawing against about 15 ms by hand.
-//! The crate route stays as the reference, [`to_bytes_via_crate`], and the tests compare
-//! the two byte for byte; R2000 and R2007 are written entirely by the crate.
+//! How it is written: R12 entirely by hand (`r12.rs`, its HEADER and TABLES in `r12/head.rs`),
+//! straight into the output buffer in exactly the form the `dxf` crate and the fix-up pass
+//! below give them, because the crate route (a struct per entity, a `String` per value, a
+//! re-parse of the whole text) took about 185 ms for the four-bar run's 8 MB animation
+//! drawing against about 15 ms by hand, and because the live page's module is smaller
+//! without the crate. The crate route (`via_crate.rs`, Cargo feature `dxf-r2000`, which the
+//! command line has) stays as the reference, `to_bytes_via_crate`, and the tests compare
+//! the two byte for byte; R2000 and R2007 are written entirely by the crate, and a build
+//! without the feature (the page's) refuses them ([`DxfError::NotInThisBuild`]).
 //!
 //! What is written (R12):
 //! - HEADER: fixed, no timestamps (`$TDCREATE`/`$TDUPDATE` = 2415021.0, i.e. 1 Jan 1900, the
@@ -76,17 +78,11 @@
 use std::borrow::Cow;
 use std::io::Write;
 
-use dxf::entities::{
-    AngularThreePointDimension, Arc, Circle, DimensionBase, Entity as DxfEntity, EntityType, Line, Polyline,
-    RotatedDimension, Solid, Text, Vertex,
-};
-use dxf::enums::{AcadVersion, DimensionType, HorizontalTextJustification, VerticalTextJustification};
-use dxf::tables::{Layer as DxfLayer, LineType as DxfLineType};
-use dxf::{Block, Color, Point as DxfPoint};
-
 pub mod librecad;
 mod r12;
 mod scale;
+#[cfg(feature = "dxf-r2000")]
+mod via_crate;
 
 use super::parts::{self, arrow, explode_dimension};
 use super::{Aci, Bounds, Drawing, HAlign, LineType, Shape, VAlign};
@@ -120,8 +116,6 @@ pub const TEXT_STYLE: &str = "AZOMIX";
 pub const TEXT_FONT_FILE: &str = "arial.ttf";
 /// `$DWGCODEPAGE` of an R2007 file, whose text is UTF-8: Windows' name for UTF-8.
 pub const R2007_CODE_PAGE: &str = "ANSI_65001";
-/// Transparency "opaque" (group 440, R2004+): the flag 0x02000000 with alpha 255.
-const OPAQUE: i32 = 0x0200_00FF;
 /// Values smaller than this in magnitude are written as 0, so that rounding noise such as
 /// `cos(π/2) = 6e-17` does not appear as `-0.0` or `0.000000000000` in the file.
 pub const ZERO_SNAP: f64 = 5e-13;
@@ -236,6 +230,14 @@ pub enum DxfError {
     /// The `dxf` crate reported an error while serialising.
     #[error("DXF serialisation failed: {0}")]
     Crate(String),
+    /// An R2000 or R2007 file asked of a build without the `dxf` crate (the live page's).
+    #[error(
+        "this build has no {version} DXF writer (the live page writes R12 and leaves R2000 and R2007 to the command line: `mechdraw run --dxf-version {version}`; a library build needs the Cargo feature `dxf-r2000`)"
+    )]
+    NotInThisBuild {
+        /// The version asked for (`R2000`, `R2007`).
+        version: &'static str,
+    },
     /// An entity refers to a layer index the drawing does not have.
     #[error("entity {entity} is on layer index {layer}, but the drawing has {count} layers")]
     NoSuchLayer {
@@ -285,13 +287,14 @@ pub enum DxfError {
 /// Writes `drawing` as DXF into a byte vector (CRLF line ends; ASCII for R12 and R2000,
 /// UTF-8 for R2007), in millimetres (the drawing scaled by [`DxfOptions::mm_per_unit`]).
 ///
-/// R12 is written by `r12.rs` (BLOCKS and ENTITIES by hand, HEADER and TABLES through the
-/// crate); R2000 and R2007 entirely through the crate.
+/// R12 is written by hand (`r12.rs`); R2000 and R2007 through the `dxf` crate, with the
+/// Cargo feature `dxf-r2000` (the command line has it; without it they are refused with
+/// [`DxfError::NotInThisBuild`]: the live page writes R12 only).
 pub fn to_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
     let drawing = prepare(drawing, opts)?;
     match opts.version {
         DxfVersion::R12 => r12::to_bytes(&drawing, opts),
-        DxfVersion::R2000 | DxfVersion::R2007 => crate_bytes(&drawing, opts),
+        DxfVersion::R2000 | DxfVersion::R2007 => newer_bytes(&drawing, opts),
     }
 }
 
@@ -303,17 +306,30 @@ pub fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<Vec<u8>>, D
     let drawing = prepare(drawing, opts)?;
     match opts.version {
         DxfVersion::R12 => r12::to_pieces(&drawing, opts),
-        DxfVersion::R2000 | DxfVersion::R2007 => Ok(vec![crate_bytes(&drawing, opts)?]),
+        DxfVersion::R2000 | DxfVersion::R2007 => Ok(vec![newer_bytes(&drawing, opts)?]),
     }
+}
+
+/// An R2000 or R2007 file of a validated drawing, through the crate.
+#[cfg(feature = "dxf-r2000")]
+fn newer_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    via_crate::crate_bytes(drawing, opts)
+}
+
+/// Without the crate (the live page's module) an R2000 or R2007 file is refused by name.
+#[cfg(not(feature = "dxf-r2000"))]
+fn newer_bytes(_drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
+    Err(DxfError::NotInThisBuild { version: opts.version.name() })
 }
 
 /// The reference writer: the same file as [`to_bytes`], with every entity built as a `dxf`
 /// crate struct and serialised by the crate, then fixed up. Several times slower than
 /// [`to_bytes`] for R12; kept to check the hand-written R12 path against (tests and
 /// benchmarks).
+#[cfg(feature = "dxf-r2000")]
 pub fn to_bytes_via_crate(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
     let drawing = prepare(drawing, opts)?;
-    crate_bytes(&drawing, opts)
+    via_crate::crate_bytes(&drawing, opts)
 }
 
 /// The validated drawing in millimetres, its scale captions stating the DXF's scales and
@@ -332,16 +348,6 @@ fn prepare<'a>(drawing: &'a Drawing, opts: &DxfOptions) -> Result<Cow<'a, Drawin
     // Scaling can overflow a huge finite coordinate to infinity.
     validate(&scaled)?;
     Ok(Cow::Owned(scaled))
-}
-
-/// The crate path of a validated drawing.
-fn crate_bytes(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<u8>, DxfError> {
-    let mut doc = build_head(drawing, opts);
-    add_entities(&mut doc, drawing, opts);
-    let mut raw = Vec::new();
-    doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
-    let limits_min = doc.header.paperspace_minimum_drawing_limits.clone();
-    Ok(fix_up(&raw, opts.version, (-limits_min.x, -limits_min.y)))
 }
 
 /// Writes `drawing` as DXF to `out`.
@@ -455,95 +461,19 @@ fn snap(v: f64) -> f64 {
     if v.abs() < ZERO_SNAP { 0.0 } else { v }
 }
 
-fn pt(p: Point) -> DxfPoint {
-    DxfPoint::new(snap(p.x), snap(p.y), 0.0)
-}
-
 fn deg(rad: f64) -> f64 {
     snap(rad.to_degrees())
 }
 
-fn aci(c: Aci) -> Color {
-    Color::from_index(c.0)
-}
-
-/// The layer-table colour: 1–255 (0 would mean BYBLOCK, which a layer cannot have).
-fn layer_color(c: Aci) -> Color {
-    Color::from_index(if c.0 == 0 { 7 } else { c.0 })
+/// The layer-table colour index: 1–255 (0 would mean BYBLOCK, which a layer cannot have).
+fn layer_aci(c: Aci) -> u8 {
+    if c.0 == 0 { 7 } else { c.0 }
 }
 
 fn linetype_name(lt: LineType) -> &'static str {
     match lt {
         LineType::Continuous => CONTINUOUS,
         LineType::Dashed => DASHED,
-    }
-}
-
-/// The DXF-epoch date (1 Jan 1900 local time = 2415021.0 whatever the time zone) used for
-/// every date in the header.
-fn epoch_local() -> chrono::DateTime<chrono::Local> {
-    use chrono::TimeZone;
-    chrono::Local.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest().unwrap_or_default()
-}
-
-fn epoch_utc() -> chrono::DateTime<chrono::Utc> {
-    use chrono::TimeZone;
-    chrono::Utc.with_ymd_and_hms(1900, 1, 1, 0, 0, 0).earliest().unwrap_or_default()
-}
-
-/// The crate's drawing with the HEADER and the TABLES only (no blocks, no entities).
-/// `drawing` has been validated.
-fn build_head(drawing: &Drawing, opts: &DxfOptions) -> dxf::Drawing {
-    let mut doc = dxf::Drawing::new();
-    let bounds = drawing.bounds().unwrap_or(Bounds { min: Point::new(0.0, 0.0), max: Point::new(1.0, 1.0) });
-    let extent = bounds.width().max(bounds.height());
-    let extent = if extent > 0.0 { extent } else { 1.0 };
-    setup_header(&mut doc, drawing, opts, &bounds, extent);
-    setup_tables(&mut doc, drawing, &bounds, extent);
-    doc
-}
-
-/// Adds the blocks and entities of `drawing` to the crate's drawing (the reference path).
-fn add_entities(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions) {
-    let style = drawing.dim_style;
-    let mut dim_count = 0usize;
-    for e in &drawing.entities {
-        let common = Common {
-            layer: drawing.layers[e.layer].name.clone(),
-            color: e.color.map(aci).unwrap_or_else(Color::by_layer),
-            linetype: entity_linetype(drawing, e).unwrap_or("BYLAYER"),
-        };
-        match &e.shape {
-            Shape::AngularDimension { .. } | Shape::LinearDimension { .. } => {
-                if opts.dimensions == Dimensions::Exploded {
-                    let part_common = Common { linetype: CONTINUOUS, ..common };
-                    for part in explode_dimension(&e.shape, &style) {
-                        add_simple(doc, &part, true, &part_common);
-                    }
-                    continue;
-                }
-                for piece in dimension_pieces(&e.shape, &style) {
-                    dim_count += 1;
-                    let block_name = format!("*D{dim_count}");
-                    add_dimension_block(doc, &block_name, &piece.geometry, &common);
-                    doc.add_entity(common.entity(dimension_entity(&piece, &block_name)));
-                }
-            }
-            shape => add_simple(doc, shape, opts.dimensions == Dimensions::Exploded, &common),
-        }
-    }
-}
-
-/// Adds the DXF entities of a shape other than a dimension to model space (crate path),
-/// each built and added in turn, so that handles run as the hand-written R12 path gives
-/// them (a POLYLINE's vertices, the POLYLINE, then the next entity); `outlined` as
-/// [`prims`].
-fn add_simple(doc: &mut dxf::Drawing, shape: &Shape, outlined: bool, common: &Common) {
-    let mut all = Vec::new();
-    prims(shape, outlined, |p| all.push(p));
-    for p in all {
-        let specific = crate_entity(doc, p);
-        doc.add_entity(common.entity(specific));
     }
 }
 
@@ -557,62 +487,6 @@ fn entity_linetype(drawing: &Drawing, e: &super::Entity) -> Option<&'static str>
             _ => None,
         },
     }
-}
-
-fn setup_header(doc: &mut dxf::Drawing, drawing: &Drawing, opts: &DxfOptions, bounds: &Bounds, extent: f64) {
-    let h = &mut doc.header;
-    h.version = match opts.version {
-        DxfVersion::R12 => AcadVersion::R12,
-        DxfVersion::R2000 => AcadVersion::R2000,
-        DxfVersion::R2007 => AcadVersion::R2007,
-    };
-    h.handles_enabled = true;
-    // R2007 text is UTF-8: the code page says so (ANSI_65001, Windows' UTF-8), so that GDAL
-    // reads it as UTF-8 (it recodes from the stated code page: from ANSI_1252 it garbled φ1
-    // into "Ï 1"); LibreCAD, FreeCAD, ezdxf and dxf-parser read it either way (reader
-    // matrix, issue 29). R2000 text is ASCII (escapes) and R12 has no such variable.
-    if opts.version == DxfVersion::R2007 {
-        h.drawing_code_page = R2007_CODE_PAGE.to_string();
-    }
-    // The file is in millimetres (stated from R2000 on; R12 has no such variables).
-    h.default_drawing_units = dxf::enums::Units::Millimeters;
-    h.drawing_units = dxf::enums::DrawingUnits::Metric;
-    h.text_style = TEXT_STYLE.to_string();
-    // R13+ here; R12 gets it in fix_up (LibreCAD draws dimension text in this style).
-    h.dimension_text_style = TEXT_STYLE.to_string();
-    h.creation_date = epoch_local();
-    h.update_date = epoch_local();
-    h.creation_date_universal = epoch_utc();
-    h.update_date_universal = epoch_utc();
-    h.time_in_drawing = Default::default();
-    h.user_elapsed_timer = Default::default();
-    h.user_timer_on = false;
-    h.fingerprint_guid = Default::default();
-    h.version_guid = Default::default();
-    h.minimum_drawing_extents = pt(bounds.min);
-    h.maximum_drawing_extents = pt(bounds.max);
-    let (lim_min, lim_max) = sheet(drawing, bounds, extent);
-    let (lim_min, lim_max) = (pt(lim_min), pt(lim_max));
-    h.minimum_drawing_limits = lim_min.clone();
-    h.maximum_drawing_limits = lim_max.clone();
-    h.paperspace_minimum_drawing_limits = lim_min;
-    h.paperspace_maximum_drawing_limits = lim_max;
-    // The drawing's origin on the sheet $PLIMMIN–$PLIMMAX (R14+ here; R12 gets it in fix_up).
-    h.paperspace_insertion_base =
-        DxfPoint::new(-h.paperspace_minimum_drawing_limits.x, -h.paperspace_minimum_drawing_limits.y, 0.0);
-    h.line_type_scale = 1.0;
-    // R2000+: the sheet's scale; LibreCAD draws a 0 (the crate's default) as a dot.
-    h.viewport_view_scale_factor = 1.0;
-    let s = drawing.dim_style;
-    h.default_text_height = s.text_height;
-    h.dimensioning_text_height = s.text_height;
-    h.dimensioning_arrow_size = s.arrow_size;
-    h.dimension_extension_line_offset = parts::EXT_LINE_GAP * s.arrow_size;
-    h.dimension_extension_line_extension = parts::EXT_LINE_OVERSHOOT * s.arrow_size;
-    h.dimension_line_gap = parts::LINEAR_TEXT_LIFT * s.text_height;
-    h.text_above_dimension_line = true;
-    h.dimension_text_inside_horizontal = false;
-    h.dimension_text_outside_horizontal = false;
 }
 
 /// The sheet (limits): the drawing's bounds with a [`LIMITS_MARGIN`] margin, grown about
@@ -649,105 +523,6 @@ fn sheet(drawing: &Drawing, bounds: &Bounds, extent: f64) -> (Point, Point) {
     let (min_w, min_h) = if h > w { (MIN_SHEET_MM.1, MIN_SHEET_MM.0) } else { MIN_SHEET_MM };
     let grow = Vector::new(0.5 * (min_w - w).max(0.0), 0.5 * (min_h - h).max(0.0));
     (lo - grow, hi + grow)
-}
-
-fn setup_tables(doc: &mut dxf::Drawing, drawing: &Drawing, bounds: &Bounds, extent: f64) {
-    // R12 knows none of the annotative items the crate adds; keep only what R12 has.
-    let remove_named = |names: Vec<String>, keep: &dyn Fn(&str) -> bool| -> Vec<usize> {
-        let mut idx: Vec<usize> = names.iter().enumerate().filter(|(_, n)| !keep(n)).map(|(i, _)| i).collect();
-        idx.reverse();
-        idx
-    };
-    for i in remove_named(doc.app_ids().map(|a| a.name.clone()).collect(), &|n| n == "ACAD") {
-        doc.remove_app_id(i);
-    }
-    for i in remove_named(doc.dim_styles().map(|a| a.name.clone()).collect(), &|n| n == "STANDARD") {
-        doc.remove_dim_style(i);
-    }
-    for i in remove_named(doc.styles().map(|a| a.name.clone()).collect(), &|n| n == "STANDARD") {
-        doc.remove_style(i);
-    }
-    doc.add_style(dxf::tables::Style {
-        name: TEXT_STYLE.to_string(),
-        primary_font_file_name: TEXT_FONT_FILE.to_string(),
-        ..Default::default()
-    });
-
-    let (dash, gap) = parts::dash_pattern(extent);
-    doc.add_line_type(DxfLineType {
-        name: DASHED.to_string(),
-        description: "Dashed __ __ __".to_string(),
-        element_count: 2,
-        total_pattern_length: dash + gap,
-        dash_dot_space_lengths: vec![dash, -gap],
-        ..Default::default()
-    });
-    for lt in doc.line_types_mut() {
-        if lt.name == CONTINUOUS {
-            lt.description = "Solid line".to_string();
-        }
-    }
-
-    for (i, layer) in drawing.layers.iter().enumerate() {
-        if i == 0 {
-            for l in doc.layers_mut().filter(|l| l.name == "0") {
-                l.color = layer_color(layer.color);
-                l.line_type_name = linetype_name(layer.linetype).to_string();
-                l.is_layer_on = layer.on;
-            }
-        } else {
-            doc.add_layer(DxfLayer {
-                name: layer.name.clone(),
-                color: layer_color(layer.color),
-                line_type_name: linetype_name(layer.linetype).to_string(),
-                // Off: the crate writes the colour negative; fix_up freezes it too.
-                is_layer_on: layer.on,
-                ..Default::default()
-            });
-        }
-    }
-
-    let s = drawing.dim_style;
-    for ds in doc.dim_styles_mut() {
-        ds.dimensioning_text_height = s.text_height;
-        ds.dimensioning_arrow_size = s.arrow_size;
-        ds.dimension_extension_line_offset = parts::EXT_LINE_GAP * s.arrow_size;
-        ds.dimension_extension_line_extension = parts::EXT_LINE_OVERSHOOT * s.arrow_size;
-        ds.dimension_line_gap = parts::LINEAR_TEXT_LIFT * s.text_height;
-        ds.text_above_dimension_line = true;
-        ds.dimension_text_inside_horizontal = false;
-        ds.dimension_text_outside_horizontal = false;
-    }
-
-    // Open on the whole drawing.
-    let center = Point::from((bounds.min.coords + bounds.max.coords) / 2.0);
-    let (w, h) = (bounds.width().max(1e-9 * extent), bounds.height().max(1e-9 * extent));
-    for vp in doc.view_ports_mut() {
-        vp.view_center = pt(center);
-        vp.view_height = (1.0 + 2.0 * LIMITS_MARGIN) * h;
-        vp.view_port_aspect_ratio = w / h;
-    }
-}
-
-/// Layer, colour and line type shared by the DXF entities made from one [`Entity`].
-struct Common {
-    layer: String,
-    color: Color,
-    linetype: &'static str,
-}
-
-impl Common {
-    fn entity(&self, specific: EntityType) -> DxfEntity {
-        let mut e = DxfEntity::new(specific);
-        // R2000+: BYLAYER lineweight (the crate's default 0 means 0 mm) and opaque (the
-        // crate's 0 is an invalid transparency); neither is written to R12.
-        e.common.lineweight_enum_value = -1;
-        e.common.transparency = OPAQUE;
-        e.common.layer = self.layer.clone();
-        e.common.color = self.color.clone();
-        e.common.line_type_name = self.linetype.to_string();
-        e
-    }
 }
 
 /// One DXF entity of a shape, as both writers draw it: the geometry decided once (arc
@@ -866,83 +641,6 @@ fn text_insertion(at: Point, height: f64, value: &str, halign: HAlign, valign: V
     Point::new(at.x - along * cos + up * sin, at.y - along * sin - up * cos)
 }
 
-/// The crate's entity for a [`Prim`] (polyline vertices take their handles from `doc` here,
-/// as the crate numbers them).
-fn crate_entity(doc: &mut dxf::Drawing, prim: Prim) -> EntityType {
-    match prim {
-        Prim::Circle { center, radius } => EntityType::Circle(Circle::new(pt(center), radius)),
-        Prim::Arc { center, radius, start_deg, end_deg } => {
-            EntityType::Arc(Arc::new(pt(center), radius, start_deg, end_deg))
-        }
-        Prim::Line { from, to } => EntityType::Line(Line::new(pt(from), pt(to))),
-        Prim::Polyline { points, closed, width } => crate_polyline(doc, points, closed, width),
-        Prim::Outline(tri) => crate_polyline(doc, &tri, true, 0.0),
-        Prim::Solid([a, b, c, d]) => EntityType::Solid(Solid::new(pt(a), pt(b), pt(c), pt(d))),
-        Prim::Text { at, insert, height, value, halign, valign, rotation_deg, width } => {
-            let mut t = Text {
-                location: pt(insert),
-                text_height: height,
-                value: value.to_string(),
-                rotation: rotation_deg,
-                relative_x_scale_factor: width,
-                text_style_name: TEXT_STYLE.to_string(),
-                horizontal_text_justification: match halign {
-                    HAlign::Left => HorizontalTextJustification::Left,
-                    HAlign::Center => HorizontalTextJustification::Center,
-                    HAlign::Right => HorizontalTextJustification::Right,
-                },
-                vertical_text_justification: match valign {
-                    VAlign::Baseline => VerticalTextJustification::Baseline,
-                    VAlign::Middle => VerticalTextJustification::Middle,
-                    VAlign::Top => VerticalTextJustification::Top,
-                },
-                ..Default::default()
-            };
-            if halign != HAlign::Left || valign != VAlign::Baseline {
-                // Readers place justified text by the alignment point (11/21); the insertion
-                // point (10/20) is where the text starts, for readers that ignore alignment.
-                t.second_alignment_point = pt(at);
-            }
-            EntityType::Text(t)
-        }
-    }
-}
-
-/// A POLYLINE with its vertices (their handles taken from `doc`, as the crate numbers them).
-fn crate_polyline(doc: &mut dxf::Drawing, points: &[Point], closed: bool, width: f64) -> EntityType {
-    let mut poly = Polyline { default_starting_width: width, default_ending_width: width, ..Default::default() };
-    poly.set_is_closed(closed);
-    for p in points {
-        let v = Vertex { starting_width: width, ending_width: width, ..Vertex::new(pt(*p)) };
-        poly.add_vertex(doc, v);
-    }
-    EntityType::Polyline(poly)
-}
-
-/// DXF entities for a shape other than a dimension (crate path); `outlined` as [`prims`].
-fn simple_entities(doc: &mut dxf::Drawing, shape: &Shape, outlined: bool) -> Vec<EntityType> {
-    let mut all = Vec::new();
-    prims(shape, outlined, |p| all.push(p));
-    all.into_iter().map(|p| crate_entity(doc, p)).collect()
-}
-
-/// The anonymous block `name` with a dimension's exploded geometry (`geometry`, a
-/// [`DimPiece`]'s), on the dimension's layer in its colour (explicit rather than BYBLOCK:
-/// ezdxf's renderer draws BYBLOCK dimension geometry black) and line type CONTINUOUS
-/// (dimensions are never dashed, as in the SVG).
-fn add_dimension_block(doc: &mut dxf::Drawing, name: &str, geometry: &[Shape], dim: &Common) {
-    let common = Common { layer: dim.layer.clone(), color: dim.color.clone(), linetype: CONTINUOUS };
-    let mut entities = Vec::new();
-    for part in geometry {
-        for specific in simple_entities(doc, part, false) {
-            entities.push(common.entity(specific));
-        }
-    }
-    let mut block = Block { name: name.to_string(), layer: "0".to_string(), entities, ..Default::default() };
-    block.set_is_anonymous(true);
-    doc.add_block(block);
-}
-
 /// The definition points of a DIMENSION entity, as both writers write them.
 #[derive(Debug, Clone, Copy)]
 enum DimPrim {
@@ -1043,280 +741,6 @@ fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPie
         _ => Vec::new(),
     }
 }
-
-/// The DIMENSION entity of a piece, pointing at `block_name` (crate path).
-fn dimension_entity(piece: &DimPiece, block_name: &str) -> EntityType {
-    let base = |def1: Point, text_mid: Point, kind: DimensionType| DimensionBase {
-        block_name: block_name.to_string(),
-        definition_point_1: pt(def1),
-        text_mid_point: pt(text_mid),
-        dimension_type: kind,
-        text: piece.text.to_string(),
-        is_block_reference_referenced_by_this_block_only: true,
-        is_at_user_defined_location: true,
-        ..Default::default()
-    };
-    match piece.prim {
-        DimPrim::Angular { two_line, def1, text_at, defs: [p13, p14, p15, p16] } => {
-            // The crate has no 2-line angular type; the 3-point one has the same groups (its
-            // R2000 subclass marker is renamed in fix_up).
-            let kind = if two_line { DimensionType::Angular } else { DimensionType::AngularThreePoint };
-            EntityType::AngularThreePointDimension(AngularThreePointDimension {
-                dimension_base: base(def1, text_at, kind),
-                definition_point_2: pt(p13),
-                definition_point_3: pt(p14),
-                definition_point_4: pt(p15),
-                definition_point_5: pt(p16),
-            })
-        }
-        DimPrim::Rotated { on_line, text_mid, p1, p2, angle_deg } => EntityType::RotatedDimension(RotatedDimension {
-            dimension_base: base(on_line, text_mid, DimensionType::RotatedHorizontalOrVertical),
-            definition_point_2: pt(p1),
-            definition_point_3: pt(p2),
-            rotation_angle: angle_deg,
-            ..Default::default()
-        }),
-    }
-}
-
-/// One group-code/value pair of the crate's output: its code as written (with the padding),
-/// the code's number, and the value. Pairs are borrowed from the crate's text unless the
-/// fix-up replaces them.
-struct Pair<'a> {
-    /// The code line as written (e.g. `"  8"`).
-    code_text: Cow<'a, str>,
-    /// The code's number (−1 if the line is not a number).
-    code: i32,
-    /// The value line.
-    value: Cow<'a, str>,
-}
-
-impl<'a> Pair<'a> {
-    fn borrowed(code_text: &'a str, value: &'a str) -> Pair<'a> {
-        Pair {
-            code_text: Cow::Borrowed(code_text),
-            code: code_text.trim_ascii().parse().unwrap_or(-1),
-            value: value.into(),
-        }
-    }
-
-    fn owned(code_text: &'static str, value: String) -> Pair<'a> {
-        Pair { code_text: Cow::Borrowed(code_text), code: code_text.trim().parse().unwrap_or(-1), value: value.into() }
-    }
-}
-
-/// The lines of `text` split at CRLF, as `text.split("\r\n")` gives them, but found with a
-/// fast search for the line feed (the general substring search is a good part of the
-/// fix-up's time on a large drawing).
-fn crlf_lines(text: &str) -> impl Iterator<Item = &str> {
-    let mut rest = Some(text);
-    std::iter::from_fn(move || {
-        let s = rest?;
-        let mut from = 0;
-        // Lines are short: a plain scan beats a vectorised search here.
-        while let Some(k) = s.as_bytes()[from..].iter().position(|&b| b == b'\n') {
-            let at = from + k;
-            if at > 0 && s.as_bytes()[at - 1] == b'\r' {
-                rest = Some(&s[at + 1..]);
-                return Some(&s[..at - 1]);
-            }
-            from = at + 1;
-        }
-        rest = None;
-        Some(s)
-    })
-}
-
-/// Fixes the crate's text output where its API cannot: see the module documentation.
-/// Works record by record (a record runs from one group-0 pair to the next), in one pass
-/// that borrows every pair it leaves unchanged.
-fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> Vec<u8> {
-    let text = String::from_utf8_lossy(raw);
-    // The pairs, read from the text as they are needed (a whole drawing's pairs would take
-    // several times the text's memory).
-    let pairs = || {
-        let mut lines = crlf_lines(&text);
-        std::iter::from_fn(move || Some(Pair::borrowed(lines.next()?, lines.next()?)))
-    };
-
-    // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
-    // BLOCK's), numbered after the highest handle the crate assigned. (R12 needs neither.)
-    let (mut next_handle, handle_seed) = if version != DxfVersion::R12 {
-        let (mut highest, mut extra) = (0u64, 0u64);
-        for p in pairs() {
-            match p.code {
-                5 | 105 => highest = highest.max(u64::from_str_radix(p.value.trim(), 16).unwrap_or(0)),
-                0 if p.value == "TABLE" || p.value == "ENDBLK" => extra += 1,
-                _ => {}
-            }
-        }
-        (highest + 1, highest + 1 + extra)
-    } else {
-        (0, 0)
-    };
-
-    let mut out = String::with_capacity(raw.len() + 1024);
-    let mut section = "";
-    let mut poly_layer: Option<String> = None;
-    let mut pairs = pairs().peekable();
-    let mut record: Vec<Pair> = Vec::new();
-    while let Some(first) = pairs.next() {
-        record.clear();
-        record.push(first);
-        while let Some(p) = pairs.next_if(|p| p.code != 0) {
-            record.push(p);
-        }
-        let kind = record[0].value.clone();
-        if let Some(p) = record.get(1).filter(|p| kind == "SECTION" && p.code == 2) {
-            section = match p.value.as_ref() {
-                "TABLES" => "TABLES",
-                "BLOCKS" => "BLOCKS",
-                "ENTITIES" => "ENTITIES",
-                _ => "",
-            };
-        }
-        let is_header = kind == "SECTION" && record.get(1).is_some_and(|p| p.value == "HEADER");
-        if version == DxfVersion::R12 && is_header {
-            // $DIMTXSTY (the crate writes it from R13 on): LibreCAD draws the dimension
-            // text it regenerates in this style.
-            if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$TEXTSTYLE") {
-                let var = [("  9", "$DIMTXSTY".to_string()), ("  7", TEXT_STYLE.to_string())];
-                for (k, (c, v)) in var.into_iter().enumerate() {
-                    record.insert(at + 2 + k, Pair::owned(c, v));
-                }
-            }
-            // $PINSBASE (the crate writes it from R14 on): where the drawing's origin lies on
-            // the sheet $PLIMMIN–$PLIMMAX. LibreCAD prints that sheet with the drawing on it.
-            if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$PLIMMAX") {
-                let next = record[at + 1..].iter().position(|p| p.code == 9).map_or(record.len(), |k| at + 1 + k);
-                let (x, y) = paper_insertion_base;
-                let var =
-                    [("  9", "$PINSBASE".to_string()), (" 10", fmt_f64(x)), (" 20", fmt_f64(y)), (" 30", fmt_f64(0.0))];
-                for (k, (c, v)) in var.into_iter().enumerate() {
-                    record.insert(next + k, Pair::owned(c, v));
-                }
-            }
-        }
-        // A layer that is off (negative colour) is frozen too (flag 1): LibreCAD, QCAD and
-        // others read a layer's visibility from the flag alone and show an off layer.
-        if kind == "LAYER"
-            && section == "TABLES"
-            && record.iter().any(|p| p.code == 62 && p.value.trim().starts_with('-'))
-        {
-            for pair in record.iter_mut().filter(|p| p.code == 70) {
-                pair.value = Cow::Borrowed("     1");
-            }
-        }
-        // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
-        if kind == "DIMSTYLE" && section == "TABLES" {
-            for pair in record.iter_mut().filter(|p| p.code == 5) {
-                pair.code_text = Cow::Borrowed("105");
-                pair.code = 105;
-            }
-        }
-        if version != DxfVersion::R12 {
-            if is_header
-                && let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED")
-                && let Some(pair) = record.get_mut(at + 1)
-            {
-                pair.value = format!("{handle_seed:X}").into();
-            }
-            match kind.as_ref() {
-                "TABLE" => {
-                    let at = if record.get(1).is_some_and(|p| p.code == 2) { 2 } else { 1 };
-                    record.insert(at, Pair::owned("  5", format!("{next_handle:X}")));
-                    record.insert(at + 1, Pair::owned("330", "0".to_string()));
-                    next_handle += 1;
-                }
-                "ENDBLK" => {
-                    match record.iter_mut().find(|p| p.code == 5) {
-                        Some(pair) => pair.value = format!("{next_handle:X}").into(),
-                        None => record.insert(1, Pair::owned("  5", format!("{next_handle:X}"))),
-                    }
-                    next_handle += 1;
-                }
-                // The 2-line angular dimension, written as the crate's 3-point one.
-                "DIMENSION" => {
-                    let two_line =
-                        record.iter().any(|p| p.code == 70 && p.value.trim().parse::<i32>().is_ok_and(|v| v & 7 == 2));
-                    if two_line {
-                        for pair in
-                            record.iter_mut().filter(|p| p.code == 100 && p.value == "AcDb3PointAngularDimension")
-                        {
-                            pair.value = Cow::Borrowed("AcDb2LineAngularDimension");
-                        }
-                    }
-                }
-                // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
-                // ... and opaque (R2007: the crate's 0 is an invalid transparency).
-                "VERTEX" => {
-                    for pair in record.iter_mut() {
-                        match pair.code {
-                            370 => pair.value = format!("{:>6}", -1).into(),
-                            440 => pair.value = format!("{:>9}", OPAQUE).into(),
-                            _ => {}
-                        }
-                    }
-                }
-                _ => {}
-            }
-        }
-        if version == DxfVersion::R12 {
-            // R12 has no subclass markers. Its table records keep their handles (group 5,
-            // 105 in DIMSTYLE), as R12 allows with $HANDLING = 1: FreeCAD cannot read a
-            // LAYER record without one ("no layer name").
-            record.retain(|p| p.code != 100);
-        }
-        match kind.as_ref() {
-            "POLYLINE" => poly_layer = record.iter().find(|p| p.code == 8).map(|p| p.value.to_string()),
-            "VERTEX" | "SEQEND" => {
-                if let Some(layer) = &poly_layer {
-                    match record.iter_mut().find(|p| p.code == 8) {
-                        Some(pair) => pair.value = layer.clone().into(),
-                        None => {
-                            // After the type and the handle.
-                            let at = if record.get(1).is_some_and(|p| p.code == 5) { 2 } else { 1 };
-                            record.insert(at.min(record.len()), Pair::owned("  8", layer.clone()));
-                        }
-                    }
-                }
-            }
-            "TEXT" => {
-                // The crate omits the alignment point when it is (0, 0); justified text needs it.
-                let justified = record.iter().any(|p| (p.code == 72 || p.code == 73) && p.value.trim() != "0");
-                if justified && !record.iter().any(|p| p.code == 11) {
-                    let at = record.iter().position(|p| p.code == 72 || p.code == 73).unwrap_or(record.len());
-                    let at = if record.get(at).is_some_and(|p| p.code == 72) { at + 1 } else { at };
-                    for (i, c) in [" 11", " 21", " 31"].into_iter().enumerate() {
-                        record.insert(at + i, Pair::owned(c, "0.0".to_string()));
-                    }
-                }
-                poly_layer = None;
-            }
-            _ => poly_layer = None,
-        }
-        for p in &record {
-            push_pair(&mut out, &p.code_text, &p.value);
-        }
-    }
-    out.into_bytes()
-}
-
-/// A float as the crate writes it: at most 12 decimals, trailing zeros trimmed, at least one
-/// decimal.
-fn fmt_f64(v: f64) -> String {
-    let s = format!("{:.12}", snap(v));
-    let s = s.trim_end_matches('0');
-    if s.ends_with('.') { format!("{s}0") } else { s.to_string() }
-}
-
-fn push_pair(out: &mut String, code: &str, value: &str) {
-    out.push_str(code);
-    out.push_str("\r\n");
-    out.push_str(value);
-    out.push_str("\r\n");
-}
-
 #[cfg(test)]
 #[allow(
     clippy::disallowed_methods,
@@ -1582,14 +1006,6 @@ mod tests {
     }
 
     #[test]
-    fn crlf_lines_split_as_the_substring_split_does() {
-        for text in ["", "a", "a\r\n", "a\r\nb", "\r\n\r\n", "a\nb\r\nc\r", "\n\r\n", "x\r\r\ny\n"] {
-            let expected: Vec<&str> = text.split("\r\n").collect();
-            assert_eq!(crlf_lines(text).collect::<Vec<_>>(), expected, "{text:?}");
-        }
-    }
-
-    #[test]
     fn output_is_deterministic_and_has_no_timestamps() {
         let mut d = drawing();
         d.add(0, Shape::Arrow { from: Point::new(0.0, 0.0), to: Point::new(3.0, 4.0), head: 1.0 });
@@ -1664,6 +1080,43 @@ mod tests {
                     assert!(pieces.concat() == reference, "{opts:?}, {per_job} entities per job");
                 }
             }
+        }
+    }
+
+    /// The hand-written HEADER and TABLES (`r12/head.rs`) against the crate's: layers off
+    /// (the first one too), a dashed first layer, an empty drawing, a single
+    /// point, a tall and a wide drawing, odd dimension sizes and text that widens the sheet.
+    #[test]
+    fn hand_written_r12_head_is_the_crate_paths() {
+        let p = Point::new;
+        same_as_crate(&drawing());
+        for (w, h, text) in
+            [(0.0, 0.0, ""), (10.0, 900.0, "φ tall"), (3000.0, 0.5, "wide ^ caption"), (1e-7, 2e-7, "x")]
+        {
+            let mut d = Drawing::new(DimStyle { text_height: 3.3, arrow_size: 1.0 / 3.0 });
+            let a = d.layer("A", Aci(0), LineType::Dashed);
+            let b = d.layer("B-off", Aci(9), LineType::Continuous);
+            d.layers[0].linetype = LineType::Dashed;
+            d.layers[0].color = Aci(3);
+            d.set_layer_on("B-off", false);
+            d.add(a, Shape::Line { from: p(-1.5, 2.0), to: p(-1.5 + w, 2.0 + h) });
+            if !text.is_empty() {
+                let value = text.into();
+                d.add(
+                    b,
+                    Shape::Text {
+                        at: p(w, 0.0),
+                        height: 2.0,
+                        value,
+                        halign: HAlign::Right,
+                        valign: VAlign::Baseline,
+                        rotation: 0.3,
+                    },
+                );
+            }
+            same_as_crate(&d);
+            d.set_layer_on("0", false);
+            same_as_crate(&d);
         }
     }
 

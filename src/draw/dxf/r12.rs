@@ -1,7 +1,7 @@
-//! The R12 writer's fast path: HEADER and TABLES through the crate (small: a few hundred
-//! layers at most), BLOCKS and ENTITIES written by hand straight into the output buffer, in
-//! exactly the form the crate and [`super::fix_up`] give them (the crate path,
-//! [`super::to_bytes_via_crate`], is the reference the tests compare with byte for byte).
+//! The R12 writer, by hand: HEADER and TABLES (`head.rs`, small: mostly fixed text), then
+//! BLOCKS and ENTITIES straight into the output buffer, in exactly the form the `dxf` crate
+//! and the fix-up give them (the crate path, `to_bytes_via_crate` with the feature
+//! `dxf-r2000`, is the reference the tests compare with byte for byte).
 //!
 //! The form, as the crate writes R12 and the fix-up leaves it: group codes right-aligned in
 //! three characters, CRLF line ends, 16-bit integers right-aligned in six, floats with at most
@@ -10,16 +10,21 @@
 //! non-ASCII character as `\U+XXXX`. Handles continue the crate's numbering after the tables:
 //! a dimension's BLOCK takes one, its (R12-unwritten) BLOCK_RECORD the next, its entities the
 //! following ones, the DIMENSION the next; a polyline's vertices come before the POLYLINE,
-//! its SEQEND after. `$HANDSEED` is patched to the next free handle.
+//! its SEQEND after. `$HANDSEED` is the next free handle.
 //! With [`super::Dimensions::Exploded`] a dimension's parts are written as entities in
 //! drawing order instead (no BLOCK, no DIMENSION), as the crate path adds them.
 
 use std::io::Write;
 
 use super::{
-    CONTINUOUS, DimPiece, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, build_head,
-    dimension_pieces, entity_linetype, fix_up, prims, snap,
+    CONTINUOUS, DimPiece, DimPrim, Dimensions, DxfError, DxfOptions, DxfVersion, Prim, TEXT_STYLE, dimension_pieces,
+    entity_linetype, prims, snap,
 };
+
+mod head;
+
+/// About the size of the HEADER and TABLES sections with a few layers.
+const HEAD_BYTES: usize = 8 * 1024;
 use crate::draw::parts::explode_dimension;
 use crate::draw::{Drawing, Entity, HAlign, Shape, VAlign};
 use crate::geom::Point;
@@ -45,34 +50,13 @@ pub(super) fn to_pieces(drawing: &Drawing, opts: &DxfOptions) -> Result<Vec<Vec<
 /// [`to_pieces`] with `per_job` entities per job (the tests try every job boundary).
 pub(super) fn to_pieces_in(drawing: &Drawing, opts: &DxfOptions, per_job: usize) -> Result<Vec<Vec<u8>>, DxfError> {
     let opts = DxfOptions { version: DxfVersion::R12, ..*opts };
-    let doc = build_head(drawing, &opts);
-    let first_handle = doc.header.next_available_handle.0;
-    // The head serialised by the crate while the jobs count and write.
-    let (head, written) = rayon::join(
-        || -> Result<Vec<u8>, DxfError> {
-            let mut raw = Vec::new();
-            doc.save(&mut raw).map_err(|e| DxfError::Crate(e.to_string()))?;
-            let limits_min = &doc.header.paperspace_minimum_drawing_limits;
-            Ok(fix_up(&raw, DxfVersion::R12, (-limits_min.x, -limits_min.y)))
-        },
-        || jobs(drawing, &opts, per_job, first_handle),
-    );
-    let head = head?;
-    let Some((written, next)) = written else {
+    let first_handle = head::first_handle(drawing);
+    let Some((written, next)) = jobs(drawing, &opts, per_job, first_handle) else {
         debug_assert!(false, "a job's handle count differs from what it wrote");
         return to_pieces_in(drawing, &opts, drawing.entities.len());
     };
-    let broken = |what: &str| DxfError::Crate(format!("unexpected crate output: no {what}"));
-    // The crate's (empty) ENTITIES section and EOF are replaced by ours.
-    let cut = find(&head, b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n").ok_or_else(|| broken("ENTITIES section"))?;
-    let seed_key = b"  9\r\n$HANDSEED\r\n  5\r\n";
-    let seed_at = find(&head[..cut], seed_key).ok_or_else(|| broken("$HANDSEED"))? + seed_key.len();
-    let seed_end = find(&head[seed_at..cut], b"\r\n").ok_or_else(|| broken("$HANDSEED value"))? + seed_at;
-
-    let mut out = Vec::with_capacity(cut + 128);
-    out.extend_from_slice(&head[..seed_at]);
-    hex(&mut out, next);
-    out.extend_from_slice(&head[seed_end..cut]);
+    let mut out = Vec::with_capacity(HEAD_BYTES);
+    head::write(&mut out, drawing, next);
     let mut pieces = Vec::with_capacity(2 * written.len() + 3);
     let (blocks, entities): (Vec<Vec<u8>>, Vec<Vec<u8>>) = written.into_iter().unzip();
     let entities_start = b"  0\r\nSECTION\r\n  2\r\nENTITIES\r\n";
@@ -99,7 +83,7 @@ type JobBytes = (Vec<u8>, Vec<u8>);
 /// next job's numbering starts; `None` if a job did not end where the count said (a bug:
 /// the caller then writes one job).
 fn jobs(drawing: &Drawing, opts: &DxfOptions, per_job: usize, first_handle: u64) -> Option<(Vec<JobBytes>, u64)> {
-    use rayon::prelude::*;
+    use crate::par::prelude::*;
     // Layer names escaped once, for every job.
     let layers: Vec<String> = drawing
         .layers
@@ -134,11 +118,6 @@ fn jobs(drawing: &Drawing, opts: &DxfOptions, per_job: usize, first_handle: u64)
     }
     let next = written.last().map_or(first_handle, |w| w.2);
     Some((written.into_iter().map(|(b, e, _)| (b, e)).collect(), next))
-}
-
-/// Position of `needle` in `hay`.
-fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
-    hay.windows(needle.len()).position(|w| w == needle)
 }
 
 /// The handles and the dimensions (anonymous blocks) that [`Body::write`] takes for

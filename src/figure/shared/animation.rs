@@ -159,7 +159,7 @@ impl Animation {
 
     /// Every position's moving part, drawn in parallel.
     pub fn poses(&self) -> Vec<Drawing> {
-        use rayon::prelude::*;
+        use crate::par::prelude::*;
         (0..self.len()).into_par_iter().map(|k| self.pose(k)).collect()
     }
 

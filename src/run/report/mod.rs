@@ -21,7 +21,7 @@ mod linkage;
 mod motion;
 mod triad;
 
-use rayon::prelude::*;
+use crate::par::prelude::*;
 
 use super::positions::Positions;
 use super::products::Page;

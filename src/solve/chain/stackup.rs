@@ -12,11 +12,11 @@
 //! - Monte Carlo: d_i = m_i + e_i with e_i drawn from the scene's distribution on
 //!   [−t_i, t_i] (normal with 3σ = t_i, uniform, symmetric triangular).
 
+use crate::par::prelude::*;
 use rand::distr::Distribution as _;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use rayon::prelude::*;
 
 use super::graph::Function;
 use super::model::{Dimension, Distribution};

@@ -76,7 +76,7 @@ pub fn component_sensitivities(comp: &Component, k: usize, s: &[f64], np: usize)
 /// The linear stack-up of every component (`comps`) at every position, position-major;
 /// `None` at a singular position.
 pub fn linear_all<M: Sensitive>(model: &M, dims: &[Dimension], comps: &[Component]) -> Vec<Option<Vec<Linear>>> {
-    use rayon::prelude::*;
+    use crate::par::prelude::*;
     (0..model.positions())
         .into_par_iter()
         .map(|k| {

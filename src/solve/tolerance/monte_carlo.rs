@@ -12,11 +12,11 @@
 
 use std::ops::Range;
 
+use crate::par::prelude::*;
 use rand::distr::Distribution as _;
 use rand::{RngExt, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rand_distr::StandardNormal;
-use rayon::prelude::*;
 
 use super::model::{Component, Dimension, Distribution};
 use super::stats::Tally;

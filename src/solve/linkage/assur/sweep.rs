@@ -19,6 +19,12 @@ use super::forms::{self, PoseOf};
 use super::rates;
 use super::*;
 
+/// Whether steps are taken four at once ([`F4`], the lanes of SIMD registers): on the command
+/// line. The browser's module takes them one at a time: the same bits (each lane computes
+/// what one step computes), a little slower, and without a four-lane copy of every dyad
+/// kind's placing, turning, rates and flips (the sweep was ~190 KB of the module's code).
+const FOUR: bool = !cfg!(target_arch = "wasm32");
+
 /// A body's fields in [`Tracks`]: its pose (x, y, φ, cos φ, sin φ), its rates (ẋ, ẏ, ω from
 /// `QD`) and their derivatives (ẍ, ÿ, ε from `QDD`).
 const X: usize = 0;
@@ -550,7 +556,7 @@ fn place_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, side
         let steps = to - from;
         let mut end = steps;
         let mut c = 0;
-        while c + F4::N <= steps {
+        while FOUR && c + F4::N <= steps {
             if let Some(i) = F4::first_false(kind.place::<F4>(io, c, side, slack)) {
                 end = c + i;
                 break;
@@ -567,7 +573,7 @@ fn place_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, side
             }
         }
         let mut c = 0;
-        while c + F4::N <= end {
+        while FOUR && c + F4::N <= end {
             kind.turn::<F4>(io, c);
             c += F4::N;
         }
@@ -666,7 +672,7 @@ fn rates_range<K: Batch>(l: &mut Lane<'_>, kind: K, from: usize, to: usize, pivo
         let mut end = steps;
         let mut c = 0;
         while c < steps {
-            let four = c + F4::N <= steps;
+            let four = FOUR && c + F4::N <= steps;
             let bad = if four {
                 rates_at_c::<K, F4>(kind, io, &roles, c, pivots)
             } else {
@@ -797,7 +803,7 @@ fn first_flip<K: Batch>(
         let (io, steps) = (&*io, to - from);
         let mut c = 0;
         while c < steps {
-            let four = c + F4::N <= steps;
+            let four = FOUR && c + F4::N <= steps;
             let flip = if four && io.linear[c..c + F4::N].iter().all(|f| !f.is_nan()) {
                 F4::first_true(kind.flips::<F4>(io, c, side, |r, j| io.predicted_linearly(r, j, c)))
             } else if four && io.taylor[c..c + F4::N].iter().all(|f| !f.is_nan()) {
