@@ -1108,6 +1108,7 @@ mod tests {
                         at: p(w, 0.0),
                         height: 2.0,
                         value,
+                        runs: crate::draw::Runs::flat(),
                         halign: HAlign::Right,
                         valign: VAlign::Baseline,
                         rotation: 0.3,
