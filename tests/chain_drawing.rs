@@ -131,7 +131,7 @@ fn no_dimension_text_is_crossed_by_a_line_or_covers_another_text() {
             .iter()
             .enumerate()
             .filter_map(|(i, e)| match &e.shape {
-                Shape::Text { at, height, value, halign, valign, rotation } => {
+                Shape::Text { at, height, value, halign, valign, rotation, .. } => {
                     Some((i, value.clone(), text_box(*at, *height, value, *halign, *valign, *rotation)))
                 }
                 _ => None,

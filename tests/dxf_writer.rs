@@ -14,7 +14,7 @@ use std::path::PathBuf;
 use std::process::Command;
 
 use mechdraw::draw::dxf::{self, Dimensions, DxfOptions, DxfVersion};
-use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, LinearMarks, Shape, VAlign, svg};
+use mechdraw::draw::{Aci, DimStyle, Drawing, Entity, HAlign, LineType, LinearMarks, Runs, Shape, VAlign, svg};
 use mechdraw::geom::{Point, Vector};
 use serde_json::Value;
 
@@ -44,6 +44,7 @@ fn sample_drawing() -> Drawing {
             at: p(0.0, 0.0),
             height: 1.5,
             value: "O".into(),
+            runs: Runs::flat(),
             halign: HAlign::Center,
             valign: VAlign::Middle,
             rotation: 0.0,
@@ -99,7 +100,15 @@ fn sample_drawing() -> Drawing {
             d.add(frame, Shape::Circle { center: at, radius: 0.3 });
             d.add(
                 text,
-                Shape::Text { at, height: 2.0, value: words[k % words.len()].into(), halign, valign, rotation: 0.0 },
+                Shape::Text {
+                    at,
+                    height: 2.0,
+                    value: words[k % words.len()].into(),
+                    runs: Runs::flat(),
+                    halign,
+                    valign,
+                    rotation: 0.0,
+                },
             );
             k += 1;
         }
@@ -110,6 +119,7 @@ fn sample_drawing() -> Drawing {
             at: p(95.0, 10.0),
             height: 2.5,
             value: "rotated 30°".into(),
+            runs: Runs::flat(),
             halign: HAlign::Left,
             valign: VAlign::Baseline,
             rotation: 30f64.to_radians(),
@@ -308,7 +318,7 @@ fn sample_drawing_audits_clean_and_reads_back() {
         .entities
         .iter()
         .filter_map(|e| match &e.shape {
-            Shape::Text { at, height, value, halign, valign, rotation } => {
+            Shape::Text { at, height, value, halign, valign, rotation, .. } => {
                 Some((value, *at, *height, *halign, *valign, *rotation))
             }
             _ => None,

@@ -223,7 +223,7 @@ fn linkage_sheets_have_a_page_set_per_sample_at_measured_scales() {
     };
     let t = states[3].t;
     let (mech, forces_page) = (page(10), page(12));
-    for want in [format!("t = {t:.4} s"), "sheet 10 of 39".to_string(), "k_l = ".into(), "φ1 = ".into(), "ω1 = ".into()]
+    for want in [format!("t = {t:.4} s"), "sheet 10 of 39".to_string(), "kl = ".into(), "φ1 = ".into(), "ω1 = ".into()]
     {
         assert!(mech.contains(&want), "page 10 lacks `{want}`:\n{mech}");
     }

@@ -71,9 +71,10 @@ fn the_pdf_has_a_page_per_position_each_with_its_crank_angle() {
     let products = mechdraw::run::products(&l, &opts).unwrap();
     for (i, deg) in angles(&products).iter().enumerate() {
         for (j, shows) in [
-            &["k_l = 0.0015 m/mm", "ω1 = 20 rad/s", "Me1", "forces k_f = "][..],
-            &["Velocity polygon", "k_v = ", "Acceleration polygon", "k_a = "][..],
-            &["Dyad 2–3", "Crank 1", "k_f = "][..],
+            // The text as drawn: k_l (a subscript l) reads `kl` (tests/subscripts.rs).
+            &["kl = 0.0015 m/mm", "ω1 = 20 rad/s", "Me1", "forces kf = "][..],
+            &["Velocity polygon", "kv = ", "Acceleration polygon", "ka = "][..],
+            &["Dyad 2–3", "Crank 1", "kf = "][..],
         ]
         .iter()
         .enumerate()

@@ -79,6 +79,7 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
         },
     );
     let label = |at: Point, value: String, h: HAlign, v: VAlign| Shape::Text {
+        runs: crate::draw::Runs::flat(),
         at,
         height: TEXT,
         value,
@@ -100,6 +101,7 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
     d.add(
         axes,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: Point::new(-16.0, H / 2.0),
             height: TEXT,
             value: "error (relative)".into(),
@@ -111,6 +113,7 @@ pub fn speed_accuracy_chart(title: &str, ms: &[Measurement]) -> Drawing {
     d.add(
         axes,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: Point::new(W / 2.0, H + 5.0),
             height: 1.4 * TEXT,
             value: title.into(),
@@ -240,6 +243,7 @@ pub fn basins_chart(title: &str, strips: &[Strip], modes: &[Configuration]) -> D
     let axes = d.layer("AXES", Aci::BLACK, LineType::Continuous);
     let fill = d.layer("BASINS", Aci::BLACK, LineType::Continuous);
     let text = |at: Point, value: String, halign: HAlign, valign: VAlign| Shape::Text {
+        runs: crate::draw::Runs::flat(),
         at,
         height: TEXT,
         value,
@@ -291,6 +295,7 @@ pub fn basins_chart(title: &str, strips: &[Strip], modes: &[Configuration]) -> D
     d.add(
         axes,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: Point::new(BASIN_W / 2.0, top + 4.0),
             height: 1.4 * TEXT,
             value: title.into(),

@@ -26,6 +26,15 @@ pub const CAP_HEIGHT_EM: f64 = 0.73;
 /// standing on the baseline and ending at the cap height.
 pub const OVERSHOOT_EM: f64 = 0.02;
 
+/// A subscript's size, as a fraction of its text's size (font size and cap height alike):
+/// `A` of `RA` is drawn 0.7 times as high as `R`.
+pub const SUB_SIZE: f64 = 0.7;
+
+/// How far a subscript's baseline lies below its text's, in ems of the text's (base) font
+/// size: 0.25 em, about a third of the cap height (0.25 / 0.73), so the subscript's capitals
+/// reach 0.26 em above the base baseline and its bottom 0.25 em below it.
+pub const SUB_SHIFT_EM: f64 = 0.25;
+
 /// One character's metrics, in ems: its advance, and the lowest and highest points of its
 /// glyph (y up from the baseline; both 0 for a space).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -79,6 +88,45 @@ pub fn measure_chars(chars: impl Iterator<Item = char>, height: f64) -> TextExte
             high = high.max(g.y_max);
         }
     }
+    extent(advance, low, high, height)
+}
+
+/// The extent of `value` drawn `height` high (cap height) in its `runs`, as the SVG, PNG and
+/// PDF writers draw it: base runs at `height`, subscript runs [`SUB_SIZE`] × `height` on a
+/// baseline [`SUB_SHIFT_EM`] ems lower (their advances scaled alike, their descent below the
+/// text's baseline counted from the lowered baseline: `RA` reaches 0.25 em below the
+/// baseline, `Ry` 0.25 em + 0.7 × the descender of `y`), flat-only runs left out. The
+/// width is the sum of the drawn advances; ascent and descent are at least the cap height
+/// and nothing, as in [`measure`].
+pub fn measure_runs(value: &str, runs: &super::Runs, height: f64) -> TextExtent {
+    use super::RunKind;
+    let (mut advance, mut low, mut high) = (0.0, 0.0f64, CAP_HEIGHT_EM);
+    for (part, kind) in runs.split(value) {
+        let (scale, rise) = match kind {
+            RunKind::Base => (1.0, 0.0),
+            RunKind::Sub => (SUB_SIZE, -SUB_SHIFT_EM),
+            RunKind::Flat => continue,
+        };
+        for c in part.chars() {
+            let g = glyph(c);
+            advance += scale * g.advance;
+            if kind == RunKind::Sub {
+                // A lowered run reaches below the baseline even without a descender.
+                low = low.min(rise + scale * g.y_min.min(0.0));
+                high = high.max(rise + scale * g.y_max);
+            } else if g.y_max > g.y_min {
+                low = low.min(g.y_min);
+                high = high.max(g.y_max);
+            }
+        }
+    }
+    extent(advance, low, high, height)
+}
+
+/// The extent of a text `height` high whose advances sum to `advance` and whose glyphs
+/// reach from `low` to `high` (ems, y up): round letters' overshoot of the baseline and the
+/// cap height ([`OVERSHOOT_EM`]) counts as standing on them.
+fn extent(advance: f64, low: f64, high: f64, height: f64) -> TextExtent {
     let em = height / CAP_HEIGHT_EM;
     let low = if low > -OVERSHOOT_EM { 0.0 } else { low };
     let high = if high < CAP_HEIGHT_EM + OVERSHOOT_EM { CAP_HEIGHT_EM } else { high };
@@ -194,5 +242,28 @@ mod tests {
         assert_eq!(measure("", h).width, 0.0);
         // A character the table lacks takes the .notdef box, never nothing.
         assert!(glyph('\u{10FFFD}').advance > 0.3);
+    }
+
+    #[test]
+    fn a_subscript_is_measured_smaller_and_lowered() {
+        use crate::draw::Runs;
+        let h = 3.5;
+        let em = h / CAP_HEIGHT_EM;
+        // RA with A a subscript: advance of R plus 0.7 × the advance of A (DejaVu Sans:
+        // R 1423, A 1401 of 2048 units per em).
+        let e = measure_runs("RA", &Runs::subscript(1..2), h);
+        assert!((e.width - (1423.0 + 0.7 * 1401.0) / 2048.0 * em).abs() < 1e-12, "{e:?}");
+        assert!((e.width - (width("R", h) + SUB_SIZE * width("A", h))).abs() < 1e-12);
+        // The lowered A reaches 0.25 em below the baseline; R sets the top.
+        assert!((e.descent - SUB_SHIFT_EM * em).abs() < 1e-12 && (e.ascent - h).abs() < 1e-12, "{e:?}");
+        // A descender in the subscript goes deeper: 0.25 em + 0.7 × p's.
+        let e = measure_runs("ap", &Runs::subscript(1..2), h);
+        assert!((e.descent - (SUB_SHIFT_EM - SUB_SIZE * glyph('p').y_min) * em).abs() < 1e-12);
+        // Flat runs (the `_` of k_v) are not drawn; flat text measures as `measure`.
+        let k = "k_v = 2";
+        let e = measure_runs(k, &Runs::underscored(k), h);
+        let expect = width("k", h) + SUB_SIZE * width("v", h) + width(" = 2", h);
+        assert!((e.width - expect).abs() < 1e-12, "{e:?}");
+        assert_eq!(measure_runs("mp", &Runs::flat(), h), measure("mp", h));
     }
 }

@@ -17,6 +17,7 @@ pub mod parts;
 pub mod pdf;
 #[cfg(feature = "png")]
 pub mod raster;
+pub mod runs;
 pub mod svg;
 
 /// DejaVu Sans, bundled (licence in assets/fonts/DejaVu-LICENSE.txt): the PNG writer renders
@@ -27,6 +28,7 @@ pub mod svg;
 pub static FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSans.ttf");
 
 use crate::geom::{Point, Vector};
+pub use runs::{Run, RunKind, Runs};
 
 /// An AutoCAD Color Index (ACI) colour: 1 red, 2 yellow, 3 green, 4 cyan, 5 blue,
 /// 6 magenta, 7 black on a white sheet (white on black), 8 dark grey, 9 light grey,
@@ -207,8 +209,11 @@ pub enum Shape {
         at: Point,
         /// Cap height in model units.
         height: f64,
-        /// The text (plain; `°`, `φ`, `ω`, `ε`, `π`, `'` are fine).
+        /// The text, flat (plain; `°`, `φ`, `ω`, `ε`, `π`, `′` are fine): as the DXF writes it.
         value: String,
+        /// Which parts of `value` the SVG, PNG and PDF draw as subscripts ([`Runs`]; none:
+        /// all at `height`).
+        runs: Runs,
         /// Horizontal alignment.
         halign: HAlign,
         /// Vertical alignment.
@@ -418,7 +423,16 @@ impl Shape {
     pub fn scale_text_in(&self, mm_per_unit: Option<f64>) -> Option<Shape> {
         let Shape::ScaleText { at, height, caption, halign, valign, rotation } = self else { return None };
         let value = caption.text(mm_per_unit.unwrap_or(caption.paper_mm_per_unit));
-        Some(Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation })
+        let runs = Runs::underscored(&value);
+        Some(Shape::Text {
+            at: *at,
+            height: *height,
+            value,
+            runs,
+            halign: *halign,
+            valign: *valign,
+            rotation: *rotation,
+        })
     }
 
     /// Every number of the shape (coordinates, sizes, angles), in a fixed order.
@@ -602,10 +616,11 @@ impl Drawing {
                 }
                 Shape::Filled { points } => Shape::Filled { points: points.iter().map(p).collect() },
                 Shape::Arrow { from, to, head } => Shape::Arrow { from: p(from), to: p(to), head: head * scale },
-                Shape::Text { at, height, value, halign, valign, rotation } => Shape::Text {
+                Shape::Text { at, height, value, runs, halign, valign, rotation } => Shape::Text {
                     at: p(at),
                     height: height * scale,
                     value: value.clone(),
+                    runs: runs.clone(),
                     halign: *halign,
                     valign: *valign,
                     rotation: *rotation,
@@ -657,6 +672,7 @@ impl Drawing {
                 at,
                 height,
                 value: value.into(),
+                runs: Runs::flat(),
                 halign: HAlign::Left,
                 valign: VAlign::Baseline,
                 rotation: 0.0,
@@ -694,7 +710,8 @@ impl Drawing {
     }
 }
 
-/// The corners of a text's box as drawn in DejaVu Sans ([`font::measure`]: its advances,
+/// The corners of a text's box as drawn in DejaVu Sans ([`font::measure_runs`]: its advances,
+/// a subscript's smaller and lowered,
 /// from the baseline less its deepest descender to its highest glyph, at least the cap
 /// height), turned with the text about its insertion point: lower-left, lower-right,
 /// upper-right, upper-left; a scale's caption as its paper writes it. `None` for a shape that
@@ -703,8 +720,8 @@ pub fn text_corners(shape: &Shape) -> Option<[Point; 4]> {
     if let Some(text) = shape.scale_text_in(None) {
         return text_corners(&text);
     }
-    let Shape::Text { at, height, value, halign, valign, rotation } = shape else { return None };
-    let e = font::measure(value, *height);
+    let Shape::Text { at, height, value, runs, halign, valign, rotation } = shape else { return None };
+    let e = font::measure_runs(value, runs, *height);
     let x0 = match halign {
         HAlign::Left => 0.0,
         HAlign::Center => -0.5 * e.width,
@@ -746,11 +763,10 @@ fn shape_extent_points(shape: &Shape, style: &DimStyle, add: &mut impl FnMut(Poi
             add(*to);
         }
         Shape::Polyline { points, .. } | Shape::Filled { points } => points.iter().for_each(|p| add(*p)),
-        Shape::ScaleText { at, height, caption, halign, valign, rotation } => {
-            let value = caption.on_paper();
-            let text =
-                Shape::Text { at: *at, height: *height, value, halign: *halign, valign: *valign, rotation: *rotation };
-            shape_extent_points(&text, style, add);
+        Shape::ScaleText { .. } => {
+            if let Some(text) = shape.scale_text_in(None) {
+                shape_extent_points(&text, style, add);
+            }
         }
         Shape::Text { .. } => {
             if let Some([a, b, c, d]) = text_corners(shape) {

@@ -386,6 +386,7 @@ fn angular_parts(
         sweep,
         heads: [head(a1 + step, a1), head(a1 + sweep - step, a1 + sweep)],
         text: Shape::Text {
+            runs: super::Runs::flat(),
             at: angular_text_mid(vertex, first, second, radius, text, style),
             height: style.text_height,
             value: text.to_string(),
@@ -487,6 +488,7 @@ fn explode_linear_into(shape: &Shape, style: &DimStyle, out: &mut Vec<Shape>) {
             }
             // Text above the dimension line, upright when read from below or the right.
             out.push(Shape::Text {
+                runs: super::Runs::flat(),
                 at: lay.text_at,
                 height: th,
                 value: text.clone(),

@@ -19,8 +19,9 @@ use krilla::paint::{Fill, LineCap, LineJoin, Stroke, StrokeDash};
 use krilla::text::{Font, GlyphId, KrillaGlyph};
 use skrifa::MetadataProvider;
 
+use super::font::{SUB_SHIFT_EM, SUB_SIZE};
 use super::parts::{CAP_HEIGHT_EM, arc_sweep, arrow, dash_pattern, explode_dimension};
-use super::{Aci, Bounds, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use super::{Aci, Bounds, Drawing, Entity, HAlign, LineType, RunKind, Shape, VAlign};
 use crate::geom::{Point, polar};
 
 /// PDF points per millimetre.
@@ -253,32 +254,11 @@ fn entity(
                 filled(surface, polyline(f, &tri, true));
             }
         }
-        Shape::Text { at, height, value, halign, valign, rotation } => {
-            let size = f.len(*height / CAP_HEIGHT_EM);
-            let glyphs = metrics.glyphs(value);
-            let width: f32 = glyphs.iter().map(|g| g.x_advance).sum::<f32>() * size;
-            let dx = match halign {
-                HAlign::Left => 0.0,
-                HAlign::Center => -0.5 * width,
-                HAlign::Right => -width,
-            };
-            let dy = f.len(match valign {
-                VAlign::Baseline => 0.0,
-                VAlign::Middle => 0.5 * height,
-                VAlign::Top => *height,
-            });
-            let (x, y) = f.pt(*at);
+        Shape::Text { at, height, value, runs, halign, valign, rotation } => {
             surface.set_stroke(None);
             surface.set_fill(Some(fill(c)));
-            // Rotated about the insertion point, counter-clockwise on the page (y is down).
-            let turn = *rotation != 0.0;
-            if turn {
-                surface.push_transform(&rotation_about(-*rotation, x, y));
-            }
-            surface.draw_glyphs(KPoint::from_xy(x + dx, y + dy), &glyphs, font.clone(), value, size, false);
-            if turn {
-                surface.pop();
-            }
+            let place = Placing { at: *at, height: *height, halign: *halign, valign: *valign, rotation: *rotation };
+            text(surface, f, (font, metrics), (value, runs), place);
         }
         caption @ Shape::ScaleText { .. } => {
             // On the page's paper (a page in paper millimetres says 1).
@@ -292,6 +272,66 @@ fn entity(
                 entity(surface, drawing, &sub, f, font, metrics);
             }
         }
+    }
+}
+
+/// Where and how a text is placed: [`Shape::Text`]'s fields but its value and runs.
+struct Placing {
+    at: Point,
+    height: f64,
+    halign: HAlign,
+    valign: VAlign,
+    rotation: f64,
+}
+
+/// Draws a text in its runs (the fill set): base runs at the font size of its cap height,
+/// subscripts [`SUB_SIZE`] times it on a baseline [`SUB_SHIFT_EM`] ems lower, one glyph run
+/// each; flat-only runs not drawn. The text a reader extracts is the letters drawn: `RA` for
+/// R_A, `kv = 2` for k_v = 2, `φ1` for φ_1 (the `_` is only the DXF's). Aligned on the width of what is drawn, as [`super::font::measure_runs`] measures it.
+fn text(
+    surface: &mut krilla::surface::Surface<'_>,
+    f: &Frame,
+    (font, metrics): (&Font, &Metrics<'_>),
+    (value, runs): (&str, &super::Runs),
+    p: Placing,
+) {
+    let size = f.len(p.height / CAP_HEIGHT_EM);
+    // (text, its glyphs, size, rise) per drawn run.
+    let parts: Vec<(&str, Vec<KrillaGlyph>, f32, f32)> = runs
+        .split(value)
+        .filter_map(|(part, kind)| {
+            let (scale, rise) = match kind {
+                RunKind::Base => (1.0, 0.0),
+                RunKind::Sub => (SUB_SIZE as f32, SUB_SHIFT_EM as f32),
+                RunKind::Flat => return None,
+            };
+            Some((part, metrics.glyphs(part), scale * size, rise * size))
+        })
+        .collect();
+    let width: f32 = parts.iter().map(|(_, g, sz, _)| g.iter().map(|g| g.x_advance).sum::<f32>() * sz).sum();
+    let dx = match p.halign {
+        HAlign::Left => 0.0,
+        HAlign::Center => -0.5 * width,
+        HAlign::Right => -width,
+    };
+    let dy = f.len(match p.valign {
+        VAlign::Baseline => 0.0,
+        VAlign::Middle => 0.5 * p.height,
+        VAlign::Top => p.height,
+    });
+    let (x, y) = f.pt(p.at);
+    // Rotated about the insertion point, counter-clockwise on the page (y is down).
+    let turn = p.rotation != 0.0;
+    if turn {
+        surface.push_transform(&rotation_about(-p.rotation, x, y));
+    }
+    let mut pen = x + dx;
+    for (part, glyphs, sz, rise) in &parts {
+        surface.draw_glyphs(KPoint::from_xy(pen, y + dy + rise), glyphs, font.clone(), part, *sz, false);
+        pen += glyphs.iter().map(|g| g.x_advance).sum::<f32>() * sz;
+    }
+    if turn {
+        surface.pop();
     }
 }
 

@@ -297,6 +297,7 @@ pub fn chain(
     dr.add(
         axis,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: Point::new(xmax + margin + 0.5 * th, 0.0),
             height: th,
             value: format!("x [{units}]"),
@@ -320,6 +321,7 @@ pub fn chain(
         dr.add(
             names,
             Shape::Text {
+                runs: crate::draw::Runs::flat(),
                 at: Point::new(f.x, bottom - 0.4 * th - w),
                 height: h,
                 value,

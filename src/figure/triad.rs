@@ -159,7 +159,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
         let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
         occupied.extend([-half_pi - 0.5, -half_pi + 0.5]);
         let dir = free_direction(&occupied);
-        letters.letter_clear(t.o[i], &format!("O{}", i + 1), s.text, toward(dir), s.joint);
+        letters.letter_clear(t.o[i], format!("O{}", i + 1), s.text, toward(dir), s.joint);
         // At A_i: the link back to O_i, the two sides and the circle through A_i.
         let occupied = [
             angle_of(t.o[i] - a[i]),
@@ -169,7 +169,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             phi - half_pi,
         ];
         let dir = free_direction(&occupied);
-        letters.letter_clear(a[i], &format!("A{}", i + 1), s.text, toward(dir), s.joint);
+        letters.letter_clear(a[i], format!("A{}", i + 1), s.text, toward(dir), s.joint);
     }
     letters.draw(&mut d, text);
 

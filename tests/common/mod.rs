@@ -28,6 +28,20 @@ pub fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
+/// An SVG's text as read: the `<tspan …>` and `</tspan>` tags of subscripts taken out, so
+/// that R_A reads `RA` and `k_v = 1` reads `kv = 1` (as the PDF's text does).
+pub fn svg_plain(svg: &str) -> String {
+    let mut out = String::with_capacity(svg.len());
+    let mut rest = svg;
+    while let Some(i) = [rest.find("<tspan"), rest.find("</tspan>")].into_iter().flatten().min() {
+        out.push_str(&rest[..i]);
+        let end = rest[i..].find('>').map_or(rest.len(), |j| i + j + 1);
+        rest = &rest[end..];
+    }
+    out.push_str(rest);
+    out
+}
+
 fn update() -> bool {
     std::env::var_os("UPDATE_GOLDEN").is_some_and(|v| v == "1")
 }

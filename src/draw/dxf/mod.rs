@@ -602,7 +602,7 @@ fn prims<'a>(shape: &'a Shape, outlined: bool, mut f: impl FnMut(Prim<'a>)) {
                 }
             }
         }
-        Shape::Text { at, height, value, halign, valign, rotation } => {
+        Shape::Text { at, height, value, halign, valign, rotation, .. } => {
             let fit = librecad::text_fit(*at, *height, value, *halign, *valign, *rotation);
             f(Prim::Text {
                 at: fit.at,
@@ -982,6 +982,7 @@ mod tests {
     fn text_alignment_rotation_and_unicode_escapes() {
         let mut d = drawing();
         let t = |at, halign, valign, rotation: f64, value: &str| Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at,
             height: 2.0,
             value: value.into(),
@@ -1107,6 +1108,7 @@ mod tests {
                         at: p(w, 0.0),
                         height: 2.0,
                         value,
+                        runs: crate::draw::Runs::flat(),
                         halign: HAlign::Right,
                         valign: VAlign::Baseline,
                         rotation: 0.3,
@@ -1190,7 +1192,18 @@ mod tests {
                 {
                     for at in [p(0.0, 0.0), p(-0.0, 1e-14), p(3.0, -4.0), p(0.0, 2.0)] {
                         let value = texts[(i + j + r) % texts.len()].to_string();
-                        add(&mut d, Shape::Text { at, height: 1.0 + r as f64, value, halign, valign, rotation });
+                        add(
+                            &mut d,
+                            Shape::Text {
+                                runs: crate::draw::Runs::flat(),
+                                at,
+                                height: 1.0 + r as f64,
+                                value,
+                                halign,
+                                valign,
+                                rotation,
+                            },
+                        );
                     }
                 }
             }

@@ -36,7 +36,8 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
         }
         Shape::Filled { points } => Shape::Filled { points: points.iter().map(p).collect() },
         Shape::Arrow { from, to, head } => Shape::Arrow { from: p(from), to: p(to), head: head * k },
-        Shape::Text { at, height, value, halign, valign, rotation } => Shape::Text {
+        Shape::Text { at, height, value, halign, valign, rotation, .. } => Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: p(at),
             height: height * k,
             value: for_azomix(value).into_owned(),
@@ -46,6 +47,7 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
         },
         // A scale caption says the scale of the DXF's millimetres.
         Shape::ScaleText { at, height, caption, halign, valign, rotation } => Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: p(at),
             height: height * k,
             value: for_azomix(&caption.text(k)).into_owned(),

@@ -8,8 +8,9 @@ use svg::node::element::{Circle, Group, Line, Path, Polygon, Polyline, Rectangle
 
 use super::{FONT_FAMILY, Frame, SvgOptions, num};
 use crate::draw::parts::{arc_sweep, arrow, dash_pattern, explode_dimension};
-use crate::draw::{Aci, Bounds, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Aci, Bounds, Drawing, Entity, HAlign, LineType, RunKind, Runs, Shape, VAlign, font};
 use crate::geom::{Point, polar};
+use svg::node::Blob;
 
 fn rgb(c: Aci) -> String {
     let (r, g, b) = c.rgb();
@@ -157,8 +158,8 @@ fn entity_nodes(drawing: &Drawing, e: &Entity, f: &Frame) -> Vec<Box<dyn svg::No
                 ));
             }
         }
-        Shape::Text { at, height, value, halign, valign, rotation } => {
-            nodes.push(Box::new(text_node(f, *at, *height, value, *halign, *valign, *rotation, &color)));
+        Shape::Text { at, height, value, runs, halign, valign, rotation } => {
+            nodes.push(Box::new(text_node(f, *at, *height, (value, runs), *halign, *valign, *rotation, &color)));
         }
         caption @ Shape::ScaleText { .. } => {
             if let Some(shape) = caption.scale_text_in(f.paper) {
@@ -180,7 +181,7 @@ fn text_node(
     f: &Frame,
     at: Point,
     height: f64,
-    value: &str,
+    (value, runs): (&str, &Runs),
     halign: HAlign,
     valign: VAlign,
     rotation: f64,
@@ -200,7 +201,17 @@ fn text_node(
         VAlign::Middle => 0.5 * height,
         VAlign::Top => height,
     });
-    let mut t = Text::new(value)
+    let mut t = if runs.is_flat() {
+        Text::new(value)
+    } else {
+        // The runs' markup as the element's only child.
+        let mut t = Text::new("");
+        if let Some(c) = t.get_children_mut() {
+            c.clear();
+        }
+        t.add(Blob::new(runs_markup(value, runs, size)))
+    };
+    t = t
         .set("x", num(x))
         .set("y", num(y))
         .set("font-size", num(size))
@@ -215,6 +226,37 @@ fn text_node(
         t = t.set("transform", format!("rotate({} {} {})", num(-rotation.to_degrees()), num(x), num(y)));
     }
     t
+}
+
+/// A text's runs as `<tspan>`s (a subscript smaller and lowered by `dy`, the base text
+/// after it raised back), with no white space between them.
+fn runs_markup(value: &str, runs: &Runs, size: f64) -> String {
+    let esc = |s: &str| s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;");
+    let shift = font::SUB_SHIFT_EM * size;
+    let (mut out, mut lowered) = (String::new(), false);
+    for (part, kind) in runs.split(value) {
+        match (kind, lowered) {
+            (RunKind::Flat, _) => {}
+            (RunKind::Sub, false) => {
+                out += &format!(
+                    r#"<tspan dy="{}" font-size="{}">{}</tspan>"#,
+                    num(shift),
+                    num(font::SUB_SIZE * size),
+                    esc(part)
+                );
+                lowered = true;
+            }
+            (RunKind::Sub, true) => {
+                out += &format!(r#"<tspan font-size="{}">{}</tspan>"#, num(font::SUB_SIZE * size), esc(part))
+            }
+            (RunKind::Base, true) => {
+                out += &format!(r#"<tspan dy="{}" xml:space="preserve">{}</tspan>"#, num(-shift), esc(part));
+                lowered = false;
+            }
+            (RunKind::Base, false) => out += &esc(part),
+        }
+    }
+    out
 }
 
 fn arc_path(f: &Frame, center: Point, radius: f64, start: f64, end: f64) -> String {

@@ -100,7 +100,7 @@ pub fn name_centres(d: &mut Drawing, drawn: &[(&str, Point)], window: &Bounds, s
     for (name, p) in drawn {
         // On two or three Kennedy lines through the centre: a leader lets the name go out
         // between them.
-        letters.name_with_leader(*p, name, 0.85 * s.text, p - mid, None);
+        letters.name_with_leader(*p, *name, 0.85 * s.text, p - mid, None);
     }
     letters.keep_off_drawing(d);
     letters.keep_within(panel);
@@ -154,6 +154,7 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
             color: None,
             linetype: None,
             shape: Shape::Text {
+                runs: crate::draw::Runs::flat(),
                 at,
                 height: s.text,
                 value: title,
@@ -169,6 +170,7 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
                 color: None,
                 linetype: None,
                 shape: Shape::Text {
+                    runs: crate::draw::Runs::flat(),
                     at,
                     height: 0.85 * s.text,
                     value: n.clone(),

@@ -15,7 +15,7 @@ use crate::geom::{Point, Vector, perp};
 use crate::solve::fourbar::joukowski::{Lever, LeverForce, image_point};
 
 use crate::figure::fourbar::angle_text;
-use crate::figure::shared::labels::{self};
+use crate::figure::shared::labels::{self, Label};
 use crate::figure::shared::vocab::{
     ModelUnits, Scale, Sizes, content_drawing, layer_of, layers, length_scale, nice_scale, pole, unit_or, vector,
 };
@@ -61,7 +61,8 @@ const LEVER_HEIGHT: f64 = 0.85;
 
 /// A text line of a panel.
 fn line(d: &mut Drawing, layer: usize, at: Point, height: f64, value: String, halign: HAlign) {
-    let shape = Shape::Text { at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
+    let shape =
+        Shape::Text { runs: crate::draw::Runs::flat(), at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
     d.push(Entity { layer, color: None, linetype: None, shape });
 }
 
@@ -142,7 +143,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             if n.starts_with('c') {
                 d.add(vel, Shape::Circle { center: q, radius: 0.25 * s.joint });
             }
-            letters.letter(q, n, s.text, q - mid, None);
+            letters.letter(q, *n, s.text, q - mid, None);
         }
         for (f, balancing) in &arrows {
             let from = at(f.image);
@@ -170,7 +171,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             let from = at(f.image);
             let v = dir(f);
             let color = balancing.then_some(Aci::RED);
-            names.name_with_leader(from + v * 0.6, &f.name, small, perp(v), color);
+            names.name_with_leader(from + v * 0.6, Label::quantity(&f.name), small, perp(v), color);
         }
         names.keep_off_drawing(&d);
         names.keep_within(frame_box);

@@ -45,7 +45,7 @@ use crate::solve::fourbar::{ExternalForce, Forces, Link, LinkLoad};
 use crate::solve::fourbar::{Geometry, Kinematics, Position};
 
 use crate::figure::shared::forces::{self, ForcePolygon, NamedVector, Resultant};
-use crate::figure::shared::labels;
+use crate::figure::shared::labels::{self, Label};
 pub use crate::figure::shared::panels::ScaleChoice;
 pub use crate::figure::shared::panels::TABLE_CAPTION;
 use crate::figure::shared::panels::{Extent, ForceSpec, PanelFrame, PanelSpec};
@@ -375,11 +375,11 @@ pub(crate) fn mechanism(
         letters.circled(mid, number, s.text, n, 0.5 * s.link);
     }
     if let Some(mid) = omega_mid {
-        letters.letter(mid, "ω1", s.text, mid - geom.o1, None);
+        letters.letter(mid, Label::quantity("ω1"), s.text, mid - geom.o1, None);
     }
     for a in arrows {
         let v = a.arrow.1 - a.arrow.0;
-        letters.letter(a.arrow.1, &a.force.name, s.text, v, None);
+        letters.letter(a.arrow.1, a.force.label(), s.text, v, None);
     }
     // Clear of everything drawn so far and around.
     letters.keep_off_drawing(d);
@@ -609,7 +609,7 @@ fn on_mechanism(geom: &Geometry, pos: &Position, f: &Forces, external: &[Externa
     for (i, e) in external.iter().enumerate() {
         if e.range.is_none_or(|r| r.contains_deg(phi1_deg)) {
             let name = if external.len() == 1 { "F".to_string() } else { format!("F{}", i + 1) };
-            out.push((e.at.at(pos), NamedVector { name, v: e.value }));
+            out.push((e.at.at(pos), NamedVector::new(&name, e.value)));
         }
     }
     out
@@ -785,7 +785,7 @@ pub(crate) mod tests {
 
     /// The letters of each polygon in a drawn position: (polygon, centre, text, height),
     /// polygon 0 velocity, 1 acceleration, 2 force (the force panel's texts only).
-    fn polygon_letters(lay: &Layout, d: &Drawing) -> Vec<(usize, Point, String, f64)> {
+    fn polygon_letters(lay: &Layout, d: &Drawing) -> Vec<(usize, Point, String, f64, crate::draw::Runs)> {
         let force_panel = lay.frame.panels.iter().find(|p| p.0.on_paper().starts_with("Force")).cloned();
         let (vel, acc, frc) =
             (layer_of(d, layers::VELOCITY), layer_of(d, layers::ACCELERATION), layer_of(d, layers::FORCES));
@@ -793,7 +793,7 @@ pub(crate) mod tests {
             .iter()
             .filter_map(|e| match &e.shape {
                 // Letters and names are centred on their place (the table's texts are not).
-                Shape::Text { at, height, value, halign: HAlign::Center, .. } => {
+                Shape::Text { at, height, value, runs, halign: HAlign::Center, .. } => {
                     let poly = if e.layer == vel {
                         0
                     } else if e.layer == acc {
@@ -805,7 +805,7 @@ pub(crate) mod tests {
                     } else {
                         return None;
                     };
-                    Some((poly, *at, value.clone(), *height))
+                    Some((poly, *at, value.clone(), *height, runs.clone()))
                 }
                 _ => None,
             })
@@ -825,7 +825,8 @@ pub(crate) mod tests {
             let letters = polygon_letters(&lay, &d);
             for (j, a) in letters.iter().enumerate() {
                 for b in &letters[..j] {
-                    let (ba, bb) = (TextBox::centred(a.1, &a.2, a.3), TextBox::centred(b.1, &b.2, b.3));
+                    let (ba, bb) =
+                        (TextBox::centred_runs(a.1, &a.2, &a.4, a.3), TextBox::centred_runs(b.1, &b.2, &b.4, b.3));
                     if a.0 == b.0 && ba.overlaps(&bb) {
                         overlaps[a.0] += 1;
                         first_bad.get_or_insert(i);
@@ -873,10 +874,10 @@ pub(crate) mod tests {
                     _ => None,
                 })
                 .collect();
-            for (poly, at, text, h) in polygon_letters(&lay, &d) {
+            for (poly, at, text, h, runs) in polygon_letters(&lay, &d) {
                 // Force names and the centroids' letters may go further out, with a leader.
                 let leader = poly == 2 || text.starts_with('c') || text.starts_with('n');
-                let reach = if leader { max_leader_distance(&text, h) } else { max_distance(&text, h) }
+                let reach = if leader { max_leader_distance(&text, &runs, h) } else { max_distance(&text, &runs, h) }
                     + COINCIDENT * h
                     + 1e-9 * h;
                 for name in text.split(SAME_POINT) {

@@ -143,8 +143,9 @@ impl FourbarSheets {
         table: &Table,
         (first, total): (usize, usize),
     ) -> PositionPages {
-        let position = format!("φ1 = {}°", angle_text(deg(pos.phi1)));
-        let omega = format!("ω1 = {} rad/s", angle_text(self.omega1));
+        // Title block cells: `_` before a subscript (sheet::TitleBlock).
+        let position = format!("φ_1 = {}°", angle_text(deg(pos.phi1)));
+        let omega = format!("ω_1 = {} rad/s", angle_text(self.omega1));
         let title = |cells: Vec<String>, n: usize| TitleBlock {
             name: self.name.clone(),
             subject: "four-bar".to_string(),

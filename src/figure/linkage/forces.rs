@@ -71,6 +71,16 @@ fn applied_name(dynamics: &Dynamics, a: &Applied) -> String {
     }
 }
 
+/// An applied force, named ([`applied_name`]): a load by the name its user gave it, drawn
+/// as written; the others a quantity's symbol and subscript (F_i2, G_2, F_e1).
+fn applied_vector(dynamics: &Dynamics, a: &Applied) -> NamedVector {
+    let name = applied_name(dynamics, a);
+    match a.kind {
+        AppliedKind::Load(_) => NamedVector::as_written(&name, a.force),
+        _ => NamedVector::new(&name, a.force),
+    }
+}
+
 /// Where joint `j` acts at `state`.
 fn joint_point(mech: &Mechanism, state: &State, j: usize) -> Point {
     match mech.joints[j].kind {
@@ -84,7 +94,7 @@ fn joint_point(mech: &Mechanism, state: &State, j: usize) -> Point {
 pub fn body_forces(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Forces) -> Vec<Vec<(Point, NamedVector)>> {
     let mut out: Vec<Vec<(Point, NamedVector)>> = vec![Vec::new(); mech.bodies.len()];
     for a in applied_forces(mech, dynamics, state, f) {
-        out[a.body].push((a.at, NamedVector { name: applied_name(dynamics, &a), v: a.force }));
+        out[a.body].push((a.at, applied_vector(dynamics, &a)));
     }
     for (j, joint) in mech.joints.iter().enumerate() {
         let (first, second) = joint_bodies(&joint.kind);
@@ -92,10 +102,10 @@ pub fn body_forces(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &For
         let at = joint_point(mech, state, j);
         let r = f.reactions[j].force;
         if let Attach::Body(b) = second {
-            out[b].push((at, NamedVector { name, v: r }));
+            out[b].push((at, NamedVector::new(&name, r)));
         }
         if let Attach::Body(a) = first {
-            out[a].push((at, NamedVector { name: opposite, v: -r }));
+            out[a].push((at, NamedVector::new(&opposite, -r)));
         }
     }
     out
@@ -202,7 +212,7 @@ fn reaction_on(mech: &Mechanism, f: &Forces, j: usize, body: usize) -> NamedVect
     let (first, _) = joint_bodies(&mech.joints[j].kind);
     let (name, opposite) = reaction_names(mech, j);
     let r = f.reactions[j].force;
-    if first == Attach::Body(body) { NamedVector { name: opposite, v: -r } } else { NamedVector { name, v: r } }
+    if first == Attach::Body(body) { NamedVector::new(&opposite, -r) } else { NamedVector::new(&name, r) }
 }
 
 /// The force polygon of one group at one sample (seed 003, Figs. 4 and 5, for any group):
@@ -224,11 +234,8 @@ pub fn group_polygon(
     let applied = applied_forces(mech, dynamics, state, f);
     let own = |a: &Applied| matches!(a.kind, AppliedKind::Driver(d) if fig.drivers.contains(&d));
     let per_body = |b: usize, found: bool| -> Vec<NamedVector> {
-        let mut out: Vec<NamedVector> = applied
-            .iter()
-            .filter(|a| a.body == b && own(a) == found)
-            .map(|a| NamedVector { name: applied_name(dynamics, a), v: a.force })
-            .collect();
+        let mut out: Vec<NamedVector> =
+            applied.iter().filter(|a| a.body == b && own(a) == found).map(|a| applied_vector(dynamics, a)).collect();
         let joints = if found { &fig.found } else { &fig.known };
         out.extend(joints.iter().filter(|(_, on)| *on == b).map(|&(j, _)| reaction_on(mech, f, j, b)));
         out
@@ -341,13 +348,11 @@ pub fn caption(mech: &Mechanism, body: usize) -> String {
 /// joint, and each load where it acts while it acts.
 pub fn on_mechanism(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Forces) -> Vec<(Point, NamedVector)> {
     let mut out: Vec<(Point, NamedVector)> = (0..mech.joints.len())
-        .map(|j| {
-            (joint_point(mech, state, j), NamedVector { name: reaction_names(mech, j).0, v: f.reactions[j].force })
-        })
+        .map(|j| (joint_point(mech, state, j), NamedVector::new(&reaction_names(mech, j).0, f.reactions[j].force)))
         .collect();
     for a in applied_forces(mech, dynamics, state, f) {
         if let AppliedKind::Load(_) = a.kind {
-            out.push((a.at, NamedVector { name: applied_name(dynamics, &a), v: a.force }));
+            out.push((a.at, applied_vector(dynamics, &a)));
         }
     }
     out

@@ -23,7 +23,7 @@ use crate::geom::{Point, Vector, perp};
 use crate::solve::linkage::{Anchor, Attach, JointKind, Mechanism, place};
 
 use crate::figure::shared::forces::ForceArrow;
-use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::labels::{self, Label, TextBox};
 use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
 
 /// Largest extent of the motion (every body point over every position) on paper,
@@ -401,10 +401,10 @@ pub fn mechanism_with_forces(
         let (a0, a1) = (mid_angle - half, mid_angle + half);
         let (from, sweep) = if w > 0.0 { (a0, a1 - a0) } else { (a1, a0 - a1) };
         let mid = vocab::turn_arrow(d, layer, p, 3.5 * s.joint, from, sweep, s);
-        letters.name_with_leader(mid, &format!("ω{}", body + 1), s.text, mid - p, None);
+        letters.name_with_leader(mid, Label::quantity(&format!("ω{}", body + 1)), s.text, mid - p, None);
     }
     for a in arrows {
-        letters.letter(a.arrow.1, &a.force.name, s.text, a.arrow.1 - a.arrow.0, None);
+        letters.letter(a.arrow.1, a.force.label(), s.text, a.arrow.1 - a.arrow.0, None);
     }
     letters.keep_off_drawing(d);
     letters.around(around);

@@ -151,8 +151,8 @@ impl LinkageSheets {
                 Attach::Ground => 0,
             };
             let phi = deg(d.law.eval(state.t).value).rem_euclid(360.0);
-            driver.push(format!("φ{n} = {}°", crate::figure::fourbar::angle_text(phi)));
-            driver.push(format!("ω{n} = {} rad/s", sheet::number(state.angular(body).1)));
+            driver.push(format!("φ_{n} = {}°", crate::figure::fourbar::angle_text(phi)));
+            driver.push(format!("ω_{n} = {} rad/s", sheet::number(state.angular(body).1)));
         }
         let title = |cells: Vec<String>, n: usize| {
             let mut all = driver.clone();

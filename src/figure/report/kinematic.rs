@@ -174,8 +174,15 @@ fn legend(d: &mut Drawing, area: Bounds, sk: &Sketch, s: Sizes) {
         }));
     }
     rows.push(("link number", |d, l, p, s| {
-        let placed =
-            labels::Placed { centre: p, text: "1".into(), height: s.text, color: None, leader: None, circled: true };
+        let placed = labels::Placed {
+            centre: p,
+            text: "1".into(),
+            runs: Default::default(),
+            height: s.text,
+            color: None,
+            leader: None,
+            circled: true,
+        };
         labels::draw_placed(d, l, &placed, None);
     }));
     if sk.driver.is_some() {

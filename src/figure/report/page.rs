@@ -186,7 +186,18 @@ pub fn rect(d: &mut Drawing, l: usize, b: Bounds, width: f64) {
 
 /// A text, its middle at `at`'s height.
 pub fn text(d: &mut Drawing, l: usize, at: Point, height: f64, value: &str, halign: HAlign) {
-    d.add(l, Shape::Text { at, height, value: value.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 });
+    d.add(
+        l,
+        Shape::Text {
+            runs: crate::draw::Runs::flat(),
+            at,
+            height,
+            value: value.to_string(),
+            halign,
+            valign: VAlign::Middle,
+            rotation: 0.0,
+        },
+    );
 }
 
 /// The height at which `value` fits `room` mm: `height`, or less down to the small letters

@@ -325,6 +325,7 @@ fn number_links(
             &labels::Placed {
                 centre: c,
                 text: (i + 1).to_string(),
+                runs: Default::default(),
                 height: s.text,
                 color: None,
                 leader: None,
@@ -543,7 +544,7 @@ fn chords(letters: &mut labels::Polygon, c: Point, r: f64, start: f64, sweep: f6
 /// its height under the baseline to its cap height), unrotated texts; a rotated text's box
 /// is its extent around the insertion point.
 pub fn text_box(shape: &Shape) -> TextBox {
-    let Shape::Text { at, height, value, halign, valign, rotation } = shape else {
+    let Shape::Text { at, height, value, halign, valign, rotation, .. } = shape else {
         return TextBox { min: Point::origin(), max: Point::origin() };
     };
     let w = parts::text_width(value, *height);

@@ -120,6 +120,7 @@ pub fn caption(d: &mut Drawing, layer: usize, top_left: Point, lines: &[String],
         d.add(
             layer,
             Shape::Text {
+                runs: crate::draw::Runs::flat(),
                 at: Point::new(top_left.x, y),
                 height,
                 value: line.clone(),

@@ -44,12 +44,26 @@ pub struct NamedVector {
     pub name: String,
     /// The vector, physical units.
     pub v: Vector,
+    /// Whether the name is a quantity's symbol and its subscript (`R` + `A`, `F` + `i2`:
+    /// drawn R_A, [`labels::Label::quantity`]), not a name the user gave (a load's `gas`,
+    /// drawn as written).
+    pub quantity: bool,
 }
 
 impl NamedVector {
-    /// `v` named `name`.
+    /// `v` named `name`, a quantity's symbol and its subscript (`RA`, `Fi2`, `G21`).
     pub fn new(name: &str, v: Vector) -> NamedVector {
-        NamedVector { name: name.to_string(), v }
+        NamedVector { name: name.to_string(), v, quantity: true }
+    }
+
+    /// `v` named `name` as the user wrote it (a load's name): drawn flat.
+    pub fn as_written(name: &str, v: Vector) -> NamedVector {
+        NamedVector { name: name.to_string(), v, quantity: false }
+    }
+
+    /// Its name as drawn.
+    pub fn label(&self) -> labels::Label {
+        if self.quantity { labels::Label::quantity(&self.name) } else { labels::Label::from(&self.name) }
     }
 }
 
@@ -148,8 +162,8 @@ pub fn draw_within(
     // Every segment drawn so far, for resultants to keep off.
     let mut drawn: Vec<(Point, Point)> = Vec::new();
     // The names: (drawn segment, name, force, where along it, colour).
-    type Named<'a> = ((Point, Point), &'a str, Vector, f64, Option<Aci>);
-    let mut named: Vec<Named<'_>> = Vec::new();
+    type Named = ((Point, Point), labels::Label, Vector, f64, Option<Aci>);
+    let mut named: Vec<Named> = Vec::new();
     let first_found = poly.chain.len().saturating_sub(poly.found);
     for (i, nv) in poly.chain.iter().enumerate() {
         let seg = (pts[i], pts[i + 1]);
@@ -158,7 +172,7 @@ pub fn draw_within(
             drawn.push(seg);
         }
         names.segment(seg.0, seg.1);
-        named.push((seg, &nv.name, nv.v, 0.5, color));
+        named.push((seg, nv.label(), nv.v, 0.5, color));
     }
     for r in &poly.resultants {
         let seg = (pts[r.from], pts[r.to]);
@@ -168,7 +182,7 @@ pub fn draw_within(
         }
         names.segment(placed.0, placed.1);
         let v = pts[r.to] - pts[r.from];
-        named.push((placed, &r.name, v, r.name_at, Some(RESULTANT)));
+        named.push((placed, labels::Label::quantity(&r.name), v, r.name_at, Some(RESULTANT)));
     }
     // The shortest vectors' names first: they have the fewest places beside them (a long
     // vector's name finds room anywhere along it).
@@ -200,7 +214,7 @@ fn arrow(d: &mut Drawing, layer: usize, color: Option<Aci>, (from, to): (Point, 
 fn name(
     names: &mut labels::Polygon,
     (from, to): (Point, Point),
-    text: &str,
+    text: labels::Label,
     v: Vector,
     at: f64,
     inside: Point,
@@ -360,8 +374,15 @@ pub fn table(d: &mut Drawing, rows: &[Magnitude], top_left: Point, width: f64, s
             (top_left.x, r.name.clone(), HAlign::Left),
             (top_left.x + width, magnitude_text(r.value, &r.unit), HAlign::Right),
         ] {
-            let shape =
-                Shape::Text { at: Point::new(x, y), height: h, value, halign, valign: VAlign::Baseline, rotation: 0.0 };
+            let shape = Shape::Text {
+                runs: crate::draw::Runs::flat(),
+                at: Point::new(x, y),
+                height: h,
+                value,
+                halign,
+                valign: VAlign::Baseline,
+                rotation: 0.0,
+            };
             d.push(Entity { layer: l, color: None, linetype: Some(LineType::Continuous), shape });
         }
     }

@@ -32,7 +32,7 @@
 //! places.
 
 use crate::draw::font;
-use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Shape, VAlign};
+use crate::draw::{Aci, Drawing, Entity, HAlign, LineType, Runs, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
 /// Clear space between a point and the nearest edge of its letter's box, in text heights.
@@ -86,14 +86,20 @@ impl TextBox {
     /// ([`font::measure`]): its advances wide, from its deepest descender to its highest
     /// glyph (at least the cap height) tall.
     pub fn centred(centre: Point, text: &str, height: f64) -> TextBox {
-        let (half, shift) = TextBox::half_size(text, height);
+        TextBox::centred_runs(centre, text, &Runs::flat(), height)
+    }
+
+    /// [`TextBox::centred`] of a text drawn in its `runs` (a subscript smaller and lowered:
+    /// [`font::measure_runs`]).
+    pub fn centred_runs(centre: Point, text: &str, runs: &Runs, height: f64) -> TextBox {
+        let (half, shift) = TextBox::half_size(text, runs, height);
         TextBox::around(centre - shift, half)
     }
 
-    /// Half the width and half the height of [`TextBox::centred`]'s box, and the shift from
-    /// the box's centre to the text's centre (the middle of its capitals).
-    fn half_size(text: &str, height: f64) -> (Vector, Vector) {
-        let e = font::measure(text, height);
+    /// Half the width and half the height of [`TextBox::centred_runs`]'s box, and the shift
+    /// from the box's centre to the text's centre (the middle of its capitals).
+    fn half_size(text: &str, runs: &Runs, height: f64) -> (Vector, Vector) {
+        let e = font::measure_runs(text, runs, height);
         // Box from (baseline − descent) to (baseline + ascent), the baseline half a height
         // under the text's centre.
         let middle = -0.5 * height + 0.5 * (e.ascent - e.descent);
@@ -146,6 +152,7 @@ pub type Segment = (Point, Point);
 struct Letter {
     at: Point,
     text: String,
+    runs: Runs,
     dir: Vector,
     height: f64,
     color: Option<Aci>,
@@ -164,8 +171,58 @@ impl Letter {
         if self.circled {
             (Vector::new(CIRCLE_RADIUS * self.height, CIRCLE_RADIUS * self.height), Vector::zeros())
         } else {
-            TextBox::half_size(&self.text, self.height)
+            TextBox::half_size(&self.text, &self.runs, self.height)
         }
+    }
+}
+
+/// A label's text, flat (as the DXF writes it), and its runs: which part the SVG, PNG and
+/// PDF draw as a subscript. The figure states it: a point's letter is flat
+/// ([`Label::from`] a `&str`: `A`, `O1`, `a′`, user point names as the user spelt them); a
+/// quantity's name is its symbol with the rest as subscript ([`Label::quantity`]: `R` +
+/// `A`, `n` + `AB`, `F` + `i21`, `ω` + `1`).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Label {
+    /// The text, flat.
+    pub text: String,
+    /// Its runs.
+    pub runs: Runs,
+}
+
+impl Label {
+    /// A quantity's name `name` (a force, a vector component, an angle, a velocity): an
+    /// optional sign (`−`), the quantity's symbol (its first character: `R`, `F`, `G`, `M`,
+    /// `n`, `a`, `v`, `ω`, `φ`, `π`), then its subscript, which is the rest (a joint's or a
+    /// body's name: `A`, `32`, `AB`, `A3O3`, `e1`, `i21`) up to the primes (`′`, `'`) that
+    /// end it: `RA` → R_A, `−R32` → −R_32, `nA3O3` → n_A3O3, `FM3'` → F_M3'. A name of one
+    /// symbol (`G`, `k`, `π`) has no subscript.
+    pub fn quantity(name: &str) -> Label {
+        let start = name.strip_prefix(['−', '-']).map_or(0, |rest| name.len() - rest.len());
+        let Some(symbol) = name[start..].chars().next() else { return Label::from(name) };
+        let from = start + symbol.len_utf8();
+        let end = name.trim_end_matches(['′', '\'', '″']).len().max(from);
+        Label { text: name.to_string(), runs: Runs::subscript(from..end) }
+    }
+}
+
+impl From<&str> for Label {
+    /// A flat label.
+    fn from(text: &str) -> Label {
+        Label { text: text.to_string(), runs: Runs::flat() }
+    }
+}
+
+impl From<&String> for Label {
+    /// A flat label.
+    fn from(text: &String) -> Label {
+        Label::from(text.as_str())
+    }
+}
+
+impl From<String> for Label {
+    /// A flat label.
+    fn from(text: String) -> Label {
+        Label { text, runs: Runs::flat() }
     }
 }
 
@@ -185,8 +242,10 @@ pub struct Around<'a> {
 pub struct Placed {
     /// Centre of the text (and of its circle).
     pub centre: Point,
-    /// The text.
+    /// The text, flat.
     pub text: String,
+    /// Its runs (which part is a subscript).
+    pub runs: Runs,
     /// Its height.
     pub height: f64,
     /// Entity colour, or the layer's.
@@ -204,7 +263,7 @@ impl Placed {
             let r = CIRCLE_RADIUS * self.height;
             TextBox::around(self.centre, Vector::new(r, r))
         } else {
-            TextBox::centred(self.centre, &self.text, self.height)
+            TextBox::centred_runs(self.centre, &self.text, &self.runs, self.height)
         }
     }
 }
@@ -234,38 +293,50 @@ impl Polygon {
 
     /// A letter `text` (`height` high, entity colour `color` or the layer's) for the point
     /// `at`, preferably on the side `dir` (any length; zero means above).
-    pub fn letter(&mut self, at: Point, text: &str, height: f64, dir: Vector, color: Option<Aci>) {
-        self.push(Letter { at, text: text.to_string(), dir, height, color, clear: 0.0, leader: false, circled: false });
+    pub fn letter(&mut self, at: Point, text: impl Into<Label>, height: f64, dir: Vector, color: Option<Aci>) {
+        let Label { text, runs } = text.into();
+        self.push(Letter { at, text, runs, dir, height, color, clear: 0.0, leader: false, circled: false });
     }
 
     /// A name for the point `at` (a short force's middle) that may go up to
     /// [`LEADER_RINGS`] out, preferably on the side `dir`, with a leader line from `at` to
     /// its box when it does not sit beside the point.
-    pub fn name_with_leader(&mut self, at: Point, text: &str, height: f64, dir: Vector, color: Option<Aci>) {
-        self.push(Letter { at, text: text.to_string(), dir, height, color, clear: 0.0, leader: true, circled: false });
+    pub fn name_with_leader(
+        &mut self,
+        at: Point,
+        text: impl Into<Label>,
+        height: f64,
+        dir: Vector,
+        color: Option<Aci>,
+    ) {
+        let Label { text, runs } = text.into();
+        self.push(Letter { at, text, runs, dir, height, color, clear: 0.0, leader: true, circled: false });
     }
 
     /// A link number `text` in a circle of [`CIRCLE_RADIUS`] heights, for the point `at`
     /// (a link's middle), keeping `clear` more than [`LABEL_GAP`] from it (half the link's
     /// width), preferably on the side `dir`.
     pub fn circled(&mut self, at: Point, text: &str, height: f64, dir: Vector, clear: f64) {
-        self.push(Letter { at, text: text.to_string(), dir, height, color: None, clear, leader: false, circled: true });
-    }
-
-    /// A letter `text` for the point `at` that keeps `clear` (model units, such as a joint
-    /// circle's radius) more than [`LABEL_GAP`] between the point and its box, preferably
-    /// on the side `dir`.
-    pub fn letter_clear(&mut self, at: Point, text: &str, height: f64, dir: Vector, clear: f64) {
+        let runs = Runs::flat();
         self.push(Letter {
             at,
             text: text.to_string(),
+            runs,
             dir,
             height,
             color: None,
             clear,
             leader: false,
-            circled: false,
+            circled: true,
         });
+    }
+
+    /// A letter `text` for the point `at` that keeps `clear` (model units, such as a joint
+    /// circle's radius) more than [`LABEL_GAP`] between the point and its box, preferably
+    /// on the side `dir`.
+    pub fn letter_clear(&mut self, at: Point, text: impl Into<Label>, height: f64, dir: Vector, clear: f64) {
+        let Label { text, runs } = text.into();
+        self.push(Letter { at, text, runs, dir, height, color: None, clear, leader: false, circled: false });
     }
 
     fn push(&mut self, l: Letter) {
@@ -437,6 +508,7 @@ impl Polygon {
                 out.push(Placed {
                     centre: c + shift,
                     text: l.text.clone(),
+                    runs: l.runs.clone(),
                     height: l.height,
                     color: l.color,
                     leader,
@@ -480,6 +552,7 @@ fn push_placed(d: &mut Drawing, layer: usize, p: Placed, linetype: Option<LineTy
         d.push(Entity { layer, color, linetype, shape });
     }
     let shape = Shape::Text {
+        runs: p.runs,
         at: p.centre,
         height: p.height,
         value: p.text,
@@ -676,8 +749,8 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
     for l in letters {
         match out.iter_mut().find(|o| (o.at - l.at).norm() < COINCIDENT * o.height.min(l.height)) {
             Some(o) => {
-                o.text.push_str(SAME_POINT);
-                o.text.push_str(&l.text);
+                let (joined, runs) = join(&o.text, &o.runs, &l.text, &l.runs);
+                (o.text, o.runs) = (joined, runs);
                 if o.dir.norm() == 0.0 {
                     o.dir = l.dir;
                 }
@@ -686,6 +759,24 @@ fn combine(letters: &[Letter]) -> Vec<Letter> {
         }
     }
     out
+}
+
+/// `a≡b`: the texts of two coincident points joined by [`SAME_POINT`], each keeping its
+/// runs.
+fn join(a: &str, a_runs: &Runs, b: &str, b_runs: &Runs) -> (String, Runs) {
+    let mut text = String::with_capacity(a.len() + SAME_POINT.len() + b.len());
+    let mut runs = Vec::new();
+    for (part, kind) in a_runs.split(a) {
+        text.push_str(part);
+        runs.push(crate::draw::Run { end: text.len(), kind });
+    }
+    text.push_str(SAME_POINT);
+    for (part, kind) in b_runs.split(b) {
+        text.push_str(part);
+        runs.push(crate::draw::Run { end: text.len(), kind });
+    }
+    let runs = Runs(runs);
+    (text, if runs.is_flat() { Runs::flat() } else { runs })
 }
 
 /// Width of a label `height` high: its advances in the font it is drawn in
@@ -702,7 +793,7 @@ fn unit(v: Vector, fallback: Vector) -> Vector {
 
 /// Candidate centres for `text` at `at`, in the order they are tried (see the module docs).
 pub fn candidates(at: Point, text: &str, height: f64, dir: Vector) -> impl Iterator<Item = Point> {
-    let (half, shift) = TextBox::half_size(text, height);
+    let (half, shift) = TextBox::half_size(text, &Runs::flat(), height);
     candidates_in(at, half, height, dir, 0.0, false).map(move |c| c + shift)
 }
 
@@ -755,14 +846,14 @@ fn candidates_reach(at: Point, half: Vector, height: f64, clear: f64, rings: &[f
 
 /// The farthest a label's centre can be from its point: the last ring in the worst
 /// direction.
-pub fn max_distance(text: &str, height: f64) -> f64 {
-    let (half, shift) = TextBox::half_size(text, height);
+pub fn max_distance(text: &str, runs: &Runs, height: f64) -> f64 {
+    let (half, shift) = TextBox::half_size(text, runs, height);
     RINGS[RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(half.x, half.y)) + shift.norm()
 }
 
 /// The farthest a name with a leader ([`Polygon::name_with_leader`]) can be from its point.
-pub fn max_leader_distance(text: &str, height: f64) -> f64 {
-    let (half, shift) = TextBox::half_size(text, height);
+pub fn max_leader_distance(text: &str, runs: &Runs, height: f64) -> f64 {
+    let (half, shift) = TextBox::half_size(text, runs, height);
     LEADER_RINGS[LEADER_RINGS.len() - 1] * (LABEL_GAP * height + libm::hypot(half.x, half.y)) + shift.norm()
 }
 
@@ -791,7 +882,7 @@ mod tests {
         let h = 1.0;
         let mut p = Polygon::of_points();
         for (i, s) in ["a", "b", "m"].iter().enumerate() {
-            p.letter(Point::new(0.4 * i as f64, 0.0), s, h, Vector::new(0.0, 1.0), None);
+            p.letter(Point::new(0.4 * i as f64, 0.0), *s, h, Vector::new(0.0, 1.0), None);
         }
         p.segment(Point::new(0.0, 0.0), Point::new(0.8, 0.0));
         let placed = p.place();
@@ -833,7 +924,7 @@ mod tests {
         let w = text_width("nBA", 1.0);
         assert!((c[0] - Point::new(LABEL_GAP + 0.5 * w, 0.0)).norm() < 1e-12);
         for p in &c {
-            assert!(p.coords.norm() <= max_distance("nBA", 1.0) + 1e-12);
+            assert!(p.coords.norm() <= max_distance("nBA", &Runs::flat(), 1.0) + 1e-12);
         }
     }
 
@@ -884,8 +975,9 @@ mod tests {
             if let Some((_, c, bx, leader)) = best {
                 boxes.push(bx);
                 leaders.extend(leader);
-                let (text, height, color, circled) = (l.text.clone(), l.height, l.color, l.circled);
-                out.push(Placed { centre: c + shift, text, height, color, leader, circled });
+                let (text, runs, height, color, circled) =
+                    (l.text.clone(), l.runs.clone(), l.height, l.color, l.circled);
+                out.push(Placed { centre: c + shift, text, runs, height, color, leader, circled });
             }
         }
         out

@@ -35,7 +35,7 @@ use crate::draw::{Bounds, DimStyle, Drawing, HAlign, ScaleCaption, Shape, VAlign
 use crate::geom::{Point, Vector};
 
 use crate::figure::shared::forces::{self, ForcePolygon, Magnitude};
-use crate::figure::shared::labels;
+use crate::figure::shared::labels::{self, Label};
 use crate::figure::shared::polygon::{self, PointPolygon};
 use crate::figure::shared::sheet;
 use crate::figure::shared::vocab::{
@@ -694,13 +694,15 @@ impl PanelFrame {
 
     /// The position's text (`φ1 = 30°`, `t = 0.25 s`) right-aligned at the top of the
     /// mechanism's panel, on `TEXT`.
-    pub fn draw_position_text(&self, d: &mut Drawing, value: String) {
+    pub fn draw_position_text(&self, d: &mut Drawing, value: impl Into<Label>) {
+        let Label { text: value, runs } = value.into();
         let text = layer_of(d, layers::TEXT);
         let ur = self.panels[0].2;
         let s = self.sizes;
         d.add(
             text,
             Shape::Text {
+                runs,
                 at: Point::new(ur.x - 0.6 * s.text, ur.y - 1.2 * s.text),
                 height: s.text,
                 value,
@@ -838,6 +840,7 @@ fn text(d: &mut Drawing, layer: usize, at: Point, height: f64, value: &str) {
     d.add(
         layer,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at,
             height,
             value: value.to_string(),

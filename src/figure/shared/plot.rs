@@ -210,7 +210,18 @@ fn new_plot() -> (Drawing, PlotLayers) {
 }
 
 fn text(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, (halign, valign): (HAlign, VAlign), rot: f64) {
-    d.add(layer, Shape::Text { at, height: h, value: s.to_string(), halign, valign, rotation: rot });
+    d.add(
+        layer,
+        Shape::Text {
+            runs: crate::draw::Runs::flat(),
+            at,
+            height: h,
+            value: s.to_string(),
+            halign,
+            valign,
+            rotation: rot,
+        },
+    );
 }
 
 /// Draws the frame, grid, ticks, numbers, labels and title for axes `xt` × `yt` (`xt`
@@ -476,6 +487,7 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
             .flat_map(|k| {
                 let x = PLOT_WIDTH - 1.0 - k as f64 * PLOT_WIDTH / 8.0;
                 [(y + 1.0, VAlign::Baseline), (y - 1.0, VAlign::Top)].map(|(y, valign)| Shape::Text {
+                    runs: crate::draw::Runs::flat(),
                     at: Point::new(x, y),
                     height: TEXT_H,
                     value: v.label.clone(),
@@ -518,6 +530,7 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
                 for far in [1.0, 1.5, 2.0] {
                     let at = Point::new(p.x + side * far * PLOT_WIDTH / 8.0, p.y + k * 1.6 * TEXT_H);
                     let t = Shape::Text {
+                        runs: crate::draw::Runs::flat(),
                         at,
                         height: TEXT_H,
                         value: m.label.clone(),
@@ -609,6 +622,7 @@ pub fn histogram(h: &Histogram) -> Drawing {
             .flat_map(|k| {
                 let y = preferred - 4.5 * k as f64;
                 [(p.x + 1.0, HAlign::Left), (p.x - 1.0, HAlign::Right)].map(|(x, halign)| Shape::Text {
+                    runs: crate::draw::Runs::flat(),
                     at: Point::new(x, y),
                     height: TEXT_H,
                     value: label.clone(),

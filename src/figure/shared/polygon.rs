@@ -191,7 +191,10 @@ pub fn draw_within(
         // A centroid's image, and a construction's point (where a component starts: n_BA,
         // the Coriolis k), may take its letter further out with a leader.
         let construction = poly.sides.iter().any(|s| s.kind == SideKind::Component && s.from == i + 1);
-        if poly.marks.contains(&(i + 1)) || construction {
+        if construction {
+            // A component's name: n_BA, k (Coriolis).
+            letters.name_with_leader(at, labels::Label::quantity(&p.name), s.text, at - pts[p.from], None);
+        } else if poly.marks.contains(&(i + 1)) {
             letters.name_with_leader(at, &p.name, s.text, at - pts[p.from], None);
         } else {
             letters.letter(at, &p.name, s.text, at - pts[p.from], None);

@@ -11,7 +11,7 @@
 
 use std::str::FromStr;
 
-use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign};
+use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Runs, Shape, VAlign};
 use crate::geom::{Point, Vector};
 
 use crate::figure::shared::vocab::{Sizes, content_drawing, nice_scale, scale_bar_room};
@@ -191,9 +191,11 @@ pub struct TitleBlock {
     pub name: String,
     /// What it shows (`four-bar`), beside the name.
     pub subject: String,
-    /// The position (`φ1 = 90°`, `t = 0.25 s`), the first cell, in larger letters.
+    /// The position (`φ_1 = 90°`, `t = 0.25 s`), the first cell, in larger letters. The
+    /// position and the cells are marked up with `_` before a subscript
+    /// ([`crate::draw::Runs::underscored`]: the `_` is not drawn).
     pub position: String,
-    /// Further cells (`ω1 = 20 rad/s`, `k_l = 0.002 m/mm`, …), two per row.
+    /// Further cells (`ω_1 = 20 rad/s`, `k_l = 0.002 m/mm`, …), two per row.
     pub cells: Vec<String>,
     /// This sheet's number (from 1) and the number of sheets.
     pub sheet: (usize, usize),
@@ -380,8 +382,13 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
         let points = vec![b.min, Point::new(b.max.x, b.min.y), b.max, Point::new(b.min.x, b.max.y)];
         d.add(l, Shape::Polyline { points, closed: true, width });
     };
-    let text = |d: &mut Drawing, at: Point, height: f64, value: &str, halign: HAlign| {
-        d.add(l, Shape::Text { at, height, value: value.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 });
+    // Titles and cells are the sheet's own texts, marked up with `_` before a subscript
+    // (`k_v`, `φ_1`: Runs::underscored); the name is the user's, drawn as written.
+    let text = |d: &mut Drawing, at: Point, height: f64, (value, runs): (&str, Runs), halign: HAlign| {
+        d.add(
+            l,
+            Shape::Text { runs, at, height, value: value.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 },
+        );
     };
     rect(&mut d, layout.border, 0.5);
     for (i, p) in layout.panels.iter().enumerate() {
@@ -391,9 +398,10 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
             // A title wider than its panel (a scale in (mm/s²)/mm) in smaller letters, down
             // to the small text's height.
             let room = p.outline.width() - 1.2 * s.text;
-            let width = crate::draw::parts::text_width(t, s.text);
+            let runs = Runs::underscored(t);
+            let width = crate::draw::font::measure_runs(t, &runs, s.text).width;
             let h = if width > room { (s.text * room / width).max(s.small_text()) } else { s.text };
-            text(&mut d, at, h, t, HAlign::Left);
+            text(&mut d, at, h, (t, runs), HAlign::Left);
         }
     }
     // Title block: the name row, then two cells per row.
@@ -404,8 +412,8 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
     let pad = 0.8 * s.text;
     d.add(l, Shape::Line { from: Point::new(tb.min.x, name_bottom), to: Point::new(tb.max.x, name_bottom) });
     let name_y = (tb.max.y + name_bottom) / 2.0;
-    text(&mut d, Point::new(tb.min.x + pad, name_y), 1.4 * s.text, &title.name, HAlign::Left);
-    text(&mut d, Point::new(tb.max.x - pad, name_y), s.text, &title.subject, HAlign::Right);
+    text(&mut d, Point::new(tb.min.x + pad, name_y), 1.4 * s.text, (&title.name, Runs::flat()), HAlign::Left);
+    text(&mut d, Point::new(tb.max.x - pad, name_y), s.text, (&title.subject, Runs::flat()), HAlign::Right);
     let mut cells: Vec<(String, f64)> = vec![(title.position.clone(), 1.2 * s.text)];
     cells.extend(title.cells.iter().map(|c| (c.clone(), 0.9 * s.text)));
     cells.push((format!("sheet {} of {} · {}", title.sheet.0, title.sheet.1, layout.paper.name()), 0.8 * s.text));
@@ -420,7 +428,7 @@ pub fn page(layout: &SheetLayout, title: &TitleBlock, table: &Table, titles: &[S
         for c in 0..2 {
             if let Some((value, h)) = cells.get(2 * r + c) {
                 let x = if c == 0 { tb.min.x } else { mid_x } + pad;
-                text(&mut d, Point::new(x, top - row / 2.0), *h, value, HAlign::Left);
+                text(&mut d, Point::new(x, top - row / 2.0), *h, (value, Runs::underscored(value)), HAlign::Left);
             }
         }
     }
@@ -470,6 +478,8 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
             d.add(
                 l,
                 Shape::Text {
+                    // `R_A` in the first column: R with A as a subscript.
+                    runs: Runs::underscored(value),
                     at: Point::new(x, y),
                     height: h,
                     value: value.to_string(),

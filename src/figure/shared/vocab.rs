@@ -442,6 +442,7 @@ pub fn scale_bar(d: &mut Drawing, layer: usize, at: Point, length: f64, label: &
     }
     let gap = 0.5 * h;
     let text = |value: &str, at: Point, halign| Shape::Text {
+        runs: crate::draw::Runs::flat(),
         at,
         height: h,
         value: value.to_string(),

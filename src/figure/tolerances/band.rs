@@ -144,6 +144,7 @@ pub fn band_drawing(
     d.add(
         text,
         Shape::Text {
+            runs: crate::draw::Runs::flat(),
             at: Point::new(lo.x, top + 2.2 * s.text),
             height: s.text,
             value: title.to_string(),
@@ -160,15 +161,13 @@ pub fn band_drawing(
     let bar_y = lo.y - 0.08 * extent - s.text;
     let bar = vocab::bar_value(k_l);
     scale_bar(&mut d, text, Point::new(lo.x + s.text, bar_y), bar, &format!("{} {}", scale_text(bar), units.length), s);
-    d.add(
-        text,
-        label(
-            Point::new(lo.x, bar_y - 2.0 * s.text),
-            &vocab::length_scale_text(k_l, units),
-            s.small_text(),
-            HAlign::Left,
-        ),
-    );
+    let k_text = vocab::length_scale_text(k_l, units);
+    let mut k_label = label(Point::new(lo.x, bar_y - 2.0 * s.text), &k_text, s.small_text(), HAlign::Left);
+    if let Shape::Text { runs, .. } = &mut k_label {
+        // k_l: a subscript l.
+        *runs = crate::draw::Runs::underscored(&k_text);
+    }
+    d.add(text, k_label);
     // The deviation bar: a nice deviation drawn m times longer.
     let dev = nice_scale(vocab::BAR_MM * k_l / m);
     let x0 = lo.x + 0.55 * extent;
@@ -177,7 +176,15 @@ pub fn band_drawing(
 }
 
 fn label(at: Point, s: &str, h: f64, halign: HAlign) -> Shape {
-    Shape::Text { at, height: h, value: s.to_string(), halign, valign: VAlign::Middle, rotation: 0.0 }
+    Shape::Text {
+        runs: crate::draw::Runs::flat(),
+        at,
+        height: h,
+        value: s.to_string(),
+        halign,
+        valign: VAlign::Middle,
+        rotation: 0.0,
+    }
 }
 
 /// Polylines through the runs of defined points.
