@@ -204,9 +204,9 @@ impl ForcesPage {
     /// `table_rows` rows after them, packed in rows from the top left, clear of the title
     /// block: each figure at the coarsest nice k_f that
     /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
-    /// page still holds them, at the next finer one (larger figures where there is room);
-    /// the panels then stretched to use the page (`fill`) and each figure at the finest
-    /// nice k_f its stretched panel holds.
+    /// page still holds them, at the next finer one (larger figures where there is room).
+    /// (The panels are not stretched to the page: stretching them with finer scales drew
+    /// the shaper's dyad 4–5 out of its panel at t = 0.7472 s, tests/sheet_sizes.rs.)
     pub fn new(
         paper: Paper,
         figures: &[ForcePolygon],
@@ -266,22 +266,6 @@ impl ForcesPage {
             }
             pack_anyway(&cells, border)
         });
-        fill(&mut outlines, border, right, title);
-        // In its stretched panel a figure may hold a finer scale: the finest that fits.
-        for (i, k) in scales.iter_mut().enumerate() {
-            if extents[i].size() == 0.0 {
-                continue;
-            }
-            let (Some(o), Some(c)) = (outlines.get(i), captions.get(i)) else { continue };
-            loop {
-                let finer = finer_nice(*k);
-                let need = cell(finer, &extents[i], c);
-                if need.x > o.width() + 1e-9 || need.y > o.height() + 1e-9 {
-                    break;
-                }
-                *k = finer;
-            }
-        }
         let table = if table_rows > 0 && outlines.len() > figures.len() {
             outlines.pop().unwrap_or(Bounds { min: title.max, max: title.max })
         } else {
@@ -440,64 +424,6 @@ fn pack(sizes: &[Vector], border: Bounds, right: f64, title: Bounds) -> Option<V
         }
     }
     Some(out)
-}
-
-/// Stretches packed cells (rows from the top left, as [`pack`] lays them) to use the page:
-/// each row's cells as tall as its tallest, its spare width shared among its cells, and
-/// the last row down to the border's foot (or to the title block's top where it stands over
-/// it). The figures keep their scales and are centred in their larger panels: no page
-/// with a third of it empty beside uneven panels (the shaper's forces page).
-fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
-    let mut rows: Vec<(f64, Vec<usize>)> = Vec::new();
-    for (i, c) in cells.iter().enumerate() {
-        match rows.iter_mut().find(|(top, _)| (top - c.max.y).abs() <= 1e-9) {
-            Some((_, members)) => members.push(i),
-            None => rows.push((c.max.y, vec![i])),
-        }
-    }
-    let n = rows.len();
-    for (r, (top, members)) in rows.iter().enumerate() {
-        let foot = if r + 1 == n {
-            border.min.y
-        } else {
-            members.iter().map(|&i| cells[i].min.y).fold(f64::INFINITY, f64::min)
-        };
-        // A row that comes down to the title block ends left of it.
-        let over_title = foot < title.max.y - 1e-9;
-        let (foot, end) = if r + 1 == n {
-            // The last row: beside the title block down to the border, else over it.
-            let clears = members.iter().all(|&i| cells[i].max.x <= right + 1e-9);
-            if clears { (border.min.y, right) } else { (title.max.y, border.max.x) }
-        } else {
-            (foot, if over_title { right } else { border.max.x })
-        };
-        let used: f64 = members.iter().map(|&i| cells[i].width()).sum();
-        let spread = |end: f64, foot_of: &dyn Fn(f64) -> f64| -> Vec<Bounds> {
-            let spare = (end - border.min.x - used).max(0.0) / members.len() as f64;
-            let mut x = border.min.x;
-            members
-                .iter()
-                .map(|&i| {
-                    let w = cells[i].width() + spare;
-                    let b = Bounds { min: Point::new(x, foot_of(x + w)), max: Point::new(x + w, *top) };
-                    x += w;
-                    b
-                })
-                .collect()
-        };
-        // The last row across the whole width, its cells over the title block ending at its
-        // top, when none of them gets shorter than it was packed (the four-bar's two tall
-        // figures), else as above.
-        let across = (r + 1 == n)
-            .then(|| spread(border.max.x, &|x_end| if x_end <= right + 1e-9 { border.min.y } else { title.max.y }));
-        let placed = match across {
-            Some(a) if members.iter().zip(&a).all(|(&i, b)| b.height() >= cells[i].height() - 1e-9) => a,
-            _ => spread(end, &|_| foot),
-        };
-        for (&i, b) in members.iter().zip(placed) {
-            cells[i] = b;
-        }
-    }
 }
 
 /// The cells in rows from the top left, whether or not they fit.

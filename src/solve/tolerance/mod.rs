@@ -38,6 +38,10 @@ pub const DEFAULT_BINS: usize = 400;
 /// Default fraction by which the Monte Carlo's σ may differ from the linear σ before a
 /// position's linear result is called untrustworthy.
 pub const DEFAULT_TRUST_FRACTION: f64 = 0.1;
+
+/// A linear σ under this fraction of its output's worst-case band is rounding, not a
+/// deviation ([`verdicts`] does not compare it with the Monte Carlo's).
+pub const ROUNDING: f64 = 1e-9;
 /// A position is near a dead point when the tolerances' worst case can move its dyad by
 /// more than this fraction of its distance from the dead point (see
 /// [`Sensitive::dead_point`]).
@@ -126,7 +130,11 @@ pub fn dead_points<M: Sensitive>(model: &M, dims: &[Dimension], linear: &[Option
 /// Where the linear result is not to be trusted, per position (empty: trusted): a dead
 /// point near (`dead`, from [`dead_points`]), samples that cannot be assembled there, or a
 /// component whose Monte Carlo σ differs from the linear σ by more than `fraction` of it
-/// (or whose mean departs from the linear mean shift by more than `fraction` of σ).
+/// (or whose mean departs from the linear mean shift by more than `fraction` of σ). A
+/// component whose linear σ is at rounding level — under [`ROUNDING`] of its own worst case,
+/// or of the largest worst case of any component of the same output over the motion (a
+/// slider's velocity across its guide, identically 0) — is not compared: its Monte Carlo σ
+/// is rounding too, and their ratio says nothing.
 pub fn verdicts(
     dead: &[Option<String>],
     comps: &[Component],
@@ -134,6 +142,14 @@ pub fn verdicts(
     mc: &MonteCarlo,
     fraction: f64,
 ) -> Vec<Vec<String>> {
+    // The largest worst-case band of each output, over its components and the motion.
+    let mut band: std::collections::HashMap<&str, f64> = std::collections::HashMap::new();
+    for lin in linear.iter().flatten() {
+        for (comp, l) in comps.iter().zip(lin) {
+            let b = band.entry(comp.output.as_str()).or_insert(0.0);
+            *b = b.max(l.worst_case);
+        }
+    }
     (0..dead.len())
         .map(|k| {
             let mut notes: Vec<String> = dead[k].iter().cloned().collect();
@@ -145,7 +161,8 @@ pub fn verdicts(
                 let Some(s) = mc.tallies[k * comps.len() + c].summary() else { continue };
                 let l = &lin[c];
                 // σ at rounding level: nothing to compare.
-                if l.sigma == 0.0 || l.sigma <= 1e-9 * l.worst_case {
+                let output_band = band.get(comp.output.as_str()).copied().unwrap_or(0.0);
+                if l.sigma == 0.0 || l.sigma <= ROUNDING * l.worst_case.max(output_band) {
                     continue;
                 }
                 let ratio = s.sigma / l.sigma;
