@@ -132,6 +132,8 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             second: p,
             radius,
             text: phi_text(i + 1, f.exact.phi[i]),
+            // φ_1 where the writer can draw a subscript, `φ1` in the DXF.
+            runs: labels::Label::dimension(&phi_text(i + 1, f.exact.phi[i])).runs,
         };
         let dim = place_dimension(dim_at, preferred, &d.dim_style, &dimension_texts, &lines);
         dimension_texts.extend(dimension_text_box(&dim, &d.dim_style));

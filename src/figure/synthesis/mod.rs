@@ -333,8 +333,11 @@ impl Construction {
             // (`90° − θ`: its value follows from the caption's), else the least crowded.
             let short = text.split(" = ").next().unwrap_or(&text).to_string();
             let texts = if short != text { vec![text.clone(), short] } else { vec![text.clone()] };
-            let dim_at =
-                |r: f64, t: &str| Shape::AngularDimension { vertex, first, second, radius: r, text: t.to_string() };
+            // `φ1` with its index a subscript where the writer can.
+            let dim_at = |r: f64, t: &str| {
+                let l = labels::Label::dimension(t);
+                Shape::AngularDimension { vertex, first, second, radius: r, text: l.text, runs: l.runs }
+            };
             let mut best: Option<((usize, usize), Shape)> = None;
             'texts: for t in &texts {
                 for k in DIMENSION_RADII {
