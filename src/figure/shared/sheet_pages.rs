@@ -455,8 +455,9 @@ fn pack(sizes: &[Vector], border: Bounds, right: f64, title: Bounds) -> Option<V
 /// Stretches packed cells (rows from the top left, as [`pack`] lays them) to use the page:
 /// each row's cells as tall as its tallest, its spare width shared among its cells, and
 /// the last row down to the border's foot (or to the title block's top where it stands over
-/// it). No cell gets smaller than it was packed: a cell packed past the border or into the
-/// title block (a page that does not hold its figures, [`pack_anyway`]) keeps its foot.
+/// it). No cell gets smaller than it was packed: a row that would (packed past the border
+/// or into the title block: a page that does not hold its figures, [`pack_anyway`]) stays
+/// as packed.
 /// No page with a third of it empty beside uneven panels (the four-bar's forces page).
 fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
     let mut rows: Vec<(f64, Vec<usize>)> = Vec::new();
@@ -490,8 +491,7 @@ fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
                 .iter()
                 .map(|&i| {
                     let w = cells[i].width() + spare;
-                    let foot = foot_of(x + w).min(cells[i].min.y);
-                    let b = Bounds { min: Point::new(x, foot), max: Point::new(x + w, *top) };
+                    let b = Bounds { min: Point::new(x, foot_of(x + w)), max: Point::new(x + w, *top) };
                     x += w;
                     b
                 })
@@ -502,10 +502,21 @@ fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
         // figures), else as above.
         let across = (r + 1 == n)
             .then(|| spread(border.max.x, &|x_end| if x_end <= right + 1e-9 { border.min.y } else { title.max.y }));
+        let keeps = |a: &[Bounds]| {
+            members
+                .iter()
+                .zip(a)
+                .all(|(&i, b)| b.height() >= cells[i].height() - 1e-9 && b.width() >= cells[i].width() - 1e-9)
+        };
         let placed = match across {
-            Some(a) if members.iter().zip(&a).all(|(&i, b)| b.height() >= cells[i].height() - 1e-9) => a,
+            Some(a) if keeps(&a) => a,
             _ => spread(end, &|_| foot),
         };
+        // A row that would get a cell smaller than it was packed (packed past the border or
+        // into the title block: a page that does not hold its figures) stays as packed.
+        if !keeps(&placed) {
+            continue;
+        }
         for (&i, b) in members.iter().zip(placed) {
             cells[i] = b;
         }
@@ -587,24 +598,35 @@ mod tests {
             for set in figure_sets() {
                 // As packed (or packed anyway, past the border, when the page does not hold
                 // them): sizes of every kind of figure cell.
-                let sizes: Vec<Vector> = set
+                let mut sizes: Vec<Vector> = set
                     .iter()
                     .map(|f| {
                         let e = Extent::of(f.physical_points()).unwrap();
                         cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
                     })
                     .collect();
+                // And the forces' table after them (a linkage's), in the last row.
+                if set.len() % 2 == 1 {
+                    sizes.push(table_cell(14 + set.len(), 1, paper.sizes()));
+                }
                 let packed = pack(&sizes, border, right, title).unwrap_or_else(|| pack_anyway(&sizes, border));
                 let mut cells = packed.clone();
                 fill(&mut cells, border, right, title);
+                let overlap = |a: &Bounds, b: &Bounds| {
+                    (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).min(a.max.y.min(b.max.y) - a.min.y.max(b.min.y))
+                };
                 for (c, p) in cells.iter().zip(&packed) {
                     assert!(c.width() >= p.width() - 1e-9 && c.height() >= p.height() - 1e-9, "{c:?} < {p:?}");
+                    // Off the title block and inside the border, unless packed there.
+                    if c != p {
+                        assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
+                        assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
+                        assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
+                    }
                 }
                 for (i, a) in cells.iter().enumerate() {
                     for b in &cells[i + 1..] {
-                        let overlap = (a.max.x.min(b.max.x) - a.min.x.max(b.min.x))
-                            .min(a.max.y.min(b.max.y) - a.min.y.max(b.min.y));
-                        assert!(overlap <= 1e-9, "{a:?} overlaps {b:?}");
+                        assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
                     }
                 }
             }
@@ -617,8 +639,20 @@ mod tests {
             for set in figure_sets() {
                 let captions: Vec<String> =
                     (0..set.len()).map(|i| format!("Dyad {}–{} (RRP)", 2 * i + 2, 2 * i + 3)).collect();
-                let page = ForcesPage::new(paper, &set, &captions, 4, 0);
+                let rows = if set.len() % 2 == 1 { 14 + set.len() } else { 0 };
+                let page = ForcesPage::new(paper, &set, &captions, 4, rows);
                 let s = page.layout.sizes;
+                // The forces' table (a linkage's) beside or over the title block, never on it.
+                let (t, tb) = (page.layout.table, page.layout.title);
+                let on_title =
+                    (t.max.x.min(tb.max.x) - t.min.x.max(tb.min.x)).min(t.max.y.min(tb.max.y) - t.min.y.max(tb.min.y));
+                let border = page.layout.border;
+                let held = page.layout.panels.iter().all(|p| {
+                    p.outline.min.x >= border.min.x - 1e-9
+                        && p.outline.max.x <= border.max.x + 1e-9
+                        && p.outline.min.y >= border.min.y - 1e-9
+                });
+                assert!(!held || rows == 0 || on_title <= 1e-9, "the table {t:?} on the title block {tb:?}");
                 for ((f, (k, pole)), panel) in set.iter().zip(&page.places).zip(&page.layout.panels) {
                     let k0 = force_figure_scale(Extent::of(f.physical_points()).unwrap().size());
                     assert!(*k <= k0 * (1.0 + 1e-12), "coarser than its least-size scale: {k} > {k0}");
