@@ -218,6 +218,20 @@ impl Label {
     }
 }
 
+/// An angular dimension with its name's index drawn as a subscript where the writer can
+/// ([`Label::dimension`]: `φ1 = 75.77°` → φ_1 = 75.77°); any other shape unchanged. A figure
+/// places the dimension with its flat text (as the DXF writes it, the wider of the two) and
+/// then sets its runs, so that the text keeps clear in every writer.
+pub fn with_dimension_runs(shape: Shape) -> Shape {
+    match shape {
+        Shape::AngularDimension { vertex, first, second, radius, text, .. } => {
+            let runs = Label::dimension(&text).runs;
+            Shape::AngularDimension { vertex, first, second, radius, text, runs }
+        }
+        other => other,
+    }
+}
+
 impl From<&str> for Label {
     /// A flat label.
     fn from(text: &str) -> Label {
