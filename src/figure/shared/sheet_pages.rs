@@ -205,9 +205,9 @@ impl ForcesPage {
     /// block: each figure at the coarsest nice k_f that
     /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
     /// page still holds them, at the next finer one (larger figures where there is room);
-    /// the panels then stretched to use the page ([`fill`]: none smaller than packed), and
+    /// the panels then stretched to use the page (`fill`: none smaller than packed), and
     /// each figure at the finest nice k_f that its final panel holds, the figure and its
-    /// title measured in that panel ([`fits_panel`]). (Last session's stretching let a
+    /// title measured in that panel (`fits_panel`). (Last session's stretching let a
     /// cell packed past the border shrink to it: the shaper's dyad 4–5 drawn out of its
     /// panel at t = 0.7472 s, tests/sheet_sizes.rs.)
     pub fn new(
