@@ -207,9 +207,10 @@ impl ForcesPage {
     /// page still holds them, at the next finer one (larger figures where there is room);
     /// the panels then stretched to use the page (`fill`: none smaller than packed), and
     /// each figure at the finest nice k_f that its final panel holds, the figure and its
-    /// title measured in that panel (`fits_panel`). (Last session's stretching let a
-    /// cell packed past the border shrink to it: the shaper's dyad 4–5 drawn out of its
-    /// panel at t = 0.7472 s, tests/sheet_sizes.rs.)
+    /// title measured in that panel (`fits_panel`). A page that does not hold its figures
+    /// (packed anyway, past the border) is not stretched: last session's stretching shrank
+    /// such a cell to the border, the shaper's dyad 4–5 drawn out of its panel at
+    /// t = 0.7472 s (tests/sheet_sizes.rs).
     pub fn new(
         paper: Paper,
         figures: &[ForcePolygon],
@@ -262,6 +263,9 @@ impl ForcesPage {
                 }
             }
         }
+        // A page that holds its figures is stretched to use the page; one that does not
+        // (packed anyway, past the border) stays as packed.
+        let held = outlines.is_some();
         let mut outlines = outlines.unwrap_or_else(|| {
             let mut cells = cells_at(&scales);
             if table_rows > 0 {
@@ -269,7 +273,9 @@ impl ForcesPage {
             }
             pack_anyway(&cells, border)
         });
-        fill(&mut outlines, border, right, title);
+        if held {
+            fill(&mut outlines, border, right, title);
+        }
         // In its final panel a figure may hold a finer scale: the finest it fits there.
         for (i, k) in scales.iter_mut().enumerate() {
             let (Some(o), Some(c)) = (outlines.get(i), captions.get(i)) else { continue };
@@ -455,9 +461,8 @@ fn pack(sizes: &[Vector], border: Bounds, right: f64, title: Bounds) -> Option<V
 /// Stretches packed cells (rows from the top left, as [`pack`] lays them) to use the page:
 /// each row's cells as tall as its tallest, its spare width shared among its cells, and
 /// the last row down to the border's foot (or to the title block's top where it stands over
-/// it). No cell gets smaller than it was packed: a row that would (packed past the border
-/// or into the title block: a page that does not hold its figures, [`pack_anyway`]) stays
-/// as packed.
+/// it), for cells that [`pack`] laid out on the page. No cell gets smaller than it was
+/// packed: a row that would stays as packed.
 /// No page with a third of it empty beside uneven panels (the four-bar's forces page).
 fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
     let mut rows: Vec<(f64, Vec<usize>)> = Vec::new();
@@ -609,7 +614,8 @@ mod tests {
                 if set.len() % 2 == 1 {
                     sizes.push(table_cell(14 + set.len(), 1, paper.sizes()));
                 }
-                let packed = pack(&sizes, border, right, title).unwrap_or_else(|| pack_anyway(&sizes, border));
+                // (A page that does not hold them is not stretched: ForcesPage::new.)
+                let Some(packed) = pack(&sizes, border, right, title) else { continue };
                 let mut cells = packed.clone();
                 fill(&mut cells, border, right, title);
                 let overlap = |a: &Bounds, b: &Bounds| {
@@ -617,8 +623,8 @@ mod tests {
                 };
                 for (c, p) in cells.iter().zip(&packed) {
                     assert!(c.width() >= p.width() - 1e-9 && c.height() >= p.height() - 1e-9, "{c:?} < {p:?}");
-                    // Off the title block and inside the border, unless packed there.
-                    if c != p {
+                    // Off the title block and inside the border.
+                    {
                         assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
                         assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
                         assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
