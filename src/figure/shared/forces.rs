@@ -33,14 +33,11 @@ pub const NAME_HEIGHT: f64 = 0.8;
 /// G_21, F_i21, G_22, F_i22 when R_An is short (issue 31).
 pub const CROWD_RADIUS: f64 = 4.0;
 
-/// A vector drawn shorter than this many letter heights is short: its name is placed as a
-/// crowd's ([`CROWD_PAD`]), wherever it is (the four-bar's G_21, G_22 at the end of a long
-/// R_An).
-pub const SHORT: f64 = 1.0;
-
 /// A name in the crowd about the pole is placed as if this many times its size, and drawn
-/// at its size: so it stands at least (CROWD_PAD − 1)/2 of its height off every other name.
-pub const CROWD_PAD: f64 = 1.5;
+/// at its size: so it stands at least (CROWD_PAD − 1)/2 of its height (and of its width)
+/// off every other name. (1.5 pushed the other names of the four-bar's tall, narrow dyad
+/// figure at φ1 = 270° onto its leaders; 1.3 keeps tests/labels_all.rs at 0.)
+pub const CROWD_PAD: f64 = 1.3;
 
 /// How far a resultant lying on a side already drawn is moved beside it, in arrowhead
 /// lengths (per step: a second one on the same line goes twice as far).
@@ -247,8 +244,8 @@ fn arrow(d: &mut Drawing, layer: usize, color: Option<Aci>, (from, to): (Point, 
 /// named) for `names`, at the fraction `at` of its length, preferably on the side away from
 /// `inside`; a name that cannot sit beside its vector (a short one in a crowd) goes further
 /// out with a leader ([`labels::Polygon::name_with_leader`]). A name whose vector's middle
-/// is within [`CROWD_RADIUS`] letters of the `pole`, or whose vector is [`SHORT`], is in a
-/// crowd: placed outward from the pole, as if [`CROWD_PAD`] times its size.
+/// is within [`CROWD_RADIUS`] letters of the `pole` is in its crowd: placed outward from
+/// the pole, as if [`CROWD_PAD`] times its size.
 #[allow(clippy::too_many_arguments)]
 fn name(
     names: &mut labels::Polygon,
@@ -273,7 +270,7 @@ fn name(
     if n.dot(&(mid - inside)) < 0.0 {
         n = -n;
     }
-    if (mid - pole).norm() <= CROWD_RADIUS * s.text || len < SHORT * s.text {
+    if (mid - pole).norm() <= CROWD_RADIUS * s.text {
         // Outward from the pole: on the vector's side away from it, leaning away.
         let out = unit_or(mid - pole, n);
         let across = if n.dot(&out) < 0.0 { -n } else { n };
