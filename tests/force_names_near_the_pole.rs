@@ -25,14 +25,14 @@ const NEAR_MM: f64 = 8.0;
 fn box_gap(a: &common::TextBox, b: &common::TextBox) -> f64 {
     let dx = (a.min.x - b.max.x).max(b.min.x - a.max.x).max(0.0);
     let dy = (a.min.y - b.max.y).max(b.min.y - a.max.y).max(0.0);
-    dx.hypot(dy)
+    libm::hypot(dx, dy)
 }
 
 /// The distance from `p` to a box.
 fn to_box(p: Point, b: &common::TextBox) -> f64 {
     let dx = (b.min.x - p.x).max(p.x - b.max.x).max(0.0);
     let dy = (b.min.y - p.y).max(p.y - b.max.y).max(0.0);
-    dx.hypot(dy)
+    libm::hypot(dx, dy)
 }
 
 /// The smallest gap (paper mm) between a name near a pole of `d` and another name, with the

@@ -836,7 +836,7 @@ fn arrange_panels(boxes: &[(Title, Vector)], which: &[Which], title_room: f64, g
 }
 
 /// Below this share of the paper the column beside the mechanism takes, the polygons go in
-/// a row under it ([`arrange_panels`]).
+/// a row under it (a [`PanelFrame`]'s layout).
 pub const UNDER_GAIN: f64 = 0.85;
 
 /// The mechanism on the left, the polygons' panels `side` (indices into `boxes`) stacked in a
