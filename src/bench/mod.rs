@@ -8,6 +8,7 @@
 
 pub mod basins;
 pub mod chart;
+pub mod peers;
 pub mod reference;
 pub mod suite;
 pub mod timing;
@@ -78,6 +79,8 @@ pub struct BenchOptions {
     pub out_dir: PathBuf,
     /// Smaller timing budgets (a smoke run).
     pub quick: bool,
+    /// The Python that runs the pylinkage peer (`python3` when `None`; see [`peers`]).
+    pub peers_python: Option<PathBuf>,
 }
 
 /// What `mechdraw bench` measured.
@@ -89,6 +92,8 @@ pub struct BenchReport {
     pub runs: Vec<RunCost>,
     /// The tolerance study's Monte Carlo, timed.
     pub tolerance: Vec<tolerance::MonteCarloCost>,
+    /// Peers' cold sweeps (rows beside "Assur groups (cold)"), and a line per peer not found.
+    pub peers: peers::PeerReport,
     /// Machine and build, one line.
     pub machine: String,
     /// Files written.
@@ -232,6 +237,7 @@ pub fn markdown(report: &BenchReport) -> String {
             t.scene, t.samples, t.positions, t.dimensions, t.components, t.threads, t.wall_s, t.ns_per_sample_position
         );
     }
+    s.push_str(&peers_markdown(&report.methods, &report.peers));
     let _ = writeln!(s, "\nWhat a scene's `outputs` cost (whole `mechdraw run`, median of runs):\n");
     let _ = writeln!(s, "| scene | outputs | frames | files | ms per run |");
     let _ = writeln!(s, "|---|---|---|---:|---:|");
@@ -249,12 +255,62 @@ pub fn markdown(report: &BenchReport) -> String {
     s
 }
 
+/// Cold sweeps against the peers (issue 34: mechdraw ≥ 1× every peer, cold): per problem,
+/// mechdraw's "Assur groups (cold)" rows and each peer's row, with the peer's time over
+/// mechdraw's (≥ 1: mechdraw as fast or faster); then a line per peer not measured.
+pub fn peers_markdown(methods: &[Measurement], peers: &peers::PeerReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\nCold sweeps against peers (a whole turn from nothing, per position; docs/bench.md, \"Peers\"):\n"
+    );
+    let _ = writeln!(
+        s,
+        "| problem | route | setting | time per position | error | peer ÷ mechdraw new | peer ÷ mechdraw refit |"
+    );
+    let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|");
+    for problem in [peers::FOURBAR_PROBLEM, peers::SHAPER_PROBLEM] {
+        let ours: Vec<&Measurement> =
+            methods.iter().filter(|m| m.problem == problem && m.method == "Assur groups (cold)").collect();
+        let of = |setting: &str| ours.iter().find(|m| m.setting == setting).map(|m| m.ns_per_solve);
+        for m in &ours {
+            let _ = writeln!(
+                s,
+                "| {} | mechdraw, {} | {} | {} | {} | | |",
+                m.problem,
+                m.method,
+                m.setting,
+                time(m.ns_per_solve),
+                sci(m.error)
+            );
+        }
+        for m in peers.rows.iter().filter(|m| m.problem == problem) {
+            let ratio = |ns: Option<f64>| ns.map_or(String::new(), |ns| format!("{:.2}×", m.ns_per_solve / ns));
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {} | {} |",
+                m.problem,
+                m.method,
+                m.setting,
+                time(m.ns_per_solve),
+                sci(m.error),
+                ratio(of("new")),
+                ratio(of("refit"))
+            );
+        }
+    }
+    for note in &peers.notes {
+        let _ = writeln!(s, "\n{note}");
+    }
+    s
+}
+
 fn png(svg_text: &str, what: &str) -> Result<Vec<u8>, Error> {
     crate::draw::raster::to_png(svg_text, 1400).map_err(|e| Error::Export { what: what.into(), message: e.to_string() })
 }
 
 /// Runs every measurement and writes, under `opts.out_dir`: `chart.svg`/`.png` (speed
-/// against accuracy), `methods.csv`, `outputs.csv`, `tolerance.csv`, `bench.md`,
+/// against accuracy), `methods.csv`, `peers.csv`, `outputs.csv`, `tolerance.csv`, `bench.md`,
 /// `basins.svg`/`.png`.
 pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let t0 = std::time::Instant::now();
@@ -272,6 +328,8 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let tolerance =
         vec![tolerance::fourbar_monte_carlo(if opts.quick { TOLERANCE_SAMPLES_QUICK } else { TOLERANCE_SAMPLES })?];
 
+    let peers = peers::run(budget, &peers::PeerOptions { python: opts.peers_python.clone(), quick: opts.quick });
+
     let triad = suite::popa_triad()?;
     let modes = reference::triad_modes(&triad)
         .map_err(|e| Error::Solve { file: "triad-popa.toml".into(), source: e.into() })?;
@@ -287,9 +345,11 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     out.write("basins.png", png(&basin_svg, "basins.png")?)?;
     out.write("basins.svg", basin_svg)?;
     out.write("methods.csv", methods_csv(&methods))?;
+    out.write("peers.csv", methods_csv(&peers.rows))?;
     out.write("outputs.csv", runs_csv(&runs))?;
     out.write("tolerance.csv", tolerance::csv(&tolerance))?;
-    let mut report = BenchReport { methods, runs, tolerance, machine: machine(), written: Vec::new(), seconds: 0.0 };
+    let mut report =
+        BenchReport { methods, runs, tolerance, peers, machine: machine(), written: Vec::new(), seconds: 0.0 };
     report.seconds = t0.elapsed().as_secs_f64();
     out.write("bench.md", markdown(&report))?;
     report.written = out.commit()?;
