@@ -119,16 +119,7 @@ pub(super) fn con_gamma(c: &Con, q: &[Pose], qd: &[f64], laws: &[(f64, f64, f64)
         }
         Con::Angle { law, .. } => out[0] = law.map_or(0.0, |k| laws[k].2),
         Con::OnLine { p, q: qa, guide, u } | Con::Distance { p, q: qa, guide, u, .. } => {
-            let (pp, pg) = (pz(q, p.body), pz(q, guide));
-            let (vp, wp) = rate(qd, p.body);
-            let (vg, wg) = rate(qd, guide);
-            let sp = pp.rot(p.local);
-            let sq = pg.rot(qa.local);
-            let d = pp.r + sp - pg.r - sq;
-            let dd = vp + perp(sp) * wp - vg - perp(sq) * wg;
-            let ug = pg.rot(u);
-            let ng = perp(ug);
-            let centripetal = sp * (wp * wp) - sq * (wg * wg);
+            let GuideTerms { d, dd, ug, ng, centripetal, wg, .. } = GuideTerms::new(q, qd, p, qa, guide, u);
             out[0] = match *c {
                 // Φ = n·d: Φ̈ = Φq·q̈ − ωg²·n·d − 2ωg·u·ḋ − n·(ωp² s_P − ωg² s_Q)
                 Con::OnLine { .. } => wg * wg * ng.dot(&d) + 2.0 * wg * ug.dot(&dd) + ng.dot(&centripetal),
@@ -139,6 +130,38 @@ pub(super) fn con_gamma(c: &Con, q: &[Pose], qd: &[f64], laws: &[(f64, f64, f64)
                 _ => 0.0,
             };
         }
+    }
+}
+
+/// The terms of a point P (on one body) against a guide through Q (on the guide's body)
+/// that an `OnLine` or `Distance` constraint's γ is made of, at the poses `q` and the
+/// velocities `qd`: arms s = A(φ)·local, d = r_P − r_Q, its rate ḋ, the guide's unit
+/// direction u and normal n, the arms' centripetal difference, the bodies' ω.
+pub(super) struct GuideTerms {
+    pub sp: Vector,
+    pub sq: Vector,
+    pub d: Vector,
+    pub dd: Vector,
+    pub ug: Vector,
+    pub ng: Vector,
+    pub centripetal: Vector,
+    pub wp: f64,
+    pub wg: f64,
+}
+
+impl GuideTerms {
+    pub(super) fn new(q: &[Pose], qd: &[f64], p: Anchor, qa: Anchor, guide: Attach, u: Vector) -> Self {
+        let (pp, pg) = (pz(q, p.body), pz(q, guide));
+        let (vp, wp) = rate(qd, p.body);
+        let (vg, wg) = rate(qd, guide);
+        let sp = pp.rot(p.local);
+        let sq = pg.rot(qa.local);
+        let d = pp.r + sp - pg.r - sq;
+        let dd = vp + perp(sp) * wp - vg - perp(sq) * wg;
+        let ug = pg.rot(u);
+        let ng = perp(ug);
+        let centripetal = sp * (wp * wp) - sq * (wg * wg);
+        GuideTerms { sp, sq, d, dd, ug, ng, centripetal, wp, wg }
     }
 }
 

@@ -9,7 +9,7 @@
 //! of Φ. So B(v, w) = (γ(v − w) − γ(v + w))/4 exactly, but for rounding
 //! ([`Solver::second_variation_at`]).
 
-use super::kinematics::{Con, Solver, con_gamma, con_jacobian};
+use super::kinematics::{Con, GuideTerms, Solver, con_gamma, con_jacobian};
 use super::{LinkageError, Pose, col, fill_poses, pz, rate};
 use crate::geom::perp;
 
@@ -91,18 +91,9 @@ fn con_gamma_derivative(c: &Con, q: &[Pose], qd: &[f64], dq: &[f64], out: &mut [
         }
         Con::Angle { .. } => out[0] = 0.0,
         Con::OnLine { p, q: qa, guide, u } | Con::Distance { p, q: qa, guide, u, .. } => {
-            let (pp, pg) = (pz(q, p.body), pz(q, guide));
-            let (vp, wp) = rate(qd, p.body);
-            let (vg, wg) = rate(qd, guide);
+            let GuideTerms { sp, sq, d, dd, ug, ng, centripetal, wp, wg } = GuideTerms::new(q, qd, p, qa, guide, u);
             let (drp, fp) = rate(dq, p.body);
             let (drg, fg) = rate(dq, guide);
-            let sp = pp.rot(p.local);
-            let sq = pg.rot(qa.local);
-            let d = pp.r + sp - pg.r - sq;
-            let dd = vp + perp(sp) * wp - vg - perp(sq) * wg;
-            let ug = pg.rot(u);
-            let ng = perp(ug);
-            let centripetal = sp * (wp * wp) - sq * (wg * wg);
             // Their changes along dq.
             let (dsp, dsq) = (perp(sp) * fp, perp(sq) * fg);
             let d_d = drp + dsp - drg - dsq;
