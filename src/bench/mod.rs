@@ -209,17 +209,8 @@ pub fn markdown(report: &BenchReport) -> String {
     let _ = writeln!(s, "\n| problem | method | setting | time per solve | error | residual | distance |");
     let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|");
     for m in &report.methods {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {} | {} | {} |",
-            m.problem,
-            m.method,
-            m.setting,
-            time(m.ns_per_solve),
-            sci(m.error),
-            sci(m.residual),
-            sci(m.distance)
-        );
+        let ns = time(m.ns_per_solve);
+        md_row(&mut s, &[&m.problem, &m.method, &m.setting, &ns, &sci(m.error), &sci(m.residual), &sci(m.distance)]);
     }
     let _ = writeln!(
         s,
@@ -274,35 +265,30 @@ pub fn peers_markdown(methods: &[Measurement], peers: &peers::PeerReport) -> Str
             methods.iter().filter(|m| m.problem == problem && m.method == "Assur groups (cold)").collect();
         let of = |setting: &str| ours.iter().find(|m| m.setting == setting).map(|m| m.ns_per_solve);
         for m in &ours {
-            let _ = writeln!(
-                s,
-                "| {} | mechdraw, {} | {} | {} | {} | | |",
-                m.problem,
-                m.method,
-                m.setting,
-                time(m.ns_per_solve),
-                sci(m.error)
-            );
+            let route = format!("mechdraw, {}", m.method);
+            md_row(&mut s, &[&m.problem, &route, &m.setting, &time(m.ns_per_solve), &sci(m.error), "", ""]);
         }
         for m in peers.rows.iter().filter(|m| m.problem == problem) {
             let ratio = |ns: Option<f64>| ns.map_or(String::new(), |ns| format!("{:.2}×", m.ns_per_solve / ns));
-            let _ = writeln!(
-                s,
-                "| {} | {} | {} | {} | {} | {} | {} |",
-                m.problem,
-                m.method,
-                m.setting,
-                time(m.ns_per_solve),
-                sci(m.error),
-                ratio(of("new")),
-                ratio(of("refit"))
-            );
+            let (ns, err) = (time(m.ns_per_solve), sci(m.error));
+            md_row(&mut s, &[&m.problem, &m.method, &m.setting, &ns, &err, &ratio(of("new")), &ratio(of("refit"))]);
         }
     }
     for note in &peers.notes {
         let _ = writeln!(s, "\n{note}");
     }
     s
+}
+
+/// One Markdown table row: `| a | b | … |` (an empty cell stays empty).
+fn md_row(s: &mut String, cells: &[&str]) {
+    s.push('|');
+    for c in cells {
+        s.push(' ');
+        s.push_str(c);
+        s.push_str(if c.is_empty() { "|" } else { " |" });
+    }
+    s.push('\n');
 }
 
 fn png(svg_text: &str, what: &str) -> Result<Vec<u8>, Error> {
@@ -380,6 +366,29 @@ mod tests {
         assert_eq!(best.len(), 1);
         assert_eq!(best[0].method, "mid");
         assert_eq!(ms[0].error, Some(1e-15));
+    }
+
+    #[test]
+    fn the_peers_table_divides_each_peers_time_by_mechdraws_cold_rows() {
+        let cold = |setting: &str, ns: f64| {
+            Measurement::new(peers::FOURBAR_PROBLEM, "Assur groups (cold)", setting, ns, 1e-16, 1e-15)
+        };
+        let methods = [cold("new", 160.0), cold("refit", 80.0), m(peers::FOURBAR_PROBLEM, "Assur groups", 40.0, 1e-15)];
+        let report = peers::PeerReport {
+            rows: vec![Measurement::new(peers::FOURBAR_PROBLEM, "pylinkage (cold)", "s", 400.0, 0.0, 4e-14)],
+            notes: vec!["four-bar crate (cold): not built in".into()],
+        };
+        let md = peers_markdown(&methods, &report);
+        assert!(
+            md.contains("| four-bar (seed 003) | mechdraw, Assur groups (cold) | refit | 80 ns | 1.00e-15 | | |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| four-bar (seed 003) | pylinkage (cold) | s | 400 ns | 4.00e-14 | 2.50× | 5.00× |"),
+            "{md}"
+        );
+        assert_eq!(md.matches("Assur groups").count(), 2, "{md}");
+        assert!(md.contains("\nfour-bar crate (cold): not built in\n"), "{md}");
     }
 
     #[test]
