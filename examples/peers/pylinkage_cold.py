@@ -124,10 +124,16 @@ def time_cold(build, g, batches, min_batch_s):
 
 
 def points(build, g):
-    """Every position's named points of one cold sweep, [[x, y], ...] per name."""
+    """Every position's named points of one cold sweep, [[x, y], ...] per name; None where
+    pylinkage assembled nothing (its NaN, which JSON cannot carry)."""
     _, idx = build(g)
     traj = sweep(build, g)
-    return {name: [[float(traj[k, i, 0]), float(traj[k, i, 1])] for k in range(POSITIONS)] for name, i in idx.items()}
+
+    def point(k, i):
+        x, y = float(traj[k, i, 0]), float(traj[k, i, 1])
+        return [x, y] if math.isfinite(x) and math.isfinite(y) else None
+
+    return {name: [point(k, i) for k in range(POSITIONS)] for name, i in idx.items()}
 
 
 def main(argv):

@@ -22,7 +22,7 @@ pub const SCRIPT: &str = include_str!("../../../examples/peers/pylinkage_cold.py
 /// The script's exit status when `import pylinkage` fails.
 pub const EXIT_NOT_FOUND: i32 = 3;
 
-/// How long the script may run before it is stopped (a full run takes ~15 s).
+/// How long the script may run before it is stopped (a full run takes ≈ 9 s, `--quick` ≈ 3 s).
 pub const TIMEOUT: Duration = Duration::from_secs(300);
 
 /// Why pylinkage gave no rows.
