@@ -88,6 +88,8 @@ fn names_near_the_four_bars_force_poles_stand_apart() {
             }
         }
     }
+    // Every frame and every forces page has names near a pole (36 positions each).
+    assert!(all.len() >= 72, "{} drawings with names near a pole", all.len());
     all.sort_by(f64::total_cmp);
     eprintln!("smallest gaps: {:?}", &all[..all.len().min(10)]);
     assert!(found.is_empty(), "{} crowded:\n{}", found.len(), found.join("\n"));
