@@ -198,6 +198,10 @@ enum Command {
         /// Fewer repetitions (a smoke run).
         #[arg(long)]
         quick: bool,
+        /// The Python that runs the pylinkage peer's cold sweeps (default `python3`; a Python
+        /// without pylinkage gives a line saying so, and no row). docs/bench.md, "Peers".
+        #[arg(long, value_name = "PATH")]
+        peers_python: Option<PathBuf>,
     },
 }
 
@@ -394,8 +398,8 @@ fn run(cli: Cli) -> anyhow::Result<()> {
         }
         // Answered in main: its exit code says whether the runs differ.
         Command::Diff { .. } => Ok(()),
-        Command::Bench { out, quick } => {
-            let report = mechdraw::bench::run(&mechdraw::bench::BenchOptions { out_dir: out, quick })?;
+        Command::Bench { out, quick, peers_python } => {
+            let report = mechdraw::bench::run(&mechdraw::bench::BenchOptions { out_dir: out, quick, peers_python })?;
             print!("{}", mechdraw::bench::markdown(&report));
             for f in &report.written {
                 eprintln!("wrote {}", f.display());

@@ -19,6 +19,7 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
         "methods.csv",
         "outputs.csv",
         "tolerance.csv",
+        "peers.csv",
         "bench.md",
     ] {
         assert!(dir.path().join(f).is_file(), "{f} missing");
@@ -78,6 +79,46 @@ fn bench_quick_writes_every_output_with_sane_numbers() {
     assert!(md.contains("| fourbar-tolerances | 10000 | 360 | 6 | 5 |"), "{md}");
     assert!(md.contains("cores") && md.contains("build"), "{md}");
     assert_eq!(md.lines().filter(|l| l.starts_with("- ") && l.contains("per solve")).count(), 3, "{md}");
+    // The peers: each either a row in peers.csv (the same columns as methods.csv, beside
+    // mechdraw's cold rows in bench.md) or one line saying why it was not measured.
+    let peers = std::fs::read_to_string(dir.path().join("peers.csv")).unwrap();
+    assert_eq!(peers.lines().next(), Some("problem,method,setting,ns_per_solve,error,residual,distance"));
+    assert!(md.contains("Cold sweeps against peers"), "{md}");
+    for peer in ["four-bar crate (cold)", "pylinkage (cold)"] {
+        let rows = peers.lines().filter(|l| l.contains(peer)).count();
+        let note = md.lines().any(|l| l.starts_with(peer) && l.contains("not"));
+        assert!((rows > 0) != note, "{peer}: {rows} rows, note {note}\n{md}");
+    }
     let svg = std::fs::read_to_string(dir.path().join("basins.svg")).unwrap();
     assert!(svg.contains("mode 8") && !svg.contains("NaN"));
+}
+
+/// The pylinkage peer's script (examples/peers/pylinkage_cold.py), run as `mechdraw bench`
+/// runs it, under `MECHDRAW_PEERS_PYTHON` (or `python3`): its JSON parses into both problems'
+/// rows, timed, and their points are the same mechanism as mechdraw's (B and M of the
+/// four-bar, E and the rocker of the shaper, against the bench's references). Without
+/// pylinkage the test says so on stderr (not captured) and checks nothing else.
+#[test]
+fn the_pylinkage_scripts_output_parses_into_rows_on_the_same_mechanisms() {
+    use mechdraw::bench::peers::{PeerOptions, pylinkage};
+    use std::io::Write as _;
+    let python = std::env::var_os("MECHDRAW_PEERS_PYTHON").map(std::path::PathBuf::from);
+    let rows = match pylinkage::run(&PeerOptions { python, quick: true }) {
+        Err(e @ (pylinkage::PylinkageError::NotFound { .. } | pylinkage::PylinkageError::NoPython { .. })) => {
+            let _ = writeln!(
+                std::io::stderr(),
+                "SKIPPED the_pylinkage_scripts_output_parses…: {e} (set MECHDRAW_PEERS_PYTHON to a Python with pylinkage)"
+            );
+            return;
+        }
+        r => r.unwrap(),
+    };
+    assert_eq!(rows.len(), 2, "{rows:?}");
+    for (m, problem) in rows.iter().zip(["four-bar (seed 003)", "shaper (seed 002)"]) {
+        assert_eq!((m.problem.as_str(), m.method.as_str()), (problem, "pylinkage (cold)"));
+        assert!(m.ns_per_solve.is_finite() && m.ns_per_solve > 0.0, "{m:?}");
+        // pylinkage turns its crank by adding 1° a step to the last angle (atan2): rounding
+        // that adds up over the turn, far below 1e-12 of the longest link.
+        assert!(m.error.unwrap() < 1e-12, "{m:?}");
+    }
 }

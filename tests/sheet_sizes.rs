@@ -168,19 +168,49 @@ fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_leas
         let pages: Vec<&Drawing> =
             p.pages.iter().filter(|g| g.stem.ends_with("-mechanism")).map(|g| &g.drawing).collect();
         assert_eq!(pages.len(), s.times.len(), "{stem}");
+        let mut details = 0;
         for d in &pages {
+            // The main view draws the crank at its k_l.
             let crank = crank_len / printed(d, "k_l");
-            // triad-driven's "crank" is a 5 mm eccentric carrying a 170 mm triad's pivot: 25
-            // mm would take 5:1, a 850 mm drawing; it is drawn 1:1, as large as A4 holds it.
-            // (shaper-forces' crank is 25 mm at 1:5 since its forces' rows moved to the
-            // forces page: the mechanism page's table holds the kinematics only.)
-            let least = if stem == "triad-driven" { 5.0 } else { 25.0 };
-            assert!(crank >= least, "{stem}: the crank is {crank:.1} mm");
             assert!(
                 link_lengths(d).iter().any(|l| (l - crank).abs() <= 1e-9 * crank),
                 "{stem}: no crank of {crank} mm"
             );
+            if crank >= 25.0 {
+                continue;
+            }
+            // A crank shorter than 25 mm there (triad-driven's 5 mm eccentric carrying a
+            // 170 mm triad) is drawn again in a detail view, at least 25 mm long at the k_l
+            // its caption prints.
+            let caption = d.entities.iter().find_map(|e| match &e.shape {
+                Shape::Text { at, value, .. } if value.starts_with("Detail ") => Some((*at, value.clone())),
+                _ => None,
+            });
+            let (at, caption) =
+                caption.unwrap_or_else(|| panic!("{stem}: the crank is {crank:.1} mm, and no detail view"));
+            let k: f64 = caption.split("k_l = ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+            let enlarged = crank_len / k;
+            assert!(enlarged >= 25.0, "{stem}: the crank is {enlarged:.1} mm in {caption:?}");
+            // Drawn in the detail's panel (the smallest panel holding its caption).
+            let (lo, hi) = common::panels(d)
+                .into_iter()
+                .filter(|(lo, hi)| at.x >= lo.x && at.x <= hi.x && at.y >= lo.y && at.y <= hi.y)
+                .min_by(|a, b| ((a.1 - a.0).x * (a.1 - a.0).y).total_cmp(&((b.1 - b.0).x * (b.1 - b.0).y)))
+                .unwrap();
+            let inside = |p: &Point| p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
+            let mech = d.layers.iter().position(|x| x.name == "MECHANISM").unwrap();
+            let drawn = d.entities.iter().filter(|e| e.layer == mech).any(|e| match &e.shape {
+                Shape::Polyline { points, width, .. } if *width > 0.0 && points.iter().all(inside) => {
+                    points.windows(2).any(|w| ((w[1] - w[0]).norm() - enlarged).abs() <= 1e-9 * enlarged)
+                }
+                _ => false,
+            });
+            assert!(drawn, "{stem}: no crank of {enlarged} mm in the detail view");
+            details += 1;
         }
+        // (shaper-forces' crank is 25 mm at 1:5 on the main view since its forces' rows
+        // moved to the forces page; only triad-driven takes a detail view.)
+        assert_eq!(details > 0, stem == "triad-driven", "{stem}: {details} detail views");
         let Some(dynamics) = &s.dynamics else { continue };
         let (states, forces) = Solver::new(mech.clone()).unwrap().run_kinetostatics(&s.times, dynamics).unwrap();
         let figures = ForceFigures::new(mech, false);

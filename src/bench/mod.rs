@@ -8,6 +8,7 @@
 
 pub mod basins;
 pub mod chart;
+pub mod peers;
 pub mod reference;
 pub mod suite;
 pub mod timing;
@@ -78,6 +79,8 @@ pub struct BenchOptions {
     pub out_dir: PathBuf,
     /// Smaller timing budgets (a smoke run).
     pub quick: bool,
+    /// The Python that runs the pylinkage peer (`python3` when `None`; see [`peers`]).
+    pub peers_python: Option<PathBuf>,
 }
 
 /// What `mechdraw bench` measured.
@@ -89,6 +92,8 @@ pub struct BenchReport {
     pub runs: Vec<RunCost>,
     /// The tolerance study's Monte Carlo, timed.
     pub tolerance: Vec<tolerance::MonteCarloCost>,
+    /// Peers' cold sweeps (rows beside "Assur groups (cold)"), and a line per peer not found.
+    pub peers: peers::PeerReport,
     /// Machine and build, one line.
     pub machine: String,
     /// Files written.
@@ -204,17 +209,8 @@ pub fn markdown(report: &BenchReport) -> String {
     let _ = writeln!(s, "\n| problem | method | setting | time per solve | error | residual | distance |");
     let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|");
     for m in &report.methods {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | {} | {} | {} |",
-            m.problem,
-            m.method,
-            m.setting,
-            time(m.ns_per_solve),
-            sci(m.error),
-            sci(m.residual),
-            sci(m.distance)
-        );
+        let ns = time(m.ns_per_solve);
+        md_row(&mut s, &[&m.problem, &m.method, &m.setting, &ns, &sci(m.error), &sci(m.residual), &sci(m.distance)]);
     }
     let _ = writeln!(
         s,
@@ -232,6 +228,7 @@ pub fn markdown(report: &BenchReport) -> String {
             t.scene, t.samples, t.positions, t.dimensions, t.components, t.threads, t.wall_s, t.ns_per_sample_position
         );
     }
+    s.push_str(&peers_markdown(&report.methods, &report.peers));
     let _ = writeln!(s, "\nWhat a scene's `outputs` cost (whole `mechdraw run`, median of runs):\n");
     let _ = writeln!(s, "| scene | outputs | frames | files | ms per run |");
     let _ = writeln!(s, "|---|---|---|---:|---:|");
@@ -249,12 +246,57 @@ pub fn markdown(report: &BenchReport) -> String {
     s
 }
 
+/// Cold sweeps against the peers (issue 34: mechdraw ≥ 1× every peer, cold): per problem,
+/// mechdraw's "Assur groups (cold)" rows and each peer's row, with the peer's time over
+/// mechdraw's (≥ 1: mechdraw as fast or faster); then a line per peer not measured.
+pub fn peers_markdown(methods: &[Measurement], peers: &peers::PeerReport) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "\nCold sweeps against peers (a whole turn from nothing, per position; docs/bench.md, \"Peers\"):\n"
+    );
+    let _ = writeln!(
+        s,
+        "| problem | route | setting | time per position | error | peer ÷ mechdraw new | peer ÷ mechdraw refit |"
+    );
+    let _ = writeln!(s, "|---|---|---|---:|---:|---:|---:|");
+    for problem in [peers::FOURBAR_PROBLEM, peers::SHAPER_PROBLEM] {
+        let ours: Vec<&Measurement> =
+            methods.iter().filter(|m| m.problem == problem && m.method == "Assur groups (cold)").collect();
+        let of = |setting: &str| ours.iter().find(|m| m.setting == setting).map(|m| m.ns_per_solve);
+        for m in &ours {
+            let route = format!("mechdraw, {}", m.method);
+            md_row(&mut s, &[&m.problem, &route, &m.setting, &time(m.ns_per_solve), &sci(m.error), "", ""]);
+        }
+        for m in peers.rows.iter().filter(|m| m.problem == problem) {
+            let ratio = |ns: Option<f64>| ns.map_or(String::new(), |ns| format!("{:.2}×", m.ns_per_solve / ns));
+            let (ns, err) = (time(m.ns_per_solve), sci(m.error));
+            md_row(&mut s, &[&m.problem, &m.method, &m.setting, &ns, &err, &ratio(of("new")), &ratio(of("refit"))]);
+        }
+    }
+    for note in &peers.notes {
+        let _ = writeln!(s, "\n{note}");
+    }
+    s
+}
+
+/// One Markdown table row: `| a | b | … |` (an empty cell stays empty).
+fn md_row(s: &mut String, cells: &[&str]) {
+    s.push('|');
+    for c in cells {
+        s.push(' ');
+        s.push_str(c);
+        s.push_str(if c.is_empty() { "|" } else { " |" });
+    }
+    s.push('\n');
+}
+
 fn png(svg_text: &str, what: &str) -> Result<Vec<u8>, Error> {
     crate::draw::raster::to_png(svg_text, 1400).map_err(|e| Error::Export { what: what.into(), message: e.to_string() })
 }
 
 /// Runs every measurement and writes, under `opts.out_dir`: `chart.svg`/`.png` (speed
-/// against accuracy), `methods.csv`, `outputs.csv`, `tolerance.csv`, `bench.md`,
+/// against accuracy), `methods.csv`, `peers.csv`, `outputs.csv`, `tolerance.csv`, `bench.md`,
 /// `basins.svg`/`.png`.
 pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let t0 = std::time::Instant::now();
@@ -272,6 +314,8 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     let tolerance =
         vec![tolerance::fourbar_monte_carlo(if opts.quick { TOLERANCE_SAMPLES_QUICK } else { TOLERANCE_SAMPLES })?];
 
+    let peers = peers::run(budget, &peers::PeerOptions { python: opts.peers_python.clone(), quick: opts.quick });
+
     let triad = suite::popa_triad()?;
     let modes = reference::triad_modes(&triad)
         .map_err(|e| Error::Solve { file: "triad-popa.toml".into(), source: e.into() })?;
@@ -287,9 +331,11 @@ pub fn run(opts: &BenchOptions) -> Result<BenchReport, Error> {
     out.write("basins.png", png(&basin_svg, "basins.png")?)?;
     out.write("basins.svg", basin_svg)?;
     out.write("methods.csv", methods_csv(&methods))?;
+    out.write("peers.csv", methods_csv(&peers.rows))?;
     out.write("outputs.csv", runs_csv(&runs))?;
     out.write("tolerance.csv", tolerance::csv(&tolerance))?;
-    let mut report = BenchReport { methods, runs, tolerance, machine: machine(), written: Vec::new(), seconds: 0.0 };
+    let mut report =
+        BenchReport { methods, runs, tolerance, peers, machine: machine(), written: Vec::new(), seconds: 0.0 };
     report.seconds = t0.elapsed().as_secs_f64();
     out.write("bench.md", markdown(&report))?;
     report.written = out.commit()?;
@@ -320,6 +366,29 @@ mod tests {
         assert_eq!(best.len(), 1);
         assert_eq!(best[0].method, "mid");
         assert_eq!(ms[0].error, Some(1e-15));
+    }
+
+    #[test]
+    fn the_peers_table_divides_each_peers_time_by_mechdraws_cold_rows() {
+        let cold = |setting: &str, ns: f64| {
+            Measurement::new(peers::FOURBAR_PROBLEM, "Assur groups (cold)", setting, ns, 1e-16, 1e-15)
+        };
+        let methods = [cold("new", 160.0), cold("refit", 80.0), m(peers::FOURBAR_PROBLEM, "Assur groups", 40.0, 1e-15)];
+        let report = peers::PeerReport {
+            rows: vec![Measurement::new(peers::FOURBAR_PROBLEM, "pylinkage (cold)", "s", 400.0, 0.0, 4e-14)],
+            notes: vec!["four-bar crate (cold): not built in".into()],
+        };
+        let md = peers_markdown(&methods, &report);
+        assert!(
+            md.contains("| four-bar (seed 003) | mechdraw, Assur groups (cold) | refit | 80 ns | 1.00e-15 | | |"),
+            "{md}"
+        );
+        assert!(
+            md.contains("| four-bar (seed 003) | pylinkage (cold) | s | 400 ns | 4.00e-14 | 2.50× | 5.00× |"),
+            "{md}"
+        );
+        assert_eq!(md.matches("Assur groups").count(), 2, "{md}");
+        assert!(md.contains("\nfour-bar crate (cold): not built in\n"), "{md}");
     }
 
     #[test]

@@ -13,6 +13,7 @@
 //! millimetres; the drawings carry `paper_mm_per_unit = 1/k_l` and the base prints
 //! `k_l = 5 mm/mm` with a scale bar under the motion.
 
+pub mod detail;
 pub mod forces;
 pub mod frame;
 pub mod polygon;
@@ -366,42 +367,8 @@ pub fn mechanism_with_forces(
         };
         letters.circled(mid, &(i + 1).to_string(), s.text, dir, clear);
     }
-    // The crank's ω arrow: an arc of 120° about its pivot in the widest sector free of the
-    // links and forces that leave the pivot and of its ground symbol, its head in the sense
-    // of rotation; its letter with a leader where crowded.
-    if let (Some((body, pivot)), Some(w)) = (fig.crank, omega.filter(|w| *w != 0.0 && w.is_finite())) {
-        let p = anchor_at(q, pivot);
-        let near =
-            |x: Point| (x - p).norm() <= 1e-9 * (1.0 + x.coords.norm() + p.coords.norm()) || (x - p).norm() < s.joint;
-        let mut taken: Vec<f64> = Vec::new();
-        for (i, b) in fig.bodies.iter().enumerate() {
-            let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
-            for w2 in pts.windows(2) {
-                for (x, y) in [(w2[0], w2[1]), (w2[1], w2[0])] {
-                    if near(x) {
-                        taken.push(crate::geom::angle_of(y - x));
-                    }
-                }
-            }
-        }
-        // The forces from the pivot: from its centre, or from its symbol's edge along their
-        // line of action (a sheet's [`crate::figure::shared::clear_forces`]).
-        let from_pivot = |a: &&ForceArrow| {
-            let (t, v) = (a.arrow.0 - p, a.arrow.1 - a.arrow.0);
-            near(a.arrow.0)
-                || (t.norm() <= s.joint + s.head
-                    && v.norm() > 0.0
-                    && crate::geom::cross(v, t).abs() <= 1e-9 * v.norm() * (1.0 + t.norm()))
-        };
-        taken.extend(arrows.iter().filter(from_pivot).map(|a| crate::geom::angle_of(a.arrow.1 - a.arrow.0)));
-        // The ground symbol under the pivot.
-        taken.extend([-0.5 * std::f64::consts::PI - 0.6, -0.5 * std::f64::consts::PI + 0.6]);
-        let mid_angle = widest_gap(&mut taken);
-        let half = 60f64.to_radians();
-        let (a0, a1) = (mid_angle - half, mid_angle + half);
-        let (from, sweep) = if w > 0.0 { (a0, a1 - a0) } else { (a1, a0 - a1) };
-        let mid = vocab::turn_arrow(d, layer, p, 3.5 * s.joint, from, sweep, s);
-        letters.name_with_leader(mid, Label::quantity(&format!("ω{}", body + 1)), s.text, mid - p, None);
+    if let (Some(crank), Some(w)) = (fig.crank, omega.filter(|w| *w != 0.0 && w.is_finite())) {
+        crank_turn(d, layer, (fig, q), crank, arrows, w, s, &mut letters);
     }
     for a in arrows {
         letters.letter(a.arrow.1, a.force.label(), s.text, a.arrow.1 - a.arrow.0, None);
@@ -420,6 +387,55 @@ pub fn mechanism_with_forces(
         let l = if i < on_mechanism { layer } else { frc };
         labels::draw_placed(d, l, p, Some(LineType::Continuous));
     }
+}
+
+/// The crank's ω arrow: an arc of 120° about its pivot in the widest sector free of the
+/// links and forces (`arrows`) that leave the pivot and of its ground symbol, its head in
+/// the sense of rotation of `w` (rad/s, CCW positive); its letter with a leader where
+/// crowded, into `letters`. `crank` is the crank's body and its pivot ([`LinkageFigure::crank`]).
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn crank_turn(
+    d: &mut Drawing,
+    layer: usize,
+    (fig, q): (&LinkageFigure, &[f64]),
+    (body, pivot): (usize, Anchor),
+    arrows: &[ForceArrow],
+    w: f64,
+    s: Sizes,
+    letters: &mut labels::Polygon,
+) {
+    let p = anchor_at(q, pivot);
+    let near =
+        |x: Point| (x - p).norm() <= 1e-9 * (1.0 + x.coords.norm() + p.coords.norm()) || (x - p).norm() < s.joint;
+    let mut taken: Vec<f64> = Vec::new();
+    for (i, b) in fig.bodies.iter().enumerate() {
+        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+        for w2 in pts.windows(2) {
+            for (x, y) in [(w2[0], w2[1]), (w2[1], w2[0])] {
+                if near(x) {
+                    taken.push(crate::geom::angle_of(y - x));
+                }
+            }
+        }
+    }
+    // The forces from the pivot: from its centre, or from its symbol's edge along their
+    // line of action (a sheet's [`crate::figure::shared::clear_forces`]).
+    let from_pivot = |a: &&ForceArrow| {
+        let (t, v) = (a.arrow.0 - p, a.arrow.1 - a.arrow.0);
+        near(a.arrow.0)
+            || (t.norm() <= s.joint + s.head
+                && v.norm() > 0.0
+                && crate::geom::cross(v, t).abs() <= 1e-9 * v.norm() * (1.0 + t.norm()))
+    };
+    taken.extend(arrows.iter().filter(from_pivot).map(|a| crate::geom::angle_of(a.arrow.1 - a.arrow.0)));
+    // The ground symbol under the pivot.
+    taken.extend([-0.5 * std::f64::consts::PI - 0.6, -0.5 * std::f64::consts::PI + 0.6]);
+    let mid_angle = widest_gap(&mut taken);
+    let half = 60f64.to_radians();
+    let (a0, a1) = (mid_angle - half, mid_angle + half);
+    let (from, sweep) = if w > 0.0 { (a0, a1 - a0) } else { (a1, a0 - a1) };
+    let mid = vocab::turn_arrow(d, layer, p, 3.5 * s.joint, from, sweep, s);
+    letters.name_with_leader(mid, Label::quantity(&format!("ω{}", body + 1)), s.text, mid - p, None);
 }
 
 /// The middle of the widest gap between the directions `taken` (radians, any range; sorted

@@ -14,17 +14,20 @@ use crate::draw::Drawing;
 use crate::geom::{Point, Vector, deg};
 use crate::solve::linkage::{Attach, Dynamics, Forces, Mechanism, State, place};
 
+use crate::figure::linkage::detail::Detail;
 use crate::figure::linkage::forces::{ForceFigures, on_mechanism};
 use crate::figure::linkage::frame::{Show, links_of, time_text};
 use crate::figure::linkage::polygon::polygons_of;
 use crate::figure::linkage::{self as fig, LinkageFigure};
 use crate::figure::shared::labels::{Around, TextBox};
 use crate::figure::shared::panels::scale_line;
-use crate::figure::shared::sheet::{self, Paper, Table, TitleBlock};
+use crate::figure::shared::sheet::{self, Panel, Paper, Table, TitleBlock};
 use crate::figure::shared::sheet_pages::{
     MechanismPage, forces_page, mechanism_bar, mechanism_force_scale, polygons_page,
 };
-use crate::figure::shared::vocab::{self, Scale, layer_of, layers, length_scale_text};
+use crate::figure::shared::vocab::{
+    self, Scale, bar_value, layer_of, layers, length_scale_text, scale_bar, scale_text,
+};
 use crate::figure::shared::{clear_forces, forces};
 
 /// The longest force drawn on the mechanism page, as a fraction of the mechanism's drawn size.
@@ -52,6 +55,12 @@ pub struct LinkageSheets {
     figures: ForceFigures,
     /// The mechanism's drawn size, paper mm.
     drawn_mm: f64,
+    /// The crank's detail view, when the crank is drawn shorter than 25 mm.
+    detail: Option<Detail>,
+    /// The figure in model units (for the detail view).
+    figure: LinkageFigure,
+    /// The ground guides' spans in model units (for the detail view).
+    model_spans: Vec<Option<(Point, Point)>>,
 }
 
 impl LinkageSheets {
@@ -78,7 +87,8 @@ impl LinkageSheets {
         let motion: Vec<&[f64]> = states.iter().map(|st| st.q.as_slice()).collect();
         // What is drawn: every body point over the motion and the ground guides over their
         // travel (no far-away ground point that only fixes a guide's direction).
-        let spans = fig::guide_spans(figure, &motion, &s);
+        let model_spans = fig::guide_spans(figure, &motion, &s);
+        let spans = &model_spans;
         let pts = motion.iter().flat_map(|q| {
             figure
                 .bodies
@@ -98,6 +108,14 @@ impl LinkageSheets {
         let mut page = MechanismPage::new(paper, lo, hi, room, table_rows, 6);
         if let Some(k) = held {
             page = page.held(k, lo, hi);
+        }
+        // A crank drawn shorter than 25 mm gets a detail view beside the mechanism.
+        let detail = Detail::needed(figure, page.k_l, s);
+        if let Some(detail) = &detail {
+            page = MechanismPage::with_detail(paper, (lo, hi), room, (table_rows, 6), detail.width(s));
+            if let Some(k) = held {
+                page = page.held(k, lo, hi);
+            }
         }
         let (origin, k_l) = (page.origin, page.k_l);
         let paper_figure = figure.on_paper(origin, k_l);
@@ -119,6 +137,9 @@ impl LinkageSheets {
             spans,
             figures,
             drawn_mm,
+            detail,
+            figure: figure.clone(),
+            model_spans,
         }
     }
 
@@ -226,8 +247,11 @@ impl LinkageSheets {
             heading.push_str(&format!(", forces {}", scale_line("k_f", k, "N")));
             cells.push(format!("forces {}", scale_line("k_f", k, "N")));
         }
-        let mut d = sheet::page(layout, &title(cells, 0), table, &[heading]);
-        mechanism_bar(&mut d, layout, k_l, self.paper_figure.units.length);
+        let units = self.paper_figure.units;
+        let mut headings = vec![heading];
+        headings.extend(self.detail.as_ref().map(|dt| dt.caption(units)));
+        let mut d = sheet::page(layout, &title(cells, 0), table, &headings);
+        mechanism_bar(&mut d, layout, k_l, units.length);
         d.append(&self.paths);
         let arrows = match k_f {
             Some(k) => {
@@ -255,10 +279,38 @@ impl LinkageSheets {
         forces::draw_on_mechanism(&mut d, &arrows, s);
         let mech_layer = layer_of(&d, layers::MECHANISM);
         let outline = layout.panels[0].outline;
-        let around = Around { backdrop: None, within: Some(TextBox { min: outline.min, max: outline.max }) };
+        let within = TextBox { min: outline.min, max: outline.max };
+        let around = Around { backdrop: None, within: Some(within) };
         let omega = self.paper_figure.crank.map(|(b, _)| state.angular(Attach::Body(b)).1);
+        let mark = self.detail.as_ref().map(|dt| dt.mark(&mut d, mech_layer, &q, k_l));
         fig::mechanism_with_forces(&mut d, mech_layer, &self.paper_figure, &q, &self.spans, &arrows, omega, &s, around);
+        if let (Some(dt), Some(mark), Some(panel)) = (&self.detail, mark, layout.panels.get(1)) {
+            self.draw_detail(&mut d, dt, mark, within, panel, state, omega);
+        }
         d
+    }
+
+    /// The crank's detail view in `panel`, its region `mark` (centre, radius) lettered on
+    /// the main view (inside `within`).
+    #[allow(clippy::too_many_arguments)]
+    fn draw_detail(
+        &self,
+        d: &mut Drawing,
+        dt: &Detail,
+        mark: (Point, f64),
+        within: TextBox,
+        panel: &Panel,
+        state: &State,
+        omega: Option<f64>,
+    ) {
+        let s = self.mechanism_page.layout.sizes;
+        let (mech, paths) = (layer_of(d, layers::MECHANISM), fig::trajectory_layer(d));
+        dt.letter_on(d, mech, mark, within, s);
+        let dims = layer_of(d, layers::DIMENSIONS);
+        let value = bar_value(dt.k);
+        let label = format!("{} {}", scale_text(value), self.paper_figure.units.length);
+        scale_bar(d, dims, panel.bar_at(s), value / dt.k, &label, s);
+        dt.draw(d, (mech, paths), &self.figure, &state.q, &self.model_spans, panel, omega, s);
     }
 }
 

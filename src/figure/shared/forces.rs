@@ -28,6 +28,17 @@ pub const RESULTANT: Aci = Aci::RED;
 /// Height of a vector's name in the force polygons, in letter heights.
 pub const NAME_HEIGHT: f64 = 0.8;
 
+/// Names within this many letter heights of a polygon's pole (the pole's own letter, the
+/// names of the vectors whose middle is that near) stand in a crowd: the four-bar's f, R_An,
+/// G_21, F_i21, G_22, F_i22 when R_An is short (issue 31).
+pub const CROWD_RADIUS: f64 = 4.0;
+
+/// A name in the crowd about the pole is placed as if this many times its size, and drawn
+/// at its size: so it stands at least (CROWD_PAD − 1)/2 of its height (and of its width)
+/// off every other name. (1.5 pushed the other names of the four-bar's tall, narrow dyad
+/// figure at φ1 = 270° onto its leaders; 1.3 keeps tests/labels_all.rs at 0.)
+pub const CROWD_PAD: f64 = 1.3;
+
 /// How far a resultant lying on a side already drawn is moved beside it, in arrowhead
 /// lengths (per step: a second one on the same line goes twice as far).
 pub const OFFSET: f64 = 0.5;
@@ -158,7 +169,9 @@ pub fn draw_within(
     let pts: Vec<Point> = poly.vertices().into_iter().map(|v| pole + scale.draw(v)).collect();
     let centroid = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len() as f64);
     crate::figure::shared::vocab::pole(d, l, pole, s);
-    names.letter(pole, &poly.pole, s.text, pole - centroid, None);
+    // The pole's letter, and the names about it: in the crowd ([`CROWD_RADIUS`]), placed
+    // larger than drawn ([`CROWD_PAD`]), so that they stand apart.
+    names.letter(pole, &poly.pole, CROWD_PAD * s.text, pole - centroid, None);
     // Every segment drawn so far, for resultants to keep off.
     let mut drawn: Vec<(Point, Point)> = Vec::new();
     // The names: (drawn segment, name, force, where along it, colour).
@@ -188,11 +201,32 @@ pub fn draw_within(
     // vector's name finds room anywhere along it).
     named.sort_by(|a, b| (a.0.1 - a.0.0).norm().total_cmp(&(b.0.1 - b.0.0).norm()));
     for (seg, text, v, at, color) in named {
-        name(&mut names, seg, text, v, at, centroid, color, s);
+        name(&mut names, seg, text, v, (at, pole), centroid, color, s);
     }
     // Off everything drawn so far (this figure's arrows, the other figures, texts).
     names.keep_off_drawing(d);
-    names.draw(d, l)
+    let mut boxes = Vec::new();
+    for mut p in names.place() {
+        // The crowd's names drawn at their size, their leaders to their boxes as drawn.
+        for h in [s.text, NAME_HEIGHT * s.text] {
+            if (p.height - CROWD_PAD * h).abs() <= 1e-9 * h {
+                p.height = h;
+                let bx = p.bounds();
+                p.leader = p.leader.map(|(from, _)| (from, edge_towards(&bx, from)));
+            }
+        }
+        boxes.push(p.bounds());
+        labels::draw_placed(d, l, &p, Some(LineType::Continuous));
+    }
+    boxes
+}
+
+/// The point of the edge of `bx` on the line from its centre to `at` (outside it).
+fn edge_towards(bx: &TextBox, at: Point) -> Point {
+    let c = Point::from((bx.min.coords + bx.max.coords) / 2.0);
+    let (half, v) = ((bx.max - bx.min) / 2.0, at - c);
+    let t = (half.x / v.x.abs().max(1e-300)).min(half.y / v.y.abs().max(1e-300)).min(1.0);
+    c + v * t
 }
 
 /// An arrow on `layer` in `color` (or the layer's); `false` (nothing drawn) for a vector
@@ -209,14 +243,16 @@ fn arrow(d: &mut Drawing, layer: usize, color: Option<Aci>, (from, to): (Point, 
 /// The name of the drawn segment `from`–`to` (the physical vector `v`: a zero force is not
 /// named) for `names`, at the fraction `at` of its length, preferably on the side away from
 /// `inside`; a name that cannot sit beside its vector (a short one in a crowd) goes further
-/// out with a leader ([`labels::Polygon::name_with_leader`]).
+/// out with a leader ([`labels::Polygon::name_with_leader`]). A name whose vector's middle
+/// is within [`CROWD_RADIUS`] letters of the `pole` is in its crowd: placed outward from
+/// the pole, as if [`CROWD_PAD`] times its size.
 #[allow(clippy::too_many_arguments)]
 fn name(
     names: &mut labels::Polygon,
     (from, to): (Point, Point),
     text: labels::Label,
     v: Vector,
-    at: f64,
+    (at, pole): (f64, Point),
     inside: Point,
     color: Option<Aci>,
     s: Sizes,
@@ -233,6 +269,13 @@ fn name(
     let mut n = if len > 0.0 { perp(seg / len) } else { unit_or(mid - inside, Vector::new(0.0, 1.0)) };
     if n.dot(&(mid - inside)) < 0.0 {
         n = -n;
+    }
+    if (mid - pole).norm() <= CROWD_RADIUS * s.text {
+        // Outward from the pole: on the vector's side away from it, leaning away.
+        let out = unit_or(mid - pole, n);
+        let across = if n.dot(&out) < 0.0 { -n } else { n };
+        names.name_with_leader(mid, text, CROWD_PAD * h, across + out, color);
+        return;
     }
     names.name_with_leader(mid, text, h, n, color);
 }

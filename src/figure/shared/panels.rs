@@ -12,8 +12,9 @@
 //! window and the mechanism keeps one length scale k_l (model units per paper millimetre, a
 //! drafting scale [`drafting_scale`]) that draws its motion at most `mechanism_mm` long on paper;
 //! the drawings carry `paper_mm_per_unit = 1/k_l`. The polygons' panels stand in a
-//! column right of the mechanism's, smaller than it, the force panel under both: the
-//! mechanism is the largest figure. The force panel holds its figures in cells, in rows of up to
+//! column right of the mechanism's (in a row under it for a long, low mechanism, when that
+//! takes less paper), smaller than it, the force panel under all: the mechanism is the
+//! largest figure. The force panel holds its figures in cells, in rows of up to
 //! [`FORCE_ROW`] items (the figures, then the table), each under its caption.
 //!
 //! The polygons' scales per printed millimetre (`k_v = 0.01 (m/s)/mm`: one measured
@@ -805,12 +806,44 @@ pub struct FrameScales {
 
 /// The panels' rectangles (lower-left, upper-right; the mechanism's top-left at the
 /// origin) for content boxes `boxes` (the mechanism's first, then one per `which`): the
-/// mechanism on the left, the polygons' panels stacked in a column right of it (the shorter
-/// of the two stretched to the other's height, the spare height shared), the force panel
-/// under both, as wide as they are together.
+/// polygons' panels in a column right of the mechanism ([`beside`]) or, for a flat
+/// mechanism, in a row under it ([`under`]): the one of the two that takes less paper by
+/// [`UNDER_GAIN`] (a long, low slider-crank beside a column of two polygons leaves its tall
+/// panel mostly empty); the force panel under all, as wide as they are together.
 fn arrange_panels(boxes: &[(Title, Vector)], which: &[Which], title_room: f64, gap: f64) -> Vec<(Point, Point)> {
-    let mech = boxes[0].1 + Vector::new(0.0, title_room);
     let side: Vec<usize> = (0..which.len()).filter(|&j| which[j] != Which::Forces).map(|j| j + 1).collect();
+    let mut rects = beside(boxes, &side, title_room, gap);
+    if side.len() >= 2 {
+        let low = under(boxes, &side, title_room, gap);
+        let area = |r: &[(Point, Point)]| {
+            let (w, h) = r.iter().fold((0.0f64, 0.0f64), |(w, h), (lo, hi)| (w.max(hi.x), h.max(-lo.y)));
+            w * h
+        };
+        if area(&low) < UNDER_GAIN * area(&rects) {
+            rects = low;
+        }
+    }
+    let width = rects.iter().map(|(_, hi)| hi.x).fold(0.0, f64::max);
+    let height = rects.iter().map(|(lo, _)| -lo.y).fold(0.0, f64::max);
+    for (j, w) in which.iter().enumerate() {
+        if *w == Which::Forces {
+            let b = boxes[j + 1].1;
+            let top = -height - gap;
+            rects[j + 1] = (Point::new(0.0, top - b.y - title_room), Point::new(width.max(b.x), top));
+        }
+    }
+    rects
+}
+
+/// Below this share of the paper the column beside the mechanism takes, the polygons go in
+/// a row under it (a [`PanelFrame`]'s layout).
+pub const UNDER_GAIN: f64 = 0.85;
+
+/// The mechanism on the left, the polygons' panels `side` (indices into `boxes`) stacked in a
+/// column right of it: the shorter of the two stretched to the other's height, the spare
+/// height shared. The force panel's rectangle is left for [`arrange_panels`].
+fn beside(boxes: &[(Title, Vector)], side: &[usize], title_room: f64, gap: f64) -> Vec<(Point, Point)> {
+    let mech = boxes[0].1 + Vector::new(0.0, title_room);
     let col_w = side.iter().map(|&i| boxes[i].1.x).fold(0.0, f64::max);
     let stack: f64 =
         side.iter().map(|&i| boxes[i].1.y + title_room).sum::<f64>() + gap * side.len().saturating_sub(1) as f64;
@@ -819,18 +852,29 @@ fn arrange_panels(boxes: &[(Title, Vector)], which: &[Which], title_room: f64, g
     let mut rects = vec![(Point::new(0.0, -height), Point::new(mech.x, 0.0)); boxes.len()];
     let x = mech.x + gap;
     let mut top = 0.0;
-    for &i in &side {
+    for &i in side {
         let h = boxes[i].1.y + title_room + spare;
         rects[i] = (Point::new(x, top - h), Point::new(x + col_w, top));
         top -= h + gap;
     }
-    let width = if side.is_empty() { mech.x } else { x + col_w };
-    for (j, w) in which.iter().enumerate() {
-        if *w == Which::Forces {
-            let b = boxes[j + 1].1;
-            let top = -height - gap;
-            rects[j + 1] = (Point::new(0.0, top - b.y - title_room), Point::new(width.max(b.x), top));
-        }
+    rects
+}
+
+/// The mechanism on top, the polygons' panels `side` in a row under it: the narrower of the
+/// two stretched to the other's width, the spare width shared.
+fn under(boxes: &[(Title, Vector)], side: &[usize], title_room: f64, gap: f64) -> Vec<(Point, Point)> {
+    let mech = boxes[0].1 + Vector::new(0.0, title_room);
+    let row_h = side.iter().map(|&i| boxes[i].1.y + title_room).fold(0.0, f64::max);
+    let row_w: f64 = side.iter().map(|&i| boxes[i].1.x).sum::<f64>() + gap * side.len().saturating_sub(1) as f64;
+    let width = mech.x.max(row_w);
+    let spare = if side.is_empty() { 0.0 } else { (width - row_w) / side.len() as f64 };
+    let mut rects = vec![(Point::new(0.0, -mech.y), Point::new(width, 0.0)); boxes.len()];
+    let top = -mech.y - gap;
+    let mut x = 0.0;
+    for &i in side {
+        let w = boxes[i].1.x + spare;
+        rects[i] = (Point::new(x, top - row_h), Point::new(x + w, top));
+        x += w + gap;
     }
     rects
 }

@@ -52,7 +52,34 @@ impl MechanismPage {
     /// scale — beside the table (the table in the right column over the title block) or
     /// above it (the table in a band under it, left of the title block).
     pub fn new(paper: Paper, lo: Vector, hi: Vector, room: Vector, table_rows: usize, title_cells: usize) -> Self {
+        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), 0.0)
+    }
+
+    /// [`MechanismPage::new`] with a detail panel `width` mm wide at the right of the
+    /// mechanism's panel, as high as it (panel 1 of the layout): the mechanism drawn in what
+    /// is left, at the scale that fits it there.
+    pub fn with_detail(
+        paper: Paper,
+        (lo, hi): (Vector, Vector),
+        room: Vector,
+        (table_rows, title_cells): (usize, usize),
+        width: f64,
+    ) -> Self {
+        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), width)
+    }
+
+    /// The page, with `aside` mm at the right of the mechanism's panel for a detail panel
+    /// (none for 0).
+    fn laid_out(
+        paper: Paper,
+        (lo, hi): (Vector, Vector),
+        room: Vector,
+        (table_rows, title_cells): (usize, usize),
+        aside: f64,
+    ) -> Self {
         let (sizes, border, right, title) = sheet::page_frame(paper, title_cells);
+        // The mechanism's part of a panel (the detail's strip taken off its right).
+        let main = |b: Bounds| Bounds { min: b.min, max: Point::new(b.max.x - aside, b.max.y) };
         let extent = (hi - lo).sup(&Vector::new(1e-300, 1e-300));
         let beside = (
             Bounds { min: border.min, max: Point::new(right, border.max.y) },
@@ -70,7 +97,7 @@ impl MechanismPage {
             )
         };
         let scale_in = |panel: Bounds| {
-            let area = Panel::of_outline(panel, sizes).area;
+            let area = Panel::of_outline(main(panel), sizes).area;
             let room = Vector::new(area.width(), area.height()) - 2.0 * room;
             drafting_scale((extent.x / room.x.max(1e-9)).max(extent.y / room.y.max(1e-9)))
         };
@@ -84,9 +111,14 @@ impl MechanismPage {
                 (panel, table, k_l) = (p, t, k);
             }
         }
-        let outline = Panel::of_outline(panel, sizes);
+        let outline = Panel::of_outline(main(panel), sizes);
         let origin = sheet::centre(lo, hi, k_l, outline.area);
-        let layout = SheetLayout { paper, sizes, border, panels: vec![outline], table, title };
+        let mut panels = vec![outline];
+        if aside > 0.0 {
+            let strip = Bounds { min: Point::new(panel.max.x - aside, panel.min.y), max: panel.max };
+            panels.push(Panel::of_outline(strip, sizes));
+        }
+        let layout = SheetLayout { paper, sizes, border, panels, table, title };
         MechanismPage { layout, k_l, origin }
     }
 
