@@ -37,6 +37,7 @@ fn drawing(position_layers: usize) -> Drawing {
                 second: polar(v, 5.0, 0.7),
                 radius: 12.0,
                 text,
+                runs: Default::default(),
             },
         );
         let (p1, p2) = (v, polar(v, 30.0, 0.3));

@@ -138,6 +138,7 @@ fn sample_drawing() -> Drawing {
             second: a,
             radius: 14.0,
             text: format!("φ1 = {phi1:.2}°"),
+            runs: Default::default(),
         },
     );
     d.add(
@@ -148,6 +149,7 @@ fn sample_drawing() -> Drawing {
             second: b,
             radius: 8.0,
             text: "reflex".into(),
+            runs: Default::default(),
         },
     );
     d.add(

@@ -202,7 +202,7 @@ fn the_sheets_are_written_named_and_clean() {
     assert!(!centres.contains("NaN"));
     // Names drawn with subscripts (G_21) read through their tspans.
     let lever = common::svg_plain(&read(&path(r, &format!("{NAME}-joukowski.svg"))));
-    for name in ["φ1 = 135°", "φ1 = 200°", "G21", "Fi3", "FM2", "Fb", "c21", "Me1 = −Σ M_p(F_i) / ω1 = "] {
+    for name in ["φ1 = 135°", "φ1 = 200°", "G21", "Fi3", "FM2", "Fb", "c21", "Me1 = −Σ Mp(Fi) / ω1 = "] {
         assert!(lever.contains(name), "Joukowski sheet lacks {name}");
     }
     assert!(!lever.contains("NaN"));

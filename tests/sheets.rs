@@ -246,7 +246,7 @@ fn the_value_table_is_the_solvers() {
         scalar("ε3", "eps3");
         scalar("Me1", "Me1");
         checked += 4;
-        for (row, key) in [("A", "A"), ("M", "M"), ("vB", "vB"), ("aM", "aM"), ("R_A", "R_A"), ("R_O", "R_O")] {
+        for (row, key) in [("A", "A"), ("M", "M"), ("vB", "vB"), ("aM", "aM"), ("RA", "R_A"), ("RO", "R_O")] {
             let cells = &rows[row];
             let v = rec[key].as_array().unwrap();
             for c in 0..2 {
@@ -258,7 +258,7 @@ fn the_value_table_is_the_solvers() {
             }
             checked += 1;
         }
-        assert_eq!(rows["R_B"].last().map(String::as_str), Some("N"));
+        assert_eq!(rows["RB"].last().map(String::as_str), Some("N"));
         assert_eq!(rows["Me1"].last().map(String::as_str), Some("N·m"));
     }
     assert_eq!(checked, 12 * 10);

@@ -94,3 +94,129 @@ fn the_pdfs_text_reads_flat_as_the_dxf_writes_it() {
         assert!(words.contains(&want), "the PDF's text lacks `{want}`:\n{text}");
     }
 }
+
+/// Every file of a run of template `name` at `positions` (all when `None`), without frames
+/// when `frames` is false.
+fn files_of(name: &str, positions: Option<&str>, frames: bool, sheets: bool) -> Vec<(String, Vec<u8>)> {
+    let l = scene::load(&common::root().join(format!("templates/{name}.toml")), &[]).unwrap();
+    let opts = RunOptions {
+        positions: positions.map(|p| p.parse().unwrap()),
+        no_frames: !frames,
+        sheets: sheets.then_some(Paper::A4),
+        ..RunOptions::default()
+    };
+    let p = mechdraw::run::products(&l, &opts).unwrap();
+    bytes::to_files(&p, &WriteOptions::default()).unwrap()
+}
+
+/// The `<text>` bodies of every SVG whose name starts with `prefix`.
+fn svg_texts_under(files: &[(String, Vec<u8>)], prefix: &str) -> Vec<String> {
+    let found: Vec<String> = files
+        .iter()
+        .filter(|(n, _)| n.starts_with(prefix) && n.ends_with(".svg"))
+        .flat_map(|(_, b)| svg_texts(std::str::from_utf8(b).unwrap()).into_iter().map(|(_, t)| t))
+        .collect();
+    assert!(!found.is_empty(), "no SVG text under {prefix}: {:?}", files.iter().map(|f| &f.0).collect::<Vec<_>>());
+    found
+}
+
+/// A text's body with each subscript tspan written as `_{…}` (`M_{e1}`), other tspans'
+/// texts as they are.
+fn marked(body: &str) -> String {
+    let mut out = String::new();
+    let mut rest = body;
+    while let Some(i) = rest.find("<tspan") {
+        out.push_str(&rest[..i]);
+        let open_end = rest[i..].find('>').map_or(rest.len(), |j| i + j + 1);
+        let close = rest[open_end..].find("</tspan>").map_or(rest.len(), |j| open_end + j);
+        // A subscript's tspan sets its smaller size; the base text after it only moves back.
+        let content = &rest[open_end..close];
+        if rest[i..open_end].contains("font-size") {
+            out.push_str(&format!("_{{{content}}}"));
+        } else {
+            out.push_str(content);
+        }
+        rest = &rest[(close + "</tspan>".len()).min(rest.len())..];
+    }
+    out.push_str(rest);
+    out
+}
+
+#[test]
+fn the_tables_names_are_symbols_with_subscripts_and_a_users_load_as_typed() {
+    // The frame's force panel: its Magnitudes list (R_A, …, M_e1), the load `gas` flat.
+    let f = files(true);
+    let frame: Vec<String> =
+        svg_texts(text_of(&f, "frames/slider-crank/pos_000.svg")).into_iter().map(|t| marked(&t.1)).collect();
+    assert!(frame.iter().any(|t| t == "M_{e1}"), "no M_e1 in the frame's table: {frame:?}");
+    assert!(!frame.iter().any(|t| t == "Me1"), "a flat Me1 in the frame: {frame:?}");
+    // The printed sheets' tables: kinematics (v_B …) and forces (F_i2, G_2, R…, M_e1).
+    let sheets: Vec<String> = svg_texts_under(&f, "sheets/").iter().map(|t| marked(t)).collect();
+    for want in ["M_{e1}", "F_{i2}", "G_{2}", "gas"] {
+        assert!(sheets.iter().any(|t| t == want), "the sheets' tables lack {want}: {sheets:?}");
+    }
+    for flat in ["Me1", "Fi2", "G2", "g_{as}"] {
+        assert!(!sheets.iter().any(|t| t == flat), "the sheets draw {flat}");
+    }
+    // A measured point's speed: v and the point's name as its subscript.
+    assert!(sheets.iter().any(|t| t.starts_with("v_{") || t.starts_with("|v_{")), "{sheets:?}");
+    // The four-bar's sheet table: R_An from the CSV's R_An, v_BA, ω_2, φ_2; a point's
+    // coordinates (A) and the transmission angle ∠ABC flat.
+    let f = files_of("fourbar-chebyshev", Some("90"), false, true);
+    let sheets: Vec<String> = svg_texts_under(&f, "sheets/").iter().map(|t| marked(t)).collect();
+    for want in ["R_{An}", "v_{BA}", "ω_{2}", "φ_{2}", "M_{e1}", "F_{i21}", "A", "∠ABC"] {
+        assert!(sheets.iter().any(|t| t == want), "the four-bar's sheets lack {want}: {sheets:?}");
+    }
+    assert!(!sheets.iter().any(|t| t.contains('_') && !t.contains("_{")), "an underscore drawn: {sheets:?}");
+}
+
+#[test]
+fn angle_dimensions_and_the_joukowski_line_have_subscripts_where_the_writer_can() {
+    // The triad's φ1 = 75.77°: φ_1 in the SVG, `φ1` in the DXF (no `_`, no tspan).
+    let f = files_of("triad-popa", None, false, false);
+    let svg: Vec<String> = svg_texts_under(&f, "triad-popa").iter().map(|t| marked(t)).collect();
+    assert!(svg.iter().any(|t| t == "φ_{1} = 75.77°"), "{svg:?}");
+    let (_, dxf) = f.iter().find(|(n, _)| n == "triad-popa.dxf").unwrap();
+    let dxf = String::from_utf8_lossy(dxf);
+    assert!(dxf.lines().any(|l| l.contains("1 = 75.77") && !l.contains('_')), "the DXF lacks φ1 = 75.77°");
+    assert!(!dxf.contains("_1 = 75.77") && !dxf.contains("tspan"));
+    // Joukowski's lever: M_e1 = −Σ M_p(F_i) / ω_1 with its loads' names F_i21 in its table;
+    // the DXF writes the line as marked up (`M_e1`, as the scale captions' `k_v`).
+    let f = files_of("fourbar-chebyshev", None, false, false);
+    let lever: Vec<String> =
+        svg_texts(text_of(&f, "fourbar-chebyshev-joukowski.svg")).into_iter().map(|t| marked(&t.1)).collect();
+    assert!(lever.iter().any(|t| t.starts_with("M_{e1} = −Σ M_{p}(F_{i}) / ω_{1} = ")), "{lever:?}");
+    assert!(lever.iter().any(|t| t.starts_with("by the reactions: M_{e1} = ")), "{lever:?}");
+    assert!(lever.iter().any(|t| t == "F_{i21}"), "{lever:?}");
+    assert!(text_of(&f, "fourbar-chebyshev-joukowski.dxf").contains("M_e1 = "));
+}
+
+#[test]
+fn the_reports_free_bodies_and_sketches_name_quantities_with_subscripts() {
+    use mechdraw::draw::{RunKind, Shape};
+    use mechdraw::run::positions::Positions;
+    use mechdraw::run::report::{ReportOptions, report};
+    let l = scene::load(&common::root().join("templates/slider-crank.toml"), &[]).unwrap();
+    let r = report(&l, &ReportOptions { paper: Paper::A4, positions: Some(Positions::List(vec![0.0])) }).unwrap();
+    // Every text of the report as (flat value, its subscripts).
+    let texts: Vec<(String, Vec<String>)> = r
+        .pages
+        .iter()
+        .flat_map(|p| p.drawing.entities.iter())
+        .filter_map(|e| match &e.shape {
+            Shape::Text { value, runs, .. } => Some((
+                value.clone(),
+                runs.split(value).filter(|(_, k)| *k == RunKind::Sub).map(|(s, _)| s.to_string()).collect(),
+            )),
+            _ => None,
+        })
+        .collect();
+    let has = |value: &str, subs: &[&str]| texts.iter().any(|(v, s)| v == value && s == subs);
+    // The driver's ω_1 on the sketches; the free bodies' F_i2, G_2, M_e1 = … N·mm.
+    assert!(has("ω1", &["1"]), "no ω_1 drawn");
+    assert!(has("Fi2", &["i2"]) && has("G2", &["2"]), "no F_i2, G_2 on the free bodies");
+    assert!(texts.iter().any(|(v, s)| v.starts_with("Me1 = ") && s == &["e1"]), "no M_e1 = … on the free bodies");
+    // The load `gas` as typed, wherever it is named.
+    assert!(texts.iter().any(|(v, _)| v == "gas") && !texts.iter().any(|(v, s)| v == "gas" && !s.is_empty()));
+    assert!(!texts.iter().any(|(v, s)| (v == "Fi2" || v == "ω1") && s.is_empty()), "a flat F_i2 or ω_1");
+}

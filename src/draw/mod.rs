@@ -252,8 +252,11 @@ pub enum Shape {
         second: Point,
         /// Radius of the dimension arc.
         radius: f64,
-        /// The text shown (e.g. `φ1 = 75.77°`).
+        /// The text shown (e.g. `φ1 = 75.77°`), flat: what the DXF writes.
         text: String,
+        /// Its runs where the writer draws subscripts (SVG, PNG, PDF: `φ` + `1` of `φ1`,
+        /// [`Runs::subscript`]); [`Runs::flat`] draws the whole text at its size.
+        runs: Runs,
     },
     /// A linear dimension (AutoCAD `DIMLINEAR`/rotated): the distance between `p1` and
     /// `p2` measured along direction `angle`, with the dimension line through `line_at`.

@@ -324,8 +324,8 @@ pub fn linear_layout_placed(
 pub fn explode_dimension(shape: &Shape, style: &DimStyle) -> Vec<Shape> {
     let mut out = Vec::new();
     match shape {
-        Shape::AngularDimension { vertex, first, second, radius, text } => {
-            let parts = angular_parts(*vertex, *first, *second, *radius, text, style);
+        Shape::AngularDimension { vertex, first, second, radius, text, runs } => {
+            let parts = angular_parts(*vertex, *first, *second, *radius, (text, runs), style);
             out.extend(parts.extensions.into_iter().flatten());
             out.push(Shape::Arc {
                 center: *vertex,
@@ -362,7 +362,7 @@ fn angular_parts(
     first: Point,
     second: Point,
     radius: f64,
-    text: &str,
+    (text, runs): (&str, &super::Runs),
     style: &DimStyle,
 ) -> AngularParts {
     let asz = style.arrow_size;
@@ -386,7 +386,7 @@ fn angular_parts(
         sweep,
         heads: [head(a1 + step, a1), head(a1 + sweep - step, a1 + sweep)],
         text: Shape::Text {
-            runs: super::Runs::flat(),
+            runs: runs.clone(),
             at: angular_text_mid(vertex, first, second, radius, text, style),
             height: style.text_height,
             value: text.to_string(),
@@ -406,8 +406,8 @@ fn angular_parts(
 /// exactly what [`explode_dimension`] draws; and the point where the arc is split. `None`
 /// for a shape that is not an angular dimension.
 pub fn explode_angular_split(shape: &Shape, first: f64, style: &DimStyle) -> Option<([Vec<Shape>; 2], Point)> {
-    let Shape::AngularDimension { vertex, first: ray, second, radius, text } = shape else { return None };
-    let parts = angular_parts(*vertex, *ray, *second, *radius, text, style);
+    let Shape::AngularDimension { vertex, first: ray, second, radius, text, runs } = shape else { return None };
+    let parts = angular_parts(*vertex, *ray, *second, *radius, (text, runs), style);
     let mid = parts.start + first;
     let arc = |start: f64, end: f64| Shape::Arc { center: *vertex, radius: *radius, start, end };
     let [e1, e2] = parts.extensions;
@@ -549,6 +549,7 @@ mod tests {
             second: Point::new(0.0, -5.0),
             radius: 10.0,
             text: "270°".into(),
+            runs: Default::default(),
         };
         let arc = explode_dimension(&dim, &style)
             .into_iter()
@@ -581,7 +582,14 @@ mod tests {
                 for text in ["5°", "75.77°", "φ1 = 75.77°", "a much wider text = 123.45°"] {
                     let (a1, a2) = (f64::to_radians(a1), f64::to_radians(a2));
                     let (first, second) = (polar(vertex, 30.0, a1), polar(vertex, 25.0, a2));
-                    let dim = Shape::AngularDimension { vertex, first, second, radius, text: text.into() };
+                    let dim = Shape::AngularDimension {
+                        vertex,
+                        first,
+                        second,
+                        radius,
+                        text: text.into(),
+                        runs: Default::default(),
+                    };
                     let (at, rotation) = exploded_text(&dim, &style);
                     assert_eq!(rotation, 0.0);
                     let bx = middle_text_box(at, text_width(text, th), th);

@@ -759,6 +759,7 @@ mod tests {
                 second: p(0.0, 5.0),
                 radius: 4.0,
                 text: "90°".into(),
+                runs: Default::default(),
             },
         );
         d.add(

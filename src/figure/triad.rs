@@ -132,11 +132,14 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
             second: p,
             radius,
             text: phi_text(i + 1, f.exact.phi[i]),
+            // Placed flat (the DXF's text, the wider); φ_1 set below.
+            runs: Default::default(),
         };
         let dim = place_dimension(dim_at, preferred, &d.dim_style, &dimension_texts, &lines);
         dimension_texts.extend(dimension_text_box(&dim, &d.dim_style));
         keep_letters_off_dimension(&mut letters, &dim, &d.dim_style);
-        d.add(dimensions, dim);
+        // φ_1 where the writer can draw a subscript, `φ1` in the DXF.
+        d.add(dimensions, labels::with_dimension_runs(dim));
     }
 
     // The construction circles broken where a dimension's text lies over them.

@@ -19,6 +19,7 @@ use std::sync::Arc;
 use crate::figure::fourbar::sheet::FourbarSheets;
 use crate::figure::fourbar::{Layout, ModelUnits, Show, angle_text};
 use crate::figure::shared::animation::{Animation, Drive, DriveState};
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::plot::{self, Diagram, Series};
 use crate::figure::shared::sheet::{self, Paper};
 use crate::geom::{self, Point, Side, Vector, deg};
@@ -832,11 +833,13 @@ pub(super) fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], uni
             .filter(|v| v.is_finite())
             .fold(0.0, f64::max)
     };
+    let names: Vec<Label> = raw.iter().map(|(q, _)| table_name(q)).collect();
     let rows = raw
         .iter()
-        .map(|(q, cells)| {
+        .zip(&names)
+        .map(|((q, cells), name)| {
             let noise = 1e-9 * largest(q.unit);
-            let mut row = vec![symbol(q.name)];
+            let mut row = vec![name.text.clone()];
             row.extend(cells.iter().map(|c| match c {
                 Some(v) if v.abs() < noise => "0".to_string(),
                 Some(v) => sheet::number(*v),
@@ -846,7 +849,18 @@ pub(super) fn sheet_table(p: &Position, f: Option<&Forces>, qs: &[Quantity], uni
             row
         })
         .collect();
-    sheet::Table { header, rows }
+    sheet::Table { header, rows, names: names.into_iter().map(|n| n.runs).collect() }
+}
+
+/// A quantity's name in a sheet's table as a textbook writes it: a point's (`A`) and an
+/// angle named by its points (`∠ABC`) flat, the others a symbol and its subscript with the
+/// CSV's `_` left out (`R_An` → R_An, `aBA_n` → a_BAn, `omega2` → ω_2, `Me1` → M_e1).
+fn table_name(q: &Quantity) -> Label {
+    let flat = symbol(q.name);
+    if (q.group == Group::Position && q.unit == Unit::Length) || flat.starts_with('∠') {
+        return Label::from(flat);
+    }
+    Label::quantity(&flat.replace('_', ""))
 }
 
 /// The printed pages, a set per drawn position (`drawn`: indices into the motion's positions,

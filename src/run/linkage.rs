@@ -18,6 +18,7 @@ use crate::figure::linkage::forces as linkage_forces;
 use crate::figure::linkage::frame::{LinkageFrames, RunForces, Show};
 use crate::figure::linkage::sheet::{LinkageSheets, row_counts};
 use crate::figure::shared::animation::{Animation, Drive, DriveState};
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::plot::{Diagram, Series, diagram, track};
 use crate::figure::shared::sheet::{self, Paper};
 use crate::geom::{Point, deg};
@@ -1081,6 +1082,7 @@ pub(super) fn sheet_table(
     // scene's sheet in mm/s, as its polygons).
     let per_m = 1.0 / metres_per_unit(scene.units);
     let lu = scene.units.length();
+    let mut names = Vec::new();
     let mut rows: Vec<Vec<String>> = plots
         .iter()
         .map(|p| {
@@ -1098,6 +1100,8 @@ pub(super) fn sheet_table(
             let largest = p.values.iter().filter(|v| v.is_finite()).fold(0.0, |m: f64, v| m.max(v.abs()));
             let v = p.values[k];
             let text = if v.abs() < 1e-9 * largest { "0".to_string() } else { sheet::number(v * factor) };
+            // `vE`, `|aE|`, `φ1`: a symbol and its subscript (the point's or body's name).
+            names.push(Label::quantity(&name).runs);
             vec![name, text, unit]
         })
         .collect();
@@ -1116,9 +1120,10 @@ pub(super) fn sheet_table(
         for m in &all {
             let text = if m.value.abs() < 1e-9 * largest(&m.unit) { "0".to_string() } else { sheet::number(m.value) };
             rows.push(vec![m.name.clone(), text, m.unit.clone()]);
+            names.push(m.label().runs);
         }
     }
-    sheet::Table { header, rows }
+    sheet::Table { header, rows, names }
 }
 
 /// The printed pages, one per drawn sample (`drawn`: indices into the samples; in parallel):

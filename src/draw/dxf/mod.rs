@@ -689,7 +689,7 @@ fn text_part(sweep: f64) -> f64 {
 fn dimension_pieces<'a>(shape: &'a Shape, style: &super::DimStyle) -> Vec<DimPiece<'a>> {
     use std::f64::consts::PI;
     match shape {
-        Shape::AngularDimension { vertex, first, second, radius, text } => {
+        Shape::AngularDimension { vertex, first, second, radius, text, .. } => {
             let a1 = angle_of(first - vertex);
             let sweep = normalize_angle(angle_of(second - vertex) - a1);
             let on_arc = |a: f64| polar(*vertex, *radius, a);
@@ -824,6 +824,7 @@ mod tests {
                     second: Point::new(0.0, 1.0),
                     radius: 5.0,
                     text: text.into(),
+                    runs: Default::default(),
                 },
             );
         }
@@ -896,6 +897,7 @@ mod tests {
                 second,
                 radius: 5.0,
                 text: text.into(),
+                runs: Default::default(),
             };
             d.add(0, dim.clone());
             let p = write(&d);
@@ -1219,6 +1221,7 @@ mod tests {
                     second: polar(p(a, b), 4.0, a + b),
                     radius: 6.0 + b,
                     text,
+                    runs: Default::default(),
                 },
             );
             for angle in [0.0, a, -b, std::f64::consts::PI] {

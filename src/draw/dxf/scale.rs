@@ -55,12 +55,13 @@ pub(super) fn scaled(d: &Drawing, k: f64) -> Drawing {
             valign: *valign,
             rotation: *rotation,
         },
-        Shape::AngularDimension { vertex, first, second, radius, text } => Shape::AngularDimension {
+        Shape::AngularDimension { vertex, first, second, radius, text, runs } => Shape::AngularDimension {
             vertex: p(vertex),
             first: p(first),
             second: p(second),
             radius: radius * k,
             text: for_azomix(text).into_owned(),
+            runs: runs.clone(),
         },
         Shape::LinearDimension { p1, p2, line_at, angle, text, marks } => {
             let text = for_azomix(text).into_owned();

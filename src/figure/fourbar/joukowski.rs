@@ -59,10 +59,17 @@ const LEVER_PANEL_MM: f64 = 110.0;
 /// Height of a panel's lever area, in panel widths.
 const LEVER_HEIGHT: f64 = 0.85;
 
-/// A text line of a panel.
+/// A text line of a panel, marked up with `_` before each subscript (`M_e1 = −Σ M_p(F_i)`:
+/// [`crate::draw::Runs::underscored`], the `_` written only in the DXF).
 fn line(d: &mut Drawing, layer: usize, at: Point, height: f64, value: String, halign: HAlign) {
-    let shape =
-        Shape::Text { runs: crate::draw::Runs::flat(), at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
+    let runs = crate::draw::Runs::underscored(&value);
+    labelled(d, layer, at, height, Label { text: value, runs }, halign);
+}
+
+/// A text of a panel drawn as `label` states it (a load's name: F_i21).
+fn labelled(d: &mut Drawing, layer: usize, at: Point, height: f64, label: Label, halign: HAlign) {
+    let Label { text: value, runs } = label;
+    let shape = Shape::Text { runs, at, height, value, halign, valign: VAlign::Top, rotation: 0.0 };
     d.push(Entity { layer, color: None, linetype: None, shape });
 }
 
@@ -187,7 +194,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         line(&mut d, text, Point::new(m_x, top), small, format!("M_p [N·{speed}]"), HAlign::Right);
         for (i, (f, _)) in arrows.iter().enumerate() {
             let y = top - (i + 1) as f64 * row;
-            line(&mut d, text, Point::new(left, y), small, f.name.clone(), HAlign::Left);
+            labelled(&mut d, text, Point::new(left, y), small, Label::quantity(&f.name), HAlign::Left);
             line(&mut d, text, Point::new(at_x, y), small, f.at.to_string(), HAlign::Left);
             line(&mut d, text, Point::new(f_x, y), small, sig4(f.force.norm()), HAlign::Right);
             // Rounding noise (a moment 1e-17 where an image point lies on the force's line).
@@ -198,9 +205,9 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         // A standing crank: the polygon of virtual velocities, the crank at 1 rad/s.
         let standing = lever.crank_speed != panel.omega1;
         let (polygon, divisor) = if standing {
-            ("polygon at ω1 = 1 rad/s (virtual), 90° cw", "(1 rad/s)")
+            ("polygon at ω_1 = 1 rad/s (virtual), 90° cw", "(1 rad/s)")
         } else {
-            ("velocity polygon turned 90° clockwise", "ω1")
+            ("velocity polygon turned 90° clockwise", "ω_1")
         };
         // The velocity scale as the medium states it (on paper, or in the DXF's millimetres).
         let k_v_line = ScaleCaption::new("k_v = ", k_v.per_mm, format!(" ({speed})/mm"), 1.0 / k_l);
@@ -209,8 +216,8 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             String::new(),
             "Σ M_p(F_i) = Σ F_i·v_i (without F_b)".to_string(),
             format!("  = {} N·{speed}", sig4(lever.moment)),
-            format!("Me1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
-            format!("by the reactions: Me1 = {} {}", sig4(panel.me1_reactions), units.moment),
+            format!("M_e1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
+            format!("by the reactions: M_e1 = {} {}", sig4(panel.me1_reactions), units.moment),
         ];
         let y0 = top - (rows as f64 + 0.5) * row;
         for (i, l) in lines.into_iter().enumerate() {

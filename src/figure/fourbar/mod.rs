@@ -557,7 +557,7 @@ const MAGNITUDE_ROWS: usize = 9;
 /// The table of magnitudes: |R_A^n|, |R_A^t|, |R_C^n|, |R_C^t|, |R_A|, |R_B|, |R_C|, |R_O|
 /// in N, and Me1 (signed, CCW positive) in `moment_unit`.
 fn magnitudes(f: &Forces, moment_unit: &str) -> Vec<forces::Magnitude> {
-    let row = |name: &str, value: f64, unit: &str| forces::Magnitude { name: name.into(), value, unit: unit.into() };
+    let row = forces::Magnitude::new;
     let mut rows: Vec<forces::Magnitude> = [
         ("RAn", f.r_a_n),
         ("RAt", f.r_a_t),

@@ -362,7 +362,7 @@ pub fn on_mechanism(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Fo
 /// `M<…>`; each driver's force `Me<n>` (signed, in `moment_unit`) or `Fe<n>` (N).
 /// `moment_per_nm` converts N·m to `moment_unit` (1000 for N·mm).
 pub fn magnitudes(mech: &Mechanism, f: &Forces, moment_unit: &str, moment_per_nm: f64) -> Vec<Magnitude> {
-    let row = |name: String, value: f64, unit: &str| Magnitude { name, value, unit: unit.to_string() };
+    let row = |name: String, value: f64, unit: &str| Magnitude::new(&name, value, unit);
     let mut rows = Vec::new();
     for (j, joint) in mech.joints.iter().enumerate() {
         let name = reaction_names(mech, j).0;
@@ -406,7 +406,10 @@ pub fn applied_magnitudes(mech: &Mechanism, dynamics: &Dynamics, state: &State, 
     applied_forces(mech, dynamics, state, f)
         .iter()
         .filter(|a| !matches!(a.kind, AppliedKind::Driver(_)))
-        .map(|a| Magnitude { name: applied_name(dynamics, a), value: a.force.norm(), unit: "N".to_string() })
+        .map(|a| {
+            let v = applied_vector(dynamics, a);
+            Magnitude { quantity: v.quantity, ..Magnitude::new(&v.name, a.force.norm(), "N") }
+        })
         .collect()
 }
 

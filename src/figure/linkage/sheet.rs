@@ -354,9 +354,7 @@ fn is_force_row(row: &[String]) -> bool {
 /// A position's table split: its kinematics' rows, and its forces' (every applied force,
 /// every reaction, the drivers' forces), each under the same header.
 pub fn split_table(table: &Table) -> (Table, Table) {
-    let (forces, values): (Vec<Vec<String>>, Vec<Vec<String>>) =
-        table.rows.iter().cloned().partition(|r| is_force_row(r));
-    (Table { header: table.header.clone(), rows: values }, Table { header: table.header.clone(), rows: forces })
+    (table.filter(|r| !is_force_row(r)), table.filter(is_force_row))
 }
 
 /// The rows of a position's table: (kinematics, forces), for [`LinkageSheets::new`].

@@ -72,6 +72,9 @@ pub struct Couple {
     pub name: String,
     /// N·m, counter-clockwise positive.
     pub value: f64,
+    /// Whether the name is a quantity's symbol and its subscript (M_i2, M_e1, M_32), not a
+    /// torque load's name as its user wrote it (drawn flat).
+    pub quantity: bool,
 }
 
 /// The couples on each moving body at one sample: the inertia moment −J·ε at the centroid,
@@ -84,7 +87,7 @@ pub fn body_couples(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Fo
         let m = -body.inertia * eps;
         if body.inertia != 0.0 && m != 0.0 {
             let at = state.point(Anchor { body: Attach::Body(i), local: body.centroid });
-            out[i].push(Couple { at, name: format!("Mi{}", i + 1), value: m });
+            out[i].push(Couple { at, name: format!("Mi{}", i + 1), value: m, quantity: true });
         }
     }
     for load in &dynamics.loads {
@@ -95,7 +98,7 @@ pub fn body_couples(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Fo
             && let Some(list) = out.get_mut(*body)
         {
             let at = body_point(mech, state, *body);
-            list.push(Couple { at, name: load.name.clone(), value: torque.at(state.t) });
+            list.push(Couple { at, name: load.name.clone(), value: torque.at(state.t), quantity: false });
         }
     }
     for (d, (driver, value)) in mech.drivers.iter().zip(&f.drivers).enumerate() {
@@ -111,7 +114,7 @@ pub fn body_couples(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Fo
         for (body, sign) in on {
             if let Attach::Body(i) = body {
                 let at = pivot_of(mech, state, i).unwrap_or_else(|| body_point(mech, state, i));
-                out[i].push(Couple { at, name: driver_name(mech, d), value: sign * value });
+                out[i].push(Couple { at, name: driver_name(mech, d), value: sign * value, quantity: true });
             }
         }
     }
@@ -125,7 +128,7 @@ pub fn body_couples(mech: &Mechanism, dynamics: &Dynamics, state: &State, f: &Fo
         let at = state.point(point);
         for (body, name, value) in [(point.body, name, t), (q1.body, opposite, -t)] {
             if let Attach::Body(i) = body {
-                out[i].push(Couple { at, name: couple_name(&name), value });
+                out[i].push(Couple { at, name: couple_name(&name), value, quantity: true });
             }
         }
     }
@@ -328,7 +331,7 @@ fn group_panel(
         .collect();
     clear_of_group(&mut arrows, &gs, q, (at, inside), s);
     // (from, to, name, colour, with a leader)
-    let mut names: Vec<(Point, Point, String, Option<Aci>, bool)> = Vec::new();
+    let mut names: Vec<(Point, Point, labels::Label, Option<Aci>, bool)> = Vec::new();
     for a in &arrows {
         let (nv, (from, to)) = (&a.force, a.arrow);
         let reaction = nv.name.starts_with('R') || nv.name.starts_with("−R");
@@ -337,7 +340,7 @@ fn group_panel(
             Some(c) => d.add_colored(frc, c, Shape::Arrow { from, to, head: s.head }),
             None => d.add(frc, Shape::Arrow { from, to, head: s.head }),
         }
-        names.push((from, to, nv.name.clone(), color, false));
+        names.push((from, to, nv.label(), color, false));
     }
     let per_nm = p.couple_factor;
     // A couple of 0 (the crank's inertia moment at constant speed) or at rounding level is
@@ -349,16 +352,18 @@ fn group_panel(
         let from = 0.9 + 0.7 * k as f64;
         let mid = vocab::turn_arrow(d, frc, centre, r, from, sweep, s);
         let text = format!("{} = {} N·{}", c.name, crate::figure::shared::sheet::number(c.value * per_nm), p.unit);
-        names.push((centre, mid, text, None, true));
+        // M_i2 = … with the name's subscript (its runs lie within the name, the text's start).
+        let runs = if c.quantity { labels::Label::quantity(&c.name).runs } else { crate::draw::Runs::flat() };
+        names.push((centre, mid, labels::Label { text, runs }, None, true));
     }
     let mut letters = labels::Polygon::of_names();
     sketch::avoid(d, start, &mut letters);
     sketch::keep_inside(&mut letters, area);
     for (from, to, name, color, leader) in names {
         if leader {
-            letters.name_with_leader(to, &name, s.text, to - from, color);
+            letters.name_with_leader(to, name, s.text, to - from, color);
         } else {
-            letters.letter(to, &name, s.text, to - from, color);
+            letters.letter(to, name, s.text, to - from, color);
         }
     }
     let l = layer_of(d, layers::FORCES);

@@ -220,7 +220,7 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
             .unwrap_or(crank_dir + 0.35 * dm.sense);
         let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
         letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
-        letters.letter(mid, &dm.symbol, s.text, mid - pivot, None);
+        letters.letter(mid, labels::Label::quantity(&dm.symbol), s.text, mid - pivot, None);
     }
     if marks.numbers {
         for b in number_links(d, mech, start, &paper_fig, &pq, s, area) {

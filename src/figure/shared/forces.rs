@@ -381,6 +381,27 @@ pub struct Magnitude {
     pub value: f64,
     /// Its unit (`N`, `N·m`).
     pub unit: String,
+    /// Whether the name is a quantity's symbol and its subscript (`R` + `An`, `M` + `e1`:
+    /// drawn R_An, M_e1, [`labels::Label::quantity`]), not a name the user gave (a load's
+    /// `gas`, drawn as written), as [`NamedVector::quantity`].
+    pub quantity: bool,
+}
+
+impl Magnitude {
+    /// A row named by a quantity's symbol and subscript (`RAn`, `Fi2`, `Me1`).
+    pub fn new(name: &str, value: f64, unit: &str) -> Magnitude {
+        Magnitude { name: name.to_string(), value, unit: unit.to_string(), quantity: true }
+    }
+
+    /// A row named `name` as the user wrote it (a load's name): drawn flat.
+    pub fn as_written(name: &str, value: f64, unit: &str) -> Magnitude {
+        Magnitude { quantity: false, ..Magnitude::new(name, value, unit) }
+    }
+
+    /// Its name as drawn.
+    pub fn label(&self) -> labels::Label {
+        if self.quantity { labels::Label::quantity(&self.name) } else { labels::Label::from(&self.name) }
+    }
 }
 
 /// The text of a value in a table of magnitudes: 4 significant digits as the sheets print
@@ -413,12 +434,14 @@ pub fn table(d: &mut Drawing, rows: &[Magnitude], top_left: Point, width: f64, s
     let h = TABLE_TEXT * s.text;
     for (i, r) in rows.iter().enumerate() {
         let y = top_left.y - TABLE_PITCH * h * (i as f64 + 1.0) + 0.25 * h;
-        for (x, value, halign) in [
-            (top_left.x, r.name.clone(), HAlign::Left),
-            (top_left.x + width, magnitude_text(r.value, &r.unit), HAlign::Right),
+        // The name as a quantity is written (R_An, M_e1), the value flat.
+        let name = r.label();
+        for (x, value, runs, halign) in [
+            (top_left.x, name.text, name.runs, HAlign::Left),
+            (top_left.x + width, magnitude_text(r.value, &r.unit), crate::draw::Runs::flat(), HAlign::Right),
         ] {
             let shape = Shape::Text {
-                runs: crate::draw::Runs::flat(),
+                runs,
                 at: Point::new(x, y),
                 height: h,
                 value,

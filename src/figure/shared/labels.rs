@@ -194,14 +194,41 @@ impl Label {
     /// optional sign (`−`), the quantity's symbol (its first character: `R`, `F`, `G`, `M`,
     /// `n`, `a`, `v`, `ω`, `φ`, `π`), then its subscript, which is the rest (a joint's or a
     /// body's name: `A`, `32`, `AB`, `A3O3`, `e1`, `i21`) up to the primes (`′`, `'`) that
-    /// end it: `RA` → R_A, `−R32` → −R_32, `nA3O3` → n_A3O3, `FM3'` → F_M3'. A name of one
-    /// symbol (`G`, `k`, `π`) has no subscript.
+    /// end it: `RA` → R_A, `−R32` → −R_32, `nA3O3` → n_A3O3, `FM3'` → F_M3'. A magnitude's
+    /// bars stay outside: `|vE|` → |v_E|. A name of one symbol (`G`, `k`, `π`) has no
+    /// subscript.
     pub fn quantity(name: &str) -> Label {
-        let start = name.strip_prefix(['−', '-']).map_or(0, |rest| name.len() - rest.len());
+        let start = name.strip_prefix(['−', '-', '|']).map_or(0, |rest| name.len() - rest.len());
         let Some(symbol) = name[start..].chars().next() else { return Label::from(name) };
         let from = start + symbol.len_utf8();
-        let end = name.trim_end_matches(['′', '\'', '″']).len().max(from);
+        let end = name.trim_end_matches(['′', '\'', '″', '|']).len().max(from);
         Label { text: name.to_string(), runs: Runs::subscript(from..end) }
+    }
+
+    /// A dimension's text, `name = value` or a name alone, whose name is a symbol and an
+    /// index (`φ1 = 75.77°` → φ_1 = 75.77°, `ψ1` → ψ_1): the index a subscript. Any other
+    /// text (`Δφ = 60°`, `90° − θ = 54°`, `30°`) is flat.
+    pub fn dimension(text: &str) -> Label {
+        let name = text.split(" = ").next().unwrap_or(text);
+        let mut chars = name.chars();
+        let indexed = chars.next().is_some_and(|c| c.is_alphabetic())
+            && chars.clone().next().is_some()
+            && chars.all(|c| c.is_ascii_digit());
+        if indexed { Label { text: text.to_string(), runs: Label::quantity(name).runs } } else { Label::from(text) }
+    }
+}
+
+/// An angular dimension with its name's index drawn as a subscript where the writer can
+/// ([`Label::dimension`]: `φ1 = 75.77°` → φ_1 = 75.77°); any other shape unchanged. A figure
+/// places the dimension with its flat text (as the DXF writes it, the wider of the two) and
+/// then sets its runs, so that the text keeps clear in every writer.
+pub fn with_dimension_runs(shape: Shape) -> Shape {
+    match shape {
+        Shape::AngularDimension { vertex, first, second, radius, text, .. } => {
+            let runs = Label::dimension(&text).runs;
+            Shape::AngularDimension { vertex, first, second, radius, text, runs }
+        }
+        other => other,
     }
 }
 
@@ -861,6 +888,26 @@ pub fn max_leader_distance(text: &str, runs: &Runs, height: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::draw::parts::text_width;
+
+    /// The subscripts of a label, in order.
+    fn subs(l: &Label) -> Vec<&str> {
+        l.runs.split(&l.text).filter(|(_, k)| *k == crate::draw::RunKind::Sub).map(|(s, _)| s).collect()
+    }
+
+    #[test]
+    fn a_quantitys_subscript_and_a_dimensions_index() {
+        assert_eq!(subs(&Label::quantity("RAn")), ["An"]);
+        assert_eq!(subs(&Label::quantity("−R32")), ["32"]);
+        assert_eq!(subs(&Label::quantity("|vE|")), ["E"]);
+        assert_eq!(subs(&Label::quantity("G")), Vec::<&str>::new());
+        // A dimension: a symbol and an index before ` = `; anything else flat.
+        let phi = Label::dimension("φ1 = 75.77°");
+        assert_eq!((phi.text.as_str(), subs(&phi)), ("φ1 = 75.77°", vec!["1"]));
+        assert_eq!(subs(&Label::dimension("ψ1")), ["1"]);
+        for flat in ["Δφ = 60°", "90° − θ = 54°", "θ = 31°", "30°", "φ = 40.00°", "1 = 2"] {
+            assert!(Label::dimension(flat).runs.is_flat(), "{flat}");
+        }
+    }
 
     #[test]
     fn a_box_is_crossed_only_by_segments_through_it() {

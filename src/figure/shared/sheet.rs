@@ -216,6 +216,25 @@ pub struct Table {
     pub header: Vec<String>,
     /// Rows, each as many cells as the header.
     pub rows: Vec<Vec<String>>,
+    /// How each row's name (its first cell) is drawn: a quantity's symbol with its
+    /// subscript (`RAn` as R_An, [`crate::figure::shared::labels::Label::quantity`]), a
+    /// point's or a user's load name flat. A row past its end reads its cells as `_`
+    /// markup ([`Runs::underscored`]), as the header does.
+    pub names: Vec<Runs>,
+}
+
+impl Table {
+    /// The rows whose `keep` holds, with their names' runs, under the same header.
+    pub fn filter(&self, keep: impl Fn(&[String]) -> bool) -> Table {
+        let mut t = Table { header: self.header.clone(), rows: Vec::new(), names: Vec::new() };
+        for (i, r) in self.rows.iter().enumerate() {
+            if keep(r) {
+                t.rows.push(r.clone());
+                t.names.push(self.names.get(i).cloned().unwrap_or_else(|| Runs::underscored(&r[0])));
+            }
+        }
+        t
+    }
 }
 
 /// A number as plain decimals rounded to `digits` significant digits (at least 1), trailing
@@ -470,7 +489,7 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
         for w in &weights {
             edges.push(edges.last().copied().unwrap_or(0.0) + (set_w - pad) * w / total);
         }
-        let cell = |d: &mut Drawing, r: usize, c: usize, value: &str| {
+        let cell = |d: &mut Drawing, r: usize, c: usize, value: &str, runs: Runs| {
             let y = top - (r as f64 + 0.5) * row;
             let numeric = c > 0 && c + 1 < ncols;
             let (x, halign) =
@@ -478,8 +497,8 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
             d.add(
                 l,
                 Shape::Text {
-                    // `R_A` in the first column: R with A as a subscript.
-                    runs: Runs::underscored(value),
+                    // `RA` in the first column: R with A as a subscript.
+                    runs,
                     at: Point::new(x, y),
                     height: h,
                     value: value.to_string(),
@@ -490,12 +509,16 @@ fn table_into(d: &mut Drawing, l: usize, b: Bounds, table: &Table, s: Sizes) {
             );
         };
         for (c, v) in table.header.iter().enumerate() {
-            cell(d, 0, c, v);
+            cell(d, 0, c, v, Runs::underscored(v));
         }
         d.add(l, Shape::Line { from: Point::new(x0, top - row), to: Point::new(x0 + set_w - pad, top - row) });
-        for (r, cells) in table.rows.iter().skip(set * per_set).take(per_set).enumerate() {
+        for (r, cells) in table.rows.iter().enumerate().skip(set * per_set).take(per_set) {
             for (c, v) in cells.iter().enumerate().take(ncols) {
-                cell(d, r + 1, c, v);
+                let runs = match table.names.get(r) {
+                    Some(runs) if c == 0 => runs.clone(),
+                    _ => Runs::underscored(v),
+                };
+                cell(d, r - set * per_set + 1, c, v, runs);
             }
         }
     }

@@ -236,9 +236,13 @@ impl ForcesPage {
     /// `table_rows` rows after them, packed in rows from the top left, clear of the title
     /// block: each figure at the coarsest nice k_f that
     /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
-    /// page still holds them, at the next finer one (larger figures where there is room).
-    /// (The panels are not stretched to the page: stretching them with finer scales drew
-    /// the shaper's dyad 4–5 out of its panel at t = 0.7472 s, tests/sheet_sizes.rs.)
+    /// page still holds them, at the next finer one (larger figures where there is room);
+    /// the panels then stretched to use the page (`fill`: none smaller than packed), and
+    /// each figure at the finest nice k_f that its final panel holds, the figure and its
+    /// title measured in that panel (`fits_panel`). A page that does not hold its figures
+    /// (packed anyway, past the border) is not stretched: last session's stretching shrank
+    /// such a cell to the border, the shaper's dyad 4–5 drawn out of its panel at
+    /// t = 0.7472 s (tests/sheet_sizes.rs).
     pub fn new(
         paper: Paper,
         figures: &[ForcePolygon],
@@ -291,6 +295,9 @@ impl ForcesPage {
                 }
             }
         }
+        // A page that holds its figures is stretched to use the page; one that does not
+        // (packed anyway, past the border) stays as packed.
+        let held = outlines.is_some();
         let mut outlines = outlines.unwrap_or_else(|| {
             let mut cells = cells_at(&scales);
             if table_rows > 0 {
@@ -298,6 +305,19 @@ impl ForcesPage {
             }
             pack_anyway(&cells, border)
         });
+        if held {
+            fill(&mut outlines, border, right, title);
+        }
+        // In its final panel a figure may hold a finer scale: the finest it fits there.
+        for (i, k) in scales.iter_mut().enumerate() {
+            let (Some(o), Some(c)) = (outlines.get(i), captions.get(i)) else { continue };
+            if extents[i].size() == 0.0 || !fits_panel(*k, &extents[i], c, *o, sizes) {
+                continue;
+            }
+            while fits_panel(finer_nice(*k), &extents[i], c, *o, sizes) {
+                *k = finer_nice(*k);
+            }
+        }
         let table = if table_rows > 0 && outlines.len() > figures.len() {
             outlines.pop().unwrap_or(Bounds { min: title.max, max: title.max })
         } else {
@@ -418,6 +438,18 @@ fn cell_size(k: f64, e: &Extent, caption: &str, sizes: Sizes) -> Vector {
     Vector::new(w, h)
 }
 
+/// Whether a force figure of physical extent `e` drawn at `k` fits the panel framed by
+/// `outline` as [`Panel::of_outline`] lays it out: the drawn figure with room for its names
+/// inside the panel's area, its title (caption and k_f) across the panel's width.
+fn fits_panel(k: f64, e: &Extent, caption: &str, outline: Bounds, sizes: Sizes) -> bool {
+    let area = Panel::of_outline(outline, sizes).area;
+    let drawn = e.sides() / k;
+    let room = 2.0 * LETTER_ROOM * sizes.text;
+    let title = format!("{caption}   {}", scale_line("k_f", k, "N"));
+    let title_w = crate::draw::parts::widest_text_width(&title, sizes.text) + 1.2 * sizes.text;
+    drawn.x + room <= area.width() + 1e-9 && drawn.y + room <= area.height() + 1e-9 && title_w <= outline.width() + 1e-9
+}
+
 /// The cell of a table of `rows` rows (and a header) in `sets` sets of three columns side by
 /// side, as [`sheet::table_sets`] lays it out.
 fn table_cell(rows: usize, sets: usize, s: Sizes) -> Vector {
@@ -458,6 +490,76 @@ fn pack(sizes: &[Vector], border: Bounds, right: f64, title: Bounds) -> Option<V
     Some(out)
 }
 
+/// Stretches packed cells (rows from the top left, as [`pack`] lays them) to use the page:
+/// each row's cells as tall as its tallest, its spare width shared among its cells, and
+/// the last row down to the border's foot (or to the title block's top where it stands over
+/// it), for cells that [`pack`] laid out on the page. No cell gets smaller than it was
+/// packed: a row that would stays as packed.
+/// No page with a third of it empty beside uneven panels (the four-bar's forces page).
+fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
+    let mut rows: Vec<(f64, Vec<usize>)> = Vec::new();
+    for (i, c) in cells.iter().enumerate() {
+        match rows.iter_mut().find(|(top, _)| (top - c.max.y).abs() <= 1e-9) {
+            Some((_, members)) => members.push(i),
+            None => rows.push((c.max.y, vec![i])),
+        }
+    }
+    let n = rows.len();
+    for (r, (top, members)) in rows.iter().enumerate() {
+        let foot = if r + 1 == n {
+            border.min.y
+        } else {
+            members.iter().map(|&i| cells[i].min.y).fold(f64::INFINITY, f64::min)
+        };
+        // A row that comes down to the title block ends left of it.
+        let over_title = foot < title.max.y - 1e-9;
+        let (foot, end) = if r + 1 == n {
+            // The last row: beside the title block down to the border, else over it.
+            let clears = members.iter().all(|&i| cells[i].max.x <= right + 1e-9);
+            if clears { (border.min.y, right) } else { (title.max.y, border.max.x) }
+        } else {
+            (foot, if over_title { right } else { border.max.x })
+        };
+        let used: f64 = members.iter().map(|&i| cells[i].width()).sum();
+        let spread = |end: f64, foot_of: &dyn Fn(f64) -> f64| -> Vec<Bounds> {
+            let spare = (end - border.min.x - used).max(0.0) / members.len() as f64;
+            let mut x = border.min.x;
+            members
+                .iter()
+                .map(|&i| {
+                    let w = cells[i].width() + spare;
+                    let b = Bounds { min: Point::new(x, foot_of(x + w)), max: Point::new(x + w, *top) };
+                    x += w;
+                    b
+                })
+                .collect()
+        };
+        // The last row across the whole width, its cells over the title block ending at its
+        // top, when none of them gets shorter than it was packed (the four-bar's two tall
+        // figures), else as above.
+        let across = (r + 1 == n)
+            .then(|| spread(border.max.x, &|x_end| if x_end <= right + 1e-9 { border.min.y } else { title.max.y }));
+        let keeps = |a: &[Bounds]| {
+            members
+                .iter()
+                .zip(a)
+                .all(|(&i, b)| b.height() >= cells[i].height() - 1e-9 && b.width() >= cells[i].width() - 1e-9)
+        };
+        let placed = match across {
+            Some(a) if keeps(&a) => a,
+            _ => spread(end, &|_| foot),
+        };
+        // A row that would get a cell smaller than it was packed (packed past the border or
+        // into the title block: a page that does not hold its figures) stays as packed.
+        if !keeps(&placed) {
+            continue;
+        }
+        for (&i, b) in members.iter().zip(placed) {
+            cells[i] = b;
+        }
+    }
+}
+
 /// The cells in rows from the top left, whether or not they fit.
 fn pack_anyway(sizes: &[Vector], border: Bounds) -> Vec<Bounds> {
     let (mut x, mut top, mut row_h) = (border.min.x, border.max.y, 0.0f64);
@@ -490,6 +592,126 @@ mod tests {
             assert!((FORCE_FIGURE_MIN_MM - 1e-9..2.0 * FORCE_FIGURE_MIN_MM + 1e-9).contains(&drawn), "{size}: {drawn}");
             let m = k / libm::pow(10.0, libm::log10(k).floor());
             assert!([1.0, 2.0, 2.5, 5.0].iter().any(|n| (m - n).abs() < 1e-9), "{k}");
+        }
+    }
+
+    /// A closed triangle of forces `w` × `h` N (its extent).
+    fn triangle(w: f64, h: f64) -> ForcePolygon {
+        use crate::figure::shared::forces::NamedVector;
+        let chain = vec![
+            NamedVector::new("F1", Vector::new(w, 0.0)),
+            NamedVector::new("F2", Vector::new(-w, h)),
+            NamedVector::new("R3", Vector::new(0.0, -h)),
+        ];
+        ForcePolygon { pole: "f".into(), chain, resultants: Vec::new(), found: 0 }
+    }
+
+    /// Figure sets from one to more than a page holds, of every shape: tall, wide, square.
+    fn figure_sets() -> Vec<Vec<ForcePolygon>> {
+        let mut out = Vec::new();
+        for n in 1..=9 {
+            for shape in 0..4 {
+                let set = (0..n)
+                    .map(|i| {
+                        let a = 1.0 + 0.37 * ((i * 7 + shape * 3) % 5) as f64;
+                        match shape {
+                            0 => triangle(10.0 * a, 40.0),
+                            1 => triangle(40.0, 10.0 * a),
+                            2 => triangle(25.0 * a, 25.0),
+                            _ => triangle(3.0 + 50.0 * (i % 2) as f64, 20.0 * a),
+                        }
+                    })
+                    .collect();
+                out.push(set);
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn stretching_never_makes_a_cell_smaller_than_it_was_packed() {
+        for paper in [Paper::A4, Paper::A3] {
+            let (_, border, right, title) = sheet::page_frame(paper, 6);
+            for set in figure_sets() {
+                // As packed (or packed anyway, past the border, when the page does not hold
+                // them): sizes of every kind of figure cell.
+                let mut sizes: Vec<Vector> = set
+                    .iter()
+                    .map(|f| {
+                        let e = Extent::of(f.physical_points()).unwrap();
+                        cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
+                    })
+                    .collect();
+                // And the forces' table after them (a linkage's), in the last row.
+                if set.len() % 2 == 1 {
+                    sizes.push(table_cell(14 + set.len(), 1, paper.sizes()));
+                }
+                // (A page that does not hold them is not stretched: ForcesPage::new.)
+                let Some(packed) = pack(&sizes, border, right, title) else { continue };
+                let mut cells = packed.clone();
+                fill(&mut cells, border, right, title);
+                let overlap = |a: &Bounds, b: &Bounds| {
+                    (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).min(a.max.y.min(b.max.y) - a.min.y.max(b.min.y))
+                };
+                for (c, p) in cells.iter().zip(&packed) {
+                    assert!(c.width() >= p.width() - 1e-9 && c.height() >= p.height() - 1e-9, "{c:?} < {p:?}");
+                    // Off the title block and inside the border.
+                    {
+                        assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
+                        assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
+                        assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
+                    }
+                }
+                for (i, a) in cells.iter().enumerate() {
+                    for b in &cells[i + 1..] {
+                        assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn every_force_figure_is_drawn_inside_its_final_panel_at_the_k_f_its_title_prints() {
+        for paper in [Paper::A4, Paper::A3] {
+            for set in figure_sets() {
+                let captions: Vec<String> =
+                    (0..set.len()).map(|i| format!("Dyad {}–{} (RRP)", 2 * i + 2, 2 * i + 3)).collect();
+                let rows = if set.len() % 2 == 1 { 14 + set.len() } else { 0 };
+                let page = ForcesPage::new(paper, &set, &captions, 4, rows);
+                let s = page.layout.sizes;
+                // The forces' table (a linkage's) beside or over the title block, never on it.
+                let (t, tb) = (page.layout.table, page.layout.title);
+                let on_title =
+                    (t.max.x.min(tb.max.x) - t.min.x.max(tb.min.x)).min(t.max.y.min(tb.max.y) - t.min.y.max(tb.min.y));
+                let border = page.layout.border;
+                let held = page.layout.panels.iter().all(|p| {
+                    p.outline.min.x >= border.min.x - 1e-9
+                        && p.outline.max.x <= border.max.x + 1e-9
+                        && p.outline.min.y >= border.min.y - 1e-9
+                });
+                assert!(!held || rows == 0 || on_title <= 1e-9, "the table {t:?} on the title block {tb:?}");
+                for ((f, (k, pole)), panel) in set.iter().zip(&page.places).zip(&page.layout.panels) {
+                    let k0 = force_figure_scale(Extent::of(f.physical_points()).unwrap().size());
+                    assert!(*k <= k0 * (1.0 + 1e-12), "coarser than its least-size scale: {k} > {k0}");
+                    // Every vertex drawn inside the panel's area, LETTER_ROOM letters from its
+                    // edges.
+                    let room = LETTER_ROOM * s.text - 1e-9;
+                    for v in f.vertices() {
+                        let p = pole + v / *k;
+                        let a = panel.area;
+                        assert!(
+                            p.x >= a.min.x + room
+                                && p.x <= a.max.x - room
+                                && p.y >= a.min.y + room
+                                && p.y <= a.max.y - room,
+                            "{p:?} outside {a:?} at k_f = {k} ({} figures on {})",
+                            set.len(),
+                            paper.name()
+                        );
+                    }
+                }
+            }
         }
     }
 

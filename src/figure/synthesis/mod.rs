@@ -333,8 +333,16 @@ impl Construction {
             // (`90° − θ`: its value follows from the caption's), else the least crowded.
             let short = text.split(" = ").next().unwrap_or(&text).to_string();
             let texts = if short != text { vec![text.clone(), short] } else { vec![text.clone()] };
-            let dim_at =
-                |r: f64, t: &str| Shape::AngularDimension { vertex, first, second, radius: r, text: t.to_string() };
+            // Placed with its flat text (the DXF's, the wider), then `φ1` drawn with its index
+            // a subscript where the writer can (labels::with_dimension_runs).
+            let dim_at = |r: f64, t: &str| Shape::AngularDimension {
+                vertex,
+                first,
+                second,
+                radius: r,
+                text: t.to_string(),
+                runs: Default::default(),
+            };
             let mut best: Option<((usize, usize), Shape)> = None;
             'texts: for t in &texts {
                 for k in DIMENSION_RADII {
@@ -349,7 +357,8 @@ impl Construction {
                 }
             }
             let layer = self.dimensions();
-            self.d.add(layer, best.map_or_else(|| dim_at(radius, &text), |(_, dim)| dim));
+            let dim = best.map_or_else(|| dim_at(radius, &text), |(_, dim)| dim);
+            self.d.add(layer, labels::with_dimension_runs(dim));
         }
     }
 

@@ -85,7 +85,7 @@ pub fn group_loads(
 ) -> Vec<GroupLoads> {
     let l = loads(g, p, kin, d);
     let nv = |name: &str, v: Vector| NamedVector::new(name, v);
-    let couple = |at: Point, name: &str, value: f64| Couple { at, name: name.into(), value };
+    let couple = |at: Point, name: &str, value: f64| Couple { at, name: name.into(), value, quantity: true };
     let phi1_deg = deg(p.phi1);
     let acting = |r: Option<CrankRange>| r.is_none_or(|r| r.contains_deg(phi1_deg));
     let mut crank = GroupLoads {
