@@ -88,7 +88,30 @@ fn figure_cells(d: &Drawing) -> Vec<(f64, Vec<(Point, Point)>)> {
 }
 
 /// Checks a forces page against the figures it should draw.
-fn check_forces_page(what: &str, d: &Drawing, figures: &[ForcePolygon]) {
+/// Every panel and every letter of a sheet inside its border (the largest panel): a page
+/// that does not hold its figures must not draw them off the paper.
+fn assert_inside_the_border(what: &str, d: &Drawing) {
+    let panels = common::panels(d);
+    let area = |(lo, hi): &(Point, Point)| (hi.x - lo.x) * (hi.y - lo.y);
+    let Some(border) = panels.iter().max_by(|a, b| area(a).total_cmp(&area(b))).copied() else {
+        panic!("{what}: no border")
+    };
+    let inside = |p: Point| {
+        p.x >= border.0.x - 1e-6 && p.x <= border.1.x + 1e-6 && p.y >= border.0.y - 1e-6 && p.y <= border.1.y + 1e-6
+    };
+    for (lo, hi) in &panels {
+        assert!(inside(*lo) && inside(*hi), "{what}: a panel {lo:?}–{hi:?} leaves the border {border:?}");
+    }
+    for t in common::text_boxes(d).iter().filter(|t| !t.value.trim().is_empty()) {
+        assert!(inside(t.min) && inside(t.max), "{what}: \"{}\" is drawn outside the border", t.value);
+    }
+}
+
+/// Checks a forces page; returns how many of its figures are drawn under 60 mm (a page
+/// that could not hold them all at 60 mm draws the largest coarser).
+fn check_forces_page(what: &str, d: &Drawing, figures: &[ForcePolygon]) -> usize {
+    assert_inside_the_border(what, d);
+    let mut short = 0;
     let cells = figure_cells(d);
     assert_eq!(cells.len(), figures.len(), "{what}: {} figure cells for {} figures", cells.len(), figures.len());
     for ((k_f, arrows), fig) in cells.iter().zip(figures) {
@@ -97,7 +120,13 @@ fn check_forces_page(what: &str, d: &Drawing, figures: &[ForcePolygon]) {
             |(lo, hi), p| (Point::new(lo.x.min(p.x), lo.y.min(p.y)), Point::new(hi.x.max(p.x), hi.y.max(p.y))),
         );
         let long = (hi.x - lo.x).max(hi.y - lo.y);
-        assert!(long >= 60.0 - 1e-9, "{what}: figure {} is {long:.1} mm long", fig.pole);
+        // A page that cannot hold its figures at 60 mm draws the largest one a nice step
+        // coarser (never off the paper): not under 50 mm.
+        assert!(long >= 50.0, "{what}: figure {} is {long:.1} mm long", fig.pole);
+        if long < 60.0 - 1e-9 {
+            eprintln!("{what}: figure {} is {long:.1} mm long at k_f = {k_f}", fig.pole);
+            short += 1;
+        }
         // Every vector drawn measures its force at the printed k_f.
         let largest = fig.chain.iter().map(|nv| nv.v.norm()).fold(0.0, f64::max);
         for nv in &fig.chain {
@@ -109,6 +138,7 @@ fn check_forces_page(what: &str, d: &Drawing, figures: &[ForcePolygon]) {
             assert!(hit, "{what}: {} = {want} N not drawn at k_f = {k_f}", nv.name);
         }
     }
+    short
 }
 
 #[test]
@@ -142,7 +172,9 @@ fn every_four_bar_templates_a4_pages_draw_a_large_crank_and_force_figures_at_lea
         if !forces.is_empty() {
             assert_eq!(forces.len(), motion.positions.len(), "{stem}");
             for (i, f) in motion.forces.iter().enumerate() {
-                check_forces_page(&format!("{stem} position {i}"), forces[i], &[dyad_polygon(f), crank_polygon(f)]);
+                let what = format!("{stem} position {i}");
+                let short = check_forces_page(&what, forces[i], &[dyad_polygon(f), crank_polygon(f)]);
+                assert_eq!(short, 0, "{what}: {short} force figures under 60 mm");
             }
         }
     }
@@ -150,7 +182,8 @@ fn every_four_bar_templates_a4_pages_draw_a_large_crank_and_force_figures_at_lea
 }
 
 #[test]
-fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_least_60_mm_long() {
+fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_least_60_mm_long_inside_the_border() {
+    let mut short_pages: Vec<String> = Vec::new();
     for t in common::template_paths() {
         if !std::fs::read_to_string(&t).unwrap().contains("kind = \"linkage\"") {
             continue;
@@ -218,7 +251,10 @@ fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_leas
         assert_eq!(pages.len(), states.len(), "{stem}");
         for (k, d) in pages.iter().enumerate() {
             let polys = figures.polygons(mech, dynamics, &states[k], &forces[k]);
-            check_forces_page(&format!("{stem} sample {k}"), d, &polys);
+            let short = check_forces_page(&format!("{stem} sample {k}"), d, &polys);
+            if short > 0 {
+                short_pages.push(format!("{stem} {k}"));
+            }
             // The table of forces is on this page (every reaction of the figures named in
             // it, the driver's moment Me1), not on the mechanism page.
             let here = common::texts(d);
@@ -232,4 +268,11 @@ fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_leas
             assert!(!common::texts(&d.drawing).iter().any(|t| t == "N"), "{stem}: a force's row on the mechanism page");
         }
     }
+    // Known, and left for a second forces page: at 5 of shaper-forces' 361 positions (t ≈
+    // 0.57 s and 0.75 s) the crank's and dyads' figures at 60 mm and the table do not fit one
+    // A4 page in any order (they were drawn past the border before 28 Nov 2026); there the
+    // largest figure is drawn one nice step coarser, 52–60 mm. No other page, and no more.
+    eprintln!("pages with a force figure under 60 mm: {short_pages:?}");
+    assert!(short_pages.iter().all(|p| p.starts_with("shaper-forces ")), "{short_pages:?}");
+    assert!(short_pages.len() <= 5, "{} pages with a force figure under 60 mm: {short_pages:?}", short_pages.len());
 }

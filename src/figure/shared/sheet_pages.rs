@@ -239,10 +239,12 @@ impl ForcesPage {
     /// page still holds them, at the next finer one (larger figures where there is room);
     /// the panels then stretched to use the page (`fill`: none smaller than packed), and
     /// each figure at the finest nice k_f that its final panel holds, the figure and its
-    /// title measured in that panel (`fits_panel`). A page that does not hold its figures
-    /// (packed anyway, past the border) is not stretched: last session's stretching shrank
-    /// such a cell to the border, the shaper's dyad 4–5 drawn out of its panel at
-    /// t = 0.7472 s (tests/sheet_sizes.rs).
+    /// title measured in that panel (`fits_panel`). The figures are packed in solving order
+    /// when the page holds them so, else in the first other order that it holds; a page that
+    /// holds them in no order draws the largest figure a nice step coarser, and again, until
+    /// it does (the shaper's dyads at 5 of its 361 positions on A4, 52–60 mm long; they were
+    /// drawn past the border before). A page that still does not hold them (packed anyway)
+    /// is not stretched.
     pub fn new(
         paper: Paper,
         figures: &[ForcePolygon],
@@ -261,20 +263,51 @@ impl ForcesPage {
             scales.iter().zip(&extents).zip(captions).map(|((k, e), c)| cell(*k, e, c)).collect()
         };
         // The figures, then the table (when it has rows) as one more cell, in one to three
-        // sets of columns: the first arrangement the page holds.
+        // sets of columns: the first arrangement the page holds, the figures in solving
+        // order first, then in the other orders (a tall narrow figure beside two wide ones).
+        let orders = figure_orders(figures.len());
         let pack_at = |scales: &[f64]| {
             let cells = cells_at(scales);
-            if table_rows == 0 {
-                return pack(&cells, border, right, title);
-            }
-            (1..=3).find_map(|sets| {
-                let mut all = cells.clone();
-                all.push(table_cell(table_rows, sets, sizes));
-                pack(&all, border, right, title)
+            orders.iter().find_map(|order| {
+                let mut all: Vec<Vector> = order.iter().map(|&i| cells[i]).collect();
+                let packed = if table_rows == 0 {
+                    pack(&all, border, right, title)
+                } else {
+                    (1..=3).find_map(|sets| {
+                        all.push(table_cell(table_rows, sets, sizes));
+                        let p = pack(&all, border, right, title);
+                        all.pop();
+                        p
+                    })
+                }?;
+                // Back in the figures' order, the table last.
+                let mut out = packed.clone();
+                for (j, &i) in order.iter().enumerate() {
+                    out[i] = packed[j];
+                }
+                Some(out)
             })
         };
         let mut outlines = pack_at(&scales);
-        if outlines.is_some() {
+        // A page that cannot hold its figures at FORCE_FIGURE_MIN_MM in any order draws the
+        // largest one a nice step coarser, and again, until it holds them (the shaper's
+        // dyads at some positions on A4): smaller figures, never figures off the paper.
+        let mut coarsened = 0;
+        while outlines.is_none() && coarsened < COARSENED_STEPS_PER_FIGURE * figures.len() {
+            let drawn = |i: usize| {
+                let d = extents[i].sides() / scales[i];
+                d.x * d.y
+            };
+            let Some(largest) =
+                (0..scales.len()).filter(|&i| extents[i].size() > 0.0).max_by(|&i, &j| drawn(i).total_cmp(&drawn(j)))
+            else {
+                break;
+            };
+            scales[largest] = coarser_nice(scales[largest]);
+            outlines = pack_at(&scales);
+            coarsened += 1;
+        }
+        if outlines.is_some() && coarsened == 0 {
             loop {
                 let mut grown = false;
                 for i in 0..scales.len() {
@@ -418,6 +451,49 @@ pub fn forces_page(
     d
 }
 
+/// The orders a forces page tries its `n` figures in: solving order first, then every
+/// other permutation while there are few enough ([`REORDERED_FIGURES_MAX`]) to try them all.
+fn figure_orders(n: usize) -> Vec<Vec<usize>> {
+    let identity: Vec<usize> = (0..n).collect();
+    let mut orders = vec![identity.clone()];
+    if n > REORDERED_FIGURES_MAX {
+        return orders;
+    }
+    // Heap's algorithm, the identity left out (it is first already).
+    let mut a = identity.clone();
+    let mut c = vec![0usize; n];
+    let mut i = 1;
+    while i < n {
+        if c[i] < i {
+            if i % 2 == 0 {
+                a.swap(0, i);
+            } else {
+                a.swap(c[i], i);
+            }
+            orders.push(a.clone());
+            c[i] += 1;
+            i = 1;
+        } else {
+            c[i] = 0;
+            i += 1;
+        }
+    }
+    orders
+}
+
+/// The most force figures on one page whose orders are all tried (6! = 720 packings).
+const REORDERED_FIGURES_MAX: usize = 6;
+
+/// The most steps a forces page coarsens its figures by (per figure, on the average) before
+/// it draws them packed anyway.
+const COARSENED_STEPS_PER_FIGURE: usize = 3;
+
+/// The next coarser nice scale than `k` (1, 2, 2.5, 5 × 10ᵏ).
+fn coarser_nice(k: f64) -> f64 {
+    let mag = libm::pow(10f64, libm::log10(k).floor());
+    [1.0, 2.0, 2.5, 5.0, 10.0].iter().map(|m| m * mag).find(|x| *x > k * (1.0 + 1e-9)).unwrap_or(2.0 * k)
+}
+
 /// The next finer nice scale than `k` (1, 2, 2.5, 5 × 10ᵏ).
 fn finer_nice(k: f64) -> f64 {
     let mag = libm::pow(10f64, libm::log10(k).floor());
@@ -504,6 +580,12 @@ fn fill(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
             None => rows.push((c.max.y, vec![i])),
         }
     }
+    // The cells may come in another order than packed (the figures' own): rows from the
+    // top, each from the left.
+    rows.sort_by(|a, b| b.0.total_cmp(&a.0));
+    for (_, members) in &mut rows {
+        members.sort_by(|&i, &j| cells[i].min.x.total_cmp(&cells[j].min.x));
+    }
     let n = rows.len();
     for (r, (top, members)) in rows.iter().enumerate() {
         let foot = if r + 1 == n {
@@ -582,6 +664,27 @@ fn pack_anyway(sizes: &[Vector], border: Bounds) -> Vec<Bounds> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn coarser_and_finer_nice_scales_step_through_the_series() {
+        let series = [0.5, 1.0, 2.0, 2.5, 5.0, 10.0, 20.0, 25.0, 50.0];
+        for w in series.windows(2) {
+            assert!((coarser_nice(w[0]) - w[1]).abs() <= 1e-12 * w[1], "{} → {}", w[0], coarser_nice(w[0]));
+            assert!((finer_nice(w[1]) - w[0]).abs() <= 1e-12 * w[1], "{} → {}", w[1], finer_nice(w[1]));
+        }
+    }
+
+    #[test]
+    fn a_page_tries_its_figures_in_solving_order_first_then_every_other_order() {
+        for n in 0..=REORDERED_FIGURES_MAX + 1 {
+            let orders = figure_orders(n);
+            assert_eq!(orders[0], (0..n).collect::<Vec<_>>());
+            let want = if n > REORDERED_FIGURES_MAX { 1 } else { (1..=n).product::<usize>() };
+            assert_eq!(orders.len(), want, "{n} figures");
+            let distinct: std::collections::BTreeSet<&Vec<usize>> = orders.iter().collect();
+            assert_eq!(distinct.len(), orders.len(), "{n} figures: an order twice");
+        }
+    }
 
     #[test]
     fn a_force_figure_is_drawn_one_to_two_minimum_lengths_long() {
@@ -690,10 +793,13 @@ mod tests {
                         && p.outline.max.x <= border.max.x + 1e-9
                         && p.outline.min.y >= border.min.y - 1e-9
                 });
-                assert!(!held || rows == 0 || on_title <= 1e-9, "the table {t:?} on the title block {tb:?}");
+                // Every page holds its figures: one that cannot at their least-size scales
+                // draws the largest coarser.
+                assert!(held, "{} figures on {}: a panel past the border", set.len(), paper.name());
+                assert!(rows == 0 || on_title <= 1e-9, "the table {t:?} on the title block {tb:?}");
                 for ((f, (k, pole)), panel) in set.iter().zip(&page.places).zip(&page.layout.panels) {
-                    let k0 = force_figure_scale(Extent::of(f.physical_points()).unwrap().size());
-                    assert!(*k <= k0 * (1.0 + 1e-12), "coarser than its least-size scale: {k} > {k0}");
+                    // (How small a figure gets on a crowded page is bounded on the templates'
+                    // pages, tests/sheet_sizes.rs: 60 mm but at 5 positions, never under 50.)
                     // Every vertex drawn inside the panel's area, LETTER_ROOM letters from its
                     // edges.
                     let room = LETTER_ROOM * s.text - 1e-9;
