@@ -265,35 +265,35 @@ impl ForcesPage {
         // The figures, then the table (when it has rows) as one more cell, in one to three
         // sets of columns: the first arrangement the page holds, the figures in solving
         // order first, then in the other orders (a tall narrow figure beside two wide ones).
-        let orders = figure_orders(figures.len());
-        let pack_at = |scales: &[f64]| {
+        let pack_in = |order: &[usize], scales: &[f64]| {
             let cells = cells_at(scales);
-            orders.iter().find_map(|order| {
-                let mut all: Vec<Vector> = order.iter().map(|&i| cells[i]).collect();
-                let packed = if table_rows == 0 {
-                    pack(&all, border, right, title)
-                } else {
-                    (1..=3).find_map(|sets| {
-                        all.push(table_cell(table_rows, sets, sizes));
-                        let p = pack(&all, border, right, title);
-                        all.pop();
-                        p
-                    })
-                }?;
-                // Back in the figures' order, the table last.
-                let mut out = packed.clone();
-                for (j, &i) in order.iter().enumerate() {
-                    out[i] = packed[j];
-                }
-                Some(out)
-            })
+            let mut all: Vec<Vector> = order.iter().map(|&i| cells[i]).collect();
+            let packed = if table_rows == 0 {
+                pack(&all, border, right, title)
+            } else {
+                (1..=3).find_map(|sets| {
+                    all.push(table_cell(table_rows, sets, sizes));
+                    let p = pack(&all, border, right, title);
+                    all.pop();
+                    p
+                })
+            }?;
+            // Back in the figures' order, the table last.
+            let mut out = packed.clone();
+            for (j, &i) in order.iter().enumerate() {
+                out[i] = packed[j];
+            }
+            Some(out)
         };
-        let mut outlines = pack_at(&scales);
+        let orders = figure_orders(figures.len());
+        let pack_any =
+            |scales: &[f64]| orders.iter().find_map(|order| pack_in(order, scales).map(|o| (order.as_slice(), o)));
+        let mut held = pack_any(&scales);
         // A page that cannot hold its figures at FORCE_FIGURE_MIN_MM in any order draws the
         // largest one a nice step coarser, and again, until it holds them (the shaper's
         // dyads at some positions on A4): smaller figures, never figures off the paper.
         let mut coarsened = 0;
-        while outlines.is_none() && coarsened < COARSENED_STEPS_PER_FIGURE * figures.len() {
+        while held.is_none() && coarsened < COARSENED_STEPS_PER_FIGURE * figures.len() {
             let drawn = |i: usize| {
                 let d = extents[i].sides() / scales[i];
                 d.x * d.y
@@ -304,20 +304,21 @@ impl ForcesPage {
                 break;
             };
             scales[largest] = coarser_nice(scales[largest]);
-            outlines = pack_at(&scales);
+            held = pack_any(&scales);
             coarsened += 1;
         }
-        if outlines.is_some() && coarsened == 0 {
+        // Larger figures where there is room, in the order that held them.
+        let mut outlines = held.as_ref().map(|(_, o)| o.clone());
+        if let (Some((order, _)), 0) = (&held, coarsened) {
             loop {
                 let mut grown = false;
                 for i in 0..scales.len() {
-                    let finer = finer_nice(scales[i]);
                     if extents[i].size() == 0.0 {
                         continue;
                     }
                     let mut trial = scales.clone();
-                    trial[i] = finer;
-                    if let Some(o) = pack_at(&trial) {
+                    trial[i] = finer_nice(scales[i]);
+                    if let Some(o) = pack_in(order, &trial) {
                         scales = trial;
                         outlines = Some(o);
                         grown = true;
