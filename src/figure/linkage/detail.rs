@@ -185,14 +185,15 @@ impl Detail {
         d.add(layer, Shape::Circle { center: centre, radius: r });
         d.add(path_layer, Shape::Circle { center: centre, radius: self.crank_mm() });
         let mut letters = labels::Polygon::of_names();
-        self.draw_bodies(d, layer, &pf, &qd, centre, s, &mut letters);
+        let view = View { layer, pf: &pf, q: &qd, centre, s };
+        self.draw_bodies(d, &view, &mut letters);
         for (a, b) in spans.iter().flatten() {
             if let Some((a, b)) = clip_to_circle(to_paper(*a), to_paper(*b), centre, r) {
                 vocab::guide(d, layer, a, b, s);
                 letters.segment(a, b);
             }
         }
-        self.draw_joints(d, layer, &pf, &qd, centre, s, &mut letters);
+        self.draw_joints(d, &view, &mut letters);
         if let Some(w) = omega.filter(|w| *w != 0.0 && w.is_finite()) {
             let crank = (self.body, Anchor { body: self.pivot.body, local: self.pivot.local / self.k });
             fig::crank_turn(d, layer, (&pf, &qd), crank, &[], w, s, &mut letters);
@@ -203,17 +204,8 @@ impl Detail {
     }
 
     /// The bodies' outlines cut at the region's edge (a body wholly inside drawn whole).
-    #[allow(clippy::too_many_arguments)]
-    fn draw_bodies(
-        &self,
-        d: &mut Drawing,
-        layer: usize,
-        pf: &LinkageFigure,
-        q: &[f64],
-        centre: Point,
-        s: Sizes,
-        letters: &mut labels::Polygon,
-    ) {
+    fn draw_bodies(&self, d: &mut Drawing, view: &View, letters: &mut labels::Polygon) {
+        let View { layer, pf, q, centre, s } = *view;
         let r = self.radius_mm;
         for (i, b) in pf.bodies.iter().enumerate() {
             let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
@@ -234,17 +226,8 @@ impl Detail {
 
     /// The joints inside the region, with their names, and the names of the bodies' other
     /// points inside it.
-    #[allow(clippy::too_many_arguments)]
-    fn draw_joints(
-        &self,
-        d: &mut Drawing,
-        layer: usize,
-        pf: &LinkageFigure,
-        q: &[f64],
-        centre: Point,
-        s: Sizes,
-        letters: &mut labels::Polygon,
-    ) {
+    fn draw_joints(&self, d: &mut Drawing, view: &View, letters: &mut labels::Polygon) {
+        let View { layer, pf, q, centre, s } = *view;
         let inside = |p: Point, margin: f64| (p - centre).norm() + margin <= self.radius_mm;
         let mut labelled: Vec<Point> = Vec::new();
         let mut name_at = |letters: &mut labels::Polygon, p: Point, name: &str, dir: Vector| {
@@ -295,6 +278,17 @@ impl Detail {
             }
         }
     }
+}
+
+/// The detail's drawing on paper: its layer, the figure and coordinates placed at its scale
+/// (paper mm), the region's centre and the letter sizes.
+#[derive(Clone, Copy)]
+struct View<'a> {
+    layer: usize,
+    pf: &'a LinkageFigure,
+    q: &'a [f64],
+    centre: Point,
+    s: Sizes,
 }
 
 /// The part of the segment `a`–`b` inside the circle about `c` of radius `r`, `None` when it
