@@ -88,6 +88,29 @@ impl Runs {
         Runs(runs)
     }
 
+    /// A text marked up as for [`Runs::underscored`] (`φ_1 = 90°`, `m_21 bar AB`) as the flat
+    /// text without its marks (`φ1 = 90°`, `m21 bar AB`) and the runs that draw each marked
+    /// part as a subscript: for a text whose flat form must read as written where no
+    /// subscript is drawn (a DXF that stays `φ1`, a PDF's searchable text), where
+    /// [`Runs::underscored`] keeps the `_` in the flat text (the DXF's `k_v`). A `_` not
+    /// followed by a letter or digit stays as written.
+    pub fn unmarked(markup: &str) -> (String, Runs) {
+        let mut text = String::with_capacity(markup.len());
+        let mut runs = Vec::new();
+        for (part, kind) in Runs::underscored(markup).split(markup) {
+            match kind {
+                RunKind::Flat => continue,
+                RunKind::Base => text.push_str(part),
+                RunKind::Sub => {
+                    runs.push(Run { end: text.len(), kind: RunKind::Base });
+                    text.push_str(part);
+                    runs.push(Run { end: text.len(), kind: RunKind::Sub });
+                }
+            }
+        }
+        (text, Runs(runs))
+    }
+
     /// The runs of `value` as (text, kind), empty runs left out; the whole value as one base
     /// run when there are none. A run end past the value or off a character boundary ends
     /// the runs there (the rest at the base size).
@@ -139,5 +162,28 @@ mod tests {
         let subs: Vec<&str> = p.iter().filter(|(_, k)| *k == Sub).map(|(s, _)| s.as_str()).collect();
         assert_eq!(subs, ["p", "i"]);
         assert!(Runs::underscored("a_ b_").is_flat() && Runs::underscored("plain").0.is_empty());
+    }
+
+    #[test]
+    fn unmarked_text_reads_without_its_marks() {
+        use RunKind::*;
+        let (text, runs) = Runs::unmarked("φ_1 = 90°, φ_2 = 12°");
+        assert_eq!(text, "φ1 = 90°, φ2 = 12°");
+        assert_eq!(
+            parts(&text, &runs),
+            [
+                ("φ".into(), Base),
+                ("1".into(), Sub),
+                (" = 90°, φ".into(), Base),
+                ("2".into(), Sub),
+                (" = 12°".into(), Base)
+            ]
+        );
+        // A subscript at the end; a `_` that marks nothing stays; no mark: flat.
+        let (text, runs) = Runs::unmarked("m_21");
+        assert_eq!((text.as_str(), parts(&text, &runs)), ("m21", vec![("m".into(), Base), ("21".into(), Sub)]));
+        let (text, runs) = Runs::unmarked("a_ b");
+        assert_eq!(text, "a_ b");
+        assert!(runs.is_flat());
     }
 }

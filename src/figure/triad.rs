@@ -29,7 +29,7 @@ use crate::figure::shared::construction::{
     arc_segments, caption, dimension_text_box, free_direction, keep_letters_off_dimension, length_scale_block,
     place_dimension,
 };
-use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::labels::{self, Label, TextBox};
 use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
 
 /// Width of the seed's polylines (`Pline A1 "W" "0.5" "0.5" A2 A3 "Close"`), drawing
@@ -61,16 +61,23 @@ pub struct TriadFigure<'a> {
     /// The model's length unit: the exact position's polylines are
     /// [`SEED_PLINE_WIDTH_MM`] drawing millimetres wide.
     pub units: ModelUnits,
-    /// Caption lines under the drawing (may be empty).
-    pub caption: &'a [String],
+    /// Caption lines under the drawing (may be empty), with their subscripts (φ_1:
+    /// [`Label::marked`]).
+    pub caption: &'a [Label],
 }
 
 /// Height of the small texts (caption, panel values), in letter heights.
 const SMALL_TEXT: f64 = 0.8;
 
-/// The text of the angular dimension of phi_i (`i` from 1), radians in.
+/// The text of the angular dimension of phi_i (`i` from 1), radians in, flat as the DXF
+/// writes it: `φ1 = 75.77°`.
 pub fn phi_text(i: usize, phi: f64) -> String {
-    format!("φ{i} = {:.2}°", phi.to_degrees())
+    Label::marked(&phi_markup(i, phi)).text
+}
+
+/// `φ_i = value` marked up for [`Label::marked`] (`i` from 1, radians in).
+fn phi_markup(i: usize, phi: f64) -> String {
+    format!("φ_{i} = {:.2}°", phi.to_degrees())
 }
 
 /// The seed's Fig. 3 for `f`.
@@ -198,8 +205,8 @@ pub struct ModesSheet<'a> {
     pub modes: &'a [Configuration],
     /// Index in `modes` of the mode drawn in Fig. 3 (its panel is marked).
     pub drawn: usize,
-    /// Title lines above the panels (may be empty).
-    pub title: &'a [String],
+    /// Title lines above the panels (may be empty), with their subscripts.
+    pub title: &'a [Label],
     /// The model's units, for the length scale's text.
     pub units: ModelUnits,
 }
@@ -220,9 +227,11 @@ pub fn mode_heading(number: usize, c: &Configuration, drawn: bool) -> String {
     format!("Mode {number} · {}{mark}", orientation_text(c.orientation))
 }
 
-/// The angles of a mode as a panel writes them: `φ1 = 75.77°, φ2 = …, φ3 = …` (commas: SVG collapses runs of spaces).
-pub fn mode_angles(c: &Configuration) -> String {
-    (0..3).map(|i| phi_text(i + 1, c.phi[i])).collect::<Vec<_>>().join(", ")
+/// The angles of a mode as a panel writes them: `φ1 = 75.77°, φ2 = …, φ3 = …` (commas: SVG
+/// collapses runs of spaces), each index a subscript where the writer can (φ_1), flat in the
+/// DXF.
+pub fn mode_angles(c: &Configuration) -> Label {
+    Label::marked(&(0..3).map(|i| phi_markup(i + 1, c.phi[i])).collect::<Vec<_>>().join(", "))
 }
 
 /// What a panel's content covers (the circles and the ground symbols), unshifted.
@@ -265,7 +274,7 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     // the first heading run into the next cell in LibreCAD).
     let widest = m.modes.iter().enumerate().fold(0.0f64, |w, (k, c)| {
         let heading = widest_text_width(&mode_heading(k + 1, c, k == m.drawn), s.text);
-        w.max(heading).max(widest_text_width(&mode_angles(c), small_text))
+        w.max(heading).max(widest_text_width(&mode_angles(c).text, small_text))
     });
     let cell_w = content.width().max(widest) + 2.0 * pad;
     let cell_h = header + content.height() + pad;
@@ -306,7 +315,7 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
         }
         let x = top_left.x + pad;
         d.text(text, Point::new(x, top_left.y - heading_base), s.text, mode_heading(k + 1, c, drawn));
-        d.text(text, Point::new(x, top_left.y - angles_base), small_text, mode_angles(c));
+        caption(&mut d, text, Point::new(x, top_left.y - angles_base), &[mode_angles(c)], small_text);
     }
     // The length scale and its bar above the first row, the title above them, its last
     // line's descent `gap` clear of the scale.
@@ -331,6 +340,11 @@ mod tests {
             residual: 0.0,
         };
         assert_eq!(mode_heading(1, &c, true), "Mode 1 · counter-clockwise · drawn in Fig. 3");
-        assert_eq!(mode_angles(&c), "φ1 = 75.77°, φ2 = 102.23°, φ3 = 117.04°");
+        let angles = mode_angles(&c);
+        assert_eq!(angles.text, "φ1 = 75.77°, φ2 = 102.23°, φ3 = 117.04°");
+        let subs: Vec<&str> =
+            angles.runs.split(&angles.text).filter(|(_, k)| *k == crate::draw::RunKind::Sub).map(|(s, _)| s).collect();
+        assert_eq!(subs, ["1", "2", "3"]);
+        assert_eq!(phi_text(2, c.phi[1]), "φ2 = 102.23°");
     }
 }

@@ -7,6 +7,7 @@ use serde::Serialize;
 use super::products::{self, Picture, Products, Sheet};
 use super::solve_err;
 use crate::Error;
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::vocab::ModelUnits;
 use crate::figure::triad::{ModesSheet, TriadFigure, drawing, modes_sheet, orientation_text};
 use crate::geom::{Point, deg};
@@ -328,17 +329,18 @@ pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
     let mut caption = Vec::new();
     let start_deg = deg(scene.pattern.phi1_start);
     let n = r.modes.len();
-    // The pattern method's run, then what is drawn solid and why.
+    // The pattern method's run, then what is drawn solid and why; marked up with `_` before
+    // a subscript (φ_1: Label::marked).
     let pattern = match &r.pattern {
         Ok(p) => format!(
-            "Pattern method: φ1 = {start_deg:.2}° (dashed, red) → {:.2}°{}",
+            "Pattern method: φ_1 = {start_deg:.2}° (dashed, red) → {:.2}°{}",
             deg(p.configuration.phi[0]),
             match r.reached {
                 Some(_) => format!(" in {} iterations", p.iterations),
                 None => ", not among the modes searched".to_string(),
             }
         ),
-        Err(_) => format!("Pattern method failed from φ1 = {start_deg:.2}°"),
+        Err(_) => format!("Pattern method failed from φ_1 = {start_deg:.2}°"),
     };
     let drawn = r.primary + 1;
     match (scene.mode, r.reached, &r.pattern) {
@@ -359,6 +361,7 @@ pub fn figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawing {
     if r.modes.len() > 1 {
         caption.push(format!("All {} assembly modes are drawn on the modes sheet.", r.modes.len()));
     }
+    let caption: Vec<Label> = caption.iter().map(|line| Label::marked(line)).collect();
     drawing(&TriadFigure {
         triad: &r.triad,
         exact: &r.modes[r.primary],
@@ -376,14 +379,17 @@ pub fn modes_figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawin
         .filter(|(_, n)| *n > 0)
         .map(|(o, n)| format!("{n} {}", orientation_text(o)))
         .collect();
+    // The scene's name as the user wrote it; φ_1, φ_2, φ_3 with their subscripts.
     let title = [
-        format!(
-            "{}: {} assembly modes ({}: the sense of A1 → A2 → A3)",
-            scene.name,
+        Label::from(scene.name.as_str()).then(&format!(
+            ": {} assembly modes ({}: the sense of A1 → A2 → A3)",
             r.modes.len(),
             by_sense.join(", ")
-        ),
-        format!("Fig. 3 draws mode {}. φ1, φ2, φ3: directions O1 → A1, O2 → A2, O3 → A3 from +x.", r.primary + 1),
+        )),
+        Label::marked(&format!(
+            "Fig. 3 draws mode {}. φ_1, φ_2, φ_3: directions O1 → A1, O2 → A2, O3 → A3 from +x.",
+            r.primary + 1
+        )),
     ];
     modes_sheet(&ModesSheet {
         triad: &r.triad,

@@ -113,17 +113,24 @@ pub fn place_dimension(
 }
 
 /// Left-aligned lines from `top_left` (the first line's baseline) downwards, 1.8 heights
-/// apart.
-pub fn caption(d: &mut Drawing, layer: usize, top_left: Point, lines: &[String], height: f64) {
+/// apart: each flat (a `String`) or with its subscripts (a [`labels::Label`]: φ_1).
+pub fn caption<L: Clone + Into<labels::Label>>(
+    d: &mut Drawing,
+    layer: usize,
+    top_left: Point,
+    lines: &[L],
+    height: f64,
+) {
     let mut y = top_left.y;
     for line in lines {
+        let labels::Label { text: value, runs } = line.clone().into();
         d.add(
             layer,
             Shape::Text {
-                runs: crate::draw::Runs::flat(),
+                runs,
                 at: Point::new(top_left.x, y),
                 height,
-                value: line.clone(),
+                value,
                 halign: HAlign::Left,
                 valign: VAlign::Baseline,
                 rotation: 0.0,

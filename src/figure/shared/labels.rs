@@ -218,6 +218,25 @@ impl Label {
     }
 }
 
+impl Label {
+    /// A text of the figure's own marked up with `_` before each subscript (`φ_1 = 90°`,
+    /// `m_21 bar AB`): drawn with the subscripts where the writer can, flat without the
+    /// marks elsewhere (`φ1 = 90°` in the DXF and in the PDF's text: [`Runs::unmarked`]).
+    /// A user's name goes after it with [`Label::then`], never into the markup.
+    pub fn marked(markup: &str) -> Label {
+        let (text, runs) = Runs::unmarked(markup);
+        Label { text, runs }
+    }
+
+    /// This label followed by `text` at the base size, as written (a user's name: `gas`,
+    /// `my_rod` keeps its `_`).
+    pub fn then(mut self, text: &str) -> Label {
+        // Bytes after the last run are drawn at the base size.
+        self.text.push_str(text);
+        self
+    }
+}
+
 /// An angular dimension with its name's index drawn as a subscript where the writer can
 /// ([`Label::dimension`]: `φ1 = 75.77°` → φ_1 = 75.77°); any other shape unchanged. A figure
 /// places the dimension with its flat text (as the DXF writes it, the wider of the two) and
@@ -907,6 +926,13 @@ mod tests {
         for flat in ["Δφ = 60°", "90° − θ = 54°", "θ = 31°", "30°", "φ = 40.00°", "1 = 2"] {
             assert!(Label::dimension(flat).runs.is_flat(), "{flat}");
         }
+    }
+
+    #[test]
+    fn a_marked_text_then_a_users_name_as_written() {
+        let m = Label::marked("m_2 (").then("my_rod").then(")");
+        assert_eq!((m.text.as_str(), subs(&m)), ("m2 (my_rod)", vec!["2"]));
+        assert!(Label::marked("g").runs.is_flat());
     }
 
     #[test]
