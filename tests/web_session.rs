@@ -230,6 +230,8 @@ fn dragging_the_crank_pin_turns_the_crank_to_the_pointers_angle() {
         assert!(((b - c).norm() - get("l_bc")).abs() <= 1e-12);
         let frame = session.dragged_frame().unwrap();
         let shown = mechdraw::figure::fourbar::angle_text(theta_deg);
+        // φ_1 drawn with a subscript: read through its tspan.
+        let frame = common::svg_plain(&frame);
         assert!(frame.contains(&format!("φ1 = {shown}°")), "the frame shows φ1 = {shown}°");
     }
     // A fixed pivot cannot be dragged anywhere: the drive stays at the nearest position.

@@ -14,7 +14,7 @@ use crate::solve::fourbar::centres::{Centre, Centres, centres};
 use crate::solve::fourbar::{Geometry, Position};
 
 use crate::figure::fourbar::{angle_text, mechanism};
-use crate::figure::shared::labels::{self, TextBox};
+use crate::figure::shared::labels::{self, Label, TextBox};
 use crate::figure::shared::vocab::{ModelUnits, Sizes, content_drawing, ground, layer_of, layers, length_caption};
 
 /// Layer of the centres' circles and names.
@@ -147,14 +147,15 @@ pub fn centres_sheet(geom: &Geometry, positions: &[&Position], window: Bounds, k
         // The lines and centres first, the title and the notes, then the letters of the
         // mechanism and of the centres clear of them all.
         let (drawn, notes) = draw_centres(&mut d, &centres(&g, &p), &win, s, off);
-        let title = format!("φ1 = {}°", angle_text(pos.phi1.to_degrees()));
+        // φ_1 where the writer can draw a subscript, `φ1` in the DXF.
+        let Label { text: title, runs } = Label::marked(&format!("φ_1 = {}°", angle_text(pos.phi1.to_degrees())));
         let at = Point::new(win.min.x + 0.5 * s.text, win.max.y + 0.6 * s.text);
         d.push(Entity {
             layer: text,
             color: None,
             linetype: None,
             shape: Shape::Text {
-                runs: crate::draw::Runs::flat(),
+                runs,
                 at,
                 height: s.text,
                 value: title,

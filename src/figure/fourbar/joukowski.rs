@@ -108,12 +108,24 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         ];
         let frame_box = labels::TextBox { min: corners[0], max: corners[2] };
         d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        // φ_1 and ω_1 where the writer can draw a subscript, `φ1` in the DXF.
         let title = if lever.crank_speed != panel.omega1 {
-            format!("Joukowski's lever   φ1 = {}°, ω1 = 0", angle_text(panel.phi1_deg))
+            format!("Joukowski's lever   φ_1 = {}°, ω_1 = 0", angle_text(panel.phi1_deg))
         } else {
-            format!("Joukowski's lever   φ1 = {}°", angle_text(panel.phi1_deg))
+            format!("Joukowski's lever   φ_1 = {}°", angle_text(panel.phi1_deg))
         };
-        d.text(text, Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text), s.text, title);
+        let Label { text: value, runs } = Label::marked(&title);
+        let at = Point::new(lo.x + 0.5 * s.text, hi.y + 0.7 * s.text);
+        let shape = Shape::Text {
+            runs,
+            at,
+            height: s.text,
+            value,
+            halign: HAlign::Left,
+            valign: VAlign::Baseline,
+            rotation: 0.0,
+        };
+        d.push(Entity { layer: text, color: None, linetype: None, shape });
         let arrows: Vec<(&LeverForce, bool)> =
             lever.forces.iter().map(|f| (f, false)).chain(lever.balancing.iter().map(|f| (f, true))).collect();
         let dir = |f: &LeverForce| unit_or(f.force, Vector::zeros()) * arrow;

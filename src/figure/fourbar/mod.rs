@@ -212,7 +212,10 @@ impl Layout {
     pub fn moving(&self, k: usize, geom: &Geometry, pos: &Position, force: Option<&Forces>) -> Drawing {
         let mut d = self.frame.paper_drawing();
         let s = self.frame.sizes;
-        self.frame.draw_position_text(&mut d, format!("φ1 = {}°", angle_text(pos.phi1.to_degrees())));
+        // φ_1 where the writer can draw a subscript, `φ1` in the DXF (the viewer's slider label
+        // is the animation's own, flat).
+        let position = Label::marked(&format!("φ_1 = {}°", angle_text(pos.phi1.to_degrees())));
+        self.frame.draw_position_text(&mut d, position);
         // The reactions and the loads drawn on the mechanism, for its letters to keep off.
         let arrows = match (force, self.frame.mechanism_forces) {
             (Some(f), Some(scale)) => {
