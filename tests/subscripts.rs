@@ -220,3 +220,151 @@ fn the_reports_free_bodies_and_sketches_name_quantities_with_subscripts() {
     assert!(texts.iter().any(|(v, _)| v == "gas") && !texts.iter().any(|(v, s)| v == "gas" && !s.is_empty()));
     assert!(!texts.iter().any(|(v, s)| (v == "Fi2" || v == "ω1") && s.is_empty()), "a flat F_i2 or ω_1");
 }
+
+/// A DXF's text values as read: its `\U+XXXX` escapes (how the DXF writes φ, °, →)
+/// decoded.
+fn dxf_plain(dxf: &[u8]) -> String {
+    let dxf = String::from_utf8_lossy(dxf);
+    let mut out = String::with_capacity(dxf.len());
+    let mut rest: &str = &dxf;
+    while let Some(i) = rest.find("\\U+") {
+        out.push_str(&rest[..i]);
+        let code = rest.get(i + 3..i + 7).and_then(|h| u32::from_str_radix(h, 16).ok()).and_then(char::from_u32);
+        match code {
+            Some(c) => {
+                out.push(c);
+                rest = &rest[i + 7..];
+            }
+            None => {
+                out.push_str("\\U+");
+                rest = &rest[i + 3..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
+/// Whether `text` (an SVG text's body, subscripts marked `_{…}`) writes an angle's index
+/// flat: `φ1`, `φ2`, `φ3` not as subscripts.
+fn has_flat_phi(text: &str) -> bool {
+    text.char_indices().any(|(i, c)| c == 'φ' && text[i + c.len_utf8()..].starts_with(|n: char| n.is_ascii_digit()))
+}
+
+#[test]
+fn the_triads_caption_and_modes_lists_have_subscripts_flat_in_the_dxf() {
+    let f = files_of("triad-popa", None, false, false);
+    // Fig. 3's caption: the pattern method's start angle φ_1.
+    let fig: Vec<String> = svg_texts(text_of(&f, "triad-popa.svg")).into_iter().map(|t| marked(&t.1)).collect();
+    assert!(
+        fig.iter().any(|t| t.starts_with("Pattern method: φ_{1} = 90.00° (dashed, red) → 75.77° in 4 iterations")),
+        "{fig:?}"
+    );
+    // The modes sheet: each mode's φ_1, φ_2, φ_3, and the title's.
+    let modes: Vec<String> = svg_texts(text_of(&f, "triad-popa-modes.svg")).into_iter().map(|t| marked(&t.1)).collect();
+    let lists: Vec<&String> = modes.iter().filter(|t| t.starts_with("φ_{1} = ")).collect();
+    assert_eq!(lists.len(), 8, "{modes:?}");
+    assert!(lists.iter().all(|t| t.contains(", φ_{2} = ") && t.contains(", φ_{3} = ")), "{lists:?}");
+    assert!(modes.iter().any(|t| t.starts_with("Fig. 3 draws mode 1. φ_{1}, φ_{2}, φ_{3}: directions")), "{modes:?}");
+    // No angle's index left flat on either picture.
+    for t in fig.iter().chain(&modes) {
+        assert!(!has_flat_phi(t), "a flat φ index: {t}");
+    }
+    // The DXFs write the same texts flat: φ1, no `_`, no tspan.
+    let fig_dxf = dxf_plain(&f.iter().find(|(n, _)| n == "triad-popa.dxf").unwrap().1);
+    assert!(fig_dxf.contains("Pattern method: φ1 = 90.00° (dashed, red) → 75.77°"), "{fig_dxf}");
+    let modes_dxf = dxf_plain(&f.iter().find(|(n, _)| n == "triad-popa-modes.dxf").unwrap().1);
+    assert!(modes_dxf.contains("φ1 = 75.77°, φ2 = 102.23°, φ3 = 117.04°"), "mode 1's angles");
+    assert!(modes_dxf.contains("Fig. 3 draws mode 1. φ1, φ2, φ3: directions"));
+    for dxf in [&fig_dxf, &modes_dxf] {
+        assert!(!dxf.contains("φ_") && !dxf.contains("tspan"));
+    }
+}
+
+#[test]
+fn the_frames_position_titles_are_phi_1_in_the_svg_and_phi1_where_read() {
+    // The four-bar's frame at 90°: φ_1 = 90° drawn with a subscript; its SVG read through
+    // the tspans (as a browser's textContent reads it) says φ1 = 90°; the DXF's text, flat.
+    let f = files_of("fourbar-chebyshev", Some("90"), true, false);
+    let frame = text_of(&f, "frames/fourbar-chebyshev/pos_090.svg");
+    let texts: Vec<String> = svg_texts(frame).into_iter().map(|t| marked(&t.1)).collect();
+    assert!(texts.iter().any(|t| t == "φ_{1} = 90°"), "{texts:?}");
+    assert!(!texts.iter().any(|t| has_flat_phi(t)), "{texts:?}");
+    assert!(common::svg_plain(frame).contains("φ1 = 90°"));
+    let dxf = dxf_plain(&f.iter().find(|(n, _)| n == "fourbar-chebyshev.dxf").unwrap().1);
+    assert!(dxf.lines().any(|l| l.trim() == "φ1 = 90°"), "the DXF's position text");
+    assert!(!dxf.contains("φ_1"));
+    // The centres' and Joukowski's panels: φ_1 = 30°, Joukowski's lever   φ_1 = 135°.
+    let centres: Vec<String> =
+        svg_texts(text_of(&f, "fourbar-chebyshev-centres.svg")).into_iter().map(|t| marked(&t.1)).collect();
+    assert!(centres.iter().any(|t| t == "φ_{1} = 30°") && !centres.iter().any(|t| has_flat_phi(t)), "{centres:?}");
+    let lever: Vec<String> =
+        svg_texts(text_of(&f, "fourbar-chebyshev-joukowski.svg")).into_iter().map(|t| marked(&t.1)).collect();
+    assert!(lever.iter().any(|t| t.starts_with("Joukowski's lever   φ_{1} = ")), "{lever:?}");
+    assert!(!lever.iter().any(|t| has_flat_phi(t)), "{lever:?}");
+    let lever_dxf = dxf_plain(&f.iter().find(|(n, _)| n == "fourbar-chebyshev-joukowski.dxf").unwrap().1);
+    assert!(lever_dxf.contains("Joukowski's lever   φ1 = ") && !lever_dxf.contains("φ_1"));
+}
+
+/// Every text of the report of template `name` at `positions` (a motion's; `None`: a scene
+/// without one) as (flat value, its subscripts).
+fn report_texts(name: &str, positions: Option<Vec<f64>>) -> Vec<(String, Vec<String>)> {
+    use mechdraw::draw::{RunKind, Shape};
+    use mechdraw::run::positions::Positions;
+    use mechdraw::run::report::{ReportOptions, report};
+    let l = scene::load(&common::root().join(format!("templates/{name}.toml")), &[]).unwrap();
+    let r = report(&l, &ReportOptions { paper: Paper::A4, positions: positions.map(Positions::List) }).unwrap();
+    r.pages
+        .iter()
+        .flat_map(|p| p.drawing.entities.iter())
+        .filter_map(|e| match &e.shape {
+            Shape::Text { value, runs, .. } => Some((
+                value.clone(),
+                runs.split(value).filter(|(_, k)| *k == RunKind::Sub).map(|(s, _)| s.to_string()).collect(),
+            )),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_reports_tables_name_quantities_with_subscripts_and_points_and_users_names_flat() {
+    let has = |texts: &[(String, Vec<String>)], value: &str, subs: &[&str]| {
+        texts.iter().any(|(v, s)| v == value && s == subs)
+    };
+    // The four-bar's data: l_1, ω_1, ε_1, φ_1, m_21 …; the points O1, O1A flat.
+    let t = report_texts("fourbar-chebyshev", Some(vec![90.0]));
+    for (value, subs) in [
+        ("crank O1A = l1", &["1"][..]),
+        ("ω1 (counter-clockwise +)", &["1"]),
+        ("ε1", &["1"]),
+        ("crank angles φ1", &["1"]),
+        ("m21 bar AB", &["21"]),
+        ("m3 rocker", &["3"]),
+        ("F at M for φ1 ∈ [80°, 280°]", &["1"]),
+        ("crank pivot O1", &[]),
+        ("g", &[]),
+    ] {
+        assert!(has(&t, value, subs), "the four-bar's data lack {value} with subscripts {subs:?}");
+    }
+    // The triad's: R_1, l_12, φ_1, and the iterations' header φ_1 [°], |R_3 − A3O3| [mm].
+    let t = report_texts("triad-popa", None);
+    for (value, subs) in [
+        ("R1 = O1A1", &["1"][..]),
+        ("l12 = A1A2", &["12"]),
+        ("pattern: start φ1", &["1"]),
+        ("pattern: ε on |R3 − A3O3|", &["3"]),
+        ("φ1 [°]", &["1"]),
+        ("|R3 − A3O3| [mm]", &["3"]),
+        ("pivot O2", &[]),
+    ] {
+        assert!(has(&t, value, subs), "the triad's tables lack {value} with subscripts {subs:?}");
+    }
+    // The slider-crank's: m_2 and J_2 with the body's name as the scene writes it; the
+    // user's load `gas` and every point's name flat.
+    let t = report_texts("slider-crank", Some(vec![0.0]));
+    for (value, subs) in [("m2 (rod)", &["2"][..]), ("J2 about its centroid", &["2"]), ("link 2 rod: AB", &[])] {
+        assert!(has(&t, value, subs), "the slider-crank's data lack {value} with subscripts {subs:?}");
+    }
+    assert!(t.iter().any(|(v, s)| v.starts_with("load gas at B") && s.is_empty()), "the load's row");
+}

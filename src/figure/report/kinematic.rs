@@ -213,7 +213,7 @@ fn legend(d: &mut Drawing, area: Bounds, sk: &Sketch, s: Sizes) {
     for (k, (what, draw)) in rows.iter().rev().enumerate() {
         let y = area.min.y + (k as f64 + 0.6) * step;
         draw(d, mech, Point::new(x_symbol, y), s);
-        page::text(d, sheet, Point::new(x_text, y), 0.9 * s.text, what, HAlign::Left);
+        page::text(d, sheet, Point::new(x_text, y), 0.9 * s.text, *what, HAlign::Left);
     }
     let y = area.min.y + (rows.len() as f64 + 0.4) * step;
     page::text(d, sheet, Point::new(area.min.x, y), s.text, "Symbols", HAlign::Left);

@@ -9,6 +9,7 @@
 //! shrunk, down to the small letters, to stay inside its cell or panel.
 
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign, parts};
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::sheet::{Paper, SHEET_LAYER};
 use crate::figure::shared::vocab::{self, Sizes, content_drawing};
 use crate::geom::{Point, Vector};
@@ -184,20 +185,11 @@ pub fn rect(d: &mut Drawing, l: usize, b: Bounds, width: f64) {
     d.add(l, Shape::Polyline { points, closed: true, width });
 }
 
-/// A text, its middle at `at`'s height.
-pub fn text(d: &mut Drawing, l: usize, at: Point, height: f64, value: &str, halign: HAlign) {
-    d.add(
-        l,
-        Shape::Text {
-            runs: crate::draw::Runs::flat(),
-            at,
-            height,
-            value: value.to_string(),
-            halign,
-            valign: VAlign::Middle,
-            rotation: 0.0,
-        },
-    );
+/// A text, its middle at `at`'s height: flat (a `&str`) or with its subscripts (a
+/// [`Label`]).
+pub fn text(d: &mut Drawing, l: usize, at: Point, height: f64, value: impl Into<Label>, halign: HAlign) {
+    let Label { text: value, runs } = value.into();
+    d.add(l, Shape::Text { runs, at, height, value, halign, valign: VAlign::Middle, rotation: 0.0 });
 }
 
 /// The height at which `value` fits `room` mm: `height`, or less down to the small letters

@@ -2,9 +2,14 @@
 //! their widest text (measured with the bundled font), numbers right-aligned; a table
 //! longer than its area continues in a second or third set of columns beside the first,
 //! and its letters shrink (down to the small letters) until it fits.
+//!
+//! A cell is a [`Label`]: flat (a point's name `O1A`, a user's load `gas`, a number), or a
+//! quantity's name with its subscripts (`m_21 bar AB`, `φ_1 [°]`: [`Label::marked`]), drawn
+//! with them in the SVG and the PDF and measured as drawn ([`font::measure_runs`]).
 
-use crate::draw::{Bounds, Drawing, HAlign, Shape, parts};
+use crate::draw::{Bounds, Drawing, HAlign, Shape, font};
 use crate::figure::report::page::{sheet_layer, text};
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::vocab::Sizes;
 use crate::geom::Point;
 
@@ -17,27 +22,33 @@ pub enum Align {
     Right,
 }
 
-/// A table: column headings and rows of texts (each row as many as the header).
+/// A table: column headings and rows of texts (each row as many as the header), each with
+/// its subscripts.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct PaperTable {
     /// Column headings.
-    pub header: Vec<String>,
+    pub header: Vec<Label>,
     /// How each column aligns.
     pub align: Vec<Align>,
     /// The rows.
-    pub rows: Vec<Vec<String>>,
+    pub rows: Vec<Vec<Label>>,
 }
 
 impl PaperTable {
-    /// A table with these headings and alignments and no rows.
-    pub fn new(header: &[&str], align: &[Align]) -> PaperTable {
-        PaperTable { header: header.iter().map(|h| h.to_string()).collect(), align: align.to_vec(), rows: Vec::new() }
+    /// A table with these headings (flat `&str`s or [`Label`]s) and alignments and no rows.
+    pub fn new<H: Clone + Into<Label>>(header: &[H], align: &[Align]) -> PaperTable {
+        PaperTable { header: header.iter().cloned().map(Into::into).collect(), align: align.to_vec(), rows: Vec::new() }
     }
 
-    /// Adds a row.
-    pub fn row(&mut self, cells: Vec<String>) {
-        self.rows.push(cells);
+    /// Adds a row: flat texts (`String`s) or [`Label`]s.
+    pub fn row<C: Into<Label>>(&mut self, cells: Vec<C>) {
+        self.rows.push(cells.into_iter().map(Into::into).collect());
     }
+}
+
+/// Width of a cell's text drawn `h` high, its subscripts as drawn.
+fn cell_width(l: &Label, h: f64) -> f64 {
+    font::measure_runs(&l.text, &l.runs, h).width
 }
 
 /// Height of a table's row, in letter heights.
@@ -46,6 +57,9 @@ const ROW: f64 = 1.75;
 const COLUMN_GAP: f64 = 1.2;
 /// Room between sets of columns, in letter heights.
 const SET_GAP: f64 = 3.0;
+/// Least room between the header's lowest stroke (a subscript, a descender) and the rule
+/// under it, in letter heights.
+const RULE_GAP: f64 = 0.15;
 
 /// Widths of the columns of `rows` (header included) at letter height `h`.
 fn widths(t: &PaperTable, h: f64) -> Vec<f64> {
@@ -53,7 +67,7 @@ fn widths(t: &PaperTable, h: f64) -> Vec<f64> {
         .map(|c| {
             std::iter::once(&t.header[c])
                 .chain(t.rows.iter().filter_map(|r| r.get(c)))
-                .map(|v| parts::text_width(v, h))
+                .map(|v| cell_width(v, h))
                 .fold(0.0, f64::max)
         })
         .collect()
@@ -116,25 +130,30 @@ pub fn draw(d: &mut Drawing, area: Bounds, t: &PaperTable, s: Sizes) -> Bounds {
     let h = f.height;
     let w = widths(t, h);
     let row = ROW * h;
+    let header_descent = t.header.iter().map(|l| font::measure_runs(&l.text, &l.runs, h).descent).fold(0.0, f64::max);
     for set in 0..f.sets {
         let x0 = area.min.x + set as f64 * (f.set_width + SET_GAP * h);
         let mut edges = vec![x0];
         for cw in &w {
             edges.push(edges.last().copied().unwrap_or(x0) + cw + COLUMN_GAP * h);
         }
-        let cell = |d: &mut Drawing, r: usize, c: usize, v: &str| {
+        let cell = |d: &mut Drawing, r: usize, c: usize, v: &Label| {
             let y = area.max.y - (r as f64 + 0.5) * row;
             let align = t.align.get(c).copied().unwrap_or(Align::Left);
             let (x, ha) = match align {
                 Align::Left => (edges[c], HAlign::Left),
                 Align::Right => (edges[c] + w[c], HAlign::Right),
             };
-            text(d, l, Point::new(x, y), h, v, ha);
+            text(d, l, Point::new(x, y), h, v.clone(), ha);
         };
         for (c, v) in t.header.iter().enumerate() {
             cell(d, 0, c, v);
         }
-        let rule = area.max.y - row;
+        // The rule under the header at the row's foot, lower where a heading's subscript or
+        // descender reaches it (`φ_1 [°]`: the text's middle at half the row, its baseline
+        // half a letter under that).
+        let reach = area.max.y - 0.5 * row - 0.5 * h - header_descent - RULE_GAP * h;
+        let rule = (area.max.y - row).min(reach);
         d.add(l, Shape::Line { from: Point::new(x0, rule), to: Point::new(x0 + f.set_width, rule) });
         for (k, cells) in t.rows.iter().skip(set * f.per_set).take(f.per_set).enumerate() {
             for (c, v) in cells.iter().enumerate().take(t.header.len()) {

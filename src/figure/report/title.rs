@@ -74,7 +74,7 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, t: &TitlePage) -> Drawing {
     let rows = page::rows(area, FIELDS.len(), 0.0);
     for (name, row) in FIELDS.iter().zip(rows) {
         let y = row.min.y + 0.35 * row.height();
-        page::text(&mut d, l, Point::new(row.min.x, y + 0.5 * s.text), s.text, name, HAlign::Left);
+        page::text(&mut d, l, Point::new(row.min.x, y + 0.5 * s.text), s.text, *name, HAlign::Left);
         let x0 = row.min.x + crate::draw::parts::text_width("Checked by", s.text) + 1.5 * s.text;
         d.add(l, Shape::Line { from: Point::new(x0, y), to: Point::new(row.max.x, y) });
     }

@@ -19,6 +19,7 @@ use crate::figure::report::plan::PlanDimension;
 use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
 use crate::figure::report::table::{Align, PaperTable};
 use crate::figure::shared::forces::NamedVector;
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::plot::{self, Marks};
 use crate::figure::shared::sheet;
 use crate::geom::{self, Point, Vector, deg};
@@ -233,34 +234,34 @@ fn data(scene: &FourbarScene) -> PaperTable {
     let num = crate::report::number;
     let mut t = PaperTable::new(&["quantity", "value", "unit"], &[Align::Left, Align::Right, Align::Left]);
     let pt = |p: Point| format!("({}, {})", num(p.x), num(p.y));
+    // The quantities' names marked up with `_` before a subscript (l_1, ω_1, m_21: drawn
+    // with their subscripts); the points' names flat (O1A).
+    let row = |t: &mut PaperTable, q: &str, v: String, unit: &str| t.row(vec![Label::marked(q), v.into(), unit.into()]);
     for (q, v, unit) in [
         ("crank pivot O1", pt(g.o1), u),
         ("rocker pivot C", pt(g.c), u),
-        ("crank O1A = l1", num(g.l1), u),
+        ("crank O1A = l_1", num(g.l1), u),
         ("coupler AB", num(g.l_ab), u),
         ("coupler BM", num(g.l_bm), u),
         ("angle ABM α", num(deg(g.alpha)), "°"),
         ("rocker BC", num(g.l_bc), u),
         ("ground O1C", num(g.ground()), u),
-        ("ω1 (counter-clockwise +)", num(s.omega1), "rad/s"),
-        ("ε1", num(s.epsilon1), "rad/s²"),
+        ("ω_1 (counter-clockwise +)", num(s.omega1), "rad/s"),
+        ("ε_1", num(s.epsilon1), "rad/s²"),
     ] {
-        t.row(vec![q.to_string(), v, unit.to_string()]);
+        row(&mut t, q, v, unit);
     }
-    t.row(vec![
-        "crank angles φ1".into(),
-        format!("{} … {} step {}", num(s.sweep.from_deg), num(s.sweep.to_deg), num(s.sweep.step_deg)),
-        "°".into(),
-    ]);
+    let sweep = format!("{} … {} step {}", num(s.sweep.from_deg), num(s.sweep.to_deg), num(s.sweep.step_deg));
+    row(&mut t, "crank angles φ_1", sweep, "°");
     if let Some(d) = &s.dynamics {
-        t.row(vec!["g".into(), format!("({}, {})", num(d.gravity.x), num(d.gravity.y)), "m/s²".into()]);
-        for (q, m) in [("m1 crank", d.m1), ("m21 bar AB", d.m21), ("m22 bar BM", d.m22), ("m3 rocker", d.m3)] {
-            t.row(vec![q.into(), num(m), "kg".into()]);
+        row(&mut t, "g", format!("({}, {})", num(d.gravity.x), num(d.gravity.y)), "m/s²");
+        for (q, m) in [("m_1 crank", d.m1), ("m_21 bar AB", d.m21), ("m_22 bar BM", d.m22), ("m_3 rocker", d.m3)] {
+            row(&mut t, q, num(m), "kg");
         }
         for f in &d.forces {
             let range =
-                f.range.map_or(String::new(), |r| format!(" for φ1 ∈ [{}°, {}°]", num(r.from_deg), num(r.to_deg)));
-            t.row(vec![format!("F at {:?}{range}", f.at), pt(Point::from(f.value)), "N".into()]);
+                f.range.map_or(String::new(), |r| format!(" for φ_1 ∈ [{}°, {}°]", num(r.from_deg), num(r.to_deg)));
+            row(&mut t, &format!("F at {:?}{range}", f.at), pt(Point::from(f.value)), "N");
         }
     }
     t

@@ -14,6 +14,7 @@ use crate::figure::report::freebody::{self, FreeBodyPage};
 use crate::figure::report::plan::PlanDimension;
 use crate::figure::report::sketch::{DriverMark, LoadMark, Sketch};
 use crate::figure::report::table::{Align, PaperTable};
+use crate::figure::shared::labels::Label;
 use crate::figure::shared::plot::{self, Diagram, Marks, Series};
 use crate::figure::shared::sheet;
 use crate::geom::{Vector, deg};
@@ -177,8 +178,11 @@ fn data(scene: &LinkageScene) -> PaperTable {
         if let Some(m) =
             scene.dynamics.as_ref().and_then(|d| d.bodies.get(i)).filter(|m| m.mass > 0.0 || m.inertia > 0.0)
         {
-            t.row(vec![format!("m{} ({})", i + 1, b.name), num(m.mass), "kg".into()]);
-            t.row(vec![format!("J{} about its centroid", i + 1), num(m.inertia), "kg·m²".into()]);
+            // m_2 and J_2 with their subscripts; the body's name as the user wrote it.
+            let mass = Label::marked(&format!("m_{} (", i + 1)).then(&b.name).then(")");
+            t.row(vec![mass, num(m.mass).into(), "kg".into()]);
+            let inertia = Label::marked(&format!("J_{} about its centroid", i + 1));
+            t.row(vec![inertia, num(m.inertia).into(), "kg·m²".into()]);
         }
     }
     for d in &mech.drivers {

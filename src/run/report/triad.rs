@@ -10,6 +10,7 @@ use crate::figure::report::compose::{self, Block};
 use crate::figure::report::sketch::Sketch;
 use crate::figure::report::structure::{self as structure_page, StructurePage};
 use crate::figure::report::table::{Align, PaperTable};
+use crate::figure::shared::labels::Label;
 use crate::geom::{Vector, deg, rotate};
 use crate::run::triad as run;
 use crate::scene::triad::TriadScene;
@@ -84,16 +85,19 @@ fn data(scene: &TriadScene) -> PaperTable {
         let o = scene.o[i];
         t.row(vec![format!("pivot O{}", i + 1), format!("({}, {})", num(o.x), num(o.y)), u.into()]);
     }
+    // The quantities' names marked up with `_` before a subscript (R_1, l_12, φ_1: drawn
+    // with their subscripts); the points' names flat (O1A1).
+    let mut row = |q: &str, v: String, unit: &str| t.row(vec![Label::marked(q), v.into(), unit.into()]);
     for i in 0..3 {
-        t.row(vec![format!("R{} = O{}A{}", i + 1, i + 1, i + 1), num(scene.r[i]), u.into()]);
+        row(&format!("R_{} = O{}A{}", i + 1, i + 1, i + 1), num(scene.r[i]), u);
     }
-    for (q, v) in [("l12 = A1A2", scene.l12), ("l23 = A2A3", scene.l23), ("l13 = A1A3", scene.l13)] {
-        t.row(vec![q.into(), num(v), u.into()]);
+    for (q, v) in [("l_12 = A1A2", scene.l12), ("l_23 = A2A3", scene.l23), ("l_13 = A1A3", scene.l13)] {
+        row(q, num(v), u);
     }
     let p = &scene.pattern;
-    t.row(vec!["pattern: start φ1".into(), num(deg(p.phi1_start)), "°".into()]);
-    t.row(vec!["pattern: first step Δφ".into(), num(deg(p.step)), "°".into()]);
-    t.row(vec!["pattern: ε on |R3 − A3O3|".into(), num(p.tol), u.into()]);
+    row("pattern: start φ_1", num(deg(p.phi1_start)), "°");
+    row("pattern: first step Δφ", num(deg(p.step)), "°");
+    row("pattern: ε on |R_3 − A3O3|", num(p.tol), u);
     t
 }
 
@@ -106,7 +110,7 @@ pub(super) fn gather<'a>(scene: &'a TriadScene, file: &str, frame: Frame) -> Res
     let fig = run::figure(scene, &results);
     let unit = scene.units.length();
     let mut iterations = PaperTable::new(
-        &["step", "φ1 [°]", &format!("|R3 − A3O3| [{unit}]")],
+        &[Label::from("step"), Label::marked("φ_1 [°]"), Label::marked(&format!("|R_3 − A3O3| [{unit}]"))],
         &[Align::Left, Align::Right, Align::Right],
     );
     let mut result_lines = Vec::new();
