@@ -431,26 +431,6 @@ struct DxfText {
     width: f64,
 }
 
-fn decode_unicode_escapes(s: &str) -> String {
-    let mut out = String::new();
-    let mut rest = s;
-    while let Some(i) = rest.find("\\U+") {
-        out.push_str(&rest[..i]);
-        match rest.get(i + 3..i + 7).and_then(|h| u32::from_str_radix(h, 16).ok()).and_then(char::from_u32) {
-            Some(c) => {
-                out.push(c);
-                rest = &rest[i + 7..];
-            }
-            None => {
-                out.push_str("\\U+");
-                rest = &rest[i + 3..];
-            }
-        }
-    }
-    out.push_str(rest);
-    out
-}
-
 /// Every level TEXT of the ENTITIES section.
 fn level_texts(p: &[(i32, String)]) -> Vec<DxfText> {
     let start = p.iter().position(|(c, v)| *c == 2 && v == "ENTITIES").expect("ENTITIES section");
@@ -468,7 +448,7 @@ fn level_texts(p: &[(i32, String)]) -> Vec<DxfText> {
                 layer: t.get(&8).cloned().unwrap_or_default(),
                 at: (x, y),
                 height: h,
-                text: decode_unicode_escapes(t.get(&1).map_or("", String::as_str)),
+                text: common::dxf_unescape(t.get(&1).map_or("", String::as_str)),
                 halign,
                 width: num(41).unwrap_or(1.0),
             });

@@ -221,28 +221,9 @@ fn the_reports_free_bodies_and_sketches_name_quantities_with_subscripts() {
     assert!(!texts.iter().any(|(v, s)| (v == "Fi2" || v == "ω1") && s.is_empty()), "a flat F_i2 or ω_1");
 }
 
-/// A DXF's text values as read: its `\U+XXXX` escapes (how the DXF writes φ, °, →)
-/// decoded.
+/// A DXF's bytes as read, its `\U+XXXX` escapes decoded.
 fn dxf_plain(dxf: &[u8]) -> String {
-    let dxf = String::from_utf8_lossy(dxf);
-    let mut out = String::with_capacity(dxf.len());
-    let mut rest: &str = &dxf;
-    while let Some(i) = rest.find("\\U+") {
-        out.push_str(&rest[..i]);
-        let code = rest.get(i + 3..i + 7).and_then(|h| u32::from_str_radix(h, 16).ok()).and_then(char::from_u32);
-        match code {
-            Some(c) => {
-                out.push(c);
-                rest = &rest[i + 7..];
-            }
-            None => {
-                out.push_str("\\U+");
-                rest = &rest[i + 3..];
-            }
-        }
-    }
-    out.push_str(rest);
-    out
+    common::dxf_unescape(&String::from_utf8_lossy(dxf))
 }
 
 /// Whether `text` (an SVG text's body, subscripts marked `_{…}`) writes an angle's index
@@ -327,15 +308,19 @@ fn report_texts(name: &str, positions: Option<Vec<f64>>) -> Vec<(String, Vec<Str
         .collect()
 }
 
+/// Asserts that `texts` hold each (flat value, subscripts) of `want`.
+fn assert_drawn(texts: &[(String, Vec<String>)], what: &str, want: &[(&str, &[&str])]) {
+    for (value, subs) in want {
+        assert!(texts.iter().any(|(v, s)| v == value && s == subs), "the {what} lack {value} with subscripts {subs:?}");
+    }
+}
+
 #[test]
 fn the_reports_tables_name_quantities_with_subscripts_and_points_and_users_names_flat() {
-    let has = |texts: &[(String, Vec<String>)], value: &str, subs: &[&str]| {
-        texts.iter().any(|(v, s)| v == value && s == subs)
-    };
     // The four-bar's data: l_1, ω_1, ε_1, φ_1, m_21 …; the points O1, O1A flat.
     let t = report_texts("fourbar-chebyshev", Some(vec![90.0]));
-    for (value, subs) in [
-        ("crank O1A = l1", &["1"][..]),
+    let four_bar: [(&str, &[&str]); 9] = [
+        ("crank O1A = l1", &["1"]),
         ("ω1 (counter-clockwise +)", &["1"]),
         ("ε1", &["1"]),
         ("crank angles φ1", &["1"]),
@@ -344,27 +329,25 @@ fn the_reports_tables_name_quantities_with_subscripts_and_points_and_users_names
         ("F at M for φ1 ∈ [80°, 280°]", &["1"]),
         ("crank pivot O1", &[]),
         ("g", &[]),
-    ] {
-        assert!(has(&t, value, subs), "the four-bar's data lack {value} with subscripts {subs:?}");
-    }
+    ];
+    assert_drawn(&t, "four-bar's data", &four_bar);
     // The triad's: R_1, l_12, φ_1, and the iterations' header φ_1 [°], |R_3 − A3O3| [mm].
     let t = report_texts("triad-popa", None);
-    for (value, subs) in [
-        ("R1 = O1A1", &["1"][..]),
+    let triad: [(&str, &[&str]); 7] = [
+        ("R1 = O1A1", &["1"]),
         ("l12 = A1A2", &["12"]),
         ("pattern: start φ1", &["1"]),
         ("pattern: ε on |R3 − A3O3|", &["3"]),
         ("φ1 [°]", &["1"]),
         ("|R3 − A3O3| [mm]", &["3"]),
         ("pivot O2", &[]),
-    ] {
-        assert!(has(&t, value, subs), "the triad's tables lack {value} with subscripts {subs:?}");
-    }
+    ];
+    assert_drawn(&t, "triad's tables", &triad);
     // The slider-crank's: m_2 and J_2 with the body's name as the scene writes it; the
     // user's load `gas` and every point's name flat.
     let t = report_texts("slider-crank", Some(vec![0.0]));
-    for (value, subs) in [("m2 (rod)", &["2"][..]), ("J2 about its centroid", &["2"]), ("link 2 rod: AB", &[])] {
-        assert!(has(&t, value, subs), "the slider-crank's data lack {value} with subscripts {subs:?}");
-    }
+    let slider_crank: [(&str, &[&str]); 3] =
+        [("m2 (rod)", &["2"]), ("J2 about its centroid", &["2"]), ("link 2 rod: AB", &[])];
+    assert_drawn(&t, "slider-crank's data", &slider_crank);
     assert!(t.iter().any(|(v, s)| v.starts_with("load gas at B") && s.is_empty()), "the load's row");
 }

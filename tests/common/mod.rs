@@ -45,6 +45,29 @@ pub fn svg_plain(svg: &str) -> String {
     out
 }
 
+/// A DXF text as read: its `\U+XXXX` escapes (how R12 and R2000 write φ, °, →, −)
+/// decoded; an escape that is not one stays as written.
+#[allow(dead_code)]
+pub fn dxf_unescape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut rest = s;
+    while let Some(i) = rest.find("\\U+") {
+        out.push_str(&rest[..i]);
+        match rest.get(i + 3..i + 7).and_then(|h| u32::from_str_radix(h, 16).ok()).and_then(char::from_u32) {
+            Some(c) => {
+                out.push(c);
+                rest = &rest[i + 7..];
+            }
+            None => {
+                out.push_str("\\U+");
+                rest = &rest[i + 3..];
+            }
+        }
+    }
+    out.push_str(rest);
+    out
+}
+
 fn update() -> bool {
     std::env::var_os("UPDATE_GOLDEN").is_some_and(|v| v == "1")
 }
