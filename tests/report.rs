@@ -798,7 +798,7 @@ fn a_redundant_link_gets_its_structure_with_the_formulas_value_the_solvers_and_w
         "n = 4 moving links",
         "p₅ = 6 lower pairs",
         "M = 3·4 − 2·6 − 0 = 0",
-        "leave 1 degree(s) of freedom",
+        "leave 1 degree of freedom",
         "12 − 11",
         "repeat others",
         "stops at the structure",

@@ -8,6 +8,7 @@
 //! Every text is measured with [`parts::text_width`] (the bundled font's advances) and
 //! shrunk, down to the small letters, to stay inside its cell or panel.
 
+use crate::draw::runs::{Run, RunKind, Runs};
 use crate::draw::{Bounds, DimStyle, Drawing, HAlign, Shape, VAlign, parts};
 use crate::figure::shared::labels::Label;
 use crate::figure::shared::sheet::{Paper, SHEET_LAYER};
@@ -210,11 +211,40 @@ pub fn fitted(value: &str, height: f64, room: f64, s: Sizes) -> (f64, String) {
     (h, format!("{cut}…"))
 }
 
-/// A text fitted into `room` mm ([`fitted`]), its middle at `at`'s height.
+/// A text fitted into `room` mm ([`fitted`]), its middle at `at`'s height; its scales'
+/// symbols drawn as the sheets draw them ([`scale_symbols`]) unless it had to be cut.
 #[allow(clippy::too_many_arguments)]
 pub fn text_in(d: &mut Drawing, l: usize, at: Point, height: f64, room: f64, value: &str, halign: HAlign, s: Sizes) {
     let (h, v) = fitted(value, height, room, s);
-    text(d, l, at, h, &v, halign);
+    if v == value {
+        text(d, l, at, h, scale_symbols(&v), halign);
+    } else {
+        text(d, l, at, h, &v, halign);
+    }
+}
+
+/// The scales' symbols that [`scale_symbols`] draws with a subscript: `k_l`, `k_F`, `k_f`,
+/// `k_v`, `k_a`.
+const SCALE_INDICES: &str = "lFfva";
+
+/// `value` with its scales' symbols (`k_l = 15 mm/mm`, `k_F`) drawn as the sheets draw
+/// them: the index a subscript in SVG and PDF, the `_` kept in the DXF's flat text. Every
+/// other `_` is drawn as written (a scene's or a body's name: `my_rod`). Measured flat,
+/// the text is never narrower than drawn.
+pub fn scale_symbols(value: &str) -> Label {
+    let mut runs = Vec::new();
+    for (i, _) in value.match_indices("k_") {
+        let mut after = value[i + 2..].chars();
+        let Some(index) = after.next().filter(|c| SCALE_INDICES.contains(*c)) else { continue };
+        let alone = |c: Option<char>| !c.is_some_and(char::is_alphanumeric);
+        if !alone(after.next()) || !alone(value[..i].chars().next_back()) {
+            continue;
+        }
+        runs.push(Run { end: i + 1, kind: RunKind::Base });
+        runs.push(Run { end: i + 2, kind: RunKind::Flat });
+        runs.push(Run { end: i + 2 + index.len_utf8(), kind: RunKind::Sub });
+    }
+    Label { text: value.to_string(), runs: Runs(runs) }
 }
 
 /// A framed panel with its `title` in a band at its top: returns the area inside the band
@@ -353,6 +383,20 @@ pub fn scale_bar_and_notes(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn scale_symbols_are_subscripted_and_users_underscores_kept() {
+        let parts =
+            |l: &Label| -> Vec<(String, RunKind)> { l.runs.split(&l.text).map(|(p, k)| (p.to_string(), k)).collect() };
+        let l = scale_symbols("groups: k_l = 15 mm/mm, k_F = 2 N/mm");
+        assert_eq!(l.text, "groups: k_l = 15 mm/mm, k_F = 2 N/mm");
+        let subs: Vec<String> = parts(&l).into_iter().filter(|(_, k)| *k == RunKind::Sub).map(|(p, _)| p).collect();
+        assert_eq!(subs, ["l", "F"]);
+        // A user's name, a longer word, a symbol glued to a word: as written.
+        for flat in ["my_rod", "k_lever = 2", "ak_l = 1", "k_x = 1"] {
+            assert!(scale_symbols(flat).runs.is_flat(), "{flat}");
+        }
+    }
 
     #[test]
     fn numbers_on_paper_have_no_e_notation() {

@@ -94,17 +94,19 @@ pub fn mobility_lines(p: &StructurePage) -> Vec<String> {
     out.push(format!("{} (Chebyshev–Grübler)", m.worked()));
     match m.actual {
         Some(a) if a == m.formula => out.push(format!(
-            "At this position the joints leave {a} degree(s) of freedom (3n − rank Φq = {} − {}): as the formula says.",
+            "At this position the joints leave {} (3n − rank Φq = {} − {}): as the formula says.",
+            counted(a, "degree of freedom", "degrees of freedom"),
             3 * m.links,
             3 * m.links as i64 - a
         )),
         Some(a) => out.push(format!(
-            "At this position the joints leave {a} degree(s) of freedom (3n − rank Φq = {} − {}), not {}: {} joint \
-             equation(s) repeat others (a redundant, passive constraint); the formula counts them, the motion does not.",
+            "At this position the joints leave {} (3n − rank Φq = {} − {}), not {}: {} repeat others (a \
+             redundant, passive constraint); the formula counts them, the motion does not.",
+            counted(a, "degree of freedom", "degrees of freedom"),
             3 * m.links,
             3 * m.links as i64 - a,
             m.formula,
-            m.redundant()
+            counted(m.redundant() as i64, "joint equation", "joint equations"),
         )),
         None => {}
     }
@@ -118,14 +120,15 @@ pub fn mobility_lines(p: &StructurePage) -> Vec<String> {
         );
     }
     let effective = m.actual.unwrap_or(m.formula);
+    let drivers = counted(st.drivers as i64, "driver", "drivers");
     out.push(if effective == 0 && st.drivers == 0 {
         "M = 0: with its outer pairs on the frame it is a structure, an Assur group on its own; a driver moving \
          one of its outer pairs makes it part of a mechanism."
             .to_string()
     } else if effective == st.drivers as i64 {
-        format!("{} driver(s): M = {effective} = the number of drivers, the motion is determined.", st.drivers)
+        format!("{}: M = {effective} = the number of drivers, the motion is determined.", drivers)
     } else {
-        format!("{} driver(s) for M = {effective}: the motion is not determined by the drivers.", st.drivers)
+        format!("{} for M = {effective}: the motion is not determined by the drivers.", drivers)
     });
     out.push(format!("Structure: {}; a class {} mechanism.", st.formula(|b| b + 1), roman(st.class())));
     out
@@ -262,4 +265,9 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         );
     }
     d
+}
+
+/// `n` and its noun as English writes it: "1 driver", "2 drivers", "0 degrees of freedom".
+fn counted(n: i64, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
 }
