@@ -54,35 +54,39 @@ impl MechanismPage {
     /// scale — beside the table (the table in the right column over the title block) or
     /// above it (the table in a band under it, left of the title block).
     pub fn new(paper: Paper, lo: Vector, hi: Vector, room: Vector, table_rows: usize, title_cells: usize) -> Self {
-        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), 0.0)
+        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), None)
     }
 
-    /// [`MechanismPage::new`] with a detail panel `width` mm wide at the right of the
-    /// mechanism's panel, as high as it (panel 1 of the layout): the mechanism drawn in what
-    /// is left, at the scale that fits it there.
+    /// [`MechanismPage::new`] with a detail panel of outline `detail` (width, height, paper
+    /// mm: its content, as a draftsman sizes a detail view) as panel 1 of the layout: at the
+    /// top of the right column over the table (the mechanism's panel then the whole height
+    /// left of them) when the column holds both, else at the top right of the mechanism's
+    /// panel with the mechanism drawn left of it; whichever draws the mechanism larger (the
+    /// column on a tie).
     pub fn with_detail(
         paper: Paper,
         (lo, hi): (Vector, Vector),
         room: Vector,
         (table_rows, title_cells): (usize, usize),
-        width: f64,
+        detail: Vector,
     ) -> Self {
-        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), width)
+        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), Some(detail))
     }
 
-    /// The page, with `aside` mm at the right of the mechanism's panel for a detail panel
-    /// (none for 0).
+    /// The page, with a detail panel of outline `aside` (none for `None`).
     fn laid_out(
         paper: Paper,
         (lo, hi): (Vector, Vector),
         room: Vector,
         (table_rows, title_cells): (usize, usize),
-        aside: f64,
+        aside: Option<Vector>,
     ) -> Self {
         let (sizes, border, right, title) = sheet::page_frame(paper, title_cells);
-        // The mechanism's part of a panel (the detail's strip taken off its right).
-        let main = |b: Bounds| Bounds { min: b.min, max: Point::new(b.max.x - aside, b.max.y) };
+        let strip = aside.map_or(0.0, |a| a.x);
+        // The mechanism's part of a panel (a detail's strip taken off its right).
+        let main = |b: Bounds, strip: f64| Bounds { min: b.min, max: Point::new(b.max.x - strip, b.max.y) };
         let extent = (hi - lo).sup(&Vector::new(1e-300, 1e-300));
+        let table_h = |sets: usize| (table_rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * sizes.text;
         let beside = (
             Bounds { min: border.min, max: Point::new(right, border.max.y) },
             Bounds { min: Point::new(right, title.max.y), max: border.max },
@@ -90,36 +94,76 @@ impl MechanismPage {
         // Above the table: the table in one set of columns, or in two or three side by side
         // (a lower band, a taller panel).
         let above = |sets: usize| {
-            let table_h =
-                (table_rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * sizes.text + 1.2 * sizes.text + 1e-9;
-            let band = table_h.max(title.height()).min(TABLE_BAND_MAX * border.height());
+            let band =
+                (table_h(sets) + 1.2 * sizes.text + 1e-9).max(title.height()).min(TABLE_BAND_MAX * border.height());
             (
                 Bounds { min: Point::new(border.min.x, border.min.y + band), max: border.max },
                 Bounds { min: border.min, max: Point::new(right, border.min.y + band) },
             )
         };
         let scale_in = |panel: Bounds| {
-            let area = Panel::of_outline(main(panel), sizes).area;
+            let area = Panel::of_outline(panel, sizes).area;
             let room = Vector::new(area.width(), area.height()) - 2.0 * room;
             drafting_scale((extent.x / room.x.max(1e-9)).max(extent.y / room.y.max(1e-9)))
         };
-        // The arrangement that draws the mechanism largest; beside the table on a tie.
-        let (mut panel, mut table) = beside;
-        let mut k_l = scale_in(beside.0);
-        for sets in [1, 2, 3] {
-            let (p, t) = above(sets);
-            let k = scale_in(p);
-            if k < k_l * (1.0 - 1e-12) {
-                (panel, table, k_l) = (p, t, k);
+        // The arrangements: (the mechanism's panel, the table, the detail's panel).
+        let mut arrangements: Vec<(Bounds, Bounds, Option<Bounds>)> = Vec::new();
+        // The detail at the top of the right column, the table under it, when both fit.
+        if let Some(a) = aside {
+            let column = beside.1;
+            let foot = column.max.y - a.y;
+            let table = Bounds { min: column.min, max: Point::new(column.max.x, foot) };
+            let fits =
+                a.x <= column.width() + 1e-9 && table.height() >= table_h(1) + 1.2 * sizes.text && table_rows > 0;
+            if fits {
+                let detail = Bounds { min: Point::new(column.min.x, foot), max: column.max };
+                arrangements.push((beside.0, table, Some(detail)));
             }
         }
-        let outline = Panel::of_outline(main(panel), sizes);
+        // The detail at the top of a strip at the page's right, the table under it, the
+        // mechanism's panel left of them down to the title block, when the table fits there.
+        if let Some(a) = aside {
+            let foot = border.max.y - a.y;
+            let table =
+                Bounds { min: Point::new(border.max.x - a.x, title.max.y), max: Point::new(border.max.x, foot) };
+            let one_set = sheet::TABLE_COLUMN_MIN * sizes.text * 3.0 + 1.2 * sizes.text;
+            let fits = table_rows > 0
+                && table.width() >= one_set
+                && table.height() >= table_h(1) + 1.2 * sizes.text
+                && table.min.x > right;
+            if fits {
+                let panel =
+                    Bounds { min: Point::new(border.min.x, title.max.y), max: Point::new(table.min.x, border.max.y) };
+                let detail = Bounds { min: Point::new(table.min.x, foot), max: border.max };
+                arrangements.push((panel, table, Some(detail)));
+            }
+        }
+        // Beside or above the table, the detail (if any) in a strip at the panel's right.
+        for (panel, table) in [beside, above(1), above(2), above(3)] {
+            let detail = aside.map(|a| Bounds {
+                min: Point::new(panel.max.x - strip, (panel.max.y - a.y).max(panel.min.y)),
+                max: panel.max,
+            });
+            arrangements.push((main(panel, strip), table, detail));
+        }
+        // The arrangement that draws the mechanism largest; on a tie, the first, or with a
+        // detail the one with the largest panel for the mechanism (the room the detail's
+        // strip leaves given back to it).
+        let area = |b: &Bounds| b.width() * b.height();
+        let mut best = arrangements[0];
+        let mut k_l = scale_in(best.0);
+        for a in &arrangements[1..] {
+            let k = scale_in(a.0);
+            let larger = aside.is_some() && area(&a.0) > area(&best.0) + 1e-9;
+            if k < k_l * (1.0 - 1e-12) || (k <= k_l * (1.0 + 1e-12) && larger) {
+                (best, k_l) = (*a, k);
+            }
+        }
+        let (panel, table, detail) = best;
+        let outline = Panel::of_outline(panel, sizes);
         let origin = sheet::centre(lo, hi, k_l, outline.area);
         let mut panels = vec![outline];
-        if aside > 0.0 {
-            let strip = Bounds { min: Point::new(panel.max.x - aside, panel.min.y), max: panel.max };
-            panels.push(Panel::of_outline(strip, sizes));
-        }
+        panels.extend(detail.map(|b| Panel::of_outline(b, sizes)));
         let layout = SheetLayout { paper, sizes, border, panels, table, title };
         MechanismPage { layout, k_l, origin }
     }
@@ -1041,6 +1085,44 @@ mod tests {
                 assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
             }
         }
+    }
+
+    #[test]
+    fn a_detail_panel_is_as_large_as_its_content_and_the_room_it_leaves_goes_to_the_mechanism_and_the_table() {
+        // triad-driven on A4: 154.7 × 95.2 mm of motion, its crank's detail 77.5 × 84.9 mm,
+        // a table of 7 rows.
+        let (lo, hi) = (Vector::new(-20.0, -10.0), Vector::new(134.7, 85.2));
+        let room = Vector::new(6.0, 5.5);
+        let detail = Vector::new(77.5, 84.9);
+        let plain = MechanismPage::new(Paper::A4, lo, hi, room, 7, 6);
+        for (rows, size) in [(7, detail), (7, Vector::new(60.0, 70.0)), (30, detail), (7, Vector::new(95.0, 120.0))] {
+            let page = MechanismPage::with_detail(Paper::A4, (lo, hi), room, (rows, 6), size);
+            let l = &page.layout;
+            let (main, dt) = (l.panels[0].outline, l.panels[1].outline);
+            // The detail's panel its content's size, not a strip the page's height.
+            assert!((dt.height() - size.y).abs() <= 1e-9 && dt.width() >= size.x - 1e-9, "{dt:?} for {size:?}");
+            // Nothing on anything else, everything inside the border.
+            let all = [main, dt, l.table, l.title];
+            for (i, a) in all.iter().enumerate() {
+                assert!(a.min.x >= l.border.min.x - 1e-9 && a.max.x <= l.border.max.x + 1e-9, "{a:?}");
+                assert!(a.min.y >= l.border.min.y - 1e-9 && a.max.y <= l.border.max.y + 1e-9, "{a:?}");
+                for b in &all[i + 1..] {
+                    assert!(overlap(a, b) <= 1e-9, "{a:?} on {b:?}");
+                }
+            }
+            // The table holds its rows where it is.
+            let table_h = (rows + 1) as f64 * sheet::TABLE_ROW * l.sizes.text + 1.2 * l.sizes.text;
+            let sets = sheet::table_sets(l.table, rows, 3, l.sizes);
+            assert!(((rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * l.sizes.text) <= l.table.height(), "{rows}");
+            assert!(sets == 1 || l.table.height() < table_h, "{rows} rows in {sets} sets");
+        }
+        // Here the mechanism keeps its scale and gets a taller panel than it had with the
+        // detail a strip the page's height (151 mm), the table under the detail.
+        let page = MechanismPage::with_detail(Paper::A4, (lo, hi), room, (7, 6), detail);
+        assert_eq!(page.k_l, plain.k_l);
+        assert!(page.layout.panels[0].outline.height() > 160.0, "{:?}", page.layout.panels[0].outline);
+        assert!(page.layout.table.max.y <= page.layout.panels[1].outline.min.y + 1e-9);
+        assert!(page.layout.table.min.x >= page.layout.panels[1].outline.min.x - 1e-9);
     }
 
     #[test]
