@@ -142,8 +142,9 @@ impl TextBox {
 }
 
 /// A candidate's score, lower is better: letters its box overlaps, letters its leader
-/// crosses, segments its box crosses.
-type Score = (usize, usize, usize);
+/// crosses, segments its box crosses, letters its box comes nearer than the polygon's gap
+/// to ([`Polygon::apart`]).
+type Score = (usize, usize, usize, usize);
 /// A segment: its two ends.
 pub type Segment = (Point, Point);
 
@@ -305,6 +306,8 @@ pub struct Polygon {
     merge: bool,
     /// The box every label should stay inside (its panel), when set.
     within: Option<TextBox>,
+    /// The least gap between two letters' boxes (drawing units; 0: touching allowed).
+    gap: f64,
 }
 
 impl Polygon {
@@ -316,6 +319,13 @@ impl Polygon {
     /// Names beside the polygon's sides (force polygons): never combined.
     pub fn of_names() -> Polygon {
         Polygon { merge: false, ..Polygon::default() }
+    }
+
+    /// The letters placed at least `gap` apart (drawing units, box to box): a letter
+    /// closer than that to one placed before counts as overlapping it.
+    pub fn apart(mut self, gap: f64) -> Polygon {
+        self.gap = gap.max(0.0);
+        self
     }
 
     /// A letter `text` (`height` high, entity colour `color` or the layer's) for the point
@@ -465,6 +475,8 @@ impl Polygon {
         lines.extend(self.segments.iter().map(|&s| (s, segment_box(s))));
         // Those near the letter being placed.
         let (mut near_blockers, mut near_lines) = (Vec::new(), Vec::new());
+        // The letters placed so far grown by the gap (none without one).
+        let mut spaced: Vec<TextBox> = Vec::new();
         let mut out = Vec::with_capacity(letters.len());
         for l in letters.iter() {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
@@ -505,10 +517,11 @@ impl Polygon {
                     let sb = segment_box((a, b));
                     blockers_near.iter().filter(|x| sb.overlaps(x) && x.crosses(a, b)).count()
                 });
-                // The most segments the box may cross and still win.
+                // More segments than the box may cross and still win (as many as the best
+                // when nearness may decide).
                 let limit = match bound {
                     Some(s) if (hits, through) > (s.0, s.1) => continue,
-                    Some(s) if (hits, through) == (s.0, s.1) => s.2,
+                    Some(s) if (hits, through) == (s.0, s.1) => s.2 + usize::from(s.3 > 0),
                     _ => usize::MAX,
                 };
                 let mut crossed = 0;
@@ -523,14 +536,23 @@ impl Polygon {
                 if crossed >= limit {
                     continue;
                 }
-                let score = (hits, through, crossed);
+                // Letters nearer than the gap: counted only on a tie of the rest.
+                let near = spaced.iter().filter(|b| b.overlaps(&bx)).count();
+                if bound.is_some_and(|s| (hits, through, crossed, near) >= s) {
+                    continue;
+                }
+                let score = (hits, through, crossed, near);
                 best = Some((score, c, bx, leader));
-                if score == (0, 0, 0) {
+                if score == (0, 0, 0, 0) {
                     break;
                 }
             }
             if let Some((_, c, bx, leader)) = best {
                 blockers.push(bx);
+                if self.gap > 0.0 {
+                    let g = Vector::new(self.gap, self.gap);
+                    spaced.push(TextBox { min: bx.min - g, max: bx.max + g });
+                }
                 lines.extend(leader.map(|s| (s, segment_box(s))));
                 out.push(Placed {
                     centre: c + shift,
