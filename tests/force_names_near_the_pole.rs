@@ -146,7 +146,7 @@ fn force_drawings(loaded: &scene::Loaded, frames: bool) -> Vec<(String, Drawing)
     out
 }
 
-/// (Before the names' gap, `forces::NAME_GAP`: 202 of these 469 drawings had two names of
+/// (Before the names' gap, `forces::NAME_GAP`: 202 of these drawings had two names of
 /// one figure under 0.5 mm apart, the closest 0.001 mm; with it the closest are 0.55 mm.)
 #[test]
 fn any_two_names_of_a_force_figure_stand_apart() {
