@@ -41,10 +41,45 @@ pub fn solve(scene: &ChainScene) -> Result<(Analysis, Vec<DependentResult>), cra
 
 pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error> {
     let (analysis, results) = solve(scene).map_err(|e| solve_err(file)(e.into()))?;
-    let dims = &scene.chain.dimensions;
     let units = scene.units.length();
 
-    // Check: the seed's coincidence test and the graph's redundancy.
+    // Check: the seed's coincidence test and the graph's redundancy; the features.
+    let labels = fig::feature_labels(&analysis, scene.chain.form);
+    let (mut report, warnings) = dimensioning_report(scene, &analysis, &labels);
+    stack_report(scene, &results, &mut report);
+    let summary = summary(scene, &analysis, &results)?;
+
+    let marks = dependent_marks(scene, &analysis, &results);
+    let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, &labels, units);
+    let diagrams = histograms(scene, &results, units);
+    let tables = vec![
+        products::Table { suffix: String::new(), csv: dependent_csv(scene, &results) },
+        products::Table { suffix: "-contributions".into(), csv: contributions_csv(scene, &results) },
+    ];
+    Ok(Products {
+        name: scene.name.clone(),
+        mm_per_unit: super::mm_per_unit(scene.units),
+        picture: Picture::Still(drawing),
+        positions: None,
+        sheets: Vec::new(),
+        pages: Vec::new(),
+        diagrams,
+        tables,
+        texts: Vec::new(),
+        summary,
+        report,
+        warnings,
+        derived: Vec::new(),
+        frame_scales: Vec::new(),
+    })
+}
+
+/// The chain's check as the run reports it: the seed's coincidence test, the redundant
+/// dimensions (each with the reference dimension to mark), the groups of features not tied
+/// to the zero point, then the features by their `labels`; and the warnings among them.
+fn dimensioning_report(scene: &ChainScene, analysis: &Analysis, labels: &[String]) -> (String, Vec<String>) {
+    let dims = &scene.chain.dimensions;
+    let units = scene.units.length();
     let mut warnings = Vec::new();
     let mut report = String::new();
     let n_red = analysis.redundant_count(dims.len());
@@ -103,7 +138,6 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
     }
     // Features by their labels (matrix form: F0 the zero point, then along the axis), each
     // with the dimension value it is known by in the matrix.
-    let labels = fig::feature_labels(&analysis, scene.chain.form);
     let mut by_label: Vec<usize> = (0..analysis.features.len()).collect();
     if scene.chain.form == Form::Matrix {
         by_label.sort_by_key(|&i| labels[i].trim_start_matches('F').parse::<usize>().unwrap_or(usize::MAX));
@@ -125,14 +159,20 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
     );
     report.push('\n');
 
-    // Dependent dimensions: table and equations.
+    (report, warnings)
+}
+
+/// The dependent dimensions' table (nominal, mean, WC, RSS, MRSS, Monte Carlo) and each one's
+/// equation, contributions, percentiles and spec, appended to `report`.
+fn stack_report(scene: &ChainScene, results: &[DependentResult], report: &mut String) {
+    let dims = &scene.chain.dimensions;
     if !results.is_empty() {
         report.push_str(&format!(
             "\n{:<6} {:<14} {:>10} {:>10} {:>9} {:>9} {:>9} {:>10} {:>9}\n",
             "Z", "between", "nominal", "mean", "WC ±", "RSS ±", "MRSS ±", "MC mean", "MC σ"
         ));
     }
-    for r in &results {
+    for r in results {
         let z = &scene.chain.dependent[r.index];
         let s = &r.stack;
         let (mcm, mcs) = r.monte_carlo.as_ref().map_or(("-".into(), "-".into()), |m| (fmt4(m.mean), fmt4(m.sigma)));
@@ -149,7 +189,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
             mcs
         ));
     }
-    for r in &results {
+    for r in results {
         let z = &scene.chain.dependent[r.index];
         report.push_str(&format!("  {}\n", r.function.equation(&z.name, dims)));
         let contrib: Vec<String> = r
@@ -176,10 +216,12 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
             }
         }
     }
+}
 
-    let summary = summary(scene, &analysis, &results)?;
-
-    let marks: Vec<DependentMark> = results
+/// Each dependent dimension's mark on the chain's drawing: between its features, its
+/// nominal value, its worst-case band and (when it shifts) its mean.
+fn dependent_marks(scene: &ChainScene, analysis: &Analysis, results: &[DependentResult]) -> Vec<DependentMark> {
+    results
         .iter()
         .map(|r| {
             let z = &scene.chain.dependent[r.index];
@@ -195,9 +237,12 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
             };
             DependentMark { left_x: l, right_x: p, text }
         })
-        .collect();
-    let drawing = fig::chain(&scene.chain.dimensions, &analysis, &marks, &labels, units);
-    let diagrams = results
+        .collect()
+}
+
+/// The Monte Carlo histogram of each dependent dimension that has one.
+fn histograms(scene: &ChainScene, results: &[DependentResult], units: &str) -> Vec<products::Diagram> {
+    results
         .iter()
         .filter_map(|r| {
             let z = &scene.chain.dependent[r.index];
@@ -215,27 +260,7 @@ pub(super) fn products(scene: &ChainScene, file: &str) -> Result<Products, Error
                 track: Vec::new(),
             })
         })
-        .collect();
-    let tables = vec![
-        products::Table { suffix: String::new(), csv: dependent_csv(scene, &results) },
-        products::Table { suffix: "-contributions".into(), csv: contributions_csv(scene, &results) },
-    ];
-    Ok(Products {
-        name: scene.name.clone(),
-        mm_per_unit: super::mm_per_unit(scene.units),
-        picture: Picture::Still(drawing),
-        positions: None,
-        sheets: Vec::new(),
-        pages: Vec::new(),
-        diagrams,
-        tables,
-        texts: Vec::new(),
-        summary,
-        report,
-        warnings,
-        derived: Vec::new(),
-        frame_scales: Vec::new(),
-    })
+        .collect()
 }
 
 fn fmt4(v: f64) -> String {

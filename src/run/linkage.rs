@@ -130,95 +130,144 @@ fn parse_drag(scene: &LinkageScene, spec: &str) -> Result<(Anchor, Point), Error
 }
 
 pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOptions) -> Result<Products, Error> {
-    let (drag, paper, positions, picture_only) = (&opts.drag, opts.sheets, opts.positions.as_ref(), opts.picture_only);
-    let serr = solve_err(file);
-    let mut solver = match Solver::new(scene.mechanism.clone()) {
-        Ok(s) => s,
-        Err(e) => return Err(serr(e.into())),
-    };
-    if !drag.is_empty() {
-        return drag_products(scene, file, drag, solver);
+    let serr = |e: LinkageError| solve_err(file)(e.into());
+    let mut solver = Solver::new(scene.mechanism.clone()).map_err(serr)?;
+    if !opts.drag.is_empty() {
+        return drag_products(scene, file, &opts.drag, solver);
     }
     // The Assur groups in solving order, each in closed form or by its own Newton
     // iterations (the general solver stays for the strokes' refinement and --drag).
-    let mut assur = AssurSolver::new(scene.mechanism.clone()).map_err(|e| solve_err(file)(e.into()))?;
-    let groups: Vec<GroupRecord> = assur
-        .routes()
-        .into_iter()
-        .map(|(g, route)| GroupRecord {
-            kind: g.kind_name(),
-            bodies: g.bodies.iter().map(|&b| scene.mechanism.bodies[b].name.as_str()).collect(),
-            joints: g.joints.iter().map(|&j| scene.mechanism.joints[j].name.as_str()).collect(),
-            route: route.name(),
-        })
-        .collect();
-    let groups_line = format!(
-        "groups: {}",
-        assur
-            .routes()
-            .into_iter()
-            .map(|(g, route)| format!("{} by {}", g.describe(&scene.mechanism), route.name()))
-            .collect::<Vec<_>>()
-            .join("; ")
-    );
-    // Only what `outputs` asks for: forces, or the rates, or positions alone.
-    let out = scene.outputs;
-    let (states, forces) = match &scene.dynamics {
-        Some(d) if out.forces => {
-            let (states, forces) = assur.run_kinetostatics(&scene.times, d).map_err(|e| solve_err(file)(e.into()))?;
-            (states, Some(forces))
-        }
-        _ if out.velocity => (assur.run(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
-        // Rates not computed: zero, and nothing reads them (no rate is measured or drawn).
-        _ => (assur.run_positions_states(&scene.times).map_err(|e| solve_err(file)(e.into()))?, None),
-    };
+    let mut assur = AssurSolver::new(scene.mechanism.clone()).map_err(serr)?;
+    let (states, forces) = solve_motion(scene, &mut assur).map_err(serr)?;
     let cols = columns(scene, &states);
-    let mut warnings = Vec::new();
-    if scene.measures.is_empty() {
-        warnings.push("no [[measure]] in the scene: the CSV and the diagrams have no quantity columns".to_string());
-    }
-    let near_singular: Vec<&NearSingular> = states.iter().filter_map(|s| s.near_singular.as_ref()).collect();
-    warnings.extend(near_singular.iter().map(|n| near_singular_warning(n)));
-    for c in &cols {
-        if c.values.iter().any(|v| !v.is_finite()) {
-            return Err(serr(
-                LinkageError::InvalidModel { what: format!("measured column {} is not finite", c.name) }.into(),
-            ));
-        }
-    }
+    let mut warnings = column_warnings(scene, &cols, &states).map_err(serr)?;
 
-    let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
     let figure = figure_of(scene);
-    let p = &scene.polygons;
-    let show = Show {
-        velocity: p.velocity && out.velocity,
-        acceleration: p.acceleration && out.acceleration,
-        forces: p.forces && out.forces,
-        points: p.points.clone(),
-        per_body: p.per_body,
-        scales: super::scale_choice(scene.frame_scales),
-    };
+    let show = show_of(scene);
     let run_forces =
         scene.dynamics.as_ref().zip(forces.as_deref()).map(|(dynamics, forces)| RunForces { dynamics, forces });
     let mut frames = LinkageFrames::new(&figure, &scene.mechanism, &states, run_forces, show.clone());
     frames.frame.hold(&opts.held_scales);
-    let base = frames.base(&figure, &motion);
-    let window = frames.frame.window;
     let names: Vec<String> = (0..states.len()).map(|k| format!("POS_{k:03}")).collect();
-    let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
     // The positions drawn (`--positions`: times t in seconds).
     let times: Vec<f64> = states.iter().map(|s| s.t).collect();
     let step = match scene.times.as_slice() {
         [a, b, ..] => (b - a).abs(),
         _ => 1.0,
     };
-    let drawn = super::drawn_positions(positions, &times, DriveAxis { name: "time t", unit: " s", step })?;
+    let drawn =
+        super::drawn_positions(opts.positions.as_ref(), &times, DriveAxis { name: "time t", unit: " s", step })?;
 
-    let extras = if picture_only {
+    let extras = if opts.picture_only {
         Extras::default()
     } else {
-        let force_cols = forces.as_ref().map(|f| force_columns(scene, f)).unwrap_or_default();
-        let strokes = guided_strokes(scene, &mut solver, &states).map_err(|e| solve_err(file)(e.into()))?;
+        let run = Solved { scene, assur: &assur, states: &states, forces: forces.as_deref(), cols: &cols };
+        let strokes = guided_strokes(scene, &mut solver, &states).map_err(serr)?;
+        let plots = plots(scene, &states, &strokes);
+        let pages = match opts.sheets {
+            Some(paper) => {
+                let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
+                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names, &drawn)
+            }
+            None => Vec::new(),
+        };
+        let mut extras = Extras {
+            sheets: Vec::new(),
+            pages,
+            diagrams: run.diagrams(plots),
+            tables: vec![products::Table { suffix: String::new(), csv: run.csv() }],
+            summary: run.summary(&strokes)?,
+            report: run.report(&strokes),
+        };
+        if let Some(study) =
+            super::tolerance::linkage(scene, None).map_err(|e| super::tolerance::tolerance_err(file, e))?
+        {
+            warnings.extend(study.add_to(&mut extras));
+        }
+        extras
+    };
+    let motion = Motion { frames, figure, states, forces: forces.unwrap_or_default(), names, drawn };
+    let animation = motion.animation(scene, file, opts.positions.is_some())?;
+    let (animation, frame_scales) = animation;
+    Ok(extras.with_motion(
+        scene.name.clone(),
+        super::mm_per_unit(scene.units),
+        animation,
+        PositionsSource { field: "time.steps", advice: "use fewer steps" },
+        warnings,
+        frame_scales,
+    ))
+}
+
+/// The motion at every sample, by the Assur route: only what `outputs` asks for — forces
+/// (with their states), or the rates, or positions alone (the rates then zero, and nothing
+/// reads them: no rate is measured or drawn).
+fn solve_motion(
+    scene: &LinkageScene,
+    assur: &mut AssurSolver,
+) -> Result<(Vec<State>, Option<Vec<Forces>>), LinkageError> {
+    let out = scene.outputs;
+    Ok(match &scene.dynamics {
+        Some(d) if out.forces => {
+            let (states, forces) = assur.run_kinetostatics(&scene.times, d)?;
+            (states, Some(forces))
+        }
+        _ if out.velocity => (assur.run(&scene.times)?, None),
+        _ => (assur.run_positions_states(&scene.times)?, None),
+    })
+}
+
+/// The run's warnings about its measured columns and its states (no measure; each
+/// near-singular sample), or the error of a column that is not finite.
+fn column_warnings(scene: &LinkageScene, cols: &[Column], states: &[State]) -> Result<Vec<String>, LinkageError> {
+    let mut warnings = Vec::new();
+    if scene.measures.is_empty() {
+        warnings.push("no [[measure]] in the scene: the CSV and the diagrams have no quantity columns".to_string());
+    }
+    warnings.extend(states.iter().filter_map(|s| s.near_singular.as_ref()).map(near_singular_warning));
+    if let Some(c) = cols.iter().find(|c| c.values.iter().any(|v| !v.is_finite())) {
+        return Err(LinkageError::InvalidModel { what: format!("measured column {} is not finite", c.name) });
+    }
+    Ok(warnings)
+}
+
+/// What the frames and sheets draw, from the scene's `[polygons]`, `[frames]` and outputs.
+fn show_of(scene: &LinkageScene) -> Show {
+    let (p, out) = (&scene.polygons, scene.outputs);
+    Show {
+        velocity: p.velocity && out.velocity,
+        acceleration: p.acceleration && out.acceleration,
+        forces: p.forces && out.forces,
+        points: p.points.clone(),
+        per_body: p.per_body,
+        scales: super::scale_choice(scene.frame_scales),
+    }
+}
+
+/// A diagram of each measured column, as a textbook draws it.
+fn plots(scene: &LinkageScene, states: &[State], strokes: &[Guided]) -> Vec<Plot> {
+    scene
+        .measures
+        .iter()
+        .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+        .map(|(m, q)| plot_of(scene, m, q, states, strokes))
+        .collect()
+}
+
+/// A run's solved motion, for its files.
+struct Solved<'a> {
+    scene: &'a LinkageScene,
+    assur: &'a AssurSolver,
+    states: &'a [State],
+    forces: Option<&'a [Forces]>,
+    cols: &'a [Column],
+}
+
+impl Solved<'_> {
+    /// The residual's largest, and the Newton iterations' largest and mean over the steps
+    /// after the first.
+    fn iterations(&self) -> (f64, usize, f64) {
+        let states = self.states;
         let max_residual = states.iter().map(|s| s.residual).fold(0.0, f64::max);
         let max_iter = states.iter().skip(1).map(|s| s.iterations).max().unwrap_or(0);
         let mean_iter = if states.len() > 1 {
@@ -226,24 +275,38 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
         } else {
             0.0
         };
-        // JSON summary.
-        let samples = states
+        (max_residual, max_iter, mean_iter)
+    }
+
+    /// The largest virtual-power residual over the motion (with forces).
+    fn power_residual_max(&self) -> Option<f64> {
+        self.forces.map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max))
+    }
+
+    /// Each sample of the JSON summary: its time, its columns, its reactions, drivers,
+    /// power residual and sliding.
+    fn samples(&self) -> Vec<Sample> {
+        let (scene, forces) = (self.scene, self.forces);
+        self.states
             .iter()
             .enumerate()
             .map(|(k, s)| Sample {
                 t: s.t,
-                values: cols.iter().map(|c| (c.name.clone(), c.values[k])).collect(),
+                values: self.cols.iter().map(|c| (c.name.clone(), c.values[k])).collect(),
                 near_singular: s.near_singular.is_some().then_some(true),
-                reactions: forces.as_ref().map(|f| reaction_records(scene, &f[k])),
-                drivers: forces.as_ref().map(|f| {
+                reactions: forces.map(|f| reaction_records(scene, &f[k])),
+                drivers: forces.map(|f| {
                     scene.mechanism.drivers.iter().zip(&f[k].drivers).map(|(d, v)| (d.name.clone(), v + 0.0)).collect()
                 }),
-                power_residual: forces.as_ref().map(|f| f[k].power_residual),
-                sliding: if out.velocity { sliding_records(scene, s) } else { BTreeMap::new() },
+                power_residual: forces.map(|f| f[k].power_residual),
+                sliding: if scene.outputs.velocity { sliding_records(scene, s) } else { BTreeMap::new() },
             })
-            .collect();
-        let power_residual_max = forces.as_ref().map(|f| f.iter().map(|x| x.power_residual).fold(0.0, f64::max));
-        let extremes = cols
+            .collect()
+    }
+
+    /// Each column's least and largest value, and when.
+    fn extremes(&self) -> BTreeMap<String, Extremes> {
+        self.cols
             .iter()
             .map(|c| {
                 let (mut kmin, mut kmax) = (0, 0);
@@ -255,20 +318,25 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
                         kmax = k;
                     }
                 }
-                let e =
-                    Extremes { min: c.values[kmin], t_min: states[kmin].t, max: c.values[kmax], t_max: states[kmax].t };
-                (c.name.clone(), e)
+                let (t_min, t_max) = (self.states[kmin].t, self.states[kmax].t);
+                (c.name.clone(), Extremes { min: c.values[kmin], t_min, max: c.values[kmax], t_max })
             })
-            .collect();
-        let mech = &scene.mechanism;
-        let summary = products::summary_value(
+            .collect()
+    }
+
+    /// The JSON summary.
+    fn summary(&self, strokes: &[Guided]) -> Result<serde_json::Value, Error> {
+        let (scene, states) = (self.scene, self.states);
+        let (out, mech) = (scene.outputs, &scene.mechanism);
+        let (max_residual, max_iter, mean_iter) = self.iterations();
+        products::summary_value(
             &MotionSummary {
                 kind: "linkage",
                 name: &scene.name,
                 units: scene.units.length(),
                 outputs: [(true, "position"), (out.velocity, "velocity"), (out.acceleration, "acceleration")]
                     .into_iter()
-                    .chain([(forces.is_some(), "forces")])
+                    .chain([(self.forces.is_some(), "forces")])
                     .filter_map(|(on, name)| on.then_some(name))
                     .collect(),
                 bodies: mech.bodies.len(),
@@ -280,13 +348,14 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
                 max_residual,
                 newton_iterations_max: max_iter,
                 newton_iterations_mean: mean_iter,
-                columns: cols.iter().map(|c| c.name.as_str()).collect(),
-                extremes,
+                columns: self.cols.iter().map(|c| c.name.as_str()).collect(),
+                extremes: self.extremes(),
                 strokes: strokes.iter().map(|g| (g.measure.label.clone(), stroke_record(scene, &g.stroke))).collect(),
-                power_residual_max,
-                groups,
-                near_singular: near_singular
+                power_residual_max: self.power_residual_max(),
+                groups: group_records(scene, self.assur),
+                near_singular: states
                     .iter()
+                    .filter_map(|s| s.near_singular.as_ref())
                     .map(|n| NearSingularRecord {
                         t: n.t,
                         drivers: &n.drivers,
@@ -294,58 +363,63 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
                         pivot: n.pivot,
                     })
                     .collect(),
-                samples,
+                samples: self.samples(),
             },
             &scene.name,
-        )?;
-        let iterations = if assur.all_closed_form() && max_iter == 0 {
+        )
+    }
+
+    /// The run's report on stderr: the counts, the residual and iterations, the groups, the
+    /// strokes, the forces' balance.
+    fn report(&self, strokes: &[Guided]) -> String {
+        let (scene, mech) = (self.scene, &self.scene.mechanism);
+        let (max_residual, max_iter, mean_iter) = self.iterations();
+        let iterations = if self.assur.all_closed_form() && max_iter == 0 {
             "no Newton iterations (every group in closed form)".to_string()
         } else {
             format!("Newton iterations per step ≤ {max_iter} (mean {mean_iter:.2})")
         };
-        let report = format!(
+        let mut report = format!(
             "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
              {iterations}",
             scene.name,
             mech.bodies.len(),
             mech.joints.len(),
             mech.drivers.len(),
-            states.len(),
+            self.states.len(),
             // At most 6 decimals: a span of π/10 s reads 0..0.314159 s.
             crate::solve::chain::graph::fmt_value(scene.times[0]),
             crate::solve::chain::graph::fmt_value(scene.times[scene.times.len() - 1]),
             max_residual,
         );
-        let mut report = report;
         report.push('\n');
-        report.push_str(&groups_line);
-        for g in &strokes {
+        report.push_str(&format!(
+            "groups: {}",
+            self.assur
+                .routes()
+                .into_iter()
+                .map(|(g, route)| format!("{} by {}", g.describe(mech), route.name()))
+                .collect::<Vec<_>>()
+                .join("; ")
+        ));
+        for g in strokes {
             report.push('\n');
             report.push_str(&stroke_line(scene, g));
         }
-        if let (Some(f), Some(p)) = (&forces, power_residual_max) {
+        if let (Some(f), Some(p)) = (self.forces, self.power_residual_max()) {
             report.push('\n');
             report.push_str(&forces_line(scene, f, p));
         }
+        report
+    }
 
-        // Diagrams, one per measured column, as a textbook draws them.
-        let (x_label, x) = abscissa(scene, &states);
-        let plots: Vec<Plot> = scene
-            .measures
-            .iter()
-            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
-            .map(|(m, q)| plot_of(scene, m, q, &states, &strokes))
-            .collect();
-        let pages = match paper {
-            Some(paper) => {
-                let sheet_forces = scene.dynamics.as_ref().zip(forces.as_deref());
-                sheet_pages(paper, scene, &figure, &states, sheet_forces, &plots, show, &names, &drawn)
-            }
-            None => Vec::new(),
-        };
+    /// The diagrams: one per measured column (its `plots`), then one per reaction and
+    /// driver force, against the same abscissa.
+    fn diagrams(&self, plots: Vec<Plot>) -> Vec<products::Diagram> {
+        let (x_label, x) = abscissa(self.scene, self.states);
         let mut diagrams: Vec<products::Diagram> = plots
             .into_iter()
-            .zip(&cols)
+            .zip(self.cols)
             .map(|(p, c)| {
                 let d = Diagram {
                     title: p.title,
@@ -356,82 +430,103 @@ pub(super) fn products(scene: &LinkageScene, file: &str, opts: &super::RunOption
                 products::Diagram { stem: c.name.clone(), drawing: diagram(&d), track: track(&d, &Default::default()) }
             })
             .collect();
-        // And one per reaction and driver force, against the same abscissa.
-        if let Some(f) = &forces {
-            diagrams.extend(force_diagrams(scene, f, &x_label, &x).into_iter().map(|(stem, d)| products::Diagram {
-                stem,
-                drawing: diagram(&d),
-                track: track(&d, &Default::default()),
+        if let Some(f) = self.forces {
+            diagrams.extend(force_diagrams(self.scene, f, &x_label, &x).into_iter().map(|(stem, d)| {
+                products::Diagram { stem, drawing: diagram(&d), track: track(&d, &Default::default()) }
             }));
         }
+        diagrams
+    }
 
-        // CSV.
-        let all_cols = || cols.iter().chain(&force_cols);
+    /// The CSV: t, the measured columns, the forces' columns.
+    fn csv(&self) -> Csv {
+        let force_cols = self.forces.map(|f| force_columns(self.scene, f)).unwrap_or_default();
+        let all_cols = || self.cols.iter().chain(&force_cols);
         let mut csv = Csv::new(std::iter::once("t".to_string()).chain(all_cols().map(|c| c.name.clone())));
-        for (k, s) in states.iter().enumerate() {
+        for (k, s) in self.states.iter().enumerate() {
             csv.row(std::iter::once(s.t).chain(all_cols().map(|c| c.values[k])));
         }
-        let mut extras = Extras {
-            sheets: Vec::new(),
-            pages,
-            diagrams,
-            tables: vec![products::Table { suffix: String::new(), csv }],
-            summary,
-            report,
-        };
-        if let Some(study) =
-            super::tolerance::linkage(scene, None).map_err(|e| super::tolerance::tolerance_err(file, e))?
-        {
-            warnings.extend(study.add_to(&mut extras));
-        }
-        extras
-    };
-    let (mech, dynamics) = (scene.mechanism.clone(), scene.dynamics.clone());
-    let forces = forces.unwrap_or_default();
-    let (frames, figure, states) = (Arc::new(frames), Arc::new(figure), Arc::new(states));
-    let at = Arc::new(SolveAt {
-        solver: Mutex::new(AssurSolver::new(mech.clone()).map_err(|e| solve_err(file)(e.into()))?),
-        states: states.clone(),
-        dynamics: dynamics.clone().filter(|_| out.forces),
-        rates: out.velocity,
-    });
-    let drive = Drive {
-        values: states.iter().map(|s| s.t).collect(),
-        solve: {
-            let at = at.clone();
-            Box::new(move |k, t| {
-                let (state, _) = at.solve(k, t)?;
-                Ok(linkage_drive_state(&at.solver, &state))
-            })
-        },
-        draw: {
-            let (frames, figure, mech) = (frames.clone(), figure.clone(), mech.clone());
-            Box::new(move |k, t| {
-                let (state, force) = at.solve(k, t)?;
-                let force = at.dynamics.as_ref().zip(force.as_ref());
-                Ok(frames.moving(k, &figure, &mech, &state, force))
-            })
-        },
-    };
-    // The scales each drawn frame is drawn at (in the animation's order).
-    let frame_scales = if positions.is_some() { drawn.clone() } else { (0..states.len()).collect() }
+        csv
+    }
+}
+
+/// Each Assur group in solving order, as the JSON summary lists it.
+fn group_records<'a>(scene: &'a LinkageScene, assur: &AssurSolver) -> Vec<GroupRecord<'a>> {
+    assur
+        .routes()
         .into_iter()
-        .map(|k| frames.frame.scales_at(k))
-        .collect();
-    let pose = move |k: usize| {
-        let force = dynamics.as_ref().zip(forces.get(k));
-        frames.moving(k, &figure, &mech, &states[k], force)
-    };
-    let animation = Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive);
-    let animation = if positions.is_some() { animation.keep(drawn) } else { animation };
-    Ok(extras.with_motion(
-        scene.name.clone(),
-        super::mm_per_unit(scene.units),
-        animation,
-        PositionsSource { field: "time.steps", advice: "use fewer steps" },
-        warnings,
-        frame_scales,
-    ))
+        .map(|(g, route)| GroupRecord {
+            kind: g.kind_name(),
+            bodies: g.bodies.iter().map(|&b| scene.mechanism.bodies[b].name.as_str()).collect(),
+            joints: g.joints.iter().map(|&j| scene.mechanism.joints[j].name.as_str()).collect(),
+            route: route.name(),
+        })
+        .collect()
+}
+
+/// A run's motion as its frames draw it: the frames, the figure, the states and forces at
+/// every sample, the positions' names and the ones drawn.
+struct Motion {
+    frames: LinkageFrames,
+    figure: fig::LinkageFigure,
+    states: Vec<State>,
+    forces: Vec<Forces>,
+    names: Vec<String>,
+    drawn: Vec<usize>,
+}
+
+impl Motion {
+    /// The animation of the run (only the `drawn` positions when `chosen`), with its drive
+    /// (the Assur route at any time between the samples, for a drag), and the scales each
+    /// drawn frame is drawn at (in the animation's order).
+    fn animation(
+        self,
+        scene: &LinkageScene,
+        file: &str,
+        chosen: bool,
+    ) -> Result<(Animation, Vec<crate::figure::shared::panels::FrameScales>), Error> {
+        let Motion { frames, figure, states, forces, names, drawn } = self;
+        let motion: Vec<&[f64]> = states.iter().map(|s| s.q.as_slice()).collect();
+        let base = frames.base(&figure, &motion);
+        let window = frames.frame.window;
+        let labels = states.iter().map(|s| format!("t = {:.4} s", s.t)).collect();
+        let (mech, dynamics) = (scene.mechanism.clone(), scene.dynamics.clone());
+        let (frames, figure, states) = (Arc::new(frames), Arc::new(figure), Arc::new(states));
+        let at = Arc::new(SolveAt {
+            solver: Mutex::new(AssurSolver::new(mech.clone()).map_err(|e| solve_err(file)(e.into()))?),
+            states: states.clone(),
+            dynamics: dynamics.clone().filter(|_| scene.outputs.forces),
+            rates: scene.outputs.velocity,
+        });
+        let drive = Drive {
+            values: states.iter().map(|s| s.t).collect(),
+            solve: {
+                let at = at.clone();
+                Box::new(move |k, t| {
+                    let (state, _) = at.solve(k, t)?;
+                    Ok(linkage_drive_state(&at.solver, &state))
+                })
+            },
+            draw: {
+                let (frames, figure, mech) = (frames.clone(), figure.clone(), mech.clone());
+                Box::new(move |k, t| {
+                    let (state, force) = at.solve(k, t)?;
+                    let force = at.dynamics.as_ref().zip(force.as_ref());
+                    Ok(frames.moving(k, &figure, &mech, &state, force))
+                })
+            },
+        };
+        let frame_scales = if chosen { drawn.clone() } else { (0..states.len()).collect() }
+            .into_iter()
+            .map(|k| frames.frame.scales_at(k))
+            .collect();
+        let pose = move |k: usize| {
+            let force = dynamics.as_ref().zip(forces.get(k));
+            frames.moving(k, &figure, &mech, &states[k], force)
+        };
+        let animation = Animation::new(scene.name.clone(), base, Some(window), names, labels, pose).with_drive(drive);
+        Ok((if chosen { animation.keep(drawn) } else { animation }, frame_scales))
+    }
 }
 
 /// The Assur route at any time between the run's samples (for a drag), continuing the

@@ -354,21 +354,49 @@ enum Which {
     Forces,
 }
 
-/// A polygon panel before placing: which, its content's drawn size, its title (widest), the
-/// slot's parts.
+/// A panel before placing: which, its content's drawn size, its title (widest), and the
+/// parts of its slot.
 struct Pending {
     which: Which,
     content: Vector,
     title: Title,
+    /// The scale's symbol (`k_v`, `k_a`, `k_f`) and the unit of its vectors.
+    symbol: &'static str,
+    unit: String,
+    /// What a polygon's panel shows (`Velocity polygon`); empty for the force panel.
+    name: &'static str,
+    /// A polygon's extent over the run.
+    all: Option<Extent>,
+    /// The fixed scale (fixed scales; the force panel's common scale).
+    k: Option<f64>,
 }
 
-impl PanelFrame {
-    /// The frame of a run (see the module docs).
-    pub fn new(spec: &PanelSpec) -> PanelFrame {
-        let units = spec.units;
-        let mech = spec.mechanism;
+/// A frame's measures before its panels are placed: the length scale, the letters' sizes
+/// and rooms, and the mechanism's content box (model units).
+struct Measures {
+    k_l: f64,
+    /// Paper millimetres per model unit (1/k_l).
+    paper: f64,
+    sizes: Sizes,
+    bar_room: f64,
+    /// Room for the letters around a polygon, each side.
+    room: f64,
+    title_room: f64,
+    gap: f64,
+    /// The mechanism's content box: its motion with room for its symbols, letters, bar and
+    /// (when drawn) the forces on it.
+    mech_min: Point,
+    mech_max: Point,
+    /// The mechanism's drawn size (paper mm) and the most a polygon's panel may be.
+    size_mm: f64,
+    cap_mm: f64,
+}
+
+impl Measures {
+    /// The measures of `spec`: a drafting scale (1, 1.5, 2, 2.5, 4, 5 × 10ᵏ), the
+    /// mechanism as large as it may be.
+    fn of(spec: &PanelSpec) -> Measures {
         let size = spec.size.max(f64::MIN_POSITIVE);
-        // A drafting scale (1, 1.5, 2, 2.5, 4, 5 × 10ᵏ): the mechanism as large as it may be.
         let k_l = drafting_scale(size / spec.mechanism_mm);
         let paper = 1.0 / k_l;
         let sizes = Sizes::on_paper(k_l);
@@ -376,35 +404,46 @@ impl PanelFrame {
         // Room for the symbols and letters around the mechanism, and for the scale bar
         // under it.
         let (pad, below) = (spec.pad)(sizes);
-        let mut mech_min = Point::from(mech.min) - Vector::new(pad, pad + below + bar_room);
-        let mut mech_max = Point::from(mech.max) + Vector::new(pad, pad);
-        let room = LETTER_ROOM * sizes.text;
-        let title_room = 2.6 * sizes.text;
-        let gap = PANEL_GAP_MM * k_l;
-        // The polygons' panels stand in a column right of the mechanism, together about as
-        // tall as its panel: smaller than the mechanism, never under SIDE_PANEL_MIN of its
-        // drawn size, nor over `polygon_mm` (model units).
+        let mech = spec.mechanism;
         let size_mm = size * paper;
-        let cap_mm = spec.polygon_mm.unwrap_or(size_mm).min(size_mm);
+        Measures {
+            k_l,
+            paper,
+            sizes,
+            bar_room,
+            room: LETTER_ROOM * sizes.text,
+            title_room: 2.6 * sizes.text,
+            gap: PANEL_GAP_MM * k_l,
+            mech_min: Point::from(mech.min) - Vector::new(pad, pad + below + bar_room),
+            mech_max: Point::from(mech.max) + Vector::new(pad, pad),
+            size_mm,
+            cap_mm: spec.polygon_mm.unwrap_or(size_mm).min(size_mm),
+        }
+    }
+
+    /// The side (paper mm) of the square a polygon is fitted in: the polygons' panels stand
+    /// in a column right of the mechanism, together about as tall as its panel: smaller
+    /// than the mechanism, never under SIDE_PANEL_MIN of its drawn size, nor over
+    /// `polygon_mm`.
+    fn polygon_target_mm(&self, spec: &PanelSpec) -> f64 {
         let side_count = usize::from(spec.velocity.is_some()) + usize::from(spec.acceleration.is_some());
-        let target_mm = if side_count == 0 {
-            cap_mm
-        } else {
-            let n = side_count as f64;
-            let column = (mech_max.y - mech_min.y) + title_room - (n - 1.0) * gap;
-            let each = column / n - title_room - 2.0 * room - bar_room - 0.5 * sizes.text;
-            (each * paper).min(cap_mm).max(SIDE_PANEL_MIN * size_mm)
-        };
-        let target = target_mm * k_l;
-        // The force figures' cells, in the panel under both, as large as a polygon's or
-        // FORCE_PANEL_MIN of the mechanism.
-        let force_mm = cap_mm.min(target_mm.max(FORCE_PANEL_MIN * size_mm));
+        if side_count == 0 {
+            return self.cap_mm;
+        }
+        let (n, s) = (side_count as f64, self.sizes);
+        let column = (self.mech_max.y - self.mech_min.y) + self.title_room - (n - 1.0) * self.gap;
+        let each = column / n - self.title_room - 2.0 * self.room - self.bar_room - 0.5 * s.text;
+        (each * self.paper).min(self.cap_mm).max(SIDE_PANEL_MIN * self.size_mm)
+    }
+
+    /// Each polygon's panel before placing (`target` the side of its square, model units):
+    /// its content size (the area plus letter room) and widest title.
+    fn polygon_pendings(&self, spec: &PanelSpec, target_mm: f64) -> Vec<Pending> {
+        let (room, target) = (self.room, target_mm * self.k_l);
         let union = |e: &[Option<Extent>]| e.iter().copied().fold(None, Extent::union);
-        let fixed_scale = |e: Option<Extent>| nice_scale(e.map_or(0.0, |e| e.size()) / target_mm);
-        let length = units.length;
-        // The polygons' panels: content size (the area plus letter room) and widest title.
+        let length = spec.units.length;
         let mut pending = Vec::new();
-        for (which, points, symbol, unit, title) in [
+        for (which, points, symbol, unit, name) in [
             (Which::Velocity, &spec.velocity, "k_v", format!("{length}/s"), "Velocity polygon"),
             (Which::Acceleration, &spec.acceleration, "k_a", format!("{length}/s²"), "Acceleration polygon"),
         ] {
@@ -412,148 +451,200 @@ impl PanelFrame {
             let all = union(points);
             let (content, k) = match spec.scales {
                 ScaleChoice::Fixed => {
-                    let k = fixed_scale(all);
+                    let k = nice_scale(all.map_or(0.0, |e| e.size()) / target_mm);
                     let e = all.map_or(Vector::zeros(), |e| e.sides());
-                    (Scale::on_paper(k, paper).draw(e) + Vector::new(2.0 * room, 2.0 * room), Some(k))
+                    (Scale::on_paper(k, self.paper).draw(e) + Vector::new(2.0 * room, 2.0 * room), Some(k))
                 }
                 ScaleChoice::PerFrame => (Vector::new(target, target) + Vector::new(2.0 * room, 2.0 * room), None),
             };
             // The widest title it takes: with the finest scale of the run (most digits).
-            let widest = Title::Scale(scale_caption(&format!("{title}   "), symbol, k.unwrap_or(0.0025), &unit, paper));
-            pending.push((Pending { which, content, title: widest }, symbol, unit, title, all, k, points.clone()));
+            let widest =
+                Title::Scale(scale_caption(&format!("{name}   "), symbol, k.unwrap_or(0.0025), &unit, self.paper));
+            pending.push(Pending { which, content, title: widest, symbol, unit, name, all, k });
         }
-        let mut force_cells = None;
-        if let Some(fs) = &spec.forces {
-            let cells = ForceLayout::arrange(spec, fs, sizes, force_mm, k_l);
-            // The forces drawn on the mechanism, with their names, stay in its panel.
-            let scale = cells.mechanism_scale;
-            let room = Vector::new(1.6 * sizes.text, 1.6 * sizes.text);
-            for (at, v) in &fs.on_mechanism {
-                let tip = at + scale.draw(*v);
-                if tip.x.is_finite() && tip.y.is_finite() {
-                    mech_min = Point::from(mech_min.coords.inf(&(tip - room - Vector::new(0.0, bar_room)).coords));
-                    mech_max = Point::from(mech_max.coords.sup(&(tip + room).coords));
-                }
-            }
-            let title = match spec.scales {
-                ScaleChoice::Fixed => Title::Scale(scale_caption("Force polygons   ", "k_f", cells.common, "N", paper)),
-                ScaleChoice::PerFrame => Title::Words("Force polygons".to_string()),
-            };
-            pending.push((
-                Pending { which: Which::Forces, content: cells.size + Vector::new(1.2 * sizes.text, bar_room), title },
-                "k_f",
-                "N".to_string(),
-                "",
-                None,
-                Some(cells.common),
-                Vec::new(),
-            ));
-            force_cells = Some(cells);
-        }
+        pending
+    }
 
-        let mech_title = Title::Scale(match (&force_cells, spec.scales) {
-            (Some(c), ScaleChoice::PerFrame) => length_caption("Mechanism   ", k_l, units).then(scale_caption(
-                ", forces ",
-                "k_f",
-                c.mechanism_scale.per_mm,
-                "N",
-                paper,
-            )),
-            _ => length_caption("Mechanism   ", k_l, units),
-        });
-        // Each panel at least as wide as its title (the mechanism's with the position's
-        // text right of it; the title as the SVG or the DXF states it), as the widest reader
-        // draws them.
+    /// The force panel before placing, its cells as large as a polygon's or
+    /// FORCE_PANEL_MIN of the mechanism; the mechanism's box grown to hold the forces drawn
+    /// on it, with their names.
+    fn force_pending(&mut self, spec: &PanelSpec, fs: &ForceSpec, target_mm: f64) -> (Pending, ForceLayout) {
+        let force_mm = self.cap_mm.min(target_mm.max(FORCE_PANEL_MIN * self.size_mm));
+        let cells = ForceLayout::arrange(spec, fs, self.sizes, force_mm, self.k_l);
+        let scale = cells.mechanism_scale;
+        let room = Vector::new(1.6 * self.sizes.text, 1.6 * self.sizes.text);
+        for (at, v) in &fs.on_mechanism {
+            let tip = at + scale.draw(*v);
+            if tip.x.is_finite() && tip.y.is_finite() {
+                let low = tip - room - Vector::new(0.0, self.bar_room);
+                self.mech_min = Point::from(self.mech_min.coords.inf(&low.coords));
+                self.mech_max = Point::from(self.mech_max.coords.sup(&(tip + room).coords));
+            }
+        }
+        let title = match spec.scales {
+            ScaleChoice::Fixed => {
+                Title::Scale(scale_caption("Force polygons   ", "k_f", cells.common, "N", self.paper))
+            }
+            ScaleChoice::PerFrame => Title::Words("Force polygons".to_string()),
+        };
+        let pending = Pending {
+            which: Which::Forces,
+            content: cells.size + Vector::new(1.2 * self.sizes.text, self.bar_room),
+            title,
+            symbol: "k_f",
+            unit: "N".to_string(),
+            name: "",
+            all: None,
+            k: Some(cells.common),
+        };
+        (pending, cells)
+    }
+
+    /// The panels' rectangles (the mechanism's first, then one per `pending`), placed so
+    /// that the mechanism's panel sits where the mechanism is: its content hangs from under
+    /// its title, centred in the panel when the panel is larger. Each panel at least as wide
+    /// as its title (the mechanism's with the position's text right of it; the title as the
+    /// SVG or the DXF states it), as the widest reader draws them.
+    fn place(&self, spec: &PanelSpec, mech_title: &Title, pending: &[Pending]) -> Vec<(Point, Point)> {
+        let s = self.sizes;
         let wide_enough = |b: Vector, title: &Title, extra: &str| {
-            let w = title.width(units, sizes.text) + widest_text_width(extra, sizes.text) + 2.0 * sizes.text;
+            let w = title.width(spec.units, s.text) + widest_text_width(extra, s.text) + 2.0 * s.text;
             Vector::new(b.x.max(w), b.y)
         };
+        let mech = self.mech_max - self.mech_min;
         let mut boxes: Vec<(Title, Vector)> =
-            vec![(mech_title.clone(), wide_enough(mech_max - mech_min, &mech_title, &spec.position_text))];
-        for (p, ..) in &pending {
-            boxes.push((p.title.clone(), wide_enough(p.content + Vector::new(0.0, bar_room), &p.title, "")));
+            vec![(mech_title.clone(), wide_enough(mech, mech_title, &spec.position_text))];
+        for p in pending {
+            boxes.push((p.title.clone(), wide_enough(p.content + Vector::new(0.0, self.bar_room), &p.title, "")));
         }
-        let which: Vec<Which> = pending.iter().map(|(p, ..)| p.which).collect();
-        let rects = arrange_panels(&boxes, &which, title_room, gap);
-        // The mechanism panel must sit where the mechanism is: its content hangs from under
-        // its title, centred in the panel when the panel is larger.
-        let spare = (rects[0].1 - rects[0].0) - (mech_max - mech_min) - Vector::new(0.0, title_room);
-        let shift = Point::new(mech_min.x - 0.5 * spare.x.max(0.0), mech_max.y + title_room + 0.5 * spare.y.max(0.0))
-            - Point::new(rects[0].0.x, rects[0].1.y);
-        let rects: Vec<(Point, Point)> = rects.into_iter().map(|(a, b)| (a + shift, b + shift)).collect();
-        let bar_at = |ll: Point| ll + Vector::new(2.0 * sizes.small_text(), 0.5 * bar_room + 0.5 * sizes.text);
-        let length_bar = bar_value(k_l);
-        let mut panels = vec![(boxes[0].0.clone(), rects[0].0, rects[0].1)];
-        let mut bars = vec![(bar_at(rects[0].0), length_bar, format!("{} {}", scale_text(length_bar), units.length))];
+        let which: Vec<Which> = pending.iter().map(|p| p.which).collect();
+        let rects = arrange_panels(&boxes, &which, self.title_room, self.gap);
+        let spare = (rects[0].1 - rects[0].0) - mech - Vector::new(0.0, self.title_room);
+        let shift = Point::new(
+            self.mech_min.x - 0.5 * spare.x.max(0.0),
+            self.mech_max.y + self.title_room + 0.5 * spare.y.max(0.0),
+        ) - Point::new(rects[0].0.x, rects[0].1.y);
+        rects.into_iter().map(|(a, b)| (a + shift, b + shift)).collect()
+    }
+
+    /// Where a panel's scale bar starts, from the panel's lower-left.
+    fn bar_at(&self, ll: Point) -> Point {
+        ll + Vector::new(2.0 * self.sizes.small_text(), 0.5 * self.bar_room + 0.5 * self.sizes.text)
+    }
+
+    /// A polygon's slot in its panel `ll`–`ur`, the panel's title and (fixed scale) its bar:
+    /// the whole panel under its title band, over its bar strip, less the letters' room; at
+    /// a fixed scale the run's extent centred in it, else a scale per frame.
+    fn polygon_slot(&self, spec: &PanelSpec, p: Pending, ll: Point, ur: Point) -> (Slot, Title, Option<Bar>) {
+        let (s, room) = (self.sizes, self.room);
+        let area = Bounds {
+            min: ll + Vector::new(room, self.bar_room + 0.5 * s.text + room),
+            max: ur - Vector::new(room, self.title_room + room),
+        };
+        let points = &fixed_points(&spec.velocity, &spec.acceleration, p.which);
+        let (scales, pole, sides) = match p.k {
+            Some(k) => {
+                let scale = Scale::on_paper(k, self.paper);
+                let mid = Point::from((area.min.coords + area.max.coords) / 2.0);
+                let pole = mid - scale.draw(p.all.map_or(Vector::zeros(), |e| (e.min + e.max) / 2.0));
+                (vec![k], Some(pole), Vec::new())
+            }
+            None => {
+                let a = Vector::new(area.width(), area.height()) / self.k_l;
+                let sides: Vec<Option<Vector>> = points.iter().map(|e| e.map(|e| e.sides())).collect();
+                (sheet::frame_scales(&sides, a), None, sides)
+            }
+        };
+        let slot = Slot {
+            symbol: p.symbol,
+            unit: p.unit.clone(),
+            title: p.name.to_string(),
+            title_at: (Point::new(ll.x + 0.6 * s.text, ur.y - 1.2 * s.text), s.text),
+            area,
+            bar_at: Some(self.bar_at(ll)),
+            scales,
+            pole,
+            sides,
+        };
+        let (title, bar) = match slot.pole {
+            Some(_) => {
+                let k = slot.scales[0];
+                let value = bar_value(k);
+                let drawn = Scale::on_paper(k, self.paper).draw(Vector::new(value, 0.0)).x;
+                let bar = (self.bar_at(ll), drawn, format!("{} {}", scale_text(value), p.unit));
+                (Title::Scale(slot.title_with(k, self.paper)), Some(bar))
+            }
+            None => (Title::None, None),
+        };
+        (slot, title, bar)
+    }
+}
+
+/// A scale bar drawn in every frame's base: its left end, length (model units), label.
+type Bar = (Point, f64, String);
+
+/// The mechanism panel's title: its k_l, and with forces at a scale per frame, the scale of
+/// the forces drawn on it.
+fn mechanism_title(spec: &PanelSpec, cells: Option<&ForceLayout>, m: &Measures) -> Title {
+    Title::Scale(match (cells, spec.scales) {
+        (Some(c), ScaleChoice::PerFrame) => length_caption("Mechanism   ", m.k_l, spec.units).then(scale_caption(
+            ", forces ",
+            "k_f",
+            c.mechanism_scale.per_mm,
+            "N",
+            m.paper,
+        )),
+        _ => length_caption("Mechanism   ", m.k_l, spec.units),
+    })
+}
+
+impl PanelFrame {
+    /// The frame of a run (see the module docs).
+    pub fn new(spec: &PanelSpec) -> PanelFrame {
+        let mut m = Measures::of(spec);
+        let target_mm = m.polygon_target_mm(spec);
+        let mut pending = m.polygon_pendings(spec, target_mm);
+        let mut force_cells = None;
+        if let Some(fs) = &spec.forces {
+            let (p, cells) = m.force_pending(spec, fs, target_mm);
+            pending.push(p);
+            force_cells = Some(cells);
+        }
+        let mech_title = mechanism_title(spec, force_cells.as_ref(), &m);
+        let rects = m.place(spec, &mech_title, &pending);
+        let length_bar = bar_value(m.k_l);
+        let mut panels = vec![(mech_title, rects[0].0, rects[0].1)];
+        let mut bars =
+            vec![(m.bar_at(rects[0].0), length_bar, format!("{} {}", scale_text(length_bar), spec.units.length))];
         let (mut velocity, mut acceleration, mut forces, mut mechanism_forces) = (None, None, None, None);
-        for (j, (p, symbol, unit, title, all, k, _)) in pending.into_iter().enumerate() {
-            let (ll, ur) = rects[j + 1];
-            let title_at = (Point::new(ll.x + 0.6 * sizes.text, ur.y - 1.2 * sizes.text), sizes.text);
-            // The content under the title band, over the bar strip.
-            let content_ll = Point::new(ll.x, ur.y - title_room - p.content.y);
+        for (p, &(ll, ur)) in pending.into_iter().zip(&rects[1..]) {
             match p.which {
                 Which::Velocity | Which::Acceleration => {
-                    // The whole panel under its title band, over its bar strip, less the
-                    // letters' room.
-                    let area = Bounds {
-                        min: ll + Vector::new(room, bar_room + 0.5 * sizes.text + room),
-                        max: ur - Vector::new(room, title_room + room),
-                    };
-                    let points = &fixed_points(&spec.velocity, &spec.acceleration, p.which);
-                    let (scales, pole, sides) = match k {
-                        Some(k) => {
-                            // The run's extent centred in the area.
-                            let scale = Scale::on_paper(k, paper);
-                            let mid = Point::from((area.min.coords + area.max.coords) / 2.0);
-                            let pole = mid - scale.draw(all.map_or(Vector::zeros(), |e| (e.min + e.max) / 2.0));
-                            (vec![k], Some(pole), Vec::new())
-                        }
-                        None => {
-                            let a = Vector::new(area.width(), area.height()) / k_l;
-                            let sides: Vec<Option<Vector>> = points.iter().map(|e| e.map(|e| e.sides())).collect();
-                            (sheet::frame_scales(&sides, a), None, sides)
-                        }
-                    };
-                    let slot = Slot {
-                        symbol,
-                        unit: unit.clone(),
-                        title: title.to_string(),
-                        title_at,
-                        area,
-                        bar_at: Some(bar_at(ll)),
-                        scales,
-                        pole,
-                        sides,
-                    };
-                    let panel_title = if slot.pole.is_some() {
-                        Title::Scale(slot.title_with(slot.scales[0], paper))
-                    } else {
-                        Title::None
-                    };
-                    if slot.pole.is_some() {
-                        let value = bar_value(slot.scales[0]);
-                        let drawn = Scale::on_paper(slot.scales[0], paper).draw(Vector::new(value, 0.0)).x;
-                        bars.push((bar_at(ll), drawn, format!("{} {unit}", scale_text(value))));
-                    }
-                    panels.push((panel_title, ll, ur));
-                    if p.which == Which::Velocity {
+                    let which = p.which;
+                    let (slot, title, bar) = m.polygon_slot(spec, p, ll, ur);
+                    bars.extend(bar);
+                    panels.push((title, ll, ur));
+                    if which == Which::Velocity {
                         velocity = Some(slot);
                     } else {
                         acceleration = Some(slot);
                     }
                 }
                 Which::Forces => {
+                    // The content under the title band, over the bar strip.
+                    let content_ll = Point::new(ll.x, ur.y - m.title_room - p.content.y);
                     if let Some(c) = force_cells.take() {
                         mechanism_forces = Some(c.mechanism_scale);
-                        forces = Some(c.place(content_ll + Vector::new(0.6 * sizes.text, 0.0), spec.scales, paper));
+                        let at = content_ll + Vector::new(0.6 * m.sizes.text, 0.0);
+                        forces = Some(c.place(at, spec.scales, m.paper));
                     }
                     if spec.scales == ScaleChoice::Fixed {
-                        let k = k.unwrap_or(1.0);
+                        let k = p.k.unwrap_or(1.0);
                         let value = bar_value(k);
-                        let drawn = Scale::on_paper(k, paper).draw(Vector::new(value, 0.0)).x;
-                        bars.push((bar_at(ll), drawn, format!("{} N", scale_text(value))));
+                        let drawn = Scale::on_paper(k, m.paper).draw(Vector::new(value, 0.0)).x;
+                        bars.push((m.bar_at(ll), drawn, format!("{} N", scale_text(value))));
                     }
-                    panels.push((p.title.clone(), ll, ur));
+                    panels.push((p.title, ll, ur));
                 }
             }
         }
@@ -563,9 +654,9 @@ impl PanelFrame {
             window.max = Point::new(window.max.x.max(p.2.x), window.max.y.max(p.2.y));
         }
         PanelFrame {
-            units,
-            k_l,
-            sizes,
+            units: spec.units,
+            k_l: m.k_l,
+            sizes: m.sizes,
             choice: spec.scales,
             velocity,
             acceleration,

@@ -1077,38 +1077,30 @@ fn sweep_kind<const RATES: bool>(
     }
 }
 
-impl AssurSolver {
-    /// Positions (and with `rates`, velocities and accelerations) at `times` by a sweep
-    /// (see [`AssurSolver::positions_into`], [`AssurSolver::motion_into`]) from the last
-    /// step solved, each step appended to `out`: the number of steps solved, all of them
-    /// unless one cannot be (the solver then stands after the step before it).
-    pub(super) fn sweep(&mut self, times: &[f64], out: &mut Motion, rates: bool) -> usize {
-        let Some(t_last) = self.inner.t else { return 0 };
-        let (nb, nd) = (self.inner.poses.len(), self.inner.laws.len());
-        let sw = &mut self.sweep;
-        // The laws at every step (each driver's values, and with the rates the whole jets),
-        // as the steps would evaluate them: the steps before the first where a law is not
-        // finite.
-        let count = times.len();
-        let drivers = &self.inner.mech.drivers;
+impl Sweep {
+    /// The laws at every step of `times` (each driver's values, and with `rates` the whole
+    /// jets), as the steps would evaluate them: the number of steps before the first where a
+    /// law is not finite.
+    fn laws(&mut self, drivers: &[crate::solve::linkage::Driver], times: &[f64], rates: bool) -> usize {
+        let (count, nd) = (times.len(), drivers.len());
         let mut end = count;
-        sw.values.clear();
-        sw.jets.clear();
+        self.values.clear();
+        self.jets.clear();
         if rates {
             'steps: for (k, &t) in times.iter().enumerate() {
                 for d in drivers {
                     let Some(jet) = d.law.eval(t).finite() else {
-                        sw.jets.truncate(k * nd);
+                        self.jets.truncate(k * nd);
                         end = k;
                         break 'steps;
                     };
-                    sw.jets.push(jet);
+                    self.jets.push(jet);
                 }
             }
-            sw.values.resize(nd * count, 0.0);
-            for (k, jets) in sw.jets.chunks_exact(nd.max(1)).enumerate().take(end) {
+            self.values.resize(nd * count, 0.0);
+            for (k, jets) in self.jets.chunks_exact(nd.max(1)).enumerate().take(end) {
                 for (d, jet) in jets.iter().enumerate() {
-                    sw.values[d * count + k] = jet.0;
+                    self.values[d * count + k] = jet.0;
                 }
             }
         } else {
@@ -1119,23 +1111,29 @@ impl AssurSolver {
                         _ => whole_law(d, t).ok().map(|jet| jet.0),
                     };
                     let Some(value) = value else {
-                        end = sw.values.len() - di * count;
+                        end = self.values.len() - di * count;
                         break;
                     };
-                    sw.values.push(value);
+                    self.values.push(value);
                 }
-                sw.values.resize((di + 1) * count, f64::NAN);
+                self.values.resize((di + 1) * count, f64::NAN);
             }
         }
-        // Each step's prediction (and its ratio or time step, for the batches).
-        for v in [&mut sw.linear, &mut sw.taylor] {
+        end
+    }
+
+    /// Each of the first `end` steps' prediction (and its ratio or time step, for the
+    /// batches), from the solver's state before the sweep: whether its rates belong to its
+    /// last step, its last time step and its time `t_last`.
+    fn predictions(&mut self, times: &[f64], end: usize, before: (bool, Option<f64>, f64), rates: bool) {
+        for v in [&mut self.linear, &mut self.taylor] {
             v.clear();
             v.resize(end, f64::NAN);
         }
-        sw.how.clear();
-        sw.how.resize(end, Extrapolation::Hold);
-        let (mut rates_valid, mut dt_prev, mut t0) = (self.rates_valid, self.dt_prev, t_last);
-        let steps = sw.how.iter_mut().zip(&mut sw.linear).zip(&mut sw.taylor);
+        self.how.clear();
+        self.how.resize(end, Extrapolation::Hold);
+        let (mut rates_valid, mut dt_prev, mut t0) = before;
+        let steps = self.how.iter_mut().zip(&mut self.linear).zip(&mut self.taylor);
         for (((how, linear), taylor), &t) in steps.zip(&times[..end]) {
             let dt = t - t0;
             *how = Extrapolation::of(rates_valid, dt_prev, dt);
@@ -1146,22 +1144,57 @@ impl AssurSolver {
             }
             (rates_valid, dt_prev, t0) = (rates, Some(dt), t);
         }
+    }
+}
+
+impl AssurSolver {
+    /// Positions (and with `rates`, velocities and accelerations) at `times` by a sweep
+    /// (see [`AssurSolver::positions_into`], [`AssurSolver::motion_into`]) from the last
+    /// step solved, each step appended to `out`: the number of steps solved, all of them
+    /// unless one cannot be (the solver then stands after the step before it).
+    pub(super) fn sweep(&mut self, times: &[f64], out: &mut Motion, rates: bool) -> usize {
+        let Some(t_last) = self.inner.t else { return 0 };
+        let end = self.sweep.laws(&self.inner.mech.drivers, times, rates);
+        self.sweep.predictions(times, end, (self.rates_valid, self.dt_prev, t_last), rates);
         if end == 0 {
             return 0;
         }
-        // Body by body: the step before the last (its q: what the prediction reads), the
-        // last (its cached pose, whose origin and angle are its q: what a group reads as
-        // its bodies' last), then the steps; the rates likewise (the last step's, what
-        // Taylor's prediction reads; with `rates`, then the steps').
-        let steps = end;
+        self.start_tracks(end, rates);
+        // The motion's rows, written by the groups as they sweep (cut back to the steps
+        // every group solved).
+        let n = 3 * self.inner.poses.len();
+        let first = out.q.len();
+        out.q.resize(first + end * n, 0.0);
+        if rates {
+            out.qd.resize(first + end * n, 0.0);
+            out.qdd.resize(first + end * n, 0.0);
+        }
+        let end = self.sweep_groups(times.len(), end, out, first, rates);
+        out.q.truncate(first + end * n);
+        if rates {
+            out.qd.truncate(first + end * n);
+            out.qdd.truncate(first + end * n);
+        }
+        if end == 0 {
+            return 0;
+        }
+        self.settle(times, end, t_last, out, rates);
+        end
+    }
+
+    /// Room for a sweep of `steps` steps, and each body's entries before them: the step
+    /// before the last (its q: what the prediction reads), the last (its cached pose, whose
+    /// origin and angle are its q: what a group reads as its bodies' last); the last step's
+    /// rates (what Taylor's prediction reads).
+    fn start_tracks(&mut self, steps: usize, rates: bool) {
+        let sw = &mut self.sweep;
         // Not cleared: a group reads only what this sweep has written (the first two
         // entries of each body, the steps the groups before it solved, its own last
         // steps), so the buffers only grow.
-        sw.tracks.reset(nb, steps);
+        sw.tracks.reset(self.inner.poses.len(), steps);
         if sw.scratch.len() < SCRATCH * steps {
             sw.scratch.resize(SCRATCH * steps, 0.0);
         }
-
         for (b, &p) in self.inner.poses.iter().enumerate() {
             let q = &self.q_prev[3 * b..3 * b + 3];
             sw.tracks.set(b, 0, Pose { r: Vector::new(q[0], q[1]), phi: q[2], ..GROUND_POSE });
@@ -1175,17 +1208,18 @@ impl AssurSolver {
         if rates {
             sw.pivots.resize(groups * steps, 1.0);
         }
+    }
+
+    /// Every group swept over the `steps` steps (of `count` times) in solving order, its
+    /// bodies' rows written into `out` from row `first`: the number of steps every group
+    /// solved. Where a group stops short, every group's branch is taken back to the last
+    /// step all solved.
+    fn sweep_groups(&mut self, count: usize, steps: usize, out: &mut Motion, first: usize, rates: bool) -> usize {
+        let sw = &mut self.sweep;
+        let (n, nd) = (3 * self.inner.poses.len(), self.inner.laws.len());
         let slack = crate::geom::tol::RESIDUAL_REL * self.inner.mech.length_scale;
-        // The motion's rows, written by the groups as they sweep (cut back to the steps
-        // every group solved).
-        let n = 3 * nb;
-        let first = out.q.len();
-        out.q.resize(first + steps * n, 0.0);
-        if rates {
-            out.qd.resize(first + steps * n, 0.0);
-            out.qdd.resize(first + steps * n, 0.0);
-        }
-        let mut branches = Vec::with_capacity(groups);
+        let mut end = steps;
+        let mut branches = Vec::with_capacity(self.ops.len());
         for (gi, op) in self.ops.iter_mut().enumerate() {
             branches.push(op.side);
             let lane = Lane {
@@ -1222,17 +1256,15 @@ impl AssurSolver {
                 op.side = if end == 0 { branches[gi] } else { sw.sides[gi * steps + end - 1] };
             }
         }
-        out.q.truncate(first + end * n);
-        if rates {
-            out.qd.truncate(first + end * n);
-            out.qdd.truncate(first + end * n);
-        }
-        if end == 0 {
-            return 0;
-        }
-        // Every step solved, then the solver as stepping would leave it: q and the poses of
-        // the last step, the step before it for the next prediction, the time, the laws,
-        // the rates and their state.
+        end
+    }
+
+    /// The solver after the first `end` steps of `times` were swept (`end` ≥ 1), as stepping
+    /// would leave it: q and the poses of the last step, the step before it for the next
+    /// prediction, the time, the laws, the rates and their state (`t_last` the time before
+    /// the sweep).
+    fn settle(&mut self, times: &[f64], end: usize, t_last: f64, out: &mut Motion, rates: bool) {
+        let n = 3 * self.inner.poses.len();
         if end >= 2 {
             let before = out.q.len() - 2 * n;
             self.q_prev.copy_from_slice(&out.q[before..before + n]);
@@ -1241,51 +1273,11 @@ impl AssurSolver {
         }
         self.inner.q.copy_from_slice(&out.q[out.q.len() - n..]);
         for (b, p) in self.inner.poses.iter_mut().enumerate() {
-            *p = sw.tracks.pose(b, end + 1);
+            *p = self.sweep.tracks.pose(b, end + 1);
         }
         let t = times[end - 1];
         if rates {
-            // The rates of the step before the last (what stepping leaves swapped out),
-            // and of the last.
-            let before = if end >= 2 { end } else { 1 };
-            for b in 0..nb {
-                let r = sw.tracks.rates(b, before);
-                self.qd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qd);
-                self.qdd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
-            }
-            self.inner.qd.copy_from_slice(&out.qd[out.qd.len() - n..]);
-            self.inner.qdd.copy_from_slice(&out.qdd[out.qdd.len() - n..]);
-            // Each step's near-singular report: the group whose rates are the worst
-            // conditioned, as a step finds it.
-            let first_step = out.iterations.len();
-            out.iterations.extend(std::iter::repeat_n(0, end));
-            self.inner.near = None;
-            for (k, &tk) in times[..end].iter().enumerate() {
-                let mut worst: Option<(f64, usize)> = None;
-                for gi in 0..groups {
-                    let rho = sw.pivots[gi * steps + k];
-                    if worst.is_none_or(|(p, _)| rho < p) {
-                        worst = Some((rho, gi));
-                    }
-                }
-                if let Some((pivot, gi)) = worst.filter(|&(pivot, _)| pivot < NEAR_SINGULAR_PIVOT_REL) {
-                    let _ = self.inner.eval_law_values(tk);
-                    let near = NearSingular {
-                        t: tk,
-                        pivot,
-                        drivers: self.inner.driver_values(),
-                        constraints: self.plans[gi].constraint_names(&self.inner),
-                    };
-                    if k + 1 == end {
-                        // The last step's, as a step leaves it.
-                        self.inner.near = Some(near.clone());
-                    }
-                    out.near.push((first_step + k, near));
-                }
-            }
-            for (gi, plan) in self.plans.iter_mut().enumerate() {
-                plan.pivot = sw.pivots[gi * steps + end - 1];
-            }
+            self.settle_rates(times, end, out);
             // Sets the laws and their rates as the step did; it succeeded there.
             let _ = self.inner.eval_laws(t);
         } else {
@@ -1298,10 +1290,63 @@ impl AssurSolver {
             let _ = self.inner.eval_law_values(t);
         }
         self.dt_prev = Some(t - if end >= 2 { times[end - 2] } else { t_last });
-        self.how = sw.how[end - 1];
+        self.how = self.sweep.how[end - 1];
         self.rates_valid = rates;
         self.fallback = None;
         self.inner.t = Some(t);
-        end
+    }
+
+    /// The rates after a sweep with rates of `end` steps (of `times`, each a row of `out`):
+    /// those of the step before the last (what stepping leaves swapped out) and of the last,
+    /// each step's near-singular report, each group's conditioning at the last step.
+    fn settle_rates(&mut self, times: &[f64], end: usize, out: &mut Motion) {
+        let (nb, n) = (self.inner.poses.len(), 3 * self.inner.poses.len());
+        let sw = &self.sweep;
+        let before = if end >= 2 { end } else { 1 };
+        for b in 0..nb {
+            let r = sw.tracks.rates(b, before);
+            self.qd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qd);
+            self.qdd_prev[3 * b..3 * b + 3].copy_from_slice(&r.qdd);
+        }
+        self.inner.qd.copy_from_slice(&out.qd[out.qd.len() - n..]);
+        self.inner.qdd.copy_from_slice(&out.qdd[out.qdd.len() - n..]);
+        self.report_near_singular(&times[..end], out);
+        let steps = self.sweep.sides.len() / self.ops.len().max(1);
+        for (gi, plan) in self.plans.iter_mut().enumerate() {
+            plan.pivot = self.sweep.pivots[gi * steps + end - 1];
+        }
+    }
+
+    /// Each swept step's near-singular report (at `solved`, the steps every group solved):
+    /// the group whose rates are the worst conditioned, as a step finds it; the last step's
+    /// also the solver's, as a step leaves it.
+    fn report_near_singular(&mut self, solved: &[f64], out: &mut Motion) {
+        let first_step = out.iterations.len();
+        out.iterations.extend(std::iter::repeat_n(0, solved.len()));
+        self.inner.near = None;
+        let groups = self.ops.len();
+        let steps = self.sweep.sides.len() / groups.max(1);
+        for (k, &tk) in solved.iter().enumerate() {
+            let mut worst: Option<(f64, usize)> = None;
+            for gi in 0..groups {
+                let rho = self.sweep.pivots[gi * steps + k];
+                if worst.is_none_or(|(p, _)| rho < p) {
+                    worst = Some((rho, gi));
+                }
+            }
+            if let Some((pivot, gi)) = worst.filter(|&(pivot, _)| pivot < NEAR_SINGULAR_PIVOT_REL) {
+                let _ = self.inner.eval_law_values(tk);
+                let near = NearSingular {
+                    t: tk,
+                    pivot,
+                    drivers: self.inner.driver_values(),
+                    constraints: self.plans[gi].constraint_names(&self.inner),
+                };
+                if k + 1 == solved.len() {
+                    self.inner.near = Some(near.clone());
+                }
+                out.near.push((first_step + k, near));
+            }
+        }
     }
 }
