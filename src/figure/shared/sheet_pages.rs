@@ -925,6 +925,16 @@ mod tests {
         out
     }
 
+    /// The cells of `set`'s figures at their least-size scales on `paper`.
+    fn least_cells(set: &[ForcePolygon], paper: Paper) -> Vec<Vector> {
+        set.iter()
+            .map(|f| {
+                let e = Extent::of(f.physical_points()).unwrap();
+                cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
+            })
+            .collect()
+    }
+
     #[test]
     fn stretching_never_makes_a_cell_smaller_than_it_was_packed() {
         for paper in [Paper::A4, Paper::A3] {
@@ -932,13 +942,7 @@ mod tests {
             for set in figure_sets() {
                 // As packed (or packed anyway, past the border, when the page does not hold
                 // them): sizes of every kind of figure cell.
-                let mut sizes: Vec<Vector> = set
-                    .iter()
-                    .map(|f| {
-                        let e = Extent::of(f.physical_points()).unwrap();
-                        cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
-                    })
-                    .collect();
+                let mut sizes: Vec<Vector> = least_cells(&set, paper);
                 // And the forces' table after them (a linkage's), in the last row.
                 if set.len() % 2 == 1 {
                     sizes.push(table_cell(14 + set.len(), 1, paper.sizes()));
@@ -947,23 +951,10 @@ mod tests {
                 let Some(packed) = pack(&sizes, border, right, title) else { continue };
                 let mut cells = packed.clone();
                 fill(&mut cells, border, right, title);
-                let overlap = |a: &Bounds, b: &Bounds| {
-                    (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).min(a.max.y.min(b.max.y) - a.min.y.max(b.min.y))
-                };
                 for (c, p) in cells.iter().zip(&packed) {
                     assert!(c.width() >= p.width() - 1e-9 && c.height() >= p.height() - 1e-9, "{c:?} < {p:?}");
-                    // Off the title block and inside the border.
-                    {
-                        assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
-                        assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
-                        assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
-                    }
                 }
-                for (i, a) in cells.iter().enumerate() {
-                    for b in &cells[i + 1..] {
-                        assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
-                    }
-                }
+                assert_laid_out(&cells, border, title);
             }
         }
     }
@@ -1021,13 +1012,7 @@ mod tests {
             let (_, border, right, title) = sheet::page_frame(paper, 6);
             let mut packed_sets = 0;
             for set in figure_sets() {
-                let mut sizes: Vec<Vector> = set
-                    .iter()
-                    .map(|f| {
-                        let e = Extent::of(f.physical_points()).unwrap();
-                        cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
-                    })
-                    .collect();
+                let mut sizes: Vec<Vector> = least_cells(&set, paper);
                 sizes.push(table_cell(14 + set.len(), 1 + set.len() % 3, paper.sizes()));
                 let Some(packed) = pack_skyline(&sizes, border, right, title) else { continue };
                 packed_sets += 1;
@@ -1037,17 +1022,22 @@ mod tests {
                     assert!((p.width() - size.x).abs() <= 1e-9 && (p.height() - size.y).abs() <= 1e-9, "{p:?}");
                     assert!(c.min.x <= p.min.x + 1e-9 && c.min.y <= p.min.y + 1e-9, "{c:?} < {p:?}");
                     assert!(c.max.x >= p.max.x - 1e-9 && c.max.y >= p.max.y - 1e-9, "{c:?} < {p:?}");
-                    assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
-                    assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
-                    assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
                 }
-                for (i, a) in cells.iter().enumerate() {
-                    for b in &cells[i + 1..] {
-                        assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
-                    }
-                }
+                assert_laid_out(&cells, border, title);
             }
             assert!(packed_sets >= 10, "{packed_sets} sets packed on {}", paper.name());
+        }
+    }
+
+    /// Cells inside the border, off the title block, none on another.
+    fn assert_laid_out(cells: &[Bounds], border: Bounds, title: Bounds) {
+        for (i, c) in cells.iter().enumerate() {
+            assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
+            assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
+            assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
+            for b in &cells[i + 1..] {
+                assert!(overlap(c, b) <= 1e-9, "{c:?} overlaps {b:?}");
+            }
         }
     }
 
