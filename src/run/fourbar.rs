@@ -82,63 +82,128 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
     let extras = if picture_only {
         Extras::default()
     } else {
-        let qs = reported(&spec.outputs, layout.show.forces);
-        // The table, the summary with the report, and Joukowski's levers side by side.
-        let (mut csv, ((summary, mut report), levers)) = crate::par::join(
-            || table(&motion, &qs, layout.show.forces),
-            || {
-                crate::par::join(
-                    || (summary(scene, &motion, &layout, &qs), report_text(scene, &motion, &layout)),
-                    || if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() },
-                )
-            },
-        );
-        let mut summary = summary?;
-        teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
-        if let Some(m) = &gamma_min {
-            report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
-        }
-        let mut sheets = Vec::new();
-        if scene.centres {
-            sheets.extend(teaching::centres(&spec.geometry, &motion.positions, units));
-        }
-        if layout.show.forces {
-            sheets.extend(teaching::joukowski(spec, &motion.positions, &motion.forces, &levers, units));
-        }
-        let diagrams = diagrams(&motion, step, &qs, layout.show.forces, units)
-            .into_par_iter()
-            .map(|(stem, d)| match stem.as_str() {
-                "gamma_deg" => {
-                    let marks = teaching::gamma_marks(gamma_min);
-                    products::Diagram {
-                        stem: "gamma".into(),
-                        drawing: plot::diagram_marked(&d, &marks),
-                        track: plot::track(&d, &marks),
-                    }
-                }
-                _ => {
-                    products::Diagram { stem, drawing: plot::diagram(&d), track: plot::track(&d, &Default::default()) }
-                }
-            })
-            .collect();
-        let pages = match paper {
-            Some(paper) => sheet_pages(paper, scene, &motion, &curve, &qs, layout.show, units, &names, &drawn),
-            None => Vec::new(),
-        };
-        let mut extras = Extras {
-            sheets,
-            pages,
-            diagrams,
-            tables: vec![products::Table { suffix: String::new(), csv }],
-            summary,
-            report,
-        };
-        if let Some(study) = super::tolerance::fourbar(scene, &motion.positions, None) {
-            warnings.extend(study.add_to(&mut extras));
-        }
+        let drawn_as = Drawn { curve: &curve, names: &names, drawn: &drawn, paper };
+        let (extras, study_warnings) = extras(scene, &motion, &layout, gamma_min, drawn_as, units)?;
+        warnings.extend(study_warnings);
         extras
     };
     let title = format!("{name}: four-bar, {} positions", motion.positions.len());
+    let chosen = chosen.is_some().then_some(drawn);
+    let (animation, frame_scales) = animation(spec, motion, layout, base, title, names, labels, chosen);
+    Ok(extras.with_motion(
+        name.clone(),
+        super::mm_per_unit(scene.units),
+        animation,
+        PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
+        warnings,
+        frame_scales,
+    ))
+}
+
+/// Where a run draws its positions: the coupler curve's runs, every position's name, the
+/// positions drawn, and the paper of the printed sheets (`--sheets`).
+#[derive(Clone, Copy)]
+struct Drawn<'a> {
+    curve: &'a [Vec<Point>],
+    names: &'a [String],
+    drawn: &'a [usize],
+    paper: Option<Paper>,
+}
+
+/// A run's files besides its picture: the table, the summary and the report, Joukowski's
+/// levers, the centres' and Joukowski's sheets, the diagrams, the printed pages and the
+/// tolerance study; with the study's warnings.
+fn extras(
+    scene: &FourbarScene,
+    motion: &Motion,
+    layout: &Layout,
+    gamma_min: Option<crate::solve::fourbar::transmission::GammaMin>,
+    at: Drawn<'_>,
+    units: ModelUnits,
+) -> Result<(Extras, Vec<String>), Error> {
+    let spec = &scene.spec;
+    let qs = reported(&spec.outputs, layout.show.forces);
+    // The table, the summary with the report, and Joukowski's levers side by side.
+    let (mut csv, ((summary, mut report), levers)) = crate::par::join(
+        || table(motion, &qs, layout.show.forces),
+        || {
+            crate::par::join(
+                || (summary(scene, motion, layout, &qs), report_text(scene, motion, layout)),
+                || if layout.show.forces { teaching::levers(spec, &motion.positions) } else { Vec::new() },
+            )
+        },
+    );
+    let mut summary = summary?;
+    teaching::add_to_tables(&mut csv, &mut summary, &levers, gamma_min);
+    if let Some(m) = &gamma_min {
+        report.push_str(&format!("{}\n", teaching::gamma_min_text(m)));
+    }
+    let mut sheets = Vec::new();
+    if scene.centres {
+        sheets.extend(teaching::centres(&spec.geometry, &motion.positions, units));
+    }
+    if layout.show.forces {
+        sheets.extend(teaching::joukowski(spec, &motion.positions, &motion.forces, &levers, units));
+    }
+    let pages = match at.paper {
+        Some(paper) => sheet_pages(paper, scene, motion, at.curve, &qs, layout.show, units, at.names, at.drawn),
+        None => Vec::new(),
+    };
+    let mut extras = Extras {
+        sheets,
+        pages,
+        diagrams: drawn_diagrams(motion, spec.sweep.step_deg, &qs, layout.show.forces, units, gamma_min),
+        tables: vec![products::Table { suffix: String::new(), csv }],
+        summary,
+        report,
+    };
+    let warnings = match super::tolerance::fourbar(scene, &motion.positions, None) {
+        Some(study) => study.add_to(&mut extras),
+        None => Vec::new(),
+    };
+    Ok((extras, warnings))
+}
+
+/// The diagrams drawn: γ's with its least value marked, the others plain.
+fn drawn_diagrams(
+    motion: &Motion,
+    step: f64,
+    qs: &[Quantity],
+    forces: bool,
+    units: ModelUnits,
+    gamma_min: Option<crate::solve::fourbar::transmission::GammaMin>,
+) -> Vec<products::Diagram> {
+    diagrams(motion, step, qs, forces, units)
+        .into_par_iter()
+        .map(|(stem, d)| match stem.as_str() {
+            "gamma_deg" => {
+                let marks = teaching::gamma_marks(gamma_min);
+                products::Diagram {
+                    stem: "gamma".into(),
+                    drawing: plot::diagram_marked(&d, &marks),
+                    track: plot::track(&d, &marks),
+                }
+            }
+            _ => products::Diagram { stem, drawing: plot::diagram(&d), track: plot::track(&d, &Default::default()) },
+        })
+        .collect()
+}
+
+/// The run's animation (only the `chosen` positions when some are), with its drive (the
+/// position at any crank angle between the sweep's, on the side each position's B is),
+/// and the scales each drawn frame is drawn at (in the animation's order).
+#[allow(clippy::too_many_arguments)]
+fn animation(
+    spec: &MotionSpec,
+    motion: Motion,
+    layout: Layout,
+    base: crate::draw::Drawing,
+    title: String,
+    names: Vec<String>,
+    labels: Vec<String>,
+    chosen: Option<Vec<usize>>,
+) -> (Animation, Vec<crate::figure::shared::panels::FrameScales>) {
+    let (geom, show) = (spec.geometry, layout.show);
     let window = layout.frame.window;
     let Motion { positions, forces, .. } = motion;
     let values = positions.iter().map(|p| deg(p.phi1)).collect();
@@ -161,22 +226,20 @@ pub(super) fn products(scene: &FourbarScene, file: &str, opts: &super::RunOption
             })
         },
     };
-    // The scales each drawn frame is drawn at (in the animation's order).
-    let frame_scales = if chosen.is_some() { drawn.clone() } else { (0..positions.len()).collect() }
-        .into_iter()
-        .map(|k| layout.frame.scales_at(k))
-        .collect();
+    let frame_scales = match &chosen {
+        Some(drawn) => drawn.clone(),
+        None => (0..positions.len()).collect(),
+    }
+    .into_iter()
+    .map(|k| layout.frame.scales_at(k))
+    .collect();
     let pose = move |k: usize| layout.moving(k, &geom, &positions[k], forces.get(k).filter(|_| show.forces));
     let animation = Animation::new(title, base, Some(window), names, labels, pose).with_drive(drive);
-    let animation = if chosen.is_some() { animation.keep(drawn) } else { animation };
-    Ok(extras.with_motion(
-        name.clone(),
-        super::mm_per_unit(scene.units),
-        animation,
-        PositionsSource { field: "phi1_deg.step", advice: "use a larger step" },
-        warnings,
-        frame_scales,
-    ))
+    let animation = match chosen {
+        Some(drawn) => animation.keep(drawn),
+        None => animation,
+    };
+    (animation, frame_scales)
 }
 
 /// The position at crank angle `phi1_deg` with B on `side`, with its kinematics and forces
