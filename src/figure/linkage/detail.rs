@@ -8,7 +8,7 @@
 //! the main view by a thin circle and the detail's letter. What lies outside the region is
 //! cut at a thin circle, the region's edge.
 
-use crate::draw::{Drawing, HAlign, Runs, Shape, VAlign};
+use crate::draw::{Bounds, Drawing, HAlign, Runs, Shape, VAlign};
 use crate::geom::{Point, Vector};
 use crate::solve::linkage::{Anchor, Attach, place};
 
@@ -95,9 +95,16 @@ impl Detail {
         Some(Detail { letter, k, mm_per_unit, body, pivot, crank, radius_mm })
     }
 
-    /// The width of the detail's panel, paper mm: the region and the panel's margins.
-    pub fn width(&self, s: Sizes) -> f64 {
-        2.0 * self.radius_mm + 3.0 * s.text
+    /// The outline of the detail's panel, paper mm, as a draftsman sizes a detail view to
+    /// its content: the region's circle with the panel's margins ([`Panel::of_outline`]:
+    /// the caption's band over it, the scale bar's strip under it), at least as wide as its
+    /// caption ([`Detail::caption`] in `units`).
+    pub fn panel_size(&self, s: Sizes, units: vocab::ModelUnits) -> Vector {
+        let probe = Panel::of_outline(Bounds { min: Point::origin(), max: Point::new(100.0, 100.0) }, s);
+        let margins = Vector::new(100.0 - probe.area.width(), 100.0 - probe.area.height());
+        let region = Vector::new(2.0 * self.radius_mm, 2.0 * self.radius_mm) + margins;
+        let caption = crate::draw::parts::widest_text_width(&self.caption(units), s.text) + 1.2 * s.text;
+        Vector::new(region.x.max(caption), region.y)
     }
 
     /// The crank as drawn in the detail, paper mm.

@@ -112,7 +112,8 @@ impl LinkageSheets {
         // A crank drawn shorter than 25 mm gets a detail view beside the mechanism.
         let detail = Detail::needed(figure, page.k_l, s);
         if let Some(detail) = &detail {
-            page = MechanismPage::with_detail(paper, (lo, hi), room, (table_rows, 6), detail.width(s));
+            let size = detail.panel_size(s, figure.units);
+            page = MechanismPage::with_detail(paper, (lo, hi), room, (table_rows, 6), size);
             if let Some(k) = held {
                 page = page.held(k, lo, hi);
             }

@@ -142,8 +142,9 @@ impl TextBox {
 }
 
 /// A candidate's score, lower is better: letters its box overlaps, letters its leader
-/// crosses, segments its box crosses.
-type Score = (usize, usize, usize);
+/// crosses, segments its box crosses, letters its box comes nearer than the polygon's gap
+/// to ([`Polygon::apart`]).
+type Score = (usize, usize, usize, usize);
 /// A segment: its two ends.
 pub type Segment = (Point, Point);
 
@@ -324,6 +325,8 @@ pub struct Polygon {
     merge: bool,
     /// The box every label should stay inside (its panel), when set.
     within: Option<TextBox>,
+    /// The least gap between two letters' boxes (drawing units; 0: touching allowed).
+    gap: f64,
 }
 
 impl Polygon {
@@ -335,6 +338,13 @@ impl Polygon {
     /// Names beside the polygon's sides (force polygons): never combined.
     pub fn of_names() -> Polygon {
         Polygon { merge: false, ..Polygon::default() }
+    }
+
+    /// The letters placed at least `gap` apart (drawing units, box to box): a letter
+    /// closer than that to one placed before counts as overlapping it.
+    pub fn apart(mut self, gap: f64) -> Polygon {
+        self.gap = gap.max(0.0);
+        self
     }
 
     /// A letter `text` (`height` high, entity colour `color` or the layer's) for the point
@@ -484,6 +494,8 @@ impl Polygon {
         lines.extend(self.segments.iter().map(|&s| (s, segment_box(s))));
         // Those near the letter being placed.
         let (mut near_blockers, mut near_lines) = (Vec::new(), Vec::new());
+        // The letters placed so far grown by the gap (none without one).
+        let mut spaced: Vec<TextBox> = Vec::new();
         let mut out = Vec::with_capacity(letters.len());
         for l in letters.iter() {
             let mut best: Option<(Score, Point, TextBox, Option<Segment>)> = None;
@@ -524,10 +536,11 @@ impl Polygon {
                     let sb = segment_box((a, b));
                     blockers_near.iter().filter(|x| sb.overlaps(x) && x.crosses(a, b)).count()
                 });
-                // The most segments the box may cross and still win.
+                // More segments than the box may cross and still win (as many as the best
+                // when nearness may decide).
                 let limit = match bound {
                     Some(s) if (hits, through) > (s.0, s.1) => continue,
-                    Some(s) if (hits, through) == (s.0, s.1) => s.2,
+                    Some(s) if (hits, through) == (s.0, s.1) => s.2 + usize::from(s.3 > 0),
                     _ => usize::MAX,
                 };
                 let mut crossed = 0;
@@ -542,14 +555,23 @@ impl Polygon {
                 if crossed >= limit {
                     continue;
                 }
-                let score = (hits, through, crossed);
+                // Letters nearer than the gap: counted only on a tie of the rest.
+                let near = spaced.iter().filter(|b| b.overlaps(&bx)).count();
+                if bound.is_some_and(|s| (hits, through, crossed, near) >= s) {
+                    continue;
+                }
+                let score = (hits, through, crossed, near);
                 best = Some((score, c, bx, leader));
-                if score == (0, 0, 0) {
+                if score == (0, 0, 0, 0) {
                     break;
                 }
             }
             if let Some((_, c, bx, leader)) = best {
                 blockers.push(bx);
+                if self.gap > 0.0 {
+                    let g = Vector::new(self.gap, self.gap);
+                    spaced.push(TextBox { min: bx.min - g, max: bx.max + g });
+                }
                 lines.extend(leader.map(|s| (s, segment_box(s))));
                 out.push(Placed {
                     centre: c + shift,
@@ -1037,11 +1059,17 @@ mod tests {
                 let through =
                     leader.map_or(0, |(a, b)| boxes.iter().chain(&p.obstacles).filter(|x| x.crosses(a, b)).count());
                 let crossed = p.segments.iter().chain(&leaders).filter(|(a, b)| bx.crosses(*a, *b)).count();
-                let score = (hits, through, crossed);
+                let g = Vector::new(p.gap, p.gap);
+                let near = if p.gap > 0.0 {
+                    boxes.iter().filter(|b| TextBox { min: b.min - g, max: b.max + g }.overlaps(&bx)).count()
+                } else {
+                    0
+                };
+                let score = (hits, through, crossed, near);
                 if best.as_ref().is_none_or(|(s, ..)| score < *s) {
                     best = Some((score, c, bx, leader));
                 }
-                if score == (0, 0, 0) {
+                if score == (0, 0, 0, 0) {
                     break;
                 }
             }
@@ -1062,7 +1090,9 @@ mod tests {
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(16);
         let mut crowded = 0;
         for case in 0..800 {
-            let mut p = if case % 2 == 0 { Polygon::of_points() } else { Polygon::of_names() };
+            let p = if case % 2 == 0 { Polygon::of_points() } else { Polygon::of_names() };
+            // A third of them with a gap between letters (force figures' names).
+            let mut p = p.apart(if case % 3 == 0 { 0.1 } else { 0.0 });
             // Points on a small grid (so segments touch box edges exactly) and anywhere.
             // Crowded, and spread out (so that most of the polygon is far from a letter).
             let spread = [1.0, 1.0, 4.0, 12.0][case % 4];

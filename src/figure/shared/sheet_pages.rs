@@ -9,8 +9,10 @@
 //!    own nice scale on each page ([`sheet::fit`]), centred in its panel;
 //! 3. the forces page (with forces): one figure per group in solving order, each at the
 //!    coarsest nice k_f that draws it at least [`FORCE_FIGURE_MIN_MM`] long (so at most twice
-//!    that), captioned with its k_f and with its own scale bar, packed in rows; a linkage's
-//!    table of forces (every applied force, every reaction) packed after them, so that the mechanism page's table holds the kinematics only.
+//!    that), captioned with its k_f and with its own scale bar, packed in rows (or by the
+//!    skyline, a column of figures beside a tall one, where rows cannot hold them); a
+//!    linkage's table of forces (every applied force, every reaction) packed after them, so
+//!    that the mechanism page's table holds the kinematics only.
 //!
 //! This file knows no mechanism: a kind draws its mechanism and describes its polygons.
 
@@ -52,35 +54,39 @@ impl MechanismPage {
     /// scale — beside the table (the table in the right column over the title block) or
     /// above it (the table in a band under it, left of the title block).
     pub fn new(paper: Paper, lo: Vector, hi: Vector, room: Vector, table_rows: usize, title_cells: usize) -> Self {
-        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), 0.0)
+        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), None)
     }
 
-    /// [`MechanismPage::new`] with a detail panel `width` mm wide at the right of the
-    /// mechanism's panel, as high as it (panel 1 of the layout): the mechanism drawn in what
-    /// is left, at the scale that fits it there.
+    /// [`MechanismPage::new`] with a detail panel of outline `detail` (width, height, paper
+    /// mm: its content, as a draftsman sizes a detail view) as panel 1 of the layout: at the
+    /// top of the right column over the table (the mechanism's panel then the whole height
+    /// left of them) when the column holds both, else at the top right of the mechanism's
+    /// panel with the mechanism drawn left of it; whichever draws the mechanism larger (the
+    /// column on a tie).
     pub fn with_detail(
         paper: Paper,
         (lo, hi): (Vector, Vector),
         room: Vector,
         (table_rows, title_cells): (usize, usize),
-        width: f64,
+        detail: Vector,
     ) -> Self {
-        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), width)
+        Self::laid_out(paper, (lo, hi), room, (table_rows, title_cells), Some(detail))
     }
 
-    /// The page, with `aside` mm at the right of the mechanism's panel for a detail panel
-    /// (none for 0).
+    /// The page, with a detail panel of outline `aside` (none for `None`).
     fn laid_out(
         paper: Paper,
         (lo, hi): (Vector, Vector),
         room: Vector,
         (table_rows, title_cells): (usize, usize),
-        aside: f64,
+        aside: Option<Vector>,
     ) -> Self {
         let (sizes, border, right, title) = sheet::page_frame(paper, title_cells);
-        // The mechanism's part of a panel (the detail's strip taken off its right).
-        let main = |b: Bounds| Bounds { min: b.min, max: Point::new(b.max.x - aside, b.max.y) };
+        let strip = aside.map_or(0.0, |a| a.x);
+        // The mechanism's part of a panel (a detail's strip taken off its right).
+        let main = |b: Bounds, strip: f64| Bounds { min: b.min, max: Point::new(b.max.x - strip, b.max.y) };
         let extent = (hi - lo).sup(&Vector::new(1e-300, 1e-300));
+        let table_h = |sets: usize| (table_rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * sizes.text;
         let beside = (
             Bounds { min: border.min, max: Point::new(right, border.max.y) },
             Bounds { min: Point::new(right, title.max.y), max: border.max },
@@ -88,36 +94,76 @@ impl MechanismPage {
         // Above the table: the table in one set of columns, or in two or three side by side
         // (a lower band, a taller panel).
         let above = |sets: usize| {
-            let table_h =
-                (table_rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * sizes.text + 1.2 * sizes.text + 1e-9;
-            let band = table_h.max(title.height()).min(TABLE_BAND_MAX * border.height());
+            let band =
+                (table_h(sets) + 1.2 * sizes.text + 1e-9).max(title.height()).min(TABLE_BAND_MAX * border.height());
             (
                 Bounds { min: Point::new(border.min.x, border.min.y + band), max: border.max },
                 Bounds { min: border.min, max: Point::new(right, border.min.y + band) },
             )
         };
         let scale_in = |panel: Bounds| {
-            let area = Panel::of_outline(main(panel), sizes).area;
+            let area = Panel::of_outline(panel, sizes).area;
             let room = Vector::new(area.width(), area.height()) - 2.0 * room;
             drafting_scale((extent.x / room.x.max(1e-9)).max(extent.y / room.y.max(1e-9)))
         };
-        // The arrangement that draws the mechanism largest; beside the table on a tie.
-        let (mut panel, mut table) = beside;
-        let mut k_l = scale_in(beside.0);
-        for sets in [1, 2, 3] {
-            let (p, t) = above(sets);
-            let k = scale_in(p);
-            if k < k_l * (1.0 - 1e-12) {
-                (panel, table, k_l) = (p, t, k);
+        // The arrangements: (the mechanism's panel, the table, the detail's panel).
+        let mut arrangements: Vec<(Bounds, Bounds, Option<Bounds>)> = Vec::new();
+        // The detail at the top of the right column, the table under it, when both fit.
+        if let Some(a) = aside {
+            let column = beside.1;
+            let foot = column.max.y - a.y;
+            let table = Bounds { min: column.min, max: Point::new(column.max.x, foot) };
+            let fits =
+                a.x <= column.width() + 1e-9 && table.height() >= table_h(1) + 1.2 * sizes.text && table_rows > 0;
+            if fits {
+                let detail = Bounds { min: Point::new(column.min.x, foot), max: column.max };
+                arrangements.push((beside.0, table, Some(detail)));
             }
         }
-        let outline = Panel::of_outline(main(panel), sizes);
+        // The detail at the top of a strip at the page's right, the table under it, the
+        // mechanism's panel left of them down to the title block, when the table fits there.
+        if let Some(a) = aside {
+            let foot = border.max.y - a.y;
+            let table =
+                Bounds { min: Point::new(border.max.x - a.x, title.max.y), max: Point::new(border.max.x, foot) };
+            let one_set = sheet::TABLE_COLUMN_MIN * sizes.text * 3.0 + 1.2 * sizes.text;
+            let fits = table_rows > 0
+                && table.width() >= one_set
+                && table.height() >= table_h(1) + 1.2 * sizes.text
+                && table.min.x > right;
+            if fits {
+                let panel =
+                    Bounds { min: Point::new(border.min.x, title.max.y), max: Point::new(table.min.x, border.max.y) };
+                let detail = Bounds { min: Point::new(table.min.x, foot), max: border.max };
+                arrangements.push((panel, table, Some(detail)));
+            }
+        }
+        // Beside or above the table, the detail (if any) in a strip at the panel's right.
+        for (panel, table) in [beside, above(1), above(2), above(3)] {
+            let detail = aside.map(|a| Bounds {
+                min: Point::new(panel.max.x - strip, (panel.max.y - a.y).max(panel.min.y)),
+                max: panel.max,
+            });
+            arrangements.push((main(panel, strip), table, detail));
+        }
+        // The arrangement that draws the mechanism largest; on a tie, the first, or with a
+        // detail the one with the largest panel for the mechanism (the room the detail's
+        // strip leaves given back to it).
+        let area = |b: &Bounds| b.width() * b.height();
+        let mut best = arrangements[0];
+        let mut k_l = scale_in(best.0);
+        for a in &arrangements[1..] {
+            let k = scale_in(a.0);
+            let larger = aside.is_some() && area(&a.0) > area(&best.0) + 1e-9;
+            if k < k_l * (1.0 - 1e-12) || (k <= k_l * (1.0 + 1e-12) && larger) {
+                (best, k_l) = (*a, k);
+            }
+        }
+        let (panel, table, detail) = best;
+        let outline = Panel::of_outline(panel, sizes);
         let origin = sheet::centre(lo, hi, k_l, outline.area);
         let mut panels = vec![outline];
-        if aside > 0.0 {
-            let strip = Bounds { min: Point::new(panel.max.x - aside, panel.min.y), max: panel.max };
-            panels.push(Panel::of_outline(strip, sizes));
-        }
+        panels.extend(detail.map(|b| Panel::of_outline(b, sizes)));
         let layout = SheetLayout { paper, sizes, border, panels, table, title };
         MechanismPage { layout, k_l, origin }
     }
@@ -233,18 +279,20 @@ pub fn force_figure_scale(size: f64) -> f64 {
 
 impl ForcesPage {
     /// The page of `figures` (one per group, in solving order) with `captions`, and a table of
-    /// `table_rows` rows after them, packed in rows from the top left, clear of the title
-    /// block: each figure at the coarsest nice k_f that
-    /// draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other while the
-    /// page still holds them, at the next finer one (larger figures where there is room);
-    /// the panels then stretched to use the page (`fill`: none smaller than packed), and
-    /// each figure at the finest nice k_f that its final panel holds, the figure and its
-    /// title measured in that panel (`fits_panel`). The figures are packed in solving order
+    /// `table_rows` rows after them, clear of the title block: each figure at the coarsest
+    /// nice k_f that draws it [`FORCE_FIGURE_MIN_MM`] long, then, one figure after the other
+    /// while the page still holds them, at the next finer one (larger figures where there is
+    /// room); the panels then stretched to use the page (none smaller than packed), and each
+    /// figure at the finest nice k_f that its final panel holds, the figure and its title
+    /// measured in that panel (`fits_panel`).
+    ///
+    /// The cells are packed in rows from the top left (`pack`), the figures in solving order
     /// when the page holds them so, else in the first other order that it holds; a page that
-    /// holds them in no order draws the largest figure a nice step coarser, and again, until
-    /// it does (the shaper's dyads at 5 of its 361 positions on A4, 52–60 mm long; they were
-    /// drawn past the border before). A page that still does not hold them (packed anyway)
-    /// is not stretched.
+    /// holds them in rows in no order packs them by the skyline (`pack_skyline`: each cell
+    /// where its foot stays highest, so a column of two figures stands beside a tall one and
+    /// the table beside them: the shaper's crank and dyads at 5 of its 361 positions on A4).
+    /// A page that holds them in neither way draws the largest figure a nice step coarser,
+    /// and again, until it does; one that still does not (packed anyway) is not stretched.
     pub fn new(
         paper: Paper,
         figures: &[ForcePolygon],
@@ -257,91 +305,29 @@ impl ForcesPage {
             .iter()
             .map(|f| Extent::of(f.physical_points()).unwrap_or(Extent { min: Vector::zeros(), max: Vector::zeros() }))
             .collect();
-        let mut scales: Vec<f64> = extents.iter().map(|e| force_figure_scale(e.size())).collect();
-        let cell = |k: f64, e: &Extent, caption: &str| cell_size(k, e, caption, sizes);
-        let cells_at = |scales: &[f64]| -> Vec<Vector> {
-            scales.iter().zip(&extents).zip(captions).map(|((k, e), c)| cell(*k, e, c)).collect()
-        };
-        // The figures, then the table (when it has rows) as one more cell, in one to three
-        // sets of columns: the first arrangement the page holds, the figures in solving
-        // order first, then in the other orders (a tall narrow figure beside two wide ones).
-        let pack_in = |order: &[usize], scales: &[f64]| {
-            let cells = cells_at(scales);
-            let mut all: Vec<Vector> = order.iter().map(|&i| cells[i]).collect();
-            let packed = if table_rows == 0 {
-                pack(&all, border, right, title)
-            } else {
-                (1..=3).find_map(|sets| {
-                    all.push(table_cell(table_rows, sets, sizes));
-                    let p = pack(&all, border, right, title);
-                    all.pop();
-                    p
-                })
-            }?;
-            // Back in the figures' order, the table last.
-            let mut out = packed.clone();
-            for (j, &i) in order.iter().enumerate() {
-                out[i] = packed[j];
-            }
-            Some(out)
-        };
-        let orders = figure_orders(figures.len());
-        let pack_any =
-            |scales: &[f64]| orders.iter().find_map(|order| pack_in(order, scales).map(|o| (order.as_slice(), o)));
-        let mut held = pack_any(&scales);
-        // A page that cannot hold its figures at FORCE_FIGURE_MIN_MM in any order draws the
-        // largest one a nice step coarser, and again, until it holds them (the shaper's
-        // dyads at some positions on A4): smaller figures, never figures off the paper.
-        let mut coarsened = 0;
-        while held.is_none() && coarsened < COARSENED_STEPS_PER_FIGURE * figures.len() {
-            let drawn = |i: usize| {
-                let d = extents[i].sides() / scales[i];
-                d.x * d.y
-            };
-            let Some(largest) =
-                (0..scales.len()).filter(|&i| extents[i].size() > 0.0).max_by(|&i, &j| drawn(i).total_cmp(&drawn(j)))
-            else {
-                break;
-            };
-            scales[largest] = coarser_nice(scales[largest]);
-            held = pack_any(&scales);
-            coarsened += 1;
-        }
-        // Larger figures where there is room, in the order that held them.
-        let mut outlines = held.as_ref().map(|(_, o)| o.clone());
-        if let (Some((order, _)), 0) = (&held, coarsened) {
-            loop {
-                let mut grown = false;
-                for i in 0..scales.len() {
-                    if extents[i].size() == 0.0 {
-                        continue;
-                    }
-                    let mut trial = scales.clone();
-                    trial[i] = finer_nice(scales[i]);
-                    if let Some(o) = pack_in(order, &trial) {
-                        scales = trial;
-                        outlines = Some(o);
-                        grown = true;
-                    }
-                }
-                if !grown {
-                    break;
-                }
-            }
-        }
+        let cells = FigureCells { extents: &extents, captions, sizes, border, right, title, table_rows };
+        let (mut scales, held) = cells.held_scales();
         // A page that holds its figures is stretched to use the page; one that does not
         // (packed anyway, past the border) stays as packed.
-        let held = outlines.is_some();
-        let mut outlines = outlines.unwrap_or_else(|| {
-            let mut cells = cells_at(&scales);
-            if table_rows > 0 {
-                cells.push(table_cell(table_rows, 1, sizes));
+        let mut outlines = match &held {
+            Some((_, Packing::Shelves, o)) => {
+                let mut o = o.clone();
+                fill(&mut o, border, right, title);
+                o
             }
-            pack_anyway(&cells, border)
-        });
-        if held {
-            fill(&mut outlines, border, right, title);
-        }
+            Some((_, Packing::Skyline, o)) => {
+                let mut o = o.clone();
+                spread_into_free(&mut o, border, right, title);
+                o
+            }
+            None => {
+                let mut all = cells.sizes_at(&scales);
+                if table_rows > 0 {
+                    all.push(table_cell(table_rows, 1, sizes));
+                }
+                pack_anyway(&all, border)
+            }
+        };
         // In its final panel a figure may hold a finer scale: the finest it fits there.
         for (i, k) in scales.iter_mut().enumerate() {
             let (Some(o), Some(c)) = (outlines.get(i), captions.get(i)) else { continue };
@@ -352,11 +338,9 @@ impl ForcesPage {
                 *k = finer_nice(*k);
             }
         }
-        let table = if table_rows > 0 && outlines.len() > figures.len() {
-            outlines.pop().unwrap_or(Bounds { min: title.max, max: title.max })
-        } else {
-            Bounds { min: title.max, max: title.max }
-        };
+        let none = Bounds { min: title.max, max: title.max };
+        let table =
+            if table_rows > 0 && outlines.len() > figures.len() { outlines.pop().unwrap_or(none) } else { none };
         let panels: Vec<Panel> = outlines.iter().map(|b| Panel::of_outline(*b, sizes)).collect();
         let places = scales
             .iter()
@@ -450,6 +434,131 @@ pub fn forces_page(
     let mut d = sheet::page(&page.layout, &title, table, &page.titles(captions));
     page.draw(&mut d, figures);
     d
+}
+
+/// How a forces page's cells are packed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Packing {
+    /// In rows from the top left ([`pack`]), stretched by [`fill`].
+    Shelves,
+    /// Each where its foot stays highest ([`pack_skyline`]), stretched by
+    /// [`spread_into_free`].
+    Skyline,
+}
+
+/// A page that holds its cells: the figures' order, the packing, the cells (the figures'
+/// in their own order, the table's last).
+type Held = (Vec<usize>, Packing, Vec<Bounds>);
+
+/// The cells of a forces page's figures and table, and the page they go on.
+struct FigureCells<'a> {
+    /// Each figure's physical extent, N.
+    extents: &'a [Extent],
+    /// Each figure's caption.
+    captions: &'a [String],
+    sizes: Sizes,
+    border: Bounds,
+    /// The title block's left edge.
+    right: f64,
+    title: Bounds,
+    /// The rows of the forces' table (none: no table cell).
+    table_rows: usize,
+}
+
+impl FigureCells<'_> {
+    /// Each figure's cell at `scales`.
+    fn sizes_at(&self, scales: &[f64]) -> Vec<Vector> {
+        scales.iter().zip(self.extents).zip(self.captions).map(|((k, e), c)| cell_size(*k, e, c, self.sizes)).collect()
+    }
+
+    /// The figures at `scales` in `order`, then the table (when it has rows) as one more cell
+    /// in one to three sets of columns, packed by `packing`: the first arrangement the page
+    /// holds, the cells back in the figures' order (the table last).
+    fn pack_in(&self, order: &[usize], scales: &[f64], packing: Packing) -> Option<Vec<Bounds>> {
+        let (border, right, title) = (self.border, self.right, self.title);
+        let pack_with = |all: &[Vector]| match packing {
+            Packing::Shelves => pack(all, border, right, title),
+            Packing::Skyline => pack_skyline(all, border, right, title),
+        };
+        let cells = self.sizes_at(scales);
+        let mut all: Vec<Vector> = order.iter().map(|&i| cells[i]).collect();
+        let packed = if self.table_rows == 0 {
+            pack_with(&all)
+        } else {
+            (1..=3).find_map(|sets| {
+                all.push(table_cell(self.table_rows, sets, self.sizes));
+                let p = pack_with(&all);
+                all.pop();
+                p
+            })
+        }?;
+        let mut out = packed.clone();
+        for (j, &i) in order.iter().enumerate() {
+            out[i] = packed[j];
+        }
+        Some(out)
+    }
+
+    /// The first order and packing that holds the figures at `scales`: in rows in solving
+    /// order, in rows in another order, then by the skyline in each order.
+    fn pack_any(&self, orders: &[Vec<usize>], scales: &[f64]) -> Option<Held> {
+        [Packing::Shelves, Packing::Skyline].into_iter().find_map(|packing| {
+            orders.iter().find_map(|order| self.pack_in(order, scales, packing).map(|o| (order.clone(), packing, o)))
+        })
+    }
+
+    /// The figures' scales and the page that holds them: each at its least-size scale
+    /// ([`force_figure_scale`]); when no packing holds them, the largest drawn a nice step
+    /// coarser until one does (never figures off the paper); when one held them at once,
+    /// each figure a nice step finer while the page, packed the same way, still holds them.
+    fn held_scales(&self) -> (Vec<f64>, Option<Held>) {
+        let n = self.extents.len();
+        let mut scales: Vec<f64> = self.extents.iter().map(|e| force_figure_scale(e.size())).collect();
+        let orders = figure_orders(n);
+        let mut held = self.pack_any(&orders, &scales);
+        let mut coarsened = 0;
+        while held.is_none() && coarsened < COARSENED_STEPS_PER_FIGURE * n {
+            let drawn = |i: usize| {
+                let d = self.extents[i].sides() / scales[i];
+                d.x * d.y
+            };
+            let Some(largest) =
+                (0..n).filter(|&i| self.extents[i].size() > 0.0).max_by(|&i, &j| drawn(i).total_cmp(&drawn(j)))
+            else {
+                break;
+            };
+            scales[largest] = coarser_nice(scales[largest]);
+            held = self.pack_any(&orders, &scales);
+            coarsened += 1;
+        }
+        if let (Some((order, packing, outlines)), 0) = (&mut held, coarsened) {
+            self.grow(order, *packing, &mut scales, outlines);
+        }
+        (scales, held)
+    }
+
+    /// Larger figures where there is room: each figure a nice step finer, again and again,
+    /// while the page packed in `order` by `packing` still holds them (`outlines` the cells).
+    fn grow(&self, order: &[usize], packing: Packing, scales: &mut Vec<f64>, outlines: &mut Vec<Bounds>) {
+        loop {
+            let mut grown = false;
+            for i in 0..scales.len() {
+                if self.extents[i].size() == 0.0 {
+                    continue;
+                }
+                let mut trial = scales.clone();
+                trial[i] = finer_nice(scales[i]);
+                if let Some(o) = self.pack_in(order, &trial, packing) {
+                    *scales = trial;
+                    *outlines = o;
+                    grown = true;
+                }
+            }
+            if !grown {
+                return;
+            }
+        }
+    }
 }
 
 /// The orders a forces page tries its `n` figures in: solving order first, then every
@@ -662,6 +771,90 @@ fn pack_anyway(sizes: &[Vector], border: Bounds) -> Vec<Bounds> {
         .collect()
 }
 
+/// Cells of `sizes` packed by the skyline from the top of `border`: each, in turn, at the
+/// left end of a stretch of the skyline (the feet of the cells above, or the border's top)
+/// where its foot comes highest (leftmost on a tie), inside the border and clear of the
+/// title block (its top at `title.max.y`, its left edge at `right`): a column of two figures
+/// beside a tall one, the table beside or under them. `None` when they do not fit.
+fn pack_skyline(sizes: &[Vector], border: Bounds, right: f64, title: Bounds) -> Option<Vec<Bounds>> {
+    const EPS: f64 = 1e-9;
+    // The skyline: stretches (x from, x to, the level free below), left to right.
+    let mut sky: Vec<(f64, f64, f64)> = vec![(border.min.x, border.max.x, border.max.y)];
+    let mut out = Vec::with_capacity(sizes.len());
+    for size in sizes {
+        let mut best: Option<(f64, f64)> = None;
+        for &(x, _, _) in &sky {
+            let end = x + size.x;
+            if end > border.max.x + EPS {
+                break;
+            }
+            let top =
+                sky.iter().filter(|s| s.0 < end - EPS && s.1 > x + EPS).map(|s| s.2).fold(f64::INFINITY, f64::min);
+            let foot = top - size.y;
+            let off_title = end <= right + EPS || foot >= title.max.y - EPS;
+            if foot >= border.min.y - EPS && off_title && best.is_none_or(|(f, _)| foot > f + EPS) {
+                best = Some((foot, x));
+            }
+        }
+        let (foot, x) = best?;
+        let end = x + size.x;
+        out.push(Bounds { min: Point::new(x, foot), max: Point::new(end, foot + size.y) });
+        // The stretches under the cell cut away, the cell's foot put in their place.
+        let mut next: Vec<(f64, f64, f64)> = Vec::with_capacity(sky.len() + 2);
+        for &(a, b, level) in &sky {
+            if b <= x + EPS || a >= end - EPS {
+                next.push((a, b, level));
+                continue;
+            }
+            if a < x - EPS {
+                next.push((a, x, level));
+            }
+            if b > end + EPS {
+                next.push((end, b, level));
+            }
+        }
+        next.push((x, end, foot));
+        next.sort_by(|p, q| p.0.total_cmp(&q.0));
+        sky.clear();
+        for s in next {
+            match sky.last_mut() {
+                Some(last) if (last.2 - s.2).abs() <= EPS => last.1 = s.1,
+                _ => sky.push(s),
+            }
+        }
+    }
+    Some(out)
+}
+
+/// Stretches cells packed by [`pack_skyline`] into the free room beside and under them: each
+/// cell's right edge out to the next cell on its right (or the border, or the title block's
+/// left edge where the cell comes down beside it), then each cell's foot down to the next
+/// cell under it (or the border's foot, or the title block's top where the cell stands over
+/// it). No cell gets smaller, none overlaps another.
+fn spread_into_free(cells: &mut [Bounds], border: Bounds, right: f64, title: Bounds) {
+    const EPS: f64 = 1e-9;
+    for i in 0..cells.len() {
+        let c = cells[i];
+        let mut end = if c.min.y < title.max.y - EPS { right } else { border.max.x };
+        for (j, b) in cells.iter().enumerate() {
+            if j != i && b.min.y < c.max.y - EPS && b.max.y > c.min.y + EPS && b.min.x >= c.max.x - EPS {
+                end = end.min(b.min.x);
+            }
+        }
+        cells[i].max.x = end.max(c.max.x);
+    }
+    for i in 0..cells.len() {
+        let c = cells[i];
+        let mut foot = if c.max.x > right + EPS { title.max.y } else { border.min.y };
+        for (j, b) in cells.iter().enumerate() {
+            if j != i && b.min.x < c.max.x - EPS && b.max.x > c.min.x + EPS && b.max.y <= c.min.y + EPS {
+                foot = foot.max(b.max.y);
+            }
+        }
+        cells[i].min.y = foot.min(c.min.y);
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -732,6 +925,16 @@ mod tests {
         out
     }
 
+    /// The cells of `set`'s figures at their least-size scales on `paper`.
+    fn least_cells(set: &[ForcePolygon], paper: Paper) -> Vec<Vector> {
+        set.iter()
+            .map(|f| {
+                let e = Extent::of(f.physical_points()).unwrap();
+                cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
+            })
+            .collect()
+    }
+
     #[test]
     fn stretching_never_makes_a_cell_smaller_than_it_was_packed() {
         for paper in [Paper::A4, Paper::A3] {
@@ -739,13 +942,7 @@ mod tests {
             for set in figure_sets() {
                 // As packed (or packed anyway, past the border, when the page does not hold
                 // them): sizes of every kind of figure cell.
-                let mut sizes: Vec<Vector> = set
-                    .iter()
-                    .map(|f| {
-                        let e = Extent::of(f.physical_points()).unwrap();
-                        cell_size(force_figure_scale(e.size()), &e, "Dyad 2–3 (RRR)", paper.sizes())
-                    })
-                    .collect();
+                let mut sizes: Vec<Vector> = least_cells(&set, paper);
                 // And the forces' table after them (a linkage's), in the last row.
                 if set.len() % 2 == 1 {
                     sizes.push(table_cell(14 + set.len(), 1, paper.sizes()));
@@ -754,23 +951,10 @@ mod tests {
                 let Some(packed) = pack(&sizes, border, right, title) else { continue };
                 let mut cells = packed.clone();
                 fill(&mut cells, border, right, title);
-                let overlap = |a: &Bounds, b: &Bounds| {
-                    (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).min(a.max.y.min(b.max.y) - a.min.y.max(b.min.y))
-                };
                 for (c, p) in cells.iter().zip(&packed) {
                     assert!(c.width() >= p.width() - 1e-9 && c.height() >= p.height() - 1e-9, "{c:?} < {p:?}");
-                    // Off the title block and inside the border.
-                    {
-                        assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
-                        assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
-                        assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
-                    }
                 }
-                for (i, a) in cells.iter().enumerate() {
-                    for b in &cells[i + 1..] {
-                        assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
-                    }
-                }
+                assert_laid_out(&cells, border, title);
             }
         }
     }
@@ -820,6 +1004,115 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_skyline_keeps_cells_apart_inside_the_border_and_off_the_title_block_and_stretching_shrinks_none() {
+        for paper in [Paper::A4, Paper::A3] {
+            let (_, border, right, title) = sheet::page_frame(paper, 6);
+            let mut packed_sets = 0;
+            for set in figure_sets() {
+                let mut sizes: Vec<Vector> = least_cells(&set, paper);
+                sizes.push(table_cell(14 + set.len(), 1 + set.len() % 3, paper.sizes()));
+                let Some(packed) = pack_skyline(&sizes, border, right, title) else { continue };
+                packed_sets += 1;
+                let mut cells = packed.clone();
+                spread_into_free(&mut cells, border, right, title);
+                for ((c, p), size) in cells.iter().zip(&packed).zip(&sizes) {
+                    assert!((p.width() - size.x).abs() <= 1e-9 && (p.height() - size.y).abs() <= 1e-9, "{p:?}");
+                    assert!(c.min.x <= p.min.x + 1e-9 && c.min.y <= p.min.y + 1e-9, "{c:?} < {p:?}");
+                    assert!(c.max.x >= p.max.x - 1e-9 && c.max.y >= p.max.y - 1e-9, "{c:?} < {p:?}");
+                }
+                assert_laid_out(&cells, border, title);
+            }
+            assert!(packed_sets >= 10, "{packed_sets} sets packed on {}", paper.name());
+        }
+    }
+
+    /// Cells inside the border, off the title block, none on another.
+    fn assert_laid_out(cells: &[Bounds], border: Bounds, title: Bounds) {
+        for (i, c) in cells.iter().enumerate() {
+            assert!(overlap(c, &title) <= 1e-9, "{c:?} over the title block {title:?}");
+            assert!(c.min.x >= border.min.x - 1e-9 && c.max.x <= border.max.x + 1e-9, "{c:?}");
+            assert!(c.min.y >= border.min.y - 1e-9 && c.max.y <= border.max.y + 1e-9, "{c:?}");
+            for b in &cells[i + 1..] {
+                assert!(overlap(c, b) <= 1e-9, "{c:?} overlaps {b:?}");
+            }
+        }
+    }
+
+    /// How far two boxes overlap (their overlap's smaller side; ≤ 0 when apart).
+    fn overlap(a: &Bounds, b: &Bounds) -> f64 {
+        (a.max.x.min(b.max.x) - a.min.x.max(b.min.x)).min(a.max.y.min(b.max.y) - a.min.y.max(b.min.y))
+    }
+
+    #[test]
+    fn a_column_of_two_figures_beside_a_tall_one_holds_what_rows_cannot_at_60_mm() {
+        // The shaper's forces page at t = 0.5694 s on A4: the crank's and dyad 2–3's figures
+        // about 1500 N wide (k_f = 20 N/mm, 75 mm), dyad 4–5's 577 × 500 N (k_f = 5 N/mm,
+        // 115 mm: the next nice scale, 10, would draw it 57.7 mm), and a table of 19 rows.
+        let set = [triangle(1500.0, 900.0), triangle(1480.0, 716.0), triangle(577.0, 500.0)];
+        let captions: Vec<String> =
+            ["Crank 1 (driver)", "Dyad 2–3 (RPR)", "Dyad 4–5 (RRP)"].iter().map(|c| c.to_string()).collect();
+        let (sizes, border, right, title) = sheet::page_frame(Paper::A4, 6);
+        let extents: Vec<Extent> = set.iter().map(|f| Extent::of(f.physical_points()).unwrap()).collect();
+        let cells = FigureCells { extents: &extents, captions: &captions, sizes, border, right, title, table_rows: 19 };
+        let least: Vec<f64> = extents.iter().map(|e| force_figure_scale(e.size())).collect();
+        let orders = figure_orders(3);
+        // In rows they fit in no order (the page drew dyad 4–5 at 57 mm before).
+        assert!(orders.iter().all(|o| cells.pack_in(o, &least, Packing::Shelves).is_none()));
+        let (_, held) = cells.held_scales();
+        assert_eq!(held.map(|h| h.1), Some(Packing::Skyline));
+        let page = ForcesPage::new(Paper::A4, &set, &captions, 6, 19);
+        for ((k, _), e) in page.places.iter().zip(&extents) {
+            assert!(e.size() / k >= FORCE_FIGURE_MIN_MM - 1e-9, "{} mm at k_f = {k}", e.size() / k);
+        }
+        let mut all: Vec<Bounds> = page.layout.panels.iter().map(|p| p.outline).collect();
+        all.push(page.layout.table);
+        for (i, a) in all.iter().enumerate() {
+            assert!(overlap(a, &page.layout.title) <= 1e-9, "{a:?} over the title block");
+            for b in &all[i + 1..] {
+                assert!(overlap(a, b) <= 1e-9, "{a:?} overlaps {b:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn a_detail_panel_is_as_large_as_its_content_and_the_room_it_leaves_goes_to_the_mechanism_and_the_table() {
+        // triad-driven on A4: 154.7 × 95.2 mm of motion, its crank's detail 77.5 × 84.9 mm,
+        // a table of 7 rows.
+        let (lo, hi) = (Vector::new(-20.0, -10.0), Vector::new(134.7, 85.2));
+        let room = Vector::new(6.0, 5.5);
+        let detail = Vector::new(77.5, 84.9);
+        let plain = MechanismPage::new(Paper::A4, lo, hi, room, 7, 6);
+        for (rows, size) in [(7, detail), (7, Vector::new(60.0, 70.0)), (30, detail), (7, Vector::new(95.0, 120.0))] {
+            let page = MechanismPage::with_detail(Paper::A4, (lo, hi), room, (rows, 6), size);
+            let l = &page.layout;
+            let (main, dt) = (l.panels[0].outline, l.panels[1].outline);
+            // The detail's panel its content's size, not a strip the page's height.
+            assert!((dt.height() - size.y).abs() <= 1e-9 && dt.width() >= size.x - 1e-9, "{dt:?} for {size:?}");
+            // Nothing on anything else, everything inside the border.
+            let all = [main, dt, l.table, l.title];
+            for (i, a) in all.iter().enumerate() {
+                assert!(a.min.x >= l.border.min.x - 1e-9 && a.max.x <= l.border.max.x + 1e-9, "{a:?}");
+                assert!(a.min.y >= l.border.min.y - 1e-9 && a.max.y <= l.border.max.y + 1e-9, "{a:?}");
+                for b in &all[i + 1..] {
+                    assert!(overlap(a, b) <= 1e-9, "{a:?} on {b:?}");
+                }
+            }
+            // The table holds its rows where it is.
+            let table_h = (rows + 1) as f64 * sheet::TABLE_ROW * l.sizes.text + 1.2 * l.sizes.text;
+            let sets = sheet::table_sets(l.table, rows, 3, l.sizes);
+            assert!(((rows.div_ceil(sets) + 1) as f64 * sheet::TABLE_ROW * l.sizes.text) <= l.table.height(), "{rows}");
+            assert!(sets == 1 || l.table.height() < table_h, "{rows} rows in {sets} sets");
+        }
+        // Here the mechanism keeps its scale and gets a taller panel than it had with the
+        // detail a strip the page's height (151 mm), the table under the detail.
+        let page = MechanismPage::with_detail(Paper::A4, (lo, hi), room, (7, 6), detail);
+        assert_eq!(page.k_l, plain.k_l);
+        assert!(page.layout.panels[0].outline.height() > 160.0, "{:?}", page.layout.panels[0].outline);
+        assert!(page.layout.table.max.y <= page.layout.panels[1].outline.min.y + 1e-9);
+        assert!(page.layout.table.min.x >= page.layout.panels[1].outline.min.x - 1e-9);
     }
 
     #[test]
