@@ -14,8 +14,9 @@
 //! labels, numbers, legend), `PLOT_DATA` (the curves, one colour per series; bars).
 
 use crate::draw::parts::text_width;
+use crate::draw::runs::{Run, RunKind, Runs};
 use crate::draw::{Aci, DimStyle, Drawing, HAlign, LineType, Shape, VAlign};
-use crate::figure::shared::labels::{TextBox, first_free};
+use crate::figure::shared::labels::{Label, TextBox, first_free};
 use crate::geom::Point;
 
 /// One curve of a diagram.
@@ -224,6 +225,47 @@ fn text(d: &mut Drawing, layer: usize, at: Point, h: f64, s: &str, (halign, vali
     );
 }
 
+/// An axis label (`TEXT_H` high) drawn with its runs.
+fn labelled(d: &mut Drawing, layer: usize, at: Point, label: Label, align: (HAlign, VAlign), rotation: f64) {
+    let Label { text: value, runs } = label;
+    let (halign, valign) = align;
+    d.add(layer, Shape::Text { runs, at, height: TEXT_H, value, halign, valign, rotation });
+}
+
+/// The symbols whose axis label ([`axis_label`]) is a quantity with a subscript: angles,
+/// angular rates, lengths, velocities, accelerations, forces and moments.
+const QUANTITY_SYMBOLS: &str = "φψωεγsxyvaRMF";
+
+/// An axis label `name [unit]` as a textbook writes it: a quantity's name (`φ1`, `vE`,
+/// `|aE|`, `ω2`, `Me1`) with its index as a subscript ([`Label::quantity`]); a name marked
+/// with `_` (`|R_O1|`, `γ_min`) with all that follows the `_` (the joint's name as the user
+/// wrote it) as the subscript; anything else (`count`, `offset e`, `Δy = y(linkage) −
+/// f(x)`, a chain's dimension) flat. The text stays as written.
+fn axis_label(label: &str) -> Label {
+    let name = label.rsplit_once(" [").map_or(label, |(n, _)| n);
+    if name.contains(' ') {
+        return Label::from(label);
+    }
+    let bare = name.trim_start_matches('|').trim_end_matches('|');
+    if let Some(i) = name.find('_') {
+        let end = name.trim_end_matches('|').len();
+        if i + 1 < end {
+            let runs = Runs(vec![
+                Run { end: i, kind: RunKind::Base },
+                Run { end: i + 1, kind: RunKind::Flat },
+                Run { end, kind: RunKind::Sub },
+            ]);
+            return Label { text: label.to_string(), runs };
+        }
+        return Label::from(label);
+    }
+    let symbol = bare.chars().next();
+    if bare.chars().count() < 2 || !symbol.is_some_and(|c| QUANTITY_SYMBOLS.contains(c)) {
+        return Label::from(label);
+    }
+    Label { text: label.to_string(), runs: Label::quantity(name).runs }
+}
+
 /// Draws the frame, grid, ticks, numbers, labels and title for axes `xt` × `yt` (`xt`
 /// `None`: the x axis runs over [0, `slots`] with no ticks, its categories drawn by the
 /// caller); returns the map from data to paper coordinates.
@@ -281,17 +323,11 @@ fn axes(
         },
     );
     let label_y = -TICK - 1.6 * NUMBER_H - TEXT_H - 1.0;
-    text(d, l.text, Point::new(PLOT_WIDTH / 2.0, label_y), TEXT_H, x_label, (HAlign::Center, VAlign::Top), 0.0);
+    let at = Point::new(PLOT_WIDTH / 2.0, label_y);
+    labelled(d, l.text, at, axis_label(x_label), (HAlign::Center, VAlign::Top), 0.0);
     let label_x = -TICK - 1.0 - widest - 2.0 * TEXT_H;
-    text(
-        d,
-        l.text,
-        Point::new(label_x, PLOT_HEIGHT / 2.0),
-        TEXT_H,
-        y_label,
-        (HAlign::Center, VAlign::Baseline),
-        std::f64::consts::FRAC_PI_2,
-    );
+    let at = Point::new(label_x, PLOT_HEIGHT / 2.0);
+    labelled(d, l.text, at, axis_label(y_label), (HAlign::Center, VAlign::Baseline), std::f64::consts::FRAC_PI_2);
     text(
         d,
         l.text,
@@ -323,7 +359,7 @@ fn is_degrees(label: &str) -> bool {
 pub struct Level {
     /// Its ordinate (data units); the y axis is widened to show it.
     pub y: f64,
-    /// Its label (`limit 40°`).
+    /// Its label (`limit 40°`); a `_` marks a subscript (`γ_min`: min drawn as one).
     pub label: String,
 }
 
@@ -334,7 +370,8 @@ pub struct Mark {
     pub x: f64,
     /// Ordinate (data units).
     pub y: f64,
-    /// Its label (`γ_min = 23.07° at φ1 = 0°`).
+    /// Its label (`γ_min = 23.07° at φ1 = 0°`); a `_` marks a subscript (`γ_min`: min
+    /// drawn as one, the `_` kept where the text is read flat).
     pub label: String,
 }
 
@@ -487,7 +524,7 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
             .flat_map(|k| {
                 let x = PLOT_WIDTH - 1.0 - k as f64 * PLOT_WIDTH / 8.0;
                 [(y + 1.0, VAlign::Baseline), (y - 1.0, VAlign::Top)].map(|(y, valign)| Shape::Text {
-                    runs: crate::draw::Runs::flat(),
+                    runs: Runs::underscored(&v.label),
                     at: Point::new(x, y),
                     height: TEXT_H,
                     value: v.label.clone(),
@@ -530,7 +567,7 @@ fn draw_marks(dr: &mut Drawing, l: &PlotLayers, levels: &[&Level], marks: &Marks
                 for far in [1.0, 1.5, 2.0] {
                     let at = Point::new(p.x + side * far * PLOT_WIDTH / 8.0, p.y + k * 1.6 * TEXT_H);
                     let t = Shape::Text {
-                        runs: crate::draw::Runs::flat(),
+                        runs: Runs::underscored(&m.label),
                         at,
                         height: TEXT_H,
                         value: m.label.clone(),
@@ -731,6 +768,23 @@ pub fn bars(b: &Bars) -> Drawing {
 )]
 mod tests {
     use super::*;
+
+    #[test]
+    fn axis_labels_subscript_a_quantitys_index_and_leave_words_flat() {
+        let subs = |label: &str| -> Vec<String> {
+            let l = axis_label(label);
+            assert_eq!(l.text, label, "the text stays as written");
+            l.runs.split(&l.text).filter(|(_, k)| *k == RunKind::Sub).map(|(p, _)| p.to_string()).collect()
+        };
+        assert_eq!(subs("φ1 [°]"), ["1"]);
+        assert_eq!(subs("|aE| [m/s²]"), ["E"]);
+        assert_eq!(subs("Me1 [N·m]"), ["e1"]);
+        assert_eq!(subs("|R_ram-guide| [N]"), ["ram-guide"]);
+        assert_eq!(subs("γ_min [°]"), ["min"]);
+        for flat in ["count", "x", "γ [°]", "offset e [mm]", "Δy = y(linkage) − f(x)", "gap [mm]", "Z [mm]"] {
+            assert!(subs(flat).is_empty(), "{flat}");
+        }
+    }
 
     #[test]
     fn a_marked_diagram_shows_its_level_and_its_mark_inside_the_frame() {
