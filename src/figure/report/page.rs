@@ -212,37 +212,64 @@ pub fn fitted(value: &str, height: f64, room: f64, s: Sizes) -> (f64, String) {
 }
 
 /// A text fitted into `room` mm ([`fitted`]), its middle at `at`'s height; its scales'
-/// symbols drawn as the sheets draw them ([`scale_symbols`]) unless it had to be cut.
+/// symbols drawn as the sheets draw them ([`symbols`]) unless it had to be cut.
 #[allow(clippy::too_many_arguments)]
 pub fn text_in(d: &mut Drawing, l: usize, at: Point, height: f64, room: f64, value: &str, halign: HAlign, s: Sizes) {
     let (h, v) = fitted(value, height, room, s);
     if v == value {
-        text(d, l, at, h, scale_symbols(&v), halign);
+        text(d, l, at, h, symbols(&v), halign);
     } else {
         text(d, l, at, h, &v, halign);
     }
 }
 
-/// The scales' symbols that [`scale_symbols`] draws with a subscript: `k_l`, `k_F`, `k_f`,
-/// `k_v`, `k_a`.
+/// The scales' symbols that [`symbols`] draws with a subscript: `k_l`, `k_F`, `k_f`, `k_v`,
+/// `k_a`.
 const SCALE_INDICES: &str = "lFfva";
 
-/// `value` with its scales' symbols (`k_l = 15 mm/mm`, `k_F`) drawn as the sheets draw
-/// them: the index a subscript in SVG and PDF, the `_` kept in the DXF's flat text. Every
-/// other `_` is drawn as written (a scene's or a body's name: `my_rod`). Measured flat,
-/// the text is never narrower than drawn.
-pub fn scale_symbols(value: &str) -> Label {
+/// The angles and their rates that [`symbols`] draws with their index as a subscript
+/// (`φ1`, `ω1`, `ε2`, `ψ3`, `θ1`, `γ_min`).
+const INDEXED_GREEK: &str = "φψωεθγ";
+
+/// `value` with the report's quantity symbols drawn as the sheets draw them: the scales'
+/// (`k_l = 15 mm/mm`, `k_F`: the index a subscript in SVG and PDF, the `_` kept in the DXF's
+/// flat text) and the angles' and rates' (`φ1 = 90°`, `ω1`, `γ_min`: what follows the
+/// letter a subscript, the text as written). Every other `_` and digit is drawn as written
+/// (a scene's or a body's name: `my_rod`, `O1`). Measured flat, the text is never narrower
+/// than drawn.
+pub fn symbols(value: &str) -> Label {
     let mut runs = Vec::new();
-    for (i, _) in value.match_indices("k_") {
-        let mut after = value[i + 2..].chars();
-        let Some(index) = after.next().filter(|c| SCALE_INDICES.contains(*c)) else { continue };
-        let alone = |c: Option<char>| !c.is_some_and(char::is_alphanumeric);
-        if !alone(after.next()) || !alone(value[..i].chars().next_back()) {
+    let alone = |c: Option<char>| !c.is_some_and(char::is_alphanumeric);
+    for (i, c) in value.char_indices() {
+        if !alone(value[..i].chars().next_back()) {
             continue;
         }
-        runs.push(Run { end: i + 1, kind: RunKind::Base });
-        runs.push(Run { end: i + 2, kind: RunKind::Flat });
-        runs.push(Run { end: i + 2 + index.len_utf8(), kind: RunKind::Sub });
+        let rest = &value[i + c.len_utf8()..];
+        // The index's start (after any `_`) and end, in `value`.
+        let index = if c == 'k' {
+            let mut after = rest.chars();
+            match (after.next(), after.next(), after.next()) {
+                (Some('_'), Some(x), next) if SCALE_INDICES.contains(x) && alone(next) => {
+                    Some((i + 2, i + 2 + x.len_utf8()))
+                }
+                _ => None,
+            }
+        } else if INDEXED_GREEK.contains(c) {
+            let from = i + c.len_utf8() + usize::from(rest.starts_with('_'));
+            let len = value[from..].find(|x: char| !x.is_alphanumeric()).unwrap_or(value.len() - from);
+            let marked = rest.starts_with('_');
+            let digits = value[from..from + len].chars().all(|x| x.is_ascii_digit());
+            (len > 0 && (marked || digits)).then_some((from, from + len))
+        } else {
+            None
+        };
+        let Some((from, end)) = index else { continue };
+        let letter_end = i + c.len_utf8();
+        runs.push(Run { end: letter_end, kind: RunKind::Base });
+        if from > letter_end {
+            runs.push(Run { end: from, kind: RunKind::Flat });
+        }
+        runs.push(Run { end, kind: RunKind::Sub });
     }
     Label { text: value.to_string(), runs: Runs(runs) }
 }
@@ -385,16 +412,19 @@ mod tests {
     use super::*;
 
     #[test]
-    fn scale_symbols_are_subscripted_and_users_underscores_kept() {
+    fn quantity_symbols_are_subscripted_and_users_names_kept() {
         let parts =
             |l: &Label| -> Vec<(String, RunKind)> { l.runs.split(&l.text).map(|(p, k)| (p.to_string(), k)).collect() };
-        let l = scale_symbols("groups: k_l = 15 mm/mm, k_F = 2 N/mm");
-        assert_eq!(l.text, "groups: k_l = 15 mm/mm, k_F = 2 N/mm");
-        let subs: Vec<String> = parts(&l).into_iter().filter(|(_, k)| *k == RunKind::Sub).map(|(p, _)| p).collect();
-        assert_eq!(subs, ["l", "F"]);
-        // A user's name, a longer word, a symbol glued to a word: as written.
-        for flat in ["my_rod", "k_lever = 2", "ak_l = 1", "k_x = 1"] {
-            assert!(scale_symbols(flat).runs.is_flat(), "{flat}");
+        let subs = |v: &str| -> Vec<String> {
+            let l = symbols(v);
+            assert_eq!(l.text, v, "the text stays as written");
+            parts(&l).into_iter().filter(|(_, k)| *k == RunKind::Sub).map(|(p, _)| p).collect()
+        };
+        assert_eq!(subs("groups: k_l = 15 mm/mm, k_F = 2 N/mm"), ["l", "F"]);
+        assert_eq!(subs("Position 3: φ1 = 90°, ω1 = 6.283 rad/s; γ_min = 23°"), ["1", "1", "min"]);
+        // A user's name, a longer word, a symbol glued to a word, a point: as written.
+        for flat in ["my_rod", "k_lever = 2", "ak_l = 1", "k_x = 1", "O1A", "Δφ = 60°", "aφ1"] {
+            assert!(symbols(flat).runs.is_flat(), "{flat}");
         }
     }
 
