@@ -287,10 +287,92 @@ pub(super) fn motion_report<'a>(
     };
     let mut general = Solver::new(mech.clone()).map_err(serr)?;
     let strokes = run::guided_strokes(scene, &mut general, &states).map_err(serr)?;
-    let mut warnings = Vec::new();
-    // The dead positions: the guided points' extremes, else a measured body angle's.
+    let extremes = dead_extremes(scene, &mut assur, &states, &strokes);
+    let mut solved = Solved { states, forces, extra: Vec::new(), extra_forces: Vec::new() };
+    let (dead, warnings) = solve_dead(&mut assur, &mut solved, extremes, dynamics);
+    let times: Vec<f64> = solved.states.iter().map(|s| s.t).collect();
+    let (chosen, plan_idx, base) = choose(scene, opts, &times, &dead)?;
+    let plan: Vec<(String, Vec<f64>)> =
+        plan_idx.iter().enumerate().map(|(i, &k)| ((i + base).to_string(), solved.states[k].q.clone())).collect();
+    let dead_drawn: Vec<(String, Vec<f64>)> = dead
+        .iter()
+        .enumerate()
+        .map(|(i, d)| (crate::solve::linkage::structure::roman(i as u32 + 1), d.q.clone()))
+        .collect();
+    let sk = sketch(scene);
+    let numbered = numbered_point(&sk, &solved.states[0].q);
+    let unit = scene.units.length();
+    let (dimensions, notes) = plan_marks(scene, &strokes, &dead, &plan_idx, base, &times);
+    let structure = Structure::of(mech, Some(&solved.states[0].q));
+    let lists = kinematic_lists(scene);
+    let kin_label = format!("t = {} s", motion::trimmed(times[plan_idx.first().copied().unwrap_or(0)]));
+    // The diagrams of the run, with the chosen positions' points.
+    let diagrams = marked_diagrams(scene, &solved, &strokes, &chosen);
+    let table = chosen_table(scene, &solved, &chosen);
+    // The kinematic diagram's own drafting scale, for the sheets to share.
+    let kin_scale = {
+        let motion: Vec<&[f64]> = solved.states.iter().map(|s| s.q.as_slice()).collect();
+        let q0 = plan.first().map_or(&[][..], |(_, q)| q.as_slice());
+        let probe = crate::figure::report::kinematic::KinematicPage {
+            sketch: &sk,
+            q: q0,
+            motion: &motion,
+            position: kin_label.clone(),
+            unit,
+            lists: lists.clone(),
+            held: None,
+        };
+        crate::figure::report::kinematic::scale(&frame.frame, &probe)
+    };
+    let pages = PositionPages::new(scene, &frame, &solved, &strokes, kin_scale);
+    let (drafting, per_position) = (pages.drafting, pages.per_position());
+    let motion: Vec<Vec<f64>> = solved.states.iter().map(|s| s.q.clone()).collect();
+    let fb = (sk.clone(), structure.clone(), frame.clone());
+    let draw_position = pages.drawer(scene, Arc::new(solved), &strokes, fb);
+    let summary = serde_json::json!({
+        "kind": "linkage",
+        "mobility": structure.mobility.formula,
+        "mobility_at_placement": structure.mobility.actual,
+        "groups": groups_json(&structure, mech),
+        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "t": c.drive})).collect::<Vec<_>>(),
+    });
+    let r = MotionReport {
+        frame,
+        title: (
+            "Graph-analytical analysis of a planar linkage".into(),
+            format!("linkage {} ({} bodies, {} joints)", scene.name, mech.bodies.len(), mech.joints.len()),
+            data(scene),
+        ),
+        sketch: sk,
+        mechanism: mech.clone(),
+        structure,
+        motion,
+        plan,
+        dead: dead_drawn,
+        numbered,
+        dimensions,
+        notes,
+        kinematic: (kin_label, lists),
+        drafting: Some(drafting),
+        unit,
+        chosen,
+        position_pages: per_position,
+        draw_position,
+        diagrams,
+    };
+    Ok((r, table, summary, warnings))
+}
+
+/// The dead positions to solve exactly: the guided points' extremes (the working stroke's
+/// start and end), else a measured body angle's; each time and what it is.
+fn dead_extremes(
+    scene: &LinkageScene,
+    assur: &mut AssurSolver,
+    states: &[State],
+    strokes: &[run::Guided],
+) -> Vec<(f64, String)> {
     let mut extremes: Vec<(f64, String)> = Vec::new();
-    for g in &strokes {
+    for g in strokes {
         let sym = &g.measure.symbol;
         let (first, second) = match &g.stroke.cycle {
             Ok(_) => ("start of the working stroke", "end of the working stroke"),
@@ -305,15 +387,24 @@ pub(super) fn motion_report<'a>(
             _ => None,
         })
     {
-        let k0 = 0;
-        assur.resume(&states[k0]);
-        extremes = body_extremes(&mut assur, &states, b, &mech.bodies[b].name);
+        assur.resume(&states[0]);
+        extremes = body_extremes(assur, states, b, &scene.mechanism.bodies[b].name);
     }
-    let mut solved = Solved { states, forces, extra: Vec::new(), extra_forces: Vec::new() };
-    let mut dead = Vec::new();
+    extremes
+}
+
+/// Each dead position solved at its exact time from the sample nearest it, added to
+/// `solved`'s extra states; one that cannot be is left out with a warning.
+fn solve_dead(
+    assur: &mut AssurSolver,
+    solved: &mut Solved,
+    extremes: Vec<(f64, String)>,
+    dynamics: Option<&Dynamics>,
+) -> (Vec<Dead>, Vec<String>) {
+    let (mut dead, mut warnings) = (Vec::new(), Vec::new());
     for (t, what) in extremes {
         let k = nearest_sample(&solved.states, t);
-        match solve_at(&mut assur, &solved.states[k], t, dynamics) {
+        match solve_at(assur, &solved.states[k], t, dynamics) {
             Ok((s, f)) => {
                 dead.push(Dead { drive: t, what, q: s.q.clone() });
                 solved.extra.push(s);
@@ -322,12 +413,22 @@ pub(super) fn motion_report<'a>(
             Err(e) => warnings.push(format!("the {what} at t = {t} s is left out of the report: {e}")),
         }
     }
-    let times: Vec<f64> = solved.states.iter().map(|s| s.t).collect();
+    (dead, warnings)
+}
+
+/// The chosen positions (marked with their number on the plan, with the driver's angle),
+/// the plan's samples (the positions asked for, or twelve evenly spaced) and the plan's
+/// first number (0, or 1 for positions asked for).
+fn choose(
+    scene: &LinkageScene,
+    opts: &super::ReportOptions,
+    times: &[f64],
+    dead: &[Dead],
+) -> Result<(Vec<Chosen>, Vec<usize>, usize), Error> {
     let step = (scene.times[1] - scene.times[0]).abs();
     let axis = DriveAxis { name: "time t", unit: " s", step };
     let cyc = cycle(scene);
-    let mut chosen = motion::choose(&times, axis, cyc, opts.positions.as_ref(), &dead)?;
-    // The plan: the positions asked for, or twelve evenly spaced (numbered from 0).
+    let mut chosen = motion::choose(times, axis, cyc, opts.positions.as_ref(), dead)?;
     let plan_idx: Vec<usize> = match &opts.positions {
         Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
         None => motion::evenly(times.len(), motion::PLAN_POSITIONS, cyc),
@@ -341,32 +442,38 @@ pub(super) fn motion_report<'a>(
         }
         with_angle(scene, c);
     }
-    let plan: Vec<(String, Vec<f64>)> =
-        plan_idx.iter().enumerate().map(|(i, &k)| ((i + base).to_string(), solved.states[k].q.clone())).collect();
-    let dead_drawn: Vec<(String, Vec<f64>)> = dead
+    Ok((chosen, plan_idx, base))
+}
+
+/// The point the plan numbers its positions at: the driven body's point farthest from its
+/// pivot (a crank's pin).
+fn numbered_point(sk: &Sketch, q0: &[f64]) -> Option<Anchor> {
+    let dm = sk.driver.as_ref()?;
+    let pivot = place(q0, dm.pivot.body, dm.pivot.local);
+    let from_pivot = |v: &Vector| (place(q0, Attach::Body(dm.body), *v) - pivot).norm();
+    sk.figure
+        .bodies
+        .get(dm.body)?
+        .points
         .iter()
-        .enumerate()
-        .map(|(i, d)| (crate::solve::linkage::structure::roman(i as u32 + 1), d.q.clone()))
-        .collect();
-    let sk = sketch(scene);
-    let numbered = sk.driver.as_ref().and_then(|dm| {
-        let pivot = place(&solved.states[0].q, dm.pivot.body, dm.pivot.local);
-        sk.figure
-            .bodies
-            .get(dm.body)?
-            .points
-            .iter()
-            .max_by(|a, b| {
-                let da = (place(&solved.states[0].q, Attach::Body(dm.body), a.1) - pivot).norm();
-                let db = (place(&solved.states[0].q, Attach::Body(dm.body), b.1) - pivot).norm();
-                da.total_cmp(&db)
-            })
-            .map(|(_, v)| Anchor { body: Attach::Body(dm.body), local: *v })
-    });
+        .max_by(|a, b| from_pivot(&a.1).total_cmp(&from_pivot(&b.1)))
+        .map(|(_, v)| Anchor { body: Attach::Body(dm.body), local: *v })
+}
+
+/// The plan's dimensions (each guided point's stroke H) and its notes: the strokes, the
+/// dead positions, the positions of the plan.
+fn plan_marks(
+    scene: &LinkageScene,
+    strokes: &[run::Guided],
+    dead: &[Dead],
+    plan_idx: &[usize],
+    base: usize,
+    times: &[f64],
+) -> (Vec<PlanDimension>, Vec<String>) {
     let unit = scene.units.length();
     let mut dimensions = Vec::new();
     let mut notes = Vec::new();
-    for g in &strokes {
+    for g in strokes {
         let st = &g.stroke;
         dimensions.push(PlanDimension::Stroke {
             from: st.start.at,
@@ -393,85 +500,92 @@ pub(super) fn motion_report<'a>(
             .collect::<Vec<_>>()
             .join(", ")
     ));
-    let structure = Structure::of(mech, Some(&solved.states[0].q));
-    let lists = kinematic_lists(scene);
-    let kin_label = format!("t = {} s", motion::trimmed(times[plan_idx.first().copied().unwrap_or(0)]));
-    // The diagrams of the run, with the chosen positions' points.
-    let diagrams = marked_diagrams(scene, &solved, &strokes, &chosen);
-    let table = chosen_table(scene, &solved, &chosen);
-    // The printed sheet of each chosen position.
-    let paper = frame.frame.paper;
-    let figure = run::figure_of(scene);
-    let p = &scene.polygons;
-    let out = scene.outputs;
-    let show = crate::figure::linkage::frame::Show {
-        velocity: p.velocity && out.velocity,
-        acceleration: p.acceleration && out.acceleration,
-        forces: p.forces && out.forces,
-        points: p.points.clone(),
-        per_body: p.per_body,
-        scales: crate::run::scale_choice(scene.frame_scales),
-    };
-    // The run's plots (each table row's series, to read a position's value against) and the
-    // table's most rows over the run, as `run --sheets` lays its sheets out.
-    let all_plots: Vec<run::Plot> = scene
-        .measures
-        .iter()
-        .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
-        .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, &strokes))
-        .collect();
-    let rows = (0..solved.states.len())
-        .map(|k| {
-            let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
-            row_counts(&run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))))
-        })
-        .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
-    let new_sheets = |held: Option<f64>| {
-        LinkageSheets::new(
-            paper,
-            &scene.name,
-            &scene.mechanism,
-            &figure,
-            &solved.states,
-            show.clone(),
-            solved.forces.is_some(),
-            rows,
-            held,
-        )
-    };
-    // One drafting scale for the mechanism: the kinematic diagram's and the position pages'
-    // (the same drawing), the coarser of the two pages' own.
-    let sheets = new_sheets(None);
-    let kin_scale = {
-        let motion: Vec<&[f64]> = solved.states.iter().map(|s| s.q.as_slice()).collect();
-        let q0 = plan.first().map_or(&[][..], |(_, q)| q.as_slice());
-        let probe = crate::figure::report::kinematic::KinematicPage {
-            sketch: &sk,
-            q: q0,
-            motion: &motion,
-            position: kin_label.clone(),
-            unit,
-            lists: lists.clone(),
-            held: None,
+    (dimensions, notes)
+}
+
+/// A chosen position's pages as `run --sheets` lays them out, at one drafting scale with
+/// the kinematic diagram, and (with forces) a page of the groups' free-body figures.
+struct PositionPages {
+    sheets: LinkageSheets,
+    /// The mechanism's scale on the kinematic diagram and the position pages.
+    drafting: f64,
+    /// A free-body page after each position's sheets.
+    free_bodies: bool,
+    /// Each table row's series over the run (a position's value is read against them).
+    series: Vec<Vec<f64>>,
+}
+
+impl PositionPages {
+    /// The pages of `solved`'s positions: the sheets at the coarser of their own scale and
+    /// the kinematic diagram's `kin_scale`, the table's most rows over the run.
+    fn new(
+        scene: &LinkageScene,
+        frame: &Frame,
+        solved: &Solved,
+        strokes: &[run::Guided],
+        kin_scale: f64,
+    ) -> PositionPages {
+        let figure = run::figure_of(scene);
+        let (p, out) = (&scene.polygons, scene.outputs);
+        let show = crate::figure::linkage::frame::Show {
+            velocity: p.velocity && out.velocity,
+            acceleration: p.acceleration && out.acceleration,
+            forces: p.forces && out.forces,
+            points: p.points.clone(),
+            per_body: p.per_body,
+            scales: crate::run::scale_choice(scene.frame_scales),
         };
-        crate::figure::report::kinematic::scale(&frame.frame, &probe)
-    };
-    let drafting = kin_scale.max(sheets.k_l());
-    let sheets = if drafting > sheets.k_l() { new_sheets(Some(drafting)) } else { sheets };
-    // A page of the groups' free-body figures after each position's sheets, where the run
-    // has forces.
-    let free_bodies = show.forces && solved.forces.is_some() && scene.dynamics.is_some();
-    let per_position = sheets.per_position() + usize::from(free_bodies);
-    let fb = Arc::new((sk.clone(), structure.clone(), frame.clone()));
-    let solved = Arc::new(solved);
-    let strokes_owned: Arc<Vec<(String, Vector, crate::solve::stroke::Stroke)>> =
-        Arc::new(strokes.iter().map(|g| (g.measure.label.clone(), g.guide, g.stroke.clone())).collect());
-    let draw_solved = solved.clone();
-    let series: Arc<Vec<Vec<f64>>> = Arc::new(all_plots.into_iter().map(|p| p.values).collect());
-    let draw_position =
+        // The run's plots (each table row's series, to read a position's value against)
+        // and the table's most rows over the run, as `run --sheets` lays its sheets out.
+        let all_plots: Vec<run::Plot> = scene
+            .measures
+            .iter()
+            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
+            .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, strokes))
+            .collect();
+        let rows = (0..solved.states.len())
+            .map(|k| {
+                let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
+                row_counts(&run::sheet_table(scene, &all_plots, k, f.map(|(d, f)| (d, &solved.states[k], f))))
+            })
+            .fold((0, 0), |(a, b), (c, d)| (a.max(c), b.max(d)));
+        let free_bodies = show.forces && solved.forces.is_some() && scene.dynamics.is_some();
+        let new_sheets = |held: Option<f64>| {
+            let (paper, forces) = (frame.frame.paper, solved.forces.is_some());
+            let (name, mech) = (&scene.name, &scene.mechanism);
+            LinkageSheets::new(paper, name, mech, &figure, &solved.states, show.clone(), forces, rows, held)
+        };
+        // One drafting scale for the mechanism: the kinematic diagram's and the position
+        // pages' (the same drawing), the coarser of the two pages' own.
+        let sheets = new_sheets(None);
+        let drafting = kin_scale.max(sheets.k_l());
+        let sheets = if drafting > sheets.k_l() { new_sheets(Some(drafting)) } else { sheets };
+        PositionPages { sheets, drafting, free_bodies, series: all_plots.into_iter().map(|p| p.values).collect() }
+    }
+
+    /// Pages per chosen position.
+    fn per_position(&self) -> usize {
+        self.sheets.per_position() + usize::from(self.free_bodies)
+    }
+
+    /// What draws a chosen position's pages, given its first page's number and the total:
+    /// its sheets, with the table's values read against the run's series, then its
+    /// free-body page (`fb`: the sketch, the structure and the frame it is drawn with).
+    #[allow(clippy::type_complexity)]
+    fn drawer<'a>(
+        self,
+        scene: &'a LinkageScene,
+        solved: Arc<Solved>,
+        strokes: &[run::Guided],
+        fb: (Sketch, Structure, Frame),
+    ) -> Box<dyn Fn(&Chosen, usize, usize) -> Result<Vec<crate::draw::Drawing>, Error> + Sync + 'a> {
+        let PositionPages { sheets, series, free_bodies, .. } = self;
+        let unit = scene.units.length();
+        let strokes_owned: Vec<(String, Vector, crate::solve::stroke::Stroke)> =
+            strokes.iter().map(|g| (g.measure.label.clone(), g.guide, g.stroke.clone())).collect();
         Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
-            let state = draw_solved.state(c.at);
-            let force = draw_solved.force(c.at);
+            let state = solved.state(c.at);
+            let force = solved.force(c.at);
             let strokes: Vec<run::Guided> = strokes_owned
                 .iter()
                 .filter_map(|(label, guide, stroke)| {
@@ -493,11 +607,11 @@ pub(super) fn motion_report<'a>(
                 })
                 .collect();
             let force = scene.dynamics.as_ref().zip(force);
-            let table = run::sheet_table(scene, &plots, draw_solved.states.len(), force.map(|(d, f)| (d, state, f)));
+            let table = run::sheet_table(scene, &plots, solved.states.len(), force.map(|(d, f)| (d, state, f)));
             let pages = sheets.pages(&scene.mechanism, state, force, &table, (first, total));
             let mut out: Vec<crate::draw::Drawing> = pages.into_iter().map(|(_, drawing)| drawing).collect();
             if let (true, Some((dynamics, f))) = (free_bodies, force) {
-                let (sketch, structure, frame) = &*fb;
+                let (sketch, structure, frame) = &fb;
                 let p = FreeBodyPage {
                     sketch,
                     mechanism: &scene.mechanism,
@@ -512,39 +626,8 @@ pub(super) fn motion_report<'a>(
                 out.push(freebody::page(&frame.frame, &frame.title(&part, first + out.len(), total), &p));
             }
             Ok(out)
-        });
-    let summary = serde_json::json!({
-        "kind": "linkage",
-        "mobility": structure.mobility.formula,
-        "mobility_at_placement": structure.mobility.actual,
-        "groups": groups_json(&structure, mech),
-        "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "t": c.drive})).collect::<Vec<_>>(),
-    });
-    let r = MotionReport {
-        frame,
-        title: (
-            "Graph-analytical analysis of a planar linkage".into(),
-            format!("linkage {} ({} bodies, {} joints)", scene.name, mech.bodies.len(), mech.joints.len()),
-            data(scene),
-        ),
-        sketch: sk,
-        mechanism: mech.clone(),
-        structure,
-        motion: solved.states.iter().map(|s| s.q.clone()).collect(),
-        plan,
-        dead: dead_drawn,
-        numbered,
-        dimensions,
-        notes,
-        kinematic: (kin_label, lists),
-        drafting: Some(drafting),
-        unit,
-        chosen,
-        position_pages: per_position,
-        draw_position,
-        diagrams,
-    };
-    Ok((r, table, summary, warnings))
+        })
+    }
 }
 
 /// The kinematic diagram's lists: links, joints, drivers, loads.
