@@ -5,8 +5,6 @@
 //! extremes, in closed form (crank and coupler in line: |O1B| = l_AB ± l1), with the
 //! working angle, the rocker's swing ψ and K = (180° + θ)/(180° − θ).
 
-use std::sync::Arc;
-
 use super::Frame;
 use super::motion::{self, At, Chosen, Cycle, Dead, DriveAxis, MotionReport};
 use crate::Error;
@@ -24,12 +22,12 @@ use crate::figure::shared::plot::{self, Marks};
 use crate::figure::shared::sheet;
 use crate::geom::{self, Point, Vector, deg};
 use crate::report::Csv;
-use crate::run::fourbar as run;
+use crate::run::fourbar::{self as run, Quantity};
 use crate::scene::Units;
 use crate::scene::fourbar::FourbarScene;
 use crate::solve::expr::Expr;
 use crate::solve::fourbar::kinetostatics::{CrankRange, Dynamics as FourbarDynamics, Link, loads};
-use crate::solve::fourbar::{Forces, Geometry, Kinematics, Motion, Position, position, solve_motion};
+use crate::solve::fourbar::{Forces, Geometry, Kinematics, Motion, MotionSpec, Position, position, solve_motion};
 use crate::solve::linkage::{Anchor, Attach, Body, Driver, DriverTarget, Joint, JointKind, Mechanism, Structure};
 
 /// The coupler point M in the coupler's frame (A at the origin, B on +x).
@@ -297,88 +295,17 @@ pub(super) fn motion_report<'a>(
     let mech = mechanism(&g, spec.omega1);
     let sk = sketch(scene, &mech);
     let step = spec.sweep.step_deg;
-    let from = spec.sweep.from_deg;
     let values: Vec<f64> = motion.positions.iter().map(|p| deg(p.phi1)).collect();
     let whole = motion.gaps.is_empty() && (values.len() as f64 * step - 360.0).abs() < 1e-6 * step;
     let cyc = if whole { Cycle::Whole } else { Cycle::Open };
-    // The rocker's extremes, solved exactly.
-    let extremes = rocker_extremes(&g);
-    let mut extra: Vec<(Position, Option<Forces>)> = Vec::new();
-    let mut dead = Vec::new();
-    for (phi1, what) in &extremes {
-        let d = into_sweep(deg(*phi1), from);
-        if d > spec.sweep.to_deg + 1e-9 && !whole {
-            continue;
-        }
-        match run::solve_at(spec, g.branch, d) {
-            Ok((p, f)) => {
-                dead.push(Dead { drive: d, what: format!("rocker's extreme, {what}"), q: coordinates(&g, &p) });
-                extra.push((p, f));
-            }
-            Err(e) => warnings.push(format!("the rocker's extreme ({what}) is left out of the report: {e}")),
-        }
-    }
+    let (extra, dead, dead_warnings) = rocker_dead(spec, whole);
+    warnings.extend(dead_warnings);
     let axis = DriveAxis { name: "crank angle φ1", unit: "°", step };
-    let mut chosen = motion::choose(&values, axis, cyc, opts.positions.as_ref(), &dead)?;
-    let plan_idx: Vec<usize> = match &opts.positions {
-        Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
-        None => motion::evenly(values.len(), motion::PLAN_POSITIONS, cyc),
-    };
-    let base = if opts.positions.is_some() { 1 } else { 0 };
-    for c in &mut chosen {
-        if let At::Sample(k) = c.at
-            && let Some(i) = plan_idx.iter().position(|&p| p == k)
-        {
-            c.mark = (i + base).to_string();
-        }
-    }
-    let at = |a: At| -> (&Position, Option<&Forces>) {
-        match a {
-            At::Sample(k) => (&motion.positions[k], if show.forces { motion.forces.get(k) } else { None }),
-            At::Exact(i) => (&extra[i].0, extra[i].1.as_ref().filter(|_| show.forces)),
-        }
-    };
-    // The plan's dimensions and notes: the working angle, the swing, K.
-    let mut dimensions = Vec::new();
-    let mut notes = Vec::new();
-    if let [(pa, _), (pb, _)] = extra.as_slice() {
-        let sense = if spec.omega1 < 0.0 { -1.0 } else { 1.0 };
-        let fwd = (sense * (pb.phi1 - pa.phi1)).rem_euclid(std::f64::consts::TAU);
-        let (work, ret) = if fwd >= std::f64::consts::PI {
-            (fwd, std::f64::consts::TAU - fwd)
-        } else {
-            (std::f64::consts::TAU - fwd, fwd)
-        };
-        let theta = deg(work) - 180.0;
-        let k = work / ret;
-        let swing = deg((pa.phi3() - pb.phi3()).abs());
-        let swing = if swing > 180.0 { 360.0 - swing } else { swing };
-        let (first, second) = if sense * libm::sin(pb.phi3() - pa.phi3()) > 0.0 { (pa.b, pb.b) } else { (pb.b, pa.b) };
-        dimensions.push(PlanDimension::Angle {
-            vertex: g.c,
-            first,
-            second,
-            text: format!("ψ = {}°", sheet::number(swing)),
-        });
-        let (first, second) = if (sense > 0.0) == (fwd >= std::f64::consts::PI) { (pa.a, pb.a) } else { (pb.a, pa.a) };
-        dimensions.push(PlanDimension::Angle {
-            vertex: g.o1,
-            first,
-            second,
-            text: format!("{}°", sheet::number(deg(work))),
-        });
-        notes.push(format!("rocker swing ψ = {}°", sheet::number(swing)));
-        notes.push(format!(
-            "crank angles of the extremes: I φ1 = {}°, II φ1 = {}°",
-            sheet::number(dead[0].drive),
-            sheet::number(dead[1].drive)
-        ));
-        notes.push(format!(
-            "working stroke {}°, return {}° of crank angle",
-            sheet::number(deg(work)),
-            sheet::number(deg(ret))
-        ));
-        notes.push(format!("θ = {}°: K = (180° + θ)/(180° − θ) = {}", sheet::number(theta), sheet::number(k)));
+    let (chosen, plan_idx, base) = motion::choose_with_plan(&values, axis, cyc, opts.positions.as_ref(), &dead)?;
+    let solved = Solved { motion, extra, show };
+    let (mut dimensions, mut notes) = (Vec::new(), Vec::new());
+    if let [(pa, _), (pb, _)] = solved.extra.as_slice() {
+        (dimensions, notes) = swing_marks(spec, pa, pb, &dead);
     }
     notes.push(format!(
         "positions of the plan: {}",
@@ -389,109 +316,30 @@ pub(super) fn motion_report<'a>(
             .collect::<Vec<_>>()
             .join(", ")
     ));
-    let plan: Vec<(String, Vec<f64>)> = plan_idx
-        .iter()
-        .enumerate()
-        .map(|(i, &k)| ((i + base).to_string(), coordinates(&g, &motion.positions[k])))
-        .collect();
+    let positions = &solved.motion.positions;
+    let plan: Vec<(String, Vec<f64>)> =
+        plan_idx.iter().enumerate().map(|(i, &k)| ((i + base).to_string(), coordinates(&g, &positions[k]))).collect();
     let dead_drawn: Vec<(String, Vec<f64>)> = dead
         .iter()
         .enumerate()
         .map(|(i, d)| (crate::solve::linkage::structure::roman(i as u32 + 1), d.q.clone()))
         .collect();
-    let structure = Structure::of(&mech, Some(&coordinates(&g, &motion.positions[0])));
+    let structure = Structure::of(&mech, Some(&coordinates(&g, &positions[0])));
     let qs = run::reported(&spec.outputs, show.forces);
     // The diagrams and the chosen positions on them.
-    let diagrams = run::diagrams(&motion, step, &qs, show.forces, units);
-    let gamma_marks =
-        crate::run::fourbar_teaching::gamma_marks(crate::solve::fourbar::transmission::gamma_min(&motion.positions));
-    let marked: Vec<MarkedDiagram> = diagrams
-        .iter()
-        .map(|(stem, d)| {
-            let marks = if stem == "gamma_deg" { gamma_marks.clone() } else { Marks::default() };
-            let points = motion::marks(&chosen, |c| {
-                let (p, f) = at(c.at);
-                let one = Motion {
-                    positions: vec![*p],
-                    forces: f.into_iter().copied().collect(),
-                    gaps: Vec::new(),
-                    dead_points: Vec::new(),
-                    grashof: motion.grashof,
-                };
-                let ds = run::diagrams(&one, step, &qs, show.forces, units);
-                let s = ds.iter().find(|(s, _)| s == stem)?.1.series.first()?.clone();
-                let (x, y) = (*s.x.first()?, *s.y.first()?);
-                (x.is_finite() && y.is_finite()).then(|| plot::place(d, &marks, x, y))
-            });
-            let drawing = if marks == Marks::default() { plot::diagram(d) } else { plot::diagram_marked(d, &marks) };
-            MarkedDiagram { drawing, marks: points }
-        })
-        .collect();
+    let marked = solved.marked_diagrams(step, &qs, units, &chosen);
     // The chosen positions' table: the run's CSV columns.
-    let picked = Motion {
-        positions: chosen.iter().map(|c| *at(c.at).0).collect(),
-        forces: if show.forces { chosen.iter().filter_map(|c| at(c.at).1.copied()).collect() } else { Vec::new() },
-        gaps: Vec::new(),
-        dead_points: Vec::new(),
-        grashof: motion.grashof,
-    };
+    let picked = solved.picked(&chosen);
     let mut table = run::table(&picked, &qs, show.forces);
     table.prepend_column("position", &chosen.iter().map(|c| c.mark.clone()).collect::<Vec<_>>());
     // The printed sheet of each chosen position.
-    let mut curve = run::runs(&motion.positions, step, |p| p.m);
-    run::close_full_turn(&mut curve, &motion.positions, step);
-    let all_q: Vec<Vec<f64>> = motion.positions.iter().map(|p| coordinates(&g, p)).collect();
-    let rows = motion.positions.first().map_or(0, |p| {
-        run::sheet_table(p, if show.forces { motion.forces.first() } else { None }, &qs, units).rows.len()
-    });
-    let (external, loads) =
-        spec.dynamics.as_ref().map_or((&[][..], &[][..]), |d| (d.forces.as_slice(), d.loads.as_slice()));
-    let sheets = FourbarSheets::new(
-        frame.frame.paper,
-        &scene.name,
-        spec.omega1,
-        &g,
-        &motion.positions,
-        &curve,
-        show,
-        units,
-        rows,
-    )
-    .with_loads(external, loads);
-    let dynamics = spec.dynamics.clone();
-    let free_bodies = show.forces && dynamics.is_some();
-    let unit = scene.units.length();
+    let all_q: Vec<Vec<f64>> = positions.iter().map(|p| coordinates(&g, p)).collect();
+    let sheets = position_sheets(scene, &frame, &solved, &qs, units);
+    let free_bodies = show.forces && spec.dynamics.is_some();
     let per_position = sheets.per_position() + usize::from(free_bodies);
-    let fb = Arc::new((sk.clone(), mech.clone(), structure.clone(), frame.clone()));
-    let shared = Arc::new((motion, extra, qs));
-    let draw_position =
-        Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
-            let (motion, extra, qs) = &*shared;
-            let (p, f) = match c.at {
-                At::Sample(k) => (&motion.positions[k], if show.forces { motion.forces.get(k) } else { None }),
-                At::Exact(i) => (&extra[i].0, extra[i].1.as_ref().filter(|_| show.forces)),
-            };
-            let table = run::sheet_table(p, f, qs, units);
-            let mut out: Vec<crate::draw::Drawing> =
-                sheets.pages(&g, p, f, &table, (first, total)).pages.into_iter().map(|(_, d)| d).collect();
-            if let (true, Some(f), Some(dynamics), Some(kin)) = (free_bodies, f, dynamics.as_ref(), p.kin.as_ref()) {
-                let (sketch, mech, structure, frame) = &*fb;
-                let q = coordinates(&g, p);
-                let page = FreeBodyPage {
-                    sketch,
-                    mechanism: mech,
-                    structure,
-                    q: &q,
-                    loads: group_loads(&g, p, kin, f, dynamics, structure),
-                    position: c.label.clone(),
-                    unit,
-                    couple_factor: 1.0,
-                };
-                let part = format!("5  Position {}: free-body figures of the groups", c.mark);
-                out.push(freebody::page(&frame.frame, &frame.title(&part, first + out.len(), total), &page));
-            }
-            Ok(out)
-        });
+    let fb = (sk.clone(), mech.clone(), structure.clone(), frame.clone());
+    let kinematic = format!("φ1 = {}°", motion::trimmed(values[plan_idx.first().copied().unwrap_or(0)]));
+    let draw_position = position_drawer(scene, sheets, solved, qs, units, fb);
     let summary = serde_json::json!({
         "kind": "fourbar",
         "mobility": structure.mobility.formula,
@@ -499,21 +347,6 @@ pub(super) fn motion_report<'a>(
         "groups": structure.groups.iter().map(|s| serde_json::json!({"kind": s.group.kind_name(), "class": s.class, "order": s.order})).collect::<Vec<_>>(),
         "positions": chosen.iter().map(|c| serde_json::json!({"mark": c.mark, "label": c.label, "note": c.note, "phi1_deg": c.drive})).collect::<Vec<_>>(),
     });
-    let unit = scene.units.length();
-    let lists = vec![
-        "0 the frame (O1, C)".to_string(),
-        "1 crank O1A".into(),
-        "2 coupler ABM (one rigid link)".into(),
-        "3 rocker CB".into(),
-        "O1: revolute 0–1, A: revolute 1–2".into(),
-        "B: revolute 2–3, C: revolute 3–0".into(),
-        format!(
-            "ω1 = {} rad/s, {}",
-            sheet::number(spec.omega1.abs()),
-            if spec.omega1 < 0.0 { "clockwise" } else { "counter-clockwise" }
-        ),
-        "F: the load on the coupler (arrow not to scale)".into(),
-    ];
     let r = MotionReport {
         frame,
         title: (
@@ -530,17 +363,231 @@ pub(super) fn motion_report<'a>(
         numbered: Some(Anchor { body: Attach::Body(0), local: Vector::new(g.l1, 0.0) }),
         dimensions,
         notes,
-        kinematic: (format!("φ1 = {}°", motion::trimmed(values[plan_idx.first().copied().unwrap_or(0)])), lists),
+        kinematic: (kinematic, kinematic_lists(spec.omega1)),
         // The four-bar's sheets fit its motion in the same panel as the diagram's own fit
         // (both 0.0015 m/mm for the Chebyshev four-bar): not held.
         drafting: None,
-        unit,
+        unit: scene.units.length(),
         chosen,
         position_pages: per_position,
         draw_position,
         diagrams: marked,
     };
     Ok((r, table, summary, warnings))
+}
+
+/// A position solved exactly (a rocker's extreme) with its forces.
+type Exact = (Position, Option<Forces>);
+
+/// The run's motion, the rocker's extremes solved exactly, and whether forces are shown.
+struct Solved {
+    motion: Motion,
+    extra: Vec<Exact>,
+    show: Show,
+}
+
+impl Solved {
+    /// The position and (shown) forces of a chosen position.
+    fn at(&self, a: At) -> (&Position, Option<&Forces>) {
+        let show = self.show.forces;
+        match a {
+            At::Sample(k) => (&self.motion.positions[k], if show { self.motion.forces.get(k) } else { None }),
+            At::Exact(i) => (&self.extra[i].0, self.extra[i].1.as_ref().filter(|_| show)),
+        }
+    }
+
+    /// The chosen positions as a motion of their own (for the table of their values).
+    fn picked(&self, chosen: &[Chosen]) -> Motion {
+        Motion {
+            positions: chosen.iter().map(|c| *self.at(c.at).0).collect(),
+            forces: if self.show.forces {
+                chosen.iter().filter_map(|c| self.at(c.at).1.copied()).collect()
+            } else {
+                Vec::new()
+            },
+            gaps: Vec::new(),
+            dead_points: Vec::new(),
+            grashof: self.motion.grashof,
+        }
+    }
+
+    /// The run's diagrams, each with the point of every chosen position on its paper (γ's
+    /// with its least value and the 40° limit marked).
+    fn marked_diagrams(&self, step: f64, qs: &[Quantity], units: ModelUnits, chosen: &[Chosen]) -> Vec<MarkedDiagram> {
+        let (motion, forces) = (&self.motion, self.show.forces);
+        let diagrams = run::diagrams(motion, step, qs, forces, units);
+        let gamma_marks = crate::run::fourbar_teaching::gamma_marks(crate::solve::fourbar::transmission::gamma_min(
+            &motion.positions,
+        ));
+        diagrams
+            .iter()
+            .map(|(stem, d)| {
+                let marks = if stem == "gamma_deg" { gamma_marks.clone() } else { Marks::default() };
+                let points = motion::marks(chosen, |c| {
+                    let (p, f) = self.at(c.at);
+                    let one = Motion {
+                        positions: vec![*p],
+                        forces: f.into_iter().copied().collect(),
+                        gaps: Vec::new(),
+                        dead_points: Vec::new(),
+                        grashof: motion.grashof,
+                    };
+                    let ds = run::diagrams(&one, step, qs, forces, units);
+                    let s = ds.iter().find(|(s, _)| s == stem)?.1.series.first()?.clone();
+                    let (x, y) = (*s.x.first()?, *s.y.first()?);
+                    (x.is_finite() && y.is_finite()).then(|| plot::place(d, &marks, x, y))
+                });
+                let drawing =
+                    if marks == Marks::default() { plot::diagram(d) } else { plot::diagram_marked(d, &marks) };
+                MarkedDiagram { drawing, marks: points }
+            })
+            .collect()
+    }
+}
+
+/// The rocker's extremes (the dead positions), solved exactly where the sweep reaches them:
+/// each position with its forces, its dead position, and a warning for one that cannot be.
+fn rocker_dead(spec: &MotionSpec, whole: bool) -> (Vec<Exact>, Vec<Dead>, Vec<String>) {
+    let g = spec.geometry;
+    let (mut extra, mut dead, mut warnings) = (Vec::new(), Vec::new(), Vec::new());
+    for (phi1, what) in &rocker_extremes(&g) {
+        let d = into_sweep(deg(*phi1), spec.sweep.from_deg);
+        if d > spec.sweep.to_deg + 1e-9 && !whole {
+            continue;
+        }
+        match run::solve_at(spec, g.branch, d) {
+            Ok((p, f)) => {
+                dead.push(Dead { drive: d, what: format!("rocker's extreme, {what}"), q: coordinates(&g, &p) });
+                extra.push((p, f));
+            }
+            Err(e) => warnings.push(format!("the rocker's extreme ({what}) is left out of the report: {e}")),
+        }
+    }
+    (extra, dead, warnings)
+}
+
+/// The plan's dimensions and notes between the rocker's extremes `pa`, `pb`: the rocker's
+/// swing ψ, the crank's working angle, K.
+fn swing_marks(spec: &MotionSpec, pa: &Position, pb: &Position, dead: &[Dead]) -> (Vec<PlanDimension>, Vec<String>) {
+    let g = spec.geometry;
+    let sense = if spec.omega1 < 0.0 { -1.0 } else { 1.0 };
+    let fwd = (sense * (pb.phi1 - pa.phi1)).rem_euclid(std::f64::consts::TAU);
+    let (work, ret) = if fwd >= std::f64::consts::PI {
+        (fwd, std::f64::consts::TAU - fwd)
+    } else {
+        (std::f64::consts::TAU - fwd, fwd)
+    };
+    let theta = deg(work) - 180.0;
+    let k = work / ret;
+    let swing = deg((pa.phi3() - pb.phi3()).abs());
+    let swing = if swing > 180.0 { 360.0 - swing } else { swing };
+    let mut dimensions = Vec::new();
+    let (first, second) = if sense * libm::sin(pb.phi3() - pa.phi3()) > 0.0 { (pa.b, pb.b) } else { (pb.b, pa.b) };
+    dimensions.push(PlanDimension::Angle {
+        vertex: g.c,
+        first,
+        second,
+        text: format!("ψ = {}°", sheet::number(swing)),
+    });
+    let (first, second) = if (sense > 0.0) == (fwd >= std::f64::consts::PI) { (pa.a, pb.a) } else { (pb.a, pa.a) };
+    dimensions.push(PlanDimension::Angle {
+        vertex: g.o1,
+        first,
+        second,
+        text: format!("{}°", sheet::number(deg(work))),
+    });
+    let notes = vec![
+        format!("rocker swing ψ = {}°", sheet::number(swing)),
+        format!(
+            "crank angles of the extremes: I φ1 = {}°, II φ1 = {}°",
+            sheet::number(dead[0].drive),
+            sheet::number(dead[1].drive)
+        ),
+        format!("working stroke {}°, return {}° of crank angle", sheet::number(deg(work)), sheet::number(deg(ret))),
+        format!("θ = {}°: K = (180° + θ)/(180° − θ) = {}", sheet::number(theta), sheet::number(k)),
+    ];
+    (dimensions, notes)
+}
+
+/// The kinematic diagram's lists: links, joints, the crank's ω1 and the load.
+fn kinematic_lists(omega1: f64) -> Vec<String> {
+    vec![
+        "0 the frame (O1, C)".to_string(),
+        "1 crank O1A".into(),
+        "2 coupler ABM (one rigid link)".into(),
+        "3 rocker CB".into(),
+        "O1: revolute 0–1, A: revolute 1–2".into(),
+        "B: revolute 2–3, C: revolute 3–0".into(),
+        format!(
+            "ω1 = {} rad/s, {}",
+            sheet::number(omega1.abs()),
+            if omega1 < 0.0 { "clockwise" } else { "counter-clockwise" }
+        ),
+        "F: the load on the coupler (arrow not to scale)".into(),
+    ]
+}
+
+/// The printed sheets of the chosen positions, as `run --sheets` lays them out (the table's
+/// rows as the first position's).
+fn position_sheets(
+    scene: &FourbarScene,
+    frame: &Frame,
+    solved: &Solved,
+    qs: &[Quantity],
+    units: ModelUnits,
+) -> FourbarSheets {
+    let (spec, motion, show) = (&scene.spec, &solved.motion, solved.show);
+    let step = spec.sweep.step_deg;
+    let mut curve = run::runs(&motion.positions, step, |p| p.m);
+    run::close_full_turn(&mut curve, &motion.positions, step);
+    let rows = motion.positions.first().map_or(0, |p| {
+        run::sheet_table(p, if show.forces { motion.forces.first() } else { None }, qs, units).rows.len()
+    });
+    let (external, loads) =
+        spec.dynamics.as_ref().map_or((&[][..], &[][..]), |d| (d.forces.as_slice(), d.loads.as_slice()));
+    let g = &spec.geometry;
+    FourbarSheets::new(frame.frame.paper, &scene.name, spec.omega1, g, &motion.positions, &curve, show, units, rows)
+        .with_loads(external, loads)
+}
+
+/// What draws a chosen position's pages given its first page's number and the total: its
+/// sheets, then (with forces) its groups' free-body figures (`fb`: the sketch, the
+/// mechanism, the structure and the frame they are drawn with).
+#[allow(clippy::type_complexity)]
+fn position_drawer<'a>(
+    scene: &'a FourbarScene,
+    sheets: FourbarSheets,
+    solved: Solved,
+    qs: Vec<Quantity>,
+    units: ModelUnits,
+    fb: (Sketch, Mechanism, Structure, Frame),
+) -> Box<dyn Fn(&Chosen, usize, usize) -> Result<Vec<crate::draw::Drawing>, Error> + Sync + 'a> {
+    let (g, dynamics) = (scene.spec.geometry, scene.spec.dynamics.clone());
+    let free_bodies = solved.show.forces && dynamics.is_some();
+    let unit = scene.units.length();
+    Box::new(move |c: &Chosen, first: usize, total: usize| -> Result<Vec<crate::draw::Drawing>, Error> {
+        let (p, f) = solved.at(c.at);
+        let table = run::sheet_table(p, f, &qs, units);
+        let mut out: Vec<crate::draw::Drawing> =
+            sheets.pages(&g, p, f, &table, (first, total)).pages.into_iter().map(|(_, d)| d).collect();
+        if let (true, Some(f), Some(dynamics), Some(kin)) = (free_bodies, f, dynamics.as_ref(), p.kin.as_ref()) {
+            let (sketch, mech, structure, frame) = &fb;
+            let q = coordinates(&g, p);
+            let page = FreeBodyPage {
+                sketch,
+                mechanism: mech,
+                structure,
+                q: &q,
+                loads: group_loads(&g, p, kin, f, dynamics, structure),
+                position: c.label.clone(),
+                unit,
+                couple_factor: 1.0,
+            };
+            let part = format!("5  Position {}: free-body figures of the groups", c.mark);
+            out.push(freebody::page(&frame.frame, &frame.title(&part, first + out.len(), total), &page));
+        }
+        Ok(out)
+    })
 }
 
 #[cfg(test)]

@@ -427,19 +427,9 @@ fn choose(
 ) -> Result<(Vec<Chosen>, Vec<usize>, usize), Error> {
     let step = (scene.times[1] - scene.times[0]).abs();
     let axis = DriveAxis { name: "time t", unit: " s", step };
-    let cyc = cycle(scene);
-    let mut chosen = motion::choose(times, axis, cyc, opts.positions.as_ref(), dead)?;
-    let plan_idx: Vec<usize> = match &opts.positions {
-        Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
-        None => motion::evenly(times.len(), motion::PLAN_POSITIONS, cyc),
-    };
-    let base = if opts.positions.is_some() { 1 } else { 0 };
+    let (mut chosen, plan_idx, base) =
+        motion::choose_with_plan(times, axis, cycle(scene), opts.positions.as_ref(), dead)?;
     for c in &mut chosen {
-        if let At::Sample(k) = c.at
-            && let Some(i) = plan_idx.iter().position(|&p| p == k)
-        {
-            c.mark = (i + base).to_string();
-        }
         with_angle(scene, c);
     }
     Ok((chosen, plan_idx, base))

@@ -186,6 +186,32 @@ pub fn choose(
     Ok(out)
 }
 
+/// The positions to analyse ([`choose`]) and the plan's: the samples asked for, or
+/// [`PLAN_POSITIONS`] evenly spaced, numbered from the returned first number (1 for
+/// positions asked for, else 0); each chosen sample on the plan marked with its number.
+pub fn choose_with_plan(
+    values: &[f64],
+    axis: DriveAxis,
+    cycle: Cycle,
+    asked: Option<&Positions>,
+    dead: &[Dead],
+) -> Result<(Vec<Chosen>, Vec<usize>, usize), Error> {
+    let mut chosen = choose(values, axis, cycle, asked, dead)?;
+    let plan: Vec<usize> = match asked {
+        Some(_) => chosen.iter().filter_map(|c| if let At::Sample(k) = c.at { Some(k) } else { None }).collect(),
+        None => evenly(values.len(), PLAN_POSITIONS, cycle),
+    };
+    let base = usize::from(asked.is_some());
+    for c in &mut chosen {
+        if let At::Sample(k) = c.at
+            && let Some(i) = plan.iter().position(|&p| p == k)
+        {
+            c.mark = (i + base).to_string();
+        }
+    }
+    Ok((chosen, plan, base))
+}
+
 /// The drive's symbol (`φ1`, `t`).
 fn symbol(axis: DriveAxis) -> &'static str {
     axis.name.rsplit(' ').next().unwrap_or(axis.name)
