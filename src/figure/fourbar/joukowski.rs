@@ -82,34 +82,71 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
     let mut d = content_drawing(DimStyle { text_height: s.text, arrow_size: s.head });
     d.paper_mm_per_unit = Some(1.0 / k_l);
     let frame = d.layer("PANELS", Aci::LIGHT_GREY, LineType::Continuous);
-    let (vel, frc, text) = (layer_of(&d, layers::VELOCITY), layer_of(&d, layers::FORCES), layer_of(&d, layers::TEXT));
     let size_mm = size / k_l;
     let max_image = panels.iter().flat_map(|p| p.lever.points.iter().map(|(_, v)| v.norm())).fold(0.0, f64::max);
-    let k_v = Scale::on_paper(nice_scale(max_image / (0.55 * size_mm)), 1.0 / k_l);
-    let speed = format!("{}/s", units.model.length);
     let small = 0.8 * s.text;
-    let row = 1.6 * small;
     // One table row per load (and F_b), under a header.
     let rows = panels.iter().map(|p| p.lever.forces.len() + 1).max().unwrap_or(0) + 1;
-    let summary_lines = 6.0;
-    let notes_room = (rows as f64 + summary_lines + 1.0) * row;
-    let title_room = 2.2 * s.text;
+    let sheet = LeverSheet {
+        k_l,
+        s,
+        k_v: Scale::on_paper(nice_scale(max_image / (0.55 * size_mm)), 1.0 / k_l),
+        size,
+        small,
+        row: 1.6 * small,
+        rows,
+        units,
+        speed: format!("{}/s", units.model.length),
+        layers: (frame, layer_of(&d, layers::VELOCITY), layer_of(&d, layers::FORCES), layer_of(&d, layers::TEXT)),
+    };
     let gap = 2.0 * s.text;
-    let arrow = ARROW * size;
     for (k, panel) in panels.iter().enumerate() {
-        let lever = panel.lever;
-        let x0 = k as f64 * (size + gap);
-        let (lo, hi) = (Point::new(x0, 0.0), Point::new(x0 + size, LEVER_HEIGHT * size));
+        sheet.panel(&mut d, panel, k as f64 * (size + gap));
+    }
+    d
+}
+
+/// The measures and layers a Joukowski sheet's panels share.
+struct LeverSheet {
+    k_l: f64,
+    s: Sizes,
+    /// The velocity polygon's scale, the same in every panel.
+    k_v: Scale,
+    /// A lever's square, model units.
+    size: f64,
+    /// The table's and the notes' letter height and row.
+    small: f64,
+    row: f64,
+    /// The table's rows (the most loads of a panel, F_b, the header).
+    rows: usize,
+    units: LeverUnits,
+    /// The velocities' unit (`m/s`).
+    speed: String,
+    /// The panels', the polygon's, the forces' and the texts' layers.
+    layers: (usize, usize, usize, usize),
+}
+
+impl LeverSheet {
+    /// Room under a lever for its table and the balance's lines.
+    fn notes_room(&self) -> f64 {
+        (self.rows as f64 + 6.0 + 1.0) * self.row
+    }
+
+    /// A panel from `x0`: its frame and title, the lever, the table and the balance.
+    fn panel(&self, d: &mut Drawing, panel: &LeverPanel, x0: f64) {
+        let s = self.s;
+        let (lo, hi) = (Point::new(x0, 0.0), Point::new(x0 + self.size, LEVER_HEIGHT * self.size));
+        let title_room = 2.2 * s.text;
         let corners = vec![
-            Point::new(lo.x, lo.y - notes_room),
-            Point::new(hi.x, lo.y - notes_room),
+            Point::new(lo.x, lo.y - self.notes_room()),
+            Point::new(hi.x, lo.y - self.notes_room()),
             Point::new(hi.x, hi.y + title_room),
             Point::new(lo.x, hi.y + title_room),
         ];
         let frame_box = labels::TextBox { min: corners[0], max: corners[2] };
-        d.add(frame, Shape::Polyline { points: corners, closed: true, width: 0.0 });
+        d.add(self.layers.0, Shape::Polyline { points: corners, closed: true, width: 0.0 });
         // φ_1 and ω_1 where the writer can draw a subscript, `φ1` in the DXF.
-        let title = if lever.crank_speed != panel.omega1 {
+        let title = if panel.lever.crank_speed != panel.omega1 {
             format!("Joukowski's lever   φ_1 = {}°, ω_1 = 0", angle_text(panel.phi1_deg))
         } else {
             format!("Joukowski's lever   φ_1 = {}°", angle_text(panel.phi1_deg))
@@ -125,9 +162,23 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             valign: VAlign::Baseline,
             rotation: 0.0,
         };
-        d.push(Entity { layer: text, color: None, linetype: None, shape });
+        d.push(Entity { layer: self.layers.3, color: None, linetype: None, shape });
+        self.lever(d, panel.lever, (lo, hi), frame_box);
+        let left = lo.x + 0.5 * s.text;
+        let top = lo.y - 0.3 * self.row;
+        self.table(d, panel.lever, left, top);
+        self.balance(d, panel, left, top - (self.rows as f64 + 0.5) * self.row);
+    }
+
+    /// The lever in the square `lo`–`hi`: the velocity polygon turned 90°, each load at its
+    /// image point (the balancing force dashed), the points' letters and the loads' names
+    /// inside `frame_box`.
+    fn lever(&self, d: &mut Drawing, lever: &Lever, (lo, hi): (Point, Point), frame_box: labels::TextBox) {
+        let (s, k_v) = (self.s, self.k_v);
+        let (_, vel, frc, _) = self.layers;
         let arrows: Vec<(&LeverForce, bool)> =
             lever.forces.iter().map(|f| (f, false)).chain(lever.balancing.iter().map(|f| (f, true))).collect();
+        let arrow = ARROW * self.size;
         let dir = |f: &LeverForce| unit_or(f.force, Vector::zeros()) * arrow;
         // Every drawn point relative to the pole, to centre the lever in its panel.
         let mut ext_min = Vector::zeros();
@@ -155,7 +206,7 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             letters.segment(pa, pb);
             names.segment(pa, pb);
         }
-        pole(&mut d, vel, p0, s);
+        pole(d, vel, p0, s);
         let mid = at((img("a") + img("b") + img("m")) / 3.0);
         for (n, v) in &lever.points {
             let q = at(*v);
@@ -175,14 +226,14 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
                     shape: Shape::Arrow { from, to: from + v, head: s.head },
                 });
             } else {
-                vector(&mut d, frc, from, v, s);
+                vector(d, frc, from, v, s);
             }
             names.segment(from, from + v);
         }
         // Clear of everything drawn (the polygon, the arrows, the title) and inside the panel.
-        letters.keep_off_drawing(&d);
+        letters.keep_off_drawing(d);
         letters.keep_within(frame_box);
-        let boxes = letters.draw(&mut d, vel);
+        let boxes = letters.draw(d, vel);
         for b in boxes {
             names.keep_off(b);
         }
@@ -190,29 +241,39 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             let from = at(f.image);
             let v = dir(f);
             let color = balancing.then_some(Aci::RED);
-            names.name_with_leader(from + v * 0.6, Label::quantity(&f.name), small, perp(v), color);
+            names.name_with_leader(from + v * 0.6, Label::quantity(&f.name), self.small, perp(v), color);
         }
-        names.keep_off_drawing(&d);
+        names.keep_off_drawing(d);
         names.keep_within(frame_box);
-        names.draw(&mut d, frc);
-        // The table: load, its image point, |F| [N], M_p [N·(unit)/s].
-        let largest = arrows.iter().map(|(f, _)| f.moment.abs()).fold(0.0, f64::max);
-        let left = lo.x + 0.5 * s.text;
-        let top = lo.y - 0.3 * row;
-        let (at_x, f_x, m_x) = (left + 0.16 * size, left + 0.5 * size, left + 0.85 * size);
-        line(&mut d, text, Point::new(left, top), small, "load".into(), HAlign::Left);
-        line(&mut d, text, Point::new(at_x, top), small, "at".into(), HAlign::Left);
-        line(&mut d, text, Point::new(f_x, top), small, "|F| [N]".into(), HAlign::Right);
-        line(&mut d, text, Point::new(m_x, top), small, format!("M_p [N·{speed}]"), HAlign::Right);
-        for (i, (f, _)) in arrows.iter().enumerate() {
+        names.draw(d, frc);
+    }
+
+    /// The table under a lever from (`left`, `top`): load, its image point, |F| [N],
+    /// M_p [N·(unit)/s].
+    fn table(&self, d: &mut Drawing, lever: &Lever, left: f64, top: f64) {
+        let (small, row, text) = (self.small, self.row, self.layers.3);
+        let loads: Vec<&LeverForce> = lever.forces.iter().chain(lever.balancing.iter()).collect();
+        let largest = loads.iter().map(|f| f.moment.abs()).fold(0.0, f64::max);
+        let (at_x, f_x, m_x) = (left + 0.16 * self.size, left + 0.5 * self.size, left + 0.85 * self.size);
+        line(d, text, Point::new(left, top), small, "load".into(), HAlign::Left);
+        line(d, text, Point::new(at_x, top), small, "at".into(), HAlign::Left);
+        line(d, text, Point::new(f_x, top), small, "|F| [N]".into(), HAlign::Right);
+        line(d, text, Point::new(m_x, top), small, format!("M_p [N·{}]", self.speed), HAlign::Right);
+        for (i, f) in loads.iter().enumerate() {
             let y = top - (i + 1) as f64 * row;
-            labelled(&mut d, text, Point::new(left, y), small, Label::quantity(&f.name), HAlign::Left);
-            line(&mut d, text, Point::new(at_x, y), small, f.at.to_string(), HAlign::Left);
-            line(&mut d, text, Point::new(f_x, y), small, sig4(f.force.norm()), HAlign::Right);
+            labelled(d, text, Point::new(left, y), small, Label::quantity(&f.name), HAlign::Left);
+            line(d, text, Point::new(at_x, y), small, f.at.to_string(), HAlign::Left);
+            line(d, text, Point::new(f_x, y), small, sig4(f.force.norm()), HAlign::Right);
             // Rounding noise (a moment 1e-17 where an image point lies on the force's line).
             let m = if f.moment.abs() < 1e-12 * largest { 0.0 } else { f.moment };
-            line(&mut d, text, Point::new(m_x, y), small, sig4(m), HAlign::Right);
+            line(d, text, Point::new(m_x, y), small, sig4(m), HAlign::Right);
         }
+    }
+
+    /// The balance's lines from (`left`, `y0`): what the polygon is, its k_v, Σ M_p, M_e1
+    /// by the lever and by the reactions.
+    fn balance(&self, d: &mut Drawing, panel: &LeverPanel, left: f64, y0: f64) {
+        let (lever, speed, units) = (panel.lever, &self.speed, self.units);
         let me1 = lever.me1.map_or("—".to_string(), sig4);
         // A standing crank: the polygon of virtual velocities, the crank at 1 rad/s.
         let standing = lever.crank_speed != panel.omega1;
@@ -221,8 +282,6 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
         } else {
             ("velocity polygon turned 90° clockwise", "ω_1")
         };
-        // The velocity scale as the medium states it (on paper, or in the DXF's millimetres).
-        let k_v_line = ScaleCaption::new("k_v = ", k_v.per_mm, format!(" ({speed})/mm"), 1.0 / k_l);
         let lines = [
             polygon.to_string(),
             String::new(),
@@ -231,28 +290,19 @@ pub fn joukowski_sheet(panels: &[LeverPanel], units: LeverUnits, size: f64) -> D
             format!("M_e1 = −Σ M_p(F_i) / {divisor} = {me1} {}", units.moment),
             format!("by the reactions: M_e1 = {} {}", sig4(panel.me1_reactions), units.moment),
         ];
-        let y0 = top - (rows as f64 + 0.5) * row;
         for (i, l) in lines.into_iter().enumerate() {
-            let at = Point::new(left, y0 - i as f64 * row);
+            let at = Point::new(left, y0 - i as f64 * self.row);
             if i == 1 {
-                let caption = k_v_line.clone();
-                d.add(
-                    text,
-                    Shape::ScaleText {
-                        at,
-                        height: small,
-                        caption,
-                        halign: HAlign::Left,
-                        valign: VAlign::Top,
-                        rotation: 0.0,
-                    },
-                );
+                // The velocity scale as the medium states it (on paper, or in the DXF's
+                // millimetres).
+                let caption = ScaleCaption::new("k_v = ", self.k_v.per_mm, format!(" ({speed})/mm"), 1.0 / self.k_l);
+                let (height, halign, valign) = (self.small, HAlign::Left, VAlign::Top);
+                d.add(self.layers.3, Shape::ScaleText { at, height, caption, halign, valign, rotation: 0.0 });
             } else {
-                line(&mut d, text, at, small, l, HAlign::Left);
+                line(d, self.layers.3, at, self.small, l, HAlign::Left);
             }
         }
     }
-    d
 }
 
 #[cfg(test)]
