@@ -947,3 +947,22 @@ fn each_groups_free_body_is_in_equilibrium_with_its_couples() {
         }
     }
 }
+
+/// No text of a report is cut: a caption too long for its panel's title puts the rest on
+/// lines under it (the triad's modes page cut its angles, `φ3 117.0…`, before 28 Nov 2026).
+#[test]
+fn no_text_of_a_report_is_cut() {
+    for name in ["triad-popa", "fourbar-chebyshev", "shaper-forces", "chain-humienny-2"] {
+        let r = report_of(name, None);
+        for (i, p) in r.pages.iter().enumerate() {
+            for t in common::texts(&p.drawing) {
+                assert!(!t.ends_with('…'), "{name} page {}: \"{t}\" is cut", i + 1);
+            }
+        }
+    }
+    // The modes' angles are all there, under each mode's title.
+    let r = report_of("triad-popa", None);
+    let texts: Vec<String> = r.pages.iter().flat_map(|p| common::texts(&p.drawing)).collect();
+    assert!(texts.iter().any(|t| t == "Mode 1 · ccw"), "{texts:?}");
+    assert!(texts.iter().any(|t| t.starts_with("φ1 75.77° φ2 102.23° φ3 117.04°")), "{texts:?}");
+}

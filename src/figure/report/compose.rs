@@ -145,6 +145,27 @@ pub fn text_page(frame: &ReportFrame, title: &PageTitle, blocks: &[(String, Bloc
     d
 }
 
+/// The letter height of a caption's lines under its panel's title, in letter heights.
+const CAPTION_LINE: f64 = 0.85;
+
+/// A panel's caption as its title and the lines under it: the whole caption as the title
+/// where it fits the panel's width at the text's height; else the part before its last
+/// ` · ` as the title and the rest as lines (wrapped to the panel), so that no caption is
+/// cut (a triad's `Mode 1 · ccw · φ1 75.77° φ2 102.23° φ3 117.04°`).
+fn caption_parts(caption: &str, cell: Bounds, s: crate::figure::shared::vocab::Sizes) -> (String, Vec<String>) {
+    let room = cell.width() - 1.2 * s.text;
+    if crate::draw::parts::text_width(caption, s.text) <= room {
+        return (caption.to_string(), Vec::new());
+    }
+    match caption.rsplit_once(" · ") {
+        Some((head, rest)) => {
+            let width = page::panel_area(cell, true, s).width();
+            (head.to_string(), page::wrap(rest, CAPTION_LINE * s.text, width))
+        }
+        None => (caption.to_string(), Vec::new()),
+    }
+}
+
 /// A mechanism in several positions (each with its own sketch: a triad's modes are mirror
 /// images), each in its own panel with its caption, all at one nice k_l (written in the
 /// title block's first cell): a triad's assembly modes.
@@ -164,18 +185,30 @@ pub fn positions_page(
         4
     };
     let cells = page::grid(frame.content, n, cols);
-    let k_l = positions.iter().zip(&cells).fold(0.0f64, |k, ((_, sk, q), cell)| {
+    // Each panel's title, and what of its caption does not fit there: lines under it.
+    let heads: Vec<(String, Vec<String>)> =
+        positions.iter().zip(&cells).map(|((caption, ..), cell)| caption_parts(caption, *cell, s)).collect();
+    let figure_area = |cell: Bounds, lines: &[String]| {
+        let mut area = page::panel_area(cell, true, s);
+        area.max.y -= lines.len() as f64 * page::LINE_SPACING * CAPTION_LINE * s.text;
+        area
+    };
+    let k_l = positions.iter().zip(&cells).zip(&heads).fold(0.0f64, |k, (((_, sk, q), cell), (_, lines))| {
         let (lo, hi) = sk.extent(&[q.as_slice()]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        k.max(sketch::fit(lo, hi, page::panel_area(*cell, true, s), sketch::room(s)).k_l)
+        k.max(sketch::fit(lo, hi, figure_area(*cell, lines), sketch::room(s)).k_l)
     });
     let mut title = title.clone();
     title.cells = vec![format!("k_l = {} {unit}/mm", page::plain(k_l)), format!("{} positions", positions.len())];
     let mut d = frame.page(&title);
-    for ((caption, sk, q), cell) in positions.iter().zip(cells) {
-        let probe = page::panel_area(cell, true, s);
+    for (((_, sk, q), cell), (head, lines)) in positions.iter().zip(cells).zip(&heads) {
+        let probe = figure_area(cell, lines);
         let (lo, hi) = sk.extent(&[q.as_slice()]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
         let at = OnPaper { k_l, origin: sheet::centre(lo, hi, k_l, probe) };
-        let area = page::panel(&mut d, cell, caption, s);
+        let mut area = page::panel(&mut d, cell, head, s);
+        if !lines.is_empty() {
+            let l = page::sheet_layer(&mut d);
+            area.max.y -= page::lines(&mut d, l, area, lines, CAPTION_LINE * s.text, s);
+        }
         sketch::draw(
             &mut d,
             sk,
