@@ -1,6 +1,19 @@
 //! Short quotes of user text in messages: a scene field, a name or an expression can be
 //! a megabyte long, and a message quotes at most [`QUOTE_CHARS`] characters of it.
 
+/// `n` and its noun as English writes it, for messages and pages: `1 driver`, `2 drivers`,
+/// `0 degrees of freedom`.
+///
+/// ```
+/// use mechdraw::text::counted;
+/// assert_eq!(counted(1, "driver", "drivers"), "1 driver");
+/// assert_eq!(counted(0, "degree of freedom", "degrees of freedom"), "0 degrees of freedom");
+/// ```
+pub fn counted(n: impl Into<i64>, one: &str, many: &str) -> String {
+    let n = n.into();
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
 /// Most characters of user text a message quotes.
 pub const QUOTE_CHARS: usize = 80;
 

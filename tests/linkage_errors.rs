@@ -61,7 +61,7 @@ fn degrees_of_freedom_that_do_not_match_the_drivers() {
     let j = text.find("[[measure]]").unwrap();
     let no_driver = format!("{}{}", &text[..i], &text[j..]);
     let e = run_bad(&no_driver);
-    assert!(e.contains("field `driver`") && e.contains("1 degree(s) of freedom") && e.contains("0 driver(s)"), "{e}");
+    assert!(e.contains("field `driver`") && e.contains("1 degree of freedom") && e.contains("0 drivers"), "{e}");
     assert!(e.contains("add 1 driver"), "{e}");
     let two = text.replace("[[measure]]\npoint", "[[driver]]\nbody = \"rocker\"\nlaw = \"t\"\n\n[[measure]]\npoint");
     let e = run_bad(&two);

@@ -232,7 +232,7 @@ law = "10*t"
     match scene::parse(text, "test.toml", &[]) {
         Err(mechdraw::scene::SceneError::Field { field, message, .. }) => {
             assert_eq!(field, "driver");
-            assert!(message.contains("0 degree(s) of freedom") && message.contains("1 driver(s)"), "{message}");
+            assert!(message.contains("0 degrees of freedom") && message.contains("1 driver"), "{message}");
             assert!(message.contains("3 × 4 bodies") && message.contains("6 joints"), "{message}");
         }
         other => panic!("expected a field error on `driver`, got {other:?}"),

@@ -222,6 +222,6 @@ fn mode_chooses_the_assembly_mode_the_picture_draws() {
     }
     let t = template_text();
     let with_mode = |m: &str| t.replace("orientation = \"both\"", &format!("orientation = \"both\"\nmode = {m}"));
-    assert_rejected(&with_mode("9"), &["mode = 9", "8 assembly mode(s)", "1 to 8"]);
+    assert_rejected(&with_mode("9"), &["mode = 9", "8 assembly modes", "1 to 8"]);
     assert_rejected(&with_mode("0"), &["field `mode`", "1 or more"]);
 }

@@ -84,12 +84,12 @@ fn dimensioning_report(scene: &ChainScene, analysis: &Analysis, labels: &[String
     let mut report = String::new();
     let n_red = analysis.redundant_count(dims.len());
     report.push_str(&format!(
-        "chain {}: {} features, {} dimensions, {} group(s) of features; {} redundant dimension(s)\n",
+        "chain {}: {}, {}, {}; {}\n",
         scene.name,
-        analysis.features.len(),
-        dims.len(),
-        analysis.components,
-        n_red
+        crate::text::counted(analysis.features.len() as i64, "feature", "features"),
+        crate::text::counted(dims.len() as i64, "dimension", "dimensions"),
+        crate::text::counted(analysis.components as i64, "group of features", "groups of features"),
+        crate::text::counted(n_red as i64, "redundant dimension", "redundant dimensions")
     ));
     let loop_text = |r: &crate::solve::chain::Redundant| {
         let f = Function { terms: r.path.clone(), nominal: r.path.iter().map(|t| t.coef * dims[t.dim].nominal).sum() };
@@ -99,10 +99,15 @@ fn dimensioning_report(scene: &ChainScene, analysis: &Analysis, labels: &[String
         let names: Vec<String> =
             g.iter().map(|&i| format!("{} ({})", dims[i].name, fmt_value(dims[i].nominal))).collect();
         report.push_str(&format!(
-            "  seed's check: {} end at one point when every base is 0: over-dimensioned {} time(s)\n",
+            "  seed's check: {} end at one point when every base is 0: over-dimensioned {}\n",
             names.join(", "),
             // p coinciding points (the zero point counts) are p − 1 redundant dimensions.
-            g.len() - 1 + usize::from(g.iter().any(|&i| analysis.node_of[dims[i].to] == analysis.node_of[0]))
+            crate::text::counted(
+                (g.len() - 1 + usize::from(g.iter().any(|&i| analysis.node_of[dims[i].to] == analysis.node_of[0])))
+                    as i64,
+                "time",
+                "times"
+            )
         ));
     }
     for r in &analysis.redundant {

@@ -380,12 +380,12 @@ impl Solved<'_> {
             format!("Newton iterations per step ≤ {max_iter} (mean {mean_iter:.2})")
         };
         let mut report = format!(
-            "linkage {}: {} bodies, {} joints, {} driver(s); {} positions, t = {}..{} s; max residual {:.1e} (relative); \
+            "linkage {}: {} bodies, {} joints, {}; {} positions, t = {}..{} s; max residual {:.1e} (relative); \
              {iterations}",
             scene.name,
             mech.bodies.len(),
             mech.joints.len(),
-            mech.drivers.len(),
+            crate::text::counted(mech.drivers.len() as i64, "driver", "drivers"),
             self.states.len(),
             // At most 6 decimals: a span of π/10 s reads 0..0.314159 s.
             crate::solve::chain::graph::fmt_value(scene.times[0]),

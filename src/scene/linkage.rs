@@ -1345,17 +1345,19 @@ fn check_degrees_of_freedom(
         } else if dof <= 0 {
             "the joints leave no motion; remove a joint or add a body".to_string()
         } else if (drivers.len() as i64) < dof {
-            format!("add {} driver(s)", dof - drivers.len() as i64)
+            format!("add {}", crate::text::counted(dof - drivers.len() as i64, "driver", "drivers"))
         } else {
-            format!("remove {} driver(s)", drivers.len() as i64 - dof)
+            format!("remove {}", crate::text::counted(drivers.len() as i64 - dof, "driver", "drivers"))
         };
         return Err(FieldError::new(
             "driver",
             format!(
-                "the mechanism has {dof} degree(s) of freedom (3 × {} bodies − 2 × {} joints) but {} driver(s) are given: {advice}",
+                "the mechanism has {} (3 × {} bodies − 2 × {} joints) but {} {} given: {advice}",
+                crate::text::counted(dof, "degree of freedom", "degrees of freedom"),
                 bodies.len(),
                 joints.len(),
-                drivers.len(),
+                crate::text::counted(drivers.len() as i64, "driver", "drivers"),
+                if drivers.len() == 1 { "is" } else { "are" },
             ),
         ));
     }

@@ -273,7 +273,10 @@ fn motion_scene(r: RawMotion) -> Result<SynthesisScene, FieldError> {
     if !(2..=3).contains(&r.positions.len()) {
         return Err(FieldError::new(
             "positions",
-            format!("{} position(s) given: give 2 or 3 positions of the coupler line", r.positions.len()),
+            format!(
+                "{} given: give 2 or 3 positions of the coupler line",
+                crate::text::counted(r.positions.len() as i64, "position", "positions")
+            ),
         ));
     }
     let mut poses = Vec::new();

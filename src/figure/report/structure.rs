@@ -95,18 +95,18 @@ pub fn mobility_lines(p: &StructurePage) -> Vec<String> {
     match m.actual {
         Some(a) if a == m.formula => out.push(format!(
             "At this position the joints leave {} (3n − rank Φq = {} − {}): as the formula says.",
-            counted(a, "degree of freedom", "degrees of freedom"),
+            crate::text::counted(a, "degree of freedom", "degrees of freedom"),
             3 * m.links,
             3 * m.links as i64 - a
         )),
         Some(a) => out.push(format!(
             "At this position the joints leave {} (3n − rank Φq = {} − {}), not {}: {} repeat others (a \
              redundant, passive constraint); the formula counts them, the motion does not.",
-            counted(a, "degree of freedom", "degrees of freedom"),
+            crate::text::counted(a, "degree of freedom", "degrees of freedom"),
             3 * m.links,
             3 * m.links as i64 - a,
             m.formula,
-            counted(m.redundant() as i64, "joint equation", "joint equations"),
+            crate::text::counted(m.redundant() as i64, "joint equation", "joint equations"),
         )),
         None => {}
     }
@@ -120,7 +120,7 @@ pub fn mobility_lines(p: &StructurePage) -> Vec<String> {
         );
     }
     let effective = m.actual.unwrap_or(m.formula);
-    let drivers = counted(st.drivers as i64, "driver", "drivers");
+    let drivers = crate::text::counted(st.drivers as i64, "driver", "drivers");
     out.push(if effective == 0 && st.drivers == 0 {
         "M = 0: with its outer pairs on the frame it is a structure, an Assur group on its own; a driver moving \
          one of its outer pairs makes it part of a mechanism."
@@ -159,7 +159,10 @@ fn group_lines(p: &StructurePage) -> Vec<String> {
                 if w < 0 { format!("−{}", -w) } else { w.to_string() }
             ));
             if g.is_passive() {
-                line.push_str(&format!(": {} joint equation(s) more than its coordinates", -w));
+                line.push_str(&format!(
+                    ": {} more than its coordinates",
+                    crate::text::counted(-w, "joint equation", "joint equations")
+                ));
             }
             line
         })
@@ -265,9 +268,4 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         );
     }
     d
-}
-
-/// `n` and its noun as English writes it: "1 driver", "2 drivers", "0 degrees of freedom".
-fn counted(n: i64, one: &str, many: &str) -> String {
-    format!("{n} {}", if n == 1 { one } else { many })
 }

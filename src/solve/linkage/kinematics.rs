@@ -376,9 +376,12 @@ impl Solver {
             let hint = if dof <= 0 {
                 "the joints leave no motion (a structure or over-constrained): remove a joint or add a body".to_string()
             } else if d < dof {
-                format!("add {} driver(s) (a body angle, a joint angle or a joint distance)", dof - d)
+                format!(
+                    "add {} (a body angle, a joint angle or a joint distance)",
+                    crate::text::counted(dof - d, "driver", "drivers")
+                )
             } else {
-                format!("remove {} driver(s)", d - dof)
+                format!("remove {}", crate::text::counted(d - dof, "driver", "drivers"))
             };
             return Err(LinkageError::DofMismatch { bodies: nb, equations, dof, drivers: mech.drivers.len(), hint });
         }

@@ -208,8 +208,9 @@ pub enum LinkageError {
     /// Degrees of freedom and drivers don't match (counted before solving).
     /// Example: a crank-rocker with no driver.
     #[error(
-        "the mechanism has {dof} degree(s) of freedom (3 × {bodies} moving bodies − {equations} joint equations) \
-         but {drivers} driver(s): {hint}"
+        "the mechanism has {} (3 × {bodies} moving bodies − {equations} joint equations) but {}: {hint}",
+        crate::text::counted(*dof, "degree of freedom", "degrees of freedom"),
+        crate::text::counted(*drivers as i64, "driver", "drivers")
     )]
     DofMismatch {
         /// Moving bodies.

@@ -123,7 +123,7 @@ pub enum TriadError {
     #[error(
         "no configuration exists{}: A1 and A2 can be placed on circles r[0], r[1] with |A1A2| = l12, but A3 then never reaches circle r[2] about o3; the closest it comes is |O3A3| − R3 = {closest_miss:.6} at phi1 = {at_phi1_deg:.3}°{}",
         orientation.map(|o| format!(" with orientation {o}")).unwrap_or_default(),
-        if *mirror_modes > 0 { format!(" (the mirror orientation has {mirror_modes} configuration(s): set orientation = \"both\")") } else { String::new() }
+        if *mirror_modes > 0 { format!(" (the mirror orientation has {}: set orientation = \"both\")", crate::text::counted(*mirror_modes as i64, "configuration", "configurations")) } else { String::new() }
     )]
     NoConfiguration {
         /// The orientation asked for, or `None` for both.
@@ -192,7 +192,8 @@ pub enum TriadError {
     /// The drawn assembly mode asked for is not among those found. Example: `mode = 9` for
     /// a triad with 8 modes.
     #[error(
-        "mode = {mode}: the triad has {count} assembly mode(s) here, numbered 1 to {count} as the report lists them"
+        "mode = {mode}: the triad has {} here, numbered 1 to {count} as the report lists them",
+        crate::text::counted(*count as i64, "assembly mode", "assembly modes")
     )]
     NoSuchMode {
         /// The mode asked for (1-based).
