@@ -212,6 +212,10 @@ fn every_linkage_templates_a4_pages_draw_a_large_crank_and_force_figures_at_leas
             let (at, caption) =
                 caption.unwrap_or_else(|| panic!("{stem}: the crank is {crank:.1} mm, and no detail view"));
             let k: f64 = caption.split("k_l = ").nth(1).unwrap().split_whitespace().next().unwrap().parse().unwrap();
+            // Its letter starts no point's name (triad-driven: B, not A beside A1, A2, A3).
+            let letter = caption["Detail ".len()..].chars().next().unwrap();
+            let named = s.mechanism.bodies.iter().flat_map(|b| b.points.iter()).any(|(n, _)| n.starts_with(letter));
+            assert!(!named, "{stem}: the detail's letter {letter} starts a point's name");
             let enlarged = crank_len / k;
             assert!(enlarged >= 25.0, "{stem}: the crank is {enlarged:.1} mm in {caption:?}");
             // Drawn in the detail's panel (the smallest panel holding its caption).

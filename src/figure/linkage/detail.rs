@@ -4,7 +4,7 @@
 //! its ground pivot (the crank, its joints, the circle its far point runs on, the first
 //! millimetres of the links it carries) is drawn again enlarged, at the coarsest ISO 5455
 //! scale (1, 2, 5 × 10ᵏ) that draws the crank at least [`CRANK_MIN_MM`] long, in a panel of
-//! its own captioned `Detail A (5:1)` with its k_l and a scale bar; the region is marked on
+//! its own captioned `Detail B (5:1)` with its k_l and a scale bar; the region is marked on
 //! the main view by a thin circle and the detail's letter. What lies outside the region is
 //! cut at a thin circle, the region's edge.
 
@@ -26,7 +26,8 @@ const REGION_ROOM: f64 = 4.0;
 /// A detail view of the crank: where, at which scale, how large.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Detail {
-    /// Its letter (`A`, the first capital that names no point of the mechanism).
+    /// Its letter: the first capital that no point's name starts with (`B` beside O1, C,
+    /// A1, A2, A3), else the first that names no point.
     pub letter: String,
     /// Its scale: model units per paper mm.
     pub k: f64,
@@ -90,7 +91,14 @@ impl Detail {
                 JointSymbol::Slider { name, .. } => name.as_deref(),
             }))
             .collect();
-        let letter = ('A'..='Z').map(String::from).find(|c| !names.contains(&c.as_str())).unwrap_or_default();
+        // A letter that no point's name starts with (not A beside A1, A2, A3), else one that
+        // names no point.
+        let initial = |c: char| names.iter().any(|n| n.starts_with(c));
+        let letter = ('A'..='Z')
+            .find(|&c| !initial(c))
+            .or_else(|| ('A'..='Z').find(|c| !names.contains(&c.to_string().as_str())))
+            .map(String::from)
+            .unwrap_or_default();
         let radius_mm = crank / k + REGION_ROOM * s.text;
         Some(Detail { letter, k, mm_per_unit, body, pivot, crank, radius_mm })
     }
@@ -112,7 +120,7 @@ impl Detail {
         self.crank / self.k
     }
 
-    /// The panel's caption: `Detail A (5:1)   k_l = 0.2 mm/mm`.
+    /// The panel's caption: `Detail B (5:1)   k_l = 0.2 mm/mm`.
     pub fn caption(&self, units: vocab::ModelUnits) -> String {
         format!(
             "Detail {} ({})   {}",
