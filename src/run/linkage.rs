@@ -232,7 +232,7 @@ fn column_warnings(scene: &LinkageScene, cols: &[Column], states: &[State]) -> R
 }
 
 /// What the frames and sheets draw, from the scene's `[polygons]`, `[frames]` and outputs.
-fn show_of(scene: &LinkageScene) -> Show {
+pub(super) fn show_of(scene: &LinkageScene) -> Show {
     let (p, out) = (&scene.polygons, scene.outputs);
     Show {
         velocity: p.velocity && out.velocity,
@@ -245,7 +245,7 @@ fn show_of(scene: &LinkageScene) -> Show {
 }
 
 /// A diagram of each measured column, as a textbook draws it.
-fn plots(scene: &LinkageScene, states: &[State], strokes: &[Guided]) -> Vec<Plot> {
+pub(super) fn plots(scene: &LinkageScene, states: &[State], strokes: &[Guided]) -> Vec<Plot> {
     scene
         .measures
         .iter()

@@ -516,23 +516,10 @@ impl PositionPages {
         kin_scale: f64,
     ) -> PositionPages {
         let figure = run::figure_of(scene);
-        let (p, out) = (&scene.polygons, scene.outputs);
-        let show = crate::figure::linkage::frame::Show {
-            velocity: p.velocity && out.velocity,
-            acceleration: p.acceleration && out.acceleration,
-            forces: p.forces && out.forces,
-            points: p.points.clone(),
-            per_body: p.per_body,
-            scales: crate::run::scale_choice(scene.frame_scales),
-        };
+        let show = run::show_of(scene);
         // The run's plots (each table row's series, to read a position's value against)
         // and the table's most rows over the run, as `run --sheets` lays its sheets out.
-        let all_plots: Vec<run::Plot> = scene
-            .measures
-            .iter()
-            .flat_map(|m| m.quantities.iter().map(move |&q| (m, q)))
-            .map(|(m, q)| run::plot_of(scene, m, q, &solved.states, strokes))
-            .collect();
+        let all_plots = run::plots(scene, &solved.states, strokes);
         let rows = (0..solved.states.len())
             .map(|k| {
                 let f = scene.dynamics.as_ref().zip(solved.forces.as_ref().and_then(|f| f.get(k)));
