@@ -15,6 +15,7 @@ mod common;
 use mechdraw::draw::{Drawing, HAlign, Shape};
 use mechdraw::figure::fourbar::{Layout, ModelUnits, Scale, Show};
 use mechdraw::figure::shared::polygon::MARK_RADIUS;
+use mechdraw::figure::shared::sheet::read_number;
 use mechdraw::geom::{Point, Vector};
 use mechdraw::run::RunOptions;
 use mechdraw::run::products::Picture;
@@ -183,7 +184,7 @@ fn the_table_of_magnitudes_prints_the_solvers_values() {
             let v = t.iter().find(|x| x.halign == HAlign::Right && x.at.y == n.at.y).unwrap();
             let (num, unit) = v.value.split_once(' ').unwrap();
             let decimals = num.split_once('.').map_or(0, |(_, f)| f.len());
-            (num.parse().unwrap(), unit.to_string(), 0.5 * 10f64.powi(-(decimals as i32)))
+            (read_number(num).unwrap(), unit.to_string(), 0.5 * 10f64.powi(-(decimals as i32)))
         };
         // |R| from the components, independently of the table's own arithmetic.
         let mag = |v: Vector| v.x.hypot(v.y);

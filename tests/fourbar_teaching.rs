@@ -212,7 +212,7 @@ fn the_sheets_are_written_named_and_clean() {
     // The printed Me1 at 200° is the JSON's, to four significant digits.
     let j = json(r);
     let p200 = j["positions"].as_array().unwrap().iter().find(|p| p["phi1_deg"] == 200.0).unwrap();
-    let printed = format!("= {:.5} N·m", p200["me1_joukowski"].as_f64().unwrap());
+    let printed = format!("= {:.5} N·m", p200["me1_joukowski"].as_f64().unwrap()).replace('-', "−");
     assert!(lever.contains(&printed), "{printed}");
     assert_ezdxf_clean(&[&path(r, &format!("{NAME}-centres.dxf")), &path(r, &format!("{NAME}-joukowski.dxf"))]);
 }

@@ -15,6 +15,7 @@
 
 mod common;
 
+use mechdraw::figure::shared::sheet::read_number;
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
@@ -223,7 +224,7 @@ fn table_rows(d: &Drawing) -> BTreeMap<String, Vec<String>> {
 
 /// `printed` equals `value` to its printed digits (half a unit in the last place).
 fn agrees(printed: &str, value: f64) -> bool {
-    let p: f64 = printed.parse().unwrap_or_else(|_| panic!("not a number: {printed}"));
+    let p: f64 = read_number(printed).unwrap_or_else(|| panic!("not a number: {printed}"));
     let (mantissa, exp) = printed.split_once('e').map_or((printed, 0), |(m, e)| (m, e.parse::<i32>().unwrap()));
     let decimals = mantissa.split_once('.').map_or(0, |(_, d)| d.len()) as i32;
     (p - value).abs() <= 0.5 * 10f64.powi(exp - decimals) * (1.0 + 1e-9)

@@ -311,11 +311,11 @@ mod tests {
 
     #[test]
     fn four_significant_digits() {
-        assert_eq!(sig4(-1.49012), "-1.490");
+        assert_eq!(sig4(-1.49012), "−1.490");
         assert_eq!(sig4(1490.12), "1490");
         assert_eq!(sig4(0.0123456), "0.01235");
         assert_eq!(sig4(0.0), "0");
         assert_eq!(sig4(1.5e7), "15000000");
-        assert_eq!(sig4(-2.5e-6), "-0.000002500");
+        assert_eq!(sig4(-2.5e-6), "−0.000002500");
     }
 }

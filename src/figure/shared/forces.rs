@@ -410,7 +410,7 @@ impl Magnitude {
 }
 
 /// The text of a value in a table of magnitudes: 4 significant digits as the sheets print
-/// them ([`sheet::number`]: `52.37 N`, `-1.490 N·m`, `241779 N·mm`); below 5e-4 (rounding
+/// them ([`sheet::number`]: `52.37 N`, `−1.490 N·m`, `241779 N·mm`); below 5e-4 (rounding
 /// noise of a force that vanishes) `0`.
 pub fn magnitude_text(value: f64, unit: &str) -> String {
     let v = if value.abs() < 5e-4 { 0.0 } else { value };
@@ -678,7 +678,7 @@ mod tests {
     #[test]
     fn magnitudes_print_with_three_decimals() {
         assert_eq!(magnitude_text(52.3714, "N"), "52.37 N");
-        assert_eq!(magnitude_text(-1.49, "N·m"), "-1.490 N·m");
+        assert_eq!(magnitude_text(-1.49, "N·m"), "−1.490 N·m");
         assert_eq!(magnitude_text(241779.383, "N·mm"), "241779 N·mm");
         assert_eq!(magnitude_text(-1e-5, "N"), "0 N");
     }

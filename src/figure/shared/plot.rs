@@ -181,13 +181,14 @@ fn inner_ticks(lo: f64, hi: f64, max_ticks: usize, degrees: bool) -> Ticks {
     Ticks { lo, hi, step: t.step, first }
 }
 
-/// Formats a tick value with `decimals` decimals ("-0" printed as "0").
+/// Formats a tick value with `decimals` decimals ("-0" printed as "0", a negative one with
+/// the minus sign −).
 fn tick_label(v: f64, decimals: usize) -> String {
     let s = format!("{v:.decimals$}");
     if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') {
         s.trim_start_matches('-').to_string()
     } else {
-        s
+        super::sheet::typeset_minus(s)
     }
 }
 
@@ -943,6 +944,7 @@ mod tests {
         assert_eq!(t.step, 0.1);
         assert_eq!(tick_label(0.30000000000000004, t.decimals()), "0.3");
         assert_eq!(tick_label(-0.0, 2), "0.00");
+        assert_eq!(tick_label(-150.0, 0), "−150");
         assert_eq!(decimals_for(2.5), 1);
         assert_eq!(decimals_for(50.0), 0);
     }

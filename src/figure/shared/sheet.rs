@@ -279,7 +279,8 @@ pub fn scientific(v: f64, digits: u32) -> String {
 
 /// A number for a drawing: 4 significant digits (what a graphical construction is read to;
 /// a value of 1000 or more to the unit: 1833229), in decimals, never with an exponent,
-/// trailing zeros kept so that columns align.
+/// trailing zeros kept so that columns align, a negative one with the minus sign −
+/// (U+2212, as typeset; [`read_number`] reads it back).
 pub fn number(v: f64) -> String {
     if !v.is_finite() {
         return "–".to_string();
@@ -290,7 +291,22 @@ pub fn number(v: f64) -> String {
     let mag = libm::log10(v.abs()).floor();
     let decimals = (3.0 - mag).clamp(0.0, 20.0) as usize;
     let s = format!("{v:.decimals$}");
-    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".to_string() } else { s }
+    if s.trim_start_matches('-').chars().all(|c| c == '0' || c == '.') { "0".to_string() } else { typeset_minus(s) }
+}
+
+/// `s` with a leading hyphen-minus, as Rust formats a negative number, written as the minus
+/// sign − (U+2212): a drawing's numbers are typeset, as a textbook prints them.
+pub fn typeset_minus(s: String) -> String {
+    match s.strip_prefix('-') {
+        Some(rest) => format!("−{rest}"),
+        None => s,
+    }
+}
+
+/// A number as a drawing prints it ([`number`], a plot's tick), read back: the minus sign −
+/// read as `-`. `None` when `text` is not a number.
+pub fn read_number(text: &str) -> Option<f64> {
+    text.trim().replacen('−', "-", 1).parse().ok()
 }
 
 /// A figure's scale on a sheet: physical units per paper millimetre, and the fraction of
@@ -625,14 +641,19 @@ mod tests {
     #[test]
     fn numbers_have_four_significant_digits() {
         assert_eq!(number(0.123456), "0.1235");
-        assert_eq!(number(-12.3456), "-12.35");
+        assert_eq!(number(-12.3456), "−12.35");
         assert_eq!(number(1490.04), "1490");
         assert_eq!(number(20.0), "20.00");
         assert_eq!(number(0.0), "0");
-        assert_eq!(number(-1e-7), "-0.0000001000");
-        assert_eq!(number(-1833229.4), "-1833229");
+        assert_eq!(number(-1e-7), "−0.0000001000");
+        assert_eq!(number(-1833229.4), "−1833229");
         assert_eq!(number(529411.765), "529412");
         assert_eq!(number(f64::NAN), "–");
+        for v in [-12.3456, -1e-7, -1833229.4, 529411.765] {
+            let back = read_number(&number(v)).unwrap_or(f64::NAN);
+            assert!((back - v).abs() <= 5e-4 * v.abs(), "{v} -> {back}");
+        }
+        assert_eq!(read_number("m"), None);
     }
 
     #[test]
