@@ -102,7 +102,7 @@ fn modes_sheet_has_one_panel_per_mode_with_the_solvers_angles() {
     numbers.sort();
     assert_eq!(numbers, (1..=solutions.len()).collect::<Vec<_>>());
     let marked: Vec<usize> =
-        all.iter().filter(|(_, t)| t.contains("drawn in Fig. 3")).filter_map(|(_, t)| mode_number(t)).collect();
+        all.iter().filter(|(_, t)| t.contains("· in Fig. 3")).filter_map(|(_, t)| mode_number(t)).collect();
     assert_eq!(marked, [primary + 1]);
 
     let circles: Vec<(Point, f64)> = layer(d, "CONSTRUCTION")
