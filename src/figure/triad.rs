@@ -394,6 +394,15 @@ fn name_joints(
     }
 }
 
+/// A line `width` wide from `u` to `v` as the letters keep off it: its middle and both edges.
+fn wide_segment(letters: &mut labels::Polygon, u: Point, v: Point, width: f64) {
+    let n = vocab::unit_or(v - u, Vector::new(1.0, 0.0));
+    let side = Vector::new(-n.y, n.x) * (0.5 * width);
+    for shift in [Vector::zeros(), side, -side] {
+        letters.segment(u + shift, v + shift);
+    }
+}
+
 /// Every assembly mode of `m` as small multiples (see the module docs).
 pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let t = m.triad;
@@ -456,11 +465,11 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
         }
         for (o, p) in o.iter().zip(a) {
             vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
-            letters.segment(*o, p);
+            wide_segment(&mut letters, *o, p, s.link);
         }
         vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
         for i in 0..3 {
-            letters.segment(a[i], a[(i + 1) % 3]);
+            wide_segment(&mut letters, a[i], a[(i + 1) % 3], s.link);
         }
         for p in o {
             vocab::ground(&mut d, mechanism, p, s);
@@ -468,6 +477,11 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
         }
         for p in a {
             vocab::joint(&mut d, mechanism, p, s);
+        }
+        // Every joint's circle: a name keeps off the others' (its own keeps its clearance).
+        for p in o.iter().chain(&a) {
+            letters
+                .keep_off(TextBox { min: p - Vector::new(s.joint, s.joint), max: p + Vector::new(s.joint, s.joint) });
         }
         let x = top_left.x + pad;
         d.text(text, Point::new(x, top_left.y - heading_base), s.text, mode_heading(k + 1, c, drawn));
