@@ -8,17 +8,21 @@
 //! caption. Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM`
 //! (exact position, pivots, joints), `DIMENSIONS`, `TEXT`.
 //!
-//! [`modes_sheet`] draws every assembly mode as small multiples: one panel per mode, in
-//! the report's order, [`SHEET_COLUMNS`] to a row, each with the circles, the mode's
-//! triangle and links, its number, orientation and phi1, phi2, phi3; the mode drawn in
-//! Fig. 3 is marked. Layers: `PANELS` (panel frames), `CONSTRUCTION`, `MECHANISM`, `TEXT`.
+//! [`modes_sheet`] draws every assembly mode as small multiples: one cell per mode, in
+//! the report's order, each with the circles, the mode's triangle and links, the joints'
+//! names O1 … A3 (placed by the letter placer clear of every line, joint and symbol), its
+//! number, orientation and phi1, phi2, phi3; the mode drawn in Fig. 3 is marked. The
+//! sheet is laid out on [`MODES_PAPER`] (A3) either way round ([`modes_layout`]): of every
+//! grid, the one holding every sketch at the finest drafting scale, each sketch centred in
+//! its cell under the cell's texts. Layers: `PANELS` (cell frames), `CONSTRUCTION`,
+//! `MECHANISM`, `TEXT`.
 //!
-//! Both are drawn on paper: a length scale k_l (model units per paper millimetre, a nice
-//! value) draws the three circles at most [`TRIAD_MM`] (Fig. 3, on A4) or [`PANEL_MM`]
-//! (a panel of the sheet) long, the drawing carries `paper_mm_per_unit = 1/k_l`, sizes are
-//! the shared table's from paper millimetres ([`Sizes::on_paper`]: letters 3.5 mm), and
-//! k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres looks the same
-//! as one in millimetres.
+//! Both are drawn on paper: a length scale k_l (model units per paper millimetre) — for
+//! Fig. 3 the nice value drawing the three circles at most [`TRIAD_MM`] long (A4), for the
+//! sheet the layout's drafting scale — the drawing carries `paper_mm_per_unit = 1/k_l`,
+//! sizes are the shared table's from paper millimetres ([`Sizes::on_paper`]: letters
+//! 3.5 mm), and k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres
+//! looks the same as one in millimetres.
 
 use crate::draw::parts::widest_text_width;
 use crate::draw::svg::SvgOptions;
