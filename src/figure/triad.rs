@@ -407,6 +407,44 @@ fn wide_segment(letters: &mut labels::Polygon, u: Point, v: Point, width: f64) {
     }
 }
 
+/// Draws mode `c` of `t` shifted by `off` on `layers` (construction, mechanism): the
+/// circles, the links and the triangle, the ground pivots and the joints; returns the
+/// joints' names O1 … A3 ready to place ([`name_joints`]) clear of every line (a link by
+/// both its edges), joint circle and ground symbol.
+fn sketch(d: &mut Drawing, layers: [usize; 2], t: &Triad, c: &Configuration, off: Vector, s: Sizes) -> labels::Polygon {
+    let [construction, mechanism] = layers;
+    let o = t.o.map(|p| p + off);
+    let a = c.a.map(|p| p + off);
+    let mut letters = labels::Polygon::of_names().apart(labels::LABEL_GAP * s.text);
+    for (o, r) in o.iter().zip(t.r) {
+        d.add(construction, Shape::Circle { center: *o, radius: r });
+        let mut chords = Vec::new();
+        arc_segments(&mut chords, *o, r, 0.0, std::f64::consts::TAU);
+        chords.into_iter().for_each(|(u, v)| letters.segment(u, v));
+    }
+    for (o, p) in o.iter().zip(a) {
+        vocab::link(d, mechanism, vec![*o, p], false, None, s);
+        wide_segment(&mut letters, *o, p, s.link);
+    }
+    vocab::link(d, mechanism, a.to_vec(), true, None, s);
+    for i in 0..3 {
+        wide_segment(&mut letters, a[i], a[(i + 1) % 3], s.link);
+    }
+    for p in o {
+        vocab::ground(d, mechanism, p, s);
+        letters.keep_off(vocab::ground_extent(p, s));
+    }
+    for p in a {
+        vocab::joint(d, mechanism, p, s);
+    }
+    // Every joint's circle: a name keeps off the others' (its own keeps its clearance).
+    for p in o.iter().chain(&a) {
+        letters.keep_off(TextBox { min: p - Vector::new(s.joint, s.joint), max: p + Vector::new(s.joint, s.joint) });
+    }
+    name_joints(&mut letters, &o, &a, &c.phi, s, false);
+    letters
+}
+
 /// Every assembly mode of `m` as small multiples (see the module docs).
 pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let t = m.triad;
@@ -458,44 +496,16 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
             linetype: None,
             shape: Shape::Polyline { points: corners, closed: true, width },
         });
-        let o = t.o.map(|p| p + off);
-        let a = c.a.map(|p| p + off);
-        let mut letters = labels::Polygon::of_names().apart(labels::LABEL_GAP * s.text);
-        for (o, r) in o.iter().zip(t.r) {
-            d.add(construction, Shape::Circle { center: *o, radius: r });
-            let mut chords = Vec::new();
-            arc_segments(&mut chords, *o, r, 0.0, std::f64::consts::TAU);
-            chords.into_iter().for_each(|(u, v)| letters.segment(u, v));
-        }
-        for (o, p) in o.iter().zip(a) {
-            vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
-            wide_segment(&mut letters, *o, p, s.link);
-        }
-        vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
-        for i in 0..3 {
-            wide_segment(&mut letters, a[i], a[(i + 1) % 3], s.link);
-        }
-        for p in o {
-            vocab::ground(&mut d, mechanism, p, s);
-            letters.keep_off(vocab::ground_extent(p, s));
-        }
-        for p in a {
-            vocab::joint(&mut d, mechanism, p, s);
-        }
-        // Every joint's circle: a name keeps off the others' (its own keeps its clearance).
-        for p in o.iter().chain(&a) {
-            letters
-                .keep_off(TextBox { min: p - Vector::new(s.joint, s.joint), max: p + Vector::new(s.joint, s.joint) });
-        }
+        let within = TextBox {
+            min: top_left + Vector::new(0.5 * pad, -cell_h + 0.5 * pad),
+            max: top_left + Vector::new(cell_w - 0.5 * pad, -header + 0.5 * pad),
+        };
+        let mut letters = sketch(&mut d, [construction, mechanism], t, c, off, s);
         let x = top_left.x + pad;
         d.text(text, Point::new(x, top_left.y - heading_base), s.text, mode_heading(k + 1, c, drawn));
         caption(&mut d, text, Point::new(x, top_left.y - angles_base), &[mode_angles(c)], small_text);
         // The joints' names inside the cell, under its header.
-        letters.keep_within(TextBox {
-            min: top_left + Vector::new(0.5 * pad, -cell_h + 0.5 * pad),
-            max: top_left + Vector::new(cell_w - 0.5 * pad, -header + 0.5 * pad),
-        });
-        name_joints(&mut letters, &o, &a, &c.phi, s, false);
+        letters.keep_within(within);
         letters.draw(&mut d, text);
     }
     // The length scale and its bar above the first row, the title above them, its last
