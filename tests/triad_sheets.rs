@@ -475,6 +475,23 @@ fn reports_modes_page_is_as_large_as_a4_allows_with_its_labels_apart() {
     let d = &r.pages[first - 1].drawing;
     let all = texts(d);
     assert!(all.iter().any(|(_, t)| t == "k_l = 4 mm/mm"), "{all:?}");
+    // The printed k_l measures true: each mode's triangle, measured on the page × 4, has the
+    // triad's sides (1e-9).
+    let mut sides_ok = 0;
+    for e in layer(d, "MECHANISM") {
+        if let Shape::Polyline { points, closed: true, .. } = &e.shape
+            && points.len() == 3
+        {
+            let mut sides =
+                [dist(points[0], points[1]), dist(points[1], points[2]), dist(points[0], points[2])].map(|l| l * 4.0);
+            sides.sort_by(f64::total_cmp);
+            if (sides[2] - SIDES[2]).abs() < 1e-9 {
+                assert!((sides[0] - SIDES[0]).abs() < 1e-9 && (sides[1] - SIDES[1]).abs() < 1e-9, "{sides:?}");
+                sides_ok += 1;
+            }
+        }
+    }
+    assert_eq!(sides_ok, 8, "eight triangles measuring the triad's sides at the printed k_l");
     // Eight mode panels, each with its six names and its numbers 1 … 4.
     let headings: Vec<Point> = all.iter().filter(|(_, t)| t.starts_with("Mode ")).map(|(at, _)| *at).collect();
     assert_eq!(headings.len(), 8);
