@@ -511,7 +511,7 @@ fn layer_boxes(p: &[(i32, String)], layer: &str) -> Vec<(f64, f64, f64, f64)> {
     boxes
 }
 
-/// The triad's modes sheet in LibreCAD: each mode's heading and angles stay in their cell
+/// The triad's modes sheet in LibreCAD: each mode's heading, angles and joint names stay in their cell
 /// (the first heading, "Mode 1 · counter-clockwise · drawn in Fig. 3", ran 41 mm into the
 /// second cell when the cells were as wide as the DejaVu widths of the SVG). Checked twice:
 /// on LibreCAD's page, where the gaps between the cells hold no ink at all, and with
@@ -580,7 +580,7 @@ fn librecad_keeps_each_modes_text_in_its_cell() {
         );
         checked += 1;
     }
-    assert_eq!(checked, 16, "a heading and an angles line in each of the eight cells");
+    assert_eq!(checked, 64, "a heading, an angles line and six joint names in each of the eight cells");
     // The model against the page: the second cell's angles line (every glyph in the font),
     // measured between the cell's borders.
     let t = texts.iter().find(|t| t.text.starts_with("φ1 = 84.04°")).expect("mode 2's angles");

@@ -102,7 +102,7 @@ fn modes_sheet_has_one_panel_per_mode_with_the_solvers_angles() {
     numbers.sort();
     assert_eq!(numbers, (1..=solutions.len()).collect::<Vec<_>>());
     let marked: Vec<usize> =
-        all.iter().filter(|(_, t)| t.contains("drawn in Fig. 3")).filter_map(|(_, t)| mode_number(t)).collect();
+        all.iter().filter(|(_, t)| t.contains("· in Fig. 3")).filter_map(|(_, t)| mode_number(t)).collect();
     assert_eq!(marked, [primary + 1]);
 
     let circles: Vec<(Point, f64)> = layer(d, "CONSTRUCTION")
@@ -287,4 +287,235 @@ fn fig3_is_the_drawn_mode_alone_with_letters_clear() {
             assert!(!b.crosses(*u, *v), "letter {b:?} crosses {u:?}–{v:?}");
         }
     }
+}
+
+/// The drafting scales (GOST 2.302's mantissas 1, 1.5, 2, 2.5, 4, 5 × 10ᵏ) finer than `k`,
+/// the nearest first.
+fn finer_drafting_scale(k: f64) -> f64 {
+    let mut all: Vec<f64> = (-3..=3)
+        .flat_map(|e| [1.0, 1.5, 2.0, 2.5, 4.0, 5.0].map(|m| m * 10f64.powi(e)))
+        .filter(|s| *s < k * (1.0 - 1e-9))
+        .collect();
+    all.sort_by(f64::total_cmp);
+    *all.last().unwrap()
+}
+
+/// The modes sheet is laid out on A3 (issue 31, fig): its SVG no larger than the page; every
+/// sketch (the three circles, measured on the sheet) centred in its cell under the cell's
+/// texts and filling most of it; the printed k_l the sheet's own scale, measuring the
+/// pivots' distances to the scene's (1e-9); and the next finer drafting scale would hold the
+/// sketches in no grid of the page (so the printed one is the largest the page allows).
+#[test]
+fn modes_sheet_draws_its_sketches_as_large_as_its_a3_page_allows() {
+    use mechdraw::figure::triad::{MODES_PAD_MM, modes_area};
+    use mechdraw::geom::Vector;
+    let p = products();
+    let d = &p.sheets[0].drawing;
+    let mm = d.paper_mm_per_unit.expect("drawn on paper");
+    // The printed k_l (model mm per paper mm): the sheet's own scale.
+    let k_text = d
+        .entities
+        .iter()
+        .filter_map(|e| e.shape.scale_text_in(Some(mm)))
+        .find_map(|s| match s {
+            Shape::Text { value, .. } => value.strip_prefix("k_l = ").map(str::to_string),
+            _ => None,
+        })
+        .expect("k_l printed");
+    let k_l: f64 = k_text.trim_end_matches(" mm/mm").parse().unwrap();
+    assert_eq!(k_text, format!("{k_l} mm/mm"));
+    assert!((k_l * mm - 1.0).abs() < 1e-12, "printed k_l {k_l}, drawn at {} mm per mm", mm);
+    assert_eq!(k_l, 2.5, "the template at 2.5 mm/mm (5 before)");
+
+    // The SVG's page: no larger than A3, either way round.
+    let files = mechdraw::run::bytes::to_files(&p, &mechdraw::run::bytes::WriteOptions::default()).unwrap();
+    let (_, svg) = files.iter().find(|(n, _)| n == "triad-popa-modes.svg").unwrap();
+    let svg = String::from_utf8(svg.clone()).unwrap();
+    let attr = |name: &str| -> f64 {
+        let at = svg.find(&format!(" {name}=\"")).unwrap() + name.len() + 3;
+        svg[at..].split("mm\"").next().unwrap().parse().unwrap()
+    };
+    let (w, h) = (attr("width"), attr("height"));
+    assert!(w.min(h) <= 297.0 + 1e-6 && w.max(h) <= 420.0 + 1e-6, "{w} × {h} mm is larger than A3");
+
+    let panels: Vec<(Point, Point)> = common::panels(d);
+    let circles: Vec<(Point, f64)> = layer(d, "CONSTRUCTION")
+        .filter_map(|e| match e.shape {
+            Shape::Circle { center, radius } => Some((center, radius)),
+            _ => None,
+        })
+        .collect();
+    let all = texts(d);
+    let inside = |q: Point, (lo, hi): (Point, Point)| lo.x < q.x && q.x < hi.x && lo.y < q.y && q.y < hi.y;
+    let scene_o = O.map(|(x, y)| Point::new(x, y));
+    let mut header = 0.0f64;
+    let mut sketch_paper = Vector::zeros();
+    for panel in &panels {
+        let c: Vec<&(Point, f64)> = circles.iter().filter(|(o, _)| inside(*o, *panel)).collect();
+        assert_eq!(c.len(), 3);
+        // Measured on paper × k_l: the scene's distances between the pivots.
+        for (i, j) in [(0, 1), (1, 2), (0, 2)] {
+            let on_paper = dist(c[i].0, c[j].0) * mm;
+            assert!((on_paper * k_l - dist(scene_o[i], scene_o[j])).abs() < 1e-9);
+        }
+        let lo = c
+            .iter()
+            .fold(Point::new(f64::INFINITY, f64::INFINITY), |m, (o, r)| Point::new(m.x.min(o.x - r), m.y.min(o.y - r)));
+        let hi = c.iter().fold(Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY), |m, (o, r)| {
+            Point::new(m.x.max(o.x + r), m.y.max(o.y + r))
+        });
+        let cell = (panel.1 - panel.0) * mm;
+        let sketch = (hi - lo) * mm;
+        sketch_paper = sketch;
+        // The cell's texts: its heading and angles line, above the sketch.
+        let lowest_text = all
+            .iter()
+            .filter(|(at, t)| inside(*at, *panel) && (mode_number(t).is_some() || angles(t).is_some()))
+            .map(|(at, _)| at.y)
+            .fold(f64::INFINITY, f64::min);
+        assert!(lowest_text.is_finite());
+        assert!(hi.y < lowest_text, "the sketch under its cell's texts");
+        header = header.max((panel.1.y - lowest_text) * mm);
+        // Centred across the cell.
+        assert!(((lo.x + hi.x) - (panel.0.x + panel.1.x)).abs() * mm < 1e-9, "centred across");
+        // Most of the cell: 80 % of its width, 70 % of its height, 60 % of its area.
+        let (sw, sh) = (sketch.x / cell.x, sketch.y / cell.y);
+        assert!(sw >= 0.8 && sh >= 0.7 && sw * sh >= 0.6, "sketch {sketch:?} in a cell {cell:?}");
+    }
+    // The next finer drafting scale: the sketch (its circles alone) would fit no cell of any
+    // grid of the page's room under the caption block as this sheet draws it (its gaps, its
+    // cells' texts and padding), the page either way round.
+    let finer = finer_drafting_scale(k_l);
+    let at_finer = sketch_paper * k_l / finer;
+    let top = all.iter().map(|(at, _)| at.y).fold(f64::NEG_INFINITY, f64::max);
+    let grid_top = panels.iter().map(|p| p.1.y).fold(f64::NEG_INFINITY, f64::max);
+    let caption = (top - grid_top) * mm;
+    let gap = panels
+        .iter()
+        .flat_map(|a| panels.iter().map(move |b| b.0.x - a.1.x))
+        .filter(|g| *g > 0.0)
+        .fold(f64::INFINITY, f64::min)
+        * mm;
+    let n = panels.len();
+    for page in [Vector::new(420.0, 297.0), Vector::new(297.0, 420.0)] {
+        let room = modes_area(page);
+        for columns in 1..=n {
+            let rows = n.div_ceil(columns);
+            let cell_w = (room.x - (columns - 1) as f64 * gap) / columns as f64 - 2.0 * MODES_PAD_MM;
+            let cell_h = (room.y - caption - rows as f64 * gap) / rows as f64 - header - MODES_PAD_MM;
+            assert!(
+                at_finer.x > cell_w || at_finer.y > cell_h,
+                "at k_l = {finer} the sketch {at_finer:?} fits a {columns} × {rows} grid ({cell_w} × {cell_h})"
+            );
+        }
+    }
+}
+
+/// The modes sheet's joints are named (O1 … A3 in every cell) and its texts are readable:
+/// none overlaps another, none is crossed by a line, none leaves its cell (measured in the
+/// bundled font, as tests/labels_all.rs does).
+#[test]
+fn modes_sheet_names_every_joint_readably() {
+    let p = products();
+    let d = &p.sheets[0].drawing;
+    let panels = common::panels(d);
+    let inside = |q: Point, (lo, hi): (Point, Point)| lo.x < q.x && q.x < hi.x && lo.y < q.y && q.y < hi.y;
+    let all = texts(d);
+    for panel in &panels {
+        let mut names: Vec<&str> =
+            all.iter().filter(|(at, t)| inside(*at, *panel) && t.len() == 2).map(|(_, t)| t.as_str()).collect();
+        names.sort();
+        assert_eq!(names, ["A1", "A2", "A3", "O1", "O2", "O3"]);
+    }
+    assert_eq!(common::overlapping_texts(d), Vec::<(String, String)>::new());
+    assert_eq!(common::crossed_texts(d), Vec::<(String, String)>::new());
+    assert_eq!(common::texts_outside_their_panel(d), Vec::<(String, String)>::new());
+    // No two names closer than the force figures' name gap.
+    let height = mechdraw::figure::shared::vocab::PAPER_TEXT_MM / d.paper_mm_per_unit.unwrap();
+    let (gap, a, b) = closest_labels(d).unwrap();
+    assert!(gap >= mechdraw::figure::shared::forces::NAME_GAP * height, "{a} and {b} {gap} apart");
+}
+
+/// The least box-to-box distance between the labels of `d` (the texts a placer put beside
+/// points: `O1` … `A3` and the circled link numbers), with the pair.
+fn closest_labels(d: &Drawing) -> Option<(f64, String, String)> {
+    let boxes: Vec<common::TextBox> = common::text_boxes(d)
+        .into_iter()
+        .filter(|t| {
+            let v = t.value.as_str();
+            v.chars().all(|c| c.is_ascii_digit()) || (v.len() == 2 && (v.starts_with('O') || v.starts_with('A')))
+        })
+        .collect();
+    let mut best: Option<(f64, String, String)> = None;
+    for (i, a) in boxes.iter().enumerate() {
+        for b in &boxes[..i] {
+            let dx = (b.min.x - a.max.x).max(a.min.x - b.max.x).max(0.0);
+            let dy = (b.min.y - a.max.y).max(a.min.y - b.max.y).max(0.0);
+            let g = dx.hypot(dy);
+            if best.as_ref().is_none_or(|(x, ..)| g < *x) {
+                best = Some((g, a.value.clone(), b.value.clone()));
+            }
+        }
+    }
+    best
+}
+
+/// The report's modes page (issue 31, fig): the grid of the finest drafting scale (3 × 3
+/// at k_l = 4 mm/mm on A4 for the template, 4 × 2 at 5 before), every sketch's joints named
+/// and its links numbered, no two of those labels closer than the force figures' name gap
+/// (⓪ touched ① in modes 4 and 7 before), and none overlapping, crossed or out of its panel.
+#[test]
+fn reports_modes_page_is_as_large_as_a4_allows_with_its_labels_apart() {
+    use mechdraw::figure::shared::forces::NAME_GAP;
+    use mechdraw::figure::shared::sheet::Paper;
+    use mechdraw::run::report::{ReportOptions, report};
+    let loaded = mechdraw::scene::load(&common::root().join("templates/triad-popa.toml"), &[]).unwrap();
+    let r = report(&loaded, &ReportOptions { paper: Paper::A4, positions: None }).unwrap();
+    let first = r.parts.iter().find(|(t, _)| t == "Assembly modes").unwrap().1;
+    let d = &r.pages[first - 1].drawing;
+    let all = texts(d);
+    assert!(all.iter().any(|(_, t)| t == "k_l = 4 mm/mm"), "{all:?}");
+    // The printed k_l measures true: each mode's triangle, measured on the page × 4, has the
+    // triad's sides (1e-9).
+    let mut sides_ok = 0;
+    for e in layer(d, "MECHANISM") {
+        if let Shape::Polyline { points, closed: true, .. } = &e.shape
+            && points.len() == 3
+        {
+            let mut sides =
+                [dist(points[0], points[1]), dist(points[1], points[2]), dist(points[0], points[2])].map(|l| l * 4.0);
+            sides.sort_by(f64::total_cmp);
+            if (sides[2] - SIDES[2]).abs() < 1e-9 {
+                assert!((sides[0] - SIDES[0]).abs() < 1e-9 && (sides[1] - SIDES[1]).abs() < 1e-9, "{sides:?}");
+                sides_ok += 1;
+            }
+        }
+    }
+    assert_eq!(sides_ok, 8, "eight triangles measuring the triad's sides at the printed k_l");
+    // Eight mode panels, each with its six names and its numbers 1 … 4.
+    let headings: Vec<Point> = all.iter().filter(|(_, t)| t.starts_with("Mode ")).map(|(at, _)| *at).collect();
+    assert_eq!(headings.len(), 8);
+    let columns = {
+        let mut xs: Vec<f64> = headings.iter().map(|p| (p.x * 1e6).round()).collect();
+        xs.sort_by(f64::total_cmp);
+        xs.dedup();
+        xs.len()
+    };
+    assert_eq!(columns, 3, "a 3 × 3 grid");
+    for name in ["O1", "O2", "O3", "A1", "A2", "A3", "0", "1", "2", "3", "4"] {
+        assert_eq!(all.iter().filter(|(_, t)| t == name).count(), 8, "{name} once a mode");
+    }
+    let text_height = d
+        .entities
+        .iter()
+        .find_map(|e| match &e.shape {
+            Shape::Text { value, height, .. } if value == "O1" => Some(*height),
+            _ => None,
+        })
+        .unwrap();
+    let (gap, a, b) = closest_labels(d).unwrap();
+    assert!(gap >= NAME_GAP * text_height, "{a} and {b} {gap} mm apart");
+    assert_eq!(common::overlapping_texts(d), Vec::<(String, String)>::new());
+    assert_eq!(common::crossed_texts(d), Vec::<(String, String)>::new());
+    assert_eq!(common::texts_outside_their_panel(d), Vec::<(String, String)>::new());
 }

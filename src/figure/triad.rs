@@ -8,19 +8,24 @@
 //! caption. Layers: `CONSTRUCTION` (circles), `APPROXIMATE` (start triangle), `MECHANISM`
 //! (exact position, pivots, joints), `DIMENSIONS`, `TEXT`.
 //!
-//! [`modes_sheet`] draws every assembly mode as small multiples: one panel per mode, in
-//! the report's order, [`SHEET_COLUMNS`] to a row, each with the circles, the mode's
-//! triangle and links, its number, orientation and phi1, phi2, phi3; the mode drawn in
-//! Fig. 3 is marked. Layers: `PANELS` (panel frames), `CONSTRUCTION`, `MECHANISM`, `TEXT`.
+//! [`modes_sheet`] draws every assembly mode as small multiples: one cell per mode, in
+//! the report's order, each with the circles, the mode's triangle and links, the joints'
+//! names O1 … A3 (placed by the letter placer clear of every line, joint and symbol), its
+//! number, orientation and phi1, phi2, phi3; the mode drawn in Fig. 3 is marked. The
+//! sheet is laid out on [`MODES_PAPER`] (A3) either way round ([`modes_layout`]): of every
+//! grid, the one holding every sketch at the finest drafting scale, each sketch centred in
+//! its cell under the cell's texts. Layers: `PANELS` (cell frames), `CONSTRUCTION`,
+//! `MECHANISM`, `TEXT`.
 //!
-//! Both are drawn on paper: a length scale k_l (model units per paper millimetre, a nice
-//! value) draws the three circles at most [`TRIAD_MM`] (Fig. 3, on A4) or [`PANEL_MM`]
-//! (a panel of the sheet) long, the drawing carries `paper_mm_per_unit = 1/k_l`, sizes are
-//! the shared table's from paper millimetres ([`Sizes::on_paper`]: letters 3.5 mm), and
-//! k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres looks the same
-//! as one in millimetres.
+//! Both are drawn on paper: a length scale k_l (model units per paper millimetre) — for
+//! Fig. 3 the nice value drawing the three circles at most [`TRIAD_MM`] long (A4), for the
+//! sheet the layout's drafting scale — the drawing carries `paper_mm_per_unit = 1/k_l`,
+//! sizes are the shared table's from paper millimetres ([`Sizes::on_paper`]: letters
+//! 3.5 mm), and k_l is printed (`k_l = 2 mm/mm`) above a scale bar; so a triad in metres
+//! looks the same as one in millimetres.
 
 use crate::draw::parts::widest_text_width;
+use crate::draw::svg::SvgOptions;
 use crate::draw::{Aci, Bounds, DimStyle, Drawing, Entity, LineType, Shape};
 use crate::geom::{Point, Vector, angle_of};
 use crate::solve::triad::{Configuration, Orientation, Triad};
@@ -30,7 +35,8 @@ use crate::figure::shared::construction::{
     place_dimension,
 };
 use crate::figure::shared::labels::{self, Label, TextBox};
-use crate::figure::shared::vocab::{self, ModelUnits, Sizes};
+use crate::figure::shared::sheet::Paper;
+use crate::figure::shared::vocab::{self, ModelUnits, PAPER_SMALL_TEXT_MM, PAPER_TEXT_MM, Sizes};
 
 /// Width of the seed's polylines (`Pline A1 "W" "0.5" "0.5" A2 A3 "Close"`), drawing
 /// millimetres.
@@ -38,9 +44,6 @@ pub const SEED_PLINE_WIDTH_MM: f64 = 0.5;
 
 /// Largest extent of the three circles of Fig. 3 on paper, millimetres.
 pub const TRIAD_MM: f64 = 150.0;
-/// Largest extent of the three circles in a panel of the assembly-mode sheet on paper,
-/// millimetres.
-pub const PANEL_MM: f64 = 80.0;
 
 /// The extent of the three circles (model units), for the length scale.
 fn circles_extent(t: &Triad) -> f64 {
@@ -160,27 +163,7 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     for o in t.o {
         letters.keep_off(vocab::ground_extent(o, s));
     }
-    let toward = |dir: f64| Vector::new(libm::cos(dir), libm::sin(dir));
-    let half_pi = std::f64::consts::FRAC_PI_2;
-    for i in 0..3 {
-        let phi = f.exact.phi[i];
-        // At O_i: the link, the +x reference line, the dimensioned sector between them and
-        // the ground symbol below.
-        let mut occupied: Vec<f64> = (0..=8).map(|k| phi * k as f64 / 8.0).collect();
-        occupied.extend([-half_pi - 0.5, -half_pi + 0.5]);
-        let dir = free_direction(&occupied);
-        letters.letter_clear(t.o[i], format!("O{}", i + 1), s.text, toward(dir), s.joint);
-        // At A_i: the link back to O_i, the two sides and the circle through A_i.
-        let occupied = [
-            angle_of(t.o[i] - a[i]),
-            angle_of(a[(i + 1) % 3] - a[i]),
-            angle_of(a[(i + 2) % 3] - a[i]),
-            phi + half_pi,
-            phi - half_pi,
-        ];
-        let dir = free_direction(&occupied);
-        letters.letter_clear(a[i], format!("A{}", i + 1), s.text, toward(dir), s.joint);
-    }
+    name_joints(&mut letters, &t.o, &a, &f.exact.phi, s, true);
     letters.draw(&mut d, text);
 
     // Caption under everything drawn so far, then the length scale and its bar.
@@ -193,8 +176,27 @@ pub fn drawing(f: &TriadFigure) -> Drawing {
     d
 }
 
-/// Panels per row of the assembly-mode sheet.
-pub const SHEET_COLUMNS: usize = 2;
+/// The paper the assembly-mode sheet is laid out on, either way round: A3, the paper the
+/// sheet needed before it was laid out on one (317 × 275 mm at k_l = 5 mm/mm).
+pub const MODES_PAPER: Paper = Paper::A3;
+/// The room on a page of `page` (width, height, paper millimetres) for what the modes sheet
+/// draws: its SVG, written with the default margin ([`SvgOptions::margin`], a share of the
+/// drawing's larger side on each side), is then no larger than the page.
+pub fn modes_area(page: Vector) -> Vector {
+    let m = 2.0 * SvgOptions::default().margin;
+    if page.y >= page.x {
+        let h = page.y / (1.0 + m);
+        Vector::new(page.x - m * h, h)
+    } else {
+        let w = page.x / (1.0 + m);
+        Vector::new(w, page.y - m * w)
+    }
+}
+/// Gap between two cells of the modes sheet, and between the cells and the caption block
+/// above them, paper millimetres (a letter height).
+pub const MODES_GAP_MM: f64 = PAPER_TEXT_MM;
+/// Padding inside a cell around its texts and its sketch, paper millimetres.
+pub const MODES_PAD_MM: f64 = PAPER_SMALL_TEXT_MM;
 
 /// What the assembly-mode sheet draws.
 #[derive(Debug, Clone, Copy)]
@@ -221,9 +223,10 @@ pub fn orientation_text(o: Orientation) -> &'static str {
     }
 }
 
-/// The heading of mode `number` (from 1) in its panel: `Mode 3 · clockwise`.
+/// The heading of mode `number` (from 1) in its panel: `Mode 3 · clockwise`, `Mode 1 ·
+/// counter-clockwise · in Fig. 3` for the mode Fig. 3 draws.
 pub fn mode_heading(number: usize, c: &Configuration, drawn: bool) -> String {
-    let mark = if drawn { " · drawn in Fig. 3" } else { "" };
+    let mark = if drawn { " · in Fig. 3" } else { "" };
     format!("Mode {number} · {}{mark}", orientation_text(c.orientation))
 }
 
@@ -234,7 +237,8 @@ pub fn mode_angles(c: &Configuration) -> Label {
     Label::marked(&(0..3).map(|i| phi_markup(i + 1, c.phi[i])).collect::<Vec<_>>().join(", "))
 }
 
-/// What a panel's content covers (the circles and the ground symbols), unshifted.
+/// What a sketch of the sheet covers (the circles and the ground symbols), unshifted, model
+/// units.
 fn panel_extent(t: &Triad, s: Sizes) -> Bounds {
     let mut min = Point::new(f64::INFINITY, f64::INFINITY);
     let mut max = Point::new(f64::NEG_INFINITY, f64::NEG_INFINITY);
@@ -248,11 +252,206 @@ fn panel_extent(t: &Triad, s: Sizes) -> Bounds {
     Bounds { min, max }
 }
 
+/// How the assembly-mode sheet is laid out on its page: the grid and the one length scale
+/// of every sketch.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ModesLayout {
+    /// The page as it is turned (width, height), paper millimetres.
+    pub page: Vector,
+    /// Cells to a row.
+    pub columns: usize,
+    /// Rows of cells.
+    pub rows: usize,
+    /// A cell's width and height, paper millimetres.
+    pub cell: Vector,
+    /// The length scale of every sketch, model units per paper millimetre (a drafting
+    /// scale, [`vocab::drafting_scale`]).
+    pub k_l: f64,
+}
+
+/// Height of a cell's header (its heading and its angles line, padded), paper millimetres.
+pub fn modes_header_mm() -> f64 {
+    2.0 * MODES_PAD_MM + PAPER_TEXT_MM + 1.8 * SMALL_TEXT * PAPER_TEXT_MM
+}
+
+/// Height of the caption block above the cells (the title's `lines`, the length scale and
+/// its bar), paper millimetres: from the title's first cap line down to the cells' top.
+pub fn modes_caption_mm(lines: usize) -> f64 {
+    let scale_top = MODES_GAP_MM + 3.0 * PAPER_SMALL_TEXT_MM;
+    let more = lines.saturating_sub(1) as f64;
+    scale_top + MODES_GAP_MM + 0.3 * PAPER_TEXT_MM + 1.8 * PAPER_TEXT_MM * more + PAPER_TEXT_MM
+}
+
+/// The next drafting scale above `k`.
+fn coarser(k: f64) -> f64 {
+    vocab::drafting_scale(k * (1.0 + 1e-6))
+}
+
+/// The layout of `m`'s sheet: of every grid (columns × rows, no row empty) on
+/// [`MODES_PAPER`] either way round, the one whose cells hold every sketch (its circles and
+/// ground symbols, [`MODES_PAD_MM`] clear of the cell's sides and under its header) at the
+/// finest drafting scale, each heading and angles line as the widest reader draws it
+/// ([`widest_text_width`]) and the title within the page's width; on a tie the one whose
+/// sketch fills more of its cell. When no grid holds the texts, the finest scale whatever
+/// they need.
+pub fn modes_layout(m: &ModesSheet) -> ModesLayout {
+    let t = m.triad;
+    let n = m.modes.len().max(1);
+    let widest_cell_text = m.modes.iter().enumerate().fold(0.0f64, |w, (k, c)| {
+        let heading = widest_text_width(&mode_heading(k + 1, c, k == m.drawn), PAPER_TEXT_MM);
+        w.max(heading).max(widest_text_width(&mode_angles(c).text, SMALL_TEXT * PAPER_TEXT_MM))
+    });
+    let widest_title = m.title.iter().map(|l| widest_text_width(&l.text, PAPER_TEXT_MM)).fold(0.0, f64::max);
+    let size = MODES_PAPER.size_mm();
+    let (pad, gap) = (MODES_PAD_MM, MODES_GAP_MM);
+    // The sketch's size on paper at k (its ground symbols are paper-sized).
+    let sketch = |k: f64| {
+        let b = panel_extent(t, Sizes::on_paper(k));
+        Vector::new(b.width(), b.height()) / k
+    };
+    // The circles alone (no symbol: sizes 0), model units.
+    let circles = panel_extent(t, Sizes::on_paper(0.0));
+    let mut best: Option<(bool, f64, f64, ModesLayout)> = None;
+    for page in [size, Vector::new(size.y, size.x)] {
+        let area = modes_area(page);
+        let width = area.x;
+        let height = area.y - modes_caption_mm(m.title.len()) - gap;
+        for columns in 1..=n {
+            let rows = n.div_ceil(columns);
+            let cell = Vector::new(
+                (width - (columns - 1) as f64 * gap) / columns as f64,
+                (height - (rows - 1) as f64 * gap) / rows as f64,
+            );
+            let room = Vector::new(cell.x - 2.0 * pad, cell.y - modes_header_mm() - pad);
+            if room.x <= 0.0 || room.y <= 0.0 {
+                continue;
+            }
+            let texts_fit = widest_cell_text + 2.0 * pad <= cell.x && widest_title <= width;
+            // From the circles alone (a lower bound), coarser until the sketch fits.
+            let mut k = vocab::drafting_scale((circles.width() / room.x).max(circles.height() / room.y));
+            let fits = |k: f64| {
+                let s = sketch(k);
+                s.x <= room.x && s.y <= room.y
+            };
+            for _ in 0..64 {
+                if fits(k) {
+                    break;
+                }
+                k = coarser(k);
+            }
+            if !fits(k) {
+                continue;
+            }
+            let s = sketch(k);
+            let fill = (s.x / room.x).min(s.y / room.y);
+            let layout = ModesLayout { page, columns, rows, cell, k_l: k };
+            let better = match best {
+                None => true,
+                Some((f, bk, bfill, _)) => {
+                    (texts_fit && !f)
+                        || (texts_fit == f && (k < bk * (1.0 - 1e-9) || (k <= bk * (1.0 + 1e-9) && fill > bfill)))
+                }
+            };
+            if better {
+                best = Some((texts_fit, k, fill, layout));
+            }
+        }
+    }
+    best.map(|b| b.3).unwrap_or(ModesLayout {
+        page: size,
+        columns: 1,
+        rows: n,
+        cell: size,
+        k_l: vocab::drafting_scale(circles_extent(t) / size.x),
+    })
+}
+
+/// The names O1 … O3, A1 … A3 of a triad drawn at `a`, each preferably in the widest free
+/// direction around its point (at O_i clear of the link, of the ground symbol below and,
+/// when `dimensioned`, of the sector of φ_i's angular dimension from +x; at A_i clear of the
+/// link back to O_i, the two sides and the circle through A_i), clear of the joint circle.
+fn name_joints(
+    letters: &mut labels::Polygon,
+    o: &[Point; 3],
+    a: &[Point; 3],
+    phi: &[f64; 3],
+    s: Sizes,
+    dimensioned: bool,
+) {
+    let toward = |dir: f64| Vector::new(libm::cos(dir), libm::sin(dir));
+    let half_pi = std::f64::consts::FRAC_PI_2;
+    for i in 0..3 {
+        let mut occupied: Vec<f64> =
+            if dimensioned { (0..=8).map(|k| phi[i] * k as f64 / 8.0).collect() } else { vec![phi[i]] };
+        occupied.extend([-half_pi - 0.5, -half_pi + 0.5]);
+        let dir = free_direction(&occupied);
+        letters.letter_clear(o[i], format!("O{}", i + 1), s.text, toward(dir), s.joint);
+        let occupied = [
+            angle_of(o[i] - a[i]),
+            angle_of(a[(i + 1) % 3] - a[i]),
+            angle_of(a[(i + 2) % 3] - a[i]),
+            phi[i] + half_pi,
+            phi[i] - half_pi,
+        ];
+        let dir = free_direction(&occupied);
+        letters.letter_clear(a[i], format!("A{}", i + 1), s.text, toward(dir), s.joint);
+    }
+}
+
+/// A line `width` wide from `u` to `v` as the letters keep off it: its middle and both edges.
+fn wide_segment(letters: &mut labels::Polygon, u: Point, v: Point, width: f64) {
+    let n = vocab::unit_or(v - u, Vector::new(1.0, 0.0));
+    let side = Vector::new(-n.y, n.x) * (0.5 * width);
+    for shift in [Vector::zeros(), side, -side] {
+        letters.segment(u + shift, v + shift);
+    }
+}
+
+/// Draws mode `c` of `t` shifted by `off` on `layers` (construction, mechanism): the
+/// circles, the links and the triangle, the ground pivots and the joints; returns the
+/// joints' names O1 … A3 ready to place ([`name_joints`]) clear of every line (a link by
+/// both its edges), joint circle and ground symbol.
+fn sketch(d: &mut Drawing, layers: [usize; 2], t: &Triad, c: &Configuration, off: Vector, s: Sizes) -> labels::Polygon {
+    let [construction, mechanism] = layers;
+    let o = t.o.map(|p| p + off);
+    let a = c.a.map(|p| p + off);
+    let mut letters = labels::Polygon::of_names().apart(labels::LABEL_GAP * s.text);
+    for (o, r) in o.iter().zip(t.r) {
+        d.add(construction, Shape::Circle { center: *o, radius: r });
+        let mut chords = Vec::new();
+        arc_segments(&mut chords, *o, r, 0.0, std::f64::consts::TAU);
+        chords.into_iter().for_each(|(u, v)| letters.segment(u, v));
+    }
+    for (o, p) in o.iter().zip(a) {
+        vocab::link(d, mechanism, vec![*o, p], false, None, s);
+        wide_segment(&mut letters, *o, p, s.link);
+    }
+    vocab::link(d, mechanism, a.to_vec(), true, None, s);
+    for i in 0..3 {
+        wide_segment(&mut letters, a[i], a[(i + 1) % 3], s.link);
+    }
+    for p in o {
+        vocab::ground(d, mechanism, p, s);
+        letters.keep_off(vocab::ground_extent(p, s));
+    }
+    for p in a {
+        vocab::joint(d, mechanism, p, s);
+    }
+    // Every joint's circle: a name keeps off the others' (its own keeps its clearance).
+    for p in o.iter().chain(&a) {
+        letters.keep_off(TextBox { min: p - Vector::new(s.joint, s.joint), max: p + Vector::new(s.joint, s.joint) });
+    }
+    name_joints(&mut letters, &o, &a, &c.phi, s, false);
+    letters
+}
+
 /// Every assembly mode of `m` as small multiples (see the module docs).
 pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let t = m.triad;
-    // Every panel at one length scale, its sizes from paper millimetres.
-    let k_l = vocab::length_scale(circles_extent(t), PANEL_MM);
+    let layout = modes_layout(m);
+    // Every sketch at one length scale, its sizes from paper millimetres; the layout's
+    // paper millimetres × k_l are model units.
+    let k_l = layout.k_l;
     let s = Sizes::on_paper(k_l);
     let content = panel_extent(t, s);
     let mut d = Drawing::new(DimStyle { text_height: 0.85 * s.text, arrow_size: 0.75 * s.text });
@@ -263,27 +462,26 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
     let text = d.layer("TEXT", Aci::BLACK, LineType::Continuous);
 
     let small_text = SMALL_TEXT * s.text;
-    let pad = s.text;
-    let gap = s.text;
-    // Header: the heading and the angles, then the content.
+    let pad = MODES_PAD_MM * k_l;
+    let gap = MODES_GAP_MM * k_l;
+    // Header: the heading and the angles, then the sketch, centred in the rest of the cell.
     let heading_base = pad + s.text;
     let angles_base = heading_base + 1.8 * small_text;
-    let header = angles_base + pad;
-    // Each cell as wide as its content and as the widest heading or angles line as the
-    // widest reader draws it (LibreCAD's stroke font: the SVG's DejaVu widths alone let
-    // the first heading run into the next cell in LibreCAD).
-    let widest = m.modes.iter().enumerate().fold(0.0f64, |w, (k, c)| {
-        let heading = widest_text_width(&mode_heading(k + 1, c, k == m.drawn), s.text);
-        w.max(heading).max(widest_text_width(&mode_angles(c).text, small_text))
-    });
-    let cell_w = content.width().max(widest) + 2.0 * pad;
-    let cell_h = header + content.height() + pad;
-    let columns = SHEET_COLUMNS.min(m.modes.len()).max(1);
+    let header = modes_header_mm() * k_l;
+    let (cell_w, cell_h) = (layout.cell.x * k_l, layout.cell.y * k_l);
+    let columns = layout.columns;
 
     for (k, c) in m.modes.iter().enumerate() {
         let (col, row) = (k % columns, k / columns);
         let top_left = Point::new(col as f64 * (cell_w + gap), -(row as f64) * (cell_h + gap));
-        let off = Vector::new(top_left.x + pad - content.min.x, top_left.y - header - content.max.y);
+        let area = Bounds {
+            min: top_left + Vector::new(pad, -cell_h + pad),
+            max: top_left + Vector::new(cell_w - pad, -header),
+        };
+        let off = Vector::new(
+            0.5 * (area.min.x + area.max.x) - 0.5 * (content.min.x + content.max.x),
+            0.5 * (area.min.y + area.max.y) - 0.5 * (content.min.y + content.max.y),
+        );
         let drawn = k == m.drawn;
         let corners = vec![
             top_left,
@@ -298,24 +496,17 @@ pub fn modes_sheet(m: &ModesSheet) -> Drawing {
             linetype: None,
             shape: Shape::Polyline { points: corners, closed: true, width },
         });
-        let o = t.o.map(|p| p + off);
-        let a = c.a.map(|p| p + off);
-        for (o, r) in o.iter().zip(t.r) {
-            d.add(construction, Shape::Circle { center: *o, radius: r });
-        }
-        for (o, p) in o.iter().zip(a) {
-            vocab::link(&mut d, mechanism, vec![*o, p], false, None, s);
-        }
-        vocab::link(&mut d, mechanism, a.to_vec(), true, None, s);
-        for p in o {
-            vocab::ground(&mut d, mechanism, p, s);
-        }
-        for p in a {
-            vocab::joint(&mut d, mechanism, p, s);
-        }
+        let within = TextBox {
+            min: top_left + Vector::new(0.5 * pad, -cell_h + 0.5 * pad),
+            max: top_left + Vector::new(cell_w - 0.5 * pad, -header + 0.5 * pad),
+        };
+        let mut letters = sketch(&mut d, [construction, mechanism], t, c, off, s);
         let x = top_left.x + pad;
         d.text(text, Point::new(x, top_left.y - heading_base), s.text, mode_heading(k + 1, c, drawn));
         caption(&mut d, text, Point::new(x, top_left.y - angles_base), &[mode_angles(c)], small_text);
+        // The joints' names inside the cell, under its header.
+        letters.keep_within(within);
+        letters.draw(&mut d, text);
     }
     // The length scale and its bar above the first row, the title above them, its last
     // line's descent `gap` clear of the scale.
@@ -339,7 +530,7 @@ mod tests {
             orientation: Orientation::Ccw,
             residual: 0.0,
         };
-        assert_eq!(mode_heading(1, &c, true), "Mode 1 · counter-clockwise · drawn in Fig. 3");
+        assert_eq!(mode_heading(1, &c, true), "Mode 1 · counter-clockwise · in Fig. 3");
         let angles = mode_angles(&c);
         assert_eq!(angles.text, "φ1 = 75.77°, φ2 = 102.23°, φ3 = 117.04°");
         let subs: Vec<&str> =

@@ -380,16 +380,11 @@ pub fn modes_figure(scene: &TriadScene, r: &TriadResults) -> crate::draw::Drawin
         .map(|(o, n)| format!("{n} {}", orientation_text(o)))
         .collect();
     // The scene's name as the user wrote it; φ_1, φ_2, φ_3 with their subscripts.
+    // Three short lines, so that the title fits a page turned either way.
     let title = [
-        Label::from(scene.name.as_str()).then(&format!(
-            ": {} assembly modes ({}: the sense of A1 → A2 → A3)",
-            r.modes.len(),
-            by_sense.join(", ")
-        )),
-        Label::marked(&format!(
-            "Fig. 3 draws mode {}. φ_1, φ_2, φ_3: directions O1 → A1, O2 → A2, O3 → A3 from +x.",
-            r.primary + 1
-        )),
+        Label::from(scene.name.as_str()).then(&format!(": {} assembly modes ({})", r.modes.len(), by_sense.join(", "))),
+        Label::from(format!("The sense is that of A1 → A2 → A3. Fig. 3 draws mode {}.", r.primary + 1).as_str()),
+        Label::marked("φ_1, φ_2, φ_3: directions O1 → A1, O2 → A2, O3 → A3 from +x."),
     ];
     modes_sheet(&ModesSheet {
         triad: &r.triad,

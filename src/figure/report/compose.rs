@@ -177,26 +177,34 @@ pub fn positions_page(
 ) -> Drawing {
     let s = frame.sizes;
     let n = positions.len().max(1);
-    let cols = if n <= 2 {
-        n
-    } else if n <= 6 {
-        3
-    } else {
-        4
-    };
-    let cells = page::grid(frame.content, n, cols);
-    // Each panel's title, and what of its caption does not fit there: lines under it.
-    let heads: Vec<(String, Vec<String>)> =
-        positions.iter().zip(&cells).map(|((caption, ..), cell)| caption_parts(caption, *cell, s)).collect();
     let figure_area = |cell: Bounds, lines: &[String]| {
         let mut area = page::panel_area(cell, true, s);
         area.max.y -= lines.len() as f64 * page::LINE_SPACING * CAPTION_LINE * s.text;
         area
     };
-    let k_l = positions.iter().zip(&cells).zip(&heads).fold(0.0f64, |k, (((_, sk, q), cell), (_, lines))| {
-        let (lo, hi) = sk.extent(&[q.as_slice()]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        k.max(sketch::fit(lo, hi, figure_area(*cell, lines), sketch::room(s)).k_l)
-    });
+    // The room around a sketch for its symbols and letters: a slider's block only where
+    // there is one (a triad has none).
+    let room = |sk: &Sketch| {
+        let sliders = sk.figure.joints.iter().any(|j| matches!(j, crate::figure::linkage::JointSymbol::Slider { .. }));
+        sketch::room(s) - Vector::new(if sliders { 0.0 } else { s.slider_length }, 0.0)
+    };
+    // Of every grid (columns × rows, no row empty), the one whose panels hold every sketch at
+    // the finest drafting scale; on a tie the fewer columns (the wider panels, for captions).
+    let layout = |cols: usize| {
+        let cells = page::grid(frame.content, n, cols);
+        // Each panel's title, and what of its caption does not fit there: lines under it.
+        let heads: Vec<(String, Vec<String>)> =
+            positions.iter().zip(&cells).map(|((caption, ..), cell)| caption_parts(caption, *cell, s)).collect();
+        let k_l = positions.iter().zip(&cells).zip(&heads).fold(0.0f64, |k, (((_, sk, q), cell), (_, lines))| {
+            let (lo, hi) = sk.extent(&[q.as_slice()]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
+            k.max(sketch::fit(lo, hi, figure_area(*cell, lines), room(sk)).k_l)
+        });
+        (k_l, cells, heads)
+    };
+    let (k_l, cells, heads) = (1..=n)
+        .map(layout)
+        .reduce(|best, next| if next.0 < best.0 * (1.0 - 1e-9) { next } else { best })
+        .unwrap_or_else(|| layout(n));
     let mut title = title.clone();
     title.cells = vec![format!("k_l = {} {unit}/mm", page::plain(k_l)), format!("{} positions", positions.len())];
     let mut d = frame.page(&title);

@@ -180,8 +180,18 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     if marks == Marks::default() {
         return;
     }
-    let mut letters = labels::Polygon::of_names();
+    // Names and the frame's ⓪ kept the numbers' gap apart from each other and from the
+    // link numbers (a ⓪ touching a ① read as one mark).
+    let gap = NUMBER_GAP * s.text;
+    let grown = |b: TextBox| TextBox { min: b.min - Vector::new(gap, gap), max: b.max + Vector::new(gap, gap) };
+    let mut letters = labels::Polygon::of_names().apart(gap);
     avoid(d, start, &mut letters);
+    // The points' names drawn with the mechanism, as far as the numbers keep from them.
+    for e in &d.entities[start.min(d.entities.len())..] {
+        if let Shape::Text { .. } = e.shape {
+            letters.keep_off(grown(text_box(&e.shape)));
+        }
+    }
     keep_inside(&mut letters, area);
     let frc = layer_of(d, layers::FORCES);
     if marks.loads {
@@ -224,7 +234,7 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     }
     if marks.numbers {
         for b in number_links(d, mech, start, &paper_fig, &pq, s, area) {
-            letters.keep_off(b);
+            letters.keep_off(grown(b));
         }
         let ground = paper_fig.joints.iter().find_map(|j| match j {
             fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
