@@ -183,6 +183,18 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     let mut letters = labels::Polygon::of_names();
     avoid(d, start, &mut letters);
     keep_inside(&mut letters, area);
+    if marks.numbers {
+        // The numbers first: the page's subject, each at its own link.
+        number_links(&mut letters, &paper_fig, &pq, s);
+        let ground = paper_fig.joints.iter().find_map(|j| match j {
+            fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
+            _ => None,
+        });
+        if let Some(p) = ground {
+            let foot = p - Vector::new(0.0, s.joint + s.ground);
+            letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
+        }
+    }
     let frc = layer_of(d, layers::FORCES);
     if marks.loads {
         let symbols = crate::figure::linkage::sheet::symbols(&paper_fig, &pq, s);
@@ -222,19 +234,6 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
         letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
         letters.letter(mid, labels::Label::quantity(&dm.symbol), s.text, mid - pivot, None);
     }
-    if marks.numbers {
-        for b in number_links(d, mech, start, &paper_fig, &pq, s, area) {
-            letters.keep_off(b);
-        }
-        let ground = paper_fig.joints.iter().find_map(|j| match j {
-            fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
-            _ => None,
-        });
-        if let Some(p) = ground {
-            let foot = p - Vector::new(0.0, s.joint + s.ground);
-            letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
-        }
-    }
     letters.draw(d, mech);
 }
 
@@ -266,26 +265,18 @@ fn strip_link_numbers(d: &mut Drawing, start: usize, height: f64) {
     });
 }
 
-/// Gap kept between a link number's circle and a joint, another number or the panel's
-/// edge, in letter heights.
-const NUMBER_GAP: f64 = 0.5;
+/// Least clearance from every joint (paper mm, in letter heights) at which a link's number
+/// is anchored on its side; a side with none that clear takes its clearest place.
+const NUMBER_CLEARANCE: f64 = 4.0;
 
-/// Places each moving link's number in a circle once, beside its longest side near the
-/// side's middle (a plate's number inside it when there is room), clear of every joint, of
-/// every stroke and text drawn since entity `start`, of the other numbers (by
-/// [`NUMBER_GAP`]) and inside `area`; draws them on `layer` and returns their boxes.
-fn number_links(
-    d: &mut Drawing,
-    layer: usize,
-    start: usize,
-    fig: &LinkageFigure,
-    pq: &[f64],
-    s: Sizes,
-    area: Bounds,
-) -> Vec<TextBox> {
-    let r = labels::CIRCLE_RADIUS * s.text;
-    let gap = NUMBER_GAP * s.text;
-    let (segments, mut boxes) = drawn(d, start);
+/// Where each moving link's number goes, for the letter placer: anchored at its link —
+/// inside a plate (three or more points not in a line) at its centroid; on a bar, along
+/// its longest side where it is clearest of the joints (its middle when that is
+/// [`NUMBER_CLEARANCE`] letters from them), preferably on the side away from the
+/// mechanism's middle; at a one-point body's point (a slider's block) beside the block.
+/// The placer puts each in a circle beside its anchor, off every line and letter
+/// ([`labels::Polygon::circled`]).
+fn number_links(letters: &mut labels::Polygon, fig: &LinkageFigure, pq: &[f64], s: Sizes) {
     let joints: Vec<Point> = fig
         .joints
         .iter()
@@ -298,64 +289,26 @@ fn number_links(
         |i: usize| -> Vec<Point> { fig.bodies[i].points.iter().map(|(_, v)| place(pq, Attach::Body(i), *v)).collect() };
     let all: Vec<Point> = (0..fig.bodies.len()).flat_map(body_points).collect();
     let centre = Point::from(all.iter().map(|p| p.coords).sum::<Vector>() / all.len().max(1) as f64);
-    let mut placed: Vec<TextBox> = Vec::new();
+    let clearance = |x: Point| joints.iter().map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
     for i in 0..fig.bodies.len() {
         let pts = body_points(i);
-        let candidates = number_candidates(&pts, centre, r, s);
-        let cost = |c: Point| -> usize {
-            let bx = TextBox { min: c - Vector::new(r, r), max: c + Vector::new(r, r) };
-            let grown = TextBox { min: bx.min - Vector::new(gap, gap), max: bx.max + Vector::new(gap, gap) };
-            let outside = usize::from(
-                bx.min.x < area.min.x + gap
-                    || bx.min.y < area.min.y + gap
-                    || bx.max.x > area.max.x - gap
-                    || bx.max.y > area.max.y - gap,
-            );
-            let near_joint = joints.iter().filter(|j| (*j - c).norm() < r + s.joint + gap).count();
-            let crossed = segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
-            let hit = boxes.iter().filter(|b| b.overlaps(&grown)).count()
-                + placed.iter().filter(|b| b.overlaps(&grown)).count();
-            100 * outside + 20 * hit + 8 * near_joint + 3 * crossed
-        };
-        let Some(best) = candidates.iter().copied().map(|c| (cost(c), c)).min_by_key(|(k, _)| *k) else { continue };
-        let c = best.1;
-        labels::draw_placed(
-            d,
-            layer,
-            &labels::Placed {
-                centre: c,
-                text: (i + 1).to_string(),
-                runs: Default::default(),
-                height: s.text,
-                color: None,
-                leader: None,
-                circled: true,
-            },
-            None,
-        );
-        let bx = TextBox { min: c - Vector::new(r, r), max: c + Vector::new(r, r) };
-        placed.push(bx);
-        boxes.push(bx);
+        let Some((at, dir, clear)) = number_anchor(&pts, centre, &clearance, s) else { continue };
+        letters.circled(at, &(i + 1).to_string(), s.text, dir, clear);
     }
-    placed
 }
 
-/// Where a link's number may go, best first: inside a plate (three or more points not in
-/// a line) at its centroid; then beside each side, longest first, from its middle outwards,
-/// on the side away from the mechanism's `centre` first, at two distances; a one-point
-/// body (a slider's block) around its point.
-fn number_candidates(pts: &[Point], centre: Point, r: f64, s: Sizes) -> Vec<Point> {
-    let mut out = Vec::new();
-    let near = r + 0.5 * s.link + 0.4 * s.text;
+/// A link's number's anchor, preferred side and clearance ([`number_links`]) for a body
+/// whose points on paper are `pts`.
+fn number_anchor(
+    pts: &[Point],
+    centre: Point,
+    clearance: &dyn Fn(Point) -> f64,
+    s: Sizes,
+) -> Option<(Point, Vector, f64)> {
+    let r = labels::CIRCLE_RADIUS * s.text;
     match pts {
-        [] => {}
-        [p] => {
-            for k in 0..24 {
-                let a = std::f64::consts::FRAC_PI_4 * (k % 8) as f64 + 0.75 * std::f64::consts::PI;
-                let reach = r + 0.6 * s.slider_length + 0.4 * s.text + (k / 8) as f64 * s.text;
-                out.push(*p + Vector::new(libm::cos(a), libm::sin(a)) * reach);
-            }
-        }
+        [] => None,
+        [p] => Some((*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_height)),
         _ => {
             let n = pts.len();
             // Twice the plate's area: points in a line (a coupler ABM) make a bar.
@@ -365,64 +318,25 @@ fn number_candidates(pts: &[Point], centre: Point, r: f64, s: Sizes) -> Vec<Poin
                     a.x * b.y - b.x * a.y
                 })
                 .sum();
-            let plate = n >= 3 && area2.abs() > 4.0 * (2.0 * r) * (2.0 * r);
-            let mut sides: Vec<(Point, Point)> = if plate {
-                (0..n).map(|k| (pts[k], pts[(k + 1) % n])).collect()
-            } else {
-                pts.windows(2).map(|w| (w[0], w[1])).collect()
-            };
-            if plate {
-                let c = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / n as f64);
-                out.push(c);
+            let c = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / n as f64);
+            if n >= 3 && area2.abs() > 4.0 * (2.0 * r) * (2.0 * r) {
+                return Some((c, Vector::new(0.0, 1.0), 0.0));
             }
-            sides.sort_by(|a, b| (b.1 - b.0).norm().total_cmp(&(a.1 - a.0).norm()));
-            for (a, b) in sides.into_iter().filter(|(a, b)| (b - a).norm() > 0.0) {
-                let mid = Point::from((a.coords + b.coords) / 2.0);
-                let mut nrm = perp(vocab::unit_or(b - a, Vector::new(1.0, 0.0)));
-                if nrm.dot(&(mid - centre)) < 0.0 {
-                    nrm = -nrm;
-                }
-                for t in [0.5, 0.42, 0.58, 0.34, 0.66, 0.26, 0.74, 0.18, 0.82] {
-                    let on = a + (b - a) * t;
-                    for reach in [near, near + s.text, near + 2.5 * s.text] {
-                        out.push(on + nrm * reach);
-                        out.push(on - nrm * reach);
-                    }
-                }
-                // Crowded: round the side's middle, further out.
-                for k in 0..32 {
-                    let turn = std::f64::consts::PI / 8.0 * (k % 16) as f64;
-                    let reach = near + (2.0 + 1.5 * (k / 16) as f64) * s.text;
-                    let dir = Vector::new(libm::cos(turn), libm::sin(turn));
-                    out.push(mid + dir * reach);
-                }
+            let (a, b) = pts
+                .windows(2)
+                .map(|w| (w[0], w[1]))
+                .max_by(|x, y| (x.1 - x.0).norm().total_cmp(&(y.1 - y.0).norm()))?;
+            let along = [0.5, 0.38, 0.62, 0.28, 0.72].map(|t| a + (b - a) * t);
+            let at = along.iter().copied().find(|x| clearance(*x) >= NUMBER_CLEARANCE * s.text).unwrap_or_else(|| {
+                along.iter().copied().fold(along[0], |m, x| if clearance(x) > clearance(m) { x } else { m })
+            });
+            let mut nrm = perp(vocab::unit_or(b - a, Vector::new(1.0, 0.0)));
+            if nrm.dot(&(at - centre)) < 0.0 {
+                nrm = -nrm;
             }
+            Some((at, nrm, 0.5 * s.link))
         }
     }
-    out
-}
-
-/// What is drawn in `d` from entity `start` on, as a number's circle must keep off it:
-/// every stroke as segments (dimensions exploded), every text's and every circle's box.
-fn drawn(d: &Drawing, start: usize) -> (Vec<labels::Segment>, Vec<TextBox>) {
-    let (mut segments, mut boxes) = (Vec::new(), Vec::new());
-    let mut one = |shape: &Shape| match shape {
-        Shape::Text { .. } => boxes.push(text_box(shape)),
-        Shape::Circle { center, radius } => boxes
-            .push(TextBox { min: center - Vector::new(*radius, *radius), max: center + Vector::new(*radius, *radius) }),
-        other => segments.extend(labels::strokes(other)),
-    };
-    for e in &d.entities[start.min(d.entities.len())..] {
-        match &e.shape {
-            dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
-                for part in parts::explode_dimension(dim, &d.dim_style) {
-                    one(&part);
-                }
-            }
-            other => one(other),
-        }
-    }
-    (segments, boxes)
 }
 
 /// The point of body `b` (on paper at `pq`) farthest from `from`: a crank's pin seen from
