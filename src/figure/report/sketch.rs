@@ -308,7 +308,8 @@ fn number_anchor(
     let r = labels::CIRCLE_RADIUS * s.text;
     match pts {
         [] => None,
-        [p] => Some((*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_height)),
+        // A block: clear of it along its guide too (half its length).
+        [p] => Some((*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_length)),
         _ => {
             let n = pts.len();
             // Twice the plate's area: points in a line (a coupler ABM) make a bar.

@@ -204,14 +204,16 @@ pub struct Layout {
     pub groups: Vec<(Bounds, OnPaper)>,
 }
 
-/// The structure page's layout. The left column beside the title block holds the
-/// mechanism; the mobility's working goes under it or under the groups (its panel as tall
-/// as its lines need at that width), the groups in the rest of the right column, stacked or
-/// side by side, each panel sized to its group at the groups' one scale. Of the two, the
-/// one drawing the mechanism larger, unless that draws the groups more than
-/// [`GROUPS_SMALLER`] times smaller than the mechanism and the other does not. Every
-/// drawing at the finest drafting scale its panel holds ([`sketch::fit`]); the groups at
-/// the finest one at which all of them fit.
+/// The structure page's layout, of three: the mechanism in the left column beside the
+/// title block, the mobility's working under it and the groups in the column over the title
+/// block; the mechanism the whole left column, the working under the groups; or the
+/// mechanism across the page, the groups under it beside the working over the title block.
+/// The working's panel is as tall as its lines need at its width; the groups are stacked
+/// or side by side, each panel sized to its group at the groups' one scale. Of the three,
+/// the one drawing the mechanism largest of those that draw the groups at most
+/// [`GROUPS_SMALLER`] times smaller than it (the first when none does). Every drawing at
+/// the finest drafting scale its panel holds ([`sketch::fit`]); the groups at the finest
+/// one at which all of them fit.
 pub fn layout(frame: &ReportFrame, p: &StructurePage) -> Layout {
     let s = frame.sizes;
     let (left, right) = frame.tall_left();
@@ -227,20 +229,51 @@ pub fn layout(frame: &ReportFrame, p: &StructurePage) -> Layout {
         .collect();
     let captions: Vec<f64> =
         p.structure.groups.iter().map(|g| crate::draw::parts::text_width(&group_caption(g), s.text)).collect();
-    let candidates = [false, true].map(|text_right| {
+    let fit_mechanism =
+        |panel: Bounds| sketch::fit(mech_extent.0, mech_extent.1, page::panel_area(panel, true, s), sketch::room(s));
+    let mut candidates: Vec<(Layout, f64, Vec<Bounds>)> = Vec::new();
+    // The mechanism in the left column, the text under it or under the groups.
+    for text_right in [false, true] {
         let (column, region) = if text_right { (right, left) } else { (left, right) };
-        let th = text_height(&text, column.width(), s).min(0.6 * column.height());
+        let th = text_height(&text, column.width(), s).min(MOST_TEXT * column.height());
         let text_panel = Bounds { max: Point::new(column.max.x, column.min.y + th), ..column };
         let rest = Bounds { min: Point::new(column.min.x, column.min.y + th), ..column };
         let (mech_panel, group_region) = if text_right { (region, rest) } else { (rest, region) };
-        let at = sketch::fit(mech_extent.0, mech_extent.1, page::panel_area(mech_panel, true, s), sketch::room(s));
         let (k, cells) = arrange(group_region, &groups, &captions, s);
-        (Layout { mechanism: (mech_panel, at), text: text_panel, groups: Vec::new() }, k, cells)
-    });
-    let ok = |c: &(Layout, f64, Vec<Bounds>)| c.1 <= GROUPS_SMALLER * c.0.mechanism.1.k_l;
-    let [under, beside] = candidates;
-    let better_mechanism = beside.0.mechanism.1.k_l < under.0.mechanism.1.k_l;
-    let (mut chosen, k, cells) = if better_mechanism && (ok(&beside) || !ok(&under)) { beside } else { under };
+        candidates.push((
+            Layout { mechanism: (mech_panel, fit_mechanism(mech_panel)), text: text_panel, groups: Vec::new() },
+            k,
+            cells,
+        ));
+    }
+    // A wide mechanism (a slider-crank's long guide) across the page, the groups under it
+    // beside the text over the title block.
+    let th = text_height(&text, right.width(), s);
+    if th <= MOST_TEXT * right.height() {
+        let split = right.min.y + th;
+        let mech_panel = Bounds { min: Point::new(left.min.x, split), max: right.max };
+        let text_panel = Bounds { max: Point::new(right.max.x, split), ..right };
+        let group_region = Bounds { max: Point::new(left.max.x, split), ..left };
+        let (k, cells) = arrange(group_region, &groups, &captions, s);
+        candidates.push((
+            Layout { mechanism: (mech_panel, fit_mechanism(mech_panel)), text: text_panel, groups: Vec::new() },
+            k,
+            cells,
+        ));
+    }
+    // The mechanism as large as the groups let it be: the finest scale of those that draw
+    // the groups at most GROUPS_SMALLER times smaller (the groups' finer scale on a tie);
+    // when none does, the mechanism over its text.
+    let ok = |c: &&(Layout, f64, Vec<Bounds>)| c.1 <= GROUPS_SMALLER * c.0.mechanism.1.k_l;
+    let best = candidates
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| ok(c))
+        .min_by(|(_, a), (_, b)| {
+            (a.0.mechanism.1.k_l, a.1).partial_cmp(&(b.0.mechanism.1.k_l, b.1)).unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .map_or(0, |(i, _)| i);
+    let (mut chosen, k, cells) = candidates.swap_remove(best);
     chosen.groups = groups
         .iter()
         .zip(cells)
@@ -256,6 +289,9 @@ pub fn layout(frame: &ReportFrame, p: &StructurePage) -> Layout {
         .collect();
     chosen
 }
+
+/// The largest share of its column the mobility's working may take.
+const MOST_TEXT: f64 = 0.6;
 
 /// How many times smaller than the mechanism the groups may be drawn before the layout
 /// gives them the room of its mobility's working ([`layout`]).
