@@ -125,13 +125,15 @@ fn printed_scales(d: &Drawing) -> (f64, f64) {
 /// The next finer drafting scale than `k` (model units per mm).
 fn finer(k: f64) -> f64 {
     let mut best = 0.0f64;
-    for e in -12..12 {
+    let mut decade = 1e-12;
+    while decade < 1e12 {
         for m in DRAFTING_MANTISSAS {
-            let v = m * 10f64.powi(e);
+            let v = m * decade;
             if v < k * (1.0 - 1e-9) {
                 best = best.max(v);
             }
         }
+        decade *= 10.0;
     }
     best
 }

@@ -271,7 +271,7 @@ const NUMBER_CLEARANCE: f64 = 4.0;
 
 /// Where each moving link's number goes, for the letter placer: anchored at its link —
 /// inside a plate (three or more points not in a line) at its centroid; on a bar, along
-/// its longest side where it is clearest of the joints (its middle when that is
+/// its longest side where it is clearest of the joints and points (its middle when that is
 /// [`NUMBER_CLEARANCE`] letters from them), preferably on the side away from the
 /// mechanism's middle; at a one-point body's point (a slider's block) beside the block.
 /// The placer puts each in a circle beside its anchor, off every line and letter
@@ -289,7 +289,8 @@ fn number_links(letters: &mut labels::Polygon, fig: &LinkageFigure, pq: &[f64], 
         |i: usize| -> Vec<Point> { fig.bodies[i].points.iter().map(|(_, v)| place(pq, Attach::Body(i), *v)).collect() };
     let all: Vec<Point> = (0..fig.bodies.len()).flat_map(body_points).collect();
     let centre = Point::from(all.iter().map(|p| p.coords).sum::<Vector>() / all.len().max(1) as f64);
-    let clearance = |x: Point| joints.iter().map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
+    // Clear of the joints and of every named point (a coupler's point on its bar).
+    let clearance = |x: Point| joints.iter().chain(&all).map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
     for i in 0..fig.bodies.len() {
         let pts = body_points(i);
         let Some((at, dir, clear)) = number_anchor(&pts, centre, &clearance, s) else { continue };

@@ -235,7 +235,13 @@ pub fn layout(frame: &ReportFrame, p: &StructurePage) -> Layout {
     // The mechanism in the left column, the text under it or under the groups.
     for text_right in [false, true] {
         let (column, region) = if text_right { (right, left) } else { (left, right) };
-        let th = text_height(&text, column.width(), s).min(MOST_TEXT * column.height());
+        // Under the mechanism it always goes (every line, the mechanism keeping the rest);
+        // under the groups only when it leaves them room.
+        let th = text_height(&text, column.width(), s);
+        if text_right && th > MOST_TEXT * column.height() {
+            continue;
+        }
+        let th = th.min(ALL_TEXT * column.height());
         let text_panel = Bounds { max: Point::new(column.max.x, column.min.y + th), ..column };
         let rest = Bounds { min: Point::new(column.min.x, column.min.y + th), ..column };
         let (mech_panel, group_region) = if text_right { (region, rest) } else { (rest, region) };
@@ -290,8 +296,12 @@ pub fn layout(frame: &ReportFrame, p: &StructurePage) -> Layout {
     chosen
 }
 
-/// The largest share of its column the mobility's working may take.
+/// The largest share of its column the mobility's working may take beside the groups or
+/// under a wide mechanism.
 const MOST_TEXT: f64 = 0.6;
+
+/// The largest share of the left column the mobility's working takes under the mechanism.
+const ALL_TEXT: f64 = 0.85;
 
 /// How many times smaller than the mechanism the groups may be drawn before the layout
 /// gives them the room of its mobility's working ([`layout`]).
