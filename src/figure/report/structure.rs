@@ -305,7 +305,7 @@ const ALL_TEXT: f64 = 0.85;
 
 /// How many times smaller than the mechanism the groups may be drawn before the layout
 /// gives them the room of its mobility's working ([`layout`]).
-const GROUPS_SMALLER: f64 = 2.0;
+pub const GROUPS_SMALLER: f64 = 2.0;
 
 /// The height of a panel holding `lines` at [`TEXT_SIZE`] in `width` mm (wrapped as
 /// [`page::lines`] wraps them), its title band and margins included.
