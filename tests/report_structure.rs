@@ -1,8 +1,8 @@
 //! The report's structure page (issue 31, a teacher's review): the mechanism and each
 //! group drawn at the finest drafting scale their panel holds, the printed k_l measuring
 //! the drawn links to the scene's lengths, each link's circled number at its own link and
-//! on no line, and no framed cell left empty (the page's panels and its title block tile
-//! the border's inside).
+//! on no line, every text readable, and no framed cell left empty (the page's panels and
+//! its title block tile the border's inside).
 //!
 //! Everything is read back from the page as drawn (its panels' frames, their titles, the
 //! title block's scales, the joints' circles, the circled numbers) and held against the
@@ -386,6 +386,15 @@ fn no_framed_cell_of_a_structure_page_is_empty_and_the_panels_tile_the_page() {
                     .count();
                 assert!(inside >= 3, "{name} ({}): the panel {:?} holds {inside} things", paper.name(), p.title);
             }
+            // Every text readable (tests/labels_all.rs's measures): none over another,
+            // none crossed by a line, none out of its panel.
+            let unread: Vec<String> = common::overlapping_texts(d)
+                .into_iter()
+                .chain(common::crossed_texts(d))
+                .chain(common::texts_outside_their_panel(d))
+                .map(|(a, b)| format!("{a:?} / {b}"))
+                .collect();
+            assert!(unread.is_empty(), "{name} ({}): {unread:#?}", paper.name());
             // The panels and the title block tile the border's inside: no blank area.
             let thick = rectangles(d, 0.5);
             let area = |(a, b): (Point, Point)| (b.x - a.x) * (b.y - a.y);
