@@ -183,9 +183,18 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     let mut letters = labels::Polygon::of_names();
     avoid(d, start, &mut letters);
     keep_inside(&mut letters, area);
+    // The loads' arrows and the driver's arc first, their names placed last: the numbers
+    // keep off the arrows and the arc, the names off the numbers.
+    let mut names: Vec<(Point, labels::Label, Vector)> = Vec::new();
+    if marks.loads {
+        names.extend(load_arrows(d, sketch, (&paper_fig, &pq), at, s, &mut letters));
+    }
+    if let (true, Some(dm)) = (marks.driver, &sketch.driver) {
+        names.push(driver_arc(d, (&paper_fig, &pq), dm, at, start, s, &mut letters));
+    }
     if marks.numbers {
-        // The numbers first: the page's subject, each at its own link.
-        number_links(&mut letters, &paper_fig, &pq, s);
+        // The numbers: the page's subject, each at its own link.
+        number_links(d, mech, &mut letters, &paper_fig, &pq, s);
         let ground = paper_fig.joints.iter().find_map(|j| match j {
             fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
             _ => None,
@@ -195,46 +204,72 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
             letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
         }
     }
-    let frc = layer_of(d, layers::FORCES);
-    if marks.loads {
-        let symbols = crate::figure::linkage::sheet::symbols(&paper_fig, &pq, s);
-        for load in &sketch.loads {
-            let a = at.anchor(load.at);
-            let p = place(&pq, a.body, a.local);
-            let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
-            // Not to scale: a fixed length on paper, its tip at the point, or at the edge of
-            // the symbol drawn there (a slider's block), on its line of action.
-            let near = |x: Point| (x - p).norm() <= 1e-9 * (1.0 + p.coords.norm());
-            let edge = symbols
-                .iter()
-                .filter(|x| near(x.at()))
-                .map(|x| x.reach(-u) + crate::figure::shared::clear_forces::SYMBOL_GAP * s.head)
-                .fold(0.0, f64::max);
-            let to = p - u * edge;
-            let from = to - u * (6.0 * s.text);
-            d.add(frc, Shape::Arrow { from, to, head: s.head });
-            letters.segment(from, to);
-            letters.letter(from, &load.name, s.text, -u, None);
-        }
-    }
-    if let (true, Some(dm)) = (marks.driver, &sketch.driver) {
-        let pa = at.anchor(dm.pivot);
-        let pivot = place(&pq, pa.body, pa.local);
-        let pin = body_far_point(&paper_fig, &pq, dm.body, pivot);
-        let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
-        let r = 4.0 * s.joint;
-        let sweep = 1.6 * dm.sense;
-        // Beside the crank, turned on round the pivot until it crosses no name and no line
-        // already drawn (the pivot's own name, its ground symbol).
-        let from = (0..6)
-            .map(|k| crank_dir + (0.35 + 0.25 * std::f64::consts::PI * k as f64) * dm.sense)
-            .find(|&from| arc_is_clear(d, start, pivot, r, from, sweep, s.joint))
-            .unwrap_or(crank_dir + 0.35 * dm.sense);
-        let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
-        letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
-        letters.letter(mid, labels::Label::quantity(&dm.symbol), s.text, mid - pivot, None);
+    for (p, name, dir) in names {
+        letters.letter(p, name, s.text, dir, None);
     }
     letters.draw(d, mech);
+}
+
+/// Draws the loads' arrows of `sketch` (not to scale: a fixed length on paper, the tip at
+/// the point or at the edge of the symbol drawn there, a slider's block, on the line of
+/// action) on the forces' layer of `d` for the figure on paper `(fig, pq)`, `letters`
+/// keeping off them; returns where each name goes (its point, name, side).
+fn load_arrows(
+    d: &mut Drawing,
+    sketch: &Sketch,
+    (fig, pq): (&LinkageFigure, &[f64]),
+    at: OnPaper,
+    s: Sizes,
+    letters: &mut labels::Polygon,
+) -> Vec<(Point, labels::Label, Vector)> {
+    let frc = layer_of(d, layers::FORCES);
+    let symbols = crate::figure::linkage::sheet::symbols(fig, pq, s);
+    let mut names = Vec::new();
+    for load in &sketch.loads {
+        let a = at.anchor(load.at);
+        let p = place(pq, a.body, a.local);
+        let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
+        let near = |x: Point| (x - p).norm() <= 1e-9 * (1.0 + p.coords.norm());
+        let edge = symbols
+            .iter()
+            .filter(|x| near(x.at()))
+            .map(|x| x.reach(-u) + crate::figure::shared::clear_forces::SYMBOL_GAP * s.head)
+            .fold(0.0, f64::max);
+        let to = p - u * edge;
+        let from = to - u * (6.0 * s.text);
+        d.add(frc, Shape::Arrow { from, to, head: s.head });
+        letters.segment(from, to);
+        names.push((from, labels::Label::from(load.name.as_str()), -u));
+    }
+    names
+}
+
+/// Draws the driver's arc arrow `dm` about its pivot on the mechanism's layer of `d`
+/// (beside the crank, turned on round the pivot until it crosses no name and no line drawn
+/// since entity `start`), `letters` keeping off its square; returns where its symbol goes.
+fn driver_arc(
+    d: &mut Drawing,
+    (fig, pq): (&LinkageFigure, &[f64]),
+    dm: &DriverMark,
+    at: OnPaper,
+    start: usize,
+    s: Sizes,
+    letters: &mut labels::Polygon,
+) -> (Point, labels::Label, Vector) {
+    let mech = layer_of(d, layers::MECHANISM);
+    let pa = at.anchor(dm.pivot);
+    let pivot = place(pq, pa.body, pa.local);
+    let pin = body_far_point(fig, pq, dm.body, pivot);
+    let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
+    let r = 4.0 * s.joint;
+    let sweep = 1.6 * dm.sense;
+    let from = (0..6)
+        .map(|k| crank_dir + (0.35 + 0.25 * std::f64::consts::PI * k as f64) * dm.sense)
+        .find(|&from| arc_is_clear(d, start, pivot, r, from, sweep, s.joint))
+        .unwrap_or(crank_dir + 0.35 * dm.sense);
+    let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
+    letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
+    (mid, labels::Label::quantity(&dm.symbol), mid - pivot)
 }
 
 /// Removes the circled link numbers drawn since entity `start` (a circle of
@@ -275,8 +310,17 @@ const NUMBER_CLEARANCE: f64 = 4.0;
 /// [`NUMBER_CLEARANCE`] letters from them), preferably on the side away from the
 /// mechanism's middle; at a one-point body's point (a slider's block) beside the block.
 /// The placer puts each in a circle beside its anchor, off every line and letter
-/// ([`labels::Polygon::circled`]).
-fn number_links(letters: &mut labels::Polygon, fig: &LinkageFigure, pq: &[f64], s: Sizes) {
+/// ([`labels::Polygon::circled`]), nearer its own link than any other (up to
+/// [`NUMBER_TRIES`] places turned down); each is drawn on `layer` of `d` and kept off by
+/// the letters placed after it.
+fn number_links(
+    d: &mut Drawing,
+    layer: usize,
+    letters: &mut labels::Polygon,
+    fig: &LinkageFigure,
+    pq: &[f64],
+    s: Sizes,
+) {
     let joints: Vec<Point> = fig
         .joints
         .iter()
@@ -291,12 +335,49 @@ fn number_links(letters: &mut labels::Polygon, fig: &LinkageFigure, pq: &[f64], 
     let centre = Point::from(all.iter().map(|p| p.coords).sum::<Vector>() / all.len().max(1) as f64);
     // Clear of the joints and of every named point (a coupler's point on its bar).
     let clearance = |x: Point| joints.iter().chain(&all).map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
+    // How far a point is from body b's link (its sides; a block: its point).
+    let from_link = |x: Point, b: usize| -> f64 {
+        let pts = body_points(b);
+        match pts.as_slice() {
+            [] => f64::INFINITY,
+            [p] => (x - p).norm(),
+            _ => pts.windows(2).map(|w| vocab::distance_to_segment(x, w[0], w[1])).fold(f64::INFINITY, f64::min),
+        }
+    };
     for i in 0..fig.bodies.len() {
         let pts = body_points(i);
         let Some((at, dir, clear)) = number_anchor(&pts, centre, &clearance, s) else { continue };
-        letters.circled(at, &(i + 1).to_string(), s.text, dir, clear);
+        let text = (i + 1).to_string();
+        // The placer's place for it; where that is nearer another link (a short crank
+        // beside the long link it drives), that place is kept off and the next taken.
+        let block = pts.len() == 1;
+        let mut tried: Vec<TextBox> = Vec::new();
+        let mut first = None;
+        let chosen = loop {
+            let mut trial = letters.clone();
+            for b in &tried {
+                trial.keep_off(*b);
+            }
+            trial.circled(at, &text, s.text, dir, clear);
+            let Some(p) = trial.place().pop() else { break None };
+            let own = from_link(p.centre, i);
+            let at_own = block || (0..fig.bodies.len()).all(|b| b == i || from_link(p.centre, b) > own);
+            if at_own || tried.len() >= NUMBER_TRIES {
+                break Some(if at_own { p } else { first.unwrap_or(p) });
+            }
+            tried.push(p.bounds());
+            first.get_or_insert(p);
+        };
+        if let Some(p) = chosen {
+            labels::draw_placed(d, layer, &p, None);
+            letters.keep_off(p.bounds());
+        }
     }
 }
+
+/// How many places of the placer's a link's number may turn down for being nearer
+/// another link than its own ([`number_links`]).
+const NUMBER_TRIES: usize = 8;
 
 /// A link's number's anchor, preferred side and clearance ([`number_links`]) for a body
 /// whose points on paper are `pts`.
