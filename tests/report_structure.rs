@@ -202,6 +202,109 @@ struct Shown {
     joints: Vec<usize>,
 }
 
+/// The circled numbers of `panel` on `d`: every link of `bodies` once, each within
+/// NUMBER_REACH letters of its own link (`mech` at `q`, drawn at `origin + p / k`), nearer it
+/// than any other (a bar's, a plate's: a block, a one-point body, sits on the links through
+/// its point and is only held to its reach), its circle on no line and off every joint
+/// (`joints`, the drawn joint circles).
+fn check_numbers(
+    d: &Drawing,
+    panel: &Panel,
+    (mech, q): (&mechdraw::solve::linkage::Mechanism, &[f64]),
+    bodies: &[usize],
+    (origin, k): (Vector, f64),
+    joints: &[Point],
+    what: &str,
+) {
+    let s = Paper::A4.sizes();
+    let circled = numbers(d, panel, s.text);
+    let mut seen: Vec<usize> = circled.iter().map(|(n, _)| *n).filter(|n| *n > 0).collect();
+    seen.sort_unstable();
+    let mut wanted: Vec<usize> = bodies.iter().map(|b| b + 1).collect();
+    wanted.sort_unstable();
+    assert_eq!(seen, wanted, "{what}: the links' numbers");
+    let link = |b: usize| -> Vec<(Point, Point)> {
+        let pts: Vec<Point> = mech.bodies[b]
+            .points
+            .iter()
+            .map(|(_, v)| Point::from(origin + place(q, Attach::Body(b), *v).coords / k))
+            .collect();
+        if pts.len() == 1 { vec![(pts[0], pts[0])] } else { pts.windows(2).map(|w| (w[0], w[1])).collect() }
+    };
+    let from_link =
+        |c: Point, b: usize| link(b).iter().map(|(a, e)| distance_to_segment(c, *a, *e)).fold(f64::INFINITY, f64::min);
+    let lines = strokes(d, panel);
+    let r = CIRCLE_RADIUS * s.text;
+    for (n, c) in circled.iter().filter(|(n, _)| *n > 0) {
+        let own = from_link(*c, n - 1);
+        assert!(own <= NUMBER_REACH * s.text, "{what}: ({n}) is {own:.1} mm from its link");
+        let block = mech.bodies[n - 1].points.len() == 1;
+        for &b in bodies.iter().filter(|&&b| b != n - 1 && !block) {
+            let other = from_link(*c, b);
+            assert!(own < other, "{what}: ({n}) nearer link {} ({other:.1} mm) than its own ({own:.1} mm)", b + 1);
+        }
+        for (a, e) in &lines {
+            let gap = distance_to_segment(*c, *a, *e);
+            assert!(gap >= r - 1e-9, "{what}: ({n}) on a line ({gap:.2} mm from {a:?}–{e:?})");
+        }
+        for j in joints {
+            assert!((j - c).norm() >= r + s.joint, "{what}: ({n}) over the joint at {j:?}");
+        }
+    }
+}
+
+/// The origin that puts the pins (`pins`, model) on `drawn` joint circles at `k`: model
+/// point p at `origin + p / k` (paper mm).
+fn drawn_origin(drawn: &[Point], pins: &[Point], k: f64, what: &str) -> Vector {
+    let on = |o: Vector, p: Point| drawn.iter().any(|c| (c.coords - (o + p.coords / k)).norm() <= 1e-6);
+    drawn
+        .iter()
+        .map(|c| c.coords - pins[0].coords / k)
+        .find(|o| pins.iter().all(|p| on(*o, *p)))
+        .unwrap_or_else(|| panic!("{what}: the joints are not drawn at k_l = {k}"))
+}
+
+/// The revolute joints' points of `mech` at `q` (model): where its joint circles are drawn.
+fn pins_of(mech: &mechdraw::solve::linkage::Mechanism, joints: &[usize], q: &[f64]) -> Vec<Point> {
+    joints
+        .iter()
+        .filter_map(|&j| match mech.joints[j].kind {
+            JointKind::Revolute { a, .. } => Some(place(q, a.body, a.local)),
+            JointKind::Prismatic { .. } => None,
+        })
+        .collect()
+}
+
+#[test]
+fn the_kinematic_diagrams_numbers_sit_at_their_own_links() {
+    let paper = Paper::A4;
+    let s = paper.sizes();
+    let mut checked = 0;
+    for t in common::template_paths() {
+        let loaded = scene::load(&t, &[]).unwrap();
+        let Scene::Linkage(sc) = &loaded.scene else { continue };
+        let name = t.file_stem().unwrap().to_string_lossy().to_string();
+        let mech = &sc.mechanism;
+        let q0 = AssurSolver::new(mech.clone()).unwrap().run_positions(&sc.times).unwrap().swap_remove(0);
+        let r = report(&loaded, &ReportOptions { paper, positions: None }).unwrap();
+        let page = r.pages.iter().find(|p| p.stem.ends_with("kinematic")).expect("a kinematic page");
+        let d = &page.drawing;
+        let panel = panels(d, s.text)
+            .into_iter()
+            .find(|p| p.title.starts_with("Kinematic diagram"))
+            .unwrap_or_else(|| panic!("{name}: no kinematic diagram's panel"));
+        let k = number_after(&panel.title, "k_l = ").expect("the diagram's k_l");
+        let drawn = circles(d, &panel, s.joint);
+        let all: Vec<usize> = (0..mech.joints.len()).collect();
+        let what = format!("{name}: kinematic diagram");
+        let origin = drawn_origin(&drawn, &pins_of(mech, &all, &q0), k, &what);
+        let bodies: Vec<usize> = (0..mech.bodies.len()).collect();
+        check_numbers(d, &panel, (mech, &q0), &bodies, (origin, k), &drawn, &what);
+        checked += 1;
+    }
+    assert!(checked >= 4, "{checked} kinematic diagrams");
+}
+
 #[test]
 fn each_structure_drawing_is_at_the_finest_scale_its_panel_holds_and_measures_true() {
     let paper = Paper::A4;
@@ -255,22 +358,11 @@ fn each_structure_drawing_is_at_the_finest_scale_its_panel_holds_and_measures_tr
             // on a drawn joint circle, and every link's length on the page × k_l the
             // scene's.
             let drawn = circles(d, panel, s.joint);
-            let pins: Vec<Point> = sh
-                .joints
-                .iter()
-                .filter_map(|&j| match mech.joints[j].kind {
-                    JointKind::Revolute { a, .. } => Some(place(&q0, a.body, a.local)),
-                    JointKind::Prismatic { .. } => None,
-                })
-                .collect();
+            let pins = pins_of(mech, &sh.joints, &q0);
             assert!(!pins.is_empty() || sh.joints.is_empty(), "{what}");
             let on =
                 |o: Vector, p: Point| drawn.iter().copied().find(|c| (c.coords - (o + p.coords / k)).norm() <= 1e-6);
-            let origin = drawn
-                .iter()
-                .map(|c| c.coords - pins[0].coords / k)
-                .find(|o| pins.iter().all(|p| on(*o, *p).is_some()))
-                .unwrap_or_else(|| panic!("{what}: the joints are not drawn at k_l = {k}"));
+            let origin = drawn_origin(&drawn, &pins, k, &what);
             for (a, pa) in pins.iter().enumerate() {
                 for pb in &pins[a + 1..] {
                     let model = (pb - pa).norm();
@@ -298,51 +390,7 @@ fn each_structure_drawing_is_at_the_finest_scale_its_panel_holds_and_measures_tr
             } else {
                 groups_full |= full;
             }
-            // The numbers: every link of the panel once, each within NUMBER_REACH letters
-            // of its own link, nearer it than any other (a bar's, a plate's), its circle on no
-            // line and off every joint.
-            let circled = numbers(d, panel, s.text);
-            let mut seen: Vec<usize> = circled.iter().map(|(n, _)| *n).filter(|n| *n > 0).collect();
-            seen.sort_unstable();
-            let wanted: Vec<usize> = sh.bodies.iter().map(|b| b + 1).collect();
-            let mut wanted_sorted = wanted.clone();
-            wanted_sorted.sort_unstable();
-            assert_eq!(seen, wanted_sorted, "{what}: the links' numbers");
-            let link = |b: usize| -> Vec<(Point, Point)> {
-                let pts: Vec<Point> = mech.bodies[b]
-                    .points
-                    .iter()
-                    .map(|(_, v)| Point::from(origin + place(&q0, Attach::Body(b), *v).coords / k))
-                    .collect();
-                if pts.len() == 1 { vec![(pts[0], pts[0])] } else { pts.windows(2).map(|w| (w[0], w[1])).collect() }
-            };
-            let from_link = |c: Point, b: usize| {
-                link(b).iter().map(|(a, e)| distance_to_segment(c, *a, *e)).fold(f64::INFINITY, f64::min)
-            };
-            let lines = strokes(d, panel);
-            let r = CIRCLE_RADIUS * s.text;
-            for (n, c) in circled.iter().filter(|(n, _)| *n > 0) {
-                let own = from_link(*c, n - 1);
-                assert!(own <= NUMBER_REACH * s.text, "{what}: ({n}) is {own:.1} mm from its link");
-                // A block (a one-point body) sits on the links through its point: its
-                // number is only held to its reach.
-                let block = mech.bodies[n - 1].points.len() == 1;
-                for &b in sh.bodies.iter().filter(|&&b| b != n - 1 && !block) {
-                    let other = from_link(*c, b);
-                    assert!(
-                        own < other,
-                        "{what}: ({n}) nearer link {} ({other:.1} mm) than its own ({own:.1} mm)",
-                        b + 1
-                    );
-                }
-                for (a, e) in &lines {
-                    let gap = distance_to_segment(*c, *a, *e);
-                    assert!(gap >= r - 1e-9, "{what}: ({n}) on a line ({gap:.2} mm from {a:?}–{e:?})");
-                }
-                for j in &drawn {
-                    assert!((j - c).norm() >= r + s.joint, "{what}: ({n}) over the joint at {j:?}");
-                }
-            }
+            check_numbers(d, panel, (mech, &q0), &sh.bodies, (origin, k), &drawn, &what);
             checked += 1;
         }
         assert!(
