@@ -275,15 +275,22 @@ fn pins_of(mech: &mechdraw::solve::linkage::Mechanism, joints: &[usize], q: &[f6
         .collect()
 }
 
+/// Every linkage template, loaded, with its name.
+fn linkages() -> Vec<(String, scene::Loaded)> {
+    common::template_paths()
+        .into_iter()
+        .map(|t| (t.file_stem().unwrap().to_string_lossy().to_string(), scene::load(&t, &[]).unwrap()))
+        .filter(|(_, l)| matches!(l.scene, Scene::Linkage(_)))
+        .collect()
+}
+
 #[test]
 fn the_kinematic_diagrams_numbers_sit_at_their_own_links() {
     let paper = Paper::A4;
     let s = paper.sizes();
     let mut checked = 0;
-    for t in common::template_paths() {
-        let loaded = scene::load(&t, &[]).unwrap();
+    for (name, loaded) in linkages() {
         let Scene::Linkage(sc) = &loaded.scene else { continue };
-        let name = t.file_stem().unwrap().to_string_lossy().to_string();
         let mech = &sc.mechanism;
         let q0 = AssurSolver::new(mech.clone()).unwrap().run_positions(&sc.times).unwrap().swap_remove(0);
         let r = report(&loaded, &ReportOptions { paper, positions: None }).unwrap();
@@ -311,10 +318,8 @@ fn each_structure_drawing_is_at_the_finest_scale_its_panel_holds_and_measures_tr
     let s = paper.sizes();
     let room = sketch::room(s);
     let mut checked = 0;
-    for t in common::template_paths() {
-        let loaded = scene::load(&t, &[]).unwrap();
+    for (name, loaded) in linkages() {
         let Scene::Linkage(sc) = &loaded.scene else { continue };
-        let name = t.file_stem().unwrap().to_string_lossy().to_string();
         let mech = &sc.mechanism;
         let motion = AssurSolver::new(mech.clone()).unwrap().run_positions(&sc.times).unwrap();
         let q0 = motion[0].clone();
