@@ -194,7 +194,7 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
     }
     if marks.numbers {
         // The numbers: the page's subject, each at its own link.
-        number_links(d, mech, &mut letters, &paper_fig, &pq, s);
+        number_links(d, (mech, start), &mut letters, &paper_fig, &pq, s);
         let ground = paper_fig.joints.iter().find_map(|j| match j {
             fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
             _ => None,
@@ -315,7 +315,7 @@ const NUMBER_CLEARANCE: f64 = 4.0;
 /// the letters placed after it.
 fn number_links(
     d: &mut Drawing,
-    layer: usize,
+    (layer, start): (usize, usize),
     letters: &mut labels::Polygon,
     fig: &LinkageFigure,
     pq: &[f64],
@@ -335,6 +335,7 @@ fn number_links(
     let centre = Point::from(all.iter().map(|p| p.coords).sum::<Vector>() / all.len().max(1) as f64);
     // Clear of the joints and of every named point (a coupler's point on its bar).
     let clearance = |x: Point| joints.iter().chain(&all).map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
+    let (segments, mut boxes) = drawn(d, start);
     // How far a point is from body b's link (its sides; a block: its point).
     let from_link = |x: Point, b: usize| -> f64 {
         let pts = body_points(b);
@@ -350,9 +351,10 @@ fn number_links(
         let text = (i + 1).to_string();
         // The placer's place for it; where that is nearer another link (a short crank
         // beside the long link it drives), that place is kept off and the next taken.
+        // A place on a line or over a letter is never taken for one at its own link.
         let block = pts.len() == 1;
         let mut tried: Vec<TextBox> = Vec::new();
-        let mut first = None;
+        let (mut first, mut first_clear) = (None, None);
         let chosen = loop {
             let mut trial = letters.clone();
             for b in &tried {
@@ -362,17 +364,39 @@ fn number_links(
             let Some(p) = trial.place().pop() else { break None };
             let own = from_link(p.centre, i);
             let at_own = block || (0..fig.bodies.len()).all(|b| b == i || from_link(p.centre, b) > own);
-            if at_own || tried.len() >= NUMBER_TRIES {
-                break Some(if at_own { p } else { first.unwrap_or(p) });
+            let bx = p.bounds();
+            let clear_of = !segments.iter().any(|(a, b)| bx.crosses(*a, *b)) && !boxes.iter().any(|b| b.overlaps(&bx));
+            if at_own && clear_of {
+                break Some(p);
             }
-            tried.push(p.bounds());
+            if tried.len() >= NUMBER_TRIES {
+                break first_clear.or(first).or(Some(p));
+            }
+            tried.push(bx);
+            if clear_of {
+                first_clear.get_or_insert(p.clone());
+            }
             first.get_or_insert(p);
         };
         if let Some(p) = chosen {
             labels::draw_placed(d, layer, &p, None);
             letters.keep_off(p.bounds());
+            boxes.push(p.bounds());
         }
     }
+}
+
+/// What is drawn in `d` from entity `start` on, as a link's number must keep off it: every
+/// stroke as segments, every text's box.
+fn drawn(d: &Drawing, start: usize) -> (Vec<labels::Segment>, Vec<TextBox>) {
+    let (mut segments, mut boxes) = (Vec::new(), Vec::new());
+    for e in &d.entities[start.min(d.entities.len())..] {
+        match &e.shape {
+            text @ Shape::Text { .. } => boxes.push(text_box(text)),
+            other => segments.extend(labels::strokes(other)),
+        }
+    }
+    (segments, boxes)
 }
 
 /// How many places of the placer's a link's number may turn down for being nearer
