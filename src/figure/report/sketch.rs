@@ -193,49 +193,18 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
         }
     }
     keep_inside(&mut letters, area);
-    let frc = layer_of(d, layers::FORCES);
+    // The loads' arrows and the driver's arc first, their names placed last: the numbers
+    // keep off the arrows and the arc, the names off the numbers.
+    let mut names: Vec<(Point, labels::Label, Vector)> = Vec::new();
     if marks.loads {
-        let symbols = crate::figure::linkage::sheet::symbols(&paper_fig, &pq, s);
-        for load in &sketch.loads {
-            let a = at.anchor(load.at);
-            let p = place(&pq, a.body, a.local);
-            let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
-            // Not to scale: a fixed length on paper, its tip at the point, or at the edge of
-            // the symbol drawn there (a slider's block), on its line of action.
-            let near = |x: Point| (x - p).norm() <= 1e-9 * (1.0 + p.coords.norm());
-            let edge = symbols
-                .iter()
-                .filter(|x| near(x.at()))
-                .map(|x| x.reach(-u) + crate::figure::shared::clear_forces::SYMBOL_GAP * s.head)
-                .fold(0.0, f64::max);
-            let to = p - u * edge;
-            let from = to - u * (6.0 * s.text);
-            d.add(frc, Shape::Arrow { from, to, head: s.head });
-            letters.segment(from, to);
-            letters.letter(from, &load.name, s.text, -u, None);
-        }
+        names.extend(load_arrows(d, sketch, (&paper_fig, &pq), at, s, &mut letters));
     }
     if let (true, Some(dm)) = (marks.driver, &sketch.driver) {
-        let pa = at.anchor(dm.pivot);
-        let pivot = place(&pq, pa.body, pa.local);
-        let pin = body_far_point(&paper_fig, &pq, dm.body, pivot);
-        let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
-        let r = 4.0 * s.joint;
-        let sweep = 1.6 * dm.sense;
-        // Beside the crank, turned on round the pivot until it crosses no name and no line
-        // already drawn (the pivot's own name, its ground symbol).
-        let from = (0..6)
-            .map(|k| crank_dir + (0.35 + 0.25 * std::f64::consts::PI * k as f64) * dm.sense)
-            .find(|&from| arc_is_clear(d, start, pivot, r, from, sweep, s.joint))
-            .unwrap_or(crank_dir + 0.35 * dm.sense);
-        let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
-        letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
-        letters.letter(mid, labels::Label::quantity(&dm.symbol), s.text, mid - pivot, None);
+        names.push(driver_arc(d, (&paper_fig, &pq), dm, at, start, s, &mut letters));
     }
     if marks.numbers {
-        for b in number_links(d, mech, start, &paper_fig, &pq, s, area) {
-            letters.keep_off(grown(b));
-        }
+        // The numbers: the page's subject, each at its own link.
+        number_links(d, (mech, start), &mut letters, &paper_fig, &pq, s);
         let ground = paper_fig.joints.iter().find_map(|j| match j {
             fig::JointSymbol::Pin { at: a, grounded: true, .. } => Some(place(&pq, a.body, a.local)),
             _ => None,
@@ -245,7 +214,76 @@ pub fn draw(d: &mut Drawing, sketch: &Sketch, q: &[f64], motion: &[&[f64]], fram
             letters.circled(foot, "0", s.text, Vector::new(-1.0, -0.5), 0.8 * s.ground);
         }
     }
+    for (p, name, dir) in names {
+        letters.letter(p, name, s.text, dir, None);
+    }
     letters.draw(d, mech);
+}
+
+/// Gap kept between a name, the frame's ⓪ and a link number, in letter heights (a ⓪
+/// touching a ① reads as one mark).
+const NUMBER_GAP: f64 = 0.5;
+
+/// Draws the loads' arrows of `sketch` (not to scale: a fixed length on paper, the tip at
+/// the point or at the edge of the symbol drawn there, a slider's block, on the line of
+/// action) on the forces' layer of `d` for the figure on paper `(fig, pq)`, `letters`
+/// keeping off them; returns where each name goes (its point, name, side).
+fn load_arrows(
+    d: &mut Drawing,
+    sketch: &Sketch,
+    (fig, pq): (&LinkageFigure, &[f64]),
+    at: OnPaper,
+    s: Sizes,
+    letters: &mut labels::Polygon,
+) -> Vec<(Point, labels::Label, Vector)> {
+    let frc = layer_of(d, layers::FORCES);
+    let symbols = crate::figure::linkage::sheet::symbols(fig, pq, s);
+    let mut names = Vec::new();
+    for load in &sketch.loads {
+        let a = at.anchor(load.at);
+        let p = place(pq, a.body, a.local);
+        let u = vocab::unit_or(load.direction, Vector::new(0.0, -1.0));
+        let near = |x: Point| (x - p).norm() <= 1e-9 * (1.0 + p.coords.norm());
+        let edge = symbols
+            .iter()
+            .filter(|x| near(x.at()))
+            .map(|x| x.reach(-u) + crate::figure::shared::clear_forces::SYMBOL_GAP * s.head)
+            .fold(0.0, f64::max);
+        let to = p - u * edge;
+        let from = to - u * (6.0 * s.text);
+        d.add(frc, Shape::Arrow { from, to, head: s.head });
+        letters.segment(from, to);
+        names.push((from, labels::Label::from(load.name.as_str()), -u));
+    }
+    names
+}
+
+/// Draws the driver's arc arrow `dm` about its pivot on the mechanism's layer of `d`
+/// (beside the crank, turned on round the pivot until it crosses no name and no line drawn
+/// since entity `start`), `letters` keeping off its square; returns where its symbol goes.
+fn driver_arc(
+    d: &mut Drawing,
+    (fig, pq): (&LinkageFigure, &[f64]),
+    dm: &DriverMark,
+    at: OnPaper,
+    start: usize,
+    s: Sizes,
+    letters: &mut labels::Polygon,
+) -> (Point, labels::Label, Vector) {
+    let mech = layer_of(d, layers::MECHANISM);
+    let pa = at.anchor(dm.pivot);
+    let pivot = place(pq, pa.body, pa.local);
+    let pin = body_far_point(fig, pq, dm.body, pivot);
+    let crank_dir = libm::atan2((pin - pivot).y, (pin - pivot).x);
+    let r = 4.0 * s.joint;
+    let sweep = 1.6 * dm.sense;
+    let from = (0..6)
+        .map(|k| crank_dir + (0.35 + 0.25 * std::f64::consts::PI * k as f64) * dm.sense)
+        .find(|&from| arc_is_clear(d, start, pivot, r, from, sweep, s.joint))
+        .unwrap_or(crank_dir + 0.35 * dm.sense);
+    let mid = vocab::turn_arrow(d, mech, pivot, r, from, sweep, s);
+    letters.keep_off(TextBox { min: pivot - Vector::new(r, r), max: pivot + Vector::new(r, r) });
+    (mid, labels::Label::quantity(&dm.symbol), mid - pivot)
 }
 
 /// Removes the circled link numbers drawn since entity `start` (a circle of
@@ -276,26 +314,27 @@ fn strip_link_numbers(d: &mut Drawing, start: usize, height: f64) {
     });
 }
 
-/// Gap kept between a link number's circle and a joint, another number or the panel's
-/// edge, in letter heights.
-const NUMBER_GAP: f64 = 0.5;
+/// Least clearance from every joint (paper mm, in letter heights) at which a link's number
+/// is anchored on its side; a side with none that clear takes its clearest place.
+const NUMBER_CLEARANCE: f64 = 4.0;
 
-/// Places each moving link's number in a circle once, beside its longest side near the
-/// side's middle (a plate's number inside it when there is room), clear of every joint, of
-/// every stroke and text drawn since entity `start`, of the other numbers (by
-/// [`NUMBER_GAP`]) and inside `area`; draws them on `layer` and returns their boxes.
+/// Where each moving link's number goes, for the letter placer: anchored at its link —
+/// inside a plate (three or more points not in a line) at its centroid; on a bar, along
+/// its longest side where it is clearest of the joints and points (its middle when that is
+/// [`NUMBER_CLEARANCE`] letters from them), preferably on the side away from the
+/// mechanism's middle; at a one-point body's point (a slider's block) beside the block.
+/// The placer puts each in a circle beside its anchor, off every line and letter
+/// ([`labels::Polygon::circled`]), nearer its own link than any other (up to
+/// [`NUMBER_TRIES`] places turned down); each is drawn on `layer` of `d` and kept off by
+/// the letters placed after it.
 fn number_links(
     d: &mut Drawing,
-    layer: usize,
-    start: usize,
+    (layer, start): (usize, usize),
+    letters: &mut labels::Polygon,
     fig: &LinkageFigure,
     pq: &[f64],
     s: Sizes,
-    area: Bounds,
-) -> Vec<TextBox> {
-    let r = labels::CIRCLE_RADIUS * s.text;
-    let gap = NUMBER_GAP * s.text;
-    let (segments, mut boxes) = drawn(d, start);
+) {
     let joints: Vec<Point> = fig
         .joints
         .iter()
@@ -308,64 +347,89 @@ fn number_links(
         |i: usize| -> Vec<Point> { fig.bodies[i].points.iter().map(|(_, v)| place(pq, Attach::Body(i), *v)).collect() };
     let all: Vec<Point> = (0..fig.bodies.len()).flat_map(body_points).collect();
     let centre = Point::from(all.iter().map(|p| p.coords).sum::<Vector>() / all.len().max(1) as f64);
-    let mut placed: Vec<TextBox> = Vec::new();
+    // Clear of the joints and of every named point (a coupler's point on its bar).
+    let clearance = |x: Point| joints.iter().chain(&all).map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
+    let (segments, mut boxes) = drawn(d, start);
+    // How far a point is from body b's link (its sides; a block: its point).
+    let from_link = |x: Point, b: usize| -> f64 {
+        let pts = body_points(b);
+        match pts.as_slice() {
+            [] => f64::INFINITY,
+            [p] => (x - p).norm(),
+            _ => pts.windows(2).map(|w| vocab::distance_to_segment(x, w[0], w[1])).fold(f64::INFINITY, f64::min),
+        }
+    };
     for i in 0..fig.bodies.len() {
         let pts = body_points(i);
-        let candidates = number_candidates(&pts, centre, r, s);
-        let cost = |c: Point| -> usize {
-            let bx = TextBox { min: c - Vector::new(r, r), max: c + Vector::new(r, r) };
-            let grown = TextBox { min: bx.min - Vector::new(gap, gap), max: bx.max + Vector::new(gap, gap) };
-            let outside = usize::from(
-                bx.min.x < area.min.x + gap
-                    || bx.min.y < area.min.y + gap
-                    || bx.max.x > area.max.x - gap
-                    || bx.max.y > area.max.y - gap,
-            );
-            let near_joint = joints.iter().filter(|j| (*j - c).norm() < r + s.joint + gap).count();
-            let crossed = segments.iter().filter(|(a, b)| bx.crosses(*a, *b)).count();
-            let hit = boxes.iter().filter(|b| b.overlaps(&grown)).count()
-                + placed.iter().filter(|b| b.overlaps(&grown)).count();
-            100 * outside + 20 * hit + 8 * near_joint + 3 * crossed
+        let Some((at, dir, clear)) = number_anchor(&pts, centre, &clearance, s) else { continue };
+        let text = (i + 1).to_string();
+        // The placer's place for it; where that is nearer another link (a short crank
+        // beside the long link it drives), that place is kept off and the next taken.
+        // A place on a line or over a letter is never taken for one at its own link.
+        let block = pts.len() == 1;
+        let mut tried: Vec<TextBox> = Vec::new();
+        let (mut first, mut first_clear) = (None, None);
+        let chosen = loop {
+            let mut trial = letters.clone();
+            for b in &tried {
+                trial.keep_off(*b);
+            }
+            trial.circled(at, &text, s.text, dir, clear);
+            let Some(p) = trial.place().pop() else { break None };
+            let own = from_link(p.centre, i);
+            let at_own = block || (0..fig.bodies.len()).all(|b| b == i || from_link(p.centre, b) > own);
+            let bx = p.bounds();
+            let clear_of = !segments.iter().any(|(a, b)| bx.crosses(*a, *b)) && !boxes.iter().any(|b| b.overlaps(&bx));
+            if at_own && clear_of {
+                break Some(p);
+            }
+            if tried.len() >= NUMBER_TRIES {
+                break first_clear.or(first).or(Some(p));
+            }
+            tried.push(bx);
+            if clear_of {
+                first_clear.get_or_insert(p.clone());
+            }
+            first.get_or_insert(p);
         };
-        let Some(best) = candidates.iter().copied().map(|c| (cost(c), c)).min_by_key(|(k, _)| *k) else { continue };
-        let c = best.1;
-        labels::draw_placed(
-            d,
-            layer,
-            &labels::Placed {
-                centre: c,
-                text: (i + 1).to_string(),
-                runs: Default::default(),
-                height: s.text,
-                color: None,
-                leader: None,
-                circled: true,
-            },
-            None,
-        );
-        let bx = TextBox { min: c - Vector::new(r, r), max: c + Vector::new(r, r) };
-        placed.push(bx);
-        boxes.push(bx);
+        if let Some(p) = chosen {
+            labels::draw_placed(d, layer, &p, None);
+            letters.keep_off(p.bounds());
+            boxes.push(p.bounds());
+        }
     }
-    placed
 }
 
-/// Where a link's number may go, best first: inside a plate (three or more points not in
-/// a line) at its centroid; then beside each side, longest first, from its middle outwards,
-/// on the side away from the mechanism's `centre` first, at two distances; a one-point
-/// body (a slider's block) around its point.
-fn number_candidates(pts: &[Point], centre: Point, r: f64, s: Sizes) -> Vec<Point> {
-    let mut out = Vec::new();
-    let near = r + 0.5 * s.link + 0.4 * s.text;
-    match pts {
-        [] => {}
-        [p] => {
-            for k in 0..24 {
-                let a = std::f64::consts::FRAC_PI_4 * (k % 8) as f64 + 0.75 * std::f64::consts::PI;
-                let reach = r + 0.6 * s.slider_length + 0.4 * s.text + (k / 8) as f64 * s.text;
-                out.push(*p + Vector::new(libm::cos(a), libm::sin(a)) * reach);
-            }
+/// What is drawn in `d` from entity `start` on, as a link's number must keep off it: every
+/// stroke as segments, every text's box.
+fn drawn(d: &Drawing, start: usize) -> (Vec<labels::Segment>, Vec<TextBox>) {
+    let (mut segments, mut boxes) = (Vec::new(), Vec::new());
+    for e in &d.entities[start.min(d.entities.len())..] {
+        match &e.shape {
+            text @ Shape::Text { .. } => boxes.push(text_box(text)),
+            other => segments.extend(labels::strokes(other)),
         }
+    }
+    (segments, boxes)
+}
+
+/// How many places of the placer's a link's number may turn down for being nearer
+/// another link than its own ([`number_links`]).
+const NUMBER_TRIES: usize = 8;
+
+/// A link's number's anchor, preferred side and clearance ([`number_links`]) for a body
+/// whose points on paper are `pts`.
+fn number_anchor(
+    pts: &[Point],
+    centre: Point,
+    clearance: &dyn Fn(Point) -> f64,
+    s: Sizes,
+) -> Option<(Point, Vector, f64)> {
+    let r = labels::CIRCLE_RADIUS * s.text;
+    match pts {
+        [] => None,
+        // A block: clear of it along its guide too (half its length).
+        [p] => Some((*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_length)),
         _ => {
             let n = pts.len();
             // Twice the plate's area: points in a line (a coupler ABM) make a bar.
@@ -375,64 +439,25 @@ fn number_candidates(pts: &[Point], centre: Point, r: f64, s: Sizes) -> Vec<Poin
                     a.x * b.y - b.x * a.y
                 })
                 .sum();
-            let plate = n >= 3 && area2.abs() > 4.0 * (2.0 * r) * (2.0 * r);
-            let mut sides: Vec<(Point, Point)> = if plate {
-                (0..n).map(|k| (pts[k], pts[(k + 1) % n])).collect()
-            } else {
-                pts.windows(2).map(|w| (w[0], w[1])).collect()
-            };
-            if plate {
-                let c = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / n as f64);
-                out.push(c);
+            let c = Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / n as f64);
+            if n >= 3 && area2.abs() > 4.0 * (2.0 * r) * (2.0 * r) {
+                return Some((c, Vector::new(0.0, 1.0), 0.0));
             }
-            sides.sort_by(|a, b| (b.1 - b.0).norm().total_cmp(&(a.1 - a.0).norm()));
-            for (a, b) in sides.into_iter().filter(|(a, b)| (b - a).norm() > 0.0) {
-                let mid = Point::from((a.coords + b.coords) / 2.0);
-                let mut nrm = perp(vocab::unit_or(b - a, Vector::new(1.0, 0.0)));
-                if nrm.dot(&(mid - centre)) < 0.0 {
-                    nrm = -nrm;
-                }
-                for t in [0.5, 0.42, 0.58, 0.34, 0.66, 0.26, 0.74, 0.18, 0.82] {
-                    let on = a + (b - a) * t;
-                    for reach in [near, near + s.text, near + 2.5 * s.text] {
-                        out.push(on + nrm * reach);
-                        out.push(on - nrm * reach);
-                    }
-                }
-                // Crowded: round the side's middle, further out.
-                for k in 0..32 {
-                    let turn = std::f64::consts::PI / 8.0 * (k % 16) as f64;
-                    let reach = near + (2.0 + 1.5 * (k / 16) as f64) * s.text;
-                    let dir = Vector::new(libm::cos(turn), libm::sin(turn));
-                    out.push(mid + dir * reach);
-                }
+            let (a, b) = pts
+                .windows(2)
+                .map(|w| (w[0], w[1]))
+                .max_by(|x, y| (x.1 - x.0).norm().total_cmp(&(y.1 - y.0).norm()))?;
+            let along = [0.5, 0.38, 0.62, 0.28, 0.72].map(|t| a + (b - a) * t);
+            let at = along.iter().copied().find(|x| clearance(*x) >= NUMBER_CLEARANCE * s.text).unwrap_or_else(|| {
+                along.iter().copied().fold(along[0], |m, x| if clearance(x) > clearance(m) { x } else { m })
+            });
+            let mut nrm = perp(vocab::unit_or(b - a, Vector::new(1.0, 0.0)));
+            if nrm.dot(&(at - centre)) < 0.0 {
+                nrm = -nrm;
             }
+            Some((at, nrm, 0.5 * s.link))
         }
     }
-    out
-}
-
-/// What is drawn in `d` from entity `start` on, as a number's circle must keep off it:
-/// every stroke as segments (dimensions exploded), every text's and every circle's box.
-fn drawn(d: &Drawing, start: usize) -> (Vec<labels::Segment>, Vec<TextBox>) {
-    let (mut segments, mut boxes) = (Vec::new(), Vec::new());
-    let mut one = |shape: &Shape| match shape {
-        Shape::Text { .. } => boxes.push(text_box(shape)),
-        Shape::Circle { center, radius } => boxes
-            .push(TextBox { min: center - Vector::new(*radius, *radius), max: center + Vector::new(*radius, *radius) }),
-        other => segments.extend(labels::strokes(other)),
-    };
-    for e in &d.entities[start.min(d.entities.len())..] {
-        match &e.shape {
-            dim @ (Shape::AngularDimension { .. } | Shape::LinearDimension { .. }) => {
-                for part in parts::explode_dimension(dim, &d.dim_style) {
-                    one(&part);
-                }
-            }
-            other => one(other),
-        }
-    }
-    (segments, boxes)
 }
 
 /// The point of body `b` (on paper at `pq`) farthest from `from`: a crank's pin seen from

@@ -8,8 +8,9 @@
 use crate::draw::{Bounds, Drawing};
 use crate::figure::linkage::{BodyOutline, JointSymbol};
 use crate::figure::report::page::{self, PageTitle, ReportFrame};
-use crate::figure::report::sketch::{self, Marks, Sketch};
-use crate::geom::Vector;
+use crate::figure::report::sketch::{self, Marks, OnPaper, Sketch};
+use crate::figure::shared::vocab::{self, Sizes};
+use crate::geom::{Point, Vector};
 use crate::solve::linkage::structure::{GroupStructure, Structure, roman};
 use crate::solve::linkage::{Attach, JointKind, Mechanism};
 
@@ -189,46 +190,219 @@ pub fn group_sketch(sketch: &Sketch, mech: &Mechanism, g: &GroupStructure) -> Sk
     Sketch { figure, names: sketch.names.clone(), driver: None, loads: Vec::new() }
 }
 
-/// Share of the left column's height the mechanism's panel takes (the mobility's working
-/// below it).
-const MECHANISM_SHARE: f64 = 0.5;
+/// Height of the mobility's lines, in letter heights.
+const TEXT_SIZE: f64 = 0.8;
+
+/// Where the structure page puts its panels and each drawing ([`layout`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Layout {
+    /// The mechanism's panel and its placement.
+    pub mechanism: (Bounds, OnPaper),
+    /// The panel of the mobility's working.
+    pub text: Bounds,
+    /// Each group's panel and its placement, in solving order, all at one k_l.
+    pub groups: Vec<(Bounds, OnPaper)>,
+}
+
+/// The structure page's layout, of three: the mechanism in the left column beside the
+/// title block, the mobility's working under it and the groups in the column over the title
+/// block; the mechanism the whole left column, the working under the groups; or the
+/// mechanism across the page, the groups under it beside the working over the title block.
+/// The working's panel is as tall as its lines need at its width; the groups are stacked
+/// or side by side, each panel sized to its group at the groups' one scale. Of the three,
+/// the one drawing the mechanism largest of those that draw the groups at most
+/// [`GROUPS_SMALLER`] times smaller than it (the first when none does). Every drawing at
+/// the finest drafting scale its panel holds ([`sketch::fit`]); the groups at the finest
+/// one at which all of them fit.
+pub fn layout(frame: &ReportFrame, p: &StructurePage) -> Layout {
+    let s = frame.sizes;
+    let (left, right) = frame.tall_left();
+    let mut text = mobility_lines(p);
+    text.extend(group_lines(p));
+    let unit_box = (Vector::zeros(), Vector::new(1.0, 1.0));
+    let mech_extent = p.sketch.extent_with_guides(p.q, p.motion, s).unwrap_or(unit_box);
+    let groups: Vec<(Vector, Vector)> = p
+        .structure
+        .groups
+        .iter()
+        .map(|g| group_sketch(p.sketch, p.mechanism, g).extent_with_guides(p.q, p.motion, s).unwrap_or(unit_box))
+        .collect();
+    let captions: Vec<f64> =
+        p.structure.groups.iter().map(|g| crate::draw::parts::text_width(&group_caption(g), s.text)).collect();
+    let fit_mechanism =
+        |panel: Bounds| sketch::fit(mech_extent.0, mech_extent.1, page::panel_area(panel, true, s), sketch::room(s));
+    let mut candidates: Vec<(Layout, f64, Vec<Bounds>)> = Vec::new();
+    // The mechanism in the left column, the text under it or under the groups.
+    for text_right in [false, true] {
+        let (column, region) = if text_right { (right, left) } else { (left, right) };
+        // Under the mechanism it always goes (every line, the mechanism keeping the rest);
+        // under the groups only when it leaves them room.
+        let th = text_height(&text, column.width(), s);
+        if text_right && th > MOST_TEXT * column.height() {
+            continue;
+        }
+        let th = th.min(ALL_TEXT * column.height());
+        let text_panel = Bounds { max: Point::new(column.max.x, column.min.y + th), ..column };
+        let rest = Bounds { min: Point::new(column.min.x, column.min.y + th), ..column };
+        let (mech_panel, group_region) = if text_right { (region, rest) } else { (rest, region) };
+        let (k, cells) = arrange(group_region, &groups, &captions, s);
+        candidates.push((
+            Layout { mechanism: (mech_panel, fit_mechanism(mech_panel)), text: text_panel, groups: Vec::new() },
+            k,
+            cells,
+        ));
+    }
+    // A wide mechanism (a slider-crank's long guide) across the page, the groups under it
+    // beside the text over the title block.
+    let th = text_height(&text, right.width(), s);
+    if th <= MOST_TEXT * right.height() {
+        let split = right.min.y + th;
+        let mech_panel = Bounds { min: Point::new(left.min.x, split), max: right.max };
+        let text_panel = Bounds { max: Point::new(right.max.x, split), ..right };
+        let group_region = Bounds { max: Point::new(left.max.x, split), ..left };
+        let (k, cells) = arrange(group_region, &groups, &captions, s);
+        candidates.push((
+            Layout { mechanism: (mech_panel, fit_mechanism(mech_panel)), text: text_panel, groups: Vec::new() },
+            k,
+            cells,
+        ));
+    }
+    // The mechanism as large as the groups let it be: the finest scale of those that draw
+    // the groups at most GROUPS_SMALLER times smaller (the groups' finer scale on a tie);
+    // when none does, the mechanism over its text.
+    let ok = |c: &&(Layout, f64, Vec<Bounds>)| c.1 <= GROUPS_SMALLER * c.0.mechanism.1.k_l;
+    let best = candidates
+        .iter()
+        .enumerate()
+        .filter(|(_, c)| ok(c))
+        .min_by(|(_, a), (_, b)| {
+            (a.0.mechanism.1.k_l, a.1).partial_cmp(&(b.0.mechanism.1.k_l, b.1)).unwrap_or(std::cmp::Ordering::Equal)
+        })
+        .map_or(0, |(i, _)| i);
+    let (mut chosen, k, cells) = candidates.swap_remove(best);
+    chosen.groups = groups
+        .iter()
+        .zip(cells)
+        .map(|((lo, hi), cell)| {
+            (
+                cell,
+                OnPaper {
+                    k_l: k,
+                    origin: crate::figure::shared::sheet::centre(*lo, *hi, k, page::panel_area(cell, true, s)),
+                },
+            )
+        })
+        .collect();
+    chosen
+}
+
+/// The largest share of its column the mobility's working may take beside the groups or
+/// under a wide mechanism.
+const MOST_TEXT: f64 = 0.6;
+
+/// The largest share of the left column the mobility's working takes under the mechanism.
+const ALL_TEXT: f64 = 0.85;
+
+/// How many times smaller than the mechanism the groups may be drawn before the layout
+/// gives them the room of its mobility's working ([`layout`]).
+pub const GROUPS_SMALLER: f64 = 2.0;
+
+/// The height of a panel holding `lines` at [`TEXT_SIZE`] in `width` mm (wrapped as
+/// [`page::lines`] wraps them), its title band and margins included.
+fn text_height(lines: &[String], width: f64, s: Sizes) -> f64 {
+    let h = TEXT_SIZE * s.text;
+    let probe = Bounds { min: Point::origin(), max: Point::new(width, 1000.0) };
+    let inner = page::panel_area(probe, true, s);
+    let n: usize = lines.iter().map(|l| page::wrap(l, h, inner.width()).len()).sum();
+    // A hair more than the lines, so that their count fits after rounding.
+    (n as f64 + 0.1) * page::LINE_SPACING * h + (probe.height() - inner.height())
+}
+
+/// The groups' panels in `region`, stacked or side by side (the one drawing them larger),
+/// each as tall (stacked) or wide (side by side) as its group's extent (`extents`, model
+/// units) at the groups' one scale needs, the region's spare shared in proportion; with
+/// that scale: the finest drafting scale at which every group fits its panel leaving
+/// [`sketch::room`] around it. A panel narrower than its caption (`captions`, mm) is not
+/// an arrangement.
+fn arrange(region: Bounds, extents: &[(Vector, Vector)], captions: &[f64], s: Sizes) -> (f64, Vec<Bounds>) {
+    let n = extents.len();
+    if n == 0 {
+        return (1.0, Vec::new());
+    }
+    let probe = Bounds { min: Point::origin(), max: Point::new(1000.0, 1000.0) };
+    let inner = page::panel_area(probe, true, s);
+    let room = sketch::room(s);
+    // What a panel takes besides its drawing, mm.
+    let fixed = Vector::new(probe.width() - inner.width(), probe.height() - inner.height()) + 2.0 * room;
+    let sizes: Vec<Vector> = extents.iter().map(|(lo, hi)| hi - lo).collect();
+    let arrangement = |stacked: bool| -> Option<(f64, Vec<Bounds>)> {
+        // Along: the direction the panels follow each other; across: the other.
+        let split = |v: Vector| if stacked { (v.y, v.x) } else { (v.x, v.y) };
+        let (length, breadth) = along_across(region, stacked);
+        let (fix_along, fix_across) = if stacked { (fixed.y, fixed.x) } else { (fixed.x, fixed.y) };
+        let free_along = length - n as f64 * fix_along;
+        let free_across = breadth - fix_across;
+        if free_along <= 0.0 || free_across <= 0.0 {
+            return None;
+        }
+        let total: f64 = sizes.iter().map(|v| split(*v).0).sum();
+        let raw = sizes.iter().map(|v| split(*v).1 / free_across).fold(total / free_along, f64::max);
+        let k = vocab::drafting_scale(raw);
+        // Each panel's share of the free length: its group's, or equal for groups of none.
+        let shares: Vec<f64> =
+            if total > 0.0 { sizes.iter().map(|v| split(*v).0 / total).collect() } else { vec![1.0 / n as f64; n] };
+        let mut cells = Vec::with_capacity(n);
+        let mut at = if stacked { region.max.y } else { region.min.x };
+        for share in shares {
+            let len = fix_along + share * free_along;
+            let cell = if stacked {
+                Bounds { min: Point::new(region.min.x, at - len), max: Point::new(region.max.x, at) }
+            } else {
+                Bounds { min: Point::new(at, region.min.y), max: Point::new(at + len, region.max.y) }
+            };
+            at = if stacked { at - len } else { at + len };
+            cells.push(cell);
+        }
+        let captions_fit = cells.iter().zip(captions).all(|(c, w)| *w + 1.2 * s.text <= c.width());
+        captions_fit.then_some((k, cells))
+    };
+    let fallback = || (vocab::drafting_scale(1.0), page::grid(region, n, 1));
+    match (arrangement(true), arrangement(false)) {
+        (Some(a), Some(b)) => {
+            if b.0 < a.0 {
+                b
+            } else {
+                a
+            }
+        }
+        (Some(a), None) | (None, Some(a)) => a,
+        (None, None) => fallback(),
+    }
+}
+
+/// The length of `region` along which panels follow each other (its height when
+/// `stacked`, else its width) and its breadth across.
+fn along_across(region: Bounds, stacked: bool) -> (f64, f64) {
+    if stacked { (region.height(), region.width()) } else { (region.width(), region.height()) }
+}
 
 /// The structural analysis page (its title block's cells: the mechanism's and the groups'
-/// k_l): the mechanism numbered (left, above the mobility's
-/// working), the groups apart (right), all at one k_l when the groups' panels hold them at
-/// the mechanism's, else every group at the one scale that fits them all.
+/// k_l): the mechanism numbered, the mobility's working, the groups apart ([`layout`]).
 pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawing {
     let s = frame.sizes;
+    let lay = layout(frame, p);
+    let (mech_panel, at) = lay.mechanism;
+    let k_l = lay.groups.first().map_or(at.k_l, |(_, g)| g.k_l);
     let mut title = title.clone();
-    let c = frame.content;
-    let [left, right] = match page::columns(c, 2, 0.0).as_slice() {
-        [a, b] => [*a, *b],
-        _ => [c, c],
-    };
-    let split = left.max.y - MECHANISM_SHARE * left.height();
-    let mech_panel = Bounds { min: crate::geom::Point::new(left.min.x, split), ..left };
-    let text_panel = Bounds { max: crate::geom::Point::new(left.max.x, split), ..left };
-    // The mechanism's scale, and the groups' (the coarser of it and what their panels need).
-    let probe = page::panel_area(mech_panel, true, s);
-    let (lo, hi) = p.sketch.extent_with_guides(p.q, p.motion, s).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-    let at = sketch::fit(lo, hi, probe, sketch::room(s));
-    let n = p.structure.groups.len().max(1);
-    let cols = if n <= 2 { 1 } else { 2 };
-    let cells = page::grid(right, n, cols);
-    let sketches: Vec<Sketch> = p.structure.groups.iter().map(|g| group_sketch(p.sketch, p.mechanism, g)).collect();
-    let k_l = sketches.iter().zip(&cells).fold(at.k_l, |k, (gs, cell)| {
-        let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        k.max(sketch::fit(lo, hi, page::panel_area(*cell, true, s), sketch::room(s)).k_l)
-    });
     title.cells = vec![
         format!("k_l = {} {}/mm", page::plain(at.k_l), p.unit),
         format!("groups: k_l = {} {}/mm", page::plain(k_l), p.unit),
     ];
-    let mut d = frame.page(&title);
+    let mut d = frame.open_page(&title);
     let area = page::panel(
         &mut d,
         mech_panel,
-        &format!("The mechanism, links numbered   k_l = {} {}/mm", page::plain(at.k_l), p.unit),
+        &format!("The mechanism, links numbered · k_l = {} {}/mm", page::plain(at.k_l), p.unit),
         s,
     );
     sketch::draw(
@@ -240,27 +414,24 @@ pub fn page(frame: &ReportFrame, title: &PageTitle, p: &StructurePage) -> Drawin
         Marks { numbers: true, ..Marks::default() },
     );
     // The mobility.
-    let area = page::panel(&mut d, text_panel, "Mobility and groups", s);
+    let area = page::panel(&mut d, lay.text, "Mobility and groups", s);
     let l = page::sheet_layer(&mut d);
     let mut text = mobility_lines(p);
     text.extend(group_lines(p));
-    page::lines(&mut d, l, area, &text, 0.8 * s.text, s);
-    // The groups apart, at one scale.
-    for ((g, gs), cell) in p.structure.groups.iter().zip(&sketches).zip(cells) {
-        let probe = page::panel_area(cell, true, s);
-        let (lo, hi) = gs.extent(&[p.q]).unwrap_or((Vector::zeros(), Vector::new(1.0, 1.0)));
-        let at = sketch::OnPaper { k_l, origin: crate::figure::shared::sheet::centre(lo, hi, k_l, probe) };
-        // Two columns of groups leave no room for the scale in each caption: it is the
-        // title block's ("groups: k_l = …"), the same for every group.
-        let caption = if cols == 1 {
-            format!("{}   k_l = {} {}/mm", group_caption(g), page::plain(k_l), p.unit)
-        } else {
-            group_caption(g)
-        };
+    page::lines(&mut d, l, area, &text, TEXT_SIZE * s.text, s);
+    // The groups apart, at one scale: in each caption where every caption has room for it,
+    // else in the title block only ("groups: k_l = …").
+    let scale = format!(" · k_l = {} {}/mm", page::plain(k_l), p.unit);
+    let with_scale = p.structure.groups.iter().zip(&lay.groups).all(|(g, (cell, _))| {
+        crate::draw::parts::text_width(&format!("{}{scale}", group_caption(g)), s.text) + 1.2 * s.text <= cell.width()
+    });
+    for (g, (cell, at)) in p.structure.groups.iter().zip(lay.groups) {
+        let gs = group_sketch(p.sketch, p.mechanism, g);
+        let caption = if with_scale { format!("{}{scale}", group_caption(g)) } else { group_caption(g) };
         let area = page::panel(&mut d, cell, &caption, s);
         sketch::draw(
             &mut d,
-            gs,
+            &gs,
             p.q,
             p.motion,
             sketch::Frame { at, sizes: s, area },
