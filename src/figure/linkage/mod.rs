@@ -261,112 +261,9 @@ pub fn mechanism_with_forces(
             letters.segment(a.at, a.arrow.0);
         }
     }
-    // Guides fixed to the ground.
-    for span in spans.iter().flatten() {
-        vocab::guide(d, layer, span.0, span.1, s);
-        letters.segment(span.0, span.1);
-    }
-    // Bodies.
-    for (i, b) in fig.bodies.iter().enumerate() {
-        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
-        let n = pts.len();
-        let sides = if n >= 3 { n } else { n.saturating_sub(1) };
-        for k in 0..sides {
-            letters.segment(pts[k], pts[(k + 1) % n]);
-        }
-        if pts.len() >= 2 {
-            // In black, as a kinematic diagram is drawn; the vectors are coloured.
-            vocab::link(d, layer, pts, b.points.len() >= 3, None, s);
-        }
-    }
-    // Joints.
-    let mut labelled: Vec<Point> = Vec::new();
-    let mut name_at = |letters: &mut labels::Polygon, p: Point, name: &str, dir: Vector, clear: f64| {
-        if !labelled.iter().any(|x| (x - p).norm() <= s.joint) {
-            labelled.push(p);
-            letters.letter_clear(p, name, s.text, dir, clear);
-        }
-    };
-    // Sliders first, so that their names sit beside the block rather than on it.
-    let order = fig
-        .joints
-        .iter()
-        .filter(|j| matches!(j, JointSymbol::Slider { .. }))
-        .chain(fig.joints.iter().filter(|j| matches!(j, JointSymbol::Pin { .. })));
-    let up_right = Vector::new(1.8, 1.2);
-    for j in order {
-        match j {
-            JointSymbol::Pin { at, grounded, name } => {
-                let p = anchor_at(q, *at);
-                if *grounded {
-                    vocab::ground(d, layer, p, s);
-                    letters.keep_off(vocab::ground_extent(p, s));
-                } else {
-                    vocab::joint(d, layer, p, s);
-                }
-                name_at(&mut letters, p, name, up_right, s.joint);
-            }
-            JointSymbol::Slider { point, q1, q2, name } => {
-                let (point, q1, q2) = (*point, *q1, *q2);
-                let p = anchor_at(q, point);
-                let dir = anchor_at(q, q2) - anchor_at(q, q1);
-                let u = dir.normalize();
-                let n = perp(u);
-                let (hl, hh) = vocab::slider(d, layer, p, u, s);
-                // The block's box, axis-aligned.
-                let half = Vector::new(hl * u.x.abs() + hh * n.x.abs(), hl * u.y.abs() + hh * n.y.abs());
-                letters.keep_off(TextBox { min: p - half, max: p + half });
-                if let Some(name) = name {
-                    // Beside the block, preferably across the guide from its middle.
-                    name_at(&mut letters, p, name, n, hh);
-                }
-            }
-        }
-    }
-    // Names of body points not at a joint (coupler points, tips).
-    for (i, b) in fig.bodies.iter().enumerate() {
-        for (name, v) in &b.points {
-            let p = place(q, Attach::Body(i), *v);
-            name_at(&mut letters, p, name, up_right, s.joint);
-        }
-    }
-    // The links' numbers, beside each link's middle, away from the mechanism's middle.
-    let centre = {
-        let pts: Vec<Point> = (0..fig.bodies.len())
-            .flat_map(|i| fig.bodies[i].points.iter().map(move |(_, v)| place(q, Attach::Body(i), *v)))
-            .collect();
-        Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64)
-    };
-    for (i, b) in fig.bodies.iter().enumerate() {
-        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
-        let (mid, dir, clear) = match pts.as_slice() {
-            [] => continue,
-            [p] => (*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_height),
-            [p, r, ..] => {
-                // Along the link where it is clearest of the joints (another link passing
-                // near a pivot leaves its middle crowded).
-                let joints: Vec<Point> = fig
-                    .joints
-                    .iter()
-                    .map(|j| match j {
-                        JointSymbol::Pin { at, .. } => anchor_at(q, *at),
-                        JointSymbol::Slider { point, .. } => anchor_at(q, *point),
-                    })
-                    .collect();
-                let clearance = |x: Point| joints.iter().map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
-                let along = [0.5, 0.38, 0.62, 0.28, 0.72].map(|t| p + (r - p) * t);
-                let mid = along.iter().copied().find(|x| clearance(*x) >= 4.0 * s.text).unwrap_or_else(|| {
-                    along.iter().copied().fold(along[0], |a, x| if clearance(x) > clearance(a) { x } else { a })
-                });
-                let mut n = perp(vocab::unit_or(r - p, Vector::new(1.0, 0.0)));
-                if n.dot(&(mid - centre)) < 0.0 {
-                    n = -n;
-                }
-                (mid, n, 0.5 * s.link)
-            }
-        };
-        letters.circled(mid, &(i + 1).to_string(), s.text, dir, clear);
-    }
+    draw_links(d, layer, (fig, q), spans, s, &mut letters);
+    draw_joints(d, layer, (fig, q), s, &mut letters);
+    number_links((fig, q), s, &mut letters);
     if let (Some(crank), Some(w)) = (fig.crank, omega.filter(|w| *w != 0.0 && w.is_finite())) {
         crank_turn(d, layer, (fig, q), crank, arrows, w, s, &mut letters);
     }
@@ -386,6 +283,135 @@ pub fn mechanism_with_forces(
     for (i, p) in placed.iter().enumerate() {
         let l = if i < on_mechanism { layer } else { frc };
         labels::draw_placed(d, l, p, Some(LineType::Continuous));
+    }
+}
+
+/// Draws the guides fixed to the ground (`spans`) and the bodies of `fig` at `q` in black,
+/// as a kinematic diagram is drawn (the vectors are coloured), on `layer`; `letters` keep
+/// off every guide and every side of a body.
+fn draw_links(
+    d: &mut Drawing,
+    layer: usize,
+    (fig, q): (&LinkageFigure, &[f64]),
+    spans: &[Option<(Point, Point)>],
+    s: Style,
+    letters: &mut labels::Polygon,
+) {
+    for span in spans.iter().flatten() {
+        vocab::guide(d, layer, span.0, span.1, s);
+        letters.segment(span.0, span.1);
+    }
+    for (i, b) in fig.bodies.iter().enumerate() {
+        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+        let n = pts.len();
+        let sides = if n >= 3 { n } else { n.saturating_sub(1) };
+        for k in 0..sides {
+            letters.segment(pts[k], pts[(k + 1) % n]);
+        }
+        if pts.len() >= 2 {
+            vocab::link(d, layer, pts, b.points.len() >= 3, None, s);
+        }
+    }
+}
+
+/// Draws the joints of `fig` at `q` on `layer` (pins, ground symbols, sliders' blocks,
+/// `letters` keeping off the symbols) and gives `letters` the points' names: the sliders'
+/// first, so that they sit beside the block rather than on it, then the pins', then the
+/// body points not at a joint (coupler points, tips); one name a place.
+fn draw_joints(
+    d: &mut Drawing,
+    layer: usize,
+    (fig, q): (&LinkageFigure, &[f64]),
+    s: Style,
+    letters: &mut labels::Polygon,
+) {
+    let mut labelled: Vec<Point> = Vec::new();
+    let mut name_at = |letters: &mut labels::Polygon, p: Point, name: &str, dir: Vector, clear: f64| {
+        if !labelled.iter().any(|x| (x - p).norm() <= s.joint) {
+            labelled.push(p);
+            letters.letter_clear(p, name, s.text, dir, clear);
+        }
+    };
+    let order = fig
+        .joints
+        .iter()
+        .filter(|j| matches!(j, JointSymbol::Slider { .. }))
+        .chain(fig.joints.iter().filter(|j| matches!(j, JointSymbol::Pin { .. })));
+    let up_right = Vector::new(1.8, 1.2);
+    for j in order {
+        match j {
+            JointSymbol::Pin { at, grounded, name } => {
+                let p = anchor_at(q, *at);
+                if *grounded {
+                    vocab::ground(d, layer, p, s);
+                    letters.keep_off(vocab::ground_extent(p, s));
+                } else {
+                    vocab::joint(d, layer, p, s);
+                }
+                name_at(letters, p, name, up_right, s.joint);
+            }
+            JointSymbol::Slider { point, q1, q2, name } => {
+                let (point, q1, q2) = (*point, *q1, *q2);
+                let p = anchor_at(q, point);
+                let dir = anchor_at(q, q2) - anchor_at(q, q1);
+                let u = dir.normalize();
+                let n = perp(u);
+                let (hl, hh) = vocab::slider(d, layer, p, u, s);
+                // The block's box, axis-aligned.
+                let half = Vector::new(hl * u.x.abs() + hh * n.x.abs(), hl * u.y.abs() + hh * n.y.abs());
+                letters.keep_off(TextBox { min: p - half, max: p + half });
+                if let Some(name) = name {
+                    // Beside the block, preferably across the guide from its middle.
+                    name_at(letters, p, name, n, hh);
+                }
+            }
+        }
+    }
+    for (i, b) in fig.bodies.iter().enumerate() {
+        for (name, v) in &b.points {
+            let p = place(q, Attach::Body(i), *v);
+            name_at(letters, p, name, up_right, s.joint);
+        }
+    }
+}
+
+/// Gives `letters` each link's number in a circle, beside the link's middle where it is
+/// clearest of the joints (another link passing near a pivot leaves its middle crowded),
+/// away from the mechanism's middle; a block's beside it.
+fn number_links((fig, q): (&LinkageFigure, &[f64]), s: Style, letters: &mut labels::Polygon) {
+    let centre = {
+        let pts: Vec<Point> = (0..fig.bodies.len())
+            .flat_map(|i| fig.bodies[i].points.iter().map(move |(_, v)| place(q, Attach::Body(i), *v)))
+            .collect();
+        Point::from(pts.iter().map(|p| p.coords).sum::<Vector>() / pts.len().max(1) as f64)
+    };
+    let joints: Vec<Point> = fig
+        .joints
+        .iter()
+        .map(|j| match j {
+            JointSymbol::Pin { at, .. } => anchor_at(q, *at),
+            JointSymbol::Slider { point, .. } => anchor_at(q, *point),
+        })
+        .collect();
+    let clearance = |x: Point| joints.iter().map(|j| (j - x).norm()).fold(f64::INFINITY, f64::min);
+    for (i, b) in fig.bodies.iter().enumerate() {
+        let pts: Vec<Point> = b.points.iter().map(|(_, v)| place(q, Attach::Body(i), *v)).collect();
+        let (mid, dir, clear) = match pts.as_slice() {
+            [] => continue,
+            [p] => (*p, Vector::new(-1.0, 1.0), 0.5 * s.slider_height),
+            [p, r, ..] => {
+                let along = [0.5, 0.38, 0.62, 0.28, 0.72].map(|t| p + (r - p) * t);
+                let mid = along.iter().copied().find(|x| clearance(*x) >= 4.0 * s.text).unwrap_or_else(|| {
+                    along.iter().copied().fold(along[0], |a, x| if clearance(x) > clearance(a) { x } else { a })
+                });
+                let mut n = perp(vocab::unit_or(r - p, Vector::new(1.0, 0.0)));
+                if n.dot(&(mid - centre)) < 0.0 {
+                    n = -n;
+                }
+                (mid, n, 0.5 * s.link)
+            }
+        };
+        letters.circled(mid, &(i + 1).to_string(), s.text, dir, clear);
     }
 }
 

@@ -191,11 +191,15 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
     let lay = layout(mech, only);
     let n = lay.points.len();
     let motions: Vec<(Vector, Vector)> = (1..=n).map(|k| motion_of(&lay, state, k)).collect();
-    let vector = |from, to| Side { from, to, kind: SideKind::Vector };
-    let image = |from, to| Side { from, to, kind: SideKind::Image };
+    let images = image_sides(&lay);
+    let targets = constructed_points(&lay);
+    let on = Construction { mech, state, lay: &lay, motions: &motions, images: &images, targets: &targets };
+    LinkagePolygons { velocity: on.velocity(), acceleration: on.acceleration() }
+}
 
-    // Images of the bodies: consecutive points, closed for a plate; sides at the pole are
-    // the pole's own vectors.
+/// The images of the bodies: sides between consecutive points, closed for a plate; sides
+/// at the pole are the pole's own vectors and left out.
+fn image_sides(lay: &Layout) -> Vec<Side> {
     let mut images = Vec::new();
     for (members, &closed) in lay.members.iter().zip(&lay.closed) {
         let m = members.len();
@@ -203,34 +207,35 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
         for i in 0..count {
             let (a, b) = (members[i], members[(i + 1) % m]);
             if a != POLE && b != POLE {
-                images.push(image(a, b));
+                images.push(Side { from: a, to: b, kind: SideKind::Image });
             }
         }
     }
+    images
+}
 
-    // The image principle: each body's polygon image is similar to the body, so one of its
-    // points is constructed from its reference point R (its ground pivot, else its first
-    // point) and the others follow as the image's vertices. The point constructed: the
-    // rocker's point under a sliding block when the body is a moving guide (the Coriolis
-    // construction meets it), else the body's first other point.
+/// The image principle: each body's polygon image is similar to the body, so one of its
+/// points is constructed from its reference point R (its ground pivot, else its first
+/// point) and the others follow as the image's vertices. Per body, (R, the point
+/// constructed): the rocker's point under a sliding block when the body is a moving guide
+/// (the Coriolis construction meets it), else the body's first other point; none for a
+/// floating body (no ground pivot) whose every point another body constructs (a triad's
+/// ternary link): its image is already drawn.
+fn constructed_points(lay: &Layout) -> Vec<Option<(usize, usize)>> {
     let targets: Vec<Option<(usize, usize)>> = lay
         .members
         .iter()
-        .enumerate()
-        .map(|(body, members)| {
+        .map(|members| {
             if members.len() < 2 {
                 return None;
             }
             let reference = if members.contains(&POLE) { POLE } else { members[0] };
             let guide = lay.guides.iter().map(|(g, _, _)| *g).find(|g| members.contains(g) && *g != reference);
             let target = guide.or_else(|| members.iter().copied().find(|&x| x != reference))?;
-            let _ = body;
             Some((reference, target))
         })
         .collect();
-    // A floating body (no ground pivot) whose every point another body constructs (a triad's
-    // ternary link) adds no construction of its own: its image is already drawn.
-    let targets: Vec<Option<(usize, usize)>> = targets
+    targets
         .iter()
         .enumerate()
         .map(|(body, t)| {
@@ -240,103 +245,115 @@ pub fn polygons_of(mech: &Mechanism, state: &State, only: Option<&[String]>) -> 
             let covered = !members.contains(&POLE) && members.iter().all(|&x| elsewhere(x));
             t.filter(|_| !covered)
         })
-        .collect();
+        .collect()
+}
 
-    // Velocity polygon.
-    let v_points: Vec<NamedPoint> = lay
-        .points
-        .iter()
-        .zip(&motions)
-        .map(|(p, (v, _))| NamedPoint { name: p.name.to_lowercase(), from: POLE, v: *v })
-        .collect();
-    let mut v_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
-    // In the velocity polygon a body's image sides are its relative velocities (ab is
-    // v_BA, as the four-bar draws it): arrows.
-    v_sides.extend(images.iter().map(|s| Side { kind: SideKind::Vector, ..*s }));
-    let mut v_dirs = Vec::new();
-    // The directions that locate each body's constructed point: v_XR ⊥ RX through r (none
-    // for a body that only translates: x is r).
-    let fastest = motions.iter().map(|(v, _)| v.norm()).fold(0.0, f64::max);
-    for (body, t) in targets.iter().enumerate() {
-        let Some((reference, x)) = *t else { continue };
-        let rx = position_of(&lay, state, body, x, mech) - position_of(&lay, state, body, reference, mech);
-        let (_, omega, _) = state.angular(Attach::Body(body));
-        if (rx * omega).norm() <= NEGLIGIBLE_REL * fastest {
-            continue;
+/// What both polygons are constructed from: the mechanism at `state`, the points' layout,
+/// their (velocity, acceleration), the bodies' image sides and constructed points.
+struct Construction<'a> {
+    mech: &'a Mechanism,
+    state: &'a State,
+    lay: &'a Layout,
+    motions: &'a [(Vector, Vector)],
+    images: &'a [Side],
+    targets: &'a [Option<(usize, usize)>],
+}
+
+impl Construction<'_> {
+    /// The velocity polygon: the points' vectors from the pole, each body's image sides as
+    /// its relative velocities (ab is v_BA, as the four-bar draws it), the directions that
+    /// locate each constructed point (v_XR ⊥ RX through r) and the guides' sliding.
+    fn velocity(&self) -> PointPolygon {
+        let (lay, state, mech) = (self.lay, self.state, self.mech);
+        let n = lay.points.len();
+        let points: Vec<NamedPoint> = lay
+            .points
+            .iter()
+            .zip(self.motions)
+            .map(|(p, (v, _))| NamedPoint { name: p.name.to_lowercase(), from: POLE, v: *v })
+            .collect();
+        let mut sides: Vec<Side> = (1..=n).map(|k| Side { from: POLE, to: k, kind: SideKind::Vector }).collect();
+        sides.extend(self.images.iter().map(|s| Side { kind: SideKind::Vector, ..*s }));
+        let mut directions = Vec::new();
+        let fastest = self.motions.iter().map(|(v, _)| v.norm()).fold(0.0, f64::max);
+        for (body, t) in self.targets.iter().enumerate() {
+            let Some((reference, x)) = *t else { continue };
+            let rx = position_of(lay, state, body, x, mech) - position_of(lay, state, body, reference, mech);
+            let (_, omega, _) = state.angular(Attach::Body(body));
+            // None for a body that only translates: x is r.
+            if (rx * omega).norm() <= NEGLIGIBLE_REL * fastest {
+                continue;
+            }
+            directions.push(Direction { through: reference, dir: perp(rx), reaches: x });
         }
-        v_dirs.push(Direction { through: reference, dir: perp(rx), reaches: x });
+        for (guide, sliding, kind) in &lay.guides {
+            sides.push(Side { from: *guide, to: *sliding, kind: SideKind::Vector });
+            directions.push(Direction { through: *guide, dir: guide_dir(state, kind), reaches: *sliding });
+        }
+        // The pole p, named p₀ when a point's letter is p (a piston P).
+        let pole = if points.iter().any(|p| p.name == "p") { "p₀" } else { "p" };
+        PointPolygon {
+            pole: pole.into(),
+            pole_away: (1..=n.min(2)).collect(),
+            points,
+            directions,
+            sides,
+            marks: vec![],
+        }
     }
-    for (guide, sliding, kind) in &lay.guides {
-        v_sides.push(vector(*guide, *sliding));
-        v_dirs.push(Direction { through: *guide, dir: guide_dir(state, kind), reaches: *sliding });
-    }
-    // The pole p, named p₀ when a point's letter is p (a piston P).
-    let velocity_pole = if v_points.iter().any(|p| p.name == "p") { "p₀" } else { "p" };
-    let velocity = PointPolygon {
-        pole: velocity_pole.into(),
-        pole_away: (1..=n.min(2)).collect(),
-        points: v_points,
-        directions: v_dirs,
-        sides: v_sides,
-        marks: vec![],
-    };
 
-    // Acceleration polygon.
-    let mut a_points: Vec<NamedPoint> = lay
-        .points
-        .iter()
-        .zip(&motions)
-        .map(|(p, (_, a))| NamedPoint { name: format!("{}′", p.name.to_lowercase()), from: POLE, v: *a })
-        .collect();
-    let mut a_sides: Vec<Side> = (1..=n).map(|k| vector(POLE, k)).collect();
-    let mut a_dirs = Vec::new();
-    let largest = motions.iter().map(|(_, a)| a.norm()).fold(0.0, f64::max);
-    let upper = |k: usize| if k == POLE { String::new() } else { lay.points[k - 1].name.clone() };
-    for (body, t) in targets.iter().enumerate() {
-        let Some((reference, target)) = *t else { continue };
-        let (_, omega, epsilon) = state.angular(Attach::Body(body));
-        let r_at = position_of(&lay, state, body, reference, mech);
-        let ref_name = if reference == POLE { pivot_name(mech, body) } else { upper(reference) };
-        {
-            let x = target;
-            let rx = position_of(&lay, state, body, x, mech) - r_at;
+    /// The acceleration polygon: the points' vectors from the pole π, each constructed
+    /// point's normal part n_XR from r′ and its tangential direction, each guide's
+    /// Coriolis k and the sliding's direction, then the bodies' image sides.
+    fn acceleration(&self) -> PointPolygon {
+        let (lay, state, mech) = (self.lay, self.state, self.mech);
+        let n = lay.points.len();
+        let mut points: Vec<NamedPoint> = lay
+            .points
+            .iter()
+            .zip(self.motions)
+            .map(|(p, (_, a))| NamedPoint { name: format!("{}′", p.name.to_lowercase()), from: POLE, v: *a })
+            .collect();
+        let mut sides: Vec<Side> = (1..=n).map(|k| Side { from: POLE, to: k, kind: SideKind::Vector }).collect();
+        let mut directions = Vec::new();
+        let largest = self.motions.iter().map(|(_, a)| a.norm()).fold(0.0, f64::max);
+        let upper = |k: usize| if k == POLE { String::new() } else { lay.points[k - 1].name.clone() };
+        for (body, t) in self.targets.iter().enumerate() {
+            let Some((reference, x)) = *t else { continue };
+            let (_, omega, epsilon) = state.angular(Attach::Body(body));
+            let rx = position_of(lay, state, body, x, mech) - position_of(lay, state, body, reference, mech);
             // No construction where a part vanishes (a crank at constant speed, a body
             // that only translates): the point would coincide with its image.
             let (normal, tangential) = ((rx * (omega * omega)).norm(), (perp(rx) * epsilon).norm());
             if normal <= NEGLIGIBLE_REL * largest || tangential <= NEGLIGIBLE_REL * largest {
                 continue;
             }
-            a_points.push(NamedPoint {
+            let ref_name = if reference == POLE { pivot_name(mech, body) } else { upper(reference) };
+            points.push(NamedPoint {
                 name: format!("n{}{}", upper(x), ref_name),
                 from: reference,
                 v: -rx * (omega * omega),
             });
-            let nx = a_points.len();
-            a_sides.push(vector(reference, nx));
-            a_sides.push(Side { from: nx, to: x, kind: SideKind::Component });
-            a_dirs.push(Direction { through: nx, dir: perp(rx), reaches: x });
+            let nx = points.len();
+            sides.push(Side { from: reference, to: nx, kind: SideKind::Vector });
+            sides.push(Side { from: nx, to: x, kind: SideKind::Component });
+            directions.push(Direction { through: nx, dir: perp(rx), reaches: x });
+        }
+        let guides = &lay.guides;
+        for (i, (guide, sliding, kind)) in guides.iter().enumerate() {
+            let Some(s) = state.sliding(kind) else { continue };
+            let name = if guides.len() == 1 { "k".to_string() } else { format!("k{}", i + 1) };
+            points.push(NamedPoint { name, from: *guide, v: s.a_cor });
+            let k = points.len();
+            sides.push(Side { from: *guide, to: k, kind: SideKind::Vector });
+            sides.push(Side { from: k, to: *sliding, kind: SideKind::Component });
+            directions.push(Direction { through: k, dir: guide_dir(state, kind), reaches: *sliding });
+        }
+        sides.extend(self.images.iter().copied());
+        PointPolygon {
+            pole: "π".into(), pole_away: (1..=n.min(2)).collect(), points, directions, sides, marks: vec![]
         }
     }
-    let corioli: Vec<_> = lay.guides.iter().collect();
-    for (i, (guide, sliding, kind)) in corioli.iter().enumerate() {
-        let Some(s) = state.sliding(kind) else { continue };
-        let name = if corioli.len() == 1 { "k".to_string() } else { format!("k{}", i + 1) };
-        a_points.push(NamedPoint { name, from: *guide, v: s.a_cor });
-        let k = a_points.len();
-        a_sides.push(vector(*guide, k));
-        a_sides.push(Side { from: k, to: *sliding, kind: SideKind::Component });
-        a_dirs.push(Direction { through: k, dir: guide_dir(state, kind), reaches: *sliding });
-    }
-    a_sides.extend(images.iter().copied());
-    let acceleration = PointPolygon {
-        pole: "π".into(),
-        pole_away: (1..=n.min(2)).collect(),
-        points: a_points,
-        directions: a_dirs,
-        sides: a_sides,
-        marks: vec![],
-    };
-    LinkagePolygons { velocity, acceleration }
 }
 
 /// Name of a body's ground pivot (the name of its point pinned to the ground).
