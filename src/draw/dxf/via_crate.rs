@@ -437,22 +437,10 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
         let mut lines = crlf_lines(&text);
         std::iter::from_fn(move || Some(Pair::borrowed(lines.next()?, lines.next()?)))
     };
-
+    let r12 = version == DxfVersion::R12;
     // R2000: handles for the TABLE heads and the ENDBLKs (the crate writes none, resp. the
     // BLOCK's), numbered after the highest handle the crate assigned. (R12 needs neither.)
-    let (mut next_handle, handle_seed) = if version != DxfVersion::R12 {
-        let (mut highest, mut extra) = (0u64, 0u64);
-        for p in pairs() {
-            match p.code {
-                5 | 105 => highest = highest.max(u64::from_str_radix(p.value.trim(), 16).unwrap_or(0)),
-                0 if p.value == "TABLE" || p.value == "ENDBLK" => extra += 1,
-                _ => {}
-            }
-        }
-        (highest + 1, highest + 1 + extra)
-    } else {
-        (0, 0)
-    };
+    let mut handles = if r12 { Handles { next: 0, seed: 0 } } else { Handles::after(pairs()) };
 
     let mut out = String::with_capacity(raw.len() + 1024);
     let mut section = "";
@@ -475,130 +463,175 @@ fn fix_up(raw: &[u8], version: DxfVersion, paper_insertion_base: (f64, f64)) -> 
             };
         }
         let is_header = kind == "SECTION" && record.get(1).is_some_and(|p| p.value == "HEADER");
-        if version == DxfVersion::R12 && is_header {
-            // $DIMTXSTY (the crate writes it from R13 on): LibreCAD draws the dimension
-            // text it regenerates in this style.
-            if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$TEXTSTYLE") {
-                let var = [("  9", "$DIMTXSTY".to_string()), ("  7", TEXT_STYLE.to_string())];
-                for (k, (c, v)) in var.into_iter().enumerate() {
-                    record.insert(at + 2 + k, Pair::owned(c, v));
-                }
-            }
-            // $PINSBASE (the crate writes it from R14 on): where the drawing's origin lies on
-            // the sheet $PLIMMIN–$PLIMMAX. LibreCAD prints that sheet with the drawing on it.
-            if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$PLIMMAX") {
-                let next = record[at + 1..].iter().position(|p| p.code == 9).map_or(record.len(), |k| at + 1 + k);
-                let (x, y) = paper_insertion_base;
-                let var =
-                    [("  9", "$PINSBASE".to_string()), (" 10", fmt_f64(x)), (" 20", fmt_f64(y)), (" 30", fmt_f64(0.0))];
-                for (k, (c, v)) in var.into_iter().enumerate() {
-                    record.insert(next + k, Pair::owned(c, v));
-                }
-            }
+        if r12 && is_header {
+            r12_header(&mut record, paper_insertion_base);
         }
-        // A layer that is off (negative colour) is frozen too (flag 1): LibreCAD, QCAD and
-        // others read a layer's visibility from the flag alone and show an off layer.
-        if kind == "LAYER"
-            && section == "TABLES"
-            && record.iter().any(|p| p.code == 62 && p.value.trim().starts_with('-'))
-        {
-            for pair in record.iter_mut().filter(|p| p.code == 70) {
-                pair.value = Cow::Borrowed("     1");
-            }
+        if section == "TABLES" {
+            table_record(&mut record, &kind);
         }
-        // DIMSTYLE records carry their handle in group 105 (5 is $DIMBLK there).
-        if kind == "DIMSTYLE" && section == "TABLES" {
-            for pair in record.iter_mut().filter(|p| p.code == 5) {
-                pair.code_text = Cow::Borrowed("105");
-                pair.code = 105;
-            }
-        }
-        if version != DxfVersion::R12 {
-            if is_header
-                && let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED")
-                && let Some(pair) = record.get_mut(at + 1)
-            {
-                pair.value = format!("{handle_seed:X}").into();
-            }
-            match kind.as_ref() {
-                "TABLE" => {
-                    let at = if record.get(1).is_some_and(|p| p.code == 2) { 2 } else { 1 };
-                    record.insert(at, Pair::owned("  5", format!("{next_handle:X}")));
-                    record.insert(at + 1, Pair::owned("330", "0".to_string()));
-                    next_handle += 1;
-                }
-                "ENDBLK" => {
-                    match record.iter_mut().find(|p| p.code == 5) {
-                        Some(pair) => pair.value = format!("{next_handle:X}").into(),
-                        None => record.insert(1, Pair::owned("  5", format!("{next_handle:X}"))),
-                    }
-                    next_handle += 1;
-                }
-                // The 2-line angular dimension, written as the crate's 3-point one.
-                "DIMENSION" => {
-                    let two_line =
-                        record.iter().any(|p| p.code == 70 && p.value.trim().parse::<i32>().is_ok_and(|v| v & 7 == 2));
-                    if two_line {
-                        for pair in
-                            record.iter_mut().filter(|p| p.code == 100 && p.value == "AcDb3PointAngularDimension")
-                        {
-                            pair.value = Cow::Borrowed("AcDb2LineAngularDimension");
-                        }
-                    }
-                }
-                // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
-                // ... and opaque (R2007: the crate's 0 is an invalid transparency).
-                "VERTEX" => {
-                    for pair in record.iter_mut() {
-                        match pair.code {
-                            370 => pair.value = format!("{:>6}", -1).into(),
-                            440 => pair.value = format!("{:>9}", OPAQUE).into(),
-                            _ => {}
-                        }
-                    }
-                }
-                _ => {}
-            }
-        }
-        if version == DxfVersion::R12 {
+        if r12 {
             // R12 has no subclass markers. Its table records keep their handles (group 5,
             // 105 in DIMSTYLE), as R12 allows with $HANDLING = 1: FreeCAD cannot read a
             // LAYER record without one ("no layer name").
             record.retain(|p| p.code != 100);
+        } else {
+            handles.r2000_record(&mut record, &kind, is_header);
         }
-        match kind.as_ref() {
-            "POLYLINE" => poly_layer = record.iter().find(|p| p.code == 8).map(|p| p.value.to_string()),
-            "VERTEX" | "SEQEND" => {
-                if let Some(layer) = &poly_layer {
-                    match record.iter_mut().find(|p| p.code == 8) {
-                        Some(pair) => pair.value = layer.clone().into(),
-                        None => {
-                            // After the type and the handle.
-                            let at = if record.get(1).is_some_and(|p| p.code == 5) { 2 } else { 1 };
-                            record.insert(at.min(record.len()), Pair::owned("  8", layer.clone()));
-                        }
-                    }
-                }
-            }
-            "TEXT" => {
-                // The crate omits the alignment point when it is (0, 0); justified text needs it.
-                let justified = record.iter().any(|p| (p.code == 72 || p.code == 73) && p.value.trim() != "0");
-                if justified && !record.iter().any(|p| p.code == 11) {
-                    let at = record.iter().position(|p| p.code == 72 || p.code == 73).unwrap_or(record.len());
-                    let at = if record.get(at).is_some_and(|p| p.code == 72) { at + 1 } else { at };
-                    for (i, c) in [" 11", " 21", " 31"].into_iter().enumerate() {
-                        record.insert(at + i, Pair::owned(c, "0.0".to_string()));
-                    }
-                }
-                poly_layer = None;
-            }
-            _ => poly_layer = None,
-        }
+        poly_layer = vertices_and_text(&mut record, &kind, poly_layer);
         for p in &record {
             push_pair(&mut out, &p.code_text, &p.value);
         }
     }
     out.into_bytes()
+}
+
+/// The handles `fix_up` gives out in an R2000 file: the next free one and the seed the
+/// header states ($HANDSEED), past all of them.
+struct Handles {
+    next: u64,
+    seed: u64,
+}
+
+impl Handles {
+    /// After the highest handle the crate assigned in `pairs`, room for a handle per TABLE
+    /// head and per ENDBLK.
+    fn after<'a>(pairs: impl Iterator<Item = Pair<'a>>) -> Handles {
+        let (mut highest, mut extra) = (0u64, 0u64);
+        for p in pairs {
+            match p.code {
+                5 | 105 => highest = highest.max(u64::from_str_radix(p.value.trim(), 16).unwrap_or(0)),
+                0 if p.value == "TABLE" || p.value == "ENDBLK" => extra += 1,
+                _ => {}
+            }
+        }
+        Handles { next: highest + 1, seed: highest + 1 + extra }
+    }
+
+    /// Takes the next free handle, in hexadecimal.
+    fn take(&mut self) -> String {
+        self.next += 1;
+        format!("{:X}", self.next - 1)
+    }
+
+    /// R2000 and later: the header's $HANDSEED, a handle for each TABLE head and ENDBLK,
+    /// the 2-line angular dimension's subclass, the vertices' lineweight and transparency.
+    fn r2000_record(&mut self, record: &mut Vec<Pair>, kind: &str, is_header: bool) {
+        if is_header
+            && let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$HANDSEED")
+            && let Some(pair) = record.get_mut(at + 1)
+        {
+            pair.value = format!("{:X}", self.seed).into();
+        }
+        match kind {
+            "TABLE" => {
+                let at = if record.get(1).is_some_and(|p| p.code == 2) { 2 } else { 1 };
+                record.insert(at, Pair::owned("  5", self.take()));
+                record.insert(at + 1, Pair::owned("330", "0".to_string()));
+            }
+            "ENDBLK" => {
+                let handle = self.take();
+                match record.iter_mut().find(|p| p.code == 5) {
+                    Some(pair) => pair.value = handle.into(),
+                    None => record.insert(1, Pair::owned("  5", handle)),
+                }
+            }
+            // The 2-line angular dimension, written as the crate's 3-point one.
+            "DIMENSION" => {
+                let two_line =
+                    record.iter().any(|p| p.code == 70 && p.value.trim().parse::<i32>().is_ok_and(|v| v & 7 == 2));
+                if two_line {
+                    for pair in record.iter_mut().filter(|p| p.code == 100 && p.value == "AcDb3PointAngularDimension") {
+                        pair.value = Cow::Borrowed("AcDb2LineAngularDimension");
+                    }
+                }
+            }
+            // Lineweight BYLAYER on the vertices the crate builds itself (it writes 0 mm).
+            // ... and opaque (R2007: the crate's 0 is an invalid transparency).
+            "VERTEX" => {
+                for pair in record.iter_mut() {
+                    match pair.code {
+                        370 => pair.value = format!("{:>6}", -1).into(),
+                        440 => pair.value = format!("{:>9}", OPAQUE).into(),
+                        _ => {}
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+}
+
+/// R12's header: $DIMTXSTY (the crate writes it from R13 on; LibreCAD draws the dimension
+/// text it regenerates in this style) and $PINSBASE at `paper_insertion_base` (the crate
+/// writes it from R14 on: where the drawing's origin lies on the sheet $PLIMMIN–$PLIMMAX;
+/// LibreCAD prints that sheet with the drawing on it).
+fn r12_header(record: &mut Vec<Pair>, paper_insertion_base: (f64, f64)) {
+    if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$TEXTSTYLE") {
+        let var = [("  9", "$DIMTXSTY".to_string()), ("  7", TEXT_STYLE.to_string())];
+        for (k, (c, v)) in var.into_iter().enumerate() {
+            record.insert(at + 2 + k, Pair::owned(c, v));
+        }
+    }
+    if let Some(at) = record.iter().position(|p| p.code == 9 && p.value == "$PLIMMAX") {
+        let next = record[at + 1..].iter().position(|p| p.code == 9).map_or(record.len(), |k| at + 1 + k);
+        let (x, y) = paper_insertion_base;
+        let var = [("  9", "$PINSBASE".to_string()), (" 10", fmt_f64(x)), (" 20", fmt_f64(y)), (" 30", fmt_f64(0.0))];
+        for (k, (c, v)) in var.into_iter().enumerate() {
+            record.insert(next + k, Pair::owned(c, v));
+        }
+    }
+}
+
+/// A record of the TABLES section: a layer that is off (negative colour) frozen too (flag
+/// 1: LibreCAD, QCAD and others read a layer's visibility from the flag alone and show an
+/// off layer); a DIMSTYLE's handle in group 105 (5 is $DIMBLK there).
+fn table_record(record: &mut [Pair], kind: &str) {
+    if kind == "LAYER" && record.iter().any(|p| p.code == 62 && p.value.trim().starts_with('-')) {
+        for pair in record.iter_mut().filter(|p| p.code == 70) {
+            pair.value = Cow::Borrowed("     1");
+        }
+    }
+    if kind == "DIMSTYLE" {
+        for pair in record.iter_mut().filter(|p| p.code == 5) {
+            pair.code_text = Cow::Borrowed("105");
+            pair.code = 105;
+        }
+    }
+}
+
+/// Every version: a polyline's VERTEX and SEQEND records on the POLYLINE's layer
+/// (`poly_layer`, the layer of the polyline being written), a justified TEXT's alignment
+/// point (the crate omits it when it is (0, 0)); returns the polyline's layer for the next
+/// record.
+fn vertices_and_text(record: &mut Vec<Pair>, kind: &str, poly_layer: Option<String>) -> Option<String> {
+    match kind {
+        "POLYLINE" => record.iter().find(|p| p.code == 8).map(|p| p.value.to_string()),
+        "VERTEX" | "SEQEND" => {
+            if let Some(layer) = &poly_layer {
+                match record.iter_mut().find(|p| p.code == 8) {
+                    Some(pair) => pair.value = layer.clone().into(),
+                    None => {
+                        // After the type and the handle.
+                        let at = if record.get(1).is_some_and(|p| p.code == 5) { 2 } else { 1 };
+                        record.insert(at.min(record.len()), Pair::owned("  8", layer.clone()));
+                    }
+                }
+            }
+            poly_layer
+        }
+        "TEXT" => {
+            let justified = record.iter().any(|p| (p.code == 72 || p.code == 73) && p.value.trim() != "0");
+            if justified && !record.iter().any(|p| p.code == 11) {
+                let at = record.iter().position(|p| p.code == 72 || p.code == 73).unwrap_or(record.len());
+                let at = if record.get(at).is_some_and(|p| p.code == 72) { at + 1 } else { at };
+                for (i, c) in [" 11", " 21", " 31"].into_iter().enumerate() {
+                    record.insert(at + i, Pair::owned(c, "0.0".to_string()));
+                }
+            }
+            None
+        }
+        _ => None,
+    }
 }
 
 /// A float as the crate writes it: at most 12 decimals, trailing zeros trimmed, at least one
