@@ -282,11 +282,6 @@ pub fn modes_caption_mm(lines: usize) -> f64 {
     scale_top + MODES_GAP_MM + 0.3 * PAPER_TEXT_MM + 1.8 * PAPER_TEXT_MM * more + PAPER_TEXT_MM
 }
 
-/// The next drafting scale above `k`.
-fn coarser(k: f64) -> f64 {
-    vocab::drafting_scale(k * (1.0 + 1e-6))
-}
-
 /// The layout of `m`'s sheet: of every grid (columns × rows, no row empty) on
 /// [`MODES_PAPER`] either way round, the one whose cells hold every sketch (its circles and
 /// ground symbols, [`MODES_PAD_MM`] clear of the cell's sides and under its header) at the
@@ -337,7 +332,7 @@ pub fn modes_layout(m: &ModesSheet) -> ModesLayout {
                 if fits(k) {
                     break;
                 }
-                k = coarser(k);
+                k = vocab::coarser_drafting_scale(k);
             }
             if !fits(k) {
                 continue;

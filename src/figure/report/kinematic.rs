@@ -139,7 +139,7 @@ fn placement(p: &KinematicPage, area: Bounds, room: Vector, s: Sizes) -> OnPaper
         if size.x <= inner.x.max(0.3 * area.width()) && size.y <= inner.y.max(0.3 * area.height()) {
             return OnPaper { k_l: at.k_l, origin: sheet::centre(a, b, at.k_l, area) };
         }
-        at.k_l = vocab::drafting_scale(at.k_l * (1.0 + 1e-6));
+        at.k_l = vocab::coarser_drafting_scale(at.k_l);
     }
     at
 }

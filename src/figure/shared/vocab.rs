@@ -71,6 +71,11 @@ pub fn nice_scale(raw: f64) -> f64 {
     10.0 * mag
 }
 
+/// The next drafting scale coarser than the drafting scale `k` (2.5 after 2, 4 after 2.5).
+pub fn coarser_drafting_scale(k: f64) -> f64 {
+    drafting_scale(k * (1.0 + 1e-6))
+}
+
 /// The mantissas of the drafting scales a mechanism is drawn at (GOST 2.302's reduction
 /// scales 1:2, 1:2.5, 1:4, 1:5, 1:10, 1:15, …, and their decades): a sheet's k_l is one of
 /// these × 10ᵏ. They are finer than the nice scales of the polygons (no mantissa more than
@@ -571,6 +576,9 @@ mod tests {
             assert!((drafting_scale(raw) - k).abs() < 1e-12 * k, "{raw} -> {}", drafting_scale(raw));
         }
         assert_eq!(drafting_scale(f64::NAN), 1.0);
+        for (k, next) in [(2.0, 2.5), (2.5, 4.0), (5.0, 10.0), (0.004, 0.005), (1.5, 2.0)] {
+            assert!((coarser_drafting_scale(k) - next).abs() < 1e-12 * next, "{k} -> {}", coarser_drafting_scale(k));
+        }
     }
 
     #[test]
